@@ -1,0 +1,68 @@
+#include "cli/common.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+namespace sysid::cli {
+
+GlobalOptions& Globals() {
+  static GlobalOptions options;
+  return options;
+}
+
+bool ProgressEnabled() { return Globals().progress || isatty(STDERR_FILENO) == 1; }
+
+namespace {
+bool progress_open = false;
+}
+
+void Progress(const std::string& message) {
+  if (!ProgressEnabled()) return;
+  std::fprintf(stderr, "\r%s\033[K", message.c_str());
+  std::fflush(stderr);
+  progress_open = true;
+}
+
+void ProgressDone() {
+  if (progress_open) std::fputc('\n', stderr);
+  progress_open = false;
+}
+
+void PrintJson(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
+
+std::string Table::Render() const {
+  std::vector<size_t> width(header_.size(), 0);
+  auto widen = [&](const std::vector<std::string>& row) {
+    for (size_t i = 0; i < row.size() && i < width.size(); ++i)
+      width[i] = std::max(width[i], row[i].size());
+  };
+  widen(header_);
+  for (const auto& r : rows_) widen(r);
+  std::string out;
+  auto emit = [&](const std::vector<std::string>& row) {
+    for (size_t i = 0; i < row.size() && i < width.size(); ++i) {
+      // The last column is not padded: no trailing blanks.
+      out += i + 1 < row.size() ? fmt::format("{:<{}}  ", row[i], width[i]) : row[i];
+    }
+    out += '\n';
+  };
+  emit(header_);
+  std::vector<std::string> rule;
+  for (size_t w : width) rule.emplace_back(w, '-');
+  emit(rule);
+  for (const auto& r : rows_) emit(r);
+  return out;
+}
+
+std::string Num(double value, int digits) { return fmt::format("{:.{}g}", value, digits); }
+
+CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what) {
+  return cmd->add_option("-o,--output", path, what + " (written atomically)")
+      ->type_name("FILE");
+}
+
+}  // namespace sysid::cli

@@ -1,0 +1,54 @@
+// Conventions every sysid subcommand follows.
+//
+// Exit codes: 0 success; 1 usage error (bad flags, invalid option values); 2 bad input data
+// (file content, model file); 3 numerical failure (singular system, no convergence).
+// Results go to stdout (a readable table, or one JSON object with --json) or atomically to a
+// file with -o. Progress goes to stderr, only when stderr is a terminal or --progress is given.
+#ifndef SYSID_APPS_CLI_COMMON_HPP_
+#define SYSID_APPS_CLI_COMMON_HPP_
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sysid::cli {
+
+enum ExitCode : int { kSuccess = 0, kUsage = 1, kBadInput = 2, kNumerical = 3 };
+
+/// Options shared by every subcommand (--json, --progress), filled by main().
+struct GlobalOptions {
+  bool progress = false;   ///< --progress: report progress on stderr even when not a terminal
+};
+GlobalOptions& Globals();
+
+/// True when progress should be written to stderr (a terminal, or --progress).
+bool ProgressEnabled();
+/// Writes "\r<message>" style progress to stderr when ProgressEnabled().
+void Progress(const std::string& message);
+/// Ends a progress line (newline) if anything was written.
+void ProgressDone();
+
+/// Prints `j` to stdout (indented, newline-terminated).
+void PrintJson(const nlohmann::json& j);
+
+/// A simple aligned text table for human-readable output.
+class Table {
+ public:
+  explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
+  void AddRow(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
+  std::string Render() const;
+ private:
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+/// Formats a double with `digits` significant digits (%.{digits}g).
+std::string Num(double value, int digits = 6);
+
+/// Adds the standard "-o,--output FILE" option.
+CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what);
+
+}  // namespace sysid::cli
+
+#endif  // SYSID_APPS_CLI_COMMON_HPP_

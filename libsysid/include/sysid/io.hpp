@@ -1,0 +1,90 @@
+// Recordings: CSV files of time, voltage and position (and any other named columns).
+//
+// Format: optional '#' comment lines anywhere before the header ("# key: value" lines are
+// metadata and are kept), one header line of column names, then numeric rows. Units are SI:
+// t [s], u [V], x [m], v [m/s], a [m/s^2]. Every cell is parsed whole: empty cells, "abc",
+// "1e", "1.2.3", trailing garbage, NaN and Inf are errors, never zeros. A UTF-8 BOM, CRLF line
+// ends and a missing final newline are accepted. Errors throw sysid::InputError whose message
+// starts with "FILE:LINE:COLUMN:" (physical lines and 1-based character columns of the file).
+#ifndef SYSID_IO_HPP_
+#define SYSID_IO_HPP_
+
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace sysid {
+
+/// A table of named, equally long numeric columns with the file's metadata.
+struct Recording {
+  std::string source;                  ///< file path, or a name given by the caller
+  std::vector<std::string> names;      ///< column names in file order
+  Eigen::MatrixXd data;                ///< rows x columns, SI units
+  std::vector<std::pair<std::string, std::string>> metadata;  ///< "# key: value" lines, in order
+
+  Eigen::Index rows() const { return data.rows(); }
+  /// Index of the named column, or -1.
+  int index_of(std::string_view name) const;
+  bool has(std::string_view name) const { return index_of(name) >= 0; }
+  /// The named column; throws InputError naming the source and the missing column.
+  Eigen::MatrixXd::ConstColXpr column(std::string_view name) const;
+  /// Value of a metadata key, or `fallback` when absent.
+  std::string meta(std::string_view key, std::string fallback = "") const;
+  /// Appends (or replaces) a column.
+  void SetColumn(const std::string& name, const Eigen::VectorXd& values);
+};
+
+/// Which columns a reader insists on.
+struct ReadOptions {
+  /// Columns that must all be present. The default is a recording: t [s] and u [V].
+  std::vector<std::string> required_columns{"t", "u"};
+  /// At least one of these must be present (default: position x [m] or velocity v [m/s]).
+  std::vector<std::string> any_of_columns{"x", "v"};
+  /// When a column "t" exists it must be strictly increasing.
+  bool require_increasing_time = true;
+};
+
+/// Reads and validates a recording. Throws InputError ("FILE:LINE:COLUMN: ...").
+Recording ReadRecording(const std::string& path, const ReadOptions& options = {});
+
+/// Parses recording text already in memory; `source` names it in error messages.
+Recording ParseRecording(std::string_view text, const std::string& source,
+                         const ReadOptions& options = {});
+
+/// Renders a recording as CSV text: metadata lines, header, rows with 17 significant digits.
+std::string FormatRecording(const Recording& recording);
+
+/// Writes `recording` to `path` atomically (temporary file in the same folder, then rename).
+void WriteRecording(const std::string& path, const Recording& recording);
+
+/// Writes `content` to `path` atomically: a reader sees the old file or the whole new one,
+/// never a partial one. Throws InputError when the folder is not writable.
+void WriteFileAtomically(const std::string& path, std::string_view content);
+
+/// Reads a whole file; throws InputError "FILE: cannot open: reason".
+std::string ReadFile(const std::string& path);
+
+/// Sampling of a time column.
+struct SamplingReport {
+  double nominal_dt_s = 0;      ///< [s] median sample interval
+  double sample_rate_hz = 0;    ///< [Hz] 1 / nominal_dt_s
+  double max_jitter_s = 0;      ///< [s] max |dt_k - nominal_dt_s|
+  double rms_jitter_s = 0;      ///< [s] rms of dt_k - nominal_dt_s
+  double max_relative_jitter = 0;  ///< max |dt_k - nominal_dt_s| / nominal_dt_s
+  bool irregular = false;       ///< max_relative_jitter > the tolerance asked for
+  Eigen::Index worst_index = 0; ///< row k where |dt_k - nominal| is largest (dt_k = t[k+1]-t[k])
+};
+
+/// Analyses the sampling of `t` (strictly increasing, at least 2 samples). `tolerance` is the
+/// relative jitter above which the sampling is called irregular (default 1 %).
+SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance = 0.01);
+
+/// Resamples every column onto the uniform grid t0, t0 + 1/rate, ... <= t_end by linear
+/// interpolation (the column "t" becomes the grid). Throws OptionsError for rate_hz <= 0.
+Recording Resample(const Recording& recording, double rate_hz);
+
+}  // namespace sysid
+
+#endif  // SYSID_IO_HPP_

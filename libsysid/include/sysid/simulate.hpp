@@ -1,0 +1,82 @@
+// Simulation of the delayed friction model (model.hpp) with stick–slip, on SUNDIALS CVODE.
+//
+//   x' = v,  v' = -a1 v(t - tau) - a2 sgn(v) + a3 u(t)
+//
+// While v = 0 the stage is stuck: with F = a3 u(t) - a1 v(t - tau) it breaks away forward when
+// F > a2p (v' = F - a2p), backward when F < -a2n (v' = F + a2n), else v' = 0 exactly. Input
+// edges are hit exactly, breakpoints propagate by tau, and every sign change is an event
+// located by root finding. v(t) = history_v_mps for t < t0.
+#ifndef SYSID_SIMULATE_HPP_
+#define SYSID_SIMULATE_HPP_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sysid/input.hpp"
+#include "sysid/model.hpp"
+
+namespace sysid {
+
+enum class IntegratorMethod { kAdams, kBdf };
+
+struct SimulationOptions {
+  double t0_s = 0.0;            ///< [s] start time
+  double t_end_s = 1.0;         ///< [s] end time, > t0_s
+  double dt_out_s = 1e-3;       ///< [s] output sample interval (ignored if output_times_s given)
+  std::vector<double> output_times_s;  ///< [s] explicit ascending output times in [t0, t_end]
+  double x0_m = 0.0;            ///< [m] position at t0
+  double v0_mps = 0.0;          ///< [m/s] velocity at t0
+  double history_v_mps = 0.0;   ///< [m/s] constant velocity history for t < t0
+  double rtol = 1e-10;          ///< CVODE relative tolerance
+  double atol = 1e-12;          ///< CVODE absolute tolerance (both states, SI units)
+  IntegratorMethod method = IntegratorMethod::kAdams;
+  long max_steps = 10'000'000;  ///< total step budget over the run
+  void Validate() const;        ///< throws OptionsError naming the field and the rule
+};
+
+/// Sampled trajectory; all vectors have the same length.
+struct Trajectory {
+  Eigen::VectorXd t_s;      ///< [s]
+  Eigen::VectorXd u_v;      ///< [V] input (right limit)
+  Eigen::VectorXd x_m;      ///< [m]
+  Eigen::VectorXd v_mps;    ///< [m/s]
+  Eigen::VectorXd a_mps2;   ///< [m/s^2] v' (right limit)
+};
+
+enum class EventKind { kStick, kSlipForward, kSlipBackward, kReverse, kViscousSwitch };
+std::string ToString(EventKind kind);  ///< "stick", "slip+", "slip-", "reverse", "a1-switch"
+
+struct SimulationEvent {
+  double t_s = 0;
+  EventKind kind = EventKind::kStick;
+};
+
+struct SimulationSummary {
+  bool success = true;
+  std::string message;          ///< why it stopped, in words
+  std::string cvode_flag;       ///< CVODE flag name on failure ("CV_TOO_MUCH_WORK", ...)
+  double failure_time_s = 0;    ///< [s] time reached when it failed
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long root_evaluations = 0;
+  long events = 0;
+  long reinitialisations = 0;
+  double wall_time_s = 0;
+};
+
+struct SimulationResult {
+  Trajectory trajectory;
+  std::vector<SimulationEvent> events;
+  SimulationSummary summary;
+};
+
+/// Simulates `model` driven by `input`. Never throws for numerical failure: the summary says
+/// where and why (the trajectory then holds the samples reached). Throws OptionsError for
+/// invalid options or model.
+SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
+                          const SimulationOptions& options);
+
+}  // namespace sysid
+
+#endif  // SYSID_SIMULATE_HPP_

@@ -1,0 +1,73 @@
+#include <charconv>
+#include <string>
+
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+
+namespace sysid {
+
+int Recording::index_of(std::string_view name) const {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+Eigen::MatrixXd::ConstColXpr Recording::column(std::string_view name) const {
+  const int i = index_of(name);
+  if (i < 0) {
+    std::string found;
+    for (const auto& n : names) found += (found.empty() ? "" : ",") + n;
+    throw InputError(source + ": missing column '" + std::string(name) + "' (found: " + found +
+                     ")");
+  }
+  return data.col(i);
+}
+
+std::string Recording::meta(std::string_view key, std::string fallback) const {
+  for (const auto& [k, v] : metadata)
+    if (k == key) return v;
+  return fallback;
+}
+
+void Recording::SetColumn(const std::string& name, const Eigen::VectorXd& values) {
+  if (data.cols() > 0 && values.size() != data.rows())
+    throw InternalError("Recording::SetColumn: column '" + name + "' has " +
+                        std::to_string(values.size()) + " rows, the recording " +
+                        std::to_string(data.rows()));
+  const int i = index_of(name);
+  if (i >= 0) {
+    data.col(i) = values;
+    return;
+  }
+  names.push_back(name);
+  if (data.cols() == 0) data.resize(values.size(), 0);
+  data.conservativeResize(data.rows(), data.cols() + 1);
+  data.col(data.cols() - 1) = values;
+}
+
+std::string FormatRecording(const Recording& recording) {
+  std::string out;
+  const auto rows = recording.data.rows(), cols = recording.data.cols();
+  out.reserve(static_cast<size_t>(rows * cols) * 16 + 256);
+  for (const auto& [k, v] : recording.metadata) out += "# " + k + ": " + v + "\n";
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    out += recording.names[static_cast<size_t>(c)];
+    out += c + 1 < cols ? ',' : '\n';
+  }
+  char buf[32];
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      // Shortest text that reads back to the same double: exact round trip, compact files.
+      const auto res = std::to_chars(buf, buf + sizeof buf, recording.data(r, c));
+      out.append(buf, res.ptr);
+      out += c + 1 < cols ? ',' : '\n';
+    }
+  }
+  return out;
+}
+
+void WriteRecording(const std::string& path, const Recording& recording) {
+  WriteFileAtomically(path, FormatRecording(recording));
+}
+
+}  // namespace sysid

@@ -1,0 +1,64 @@
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+
+namespace sysid {
+
+SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance) {
+  if (t.size() < 2) throw InputError("sampling: need at least 2 samples, found " +
+                                     std::to_string(t.size()));
+  const Eigen::Index n = t.size() - 1;
+  std::vector<double> dt(static_cast<size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) dt[static_cast<size_t>(k)] = t[k + 1] - t[k];
+  std::vector<double> sorted = dt;
+  // The median, not the mean: a few gaps (dropped samples) must not shift the nominal rate.
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  SamplingReport r;
+  r.nominal_dt_s = sorted[static_cast<size_t>(n / 2)];
+  r.sample_rate_hz = 1.0 / r.nominal_dt_s;
+  double sum2 = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double d = std::abs(dt[static_cast<size_t>(k)] - r.nominal_dt_s);
+    sum2 += d * d;
+    if (d > r.max_jitter_s) {
+      r.max_jitter_s = d;
+      r.worst_index = k;
+    }
+  }
+  r.rms_jitter_s = std::sqrt(sum2 / static_cast<double>(n));
+  r.max_relative_jitter = r.max_jitter_s / r.nominal_dt_s;
+  r.irregular = r.max_relative_jitter > tolerance;
+  return r;
+}
+
+Recording Resample(const Recording& recording, double rate_hz) {
+  if (!(rate_hz > 0) || !std::isfinite(rate_hz))
+    throw OptionsError("Resample: rate_hz = " + std::to_string(rate_hz) +
+                       ". Violated constraint: rate_hz > 0");
+  const auto t = recording.column("t");
+  if (t.size() < 2) throw InputError(recording.source + ": resampling needs at least 2 rows");
+  const double t0 = t[0], t1 = t[t.size() - 1], dt = 1.0 / rate_hz;
+  // k * dt rather than accumulated sums: no drift over long records.
+  const auto n = static_cast<Eigen::Index>(std::floor((t1 - t0) / dt * (1 + 1e-12))) + 1;
+  Recording out;
+  out.source = recording.source;
+  out.names = recording.names;
+  out.metadata = recording.metadata;
+  out.metadata.emplace_back("resampled", std::to_string(rate_hz) + " Hz (linear interpolation)");
+  out.data.resize(n, recording.data.cols());
+  const int ti = recording.index_of("t");
+  Eigen::Index j = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double tk = t0 + static_cast<double>(k) * dt;
+    while (j + 2 < t.size() && t[j + 1] <= tk) ++j;
+    const double w = std::clamp((tk - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+    out.data.row(k) = (1 - w) * recording.data.row(j) + w * recording.data.row(j + 1);
+    out.data(k, ti) = tk;
+  }
+  return out;
+}
+
+}  // namespace sysid

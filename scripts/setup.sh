@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Set-up shared by the README's two commands: installs the Debian packages that are missing
+# (idempotent: does nothing when all are present), then configures and builds.
+#
+#   scripts/setup.sh [BUILD_DIR] [extra cmake arguments...]
+#
+# Environment: SYSID_JOBS (parallel build jobs, default: number of cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  g++ cmake make ccache                # toolchain
+  libeigen3-dev libceres-dev           # linear algebra, nonlinear least squares
+  libsundials-dev libnlopt-cxx-dev     # CVODE integrator, derivative-free optimisation
+  catch2 libcli11-dev nlohmann-json3-dev libfmt-dev   # tests, CLI, JSON, formatting
+  gnuplot-nox                          # plots in reports
+  python3-numpy python3-scipy          # the Python peers that benchmarks run side by side
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing missing Debian packages: ${missing[*]}" >&2
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >&2
+fi
+
+BUILD_DIR="${1:-build}"
+shift || true
+jobs="${SYSID_JOBS:-$(nproc)}"
+cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@" >&2
+cmake --build "$BUILD_DIR" -j "$jobs" >&2

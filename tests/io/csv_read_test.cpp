@@ -1,0 +1,115 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "support/test_support.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+
+using sysid::test::RunCli;
+using sysid::test::TempDir;
+using sysid::test::TestData;
+
+TEST_CASE("a file with BOM and CRLF reads the same as a clean one", "[io]") {
+  const auto clean = sysid::ReadRecording(TestData("io/good.csv"));
+  const auto bom = sysid::ReadRecording(TestData("io/good_bom_crlf.csv"));
+  CHECK(bom.names == clean.names);
+  REQUIRE(bom.rows() == 3);
+  CHECK(bom.data == clean.data);  // exact: the same text must give the same doubles
+  CHECK(clean.column("x")[2] == 3e-6);
+}
+
+TEST_CASE("metadata lines are kept in order, plain comments are not", "[io]") {
+  const auto rec = sysid::ReadRecording(TestData("io/good_metadata.csv"));
+  REQUIRE(rec.metadata.size() == 2);
+  CHECK(rec.meta("stage") == "virtual");
+  CHECK(rec.meta("units") == "t [s], u [V], x [m]");
+  CHECK(rec.meta("absent", "fallback") == "fallback");
+}
+
+TEST_CASE("numbers parse exactly as strtod does, signs and exponents included", "[io]") {
+  const std::string text = "t,u,v\n0,+1.5,-2.5e-3\n1e-3, 2 ,.5\n2E-3,-0,1.7976931348623157e308\n";
+  const auto rec = sysid::ParseRecording(text, "mem");
+  CHECK(rec.data(0, 1) == 1.5);
+  CHECK(rec.data(0, 2) == std::strtod("-2.5e-3", nullptr));
+  CHECK(rec.data(1, 1) == 2.0);
+  CHECK(rec.data(1, 2) == 0.5);
+  CHECK(rec.data(2, 0) == 2e-3);
+  CHECK(rec.data(2, 2) == 1.7976931348623157e308);
+  CHECK_THROWS_WITH(sysid::ParseRecording("t,u,v\n0,1,1e999\n", "mem"),
+                    Catch::Contains("mem:2:5: column 'v': number out of range"));
+}
+
+TEST_CASE("write then read round-trips every double exactly, atomically", "[io]") {
+  std::mt19937_64 gen(42);
+  std::uniform_real_distribution<double> dist(-1e3, 1e3);
+  sysid::Recording rec;
+  rec.names = {"t", "u", "x"};
+  rec.metadata = {{"seed", "42"}};
+  rec.data.resize(500, 3);
+  for (int r = 0; r < 500; ++r) {
+    rec.data(r, 0) = r * 1e-3;
+    rec.data(r, 1) = dist(gen);
+    rec.data(r, 2) = dist(gen) * 1e-9;
+  }
+  TempDir dir;
+  const std::string path = dir / "out.csv";
+  sysid::WriteRecording(path, rec);
+  const auto back = sysid::ReadRecording(path);
+  CHECK(back.data == rec.data);
+  CHECK(back.meta("seed") == "42");
+  // No temporary file is left beside the result.
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    (void)e;
+    ++files;
+  }
+  CHECK(files == 1);
+  CHECK_THROWS_AS(sysid::WriteRecording("/nonexistent/dir/out.csv", rec), sysid::InputError);
+}
+
+TEST_CASE("sampling analysis: nominal rate, jitter, irregular sampling", "[io]") {
+  Eigen::VectorXd t(1001);
+  for (int k = 0; k <= 1000; ++k) t[k] = k * 1e-3;
+  auto s = sysid::AnalyzeSampling(t);
+  CHECK(s.sample_rate_hz == Approx(1000.0).epsilon(1e-12));
+  CHECK(s.max_jitter_s < 1e-15);  // k * 1e-3 rounding only
+  CHECK_FALSE(s.irregular);
+  t[500] += 0.3e-3;  // one sample late by 30 % of the interval
+  s = sysid::AnalyzeSampling(t);
+  CHECK(s.irregular);
+  CHECK(s.max_jitter_s == Approx(0.3e-3).epsilon(1e-9));
+  CHECK((s.worst_index == 499 || s.worst_index == 500));
+}
+
+TEST_CASE("resampling onto a uniform grid is exact for linear signals", "[io]") {
+  sysid::Recording rec;
+  rec.names = {"t", "u", "x"};
+  rec.data.resize(4, 3);
+  rec.data << 0.0, 1.0, 0.0,  //
+      0.0013, 1.0, 0.0026,    //
+      0.0021, 1.0, 0.0042,    //
+      0.0040, 1.0, 0.0080;
+  const auto out = sysid::Resample(rec, 1000.0);
+  REQUIRE(out.rows() == 5);
+  for (int k = 0; k < 5; ++k) {
+    CHECK(out.data(k, 0) == Approx(k * 1e-3).margin(1e-15));
+    CHECK(out.data(k, 2) == Approx(2.0 * k * 1e-3).margin(1e-15));  // x = 2 t exactly
+  }
+  CHECK_THROWS_AS(sysid::Resample(rec, 0.0), sysid::OptionsError);
+}
+
+TEST_CASE("sysid info --json summarises a recording", "[io][cli]") {
+  const auto r = RunCli({"info", "--json", TestData("io/good_metadata.csv")});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["rows"] == 3);
+  CHECK(j["columns"] == nlohmann::json::array({"t", "u", "x"}));
+  CHECK(j["duration_s"].get<double>() == Approx(0.002));
+  CHECK(j["sample_rate_hz"].get<double>() == Approx(1000.0));
+  CHECK(j["metadata"]["stage"] == "virtual");
+}

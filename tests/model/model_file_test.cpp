@@ -1,0 +1,47 @@
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "support/test_support.hpp"
+#include "sysid/error.hpp"
+#include "sysid/model.hpp"
+
+TEST_CASE("a model file round-trips and validates", "[model]") {
+  const auto paper = sysid::FrictionModel::Paper();
+  const auto back = sysid::ParseModel(sysid::ModelToJson(paper), "mem");
+  CHECK(back.a1p == paper.a1p);
+  CHECK(back.a2n == paper.a2n);
+  CHECK(back.tau_s == paper.tau_s);
+}
+
+TEST_CASE("model file errors name the place and the rule", "[model][errors]") {
+  CHECK_THROWS_WITH(sysid::ParseModel("{\"a1p\": 1,\n \"a1n\": }", "m.json"),
+                    Catch::StartsWith("m.json:2:9: invalid JSON"));
+  CHECK_THROWS_WITH(
+      sysid::ParseModel(R"({"a1p":1,"a1n":1,"a2p":1,"a2n":1,"a3":6,"tua":0.1})", "m.json"),
+      Catch::Contains("m.json:1:41: unknown key 'tua'"));
+  CHECK_THROWS_WITH(sysid::ParseModel(R"({"a1p":1,"a1n":1,"a2p":1,"a3":6})", "m.json"),
+                    Catch::Contains("missing key 'a2n'"));
+  CHECK_THROWS_WITH(
+      sysid::ParseModel(R"({"a1p":"1","a1n":1,"a2p":1,"a2n":1,"a3":6})", "m.json"),
+      Catch::Contains("m.json:1:2: key 'a1p': expected a number, found string"));
+  CHECK_THROWS_WITH(
+      sysid::ParseModel(R"({"a1p":-1,"a1n":1,"a2p":1,"a2n":1,"a3":6})", "m.json"),
+      Catch::Contains("Violated constraint: a1p > 0"));
+  // Reports may ride along in a model file.
+  CHECK_NOTHROW(sysid::ParseModel(
+      R"({"a1p":1,"a1n":1,"a2p":1,"a2n":1,"a3":6,"diagnostics":{"x":1},"_c":"y"})", "m.json"));
+}
+
+TEST_CASE("steady velocity and analytic inverse agree with the paper's equations", "[model]") {
+  const auto m = sysid::FrictionModel::Paper();
+  // Closed forms from a1 v + a2 = a3 u per direction.
+  CHECK(m.SteadyVelocity(1.6) == Approx((6 * 1.6 - 3.1023) / 104.0154).epsilon(1e-14));
+  CHECK(m.SteadyVelocity(-2.3) == Approx((-6 * 2.3 + 6.8216) / 117.1441).epsilon(1e-14));
+  CHECK(m.SteadyVelocity(0.5) == 0.0);  // 3 < a2p: friction holds
+  // The inverse of a steady state gives back its voltage.
+  const double v = m.SteadyVelocity(1.6);
+  CHECK(m.InverseVoltage(0.0, v, v) == Approx(1.6).epsilon(1e-14));
+  const double w = m.SteadyVelocity(-2.3);
+  CHECK(m.InverseVoltage(0.0, w, w) == Approx(-2.3).epsilon(1e-14));
+}
