@@ -20,9 +20,14 @@ std::string ReadFile(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
   std::string text;
+  // One allocation of the file's size, then one read: no regrowth for large recordings.
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) text.resize(static_cast<size_t>(size));
+  size_t got = ec ? 0 : std::fread(text.data(), 1, text.size(), f);
+  text.resize(got);
   char buf[1 << 16];
   size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);  // grew meanwhile
   const bool failed = std::ferror(f) != 0;
   std::fclose(f);
   if (failed) throw InputError(path + ": read error");

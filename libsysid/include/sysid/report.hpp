@@ -1,0 +1,48 @@
+// Report building blocks: plots through gnuplot (Debian's gnuplot-nox) and markdown tables.
+// Plotting is optional: when gnuplot is missing the plot is skipped with a clear message and
+// the report says so; numbers and CSV traces never depend on it.
+#ifndef SYSID_REPORT_HPP_
+#define SYSID_REPORT_HPP_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace sysid {
+
+struct PlotSeries {
+  std::string label;
+  Eigen::VectorXd x;
+  Eigen::VectorXd y;
+  std::string style = "lines";  ///< gnuplot style: "lines", "points", "linespoints"
+};
+
+struct PlotSpec {
+  std::string title;
+  std::string x_label;   ///< with unit, e.g. "t [s]"
+  std::string y_label;   ///< with unit, e.g. "u [V]"
+  std::vector<PlotSeries> series;
+  bool log_y = false;
+  int width_px = 900;
+  int height_px = 500;
+};
+
+struct PlotOutcome {
+  bool written = false;
+  std::string message;  ///< why not, when not written
+};
+
+/// True when a gnuplot executable is on PATH (checked once).
+bool GnuplotAvailable();
+
+/// Renders `spec` to `path` (.png or .svg by extension) with gnuplot, atomically. Returns
+/// written = false and the reason when gnuplot is missing or fails; never throws for that.
+PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec);
+
+/// A GitHub-flavoured markdown table.
+std::string MarkdownTable(const std::vector<std::string>& header,
+                          const std::vector<std::vector<std::string>>& rows);
+
+}  // namespace sysid
+
+#endif  // SYSID_REPORT_HPP_
