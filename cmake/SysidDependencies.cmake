@@ -8,3 +8,8 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(Threads REQUIRED)
+# Boost.Math headers (libboost-dev): the signal tests cross-check Savitzky-Golay against
+# boost::math::differentiation::discrete_lanczos_derivative. Tests only: not a library dependency.
+if(SYSID_BUILD_TESTS)
+  find_package(Boost 1.71 REQUIRED)
+endif()

@@ -30,12 +30,10 @@ void RunInfo(const InfoOptions& o) {
   if (rec.rows() >= 2) {
     const SamplingReport s = AnalyzeSampling(t, o.jitter_tolerance);
     j["sample_rate_hz"] = s.sample_rate_hz;
-    j["sampling"] = {{"nominal_dt_s", s.nominal_dt_s},
-                     {"max_jitter_s", s.max_jitter_s},
-                     {"rms_jitter_s", s.rms_jitter_s},
-                     {"max_relative_jitter", s.max_relative_jitter},
-                     {"jitter_tolerance", o.jitter_tolerance},
-                     {"irregular", s.irregular}};
+    j["sampling"] = {
+        {"nominal_dt_s", s.nominal_dt_s},         {"max_jitter_s", s.max_jitter_s},
+        {"rms_jitter_s", s.rms_jitter_s},         {"max_relative_jitter", s.max_relative_jitter},
+        {"jitter_tolerance", o.jitter_tolerance}, {"irregular", s.irregular}};
     if (s.irregular)
       j["sampling"]["warning"] = fmt::format(
           "irregular sampling: interval at row {} deviates {:.3g} % from the nominal {:.6g} s; "
@@ -47,9 +45,7 @@ void RunInfo(const InfoOptions& o) {
   nlohmann::ordered_json stats = nlohmann::ordered_json::object();
   for (size_t c = 0; c < rec.names.size(); ++c) {
     const auto col = rec.data.col(static_cast<Eigen::Index>(c));
-    stats[rec.names[c]] = {{"min", col.minCoeff()},
-                           {"max", col.maxCoeff()},
-                           {"mean", col.mean()}};
+    stats[rec.names[c]] = {{"min", col.minCoeff()}, {"max", col.maxCoeff()}, {"mean", col.mean()}};
   }
   j["column_stats"] = stats;
   nlohmann::ordered_json meta = nlohmann::ordered_json::object();
@@ -82,8 +78,9 @@ void RunInfo(const InfoOptions& o) {
 void AddInfoCommand(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Summarise a recording: rows, columns, duration, sampling rate and jitter, "
-              "metadata, per-column ranges (SI units)");
+      "info",
+      "Summarise a recording: rows, columns, duration, sampling rate and jitter, "
+      "metadata, per-column ranges (SI units)");
   cmd->add_option("file", o->path, "recording CSV: columns t [s], u [V], x [m] or v [m/s]")
       ->required()
       ->type_name("FILE.csv");

@@ -17,45 +17,69 @@ namespace sysid {
 
 enum class DerivativeMethod { kCentral, kButterworthCentral, kSavitzkyGolay };
 
+/// Highest Butterworth order accepted (the cascade of sections stays well conditioned).
+constexpr int kMaxButterworthOrder = 20;
+/// Order of the Butterworth anti-alias low-pass of Decimate (run forward and backward, so the
+/// attenuation in dB is twice that of one pass).
+constexpr int kDecimateButterworthOrder = 8;
+/// Anti-alias cut-off of Decimate as a fraction of the new Nyquist frequency 0.5 / (factor dt).
+constexpr double kDecimateCutoffFraction = 0.8;
+
 /// "central", "butterworth", "savgol" <-> DerivativeMethod. Parse throws OptionsError.
 DerivativeMethod ParseDerivativeMethod(const std::string& name);
 std::string ToString(DerivativeMethod method);
 
 struct DerivativeOptions {
   DerivativeMethod method = DerivativeMethod::kCentral;
-  double cutoff_hz = 50.0;      ///< [Hz] Butterworth cut-off; must be < Nyquist (0.5/dt_s)
-  int butterworth_order = 4;    ///< order of the low-pass before forward-backward filtering
-  int savgol_window = 21;       ///< Savitzky–Golay window length [samples], odd, > savgol_order
-  int savgol_order = 3;         ///< Savitzky–Golay polynomial order, >= 2
-  void Validate(double dt_s) const;  ///< throws OptionsError naming the field and the rule
+  double cutoff_hz = 50.0;    ///< [Hz] Butterworth cut-off; must be < Nyquist (0.5/dt_s)
+  int butterworth_order = 4;  ///< order of the low-pass before forward-backward filtering
+  int savgol_window = 21;     ///< Savitzky–Golay window length [samples], odd, > savgol_order
+  int savgol_order = 3;       ///< Savitzky–Golay polynomial order, >= 2
+  /// Throws OptionsError naming the field and the rule. Checks dt_s > 0 and the fields the
+  /// chosen method uses: 0 < cutoff_hz < 0.5/dt_s and 1 <= butterworth_order <=
+  /// kMaxButterworthOrder (kButterworthCentral); savgol_window odd and >= 3, 2 <= savgol_order
+  /// < savgol_window (kSavitzkyGolay).
+  void Validate(double dt_s) const;
 };
 
 /// Position with its first two derivatives, all of the input's length.
 struct Derivatives {
-  Eigen::VectorXd x_m;       ///< [m] position (low-passed for the filtering methods)
-  Eigen::VectorXd v_mps;     ///< [m/s] velocity
-  Eigen::VectorXd a_mps2;    ///< [m/s^2] acceleration
+  Eigen::VectorXd x_m;     ///< [m] position (low-passed for the filtering methods)
+  Eigen::VectorXd v_mps;   ///< [m/s] velocity
+  Eigen::VectorXd a_mps2;  ///< [m/s^2] acceleration
 };
 
-/// Velocity and acceleration of the position `x_m` sampled every `dt_s` seconds.
+/// Velocity and acceleration of the position `x_m` sampled every `dt_s` seconds:
+///  kCentral: v = D x, a = D v with D = CentralDifference;
+///  kButterworthCentral: xf = ButterworthFiltFilt(x), v = D xf, a = D v;
+///  kSavitzkyGolay: x, v, a = the 0th, 1st, 2nd derivative of the Savitzky–Golay fit.
+/// Throws OptionsError (options.Validate), InputError (too few samples for the method, or a
+/// non-finite sample).
 Derivatives Differentiate(const Eigen::VectorXd& x_m, double dt_s,
                           const DerivativeOptions& options = {});
 
-/// First derivative by central differences (second-order one-sided at both ends).
+/// First derivative by central differences (second-order one-sided at both ends):
+/// y'[k] = (y[k+1] - y[k-1]) / (2 dt), y'[0] = (-3 y[0] + 4 y[1] - y[2]) / (2 dt) and its mirror.
+/// Error <= dt^2/6 max|y'''| inside, <= dt^2 max|y'''| at the ends. Needs >= 3 samples.
 Eigen::VectorXd CentralDifference(const Eigen::VectorXd& y, double dt_s);
 
 /// Zero-phase Butterworth low-pass: the order-`order` filter run forward and backward with
 /// odd-reflection padding at the ends (as MATLAB's filtfilt), so the result has no phase lag.
+/// The magnitude response is |H(e^jw)|^2 = 1 / (1 + (tan(w/2) / tan(pi cutoff_hz dt_s))^(2 order)).
+/// Needs more than 3 (2 ceil(order/2) + 1 - order mod 2) samples (the padding).
 Eigen::VectorXd ButterworthFiltFilt(const Eigen::VectorXd& y, double dt_s, double cutoff_hz,
                                     int order);
 
 /// `deriv`-th derivative (0, 1, 2) of the Savitzky–Golay fit of `y` with the given window and
-/// polynomial order; the ends use the fit of the first/last full window.
+/// polynomial order; the ends use the fit of the first/last full window. Needs window <= samples.
 Eigen::VectorXd SavitzkyGolay(const Eigen::VectorXd& y, double dt_s, int window, int order,
                               int deriv);
 
 /// Keeps every `factor`-th sample after a zero-phase anti-alias low-pass at 0.8 x the new
-/// Nyquist frequency (as the EMPS reference does before decimating).
+/// Nyquist frequency (as the EMPS reference does before decimating): the order
+/// kDecimateButterworthOrder Butterworth, forward and backward. Returns y_f[0], y_f[factor], ...
+/// (ceil(n / factor) samples). factor = 1 returns y unchanged. Throws OptionsError for
+/// factor < 1, InputError when y is too short for the filter's padding.
 Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor);
 
 }  // namespace sysid

@@ -19,29 +19,44 @@
 namespace sysid {
 
 enum class IntegratorMethod { kAdams, kBdf };
+/// "adams" / "bdf"; ParseIntegratorMethod throws OptionsError for anything else.
+std::string ToString(IntegratorMethod method);
+IntegratorMethod ParseIntegratorMethod(const std::string& name);
 
 struct SimulationOptions {
-  double t0_s = 0.0;            ///< [s] start time
-  double t_end_s = 1.0;         ///< [s] end time, > t0_s
-  double dt_out_s = 1e-3;       ///< [s] output sample interval (ignored if output_times_s given)
+  double t0_s = 0.0;       ///< [s] start time
+  double t_end_s = 1.0;    ///< [s] end time, > t0_s
+  double dt_out_s = 1e-3;  ///< [s] output sample interval (ignored if output_times_s given)
   std::vector<double> output_times_s;  ///< [s] explicit ascending output times in [t0, t_end]
-  double x0_m = 0.0;            ///< [m] position at t0
-  double v0_mps = 0.0;          ///< [m/s] velocity at t0
-  double history_v_mps = 0.0;   ///< [m/s] constant velocity history for t < t0
-  double rtol = 1e-10;          ///< CVODE relative tolerance
-  double atol = 1e-12;          ///< CVODE absolute tolerance (both states, SI units)
+  double x0_m = 0.0;                   ///< [m] position at t0
+  double v0_mps = 0.0;                 ///< [m/s] velocity at t0
+  double history_v_mps = 0.0;          ///< [m/s] constant velocity history for t < t0
+  double rtol = 1e-10;                 ///< CVODE relative tolerance
+  double atol = 1e-12;                 ///< CVODE absolute tolerance (both states, SI units)
   IntegratorMethod method = IntegratorMethod::kAdams;
   long max_steps = 10'000'000;  ///< total step budget over the run
-  void Validate() const;        ///< throws OptionsError naming the field and the rule
+  /// [s] upper bound on a step; 0 = automatic: min(tau, input.MaxStepHint()). A step never
+  /// exceeds tau > 0 whatever this says (the delayed value must lie in the accepted past).
+  double max_step_s = 0.0;
+  /// Discontinuities of v' (input edges, stick/slip events, t0) recur in higher derivatives at
+  /// t + k tau; the integrator lands a step exactly on t + k tau for k = 1..breakpoint_order.
+  /// In [1, 8]: k = 1 is required, since v(t - tau) leaving an exact 0 (tau after a release) is
+  /// no sign change a root function could see.
+  int breakpoint_order = 2;
+  /// Largest method order; 0 = automatic: 6 for Adams (each step's history polynomial costs
+  /// O(q^2) to extract, and orders above 6 save almost no steps when steps are capped at tau),
+  /// 5 for BDF. In [0, 12] for Adams, [0, 5] for BDF.
+  int max_order = 0;
+  void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
 
 /// Sampled trajectory; all vectors have the same length.
 struct Trajectory {
-  Eigen::VectorXd t_s;      ///< [s]
-  Eigen::VectorXd u_v;      ///< [V] input (right limit)
-  Eigen::VectorXd x_m;      ///< [m]
-  Eigen::VectorXd v_mps;    ///< [m/s]
-  Eigen::VectorXd a_mps2;   ///< [m/s^2] v' (right limit)
+  Eigen::VectorXd t_s;     ///< [s]
+  Eigen::VectorXd u_v;     ///< [V] input (right limit)
+  Eigen::VectorXd x_m;     ///< [m]
+  Eigen::VectorXd v_mps;   ///< [m/s]
+  Eigen::VectorXd a_mps2;  ///< [m/s^2] v' (right limit)
 };
 
 enum class EventKind { kStick, kSlipForward, kSlipBackward, kReverse, kViscousSwitch };
@@ -54,15 +69,17 @@ struct SimulationEvent {
 
 struct SimulationSummary {
   bool success = true;
-  std::string message;          ///< why it stopped, in words
-  std::string cvode_flag;       ///< CVODE flag name on failure ("CV_TOO_MUCH_WORK", ...)
-  double failure_time_s = 0;    ///< [s] time reached when it failed
+  std::string message;        ///< why it stopped, in words
+  std::string cvode_flag;     ///< CVODE flag name on failure ("CV_TOO_MUCH_WORK", ...)
+  double failure_time_s = 0;  ///< [s] time reached when it failed
   long steps = 0;
   long rhs_evaluations = 0;
   long root_evaluations = 0;
   long events = 0;
   long reinitialisations = 0;
   double wall_time_s = 0;
+  /// One line: success, steps, rhs evaluations, events, reinitialisations, wall time.
+  std::string BriefReport() const;
 };
 
 struct SimulationResult {

@@ -52,12 +52,11 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
   if (!mkdtemp(tmpl.data())) return {false, "plot " + path + " skipped: no temp folder"};
   const fs::path dir(tmpl);
   const fs::path target(path);
-  const fs::path tmp_image =
-      (target.has_parent_path() ? target.parent_path() : fs::path(".")) /
-      ("." + target.filename().string() + ".tmp");
+  const fs::path tmp_image = (target.has_parent_path() ? target.parent_path() : fs::path(".")) /
+                             ("." + target.filename().string() + ".tmp");
   std::ofstream script(dir / "plot.gp");
-  script << (svg ? "set terminal svg size " : "set terminal pngcairo size ") << spec.width_px
-         << "," << spec.height_px << (svg ? " dynamic\n" : "\n");
+  script << (svg ? "set terminal svg size " : "set terminal pngcairo size ") << spec.width_px << ","
+         << spec.height_px << (svg ? " dynamic\n" : "\n");
   script << "set output \"" << Escape(tmp_image.string()) << "\"\n";
   script << "set title \"" << Escape(spec.title) << "\" noenhanced\n";
   script << "set xlabel \"" << Escape(spec.x_label) << "\" noenhanced\n";
@@ -77,8 +76,8 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
   }
   script << "\n";
   script.close();
-  const std::string cmd = "gnuplot \"" + (dir / "plot.gp").string() + "\" 2>\"" +
-                          (dir / "err.txt").string() + "\"";
+  const std::string cmd =
+      "gnuplot \"" + (dir / "plot.gp").string() + "\" 2>\"" + (dir / "err.txt").string() + "\"";
   const int rc = std::system(cmd.c_str());
   PlotOutcome outcome;
   if (rc == 0 && fs::exists(tmp_image)) {

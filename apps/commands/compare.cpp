@@ -1,0 +1,138 @@
+// sysid compare --model M.json [--nn NN.json] [--json] [-o DIR] DATA.csv...
+// Measured voltage vs the analytic inverse and the network, per recording.
+#include "sysid/compare.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/io.hpp"
+#include "sysid/report.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct CompareCliOptions {
+  std::string model_path;
+  std::string nn_path;
+  std::vector<std::string> files;
+  std::string out_dir;
+  std::string derivative = "central";
+  bool json = false;
+  bool plots = true;
+  int trim = 5;
+};
+
+nlohmann::ordered_json ErrorsJson(const PredictionErrors& e) {
+  return {{"rmse_v", e.rmse_v}, {"peak_error_v", e.peak_error_v}, {"nrmse", e.nrmse}, {"r2", e.r2}};
+}
+
+void RunCompare(const CompareCliOptions& o) {
+  namespace fs = std::filesystem;
+  const FrictionModel model = ReadModel(o.model_path);
+  std::optional<NeuralNetwork> nn;
+  if (!o.nn_path.empty()) nn = ReadNeuralNetwork(o.nn_path);
+  CompareOptions co;
+  co.derivative.method = ParseDerivativeMethod(o.derivative);
+  co.trim_samples = o.trim;
+  // Everything is computed before anything is written: a bad file leaves no partial output.
+  std::vector<InverseComparison> results;
+  for (size_t i = 0; i < o.files.size(); ++i) {
+    Progress(fmt::format("compare: {}/{} {}", i + 1, o.files.size(), o.files[i]));
+    results.push_back(
+        CompareInverseModels(ReadRecording(o.files[i]), model, nn ? &*nn : nullptr, co));
+  }
+  ProgressDone();
+  nlohmann::ordered_json j;
+  j["model"] = o.model_path;
+  if (nn) j["nn"] = o.nn_path;
+  j["recordings"] = nlohmann::ordered_json::array();
+  Table table({"recording", "model", "RMSE [V]", "peak [V]", "NRMSE", "R^2"});
+  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
+  for (const auto& c : results) {
+    const std::string name = fs::path(c.source).stem().string();
+    nlohmann::ordered_json r;
+    r["file"] = c.source;
+    r["samples"] = c.t_s.size();
+    r["analytic"] = ErrorsJson(c.analytic);
+    if (c.has_nn) r["nn"] = ErrorsJson(c.nn);
+    j["recordings"].push_back(r);
+    auto row = [&](const char* which, const PredictionErrors& e) {
+      table.AddRow(
+          {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse, 4), Num(e.r2, 4)});
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
+                         e.peak_error_v, e.nrmse, e.r2);
+    };
+    row("analytic", c.analytic);
+    if (c.has_nn) row("nn", c.nn);
+  }
+  if (!o.out_dir.empty()) {
+    fs::create_directories(o.out_dir);
+    std::vector<std::string> notes;
+    for (const auto& c : results) {
+      const std::string stem = fs::path(c.source).stem().string();
+      WriteRecording((fs::path(o.out_dir) / (stem + "_traces.csv")).string(), c.AsRecording());
+      if (!o.plots) continue;
+      PlotSpec spec;
+      spec.title = "inverse models on " + stem;
+      spec.x_label = "t [s]";
+      spec.y_label = "u [V]";
+      spec.series.push_back({"measured", c.t_s, c.u_measured_v, "lines"});
+      spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
+      if (c.has_nn) spec.series.push_back({"NN inverse", c.t_s, c.u_nn_v, "lines"});
+      const auto p = WritePlot((fs::path(o.out_dir) / (stem + ".png")).string(), spec);
+      if (!p.written) notes.push_back(p.message);
+    }
+    WriteFileAtomically((fs::path(o.out_dir) / "summary.csv").string(), csv);
+    WriteFileAtomically((fs::path(o.out_dir) / "summary.json").string(), j.dump(2) + "\n");
+    for (const auto& n : notes) std::cerr << "sysid compare: " << n << '\n';
+  }
+  if (o.json) {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << table.Render();
+  }
+}
+
+void AddCompareCommand(CLI::App& app) {
+  auto o = std::make_shared<CompareCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Compare inverse models on recordings: measured u beside the analytic inverse "
+      "(x'' + a1 v(t-tau) + a2 sgn v)/a3 and the network's prediction; RMSE, peak error, NRMSE");
+  cmd->add_option("--model", o->model_path, "friction model JSON (a1p, a1n, a2p, a2n, a3, tau)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--nn", o->nn_path,
+                  "neural inverse model JSON (inputs by name: v [m/s], "
+                  "a [m/s^2])")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("files", o->files,
+                  "recordings: t [s], u [V] and x [m] (or v [m/s] and a [m/s^2] columns)")
+      ->required()
+      ->type_name("DATA.csv");
+  cmd->add_option("--derivative", o->derivative,
+                  "filter for v, a when the file has no v, a columns: central | butterworth | "
+                  "savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+  cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
+      ->check(CLI::NonNegativeNumber);
+  AddOutputOption(cmd, o->out_dir,
+                  "folder for <name>_traces.csv, <name>.png, summary.csv, summary.json")
+      ->type_name("DIR");
+  cmd->add_flag("--json", o->json, "print one JSON object with the metrics per recording");
+  cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
+  cmd->callback([o] { RunCompare(*o); });
+}
+
+const bool kRegistered = RegisterCommand(70, &AddCompareCommand);
+
+}  // namespace
+}  // namespace sysid::cli

@@ -1,0 +1,194 @@
+// sysid derive REC.csv [--method central|butterworth|savgol] [--cutoff HZ] [--order N]
+//                      [--window N] [--decimate K] [--resample HZ] [-o OUT.csv] [--json]
+// Velocity v [m/s] and acceleration a [m/s^2] from the position x [m] of a recording.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct DeriveCliOptions {
+  std::string path;
+  std::string output;
+  std::string method = "central";
+  double cutoff_hz = DerivativeOptions{}.cutoff_hz;
+  std::optional<int> order;
+  int window = DerivativeOptions{}.savgol_window;
+  int decimate = 1;
+  std::optional<double> resample_hz;
+  double jitter_tolerance = 0.01;
+  bool json = false;
+};
+
+// Library option messages name the struct fields; the user typed flags.
+[[noreturn]] void RethrowWithFlag(const OptionsError& e) {
+  const std::string what = e.what();
+  std::string flag = "--method";
+  if (what.find("cutoff_hz") != std::string::npos) flag = "--cutoff";
+  if (what.find("_order") != std::string::npos) flag = "--order";
+  if (what.find("savgol_window") != std::string::npos) flag = "--window";
+  if (what.find("Decimate") != std::string::npos) flag = "--decimate";
+  throw OptionsError(flag + ": " + what);
+}
+
+void RunDerive(const DeriveCliOptions& o) {
+  DerivativeOptions opt;
+  opt.method = ParseDerivativeMethod(o.method);
+  opt.cutoff_hz = o.cutoff_hz;
+  opt.savgol_window = o.window;
+  if (o.order && opt.method == DerivativeMethod::kSavitzkyGolay) opt.savgol_order = *o.order;
+  if (o.order && opt.method != DerivativeMethod::kSavitzkyGolay) opt.butterworth_order = *o.order;
+  if (o.decimate < 1)
+    throw OptionsError(fmt::format("--decimate: K = {}. Violated constraint: K >= 1", o.decimate));
+
+  ReadOptions read;
+  read.required_columns = {"t", "u", "x"};
+  read.any_of_columns = {};
+  Recording rec = ReadRecording(o.path, read);
+  if (rec.rows() < 2)
+    throw InputError(fmt::format("{}: {} row; derive needs a sampled signal", o.path, rec.rows()));
+  if (o.resample_hz) rec = Resample(rec, *o.resample_hz);
+  const SamplingReport sampling = AnalyzeSampling(rec.column("t"), o.jitter_tolerance);
+  if (sampling.irregular)
+    throw InputError(fmt::format(
+        "{}: irregular sampling: t[{}] - t[{}] (data rows, 0-based) deviates {:.3g} % from the "
+        "median interval {:.6g} s (tolerance {:.3g} %); resample with --resample HZ",
+        o.path, sampling.worst_index + 1, sampling.worst_index, 100 * sampling.max_relative_jitter,
+        sampling.nominal_dt_s, 100 * o.jitter_tolerance));
+  double dt_s = sampling.nominal_dt_s;
+
+  try {
+    opt.Validate(dt_s * o.decimate);
+    if (o.decimate > 1) {
+      Recording out;
+      out.source = rec.source;
+      out.metadata = rec.metadata;
+      for (size_t c = 0; c < rec.names.size(); ++c) {
+        const Eigen::VectorXd col = rec.data.col(static_cast<Eigen::Index>(c));
+        Eigen::VectorXd dec;
+        if (rec.names[c] == "t") {  // time is subsampled, never filtered
+          dec.resize((col.size() + o.decimate - 1) / o.decimate);
+          for (Eigen::Index i = 0; i < dec.size(); ++i) dec[i] = col[i * o.decimate];
+        } else {
+          dec = Decimate(col, dt_s, o.decimate);
+        }
+        out.SetColumn(rec.names[c], dec);
+      }
+      rec = std::move(out);
+      dt_s *= o.decimate;
+    }
+    const Derivatives d = Differentiate(rec.column("x"), dt_s, opt);
+    rec.SetColumn("v", d.v_mps);
+    rec.SetColumn("a", d.a_mps2);
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e);
+  } catch (const InputError& e) {
+    throw InputError(o.path + ": " + e.what());
+  }
+
+  std::string settings = "method=" + ToString(opt.method);
+  if (opt.method == DerivativeMethod::kButterworthCentral)
+    settings += fmt::format(" cutoff_hz={} order={}", opt.cutoff_hz, opt.butterworth_order);
+  if (opt.method == DerivativeMethod::kSavitzkyGolay)
+    settings += fmt::format(" window={} order={}", opt.savgol_window, opt.savgol_order);
+  if (o.decimate > 1) settings += fmt::format(" decimate={}", o.decimate);
+  if (o.resample_hz) settings += fmt::format(" resample_hz={}", *o.resample_hz);
+  rec.metadata.emplace_back("derive", settings);
+
+  if (!o.output.empty()) WriteRecording(o.output, rec);
+  if (o.json) {
+    const auto v = rec.column("v");
+    const auto a = rec.column("a");
+    nlohmann::ordered_json j;
+    j["file"] = o.path;
+    if (!o.output.empty()) j["output"] = o.output;
+    j["method"] = ToString(opt.method);
+    j["settings"] = settings;
+    j["rows"] = rec.rows();
+    j["columns"] = rec.names;
+    j["dt_s"] = dt_s;
+    j["sample_rate_hz"] = 1.0 / dt_s;
+    j["v_mps"] = {{"min", v.minCoeff()},
+                  {"max", v.maxCoeff()},
+                  {"rms", std::sqrt(v.squaredNorm() / static_cast<double>(v.size()))}};
+    j["a_mps2"] = {{"min", a.minCoeff()},
+                   {"max", a.maxCoeff()},
+                   {"rms", std::sqrt(a.squaredNorm() / static_cast<double>(a.size()))}};
+    PrintJson(j);
+  } else if (o.output.empty()) {
+    std::cout << FormatRecording(rec);
+  } else {
+    std::cout << fmt::format("{}: {} rows at {:.6g} Hz, {} -> {}\n", o.path, rec.rows(), 1.0 / dt_s,
+                             settings, o.output);
+  }
+}
+
+void AddDeriveCommand(CLI::App& app) {
+  auto o = std::make_shared<DeriveCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "derive",
+      "Velocity v [m/s] and acceleration a [m/s^2] from the position x [m] of a recording: "
+      "central differences, zero-phase Butterworth + central differences, or Savitzky-Golay; "
+      "optional anti-aliased decimation. Writes t, u, x, the other columns, v, a");
+  cmd->add_option("file", o->path, "recording CSV: columns t [s], u [V], x [m]")
+      ->required()
+      ->type_name("REC.csv");
+  AddOutputOption(cmd, o->output,
+                  "write the recording with v [m/s] and a [m/s^2] added (replaced if present) "
+                  "to FILE; without -o the CSV goes to stdout");
+  cmd->add_option("--method", o->method,
+                  "central: (x[k+1]-x[k-1])/(2 dt), as the paper; butterworth: zero-phase "
+                  "Butterworth low-pass of x then central differences; savgol: Savitzky-Golay "
+                  "fit derivative")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+      ->capture_default_str();
+  cmd->add_option("--cutoff", o->cutoff_hz,
+                  "butterworth: cut-off frequency [Hz], 0 < HZ < Nyquist of the (decimated) "
+                  "rate")
+      ->type_name("HZ")
+      ->capture_default_str();
+  cmd->add_option("--order", o->order,
+                  "butterworth: filter order [1, 20], default 4; savgol: polynomial order "
+                  "[>= 2, < window], default 3 [dimensionless]")
+      ->type_name("N");
+  cmd->add_option("--window", o->window,
+                  "savgol: window length [samples], odd, >= 3 (at 1 kHz, 21 samples = 20 ms)")
+      ->type_name("N")
+      ->capture_default_str();
+  cmd->add_option("--decimate", o->decimate,
+                  "keep every K-th sample after a zero-phase order-8 Butterworth anti-alias "
+                  "low-pass at 0.8 x the new Nyquist frequency (all columns but t) "
+                  "[samples, >= 1]")
+      ->type_name("K")
+      ->capture_default_str();
+  cmd->add_option("--resample", o->resample_hz,
+                  "first resample every column onto a uniform grid at HZ [Hz] by linear "
+                  "interpolation (for irregular time stamps)")
+      ->type_name("HZ")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
+                  "relative sampling jitter above which the recording is rejected as irregular "
+                  "[dimensionless]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json,
+                "print one JSON object (file, output, method, settings, rows, columns, dt_s, "
+                "sample_rate_hz, v_mps and a_mps2 min/max/rms) instead of the CSV or a summary");
+  cmd->callback([o] { RunDerive(*o); });
+}
+
+const bool kRegistered = RegisterCommand(15, &AddDeriveCommand);
+
+}  // namespace
+}  // namespace sysid::cli

@@ -1,0 +1,207 @@
+// sysid dominance --model M.json [--json] [-o TABLE.csv] REC.csv...
+// Ranks the inverse model's input variables by the size of the terms they generate.
+#include "sysid/dominance.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct DominanceCli {
+  std::string model;
+  std::vector<std::string> recordings;
+  std::vector<std::string> candidates;
+  double min_speed = 1e-3;
+  double negligible = 0.1;
+  int threads = 0;
+  bool json = false;
+  std::string output;
+  std::string derivative = "central";
+  double cutoff_hz = 50.0;
+  std::string velocity_column = "v";
+};
+
+CandidateTerm ParseCandidate(const std::string& spec) {
+  // NAME=COLUMN*GAIN or NAME=COLUMN
+  const size_t eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw OptionsError("--candidate '" + spec + "': expected NAME=COLUMN or NAME=COLUMN*GAIN");
+  CandidateTerm c;
+  c.variable = spec.substr(0, eq);
+  std::string rest = spec.substr(eq + 1);
+  const size_t star = rest.find('*');
+  if (star != std::string::npos) {
+    const std::string g = rest.substr(star + 1);
+    size_t used = 0;
+    try {
+      c.gain = std::stod(g, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != g.size() || g.empty())
+      throw OptionsError("--candidate '" + spec + "': gain '" + g + "' is not a number");
+    rest = rest.substr(0, star);
+  }
+  c.column = rest;
+  return c;
+}
+
+nlohmann::ordered_json StatsJson(const TermStats& s, bool ranking) {
+  nlohmann::ordered_json j;
+  j[ranking ? "variable" : "term"] = s.name;
+  j["rms"] = s.rms;
+  j["peak"] = s.peak;
+  j["ratio_to_top"] = s.ratio_to_top;
+  if (ranking) {
+    j["ratio_bound"] = s.ratio_bound;
+    j["ratio_max"] = s.ratio_max;
+    j["negligible"] = s.negligible;
+  }
+  return j;
+}
+
+nlohmann::ordered_json ResultJson(const DominanceResult& r) {
+  nlohmann::ordered_json j;
+  j["source"] = r.source;
+  nlohmann::ordered_json rank = nlohmann::ordered_json::array();
+  for (const auto& s : r.ranking) rank.push_back(StatsJson(s, true));
+  j["ranking"] = rank;
+  j["dominant"] = r.dominant;
+  j["margin"] = std::isfinite(r.margin) ? nlohmann::ordered_json(r.margin) : nullptr;
+  nlohmann::ordered_json terms = nlohmann::ordered_json::array();
+  for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
+  j["terms"] = terms;
+  j["paper_ratio_bound"] = r.paper_ratio_bound;
+  j["paper_ratio_max"] = r.paper_ratio_max;
+  j["samples"] = r.samples;
+  j["moving_samples"] = r.moving_samples;
+  return j;
+}
+
+void RunDominance(const DominanceCli& o) {
+  const FrictionModel model = ReadModel(o.model);
+  DominanceOptions d;
+  d.min_speed_mps = o.min_speed;
+  d.negligible_ratio = o.negligible;
+  d.threads = o.threads;
+  d.motion.derivative.method = ParseDerivativeMethod(o.derivative);
+  d.motion.derivative.cutoff_hz = o.cutoff_hz;
+  d.motion.velocity_column = o.velocity_column;
+  for (const auto& c : o.candidates) d.candidates.push_back(ParseCandidate(c));
+  ReadOptions ro;
+  ro.any_of_columns = {"x", o.velocity_column};
+  std::vector<Recording> recs;
+  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
+  const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
+  if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
+  // Pooled ranking over all recordings: RMS over all moving samples, peak over all.
+  std::map<std::string, std::pair<double, double>> pooled;  // name -> (sum of squares, peak)
+  Eigen::Index moving = 0;
+  for (const auto& r : s.results) {
+    moving += r.moving_samples;
+    for (const auto& t : r.ranking) {
+      auto& p = pooled[t.name];
+      p.first += t.rms * t.rms * static_cast<double>(r.moving_samples);
+      p.second = std::max(p.second, t.peak);
+    }
+  }
+  std::vector<TermStats> ranking;
+  for (const auto& [name, p] : pooled) {
+    TermStats t;
+    t.name = name;
+    t.rms = std::sqrt(p.first / static_cast<double>(moving));
+    t.peak = p.second;
+    ranking.push_back(t);
+  }
+  std::sort(ranking.begin(), ranking.end(),
+            [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
+  for (auto& t : ranking) {
+    t.ratio_to_top = t.rms / ranking[0].rms;
+    t.negligible = &t != &ranking[0] && t.ratio_to_top <= o.negligible;
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    nlohmann::ordered_json rank = nlohmann::ordered_json::array();
+    for (const auto& t : ranking)
+      rank.push_back({{"variable", t.name},
+                      {"rms", t.rms},
+                      {"peak", t.peak},
+                      {"ratio_to_top", t.ratio_to_top},
+                      {"negligible", t.negligible}});
+    j["ranking"] = rank;
+    j["dominant"] = ranking[0].name;
+    j["negligible_ratio"] = o.negligible;
+    j["min_speed_mps"] = o.min_speed;
+    nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+    for (const auto& [k, c] : s.dominant_counts) counts[k] = c;
+    j["summary"] = {{"recordings", s.results.size()},
+                    {"dominant_counts", counts},
+                    {"min_margin", s.min_margin},
+                    {"median_margin", s.median_margin}};
+    nlohmann::ordered_json per = nlohmann::ordered_json::array();
+    for (const auto& r : s.results) per.push_back(ResultJson(r));
+    j["recordings"] = per;
+    PrintJson(j);
+    return;
+  }
+  for (const auto& r : s.results) std::cout << r.BriefReport();
+  if (s.results.size() > 1) {
+    std::cout << fmt::format("\n{} recordings: dominant {} ", s.results.size(), s.dominant);
+    for (const auto& [k, c] : s.dominant_counts) std::cout << fmt::format("[{}: {}] ", k, c);
+    std::cout << fmt::format("margin min {:.3g}, median {:.3g}\n", s.min_margin, s.median_margin);
+  }
+}
+
+void AddDominanceCommand(CLI::App& app) {
+  auto o = std::make_shared<DominanceCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "dominance",
+      "Rank the inverse model's input variables (acceleration, velocity, ...) by the size of "
+      "the terms of a3 u = x'' + a1 v(t-tau) + a2 sgn(v) they generate over the moving part "
+      "[m/s^2]; batch over many recordings in parallel");
+  cmd->add_option("--model", o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)")
+      ->required()
+      ->type_name("M.json");
+  cmd->add_option("recordings", o->recordings,
+                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
+      ->required()
+      ->type_name("REC.csv");
+  cmd->add_option("--candidate", o->candidates,
+                  "further candidate variable NAME=COLUMN*GAIN: term GAIN*COLUMN [m/s^2]")
+      ->type_name("NAME=COL*GAIN");
+  cmd->add_option("--min-speed", o->min_speed, "moving part: |v| >= this [m/s], default 1e-3");
+  cmd->add_option("--negligible", o->negligible,
+                  "a variable with rms <= this x the top's is negligible [dimensionless], "
+                  "default 0.1");
+  cmd->add_option("--threads", o->threads, "recordings analysed in parallel [count]");
+  cmd->add_flag("--json", o->json,
+                "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
+                "recordings} (rms, peak in m/s^2)");
+  AddOutputOption(cmd, o->output, "write the per-recording table as CSV");
+  cmd->add_option("--derivative", o->derivative,
+                  "filter for v and x'' from x: central (default), butterworth, savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--velocity-column", o->velocity_column,
+                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  cmd->callback([o] { RunDominance(*o); });
+}
+
+const bool kRegistered = RegisterCommand(50, &AddDominanceCommand);
+
+}  // namespace
+}  // namespace sysid::cli

@@ -1,0 +1,124 @@
+// sysid generate pulses|tracking|waveforms|all [--stage STAGE.json] [--seed N] [-o DIR]:
+// runs the paper's data-collection procedures on the virtual stage and writes recordings.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct GenerateOptions {
+  std::string what;
+  std::string stage_path;
+  std::uint64_t seed = 1;
+  std::string out_dir = ".";
+  std::string derivative = "central";
+  bool json = false;
+};
+
+void RunGenerate(const GenerateOptions& o) {
+  const StageParameters stage =
+      o.stage_path.empty() ? StageParameters::Default() : ReadStageParameters(o.stage_path);
+  TrackingProcedure tracking;
+  tracking.derivative.method = ParseDerivativeMethod(o.derivative);
+  tracking.Validate(stage);
+  const bool all = o.what == "all";
+  // Everything is computed before anything is written: an error leaves no partial dataset.
+  std::vector<std::pair<std::string, Recording>> files;
+  if (all || o.what == "pulses") {
+    Progress("generate: pulse test");
+    files.emplace_back("pulses.csv",
+                       RunPulseTest(stage, PulseProcedure{}, o.seed, tracking.derivative));
+  }
+  if (all || o.what == "tracking") {
+    Progress("generate: training set");
+    files.emplace_back("training.csv", RunTrackingSet(stage, TrainingGrid(), tracking,
+                                                      DeriveSeed(o.seed, 1), "training"));
+    Progress("generate: test set");
+    files.emplace_back("test.csv",
+                       RunTrackingSet(stage, TestGrid(), tracking, DeriveSeed(o.seed, 2), "test"));
+  }
+  if (all || o.what == "waveforms") {
+    const auto waves = PaperTestWaveforms();
+    for (size_t i = 0; i < waves.size(); ++i) {
+      Progress("generate: waveform " + waves[i].name);
+      files.emplace_back("waveform_" + waves[i].name + ".csv",
+                         TrackWaveform(stage, waves[i], tracking, DeriveSeed(o.seed, 100 + i)));
+    }
+  }
+  ProgressDone();
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) throw InputError(o.out_dir + ": cannot create folder: " + ec.message());
+  nlohmann::ordered_json j;
+  j["stage"] = stage.name;
+  j["seed"] = o.seed;
+  j["files"] = nlohmann::ordered_json::array();
+  Table table({"file", "rows", "duration [s]", "limits"});
+  if (all) {
+    // The parameters beside the data they produced.
+    const std::string path = (std::filesystem::path(o.out_dir) / "stage.json").string();
+    WriteStageParameters(path, stage);
+    j["files"].push_back({{"path", path}});
+  }
+  for (auto& [name, rec] : files) {
+    const std::string path = (std::filesystem::path(o.out_dir) / name).string();
+    WriteRecording(path, rec);
+    const double duration = rec.rows() > 0 ? rec.data(rec.rows() - 1, 0) - rec.data(0, 0) : 0;
+    j["files"].push_back({{"path", path},
+                          {"rows", rec.rows()},
+                          {"duration_s", duration},
+                          {"limits", rec.meta("limits", "none")}});
+    table.AddRow({path, std::to_string(rec.rows()), Num(duration, 5), rec.meta("limits")});
+  }
+  if (o.json)
+    PrintJson(j);
+  else
+    std::cout << table.Render();
+}
+
+void AddGenerateCommand(CLI::App& app) {
+  auto o = std::make_shared<GenerateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "generate",
+      "Run the paper's data-collection procedures on the virtual stage and write recordings "
+      "(t [s], u [V], x [m], v [m/s], a [m/s^2]) with '#' metadata: pulses -> pulses.csv, "
+      "tracking -> training.csv + test.csv, waveforms -> waveform_<name>.csv, all -> every one "
+      "plus stage.json");
+  cmd->add_option("what", o->what, "which procedure: pulses, tracking, waveforms or all")
+      ->required()
+      ->check(CLI::IsMember({"pulses", "tracking", "waveforms", "all"}));
+  cmd->add_option("--stage", o->stage_path,
+                  "stage parameter file (JSON, SI units in the keys; default: the built-in "
+                  "calibrated stage, identical to datasets/virtual/stage.json)")
+      ->type_name("STAGE.json");
+  cmd->add_option("--seed", o->seed,
+                  "noise seed [integer]; the same seed gives byte-identical files (default 1)");
+  cmd->add_option("-o,--output", o->out_dir,
+                  "output folder, created if missing (default: the current folder)")
+      ->type_name("DIR");
+  cmd->add_option("--derivative", o->derivative,
+                  "how v [m/s] and a [m/s^2] come from x [m]: central, butterworth or savgol "
+                  "(default central, as the paper)")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+  cmd->add_flag("--json", o->json,
+                "print one JSON object: stage, seed, files (path, rows, "
+                "duration_s, limits)");
+  cmd->callback([o] { RunGenerate(*o); });
+}
+
+const bool kRegistered = RegisterCommand(40, &AddGenerateCommand);
+
+}  // namespace
+}  // namespace sysid::cli

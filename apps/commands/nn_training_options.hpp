@@ -1,0 +1,139 @@
+// Options shared by `sysid train` and `sysid sweep` (one header so both read the same flags).
+#ifndef SYSID_APPS_COMMANDS_NN_TRAINING_OPTIONS_HPP_
+#define SYSID_APPS_COMMANDS_NN_TRAINING_OPTIONS_HPP_
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::cli {
+
+struct NeuralCliOptions {
+  std::string train_path, test_path, validation_path, model_path;
+  std::string inputs = "v";
+  std::string output = "u";
+  std::string trainer = "lm";
+  std::string init = "nguyen-widrow";
+  std::vector<std::string> input_ranges;  ///< NAME=MIN:MAX
+  std::string output_range;               ///< MIN:MAX
+  bool json = false;
+  NeuralTrainingOptions training;
+};
+
+inline std::vector<std::string> SplitComma(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t p; (p = s.find(',', start)) != std::string::npos; start = p + 1)
+    out.push_back(s.substr(start, p - start));
+  out.push_back(s.substr(start));
+  return out;
+}
+
+inline std::pair<double, double> ParseRangeSpec(const std::string& spec,
+                                                const std::string& option) {
+  const size_t colon = spec.find(':');
+  auto bad = [&] {
+    return OptionsError(option + " '" + spec +
+                        "': expected MIN:MAX with MIN < MAX (units of "
+                        "the column)");
+  };
+  if (colon == std::string::npos) throw bad();
+  try {
+    size_t u1 = 0, u2 = 0;
+    const std::string a = spec.substr(0, colon), b = spec.substr(colon + 1);
+    const double lo = std::stod(a, &u1), hi = std::stod(b, &u2);
+    if (u1 != a.size() || u2 != b.size() || !(lo < hi)) throw bad();
+    return {lo, hi};
+  } catch (const std::logic_error&) {
+    throw bad();
+  }
+}
+
+inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
+  cmd->add_option("--train", o.train_path,
+                  "training CSV with the input and output columns (t [s] optional)")
+      ->required()
+      ->type_name("FILE.csv");
+  cmd->add_option("--test", o.test_path, "test CSV (same columns); reported, never trained on")
+      ->type_name("FILE.csv");
+  cmd->add_option("--validation", o.validation_path,
+                  "validation CSV for early stopping (6 consecutive rises, trainlm's rule)")
+      ->type_name("FILE.csv");
+  cmd->add_option("--inputs", o.inputs,
+                  "comma-separated input columns, e.g. v or v,a [SI units: v m/s, a m/s^2]; "
+                  "default v");
+  cmd->add_option("--output", o.output, "output (target) column [SI unit, u in V]; default u");
+  cmd->add_option("--trainer", o.trainer,
+                  "lm (the paper's LM with momentum, trainlm mu schedule) or ceres (Ceres LM "
+                  "reference); default lm")
+      ->check(CLI::IsMember({"lm", "ceres"}));
+  cmd->add_option("--momentum", o.training.momentum,
+                  "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm; default 0");
+  cmd->add_option("--seed", o.training.seed, "initialisation seed; restart r uses seed + r");
+  cmd->add_option("--restarts", o.training.restarts,
+                  "random initialisations, best kept (by validation MSE, else training MSE)");
+  cmd->add_option("--max-epochs", o.training.max_epochs, "epoch limit; default 1000");
+  cmd->add_option("--goal-mse", o.training.goal_mse,
+                  "stop when training MSE <= this [output unit^2, V^2]; default 0");
+  cmd->add_option("--min-gradient", o.training.gradient_tolerance,
+                  "stop when ||2 J'e/N|| < this [normalised units]; default 1e-7");
+  cmd->add_option("--init", o.init, "nguyen-widrow (default) or uniform")
+      ->check(CLI::IsMember({"nguyen-widrow", "uniform"}));
+  cmd->add_flag("--solve-output-layer", o.training.solve_output_layer,
+                "lm only: after each trial step set the linear output layer to its least-squares "
+                "optimum (much faster convergence; off = the paper's rule exactly)");
+  cmd->add_option("--input-range", o.input_ranges,
+                  "fixed mapminmax range NAME=MIN:MAX of an input [its SI unit], e.g. "
+                  "v=-0.1:0.1; default: the training data's min/max")
+      ->type_name("NAME=MIN:MAX");
+  cmd->add_option("--output-range", o.output_range,
+                  "fixed mapminmax range MIN:MAX of the output [V]; -1:1 leaves it unscaled; "
+                  "default: the training targets' min/max")
+      ->type_name("MIN:MAX");
+  cmd->add_flag("--json", o.json, "print one JSON object to stdout");
+}
+
+// Turns the flags into library options (input names, ranges, trainer).
+inline void ResolveNeuralOptions(NeuralCliOptions& o) {
+  auto names = SplitComma(o.inputs);
+  for (const auto& n : names)
+    if (n.empty()) throw OptionsError("--inputs '" + o.inputs + "': empty column name");
+  NeuralTrainingOptions& t = o.training;
+  t.trainer = o.trainer == "ceres" ? NeuralTrainer::kCeres : NeuralTrainer::kLevenbergMarquardt;
+  t.init = o.init == "uniform" ? NeuralInit::kUniform : NeuralInit::kNguyenWidrow;
+  if (t.solve_output_layer && t.trainer == NeuralTrainer::kCeres)
+    throw OptionsError("--solve-output-layer applies to --trainer lm only");
+  if (!o.input_ranges.empty()) {
+    t.input_ranges.assign(names.size(), {0.0, 0.0});
+    std::vector<bool> given(names.size(), false);
+    for (const auto& spec : o.input_ranges) {
+      const size_t eq = spec.find('=');
+      const std::string name = eq == std::string::npos ? "" : spec.substr(0, eq);
+      size_t k = 0;
+      while (k < names.size() && names[k] != name) ++k;
+      if (k == names.size())
+        throw OptionsError("--input-range '" + spec +
+                           "': expected NAME=MIN:MAX with NAME one "
+                           "of --inputs (" +
+                           o.inputs + ")");
+      t.input_ranges[k] = ParseRangeSpec(spec.substr(eq + 1), "--input-range");
+      given[k] = true;
+    }
+    for (size_t k = 0; k < names.size(); ++k)
+      if (!given[k])
+        throw OptionsError("--input-range: no range for input '" + names[k] +
+                           "' (give one for every input, or none)");
+  }
+  if (!o.output_range.empty()) t.output_range = ParseRangeSpec(o.output_range, "--output-range");
+  t.Validate();
+}
+
+}  // namespace sysid::cli
+
+#endif  // SYSID_APPS_COMMANDS_NN_TRAINING_OPTIONS_HPP_

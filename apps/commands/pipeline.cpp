@@ -1,0 +1,163 @@
+// sysid pipeline DIR|MANIFEST.json [-o OUT] [--json] ...: the whole workflow, recordings in,
+// report + model files out.
+#include "sysid/pipeline.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct PipelineCliOptions {
+  std::string input;
+  std::string out_dir = "sysid-report";
+  std::string reference;
+  std::string hidden = "16:32:2";
+  double a3 = 6.0;
+  int max_epochs = PipelineOptions::DefaultTraining().max_epochs;
+  std::string inputs;
+  int typical_epochs = 60;
+  int typical_stride = 2;
+  bool refine = false, typical = true, track = true, tune_delay = true, json = false;
+  double kp = PiOptions::ForVirtualStage().kp_v_per_m;
+  double ki = PiOptions::ForVirtualStage().ki_v_per_m_s;
+  std::uint64_t seed = 1;
+};
+
+void RunPipelineCommand(const PipelineCliOptions& o) {
+  const PipelineInputs inputs = fs::is_directory(o.input) ? PipelineInputs::FromDirectory(o.input)
+                                                          : PipelineInputs::FromManifest(o.input);
+  PipelineOptions opt;
+  opt.a3 = o.a3;
+  opt.tune_delay = o.tune_delay;
+  opt.refine = o.refine;
+  opt.hidden_sizes = ParseHiddenSizes(o.hidden);
+  opt.training.max_epochs = o.max_epochs;
+  if (!o.inputs.empty()) opt.nn_inputs = CLI::detail::split(o.inputs, ',');
+  opt.training.seed = o.seed;
+  opt.typical = o.typical;
+  opt.typical_max_epochs = o.typical_epochs;
+  opt.typical_stride = o.typical_stride;
+  opt.track = o.track;
+  opt.pi.kp_v_per_m = o.kp;
+  opt.pi.ki_v_per_m_s = o.ki;
+  opt.reference_path = o.reference;
+  const PipelineResult r = RunPipeline(inputs, opt, [](const std::string& step) {
+    Progress("pipeline: " + step + " ...");
+    ProgressDone();
+  });
+  // The report is written into a temporary sibling folder and renamed into place: a failure
+  // never leaves a half-written report behind, and a previous one is replaced whole.
+  const fs::path out = fs::absolute(o.out_dir);
+  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".tmp");
+  fs::remove_all(tmp);
+  std::vector<std::string> notes;
+  try {
+    notes = WritePipelineReport(r, tmp.string());
+  } catch (...) {
+    fs::remove_all(tmp);
+    throw;
+  }
+  fs::remove_all(out);
+  fs::rename(tmp, out);
+  for (const auto& n : notes) std::cerr << "sysid pipeline: " << n << '\n';
+
+  nlohmann::ordered_json j;
+  j["report"] = (out / "report.md").string();
+  j["model"] = {{"a1p", r.model.a1p}, {"a1n", r.model.a1n}, {"a2p", r.model.a2p},
+                {"a2n", r.model.a2n}, {"a3", r.model.a3},   {"tau", r.model.tau_s}};
+  j["dominant"] = r.dominance.dominant;
+  j["nn_inputs"] = r.nn_inputs;
+  j["hidden"] = r.network.hidden_size();
+  j["nn_test_mse"] = r.network_test_mse;
+  if (r.typical) {
+    j["typical_train_mse"] = r.typical->train_mse;
+    j["typical_test_mse"] = r.typical_test_mse;
+  }
+  j["tracking"] = nlohmann::ordered_json::array();
+  for (const auto& t : r.tracking)
+    j["tracking"].push_back({{"frequency_hz", t.frequency_hz},
+                             {"ff", t.scheme},
+                             {"max_error_m", t.result.max_error_m},
+                             {"rms_error_m", t.result.rms_error_m}});
+  j["steps"] = nlohmann::ordered_json::object();
+  for (const auto& [name, s] : r.step_seconds) j["steps"][name] = s;
+  if (o.json) {
+    std::cout << j.dump(2) << '\n';
+    return;
+  }
+  std::cout << fmt::format(
+      "model: a1p={:.6g} a1n={:.6g} a2p={:.6g} a2n={:.6g} a3={:.6g} tau={:.4g} s\n"
+      "dominant variable: {}; network {} hidden units, test MSE {:.4g} V^2\n",
+      r.model.a1p, r.model.a1n, r.model.a2p, r.model.a2n, r.model.a3, r.model.tau_s,
+      r.dominance.dominant, r.network.hidden_size(), r.network_test_mse);
+  if (!r.tracking.empty()) {
+    Table t({"freq [Hz]", "feedforward", "max |e| [mm]", "RMS e [mm]"});
+    for (const auto& row : r.tracking)
+      t.AddRow({Num(row.frequency_hz, 3), row.scheme, Num(1e3 * row.result.max_error_m, 4),
+                Num(1e3 * row.result.rms_error_m, 4)});
+    std::cout << t.Render();
+  }
+  std::cout << "report: " << (out / "report.md").string() << '\n';
+}
+
+void AddPipelineCommand(CLI::App& app) {
+  auto o = std::make_shared<PipelineCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "pipeline",
+      "The whole workflow on a stage's recordings: identify -> tune delay -> [refine] -> "
+      "dominance -> NN sweep (+ typical (v, a) network) -> compare -> PI tracking -> report. "
+      "DIR holds pulses*.csv, training*.csv, test*.csv, waveform*.csv and optionally "
+      "stage.json (enables tracking), or a manifest.json naming them");
+  cmd->add_option("input", o->input, "folder of recordings, or a manifest JSON")
+      ->required()
+      ->check(CLI::ExistingPath)
+      ->type_name("DIR|MANIFEST");
+  AddOutputOption(cmd, o->out_dir, "report folder (replaced whole; default sysid-report)")
+      ->type_name("DIR");
+  cmd->add_option("--a3", o->a3,
+                  "actuator gain for the pulse method [m/(s^2 V)] (default 6; "
+                  "a manifest's a3 wins)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--hidden", o->hidden,
+                  "hidden sizes to sweep: first:last:step or a list "
+                  "(default 16:32:2)");
+  cmd->add_option("--inputs", o->inputs,
+                  "network inputs, comma separated (v, a); default: the dominant variable");
+  cmd->add_option("--max-epochs", o->max_epochs, "LM epoch limit per network (default 100)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--typical-epochs", o->typical_epochs,
+                  "LM epoch limit of the typical 120-unit (v, a) network (default 60)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--typical-stride", o->typical_stride,
+                  "train the typical network on every n-th training row (default 2)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--no-typical", o->typical, "skip the typical (v, a) network");
+  cmd->add_flag("!--no-delay", o->tune_delay, "keep tau = 0 (no delay tuning)");
+  cmd->add_flag("--refine", o->refine, "refine all parameters by output error (Ceres)");
+  cmd->add_flag("!--no-track", o->track, "skip the PI tracking experiment");
+  cmd->add_option("--kp", o->kp,
+                  "PI proportional gain [V/m] (default: stable on the virtual "
+                  "stage, 3000; the paper's 19000 limit-cycles there)");
+  cmd->add_option("--ki", o->ki, "PI integral gain [V/(m s)] (default 104100)");
+  cmd->add_option("--seed", o->seed, "seed of the network initialisations");
+  cmd->add_option("--reference", o->reference,
+                  "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--json", o->json, "print a JSON summary (model, dominant, MSEs, tracking)");
+  cmd->callback([o] { RunPipelineCommand(*o); });
+}
+
+const bool kRegistered = RegisterCommand(90, &AddPipelineCommand);
+
+}  // namespace
+}  // namespace sysid::cli

@@ -1,0 +1,102 @@
+// sysid predict --nn NN.json DATA.csv [-o OUT.csv] [--column NAME] [--json]
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct PredictOptions {
+  std::string nn_path, data_path, out_path, column;
+  bool json = false;
+};
+
+void RunPredict(const PredictOptions& o) {
+  const NeuralNetwork net = ReadNeuralNetwork(o.nn_path);
+  ReadOptions ro;
+  ro.required_columns = net.input_names();
+  ro.any_of_columns = {};
+  Recording rec = ReadRecording(o.data_path, ro);
+  Eigen::MatrixXd X(rec.rows(), net.input_count());
+  for (int i = 0; i < net.input_count(); ++i) X.col(i) = rec.column(net.inputs()[i].name);
+  const Eigen::VectorXd y = net.EvaluateBatch(X);
+  const std::string column = o.column.empty() ? net.output().name + "_nn" : o.column;
+  if (column == net.output().name || (rec.has(column) && o.column.empty()))
+    throw OptionsError("--column '" + column + "' would overwrite a column of " + o.data_path +
+                       "; choose another name with --column");
+  // Inputs outside the training range are extrapolation: say how many.
+  long outside = 0;
+  for (Eigen::Index k = 0; k < X.rows(); ++k)
+    for (int i = 0; i < net.input_count(); ++i)
+      if (X(k, i) < net.inputs()[i].min || X(k, i) > net.inputs()[i].max) {
+        ++outside;
+        break;
+      }
+  nlohmann::ordered_json j;
+  j["nn"] = o.nn_path;
+  j["data"] = o.data_path;
+  j["rows"] = rec.rows();
+  j["column"] = column;
+  j["rows_outside_input_range"] = outside;
+  if (rec.has(net.output().name)) {
+    const double mse = (y - rec.column(net.output().name)).squaredNorm() /
+                       static_cast<double>(std::max<Eigen::Index>(rec.rows(), 1));
+    j["mse"] = mse;
+  }
+  rec.SetColumn(column, y);
+  rec.metadata.push_back({"predicted_by", o.nn_path});
+  if (!o.out_path.empty()) WriteRecording(o.out_path, rec);
+  if (o.json) {
+    PrintJson(j);
+    return;
+  }
+  if (o.out_path.empty()) {
+    std::cout << FormatRecording(rec);
+    return;
+  }
+  std::cout << fmt::format("wrote {} ({} rows, column '{}')\n", o.out_path, rec.rows(), column);
+  if (j.contains("mse"))
+    std::cout << fmt::format("MSE against '{}': {:.6g}\n", net.output().name,
+                             j["mse"].get<double>());
+  if (outside > 0)
+    std::cout << fmt::format(
+        "warning: {} rows have inputs outside the network's input range "
+        "(extrapolation)\n",
+        outside);
+}
+
+void AddPredictCommand(CLI::App& app) {
+  auto o = std::make_shared<PredictOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "predict",
+      "Evaluate a neural inverse model on a CSV: adds the predicted output column "
+      "(e.g. u_nn [V]) and reports the MSE when the true output column is present");
+  cmd->add_option("--nn", o->nn_path, "network model file (JSON from sysid train/sweep)")
+      ->required()
+      ->type_name("NN.json");
+  cmd->add_option("data", o->data_path,
+                  "CSV with the network's input columns (SI units, e.g. v [m/s]); t optional")
+      ->required()
+      ->type_name("DATA.csv");
+  cmd->add_option("-o", o->out_path,
+                  "output CSV: the input file's columns plus the prediction (atomic); "
+                  "default: CSV to stdout")
+      ->type_name("OUT.csv");
+  cmd->add_option("--column", o->column, "name of the prediction column; default <output>_nn");
+  cmd->add_flag("--json", o->json, "print a JSON summary (rows, mse, column) to stdout");
+  cmd->callback([o] { RunPredict(*o); });
+}
+
+const bool kRegistered = RegisterCommand(62, &AddPredictCommand);
+
+}  // namespace
+}  // namespace sysid::cli

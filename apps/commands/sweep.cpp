@@ -1,0 +1,105 @@
+// sysid sweep --train A.csv --test B.csv --hidden 16:32:2 [training flags] [-o BEST.json]
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "commands/nn_training_options.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct SweepCliOptions {
+  NeuralCliOptions nn;
+  std::string hidden = "16:32:2";
+  int threads = 0;
+};
+
+nlohmann::ordered_json NumberOrNull(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+void RunSweep(SweepCliOptions& o) {
+  HiddenSweepOptions so;
+  so.hidden_sizes = ParseHiddenSizes(o.hidden);
+  so.threads = o.threads;
+  ResolveNeuralOptions(o.nn);
+  so.training = o.nn.training;
+  const auto names = SplitComma(o.nn.inputs);
+  const NeuralDataset train = ReadNeuralDataset(o.nn.train_path, names, o.nn.output);
+  std::unique_ptr<NeuralDataset> test, validation;
+  if (!o.nn.test_path.empty())
+    test = std::make_unique<NeuralDataset>(ReadNeuralDataset(o.nn.test_path, names, o.nn.output));
+  if (!o.nn.validation_path.empty())
+    validation = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
+  if (ProgressEnabled()) Progress(fmt::format("training {} networks ...", so.hidden_sizes.size()));
+  const HiddenSweepResult r = SweepHiddenSize(train, validation.get(), test.get(), so);
+  ProgressDone();
+  const auto& best = r.rows[r.chosen];
+
+  nlohmann::ordered_json j;
+  j["inputs"] = names;
+  j["output"] = o.nn.output;
+  j["trainer"] = ToString(o.nn.training.trainer);
+  j["momentum"] = o.nn.training.momentum;
+  j["seed"] = o.nn.training.seed;
+  j["rows"] = nlohmann::ordered_json::array();
+  for (const auto& row : r.rows)
+    j["rows"].push_back({{"hidden", row.hidden},
+                         {"epochs", row.epochs},
+                         {"train_mse", row.train_mse},
+                         {"validation_mse", NumberOrNull(row.validation_mse)},
+                         {"test_mse", NumberOrNull(row.test_mse)},
+                         {"stop_reason", ToString(row.stop)},
+                         {"wall_time_s", row.wall_time_s}});
+  j["chosen_hidden"] = best.hidden;
+  j["rule"] = r.rule;
+  j["wall_time_s"] = r.wall_time_s;
+  if (!o.nn.model_path.empty()) {
+    nlohmann::ordered_json summary = j["rows"][r.chosen];
+    summary["rule"] = r.rule;
+    summary["trainer"] = j["trainer"];
+    summary["train_file"] = o.nn.train_path;
+    WriteNeuralNetwork(o.nn.model_path, r.runs[r.chosen].network, summary.dump());
+  }
+  if (o.nn.json) {
+    PrintJson(j);
+    return;
+  }
+  Table t({"hidden", "epochs", "train MSE", "validation MSE", "test MSE", "stop"});
+  for (const auto& row : r.rows)
+    t.AddRow({std::to_string(row.hidden), std::to_string(row.epochs), Num(row.train_mse),
+              std::isfinite(row.validation_mse) ? Num(row.validation_mse) : "-",
+              std::isfinite(row.test_mse) ? Num(row.test_mse) : "-", ToString(row.stop)});
+  std::cout << t.Render();
+  std::cout << fmt::format("chosen H = {} ({}), {:.3g} s\n", best.hidden, r.rule, r.wall_time_s);
+  if (!o.nn.model_path.empty()) std::cout << "wrote " << o.nn.model_path << '\n';
+}
+
+void AddSweepCommand(CLI::App& app) {
+  auto o = std::make_shared<SweepCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Train one network per hidden size (in parallel) and tabulate epochs, training "
+      "and test MSE [output unit^2], as the paper's Table; picks H by min validation "
+      "MSE, else min test MSE");
+  AddNeuralOptions(cmd, o->nn);
+  cmd->add_option("--hidden", o->hidden,
+                  "hidden sizes FIRST:LAST:STEP or a list H1,H2,...; default 16:32:2");
+  cmd->add_option("--threads", o->threads, "worker threads; 0 = all cores (default)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
+      ->type_name("NN.json");
+  cmd->callback([o] { RunSweep(*o); });
+}
+
+const bool kRegistered = RegisterCommand(61, &AddSweepCommand);
+
+}  // namespace
+}  // namespace sysid::cli

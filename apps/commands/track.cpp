@@ -1,0 +1,226 @@
+// sysid track --plant STAGE.json|virtual --ff none|analytic|nn[,...] [--model M.json]
+//             [--nn NN.json] (--freq F | --reference REF.csv) [--json] [-o DIR]
+// PI position control on the virtual stage with optional feedforward; tracking-error table.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/compare.hpp"
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/nn.hpp"
+#include "sysid/report.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct TrackCliOptions {
+  std::string plant = "virtual";
+  std::string ff = "none";
+  std::string model_path, nn_path, reference_path, out_dir;
+  double freq_hz = 0.5;
+  double amplitude_m = 0.01;
+  int cycles = 2;
+  double kp = PiOptions{}.kp_v_per_m;
+  double ki = PiOptions{}.ki_v_per_m_s;
+  double u_max = 10.0;
+  std::uint64_t seed = 1;
+  bool json = false;
+  bool plots = true;
+};
+
+std::vector<std::string> SplitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item != "none" && item != "analytic" && item != "nn")
+      throw OptionsError("--ff: '" + item + "' is not one of none, analytic, nn");
+    out.push_back(item);
+  }
+  if (out.empty()) throw OptionsError("--ff: expected none, analytic or nn");
+  return out;
+}
+
+Eigen::VectorXd FeedforwardValues(const std::string& scheme, const PositionReference& ref,
+                                  double dt, const std::optional<FrictionModel>& model,
+                                  const std::optional<NeuralNetwork>& nn) {
+  // The analytic inverse uses the delayed reference velocity v_ref(t - tau), so the whole
+  // feedforward is computed over the reference first and played back sample by sample.
+  if (scheme == "analytic") return AnalyticInverse(*model, dt, ref.v_mps, ref.a_mps2);
+  return NetworkInverse(*nn, ref.v_mps, ref.a_mps2);
+}
+
+void RunTrack(const TrackCliOptions& o) {
+  namespace fs = std::filesystem;
+  const StageParameters stage =
+      o.plant == "virtual" ? StageParameters::Default() : ReadStageParameters(o.plant);
+  const std::vector<std::string> schemes = SplitList(o.ff);
+  std::optional<FrictionModel> model;
+  std::optional<NeuralNetwork> nn;
+  for (const auto& s : schemes) {
+    if (s == "analytic" && !model) {
+      if (o.model_path.empty()) throw OptionsError("--ff analytic needs --model M.json");
+      model = ReadModel(o.model_path);
+    }
+    if (s == "nn" && !nn) {
+      if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
+      nn = ReadNeuralNetwork(o.nn_path);
+    }
+  }
+  PositionReference ref;
+  if (!o.reference_path.empty()) {
+    ReadOptions ro;
+    ro.required_columns = {"t"};
+    ro.any_of_columns = {"x_ref", "x"};
+    const Recording r = ReadRecording(o.reference_path, ro);
+    ref = ReferenceFromPositions(r.column("t"), r.column(r.has("x_ref") ? "x_ref" : "x"));
+    ref.description = o.reference_path;
+  } else {
+    SmoothProfileOptions p;
+    p.frequency_hz = o.freq_hz;
+    p.amplitude_m = o.amplitude_m;
+    p.cycles = o.cycles;
+    p.sample_rate_hz = stage.sample_rate_hz;
+    ref = MakeSmoothProfile(p);
+  }
+  PiOptions pi;
+  pi.kp_v_per_m = o.kp;
+  pi.ki_v_per_m_s = o.ki;
+  pi.u_max_v = o.u_max;
+  pi.sample_time_s = stage.sample_time_s();
+  pi.Validate();
+  const double dt = stage.sample_time_s();
+
+  std::vector<TrackingResult> results;
+  std::vector<std::string> notes;
+  for (size_t i = 0; i < schemes.size(); ++i) {
+    Progress(fmt::format("track: {} ({}/{})", schemes[i], i + 1, schemes.size()));
+    VirtualStage plant(stage, o.seed);  // every scheme sees the same plant and noise
+    Feedforward ff;
+    if (schemes[i] != "none")
+      ff = SampledFeedforward(FeedforwardValues(schemes[i], ref, dt, model, nn));
+    results.push_back(RunClosedLoop(plant, ref, pi, ff));
+    const StageStatus st = plant.status();
+    notes.push_back(st.Describe());
+  }
+  ProgressDone();
+
+  nlohmann::ordered_json j;
+  j["plant"] = o.plant == "virtual" ? stage.name : o.plant;
+  j["reference"] = ref.description;
+  j["kp_v_per_m"] = o.kp;
+  j["ki_v_per_m_s"] = o.ki;
+  j["schemes"] = nlohmann::ordered_json::array();
+  Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
+               "limits"});
+  for (size_t i = 0; i < schemes.size(); ++i) {
+    const auto& r = results[i];
+    j["schemes"].push_back({{"ff", schemes[i]},
+                            {"max_error_m", r.max_error_m},
+                            {"rms_error_m", r.rms_error_m},
+                            {"rms_u_v", r.rms_u_v},
+                            {"max_abs_u_v", r.max_abs_u_v},
+                            {"total_variation_v", r.total_variation_v},
+                            {"saturated_samples", r.saturated_samples},
+                            {"stage_limits", notes[i]}});
+    table.AddRow({schemes[i], Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
+                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
+                  notes[i]});
+  }
+  if (schemes.size() == 1) {
+    j["max_error_m"] = results[0].max_error_m;
+    j["rms_error_m"] = results[0].rms_error_m;
+  }
+  if (!o.out_dir.empty()) {
+    fs::create_directories(o.out_dir);
+    PlotSpec err{"tracking error", "t [s]", "e [mm]", {}, false, 900, 500};
+    PlotSpec u{"control signal", "t [s]", "u [V]", {}, false, 900, 500};
+    for (size_t i = 0; i < schemes.size(); ++i) {
+      const auto& r = results[i];
+      Recording rec;
+      rec.metadata = {{"ff", schemes[i]},
+                      {"units", "t [s], x_ref [m], x [m], e [m], u [V], u_ff [V]"}};
+      rec.SetColumn("t", r.t_s);
+      rec.SetColumn("x_ref", r.x_ref_m);
+      rec.SetColumn("x", r.x_m);
+      rec.SetColumn("e", r.e_m);
+      rec.SetColumn("u", r.u_v);
+      rec.SetColumn("u_ff", r.u_ff_v);
+      WriteRecording((fs::path(o.out_dir) / ("track_" + schemes[i] + ".csv")).string(), rec);
+      err.series.push_back({schemes[i], r.t_s, 1e3 * r.e_m, "lines"});
+      u.series.push_back({schemes[i], r.t_s, r.u_v, "lines"});
+    }
+    if (o.plots) {
+      for (const auto& [name, spec] :
+           {std::pair{"tracking_error.png", err}, std::pair{"control_signal.png", u}}) {
+        const auto p = WritePlot((fs::path(o.out_dir) / name).string(), spec);
+        if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
+      }
+    }
+    WriteFileAtomically((fs::path(o.out_dir) / "summary.json").string(), j.dump(2) + "\n");
+  }
+  if (o.json)
+    std::cout << j.dump(2) << '\n';
+  else
+    std::cout << table.Render();
+}
+
+void AddTrackCommand(CLI::App& app) {
+  auto o = std::make_shared<TrackCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "track",
+      "PI position control of the virtual stage with feedforward (none, the analytic "
+      "inverse, or the NN inverse): maximum and RMS tracking error and control effort");
+  cmd->add_option("--plant", o->plant,
+                  "stage parameter file STAGE.json, or 'virtual' for the "
+                  "bundled calibrated stage");
+  cmd->add_option("--ff", o->ff, "feedforward scheme(s), comma separated: none, analytic, nn");
+  cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--nn", o->nn_path,
+                  "neural inverse model JSON on v [m/s] (and a [m/s^2]) "
+                  "(for --ff nn)")
+      ->check(CLI::ExistingFile);
+  auto* freq =
+      cmd->add_option("--freq", o->freq_hz, "frequency of the smooth back-and-forth profile [Hz]")
+          ->check(CLI::PositiveNumber);
+  cmd->add_option("--reference", o->reference_path,
+                  "position reference CSV with t [s] and x_ref [m] (or x) columns")
+      ->check(CLI::ExistingFile)
+      ->excludes(freq);
+  cmd->add_option("--amplitude", o->amplitude_m, "stroke of the profile [m] (default 0.01)");
+  cmd->add_option("--cycles", o->cycles, "profile periods to run (default 2)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--kp", o->kp,
+                  "proportional gain [V/m] (paper: 19000; on the bundled "
+                  "virtual stage 3000 is stable, see docs/control.md)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ki", o->ki,
+                  "integral gain [V/(m s)] (paper: 660000; virtual stage: "
+                  "104100)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--u-max", o->u_max, "output saturation [V] (default 10)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise");
+  AddOutputOption(cmd, o->out_dir, "folder for track_<ff>.csv traces, plots and summary.json")
+      ->type_name("DIR");
+  cmd->add_flag("--json", o->json, "print one JSON object (max_error_m, rms_error_m, schemes)");
+  cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots");
+  cmd->callback([o] { RunTrack(*o); });
+}
+
+const bool kRegistered = RegisterCommand(80, &AddTrackCommand);
+
+}  // namespace
+}  // namespace sysid::cli

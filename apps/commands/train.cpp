@@ -1,0 +1,124 @@
+// sysid train --train A.csv [--test B.csv] --inputs v[,a] --output u --hidden H
+//             [--trainer lm|ceres] [--momentum a] [--seed N] -o NN.json [--json]
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "commands/nn_training_options.hpp"
+#include "sysid/io.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct TrainCliOptions {
+  NeuralCliOptions nn;
+  bool history = false;
+};
+
+nlohmann::ordered_json NumberOrNull(double x) {
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
+}
+
+void RunTrain(TrainCliOptions& o) {
+  ResolveNeuralOptions(o.nn);
+  const auto names = SplitComma(o.nn.inputs);
+  // Read everything before training so bad files fail fast.
+  const NeuralDataset train = ReadNeuralDataset(o.nn.train_path, names, o.nn.output);
+  std::unique_ptr<NeuralDataset> test, validation;
+  if (!o.nn.test_path.empty())
+    test = std::make_unique<NeuralDataset>(ReadNeuralDataset(o.nn.test_path, names, o.nn.output));
+  if (!o.nn.validation_path.empty())
+    validation = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
+  if (ProgressEnabled())
+    Progress(fmt::format("training {}-{}-1 ...", names.size(), o.nn.training.hidden));
+  const NeuralTrainingResult r = TrainNeuralNetwork(train, validation.get(), o.nn.training);
+  ProgressDone();
+  const double test_mse =
+      test ? MeanSquaredError(r.network, *test) : std::numeric_limits<double>::quiet_NaN();
+
+  nlohmann::ordered_json j;
+  j["inputs"] = names;
+  j["output"] = o.nn.output;
+  j["hidden"] = o.nn.training.hidden;
+  j["parameters"] = r.network.parameter_count();
+  j["trainer"] = ToString(o.nn.training.trainer);
+  j["momentum"] = o.nn.training.momentum;
+  j["solve_output_layer"] = o.nn.training.solve_output_layer;
+  j["seed"] = o.nn.training.seed;
+  j["restart"] = r.restart;
+  j["epochs"] = r.epochs;
+  j["train_mse"] = r.train_mse;
+  j["validation_mse"] = NumberOrNull(r.validation_mse);
+  j["test_mse"] = NumberOrNull(test_mse);
+  j["mse_unit"] =
+      "(" + (DefaultUnit(o.nn.output).empty() ? std::string("unit") : DefaultUnit(o.nn.output)) +
+      ")^2";
+  j["stop_reason"] = ToString(r.stop);
+  j["message"] = r.message;
+  j["wall_time_s"] = r.wall_time_s;
+  j["train_file"] = o.nn.train_path;
+  if (test) j["test_file"] = o.nn.test_path;
+  if (o.history) {
+    nlohmann::ordered_json h = nlohmann::ordered_json::array();
+    for (const auto& e : r.history)
+      h.push_back({{"restart", e.restart},
+                   {"epoch", e.epoch},
+                   {"mu", e.mu},
+                   {"train_mse", e.train_mse},
+                   {"validation_mse", NumberOrNull(e.validation_mse)},
+                   {"gradient_norm", e.gradient_norm}});
+    j["history"] = h;
+  }
+  if (!o.nn.model_path.empty()) {
+    nlohmann::ordered_json summary = j;
+    summary.erase("history");
+    WriteNeuralNetwork(o.nn.model_path, r.network, summary.dump());
+  }
+  if (r.stop == TrainingStop::kNumericalFailure)
+    std::cerr << "sysid: warning: training stopped on a numerical failure (" << r.message
+              << "); the best finite weights were kept\n";
+  if (o.nn.json) {
+    PrintJson(j);
+    return;
+  }
+  std::cout << fmt::format("network     {}-{}-1 tanh ({} parameters), inputs {}, output {}\n",
+                           names.size(), o.nn.training.hidden, r.network.parameter_count(),
+                           o.nn.inputs, o.nn.output);
+  std::cout << fmt::format("trainer     {} (momentum {}), {} epochs, stop: {} ({})\n",
+                           ToString(o.nn.training.trainer), o.nn.training.momentum, r.epochs,
+                           ToString(r.stop), r.message);
+  Table t({"set", "MSE"});
+  t.AddRow({"training", Num(r.train_mse)});
+  if (validation) t.AddRow({"validation", Num(r.validation_mse)});
+  if (test) t.AddRow({"test", Num(test_mse)});
+  std::cout << t.Render();
+  if (!o.nn.model_path.empty()) std::cout << "wrote " << o.nn.model_path << '\n';
+}
+
+void AddTrainCommand(CLI::App& app) {
+  auto o = std::make_shared<TrainCliOptions>();
+  CLI::App* cmd =
+      app.add_subcommand("train",
+                         "Train a neural inverse model (inputs -> H tanh units -> output) by "
+                         "Levenberg-Marquardt; MSE in the output's unit squared (V^2)");
+  AddNeuralOptions(cmd, o->nn);
+  cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H; default 24")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("-o", o->nn.model_path, "network model file (JSON, written atomically)")
+      ->type_name("NN.json");
+  cmd->add_flag("--history", o->history, "with --json: include every epoch (mu, MSEs)");
+  cmd->callback([o] { RunTrain(*o); });
+}
+
+const bool kRegistered = RegisterCommand(60, &AddTrainCommand);
+
+}  // namespace
+}  // namespace sysid::cli

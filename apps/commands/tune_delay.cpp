@@ -1,0 +1,111 @@
+// sysid tune-delay --model M.json [--min S] [--max S] [--json] [-o MODEL.json] REC.csv...
+// The delay tau of the viscous term minimising the simulated-vs-measured velocity error.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct TuneDelayCli {
+  std::string model;
+  std::vector<std::string> recordings;
+  double tau_min_s = 0.0, tau_max_s = 0.02, x_tolerance_s = 1e-7;
+  int curve_points = 0;
+  int threads = 0;
+  bool json = false;
+  std::string output;
+  std::string derivative = "central";
+  double cutoff_hz = 50.0;
+  std::string velocity_column = "v";
+};
+
+void RunTuneDelay(const TuneDelayCli& o) {
+  const FrictionModel model = ReadModel(o.model);
+  DelayTuningOptions d;
+  d.tau_min_s = o.tau_min_s;
+  d.tau_max_s = o.tau_max_s;
+  d.x_tolerance_s = o.x_tolerance_s;
+  d.curve_points = o.curve_points;
+  d.threads = o.threads;
+  d.motion.derivative.method = ParseDerivativeMethod(o.derivative);
+  d.motion.derivative.cutoff_hz = o.cutoff_hz;
+  d.motion.velocity_column = o.velocity_column;
+  ReadOptions ro;
+  ro.any_of_columns = {"x", o.velocity_column};
+  std::vector<Recording> recs;
+  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
+  const DelayTuningResult r = TuneDelay(model, recs, d);
+  const std::string model_text = ModelToJson(r.model) + "\n";
+  if (!o.output.empty()) WriteFileAtomically(o.output, model_text);
+  if (!o.json) {
+    std::cout << r.BriefReport();
+    return;
+  }
+  nlohmann::ordered_json j;
+  j["tau"] = r.tau_s;
+  j["cost"] = r.cost;
+  j["rms_error_mps"] = r.rms_error_mps;
+  j["evaluations"] = r.evaluations;
+  j["simulations"] = r.simulations;
+  j["segments"] = r.segments;
+  j["samples"] = r.samples;
+  j["termination"] = ToString(r.termination);
+  j["message"] = r.message;
+  j["wall_time_s"] = r.wall_time_s;
+  nlohmann::ordered_json c = nlohmann::ordered_json::array();
+  for (const auto& [t, f] : r.curve) c.push_back({{"tau", t}, {"cost", f}});
+  j["curve"] = c;
+  j["model"] = nlohmann::ordered_json::parse(model_text);
+  PrintJson(j);
+}
+
+void AddTuneDelayCommand(CLI::App& app) {
+  auto o = std::make_shared<TuneDelayCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "tune-delay",
+      "Tune the delay tau of the viscous term: minimise sum (v_sim - v_meas)^2 over all samples "
+      "(NLopt DIRECT-L then BOBYQA, pulses simulated in parallel); other parameters fixed");
+  cmd->add_option("--model", o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)")
+      ->required()
+      ->type_name("M.json");
+  cmd->add_option("recordings", o->recordings,
+                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
+      ->required()
+      ->type_name("REC.csv");
+  cmd->add_option("--min", o->tau_min_s, "lower bound of tau [s], default 0");
+  cmd->add_option("--max", o->tau_max_s, "upper bound of tau [s], default 0.02");
+  cmd->add_option("--xtol", o->x_tolerance_s,
+                  "stop when BOBYQA steps are below this [s], "
+                  "default 1e-7");
+  cmd->add_option("--curve", o->curve_points,
+                  "also evaluate the cost on this many evenly spaced tau values [count], "
+                  "default 0");
+  cmd->add_option("--threads", o->threads, "simulation threads [count], default all cores");
+  cmd->add_flag("--json", o->json,
+                "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");
+  AddOutputOption(cmd, o->output, "write the model with tau filled in");
+  cmd->add_option("--derivative", o->derivative,
+                  "filter for velocity from x: central (default), butterworth, savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--velocity-column", o->velocity_column,
+                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  cmd->callback([o] { RunTuneDelay(*o); });
+}
+
+const bool kRegistered = RegisterCommand(31, &AddTuneDelayCommand);
+
+}  // namespace
+}  // namespace sysid::cli

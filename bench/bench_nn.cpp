@@ -1,0 +1,238 @@
+// Neural-network training speed on the Python peer's problem (bench/run_nn.sh runs the peer
+// beside it): the peer's data, starting weights and fixed scaling z_v = v/0.1, z_a = a/0.6,
+// unscaled output, so both sides solve the identical least-squares problem.
+//
+//   bench_nn --case v  --data p2_data_v.csv  --init p2_init_v.csv  [--best 0.0025549]
+//   bench_nn --case va --data p2_data_va.csv --init p2_init_va.csv [--epochs 5]
+//   bench_nn --case sweep --data p2_data_v.csv
+// Prints one JSON object per line.
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nn/mlp_kernels.hpp"
+#include "sysid/io.hpp"
+#include "sysid/nn.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Median wall time of `repeats` calls of f.
+double Median(int repeats, const std::function<void()>& f) {
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(Seconds(t0));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+Eigen::VectorXd ReadTheta(const std::string& path) {
+  std::istringstream in(sysid::ReadFile(path));
+  std::vector<double> v;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') v.push_back(std::stod(line));
+  return Eigen::Map<Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+struct Args {
+  std::string which = "v", data, init;
+  double best = 0.0025549;  // the peer README's best known MSE for case v
+  int epochs = 5, repeats = 5;
+};
+
+sysid::NeuralTrainingOptions PeerProblem(const std::vector<std::string>& inputs) {
+  sysid::NeuralTrainingOptions o;
+  for (const auto& name : inputs)
+    o.input_ranges.push_back(name == "a" ? std::pair{-0.6, 0.6} : std::pair{-0.1, 0.1});
+  o.output_range = std::pair{-1.0, 1.0};  // y in volts, unscaled, as in the peer
+  o.gradient_tolerance = 0;
+  return o;
+}
+
+// One LM epoch's parts on the full Jacobian, against the fused blocked epoch.
+nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta,
+                                  int H, int repeats) {
+  const int n = static_cast<int>(d.inputs.cols());
+  const int P = static_cast<int>(theta.size());
+  Eigen::MatrixXd Z = d.inputs.transpose();
+  for (int i = 0; i < n; ++i) Z.row(i) /= d.input_names[i] == "a" ? 0.6 : 0.1;
+  const Eigen::VectorXd& y = d.targets;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J, JtJ(P, P), JtJg(P, P);
+  Eigen::VectorXd g;
+  double sse = 0;
+  const double t_forward = Median(repeats, [&] { sse = sysid::nn::SumSquares(Z, y, H, theta); });
+  const double t_jac = Median(repeats, [&] { sysid::nn::Jacobian(Z, y, H, theta, &J); });
+  const double t_syrk = Median(repeats, [&] {
+    JtJ.setZero();
+    JtJ.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
+  });
+  const double t_gemm = Median(repeats, [&] { JtJg.noalias() = J.transpose() * J; });
+  Eigen::MatrixXd A = JtJ;
+  A.diagonal().array() += 1e-3;
+  Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(P);
+  Eigen::VectorXd step;
+  const double t_chol = Median(repeats, [&] {
+    llt.compute(A);
+    step = llt.solve(JtJ.col(0));
+  });
+  // The fused epoch as the trainer runs it: blocked J'J and J'r, one Cholesky, one forward.
+  const double t_epoch = Median(repeats, [&] {
+    sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse);
+    A = JtJ;
+    A.diagonal().array() += 1e-3;
+    llt.compute(A);
+    step = -llt.solve(g);
+    sse = sysid::nn::SumSquares(Z, y, H, theta + step);
+  });
+  nlohmann::ordered_json blocks;
+  for (int b : {64, 128, 256, 512, 1024, 4096})
+    blocks[std::to_string(b)] =
+        Median(repeats, [&] { sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse, b); });
+  // Parts an epoch needs: forward for the residuals, Jacobian, J'J, Cholesky, trial forward.
+  const double parts = 2 * t_forward + t_jac + t_syrk + t_chol;
+  nlohmann::ordered_json j;
+  j["what"] = "lm_epoch_split";
+  j["N"] = d.size();
+  j["P"] = P;
+  j["forward_s"] = t_forward;
+  j["jacobian_s"] = t_jac;
+  j["jtj_syrk_s"] = t_syrk;
+  j["jtj_gemm_s"] = t_gemm;
+  j["cholesky_s"] = t_chol;
+  j["sum_of_parts_s"] = parts;
+  j["share"] = {{"forward_x2", 2 * t_forward / parts},
+                {"jacobian", t_jac / parts},
+                {"jtj_syrk", t_syrk / parts},
+                {"cholesky", t_chol / parts}};
+  j["syrk_gflops"] = static_cast<double>(d.size()) * P * P / t_syrk / 1e9;
+  j["fused_blocked_epoch_s"] = t_epoch;
+  j["epoch_over_parts"] = t_epoch / parts;
+  j["blocked_normal_equations_s_by_block"] = blocks;
+  j["default_block"] = sysid::nn::DefaultBlock(P);
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string k = argv[i], v = argv[i + 1];
+    if (k == "--case")
+      a.which = v;
+    else if (k == "--data")
+      a.data = v;
+    else if (k == "--init")
+      a.init = v;
+    else if (k == "--best")
+      a.best = std::stod(v);
+    else if (k == "--epochs")
+      a.epochs = std::stoi(v);
+    else if (k == "--repeats")
+      a.repeats = std::stoi(v);
+    else {
+      std::cerr << "bench_nn: unknown option " << k << '\n';
+      return 1;
+    }
+  }
+  try {
+    if (a.which == "v" || a.which == "va") {
+      const std::vector<std::string> inputs =
+          a.which == "v" ? std::vector<std::string>{"v"} : std::vector<std::string>{"v", "a"};
+      const auto d = sysid::ReadNeuralDataset(a.data, inputs, "u");
+      const Eigen::VectorXd theta0 = ReadTheta(a.init);
+      const int H = static_cast<int>((theta0.size() - 1) / (inputs.size() + 2));
+      auto o = PeerProblem(inputs);
+      o.hidden = H;
+      o.initial_parameters = theta0;
+      if (a.which == "v") {
+        // Time to reach the target from the peer's start, setup included; then how far each
+        // trainer gets with `--epochs` epochs (the paper's rule, the hybrid, Ceres).
+        struct Run {
+          const char* name;
+          sysid::NeuralTrainer trainer;
+          bool solve_output;
+          bool to_target;
+        };
+        const Run runs[] = {
+            {"lm+output_ls to target", sysid::NeuralTrainer::kLevenbergMarquardt, true, true},
+            {"lm+output_ls", sysid::NeuralTrainer::kLevenbergMarquardt, true, false},
+            {"lm paper rule (trainlm mu I)", sysid::NeuralTrainer::kLevenbergMarquardt, false,
+             false},
+            {"ceres lm (dense qr)", sysid::NeuralTrainer::kCeres, false, false}};
+        for (const Run& run : runs) {
+          o.trainer = run.trainer;
+          o.solve_output_layer = run.solve_output;
+          o.goal_mse = run.to_target ? a.best * 1.01 : 0.0;
+          o.max_epochs = run.to_target ? 5000 : a.epochs;
+          const auto r = sysid::TrainNeuralNetwork(d, nullptr, o);
+          nlohmann::ordered_json j{{"what", run.name},
+                                   {"target_mse", a.best * 1.01},
+                                   {"reached_target", r.train_mse <= a.best * 1.01},
+                                   {"epochs", r.epochs},
+                                   {"wall_s", r.wall_time_s},
+                                   {"final_mse", r.train_mse},
+                                   {"stop", sysid::ToString(r.stop)}};
+          std::cout << j.dump() << std::endl;
+        }
+        std::cout << EpochSplit(d, theta0, H, a.repeats).dump() << std::endl;
+      } else {
+        o.max_epochs = a.epochs;
+        std::vector<double> per_epoch;
+        for (int rep = 0; rep < 3; ++rep) {
+          const auto r = sysid::TrainNeuralNetwork(d, nullptr, o);
+          per_epoch.push_back(r.wall_time_s / std::max(r.epochs, 1));
+        }
+        std::sort(per_epoch.begin(), per_epoch.end());
+        nlohmann::ordered_json j{{"what", "lm_per_epoch_va"},
+                                 {"P", theta0.size()},
+                                 {"epochs", a.epochs},
+                                 {"time_per_epoch_s", per_epoch[1]}};
+        std::cout << j.dump() << std::endl;
+        std::cout << EpochSplit(d, theta0, H, 3).dump() << std::endl;
+      }
+    } else if (a.which == "sweep") {
+      const auto d = sysid::ReadNeuralDataset(a.data, {"v"}, "u");
+      sysid::HiddenSweepOptions so;
+      so.training.max_epochs = a.epochs;
+      so.training.seed = 1;
+      so.training.solve_output_layer = true;
+      const auto r = sysid::SweepHiddenSize(d, nullptr, nullptr, so);
+      nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+      for (const auto& row : r.rows)
+        rows.push_back({{"H", row.hidden},
+                        {"epochs", row.epochs},
+                        {"train_mse", row.train_mse},
+                        {"wall_s", row.wall_time_s}});
+      nlohmann::ordered_json j{{"what", "sweep_16_32_2"},
+                               {"max_epochs", a.epochs},
+                               {"wall_s", r.wall_time_s},
+                               {"rows", rows}};
+      std::cout << j.dump() << std::endl;
+    } else {
+      std::cerr << "bench_nn: --case must be v, va or sweep\n";
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "bench_nn: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Regenerates every table and figure of the paper on the virtual stage, into one folder with a
+# markdown report that sets the paper's printed numbers beside ours:
+#   pulse LS table and parameters, delay fit (cost vs tau), velocity model-vs-measured plot,
+#   dominance terms and ratio bound, hidden-size sweep table, typical-vs-dominant networks,
+#   test-waveform comparison, tracking-error table at 0.5 and 1.0 Hz,
+#   plus the paper's own pulse table and 24-neuron network evaluated as printed.
+#
+#   experiments/reproduce_paper.sh [OUT_DIR] [BUILD_DIR]     (default: out/paper, build)
+# Uses the bundled deterministic data set (datasets/virtual); add --fresh as a third argument to
+# regenerate the recordings from the virtual stage first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+OUT="${1:-out/paper}"
+BUILD="${2:-build}"
+SYSID="$BUILD/apps/sysid"
+DATA=datasets/virtual
+if [ ! -x "$SYSID" ]; then
+  echo "reproduce_paper: $SYSID not found; run scripts/setup.sh first" >&2
+  exit 1
+fi
+if ! command -v gnuplot >/dev/null; then
+  echo "reproduce_paper: gnuplot not found: tables are written, plots are skipped" \
+       "(apt-get install gnuplot-nox)" >&2
+fi
+if [ "${3:-}" = "--fresh" ]; then
+  DATA="$(mktemp -d)"
+  trap 'rm -rf "$DATA"' EXIT
+  "$SYSID" generate all --stage datasets/virtual/stage.json -o "$DATA" >&2
+  cp datasets/virtual/stage.json "$DATA/"
+fi
+
+# The pipeline does the virtual-stage half, with the paper's numbers beside ours.
+"$SYSID" --progress pipeline "$DATA" -o "$OUT" --reference experiments/paper_numbers.json \
+  --refine
+
+# The paper's own numbers through our code: its pulse table and its printed 24-neuron network.
+{
+  echo
+  echo "## Appendix: the paper's printed data through libsysid"
+  echo
+  echo "Pulse table \`datasets/paper/pulse_table.csv\` (a3 = 6):"
+  echo
+  echo '```'
+  "$SYSID" identify --table datasets/paper/pulse_table.csv --a3 6
+  echo '```'
+  echo
+  echo "The printed 24-neuron network \`datasets/paper/nn24.json\` against the paper's analytic"
+  echo "inverse on the test waveforms of the virtual stage:"
+  echo
+  echo '```'
+  "$SYSID" compare --model experiments/paper_model.json --nn datasets/paper/nn24.json \
+    --no-plots "$DATA"/waveform_*.csv
+  echo '```'
+} >> "$OUT/report.md"
+echo "reproduce_paper: report in $OUT/report.md" >&2

@@ -1,0 +1,77 @@
+// Delay tuning: the delay tau of the viscous term that makes simulated and measured velocity
+// agree best,
+//   tau* = argmin_{tau in [tau_min, tau_max]} sum_k (v_sim(t_k; tau) - v_meas(t_k))^2,
+// over all samples of all recordings (transients included), the other parameters fixed. The
+// cost is not smooth in tau, so the search is derivative-free and bounded (NLopt DIRECT-L over
+// the interval, then BOBYQA). Recordings are split at pulse starts where the stage is at rest
+// and the pieces are simulated in parallel threads.
+#ifndef SYSID_DELAY_HPP_
+#define SYSID_DELAY_HPP_
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sysid/identify.hpp"
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+
+namespace sysid {
+
+/// How recordings are cut into independently simulated segments (shared by TuneDelay and
+/// RefineOutputError).
+struct SegmentOptions {
+  /// Cut points are the starts of the pulses found with these options.
+  PulseDetectionOptions detection;
+  /// A cut is made only where the stage is at rest: mean |v_meas| over the 10 samples before
+  /// the cut below this [m/s]. The piece then starts from v = 0 with zero velocity history.
+  double rest_speed_mps = 2e-3;
+  /// Pieces with the same input pattern, start state and relative sample times (the repeats of
+  /// a pulse train) are simulated once: the model is time-invariant, so this is exact.
+  bool reuse_identical_segments = true;
+  void Validate() const;
+};
+
+struct DelayTuningOptions {
+  double tau_min_s = 0.0;       ///< [s] lower bound of the search
+  double tau_max_s = 0.02;      ///< [s] upper bound; must exceed tau_min_s
+  double x_tolerance_s = 1e-7;  ///< [s] BOBYQA stops when steps are below this
+  int coarse_evaluations = 12;  ///< DIRECT-L budget (coarse resolution (max-min)/budget)
+  int max_evaluations = 40;     ///< total cost evaluations
+  int curve_points = 0;         ///< extra cost samples on a uniform tau grid (for plotting)
+  MotionOptions motion;         ///< measured velocity: v column, or x with this filter
+  SegmentOptions segments;
+  double sim_rtol = 1e-6;  ///< CVODE relative tolerance of each simulation
+  double sim_atol = 1e-9;  ///< CVODE absolute tolerance [m, m/s]
+  int threads = 0;         ///< simulation threads (0: hardware concurrency)
+  void Validate() const;   ///< throws OptionsError naming the field and the rule
+};
+
+enum class DelayTermination { kConverged, kMaxEvaluations, kNumericalFailure };
+std::string ToString(DelayTermination termination);
+
+struct DelayTuningResult {
+  DelayTermination termination = DelayTermination::kConverged;
+  std::string message;       ///< why it stopped, in words
+  FrictionModel model;       ///< the input model with tau_s = the optimum
+  double tau_s = 0;          ///< [s]
+  double cost = 0;           ///< [m^2/s^2] sum of squared velocity errors at tau_s
+  double rms_error_mps = 0;  ///< [m/s] sqrt(cost / samples)
+  int evaluations = 0;       ///< cost evaluations of the search (one per tau)
+  long simulations = 0;      ///< segment simulations in total (search + curve)
+  int segments = 0;          ///< simulated pieces per evaluation
+  Eigen::Index samples = 0;  ///< velocity samples compared per evaluation
+  /// (tau [s], cost [m^2/s^2]) of every evaluation and curve point, sorted by tau.
+  std::vector<std::pair<double, double>> curve;
+  double wall_time_s = 0;
+  std::string BriefReport() const;
+};
+
+/// Tunes the delay of `model` on `recordings` (t, u and x or a velocity column).
+DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Recording>& recordings,
+                            const DelayTuningOptions& options = {});
+
+}  // namespace sysid
+
+#endif  // SYSID_DELAY_HPP_

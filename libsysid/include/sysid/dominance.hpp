@@ -1,0 +1,96 @@
+// Dominant-variable analysis (the paper's section "Identification of the Dominant Variable").
+//
+// From measured signals, each term of the inverse model
+//   a3 u = x'' + a1 v(t - tau) + a2 sgn(v)            [m/s^2]
+// is computed over time: acceleration term T_a = x'', viscous term T_v = a1 v(t - tau) and
+// Coulomb term T_c = a2 sgn(v) (+ any user-named candidate term g * column). Candidate input
+// VARIABLES are ranked by the terms they generate: the acceleration generates T_a; the velocity
+// generates T_v + T_c (the Coulomb term depends on the velocity's sign only; the paper neglects
+// it as "effectively a constant" — the per-term table keeps it separate, and the ratio
+// |T_a| / |T_v| the paper bounds is reported as `paper_ratio_*`).
+// Statistics are taken over the moving part of the record (|v| >= min_speed_mps), where the
+// sliding equation holds. A variable is negligible when its RMS is at most negligible_ratio
+// times the top variable's RMS.
+#ifndef SYSID_DOMINANCE_HPP_
+#define SYSID_DOMINANCE_HPP_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sysid/identify.hpp"
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+
+namespace sysid {
+
+/// A user-named candidate: the term gain * column [m/s^2] of a recording column.
+struct CandidateTerm {
+  std::string variable;  ///< name in the ranking
+  std::string column;    ///< recording column
+  double gain = 1.0;     ///< [m/s^2 per column unit]
+};
+
+struct DominanceOptions {
+  MotionOptions motion;         ///< how v and x'' are obtained (default: central differences)
+  double min_speed_mps = 1e-3;  ///< [m/s] the moving part: |v| >= this
+  /// A variable whose term RMS is <= negligible_ratio x the top variable's is negligible. The
+  /// default 0.1 is one order of magnitude, the paper's O(10^-1) criterion.
+  double negligible_ratio = 0.1;
+  /// Quantile of the pointwise ratio |T_i(t)| / |T_top(t)| reported as the ratio bound; the
+  /// maximum is reported too, but one noisy sample can set it [0, 1].
+  double bound_quantile = 0.99;
+  std::vector<CandidateTerm> candidates;  ///< further candidate variables
+  int threads = 0;                        ///< recordings analysed in parallel (0: hardware threads)
+  void Validate() const;
+};
+
+/// Size of one term (or of one variable's summed terms) over the moving part.
+struct TermStats {
+  std::string name;
+  double rms = 0;           ///< [m/s^2]
+  double peak = 0;          ///< [m/s^2] max |term|
+  double ratio_to_top = 0;  ///< rms / rms of the top-ranked entry
+  double ratio_bound = 0;   ///< quantile of |term(t)| / |top(t)| over the moving part
+  double ratio_max = 0;     ///< max of |term(t)| / |top(t)| over the moving part
+  bool negligible = false;  ///< ratio_to_top <= negligible_ratio
+};
+
+struct DominanceResult {
+  std::string source;
+  Eigen::Index samples = 0;         ///< samples in the record
+  Eigen::Index moving_samples = 0;  ///< samples with |v| >= min_speed_mps
+  std::vector<TermStats> terms;     ///< acceleration, viscous, coulomb, candidates (fixed order)
+  std::vector<TermStats> ranking;   ///< variables, largest RMS first
+  std::string dominant;             ///< ranking[0].name
+  double margin = 0;                ///< rms(top) / rms(second); inf with a single candidate
+  double paper_ratio_bound = 0;     ///< quantile of |x''| / |a1 v(t - tau)| (the paper's bound)
+  double paper_ratio_max = 0;       ///< max of |x''| / |a1 v(t - tau)|
+  std::string BriefReport() const;
+};
+
+/// Analyses one recording. Throws InputError for a missing candidate column, NumericalError when
+/// the record has no moving samples.
+DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
+                                 const DominanceOptions& options = {});
+
+struct DominanceSummary {
+  std::vector<DominanceResult> results;                      ///< one per recording, input order
+  std::vector<std::pair<std::string, int>> dominant_counts;  ///< variable -> recordings
+  std::string dominant;   ///< the variable dominant in most recordings
+  double min_margin = 0;  ///< smallest margin over the recordings
+  double median_margin = 0;
+};
+
+/// Analyses many recordings in parallel threads (results in input order). The first error in
+/// input order is rethrown after all threads finish.
+DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
+                                       const std::vector<Recording>& recordings,
+                                       const DominanceOptions& options = {});
+
+/// The batch as CSV: one row per (recording, ranked variable).
+std::string DominanceTableCsv(const DominanceSummary& summary);
+
+}  // namespace sysid
+
+#endif  // SYSID_DOMINANCE_HPP_

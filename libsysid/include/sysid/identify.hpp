@@ -1,0 +1,283 @@
+// Identification of the friction model (model.hpp) from recordings.
+//
+//  - Pulse-test least squares (the paper's method): every settled voltage pulse gives one
+//    steady-state equation  a1p v + a2p = a3 u  (u > 0)  or  a1n |v| + a2n = a3 |u|  (u < 0);
+//    all pulses are solved together with a column-pivoted QR (a3 given).
+//  - Trajectory (inverse-model) least squares, as robotics IDIM-LS: every moving sample gives
+//      u = (1/a3) x'' + (a1/a3) v(t - tau) + (a2/a3) sgn(v)  [+ offset]
+//    with direction-split regressors, so a3 is identified too.
+//  - Output-error refinement (Ceres): all six parameters by matching simulated and measured
+//    velocity, transients included.
+// Units are SI: t [s], u [V], x [m], v [m/s], a [m/s^2], a1 [1/s], a2 [m/s^2], a3 [m/(s^2 V)].
+#ifndef SYSID_IDENTIFY_HPP_
+#define SYSID_IDENTIFY_HPP_
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid {
+
+// ----------------------------------------------------------------------------------------------
+// Measured motion of a recording
+// ----------------------------------------------------------------------------------------------
+
+/// How velocity and acceleration are obtained from a recording.
+struct MotionOptions {
+  /// Filter used to differentiate the position x (default: central differences, as the paper).
+  DerivativeOptions derivative;
+  /// Name of a measured-velocity column [m/s]; used when the recording has no x column, or
+  /// always when prefer_velocity_column is set. Acceleration is then its derivative.
+  std::string velocity_column = "v";
+  bool prefer_velocity_column = false;
+  /// Sampling must be uniform: max |dt_k - dt| / dt must not exceed this [dimensionless].
+  double max_relative_jitter = 0.01;
+  void Validate() const;  ///< throws OptionsError naming the field and the rule
+};
+
+/// Uniformly sampled signals of one recording, all of the same length.
+struct MotionSignals {
+  std::string source;         ///< the recording's source (file path)
+  double dt_s = 0;            ///< [s] nominal sample interval
+  Eigen::VectorXd t_s;        ///< [s]
+  Eigen::VectorXd u_v;        ///< [V]
+  Eigen::VectorXd x_m;        ///< [m] position (empty when the recording has only velocity)
+  Eigen::VectorXd v_mps;      ///< [m/s] velocity
+  Eigen::VectorXd a_mps2;     ///< [m/s^2] acceleration
+  std::string velocity_from;  ///< "x (central)", "column v_meas", ... (for reports)
+};
+
+/// Velocity and acceleration of a recording (t, u and x or a velocity column). Throws
+/// InputError when the sampling is irregular or there are fewer than 3 samples.
+MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// Pulses and their steady-state velocities
+// ----------------------------------------------------------------------------------------------
+
+struct PulseDetectionOptions {
+  double min_duration_s = 0.2;     ///< [s] a pulse holds u for at least this long
+  double u_tolerance_v = 1e-3;     ///< [V] |u_k - u_first| <= this counts as "held"
+  double zero_tolerance_v = 1e-3;  ///< [V] |u| <= this is "off" (no pulse)
+  void Validate() const;
+};
+
+/// A segment where u holds a constant non-zero value, bounded by other values of u (or by the
+/// start / end of the recording, which is flagged).
+struct Pulse {
+  std::string source;
+  Eigen::Index first_row = 0;    ///< first sample of the pulse
+  Eigen::Index end_row = 0;      ///< one past the last sample
+  double t_start_s = 0;          ///< [s]
+  double duration_s = 0;         ///< [s] until the next different u (or last sample + dt)
+  double amplitude_v = 0;        ///< [V] mean u over the pulse
+  bool at_record_start = false;  ///< no sample before the pulse
+  bool at_record_end = false;    ///< no sample after the pulse
+};
+
+/// Finds the pulses in a voltage record.
+std::vector<Pulse> DetectPulses(const Eigen::VectorXd& t_s, const Eigen::VectorXd& u_v,
+                                const PulseDetectionOptions& options = {},
+                                const std::string& source = "");
+
+enum class PulseStatus {
+  kOk,
+  kUnsettled,
+  kStuck,
+  kWrongDirection,
+  kVelocityLimit,
+  kTravelLimit,
+  kTooFewSamples
+};
+std::string ToString(PulseStatus status);  ///< "ok", "unsettled", "stuck", ...
+
+struct PlateauOptions {
+  /// The plateau is the last window_fraction of the pulse (excludes the transient), (0, 1].
+  double window_fraction = 0.5;
+  /// Settled when the drift of a straight-line fit across the window, |c1| T_w, is at most
+  /// settle_tolerance |v_mean| (+ 3 standard errors of the drift) [dimensionless].
+  double settle_tolerance = 0.02;
+  double min_speed_mps = 1e-4;  ///< [m/s] |v_mean| below this: the stage is stuck
+  double max_speed_mps = std::numeric_limits<double>::infinity();  ///< [m/s] stage limit
+  double travel_min_m = -std::numeric_limits<double>::infinity();  ///< [m] travel limits; a
+  double travel_max_m = std::numeric_limits<double>::infinity();   ///< pulse reaching them fails
+  int min_window_samples = 8;  ///< fewer samples in the plateau window: excluded
+  void Validate() const;
+};
+
+struct PulseEstimate {
+  Pulse pulse;
+  double v_mps = 0;         ///< [m/s] mean velocity over the plateau window (signed)
+  double v_stderr_mps = 0;  ///< [m/s] its standard error (batch means: robust to correlation)
+  double drift_mps = 0;     ///< [m/s] change across the window of a straight-line fit
+  int window_samples = 0;
+  PulseStatus status = PulseStatus::kOk;
+  std::string reason;  ///< why excluded, in words (empty when ok)
+  bool usable() const { return status == PulseStatus::kOk; }
+};
+
+/// Steady-state velocity of each pulse, with the checks of PlateauOptions.
+std::vector<PulseEstimate> EstimatePlateaus(const MotionSignals& motion,
+                                            const std::vector<Pulse>& pulses,
+                                            const PlateauOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// Least-squares diagnostics (shared by the pulse and trajectory methods)
+// ----------------------------------------------------------------------------------------------
+
+/// A linear least-squares fit y ~ X theta solved by column-pivoted Householder QR.
+struct LinearFit {
+  std::vector<std::string> names;  ///< parameter names, column order
+  Eigen::VectorXd theta;           ///< estimates
+  Eigen::VectorXd std_error;       ///< sqrt(diag(covariance)); NaN when dof == 0
+  Eigen::MatrixXd covariance;      ///< s^2 (X^T X)^-1, s^2 = |r|^2 / dof
+  Eigen::VectorXd residuals;       ///< y - X theta, one per row
+  Eigen::Index rows = 0;
+  int rank = 0;
+  int dof = 0;                  ///< rows - parameters
+  double rms_residual = 0;      ///< sqrt(|r|^2 / rows)
+  double relative_error = 0;    ///< |r| / |y|
+  double condition_number = 0;  ///< sigma_max / sigma_min of X
+  /// |R_ii| of the pivoted QR with the parameter of each pivot, largest first: the
+  /// identifiability ranking (small entries are poorly identified).
+  std::vector<std::pair<std::string, double>> r_diagonal;
+};
+
+// ----------------------------------------------------------------------------------------------
+// Pulse-test least squares
+// ----------------------------------------------------------------------------------------------
+
+/// One row of a pulse table.
+struct PulsePoint {
+  double u_v = 0;     ///< [V] pulse amplitude (signed)
+  double v_mps = 0;   ///< [m/s] steady-state velocity (signed)
+  std::string label;  ///< where it came from ("table.csv:3", "rec.csv pulse 2")
+};
+
+/// Reads a pulse table: CSV with columns u [V] and v [m/s]. Throws InputError.
+std::vector<PulsePoint> ReadPulseTable(const std::string& path);
+
+struct PulseFitOptions {
+  double a3 = 6.0;  ///< [m/(s^2 V)] actuator gain (steady states cannot separate it)
+  void Validate() const;
+};
+
+struct PulseIdentificationResult {
+  FrictionModel model;                ///< a1p, a1n, a2p, a2n identified; a3 given; tau_s = 0
+  LinearFit fit;                      ///< theta = [a1p, a2p, a1n, a2n]; residuals in [m/s^2]
+  std::vector<PulsePoint> points;     ///< the equations used, in row order
+  std::vector<PulseEstimate> pulses;  ///< every detected pulse, excluded ones with reasons
+  std::string BriefReport() const;
+};
+
+/// Least squares of the pulse equations. Throws NumericalError naming the parameters that
+/// cannot be identified ("a1n, a2n: no negative pulses"), OptionsError for bad a3.
+PulseIdentificationResult FitPulseTable(const std::vector<PulsePoint>& points,
+                                        const PulseFitOptions& options = {});
+
+struct PulseIdentificationOptions {
+  MotionOptions motion;
+  PulseDetectionOptions detection;
+  PlateauOptions plateau;
+  PulseFitOptions fit;
+  void Validate() const;
+};
+
+/// Detects the pulses of every recording, estimates their plateaus and fits the model.
+PulseIdentificationResult IdentifyFromPulses(const std::vector<Recording>& recordings,
+                                             const PulseIdentificationOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// Trajectory (inverse-model) least squares
+// ----------------------------------------------------------------------------------------------
+
+struct TrajectoryOptions {
+  /// Default: zero-phase Butterworth (order 4, 50 Hz) then central differences.
+  MotionOptions motion = DefaultMotion();
+  double tau_s = 0.0;           ///< [s] delay of the viscous term (when tune_delay is false)
+  bool tune_delay = false;      ///< minimise the residual over tau in [tau_min_s, tau_max_s]
+  double tau_min_s = 0.0;       ///< [s]
+  double tau_max_s = 0.02;      ///< [s]
+  int decimation = 1;           ///< keep every n-th sample after an anti-alias filter (>= 1)
+  double min_speed_mps = 1e-3;  ///< [m/s] samples with |v| or |v(t - tau)| below this are
+                                ///< stuck or reversing (static friction): excluded
+  int trim_samples = 20;        ///< samples dropped at each end of a record (filter start-up)
+  /// Adds a constant offset: a3 u = x'' + a1 v(t-tau) + a2 sgn v + c0. The Coulomb term is then
+  /// symmetric (a2 sgn v + c0 spans the same space as a2p, a2n); the model gets the
+  /// equivalent a2p = a2 + c0, a2n = a2 - c0.
+  bool offset = false;
+  /// One viscous coefficient a1 = a1p = a1n for both directions (as the EMPS reference model).
+  bool symmetric_viscous = false;
+  void Validate() const;
+  static MotionOptions DefaultMotion();
+};
+
+struct TrajectoryIdentificationResult {
+  FrictionModel model;  ///< all of a1p, a1n, a2p, a2n, a3 and tau
+  LinearFit fit;        ///< the linear fit in u-space (theta = coefficients / a3)
+  /// Physical parameters with delta-method standard errors, in the order of `names`:
+  /// a3, then a1p, a1n (or a1 when symmetric_viscous), then a2p, a2n (or a2, c0 with offset).
+  std::vector<std::string> names;
+  Eigen::VectorXd estimate;
+  Eigen::VectorXd std_error;
+  Eigen::MatrixXd covariance;
+  double offset_mps2 = 0;  ///< [m/s^2] c0 (0 without offset)
+  Eigen::Index samples_used = 0;
+  double relative_error = 0;  ///< |u - u_fit| / |u| over the samples used
+  /// Delay search (tune_delay only): evaluated (tau [s], residual sum of squares [V^2]).
+  std::vector<std::pair<double, double>> tau_curve;
+  std::string BriefReport() const;
+};
+
+/// Identifies the model from any recordings with enough excitation. Throws NumericalError for
+/// rank deficiency (naming the parameters) or too few moving samples.
+TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recording>& recordings,
+                                                      const TrajectoryOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// Output-error refinement (Ceres)
+// ----------------------------------------------------------------------------------------------
+
+struct RefineOptions {
+  MotionOptions motion;
+  PulseDetectionOptions detection;  ///< recordings are split at pulse starts (parallel sims)
+  bool refine_a3 = true;            ///< otherwise a3 stays at the initial value
+  bool refine_tau = true;           ///< otherwise tau stays at the initial value
+  double tau_max_s = 0.05;          ///< [s] upper bound for tau
+  int max_iterations = 50;
+  int threads = 0;         ///< simulation threads (0: hardware concurrency)
+  double sim_rtol = 1e-7;  ///< CVODE relative tolerance of each simulation
+  void Validate() const;
+};
+
+struct RefineResult {
+  FrictionModel initial;
+  FrictionModel model;
+  std::vector<std::string> names;  ///< refined parameters: a1p, a1n, a2p, a2n[, a3][, tau]
+  Eigen::VectorXd std_error;       ///< from s^2 (J^T J)^-1 at the optimum; NaN if singular
+  double initial_cost = 0;         ///< [m^2/s^2] sum of squared velocity errors
+  double final_cost = 0;           ///< [m^2/s^2]
+  double rms_error_mps = 0;        ///< [m/s] at the optimum
+  int iterations = 0;
+  long simulations = 0;
+  bool converged = false;
+  std::string message;  ///< Ceres' termination in words
+  double wall_time_s = 0;
+  std::string BriefReport() const;
+};
+
+/// Refines all parameters by minimising sum (v_sim - v_meas)^2 over every sample of every
+/// recording, starting from `initial`. Simulations of different segments run in parallel.
+RefineResult RefineOutputError(const FrictionModel& initial,
+                               const std::vector<Recording>& recordings,
+                               const RefineOptions& options = {});
+
+}  // namespace sysid
+
+#endif  // SYSID_IDENTIFY_HPP_

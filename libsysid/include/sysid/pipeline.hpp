@@ -1,0 +1,116 @@
+// The end-to-end pipeline: from a stage's recordings to a controller's feedforward.
+//
+//   identify (pulse LS) -> tune delay (NLopt) -> [refine (Ceres)] -> dominance ->
+//   NN hidden-size sweep on the dominant variable(s) + the "typical" (v, a) network ->
+//   compare analytic vs NN inverse on the test set and test waveforms ->
+//   [PI tracking with none / analytic / NN feedforward on a stage model] -> report
+//
+// Inputs come from a folder laid out by convention, or from a manifest (see PipelineInputs).
+#ifndef SYSID_PIPELINE_HPP_
+#define SYSID_PIPELINE_HPP_
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sysid/compare.hpp"
+#include "sysid/control.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/dominance.hpp"
+#include "sysid/identify.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid {
+
+/// The recordings of one stage.
+///
+/// From a folder: `manifest.json` when present, e.g.
+///   {"pulses": ["pulses.csv"], "training": "training.csv", "test": "test.csv",
+///    "waveforms": ["waveform_square.csv"], "stage": "stage.json", "a3": 6}
+/// (paths relative to the manifest), else the naming convention: pulses*.csv (pulse tests),
+/// training*.csv or train*.csv (tracking training set), test*.csv (tracking test set),
+/// waveform*.csv (test waveforms), stage.json (a virtual-stage file, enables tracking).
+struct PipelineInputs {
+  std::string root;                    ///< the folder or manifest it came from
+  std::vector<std::string> pulses;     ///< pulse-test recordings (t, u, x), at least one
+  std::string training;                ///< tracking training set (t, u, x[, v, a])
+  std::string test;                    ///< tracking test set
+  std::vector<std::string> waveforms;  ///< test-waveform recordings
+  std::string stage;                   ///< stage parameter file for tracking, may be empty
+  std::optional<double> a3;            ///< [m/(s^2 V)] from the manifest, if given
+
+  /// Throws InputError naming the folder and what is missing.
+  static PipelineInputs FromDirectory(const std::string& dir);
+  static PipelineInputs FromManifest(const std::string& path);
+};
+
+struct PipelineOptions {
+  double a3 = 6.0;  ///< [m/(s^2 V)] actuator gain (manifest a3 wins)
+  bool tune_delay = true;
+  DelayTuningOptions delay;  ///< tau search (curve_points set for the report)
+  bool refine = false;       ///< output-error refinement after the delay
+  std::vector<int> hidden_sizes{16, 18, 20, 22, 24, 26, 28, 30, 32};
+  /// LM options of the sweep (hidden is swept). The pipeline's defaults: 100 epochs with the
+  /// linear output layer re-solved after each step (NeuralTrainingOptions::solve_output_layer),
+  /// which reaches the noise floor in tens of epochs where the plain rule needs thousands.
+  NeuralTrainingOptions training = DefaultTraining();
+  /// Network inputs; empty: the dominant variable alone (the paper's approach).
+  std::vector<std::string> nn_inputs;
+  bool typical = true;       ///< also train the typical (v, a) network
+  int typical_hidden = 120;  ///< the paper's 120 units
+  int typical_max_epochs = 60;
+  int typical_stride = 2;  ///< training rows used by the typical net: every n-th
+  bool track = true;       ///< PI tracking when a stage file is available
+  std::vector<double> track_frequencies_hz{0.5, 1.0};
+  double track_amplitude_m = 0.01;  ///< [m] stroke of the smooth profile
+  PiOptions pi = PiOptions::ForVirtualStage();
+  /// JSON of reference numbers placed beside ours in the report (experiments/ passes the
+  /// paper's); empty: none.
+  std::string reference_path;
+  void Validate() const;
+  static NeuralTrainingOptions DefaultTraining();
+};
+
+struct TrackingRow {
+  double frequency_hz = 0;
+  std::string scheme;  ///< "none", "analytic", "nn"
+  TrackingResult result;
+};
+
+struct PipelineResult {
+  PipelineInputs inputs;
+  PipelineOptions options;
+  PulseIdentificationResult pulse;
+  std::optional<DelayTuningResult> delay;
+  std::optional<RefineResult> refine;
+  FrictionModel model;                 ///< the final rough model
+  DominanceSummary dominance;          ///< on the training and test sets
+  std::vector<std::string> nn_inputs;  ///< the network's inputs (recording columns)
+  HiddenSweepResult sweep;
+  NeuralNetwork network;        ///< the sweep's chosen network
+  double network_test_mse = 0;  ///< [V^2]
+  std::optional<NeuralTrainingResult> typical;
+  double typical_test_mse = 0;                 ///< [V^2]
+  std::vector<InverseComparison> comparisons;  ///< test set, then waveforms
+  std::vector<TrackingRow> tracking;
+  std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
+  std::vector<std::string> notes;                            ///< honest remarks for the report
+};
+
+using PipelineProgress = std::function<void(const std::string& step)>;
+
+/// Runs every step. Throws like the steps do (InputError, NumericalError, OptionsError).
+PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
+                           const PipelineProgress& progress = {});
+
+/// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
+/// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).
+std::vector<std::string> WritePipelineReport(const PipelineResult& result,
+                                             const std::string& out_dir);
+
+}  // namespace sysid
+
+#endif  // SYSID_PIPELINE_HPP_

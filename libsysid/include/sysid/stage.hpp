@@ -1,0 +1,244 @@
+// The virtual piezo stage: a simulated ultrasonic-motor stage (PBA PLS8 + Nanomotion HR-8 as in
+// the paper) that is deliberately richer than the rough model of model.hpp, and the paper's
+// data-collection procedures (pulse test, tracking sets, test waveforms) that run on it.
+//
+// Plant (all forces per unit mass, [m/s^2]):
+//   DAC:     u_dac = 16-bit quantisation of the command over +-dac_range_v, held for one sample
+//   driver:  u_d(t) = u_dac(t - transport_delay_s), clipped to +-saturation_v,
+//            dead zone: u_z = u_d - dz sgn(u_d) for |u_d| > dz, else 0,
+//            static characteristic u_m = M(u_z) (piecewise linear through drive_map knots),
+//            first-order lag  T w' = u_m - w
+//   motion:  x' = v,  v' = a3 w - F,   F = s0 z + s1 z' + s2(v) v            (LuGre friction)
+//            z' = v - s0 |v| z / g(v),  g(v) = Fc + (Fs - Fc) exp(-(v / vs)^2)
+//            with (Fc, Fs, vs, s2) taken from the forward branch for v > 0, the backward for v < 0.
+//   rig:     the encoder reads round((x + n) / q) q with n ~ N(0, position_noise_m^2) (seeded),
+//            q = encoder_resolution_m; travel limits are hard end stops; exceeding
+//            max_velocity_mps is reported (not clipped).
+// In steady sliding the friction is g(v) + s2 v, so a constant voltage u gives
+// a3 M(|u| - dz) = g(v) + s2 |v|: the rough model's a1 ~ s2 and a2 ~ Fc + a3 dz.
+//
+// Determinism: the noise comes from std::mt19937_64 (whose output the standard fixes) through an
+// Irwin-Hall transform (sum of 12 uniforms - 6: only additions, so identical on every IEEE-754
+// machine); no std::*_distribution is used.
+#ifndef SYSID_STAGE_HPP_
+#define SYSID_STAGE_HPP_
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sysid/io.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid {
+
+/// One direction's friction (LuGre steady state g(v) + s2 v).
+struct FrictionBranch {
+  double coulomb_mps2 = 0;           ///< [m/s^2] Fc, sliding friction level
+  double static_mps2 = 0;            ///< [m/s^2] Fs >= Fc, breakaway level at v -> 0
+  double stribeck_velocity_mps = 0;  ///< [m/s] vs > 0, width of the Stribeck dip
+  double viscous_per_s = 0;          ///< [1/s] s2 >= 0, viscous coefficient
+};
+
+/// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.
+struct StageParameters {
+  std::string name = "virtual PLS8/HR-8";
+  // Driver and motor.
+  double gain_mps2_per_v = 6.0;         ///< [m/(s^2 V)] a3, force per volt per unit mass
+  double dead_zone_v = 0.15;            ///< [V] dz >= 0
+  double saturation_v = 10.0;           ///< [V] driver input clip, > dead_zone_v
+  double transport_delay_s = 0.002;     ///< [s] >= 0, any multiple of the sample time
+  double lag_time_constant_s = 0.0015;  ///< [s] T > 0, first-order lag of the drive force
+  std::vector<double> drive_map_in_v;   ///< [V] knots of M (after the dead zone), increasing
+  std::vector<double> drive_map_out_v;  ///< [V] M at the knots, non-decreasing, M(0) = 0
+  // Friction (LuGre, per unit mass).
+  double bristle_stiffness_per_s2 = 1e6;  ///< [1/s^2] s0 > 0
+  double bristle_damping_per_s = 1000;    ///< [1/s] s1 >= 0
+  FrictionBranch forward;                 ///< branch for v > 0
+  FrictionBranch backward;                ///< branch for v < 0 (all values positive)
+  // Rig.
+  double sample_rate_hz = 1000;        ///< [Hz] DAC/encoder rate, > 0
+  int dac_bits = 16;                   ///< DAC resolution over +-dac_range_v, 1..32
+  double dac_range_v = 10.0;           ///< [V] DAC output range +-dac_range_v
+  double encoder_resolution_m = 1e-7;  ///< [m] q > 0
+  double position_noise_m = 3e-8;      ///< [m] standard deviation of the reading noise, >= 0
+  double travel_min_m = -0.0575;       ///< [m] lower end stop
+  double travel_max_m = 0.0575;        ///< [m] upper end stop, > travel_min_m
+  double max_velocity_mps = 0.23;      ///< [m/s] rated speed; exceeding it is reported
+  double initial_position_m = 0.0;     ///< [m] position at t = 0, inside the travel
+  // Integrator (SUNDIALS CVODE, BDF).
+  double relative_tolerance = 1e-7;     ///< CVODE rtol, in (0, 1e-2]
+  double position_tolerance_m = 1e-10;  ///< [m] CVODE atol of x and z (v, w scaled by 1/Ts)
+
+  /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
+  void Validate() const;
+  /// The calibrated virtual stage (identical to datasets/virtual/stage.json).
+  static StageParameters Default();
+  /// [s] 1 / sample_rate_hz.
+  double sample_time_s() const { return 1.0 / sample_rate_hz; }
+  /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
+  double DriveMap(double u_v) const;
+  /// [m/s] steady sliding velocity under a constant voltage (ignoring noise and limits), found
+  /// by bisection on a3 M(|u| - dz) = g(v) + s2 |v|; 0 when the drive does not break away.
+  double SteadyVelocity(double u_v) const;
+};
+
+/// Parses a stage file's JSON text; `source` names it in errors ("FILE:LINE:COLUMN: ...").
+/// Unknown keys are errors. Throws InputError.
+StageParameters ParseStageParameters(std::string_view json_text, const std::string& source);
+StageParameters ReadStageParameters(const std::string& path);
+/// JSON text with nested objects "drive", "friction", "rig", "integrator"; units in key names.
+std::string StageParametersToJson(const StageParameters& parameters);
+void WriteStageParameters(const std::string& path, const StageParameters& parameters);
+
+/// The true (unmeasured) state of the plant.
+struct StageState {
+  double x_m = 0;    ///< [m] position
+  double v_mps = 0;  ///< [m/s] velocity
+  double z_m = 0;    ///< [m] LuGre bristle deflection
+  double w_v = 0;    ///< [V] driver lag state (drive force / a3)
+};
+
+/// Limits reached so far, and integrator work.
+struct StageStatus {
+  bool travel_limit_hit = false;         ///< an end stop was reached
+  double first_travel_hit_s = -1;        ///< [s] when, or -1
+  bool velocity_limit_exceeded = false;  ///< |v| > max_velocity_mps at some sample
+  double first_velocity_exceed_s = -1;   ///< [s] when, or -1
+  long steps = 0;                        ///< CVODE steps
+  long reinitialisations = 0;            ///< CVODE restarts (DAC/delay edges, end stops)
+  /// "none", or e.g. "travel limit hit at t = 1.234 s; velocity limit exceeded at t = ...".
+  std::string Describe() const;
+};
+
+/// The plant, steppable one sample at a time. At time t_k the encoder has read
+/// measured_position_m(); Step(u) holds the DAC at u for one sample period and returns the
+/// reading at t_{k+1}. Throws NumericalError (with the CVODE flag and time) if integration fails.
+class VirtualStage {
+ public:
+  explicit VirtualStage(const StageParameters& parameters, std::uint64_t seed = 1);
+  ~VirtualStage();
+  VirtualStage(VirtualStage&&) noexcept;
+  VirtualStage& operator=(VirtualStage&&) noexcept;
+  VirtualStage(const VirtualStage&) = delete;
+  VirtualStage& operator=(const VirtualStage&) = delete;
+
+  /// Applies the command `u_command_v` [V] for one sample; returns the new reading [m].
+  double Step(double u_command_v);
+  /// [m] encoder reading at the current sample time.
+  double measured_position_m() const;
+  double time_s() const;      ///< [s] current sample time k / sample_rate_hz
+  long sample_index() const;  ///< k
+  StageState state() const;
+  StageStatus status() const;
+  const StageParameters& parameters() const;
+  /// [V] what the DAC really outputs for a command (16-bit quantised, clipped).
+  double DacOutput(double u_command_v) const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// An open-loop run: row k is (t_k, u_k, reading at t_k) with u_k applied on [t_k, t_{k+1}).
+struct StageRun {
+  Eigen::VectorXd t_s;         ///< [s]
+  Eigen::VectorXd u_v;         ///< [V] command
+  Eigen::VectorXd x_m;         ///< [m] encoder reading
+  Eigen::VectorXd x_true_m;    ///< [m] true position
+  Eigen::VectorXd v_true_mps;  ///< [m/s] true velocity
+  StageStatus status;
+};
+
+/// Drives a fresh stage with the command sequence `u_v` (one value per sample).
+StageRun RunOpenLoop(const StageParameters& parameters, const Eigen::VectorXd& u_v,
+                     std::uint64_t seed = 1);
+
+// ---- Procedures ------------------------------------------------------------------------
+
+/// The paper's pulse test: each amplitude for on_s, then 0 for rest_s; lead_s of 0 V first.
+struct PulseProcedure {
+  /// [V] alternating directions so the stage stays inside its travel (the paper's amplitudes).
+  std::vector<double> amplitudes_v{-1.8, 1.3, -2.0, 1.5, -2.1, 1.6, -2.3, 1.7, -2.5, 2.0};
+  double on_s = 0.4;      ///< [s] pulse length, > 0
+  double rest_s = 0.3;    ///< [s] 0 V after each pulse, >= 0
+  double lead_s = 0.1;    ///< [s] 0 V before the first pulse, >= 0
+  void Validate() const;  ///< throws OptionsError naming the field and the rule
+  /// The command, one value per sample at `sample_rate_hz`.
+  Eigen::VectorXd Voltage(double sample_rate_hz) const;
+  /// [s] start time of pulse i.
+  double PulseStart(std::size_t i) const;
+};
+
+/// A velocity reference v(t) = sum_i (s_i sin w_i t + c_i cos w_i t) [m/s]; the position
+/// reference is its integral from x(0) = 0: x(t) = sum_i (s_i (1 - cos w_i t) + c_i sin w_i t)/w_i.
+struct VelocityWaveform {
+  struct Term {
+    double omega_rad_s = 1;  ///< [rad/s] > 0
+    double sin_mps = 0;      ///< [m/s] s_i
+    double cos_mps = 0;      ///< [m/s] c_i
+  };
+  std::string name;
+  std::vector<Term> terms;
+  double period_s = 0;                    ///< [s] common period (one "cycle")
+  double Velocity(double t_s) const;      ///< [m/s]
+  double Position(double t_s) const;      ///< [m]
+  double Acceleration(double t_s) const;  ///< [m/s^2]
+  double PeakVelocity() const;            ///< [m/s] sum |s_i| + |c_i| (an upper bound)
+  /// v = amplitude_m omega sin(omega t): x = amplitude_m (1 - cos omega t), one grid pair.
+  static VelocityWaveform Sine(double amplitude_m, double omega_rad_s);
+};
+
+/// The paper's six test waveforms: four sinusoids v = 0.016625 sin 1.9t, 0.0525 sin 6t,
+/// 0.030875 sin 1.9t, 0.0975 sin 6t; triangle-like 0.8/pi^2 [cos 2 pi t + cos(6 pi t)/9];
+/// square-like 0.248/pi [cos 6t - cos(18t)/3 + cos(30t)/5] (all m/s).
+std::vector<VelocityWaveform> PaperTestWaveforms();
+/// Training grid: position amplitudes {5, 10, 20} mm x omega {1.5, 3, 6, 10} rad/s, kept when
+/// the peak velocity A omega <= 0.16 m/s (11 pairs; 70 % of the rated speed, and 2A inside the
+/// travel). Test grid: the paper's four sinusoids (amplitudes 8.75 and 16.25 mm at 1.9 and
+/// 6 rad/s), a different grid.
+std::vector<VelocityWaveform> TrainingGrid();
+std::vector<VelocityWaveform> TestGrid();
+
+/// Tracking with a proportional position controller u = kp (x_ref - x_measured).
+struct TrackingProcedure {
+  double kp_v_per_m = 1000;      ///< [V/m] > 0, the data-collection P gain
+  int lead_cycles = 1;           ///< reference cycles run before the kept ones, >= 0
+  int kept_cycles = 1;           ///< cycles kept per waveform, >= 1
+  double tail_s = 0.05;          ///< [s] run past the kept cycles so the derivative filter has
+                                 ///  samples on both sides of the cut, >= 0
+  DerivativeOptions derivative;  ///< how v and a come from x
+  void Validate(const StageParameters& stage) const;
+};
+
+/// One waveform tracked: columns t, u, x, v, a (and x_ref) of the kept cycles, t from 0.
+Recording TrackWaveform(const StageParameters& stage, const VelocityWaveform& waveform,
+                        const TrackingProcedure& procedure, std::uint64_t seed);
+
+/// Runs every waveform of `grid` (each from rest at x = 0), cuts the kept cycles at the
+/// reference's cycle boundaries (x_ref = 0 and v_ref equal on both sides: no jumps) and
+/// concatenates them in a random order fixed by `seed`. Columns t, u, x, v, a.
+Recording RunTrackingSet(const StageParameters& stage, const std::vector<VelocityWaveform>& grid,
+                         const TrackingProcedure& procedure, std::uint64_t seed,
+                         const std::string& set_name);
+
+/// Runs the pulse test; columns t, u, x, v, a.
+Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
+                       std::uint64_t seed, const DerivativeOptions& derivative = {});
+
+/// The excitation alone (for a real rig): columns t, u.
+Recording PulseExcitation(const PulseProcedure& procedure, double sample_rate_hz);
+/// The references alone: waveforms back to back, columns t, waveform (index), x_ref, v_ref, a_ref.
+Recording ReferenceSignals(const std::vector<VelocityWaveform>& waveforms,
+                           const TrackingProcedure& procedure, double sample_rate_hz);
+
+/// A sub-seed for stream `index` of a run seeded with `seed` (SplitMix64), so every waveform
+/// has its own noise stream and reordering the grid does not change the others.
+std::uint64_t DeriveSeed(std::uint64_t seed, std::uint64_t index);
+
+}  // namespace sysid
+
+#endif  // SYSID_STAGE_HPP_

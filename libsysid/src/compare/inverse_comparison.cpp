@@ -1,0 +1,149 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "sysid/compare.hpp"
+#include "sysid/error.hpp"
+#include "sysid/identify.hpp"
+
+namespace sysid {
+
+PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
+                                         const Eigen::VectorXd& predicted) {
+  SYSID_CHECK(measured.size() == predicted.size() && measured.size() >= 2,
+              "sizes " + std::to_string(measured.size()) + ", " + std::to_string(predicted.size()));
+  const Eigen::VectorXd e = predicted - measured;
+  PredictionErrors r;
+  r.rmse_v = std::sqrt(e.squaredNorm() / static_cast<double>(e.size()));
+  r.peak_error_v = e.cwiseAbs().maxCoeff();
+  const double range = measured.maxCoeff() - measured.minCoeff();
+  r.nrmse = range > 0 ? r.rmse_v / range : std::numeric_limits<double>::quiet_NaN();
+  const double sst = (measured.array() - measured.mean()).square().sum();
+  r.r2 = sst > 0 ? 1.0 - e.squaredNorm() / sst : std::numeric_limits<double>::quiet_NaN();
+  return r;
+}
+
+Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s) {
+  if (!(dt_s > 0) || !(tau_s >= 0))
+    throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
+                       std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
+  const double shift = tau_s / dt_s;  // delay in samples, possibly fractional
+  const auto whole = static_cast<Eigen::Index>(std::floor(shift));
+  const double frac = shift - static_cast<double>(whole);
+  const Eigen::Index n = y.size();
+  Eigen::VectorXd out(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    // y(t_k - tau) lies between samples k - whole - 1 and k - whole.
+    const Eigen::Index hi = k - whole, lo = hi - 1;
+    const double y_hi = y[std::clamp<Eigen::Index>(hi, 0, n - 1)];
+    const double y_lo = y[std::clamp<Eigen::Index>(lo, 0, n - 1)];
+    out[k] = (1 - frac) * y_hi + frac * y_lo;
+  }
+  return out;
+}
+
+Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
+                                const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2) {
+  const Eigen::VectorXd v_delayed = DelaySignal(v_mps, dt_s, model.tau_s);
+  Eigen::VectorXd u(v_mps.size());
+  for (Eigen::Index k = 0; k < u.size(); ++k)
+    u[k] = model.InverseVoltage(a_mps2[k], v_delayed[k], v_mps[k]);
+  return u;
+}
+
+Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::VectorXd& v_mps,
+                               const Eigen::VectorXd& a_mps2, const Recording* recording) {
+  SYSID_CHECK(v_mps.size() == a_mps2.size(), "v and a differ in length");
+  Eigen::MatrixXd X(v_mps.size(), network.input_count());
+  for (int i = 0; i < network.input_count(); ++i) {
+    const std::string& name = network.inputs()[static_cast<size_t>(i)].name;
+    if (name == "v") {
+      X.col(i) = v_mps;
+    } else if (name == "a") {
+      X.col(i) = a_mps2;
+    } else if (recording) {
+      X.col(i) = recording->column(name);  // throws InputError naming the missing column
+    } else {
+      throw InputError("network input '" + name +
+                       "' is neither v [m/s] nor a [m/s^2]; an inverse-model network takes "
+                       "the velocity and/or acceleration");
+    }
+  }
+  return network.EvaluateBatch(X);
+}
+
+void CompareOptions::Validate() const {
+  if (trim_samples < 0)
+    throw OptionsError("CompareOptions::trim_samples = " + std::to_string(trim_samples) +
+                       ". Violated constraint: trim_samples >= 0");
+}
+
+Recording InverseComparison::AsRecording() const {
+  Recording rec;
+  rec.source = source;
+  rec.metadata = {{"content", "measured and predicted voltages of inverse models"},
+                  {"units", "t [s], u [V], u_analytic [V], u_nn [V], v [m/s], a [m/s^2]"}};
+  rec.SetColumn("t", t_s);
+  rec.SetColumn("u", u_measured_v);
+  rec.SetColumn("u_analytic", u_analytic_v);
+  if (has_nn) rec.SetColumn("u_nn", u_nn_v);
+  rec.SetColumn("v", v_mps);
+  rec.SetColumn("a", a_mps2);
+  return rec;
+}
+
+InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel& model,
+                                       const NeuralNetwork* network,
+                                       const CompareOptions& options) {
+  options.Validate();
+  model.Validate();
+  InverseComparison c;
+  c.source = recording.source;
+  double dt = 0;
+  Eigen::VectorXd t, u, v, a;
+  if (recording.has("v") && recording.has("a")) {
+    t = recording.column("t");
+    u = recording.column("u");
+    v = recording.column("v");
+    a = recording.column("a");
+    if (t.size() < 2) throw InputError(recording.source + ": need at least 2 rows");
+    const SamplingReport s = AnalyzeSampling(t);
+    if (s.irregular)
+      throw InputError(recording.source + ": irregular sampling (max jitter " +
+                       std::to_string(100 * s.max_relative_jitter) +
+                       " %); resample it first (sysid::Resample)");
+    dt = s.nominal_dt_s;
+  } else {
+    MotionOptions mo;
+    mo.derivative = options.derivative;
+    const MotionSignals m = ExtractMotion(recording, mo);
+    t = m.t_s;
+    u = m.u_v;
+    v = m.v_mps;
+    a = m.a_mps2;
+    dt = m.dt_s;
+  }
+  const Eigen::Index n = t.size(), trim = options.trim_samples;
+  if (n - 2 * trim < 2)
+    throw InputError(recording.source + ": " + std::to_string(n) +
+                     " rows leave too few samples after trimming " + std::to_string(trim) +
+                     " at each end");
+  const Eigen::VectorXd u_analytic = AnalyticInverse(model, dt, v, a);
+  Eigen::VectorXd u_nn;
+  if (network) u_nn = NetworkInverse(*network, v, a, &recording);
+  const Eigen::Index m = n - 2 * trim;
+  c.t_s = t.segment(trim, m);
+  c.u_measured_v = u.segment(trim, m);
+  c.u_analytic_v = u_analytic.segment(trim, m);
+  c.v_mps = v.segment(trim, m);
+  c.a_mps2 = a.segment(trim, m);
+  c.analytic = ComputePredictionErrors(c.u_measured_v, c.u_analytic_v);
+  if (network) {
+    c.u_nn_v = u_nn.segment(trim, m);
+    c.nn = ComputePredictionErrors(c.u_measured_v, c.u_nn_v);
+    c.has_nn = true;
+  }
+  return c;
+}
+
+}  // namespace sysid

@@ -1,0 +1,96 @@
+// Reference profiles for the tracking experiment.
+#include <cmath>
+#include <sstream>
+
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+void SmoothProfileOptions::Validate() const {
+  std::ostringstream s;
+  s.precision(12);
+  auto fail = [&](const char* field, double v, const char* rule) {
+    s << "SmoothProfileOptions::" << field << " = " << v << ". Violated constraint: " << rule;
+    throw OptionsError(s.str());
+  };
+  if (!std::isfinite(frequency_hz) || !(frequency_hz > 0))
+    fail("frequency_hz", frequency_hz, "frequency_hz > 0");
+  if (!std::isfinite(amplitude_m) || amplitude_m == 0)
+    fail("amplitude_m", amplitude_m, "amplitude_m != 0 and finite");
+  if (!(dwell_fraction >= 0 && dwell_fraction < 0.5))
+    fail("dwell_fraction", dwell_fraction, "0 <= dwell_fraction < 0.5");
+  if (cycles < 1) fail("cycles", cycles, "cycles >= 1");
+  if (!std::isfinite(sample_rate_hz) || !(sample_rate_hz > 0))
+    fail("sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
+}
+
+PositionReference MakeSmoothProfile(const SmoothProfileOptions& o) {
+  o.Validate();
+  const double period = 1.0 / o.frequency_hz;
+  const double dwell = o.dwell_fraction * period;
+  const double tm = 0.5 * period - dwell;
+  const auto n = static_cast<Eigen::Index>(std::llround(o.cycles * period * o.sample_rate_hz)) + 1;
+  PositionReference r;
+  r.t_s.resize(n);
+  r.x_m.resize(n);
+  r.v_mps.resize(n);
+  r.a_mps2.resize(n);
+  const double A = o.amplitude_m;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / o.sample_rate_hz;
+    double ph = std::fmod(t, period);
+    // Phase within the period: [0, dwell) rest at 0, move up, rest at A, move down.
+    double x = 0, v = 0, a = 0;
+    auto move = [&](double t_in, double from, double to) {
+      const double tau = t_in / tm, d = to - from;
+      const double t2 = tau * tau, t3 = t2 * tau;
+      x = from + d * (10 * t3 - 15 * t3 * tau + 6 * t3 * t2);
+      v = d * (30 * t2 - 60 * t3 + 30 * t3 * tau) / tm;
+      a = d * (60 * tau - 180 * t2 + 120 * t3) / (tm * tm);
+    };
+    if (ph < dwell) {
+      x = 0;
+    } else if (ph < dwell + tm) {
+      move(ph - dwell, 0, A);
+    } else if (ph < 2 * dwell + tm) {
+      x = A;
+    } else {
+      move(ph - 2 * dwell - tm, A, 0);
+    }
+    r.t_s[k] = t;
+    r.x_m[k] = x;
+    r.v_mps[k] = v;
+    r.a_mps2[k] = a;
+  }
+  std::ostringstream d;
+  d << "smooth back-and-forth, " << o.frequency_hz << " Hz, stroke " << A * 1e3 << " mm, dwell "
+    << o.dwell_fraction << " of the period, " << o.cycles << " cycles";
+  r.description = d.str();
+  return r;
+}
+
+PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen::VectorXd& x_m) {
+  const Eigen::Index n = x_m.size();
+  if (t_s.size() != n || n < 3)
+    throw InputError("reference: need equally long t and x columns with at least 3 samples (" +
+                     std::to_string(t_s.size()) + ", " + std::to_string(n) + ")");
+  PositionReference r;
+  r.t_s = t_s;
+  r.x_m = x_m;
+  r.v_mps.resize(n);
+  r.a_mps2.resize(n);
+  // Central differences on the (possibly non-uniform) grid; one-sided at the ends.
+  auto deriv = [&](const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Eigen::Index lo = k == 0 ? 0 : k - 1, hi = k == n - 1 ? n - 1 : k + 1;
+      out[k] = (y[hi] - y[lo]) / (t_s[hi] - t_s[lo]);
+    }
+  };
+  deriv(x_m, r.v_mps);
+  deriv(r.v_mps, r.a_mps2);
+  r.description = "sampled positions";
+  return r;
+}
+
+}  // namespace sysid

@@ -1,0 +1,123 @@
+// Delay tuning: NLopt over tau with parallel simulations of the recording's segments inside.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "detail/delay_search.hpp"
+#include "detail/identify_segments.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+std::string ToString(DelayTermination termination) {
+  switch (termination) {
+    case DelayTermination::kConverged:
+      return "converged";
+    case DelayTermination::kMaxEvaluations:
+      return "max-evaluations";
+    case DelayTermination::kNumericalFailure:
+      return "numerical-failure";
+  }
+  return "?";
+}
+
+void DelayTuningOptions::Validate() const {
+  auto rule = [](const char* field, double value, const char* what) {
+    throw OptionsError(
+        fmt::format("DelayTuningOptions::{} = {}. Violated constraint: {}", field, value, what));
+  };
+  if (!(tau_min_s >= 0) || !std::isfinite(tau_min_s))
+    rule("tau_min_s", tau_min_s, "tau_min_s >= 0 [s]");
+  if (!(tau_max_s > tau_min_s) || !std::isfinite(tau_max_s))
+    rule("tau_max_s", tau_max_s, "tau_max_s > tau_min_s [s]");
+  if (!(x_tolerance_s > 0)) rule("x_tolerance_s", x_tolerance_s, "x_tolerance_s > 0 [s]");
+  if (coarse_evaluations < 3)
+    rule("coarse_evaluations", coarse_evaluations, "coarse_evaluations >= 3");
+  if (max_evaluations < coarse_evaluations)
+    rule("max_evaluations", max_evaluations, "max_evaluations >= coarse_evaluations");
+  if (curve_points < 0 || curve_points == 1)
+    rule("curve_points", curve_points, "curve_points = 0 or >= 2");
+  if (!(sim_rtol > 0 && sim_rtol < 1)) rule("sim_rtol", sim_rtol, "0 < sim_rtol < 1");
+  if (!(sim_atol > 0)) rule("sim_atol", sim_atol, "sim_atol > 0");
+  if (threads < 0) rule("threads", threads, "threads >= 0");
+  motion.Validate();
+  segments.Validate();
+}
+
+DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Recording>& recordings,
+                            const DelayTuningOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.Validate();
+  model.Validate();
+  if (recordings.empty()) throw OptionsError("TuneDelay: no recordings given");
+  std::vector<MotionSignals> motions;
+  for (const auto& r : recordings) motions.push_back(ExtractMotion(r, options.motion));
+  const auto segments = detail::MakeSegments(motions, options.segments, options.motion);
+  DelayTuningResult result;
+  result.segments = static_cast<int>(segments.size());
+  result.samples = detail::SegmentSamples(segments);
+  const detail::SimulationSettings sim{options.sim_rtol, options.sim_atol, options.threads};
+  std::atomic<long> simulations{0};
+  std::string first_failure;
+  Eigen::VectorXd residuals;
+  auto cost = [&](double tau) {
+    FrictionModel m = model;
+    m.tau_s = tau;
+    std::string failure;
+    if (!detail::SegmentResiduals(m, segments, sim, &residuals, &failure, &simulations)) {
+      if (first_failure.empty()) first_failure = fmt::format("tau = {:.6g} s: {}", tau, failure);
+      return std::numeric_limits<double>::infinity();
+    }
+    return residuals.squaredNorm();
+  };
+  detail::ScalarSearchOptions so;
+  so.lo = options.tau_min_s;
+  so.hi = options.tau_max_s;
+  so.coarse_evaluations = options.coarse_evaluations;
+  so.max_evaluations = options.max_evaluations;
+  so.x_tolerance = options.x_tolerance_s;
+  const auto search = detail::MinimizeScalar(cost, so);
+  result.tau_s = search.x;
+  result.cost = search.f;
+  result.evaluations = search.evaluations;
+  result.curve = search.evaluated;
+  for (int i = 0; i < options.curve_points; ++i) {
+    const double tau = options.tau_min_s +
+                       (options.tau_max_s - options.tau_min_s) * i / (options.curve_points - 1);
+    result.curve.emplace_back(tau, cost(tau));
+  }
+  std::sort(result.curve.begin(), result.curve.end());
+  result.model = model;
+  result.model.tau_s = result.tau_s;
+  result.simulations = simulations.load();
+  if (!std::isfinite(result.cost) || result.cost == std::numeric_limits<double>::max()) {
+    result.termination = DelayTermination::kNumericalFailure;
+    result.message = "every simulation failed; first failure: " + first_failure;
+    throw NumericalError("delay tuning: " + result.message);
+  }
+  result.rms_error_mps = std::sqrt(result.cost / static_cast<double>(result.samples));
+  result.termination =
+      search.converged ? DelayTermination::kConverged : DelayTermination::kMaxEvaluations;
+  result.message = search.message;
+  if (!first_failure.empty())
+    result.message +=
+        "; some simulations failed and were scored +inf (first: " + first_failure + ")";
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::string DelayTuningResult::BriefReport() const {
+  return fmt::format(
+      "delay tuning: tau = {:.6g} s, cost {:.6g} m^2/s^2 (rms {:.4g} m/s), {} evaluations, {} "
+      "simulations of {} segments, {:.3g} s; {} ({})\n",
+      tau_s, cost, rms_error_mps, evaluations, simulations, segments, wall_time_s,
+      ToString(termination), message);
+}
+
+}  // namespace sysid

@@ -1,0 +1,46 @@
+// Private helpers of the signal module: Butterworth design as second-order sections, the
+// sections' filter with steady-state initial conditions, and Savitzky–Golay weights.
+// Tests include this file to check the design against closed forms.
+#ifndef SYSID_DETAIL_SIGNAL_FILTERS_HPP_
+#define SYSID_DETAIL_SIGNAL_FILTERS_HPP_
+
+#include <Eigen/Core>
+#include <complex>
+#include <vector>
+
+namespace sysid::detail {
+
+/// One biquad H(z) = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) (a0 = 1).
+struct Biquad {
+  double b0 = 1, b1 = 0, b2 = 0;
+  double a1 = 0, a2 = 0;
+  bool first_order() const { return b2 == 0.0 && a2 == 0.0; }
+};
+
+/// Digital Butterworth low-pass of order `order` with cut-off `normalized_cutoff` = f_c / f_s
+/// (0 < . < 0.5), by the bilinear transform of the analog prototype with pre-warping, as
+/// ceil(order/2) sections of unit DC gain, in increasing pole quality factor (the first-order
+/// section first when the order is odd) so the resonant sections see an already smoothed input.
+std::vector<Biquad> DesignButterworthLowPass(int order, double normalized_cutoff);
+
+/// H(e^{j omega}) of the cascade, omega in [rad/sample].
+std::complex<double> FrequencyResponse(const std::vector<Biquad>& sections, double omega);
+
+/// Number of padding samples filtfilt uses at each end (SciPy's sosfiltfilt rule:
+/// 3 x (2 x sections + 1 - number of first-order sections)).
+int FiltFiltPadLength(const std::vector<Biquad>& sections);
+
+/// Zero-phase forward-backward filtering with odd-reflection padding and steady-state initial
+/// conditions scaled by the first sample of each pass (SciPy sosfiltfilt, MATLAB filtfilt).
+/// Requires y.size() > FiltFiltPadLength(sections); the caller checks.
+Eigen::VectorXd FiltFilt(const std::vector<Biquad>& sections, const Eigen::VectorXd& y);
+
+/// Savitzky–Golay weights: row r (r = 0..window-1) holds the weights w such that
+/// sum_i w_i y[i] over one window is the `deriv`-th derivative, at offset r - (window-1)/2
+/// samples from the window centre, of the least-squares polynomial of degree `order`, for unit
+/// sample spacing (divide by dt^deriv).
+Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv);
+
+}  // namespace sysid::detail
+
+#endif  // SYSID_DETAIL_SIGNAL_FILTERS_HPP_

@@ -1,0 +1,218 @@
+// Dominant-variable analysis: sizes of the inverse model's terms from measured signals.
+#include "sysid/dominance.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <thread>
+
+#include "detail/identify_delay_shift.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+void DominanceOptions::Validate() const {
+  motion.Validate();
+  auto rule = [](const std::string& field, double value, const char* what) {
+    throw OptionsError(
+        fmt::format("DominanceOptions::{} = {}. Violated constraint: {}", field, value, what));
+  };
+  if (!(min_speed_mps >= 0) || !std::isfinite(min_speed_mps))
+    rule("min_speed_mps", min_speed_mps, "min_speed_mps >= 0 [m/s]");
+  if (!(negligible_ratio > 0 && negligible_ratio < 1))
+    rule("negligible_ratio", negligible_ratio, "0 < negligible_ratio < 1");
+  if (!(bound_quantile >= 0 && bound_quantile <= 1))
+    rule("bound_quantile", bound_quantile, "0 <= bound_quantile <= 1");
+  if (threads < 0) rule("threads", threads, "threads >= 0");
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const auto& c = candidates[i];
+    if (c.variable.empty() || c.column.empty())
+      throw OptionsError(
+          fmt::format("DominanceOptions::candidates[{}]: variable and column "
+                      "must be named",
+                      i));
+    if (!std::isfinite(c.gain)) rule(fmt::format("candidates[{}].gain", i), c.gain, "finite");
+    if (c.variable == "acceleration" || c.variable == "velocity")
+      throw OptionsError(
+          fmt::format("DominanceOptions::candidates[{}].variable = '{}'. "
+                      "Violated constraint: a name other than acceleration and "
+                      "velocity",
+                      i, c.variable));
+  }
+}
+
+namespace {
+
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const size_t k = static_cast<size_t>(std::ceil(q * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+// Pointwise |num| / |den| over samples where the denominator is non-zero.
+void RatioStats(const Eigen::VectorXd& num, const Eigen::VectorXd& den, double q, double* bound,
+                double* max) {
+  std::vector<double> r;
+  r.reserve(static_cast<size_t>(num.size()));
+  for (Eigen::Index k = 0; k < num.size(); ++k)
+    if (den[k] != 0) r.push_back(std::abs(num[k]) / std::abs(den[k]));
+  *max = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
+  *bound = Quantile(std::move(r), q);
+}
+
+TermStats Stats(const std::string& name, const Eigen::VectorXd& term) {
+  TermStats s;
+  s.name = name;
+  s.rms = std::sqrt(term.squaredNorm() / static_cast<double>(term.size()));
+  s.peak = term.cwiseAbs().maxCoeff();
+  return s;
+}
+
+}  // namespace
+
+DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
+                                 const DominanceOptions& options) {
+  options.Validate();
+  model.Validate();
+  const MotionSignals m = ExtractMotion(recording, options.motion);
+  const Eigen::VectorXd vd = detail::DelayedSignal(m.v_mps, m.dt_s, model.tau_s);
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index k = 0; k < m.v_mps.size(); ++k)
+    if (std::isfinite(vd[k]) && std::abs(m.v_mps[k]) >= options.min_speed_mps) rows.push_back(k);
+  DominanceResult r;
+  r.source = recording.source;
+  r.samples = m.v_mps.size();
+  r.moving_samples = static_cast<Eigen::Index>(rows.size());
+  if (rows.empty())
+    throw NumericalError(
+        fmt::format("{}: the stage never moves (|v| < min_speed_mps = {} m/s "
+                    "everywhere): no sliding samples to compare terms on",
+                    recording.source, options.min_speed_mps));
+  const Eigen::Index n = r.moving_samples;
+  Eigen::VectorXd ta(n), tv(n), tc(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Index k = rows[static_cast<size_t>(i)];
+    const double v = m.v_mps[k], d = vd[k];
+    ta[i] = m.a_mps2[k];
+    tv[i] = (d > 0 ? model.a1p : model.a1n) * d;
+    tc[i] = v > 0 ? model.a2p : -model.a2n;
+  }
+  r.terms = {Stats("acceleration", ta), Stats("viscous", tv), Stats("coulomb", tc)};
+  std::vector<std::pair<std::string, Eigen::VectorXd>> variables{{"acceleration", ta},
+                                                                 {"velocity", tv + tc}};
+  for (const auto& c : options.candidates) {
+    if (!recording.has(c.column))
+      throw InputError(
+          fmt::format("{}: candidate '{}' needs column '{}', which the recording "
+                      "does not have",
+                      recording.source, c.variable, c.column));
+    const auto col = recording.column(c.column);
+    Eigen::VectorXd t(n);
+    for (Eigen::Index i = 0; i < n; ++i) t[i] = c.gain * col[rows[static_cast<size_t>(i)]];
+    r.terms.push_back(Stats(c.variable, t));
+    variables.emplace_back(c.variable, std::move(t));
+  }
+  std::vector<size_t> order(variables.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<TermStats> stats;
+  for (const auto& [name, t] : variables) stats.push_back(Stats(name, t));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return stats[a].rms > stats[b].rms; });
+  const auto& top = variables[order[0]].second;
+  const double top_rms = stats[order[0]].rms;
+  for (size_t i : order) {
+    TermStats s = stats[i];
+    s.ratio_to_top = top_rms > 0 ? s.rms / top_rms : 0.0;
+    RatioStats(variables[i].second, top, options.bound_quantile, &s.ratio_bound, &s.ratio_max);
+    s.negligible = i != order[0] && s.ratio_to_top <= options.negligible_ratio;
+    r.ranking.push_back(s);
+  }
+  for (auto& t : r.terms) t.ratio_to_top = top_rms > 0 ? t.rms / top_rms : 0.0;
+  r.dominant = r.ranking[0].name;
+  r.margin = r.ranking.size() > 1 && r.ranking[1].rms > 0 ? r.ranking[0].rms / r.ranking[1].rms
+                                                          : std::numeric_limits<double>::infinity();
+  RatioStats(ta, tv, options.bound_quantile, &r.paper_ratio_bound, &r.paper_ratio_max);
+  return r;
+}
+
+DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
+                                       const std::vector<Recording>& recordings,
+                                       const DominanceOptions& options) {
+  options.Validate();
+  model.Validate();
+  DominanceSummary s;
+  const size_t n = recordings.size();
+  s.results.resize(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t i = next++; i < n; i = next++) {
+      try {
+        s.results[i] = AnalyzeDominance(model, recordings[i], options);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const size_t threads =
+      std::min<size_t>(n, options.threads > 0 ? static_cast<size_t>(options.threads) : hw);
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  std::map<std::string, int> counts;
+  std::vector<double> margins;
+  for (const auto& r : s.results) {
+    ++counts[r.dominant];
+    margins.push_back(r.margin);
+  }
+  for (const auto& [k, c] : counts) s.dominant_counts.emplace_back(k, c);
+  std::stable_sort(s.dominant_counts.begin(), s.dominant_counts.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (!s.dominant_counts.empty()) s.dominant = s.dominant_counts[0].first;
+  if (!margins.empty()) {
+    s.min_margin = *std::min_element(margins.begin(), margins.end());
+    std::sort(margins.begin(), margins.end());
+    const size_t h = margins.size() / 2;
+    s.median_margin = margins.size() % 2 ? margins[h] : 0.5 * (margins[h - 1] + margins[h]);
+  }
+  return s;
+}
+
+std::string DominanceTableCsv(const DominanceSummary& summary) {
+  std::string out =
+      "# dominance of the inverse-model terms; rms and peak in [m/s^2], ratios dimensionless\n"
+      "source,rank,variable,rms,peak,ratio_to_top,ratio_bound,ratio_max,negligible,dominant,"
+      "margin,moving_samples\n";
+  for (const auto& r : summary.results) {
+    int rank = 0;
+    for (const auto& s : r.ranking)
+      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.9g},{}\n", r.source,
+                         ++rank, s.name, s.rms, s.peak, s.ratio_to_top, s.ratio_bound, s.ratio_max,
+                         s.negligible ? 1 : 0, r.dominant == s.name ? 1 : 0, r.margin,
+                         r.moving_samples);
+  }
+  return out;
+}
+
+std::string DominanceResult::BriefReport() const {
+  std::string s = fmt::format("{}: dominant variable {} (margin {:.3g}), {} of {} samples moving\n",
+                              source, dominant, margin, moving_samples, samples);
+  for (const auto& t : ranking)
+    s += fmt::format("  {:<14} rms {:.4g} m/s^2  peak {:.4g} m/s^2  ratio {:.3g}{}\n", t.name,
+                     t.rms, t.peak, t.ratio_to_top, t.negligible ? "  (negligible)" : "");
+  s += fmt::format("  |x''| / |a1 v(t-tau)|: bound {:.3g} (max {:.3g})\n", paper_ratio_bound,
+                   paper_ratio_max);
+  return s;
+}
+
+}  // namespace sysid

@@ -1,0 +1,68 @@
+// Private numerical kernels of the one-hidden-layer tanh network in normalised units:
+// residuals, the Jacobian of the residuals and the Gauss–Newton normal equations J'J, J'r.
+// theta = [W1 (H x n, row-major), b1, w2, b2]; data Z is n x N (one column per sample).
+// The normal equations are accumulated block by block (a few hundred samples at a time) so
+// that the Jacobian block stays in cache and is never stored whole.
+#ifndef SYSID_SRC_NN_MLP_KERNELS_HPP_
+#define SYSID_SRC_NN_MLP_KERNELS_HPP_
+
+#include <Eigen/Core>
+
+namespace sysid::nn {
+
+/// Views of theta's parts.
+struct Weights {
+  Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> W1;
+  Eigen::Map<const Eigen::VectorXd> b1, w2;
+  double b2;
+  Weights(const Eigen::VectorXd& theta, int n, int H);
+};
+
+inline int ParameterCount(int n, int H) { return H * (n + 2) + 1; }
+
+/// tanh through exp (Eigen vectorises exp for double but not tanh): absolute error ~1e-16,
+/// exact limits +-1 for large |x|, NaN in gives NaN out.
+void TanhInPlace(Eigen::Ref<Eigen::ArrayXXd> x);
+
+/// r = net(Z) - y (size N).
+void Residuals(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+               const Eigen::VectorXd& theta, Eigen::VectorXd* r);
+
+/// Residuals of samples [first, first + count) into r (size count).
+void ResidualBlock(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+                   const Eigen::VectorXd& theta, Eigen::Index first, Eigen::Index count,
+                   Eigen::VectorXd* r);
+
+/// Sum of squared residuals (blocked; no N-sized temporaries).
+double SumSquares(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+                  const Eigen::VectorXd& theta);
+
+/// Transposed Jacobian of the residuals of samples [first, first + count): P x count, column k
+/// is d r_(first+k) / d theta. `A` (H x count) receives tanh(W1 z + b1); `r` the residuals.
+void JacobianTransposeBlock(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+                            const Eigen::VectorXd& theta, Eigen::Index first, Eigen::Index count,
+                            Eigen::MatrixXd* JT, Eigen::MatrixXd* A, Eigen::VectorXd* r);
+
+/// Full Jacobian J (N x P) of the residuals (tests, Ceres and benchmarks).
+void Jacobian(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+              const Eigen::VectorXd& theta, Eigen::MatrixXd* J);
+
+/// Gauss–Newton pieces: the lower triangle of J'J (P x P), g = J'r and sum r^2, accumulated
+/// over blocks of `block` samples by symmetric rank-k updates.
+void NormalEquations(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+                     const Eigen::VectorXd& theta, Eigen::MatrixXd* JtJ, Eigen::VectorXd* g,
+                     double* sse, int block = 0);
+
+/// Replaces (w2, b2) in theta by the linear least-squares optimum for theta's hidden layer,
+/// min ||A' w2 + b2 - y||^2 with A = tanh(W1 Z + b1), and returns the new sum of squares.
+/// `A` is scratch (H x N). A tiny ridge (1e-12 of the mean diagonal) keeps the normal
+/// equations solvable when hidden units saturate alike.
+double SolveOutputLayer(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
+                        Eigen::VectorXd* theta, Eigen::MatrixXd* A);
+
+/// The block size NormalEquations uses when block == 0 (keeps P x block near 256 KiB).
+int DefaultBlock(int P);
+
+}  // namespace sysid::nn
+
+#endif  // SYSID_SRC_NN_MLP_KERNELS_HPP_

@@ -1,0 +1,144 @@
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid {
+namespace {
+
+void CheckRange(const std::string& what, double min, double max) {
+  if (!std::isfinite(min) || !std::isfinite(max) || !(min < max))
+    throw OptionsError(what + " = [" + std::to_string(min) + ", " + std::to_string(max) +
+                       "]. Violated constraint: finite min < max");
+}
+
+}  // namespace
+
+std::string DefaultUnit(std::string_view symbol) {
+  if (symbol == "t") return "s";
+  if (symbol == "u") return "V";
+  if (symbol == "x") return "m";
+  if (symbol == "v") return "m/s";
+  if (symbol == "a") return "m/s^2";
+  return "";
+}
+
+NeuralNetwork::NeuralNetwork(std::vector<ScaledVariable> inputs, ScaledVariable output, int hidden)
+    : inputs_(std::move(inputs)), output_(std::move(output)) {
+  if (inputs_.empty())
+    throw OptionsError(
+        "NeuralNetwork: inputs is empty. Violated constraint: "
+        "at least one input");
+  if (hidden < 1)
+    throw OptionsError("NeuralNetwork: hidden = " + std::to_string(hidden) +
+                       ". Violated constraint: hidden >= 1");
+  for (const auto& in : inputs_)
+    CheckRange("NeuralNetwork input '" + in.name + "' range", in.min, in.max);
+  CheckRange("NeuralNetwork output '" + output_.name + "' range", output_.min, output_.max);
+  W1_ = Eigen::MatrixXd::Zero(hidden, input_count());
+  b1_ = Eigen::VectorXd::Zero(hidden);
+  w2_ = Eigen::VectorXd::Zero(hidden);
+}
+
+std::vector<std::string> NeuralNetwork::input_names() const {
+  std::vector<std::string> names;
+  for (const auto& in : inputs_) names.push_back(in.name);
+  return names;
+}
+
+Eigen::VectorXd NeuralNetwork::parameters() const {
+  const int H = hidden_size(), n = input_count();
+  Eigen::VectorXd theta(parameter_count());
+  for (int h = 0; h < H; ++h)
+    for (int i = 0; i < n; ++i) theta[h * n + i] = W1_(h, i);
+  theta.segment(H * n, H) = b1_;
+  theta.segment(H * n + H, H) = w2_;
+  theta[H * n + 2 * H] = b2_;
+  return theta;
+}
+
+void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
+  const int H = hidden_size(), n = input_count();
+  if (theta.size() != parameter_count())
+    throw OptionsError("NeuralNetwork::set_parameters: theta has " + std::to_string(theta.size()) +
+                       " entries. Violated constraint: size = "
+                       "H n + 2 H + 1 = " +
+                       std::to_string(parameter_count()));
+  for (int h = 0; h < H; ++h)
+    for (int i = 0; i < n; ++i) W1_(h, i) = theta[h * n + i];
+  b1_ = theta.segment(H * n, H);
+  w2_ = theta.segment(H * n + H, H);
+  b2_ = theta[H * n + 2 * H];
+}
+
+void NeuralNetwork::set_input_range(int i, double min, double max) {
+  SYSID_CHECK(i >= 0 && i < input_count(), "input index " + std::to_string(i));
+  CheckRange("input '" + inputs_[i].name + "' range", min, max);
+  inputs_[i].min = min;
+  inputs_[i].max = max;
+}
+
+void NeuralNetwork::set_output_range(double min, double max) {
+  CheckRange("output '" + output_.name + "' range", min, max);
+  output_.min = min;
+  output_.max = max;
+}
+
+double NeuralNetwork::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  SYSID_CHECK(x.size() == input_count(), "Evaluate: got " + std::to_string(x.size()) +
+                                             " inputs, network has " +
+                                             std::to_string(input_count()));
+  const int H = hidden_size(), n = input_count();
+  double y = b2_;
+  for (int h = 0; h < H; ++h) {
+    double s = b1_[h];
+    for (int i = 0; i < n; ++i) s += W1_(h, i) * inputs_[i].Normalize(x[i]);
+    y += w2_[h] * std::tanh(s);
+  }
+  return output_.Denormalize(y);
+}
+
+Eigen::VectorXd NeuralNetwork::EvaluateBatch(const Eigen::MatrixXd& X) const {
+  if (X.cols() != input_count())
+    throw OptionsError(
+        "NeuralNetwork::EvaluateBatch: X has " + std::to_string(X.cols()) +
+        " columns. Violated constraint: columns = inputs = " + std::to_string(input_count()));
+  const Eigen::Index N = X.rows();
+  Eigen::VectorXd out(N);
+  constexpr Eigen::Index kBlock = 512;
+  Eigen::MatrixXd Z, A;
+  for (Eigen::Index first = 0; first < N; first += kBlock) {
+    const Eigen::Index count = std::min(kBlock, N - first);
+    Z.resize(input_count(), count);
+    for (int i = 0; i < input_count(); ++i) {
+      const double c = 2.0 / (inputs_[i].max - inputs_[i].min);
+      Z.row(i) = ((X.col(i).segment(first, count).array() - inputs_[i].min) * c - 1.0).transpose();
+    }
+    A.noalias() = W1_ * Z;
+    A.colwise() += b1_;
+    A = A.array().tanh();
+    Eigen::VectorXd y = A.transpose() * w2_;
+    out.segment(first, count) =
+        output_.min + 0.5 * (y.array() + b2_ + 1.0) * (output_.max - output_.min);
+  }
+  return out;
+}
+
+void NeuralNetwork::Validate() const {
+  if (inputs_.empty() || hidden_size() < 1)
+    throw OptionsError(
+        "NeuralNetwork: empty network. Violated constraint: inputs >= 1, "
+        "hidden >= 1");
+  for (const auto& in : inputs_) CheckRange("input '" + in.name + "' range", in.min, in.max);
+  CheckRange("output '" + output_.name + "' range", output_.min, output_.max);
+  if (!parameters().allFinite())
+    throw OptionsError(
+        "NeuralNetwork: a weight is NaN or infinite. Violated constraint: "
+        "finite weights");
+}
+
+}  // namespace sysid

@@ -1,0 +1,249 @@
+// TrainNeuralNetwork: scaling, seeded initialisation, restarts, and the choice of trainer.
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nn/mlp_kernels.hpp"
+#include "nn/trainers.hpp"
+#include "sysid/error.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid {
+namespace {
+
+// Uniform in [-1, 1) from the standard-specified mt19937_64 (portable, unlike the
+// implementation-defined std distributions).
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : gen_(seed) {}
+  double Symmetric() { return 2.0 * static_cast<double>(gen_() >> 11) * 0x1.0p-53 - 1.0; }
+  double Normal() {
+    double u1 = 0;
+    while (u1 <= 0) u1 = static_cast<double>(gen_() >> 11) * 0x1.0p-53;
+    const double u2 = static_cast<double>(gen_() >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  }
+
+ private:
+  std::mt19937_64 gen_;
+};
+
+Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t seed) {
+  Random rng(seed);
+  Eigen::VectorXd theta(nn::ParameterCount(n, H));
+  Eigen::MatrixXd W1(H, n);
+  Eigen::VectorXd b1(H), w2(H);
+  double b2 = 0;
+  if (init == NeuralInit::kNguyenWidrow) {
+    // MATLAB initnw for inputs already in [-1, 1]: random directions of length
+    // 0.7 H^(1/n), biases spreading the units' centres evenly across the input range.
+    const double magnitude = 0.7 * std::pow(static_cast<double>(H), 1.0 / n);
+    for (int h = 0; h < H; ++h) {
+      for (int i = 0; i < n; ++i) W1(h, i) = rng.Symmetric();
+      const double norm = W1.row(h).norm();
+      W1.row(h) *= magnitude / (norm > 0 ? norm : 1.0);
+      const double spread = H == 1 ? 0.0 : -1.0 + 2.0 * h / (H - 1);
+      b1[h] = magnitude * spread * (W1(h, 0) >= 0 ? 1.0 : -1.0);
+    }
+    for (int h = 0; h < H; ++h) w2[h] = rng.Symmetric();
+    b2 = rng.Symmetric();
+  } else {
+    for (int h = 0; h < H; ++h)
+      for (int i = 0; i < n; ++i) W1(h, i) = 2.0 * rng.Symmetric();
+    for (int h = 0; h < H; ++h) b1[h] = 2.0 * rng.Symmetric();
+    for (int h = 0; h < H; ++h) w2[h] = rng.Normal() / std::sqrt(static_cast<double>(H));
+  }
+  for (int h = 0; h < H; ++h)
+    for (int i = 0; i < n; ++i) theta[h * n + i] = W1(h, i);
+  theta.segment(H * n, H) = b1;
+  theta.segment(H * n + H, H) = w2;
+  theta[H * n + 2 * H] = b2;
+  return theta;
+}
+
+void CheckData(const NeuralDataset& d, const char* role, const NeuralDataset* reference) {
+  if (d.size() == 0) throw InputError(d.source + ": " + role + " set has no samples");
+  if (d.inputs.rows() != d.size() ||
+      d.inputs.cols() != static_cast<Eigen::Index>(d.input_names.size()))
+    throw InputError(d.source + ": " + role + " set: inputs matrix is " +
+                     std::to_string(d.inputs.rows()) + " x " + std::to_string(d.inputs.cols()) +
+                     ", expected " + std::to_string(d.size()) + " x " +
+                     std::to_string(d.input_names.size()));
+  if (!d.inputs.allFinite() || !d.targets.allFinite())
+    throw InputError(d.source + ": " + role + " set contains NaN or Inf");
+  if (reference &&
+      (d.input_names != reference->input_names || d.output_name != reference->output_name))
+    throw InputError(d.source + ": " + role + " set columns differ from the training set's");
+}
+
+nn::NormalizedData Normalize(const NeuralNetwork& net, const NeuralDataset& d) {
+  nn::NormalizedData out;
+  out.Z.resize(net.input_count(), d.size());
+  for (int i = 0; i < net.input_count(); ++i) {
+    const auto& s = net.inputs()[i];
+    out.Z.row(i) = (2.0 * (d.inputs.col(i).array() - s.min) / (s.max - s.min) - 1.0).transpose();
+  }
+  const auto& s = net.output();
+  out.y = 2.0 * (d.targets.array() - s.min) / (s.max - s.min) - 1.0;
+  return out;
+}
+
+// MATLAB mapminmax's range: the data's min and max; a constant column cannot be scaled.
+std::pair<double, double> DataRange(const Eigen::VectorXd& x, const std::string& what,
+                                    const std::string& source) {
+  const double lo = x.minCoeff(), hi = x.maxCoeff();
+  if (!(lo < hi))
+    throw InputError(source + ": column '" + what + "' is constant (" + std::to_string(lo) +
+                     "): mapminmax scaling needs min < max; give a fixed range instead");
+  return {lo, hi};
+}
+
+}  // namespace
+
+std::string ToString(TrainingStop stop) {
+  switch (stop) {
+    case TrainingStop::kMaxEpochs:
+      return "max_epochs";
+    case TrainingStop::kGoalReached:
+      return "goal_reached";
+    case TrainingStop::kSmallGradient:
+      return "small_gradient";
+    case TrainingStop::kMuTooLarge:
+      return "mu_too_large";
+    case TrainingStop::kValidationFailures:
+      return "validation_failures";
+    case TrainingStop::kConverged:
+      return "converged";
+    case TrainingStop::kNumericalFailure:
+      return "numerical_failure";
+  }
+  return "unknown";
+}
+
+std::string ToString(NeuralTrainer trainer) {
+  return trainer == NeuralTrainer::kCeres ? "ceres" : "lm";
+}
+
+void NeuralTrainingOptions::Validate() const {
+  auto fail = [](const std::string& field, double value, const std::string& rule) {
+    std::ostringstream s;
+    s << "NeuralTrainingOptions::" << field << " = " << value << ". Violated constraint: " << rule;
+    throw OptionsError(s.str());
+  };
+  if (hidden < 1 || hidden > 100000) fail("hidden", hidden, "1 <= hidden <= 100000");
+  if (!(momentum >= 0 && momentum < 1)) fail("momentum", momentum, "0 <= momentum < 1");
+  if (!(mu_initial > 0 && std::isfinite(mu_initial)))
+    fail("mu_initial", mu_initial, "mu_initial > 0");
+  if (!(mu_decrease > 0 && mu_decrease < 1))
+    fail("mu_decrease", mu_decrease, "0 < mu_decrease < 1");
+  if (!(mu_increase > 1 && std::isfinite(mu_increase)))
+    fail("mu_increase", mu_increase, "mu_increase > 1");
+  if (!(mu_max > mu_initial)) fail("mu_max", mu_max, "mu_max > mu_initial");
+  if (!(gradient_tolerance >= 0)) fail("gradient_tolerance", gradient_tolerance, ">= 0");
+  if (max_epochs < 0) fail("max_epochs", max_epochs, "max_epochs >= 0");
+  if (max_validation_failures < 1)
+    fail("max_validation_failures", max_validation_failures, "max_validation_failures >= 1");
+  if (!(goal_mse >= 0)) fail("goal_mse", goal_mse, "goal_mse >= 0");
+  if (restarts < 1) fail("restarts", restarts, "restarts >= 1");
+  if (ceres_block_size < 1) fail("ceres_block_size", ceres_block_size, ">= 1");
+  for (size_t i = 0; i < input_ranges.size(); ++i)
+    if (!(input_ranges[i].first < input_ranges[i].second) ||
+        !std::isfinite(input_ranges[i].first) || !std::isfinite(input_ranges[i].second))
+      fail("input_ranges[" + std::to_string(i) + "].max", input_ranges[i].second,
+           "finite min < max");
+  if (output_range && (!(output_range->first < output_range->second) ||
+                       !std::isfinite(output_range->first) || !std::isfinite(output_range->second)))
+    fail("output_range.max", output_range->second, "finite min < max");
+  if (initial_parameters && !initial_parameters->allFinite())
+    throw OptionsError(
+        "NeuralTrainingOptions::initial_parameters contains NaN or Inf. "
+        "Violated constraint: finite");
+}
+
+std::string NeuralTrainingResult::BriefReport() const {
+  std::ostringstream s;
+  s << "epochs " << epochs << ", train MSE " << train_mse;
+  if (!std::isnan(validation_mse)) s << ", validation MSE " << validation_mse;
+  s << ", stop " << ToString(stop) << " (" << message << "), " << wall_time_s << " s";
+  return s.str();
+}
+
+NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const NeuralDataset* validation,
+                                        const NeuralTrainingOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  options.Validate();
+  CheckData(train, "training", nullptr);
+  if (validation) CheckData(*validation, "validation", &train);
+  const int n = static_cast<int>(train.input_names.size());
+  const int H = options.hidden;
+  if (!options.input_ranges.empty() && static_cast<int>(options.input_ranges.size()) != n)
+    throw OptionsError(
+        "NeuralTrainingOptions::input_ranges has " + std::to_string(options.input_ranges.size()) +
+        " entries. Violated constraint: one per input (" + std::to_string(n) + ") or none");
+  std::vector<ScaledVariable> inputs;
+  for (int i = 0; i < n; ++i) {
+    const auto& name = train.input_names[i];
+    const auto range = options.input_ranges.empty()
+                           ? DataRange(train.inputs.col(i), name, train.source)
+                           : options.input_ranges[i];
+    inputs.push_back({name, DefaultUnit(name), range.first, range.second});
+  }
+  const auto out_range = options.output_range
+                             ? *options.output_range
+                             : DataRange(train.targets, train.output_name, train.source);
+  NeuralNetwork net(
+      inputs,
+      {train.output_name, DefaultUnit(train.output_name), out_range.first, out_range.second}, H);
+  const double half = 0.5 * (out_range.second - out_range.first);
+  const double mse_scale = half * half;
+  const nn::NormalizedData ztrain = Normalize(net, train);
+  nn::NormalizedData zval;
+  if (validation) zval = Normalize(net, *validation);
+  if (options.initial_parameters && options.initial_parameters->size() != net.parameter_count())
+    throw OptionsError("NeuralTrainingOptions::initial_parameters has " +
+                       std::to_string(options.initial_parameters->size()) +
+                       " entries. Violated constraint: size = H n + 2 H + 1 = " +
+                       std::to_string(net.parameter_count()));
+
+  NeuralTrainingResult result;
+  const int restarts = options.initial_parameters ? 1 : options.restarts;
+  double best_score = std::numeric_limits<double>::infinity();
+  bool have_best = false;
+  for (int r = 0; r < restarts; ++r) {
+    const Eigen::VectorXd theta0 = options.initial_parameters
+                                       ? *options.initial_parameters
+                                       : InitialParameters(options.init, n, H, options.seed + r);
+    nn::TrainerRun run =
+        options.trainer == NeuralTrainer::kCeres
+            ? nn::RunCeres(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale, options)
+            : nn::RunLevenbergMarquardt(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
+                                        options);
+    for (auto& rec : run.history) {
+      rec.restart = r;
+      result.history.push_back(rec);
+    }
+    const double score = validation ? run.validation_mse : run.train_mse;
+    if (!have_best || score < best_score) {
+      have_best = true;
+      best_score = std::isfinite(score) ? score : std::numeric_limits<double>::infinity();
+      net.set_parameters(run.theta);
+      result.stop = run.stop;
+      result.message = run.message;
+      result.epochs = run.epochs;
+      result.restart = r;
+      result.train_mse = run.train_mse;
+      result.validation_mse =
+          validation ? run.validation_mse : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  result.network = net;
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace sysid

@@ -1,0 +1,429 @@
+// The pipeline's report: report.md with tables and plots, the model files and CSV tables.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/pipeline.hpp"
+#include "sysid/report.hpp"
+#include "sysid/simulate.hpp"
+
+namespace sysid {
+namespace {
+namespace fs = std::filesystem;
+
+std::string F(double v, int digits = 5) { return fmt::format("{:.{}g}", v, digits); }
+
+// Reference numbers (e.g. the paper's) to set beside ours; all keys optional.
+struct Reference {
+  std::string label = "reference";
+  nlohmann::json j;
+  bool has(const char* key) const { return j.contains(key); }
+  bool contains_tau() const { return j.contains("model") && j["model"].contains("tau"); }
+};
+
+std::optional<Reference> LoadReference(const std::string& path) {
+  if (path.empty()) return std::nullopt;
+  Reference ref;
+  try {
+    ref.j = nlohmann::json::parse(ReadFile(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": invalid reference JSON: " + e.what());
+  }
+  ref.label = ref.j.value("label", std::string("reference"));
+  return ref;
+}
+
+class ReportWriter {
+ public:
+  ReportWriter(const PipelineResult& r, const std::string& dir)
+      : r_(r), dir_(dir), ref_(LoadReference(r.options.reference_path)) {}
+
+  std::vector<std::string> Write() {
+    fs::create_directories(dir_);
+    md_ = "# libsysid pipeline report\n\n";
+    md_ += "Inputs: `" + r_.inputs.root + "` — " + std::to_string(r_.inputs.pulses.size()) +
+           " pulse recording(s), training set `" +
+           fs::path(r_.inputs.training).filename().string() + "`, test set `" +
+           fs::path(r_.inputs.test).filename().string() + "`, " +
+           std::to_string(r_.inputs.waveforms.size()) + " test waveform(s).\n";
+    if (ref_) md_ += "Reference numbers (" + ref_->label + ") are set beside ours.\n";
+    Model();
+    Delay();
+    Dominance();
+    Neural();
+    Comparison();
+    Tracking();
+    Timing();
+    WriteFileAtomically(Path("report.md"), md_);
+    return notes_;
+  }
+
+ private:
+  std::string Path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
+
+  void Plot(const std::string& file, const PlotSpec& spec, const std::string& caption) {
+    const PlotOutcome p = WritePlot(Path(file), spec);
+    if (p.written) {
+      md_ += "\n![" + caption + "](" + file + ")\n";
+    } else {
+      md_ += "\n*(plot `" + file + "` not drawn: " + p.message + ")*\n";
+      notes_.push_back(p.message);
+    }
+  }
+
+  void Model() {
+    const auto& p = r_.pulse;
+    md_ += "\n## 1. Pulse-test identification\n\n";
+    std::vector<std::vector<std::string>> rows;
+    std::string csv = "source,t_start_s,duration_s,u_v,v_mps,v_stderr_mps,status,reason\n";
+    for (const auto& e : p.pulses) {
+      rows.push_back({fs::path(e.pulse.source).filename().string(), F(e.pulse.t_start_s, 4),
+                      F(e.pulse.amplitude_v, 4), F(e.v_mps, 5), ToString(e.status), e.reason});
+      csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},\"{}\"\n", e.pulse.source,
+                         e.pulse.t_start_s, e.pulse.duration_s, e.pulse.amplitude_v, e.v_mps,
+                         e.v_stderr_mps, ToString(e.status), e.reason);
+    }
+    md_ += MarkdownTable(
+        {"recording", "t start [s]", "u [V]", "steady v [m/s]", "status", "reason"}, rows);
+    WriteFileAtomically(Path("pulses.csv"), csv);
+    md_ += "\nLeast squares (column-pivoted QR), condition number " + F(p.fit.condition_number, 4) +
+           ", relative residual " + F(p.fit.relative_error, 3) + ":\n\n";
+    std::vector<std::string> header{"parameter", "estimate", "std. error"};
+    if (ref_ && ref_->has("model")) header.push_back(ref_->label);
+    std::vector<std::vector<std::string>> prow;
+    const std::vector<std::pair<const char*, double>> final_values{
+        {"a1p", r_.model.a1p}, {"a1n", r_.model.a1n}, {"a2p", r_.model.a2p},
+        {"a2n", r_.model.a2n}, {"a3", r_.model.a3},   {"tau", r_.model.tau_s}};
+    for (const auto& [name, value] : final_values) {
+      std::string se = "—";
+      for (size_t i = 0; i < p.fit.names.size(); ++i)
+        if (p.fit.names[i] == name) se = F(p.fit.std_error[static_cast<Eigen::Index>(i)], 3);
+      std::vector<std::string> row{name, F(value, 7), se};
+      if (ref_ && ref_->has("model"))
+        row.push_back(ref_->j["model"].contains(name) ? F(ref_->j["model"][name].get<double>(), 7)
+                                                      : "");
+      prow.push_back(row);
+    }
+    md_ += MarkdownTable(header, prow);
+    md_ += "\nThe final model (after the delay" +
+           std::string(r_.refine ? " and the output-error refinement" : "") +
+           ") is `model.json`.\n";
+    WriteModel(Path("model.json"), r_.model);
+  }
+
+  void Delay() {
+    if (!r_.delay) return;
+    const auto& d = *r_.delay;
+    md_ += "\n## 2. Delay of the viscous term\n\n";
+    md_ += fmt::format(
+        "NLopt (DIRECT-L then BOBYQA) over tau: **tau = {:.4g} ms**, cost {:.4g} m²/s² (RMS "
+        "velocity error {:.3g} m/s), {} evaluations, {} simulations, {:.2f} s. {}\n",
+        1e3 * d.tau_s, d.cost, d.rms_error_mps, d.evaluations, d.simulations, d.wall_time_s,
+        d.message);
+    if (ref_ && ref_->contains_tau())
+      md_ += fmt::format("\n{}: tau = {:.4g} ms.\n", ref_->label,
+                         1e3 * ref_->j["model"]["tau"].get<double>());
+    Eigen::VectorXd tau(static_cast<Eigen::Index>(d.curve.size())), cost(tau.size());
+    for (size_t i = 0; i < d.curve.size(); ++i) {
+      tau[static_cast<Eigen::Index>(i)] = 1e3 * d.curve[i].first;
+      cost[static_cast<Eigen::Index>(i)] = d.curve[i].second;
+    }
+    Plot("delay_cost.png",
+         {"delay fit: cost against tau",
+          "tau [ms]",
+          "cost [m^2/s^2]",
+          {{"sum of squared velocity errors", tau, cost, "linespoints"}},
+          true,
+          900,
+          500},
+         "cost against tau");
+    if (r_.refine) md_ += "\nOutput-error refinement (Ceres): " + r_.refine->BriefReport() + "\n";
+    VelocityPlot();
+  }
+
+  // Measured velocity of the first pulse recording beside the model with tau = 0 and tuned.
+  void VelocityPlot() {
+    const Recording rec = ReadRecording(r_.inputs.pulses.front());
+    const MotionSignals m = ExtractMotion(rec);
+    const auto t = m.t_s;
+    std::vector<double> tt(t.data(), t.data() + t.size()),
+        uu(m.u_v.data(), m.u_v.data() + m.u_v.size());
+    const PiecewiseConstantInput input(tt, uu);
+    SimulationOptions so;
+    so.t0_s = t[0];
+    so.t_end_s = t[t.size() - 1];
+    so.output_times_s = tt;
+    so.rtol = 1e-8;
+    so.atol = 1e-10;
+    PlotSpec spec{"pulse response: measured and simulated velocity",
+                  "t [s]",
+                  "v [m/s]",
+                  {},
+                  false,
+                  1100,
+                  500};
+    spec.series.push_back({"measured", t, m.v_mps, "lines"});
+    FrictionModel no_delay = r_.model;
+    no_delay.tau_s = 0;
+    for (const auto& [label, model] :
+         {std::pair<std::string, FrictionModel>{"model, tau = 0", no_delay},
+          {fmt::format("model, tau = {:.3g} ms", 1e3 * r_.model.tau_s), r_.model}}) {
+      const SimulationResult s = Simulate(model, input, so);
+      if (!s.summary.success) {
+        notes_.push_back("velocity plot: simulation failed: " + s.summary.message);
+        return;
+      }
+      spec.series.push_back({label, s.trajectory.t_s, s.trajectory.v_mps, "lines"});
+    }
+    Plot("pulse_velocity.png", spec, "measured vs simulated velocity");
+  }
+
+  void Dominance() {
+    const auto& d = r_.dominance;
+    md_ += "\n## 3. Dominant variable\n\n";
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& res : d.results)
+      for (const auto& v : res.ranking)
+        rows.push_back({fs::path(res.source).filename().string(), v.name, F(v.rms, 4), F(v.peak, 4),
+                        F(v.ratio_to_top, 3), F(v.ratio_bound, 3), v.negligible ? "yes" : "no"});
+    md_ += MarkdownTable({"recording", "variable", "RMS term [m/s²]", "peak [m/s²]", "RMS / top",
+                          "ratio bound (q99)", "negligible"},
+                         rows);
+    md_ += "\nDominant variable: **" + d.dominant + "**; network inputs: ";
+    for (const auto& c : r_.nn_inputs) md_ += "`" + c + "` ";
+    md_ += "\n";
+    for (const auto& res : d.results)
+      md_ += fmt::format(
+          "\n- `{}`: |x''| / |a1 v(t-tau)| bounded by {:.3g} (99 % quantile; "
+          "max {:.3g}) over {} moving samples.",
+          fs::path(res.source).filename().string(), res.paper_ratio_bound, res.paper_ratio_max,
+          res.moving_samples);
+    if (ref_ && ref_->has("dominance_ratio_bound"))
+      md_ += fmt::format("\n- {}: the bound is O({:.1g}).", ref_->label,
+                         ref_->j["dominance_ratio_bound"].get<double>());
+    md_ += "\n";
+    WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
+    // The paper's figure: the acceleration term against the viscous term over time.
+    const Recording rec = ReadRecording(r_.inputs.training);
+    const MotionSignals m = ExtractMotion(rec);
+    const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, r_.model.tau_s);
+    Eigen::VectorXd viscous(vd.size());
+    for (Eigen::Index k = 0; k < vd.size(); ++k)
+      viscous[k] = (vd[k] > 0 ? r_.model.a1p : r_.model.a1n) * vd[k];
+    Plot("dominance_terms.png",
+         {"inverse-model terms on the training set",
+          "t [s]",
+          "term [m/s^2]",
+          {{"a1 v(t - tau)", m.t_s, viscous, "lines"}, {"x''", m.t_s, m.a_mps2, "lines"}},
+          false,
+          1100,
+          500},
+         "acceleration term vs viscous term");
+  }
+
+  void Neural() {
+    const auto& s = r_.sweep;
+    md_ += "\n## 4. Inverse neural network: hidden-size sweep\n\n";
+    const bool paper_sweep = ref_ && ref_->has("sweep");
+    std::vector<std::string> header{"H", "epochs", "training MSE [V²]", "test MSE [V²]", "stop"};
+    if (paper_sweep) {
+      header.push_back(ref_->label + " epochs");
+      header.push_back(ref_->label + " training MSE");
+      header.push_back(ref_->label + " test MSE");
+    }
+    std::vector<std::vector<std::string>> rows;
+    std::string csv = "hidden,epochs,train_mse,test_mse,stop,wall_time_s\n";
+    for (size_t i = 0; i < s.rows.size(); ++i) {
+      const auto& row = s.rows[i];
+      std::vector<std::string> cells{
+          std::to_string(row.hidden) + (static_cast<int>(i) == s.chosen ? " (chosen)" : ""),
+          std::to_string(row.epochs), F(row.train_mse), F(row.test_mse), ToString(row.stop)};
+      if (paper_sweep) {
+        std::vector<std::string> extra{"", "", ""};
+        for (const auto& p : ref_->j["sweep"])
+          if (p.value("hidden", -1) == row.hidden)
+            extra = {std::to_string(p.value("epochs", 0)), F(p.value("train_mse", 0.0)),
+                     F(p.value("test_mse", 0.0))};
+        cells.insert(cells.end(), extra.begin(), extra.end());
+      }
+      rows.push_back(cells);
+      csv += fmt::format("{},{},{:.9g},{:.9g},{},{:.4g}\n", row.hidden, row.epochs, row.train_mse,
+                         row.test_mse, ToString(row.stop), row.wall_time_s);
+    }
+    md_ += MarkdownTable(header, rows);
+    md_ += "\nRule: " + s.rule + ". The chosen network is `nn.json`.\n";
+    WriteFileAtomically(Path("sweep.csv"), csv);
+    WriteNeuralNetwork(Path("nn.json"), r_.network);
+    Eigen::VectorXd h(static_cast<Eigen::Index>(s.rows.size())), tr(h.size()), te(h.size());
+    for (size_t i = 0; i < s.rows.size(); ++i) {
+      h[static_cast<Eigen::Index>(i)] = s.rows[i].hidden;
+      tr[static_cast<Eigen::Index>(i)] = s.rows[i].train_mse;
+      te[static_cast<Eigen::Index>(i)] = s.rows[i].test_mse;
+    }
+    Plot("sweep.png",
+         {"hidden-size sweep",
+          "hidden units H",
+          "MSE [V^2]",
+          {{"training", h, tr, "linespoints"}, {"test", h, te, "linespoints"}},
+          false,
+          900,
+          500},
+         "training and test MSE against H");
+    if (!r_.typical) return;
+    const auto& t = *r_.typical;
+    md_ += "\n### Typical (v, a) network vs dominant-variable network\n\n";
+    md_ += MarkdownTable(
+        {"network", "inputs", "H", "epochs", "training MSE [V²]", "test MSE [V²]"},
+        {{"typical", "v, a", std::to_string(t.network.hidden_size()), std::to_string(t.epochs),
+          F(t.train_mse), F(r_.typical_test_mse)},
+         {"dominant", Join(r_.nn_inputs), std::to_string(r_.network.hidden_size()),
+          std::to_string(s.rows[static_cast<size_t>(s.chosen)].epochs),
+          F(s.rows[static_cast<size_t>(s.chosen)].train_mse), F(r_.network_test_mse)}});
+    const double train_dom = s.rows[static_cast<size_t>(s.chosen)].train_mse;
+    const bool overfits = t.train_mse <= train_dom && r_.typical_test_mse > r_.network_test_mse;
+    md_ += overfits
+               ? "\nAs in the paper, the typical network fits the training set at least as well "
+                 "and the test set worse: it overfits.\n"
+               : fmt::format(
+                     "\n**Not the paper's outcome:** the typical network's training MSE is {} "
+                     "and its test MSE {} against the dominant network's {} and {}. With "
+                     "encoder-quantised acceleration as an input, 120 units and the pipeline's "
+                     "epoch budget ({} epochs on every {}-th sample), this data does not "
+                     "reproduce the overfitting; see docs/neural.md.\n",
+                     F(t.train_mse), F(r_.typical_test_mse), F(train_dom), F(r_.network_test_mse),
+                     r_.options.typical_max_epochs, r_.options.typical_stride);
+    WriteNeuralNetwork(Path("nn_typical.json"), t.network);
+  }
+
+  void Comparison() {
+    md_ += "\n## 5. Analytic vs NN inverse model\n\n";
+    std::vector<std::vector<std::string>> rows;
+    std::string csv = "recording,model,rmse_v,peak_error_v,nrmse\n";
+    for (const auto& c : r_.comparisons) {
+      const std::string name = fs::path(c.source).stem().string();
+      rows.push_back({name, F(c.analytic.rmse_v, 4), F(c.nn.rmse_v, 4),
+                      F(c.analytic.peak_error_v, 4), F(c.nn.peak_error_v, 4),
+                      F(c.analytic.nrmse, 3), F(c.nn.nrmse, 3)});
+      csv += fmt::format("{},analytic,{:.9g},{:.9g},{:.9g}\n{},nn,{:.9g},{:.9g},{:.9g}\n", name,
+                         c.analytic.rmse_v, c.analytic.peak_error_v, c.analytic.nrmse, name,
+                         c.nn.rmse_v, c.nn.peak_error_v, c.nn.nrmse);
+      WriteRecording(Path("compare_" + name + ".csv"), c.AsRecording());
+    }
+    md_ += MarkdownTable({"recording", "RMSE analytic [V]", "RMSE NN [V]", "peak analytic [V]",
+                          "peak NN [V]", "NRMSE analytic", "NRMSE NN"},
+                         rows);
+    WriteFileAtomically(Path("comparison.csv"), csv);
+    for (const auto& c : r_.comparisons) {
+      const std::string name = fs::path(c.source).stem().string();
+      Plot("compare_" + name + ".png",
+           {"inverse models on " + name,
+            "t [s]",
+            "u [V]",
+            {{"measured", c.t_s, c.u_measured_v, "lines"},
+             {"analytic inverse", c.t_s, c.u_analytic_v, "lines"},
+             {"NN inverse", c.t_s, c.u_nn_v, "lines"}},
+            false,
+            1100,
+            450},
+           name);
+    }
+  }
+
+  void Tracking() {
+    if (r_.tracking.empty()) return;
+    md_ += "\n## 6. PI position control with feedforward\n\n";
+    md_ += fmt::format(
+        "Discrete PI at the stage's sample rate, Kp = {} V/m, Ki = {} V/(m s), "
+        "saturation ±{} V with conditional-integration anti-windup; smooth "
+        "back-and-forth profile of {} mm.\n\n",
+        r_.options.pi.kp_v_per_m, r_.options.pi.ki_v_per_m_s, r_.options.pi.u_max_v,
+        1e3 * r_.options.track_amplitude_m);
+    const bool paper = ref_ && ref_->has("tracking_max_error_mm");
+    std::vector<std::string> header{"frequency [Hz]", "feedforward", "max |e| [mm]", "RMS e [mm]",
+                                    "RMS u [V]"};
+    if (paper) header.push_back(ref_->label + " max |e| [mm]");
+    std::vector<std::vector<std::string>> rows;
+    std::string csv = "frequency_hz,ff,max_error_m,rms_error_m,rms_u_v\n";
+    for (const auto& t : r_.tracking) {
+      std::vector<std::string> row{F(t.frequency_hz, 3), t.scheme, F(1e3 * t.result.max_error_m, 4),
+                                   F(1e3 * t.result.rms_error_m, 4), F(t.result.rms_u_v, 4)};
+      if (paper) {
+        std::string v;
+        for (const auto& [key, val] : ref_->j["tracking_max_error_mm"].items())
+          if (std::abs(std::stod(key) - t.frequency_hz) < 1e-9 && val.contains(t.scheme))
+            v = F(val[t.scheme].get<double>(), 5);
+        row.push_back(v);
+      }
+      rows.push_back(row);
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g}\n", t.frequency_hz, t.scheme,
+                         t.result.max_error_m, t.result.rms_error_m, t.result.rms_u_v);
+    }
+    md_ += MarkdownTable(header, rows);
+    WriteFileAtomically(Path("tracking.csv"), csv);
+    // The paper's ordering: PI worst, analytic better, NN best at every frequency.
+    for (double f : r_.options.track_frequencies_hz) {
+      double e[3] = {0, 0, 0};
+      PlotSpec spec{
+          fmt::format("tracking error at {} Hz", f), "t [s]", "e [mm]", {}, false, 1100, 450};
+      for (const auto& t : r_.tracking) {
+        if (t.frequency_hz != f) continue;
+        const int i = t.scheme == "none" ? 0 : (t.scheme == "analytic" ? 1 : 2);
+        e[i] = t.result.max_error_m;
+        spec.series.push_back({t.scheme, t.result.t_s, 1e3 * t.result.e_m, "lines"});
+      }
+      const bool ordered = e[0] > e[1] && e[1] > e[2];
+      md_ += fmt::format("\n- {} Hz: {}", f,
+                         ordered ? "the paper's ordering holds (PI > PI + analytic > PI + NN)."
+                                 : fmt::format("**the paper's ordering does not hold** (max "
+                                               "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
+                                               "analytic, NN).",
+                                               1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
+      Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
+    }
+    md_ += "\n";
+  }
+
+  void Timing() {
+    md_ += "\n## Run\n\n";
+    std::vector<std::vector<std::string>> rows;
+    double total = 0;
+    for (const auto& [name, s] : r_.step_seconds) {
+      rows.push_back({name, F(s, 3)});
+      total += s;
+    }
+    rows.push_back({"total", F(total, 3)});
+    md_ += MarkdownTable({"step", "wall time [s]"}, rows);
+    if (!r_.notes.empty()) {
+      md_ += "\nNotes:\n";
+      for (const auto& n : r_.notes) md_ += "- " + n + "\n";
+    }
+  }
+
+  static std::string Join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  }
+
+  const PipelineResult& r_;
+  std::string dir_;
+  std::optional<Reference> ref_;
+  std::string md_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace
+
+std::vector<std::string> WritePipelineReport(const PipelineResult& result,
+                                             const std::string& out_dir) {
+  return ReportWriter(result, out_dir).Write();
+}
+
+}  // namespace sysid

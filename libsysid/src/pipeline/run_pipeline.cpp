@@ -1,0 +1,183 @@
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/pipeline.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+namespace {
+
+std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
+  std::vector<Recording> out;
+  out.reserve(paths.size());
+  for (const auto& p : paths) out.push_back(ReadRecording(p));
+  return out;
+}
+
+// Dominance names variables; networks take recording columns.
+std::string ColumnOf(const std::string& variable) {
+  if (variable == "velocity") return "v";
+  if (variable == "acceleration") return "a";
+  return variable;
+}
+
+// Every row `stride`-th of a data set (the typical network's P = 481 makes each LM epoch cost
+// N P^2 flops; a stride keeps the pipeline inside its time budget).
+NeuralDataset Subsample(const NeuralDataset& d, int stride) {
+  if (stride <= 1) return d;
+  NeuralDataset out = d;
+  const Eigen::Index n = (d.size() + stride - 1) / stride;
+  out.inputs.resize(n, d.inputs.cols());
+  out.targets.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    out.inputs.row(k) = d.inputs.row(k * stride);
+    out.targets[k] = d.targets[k * stride];
+  }
+  return out;
+}
+
+// v and a columns for the network data sets: recorded ones when present (made with the filter
+// chosen at collection time), else derived with the default motion filter.
+Recording WithDerivatives(const Recording& rec) {
+  if (rec.has("v") && rec.has("a")) return rec;
+  const MotionSignals m = ExtractMotion(rec);
+  Recording out = rec;
+  out.SetColumn("v", m.v_mps);
+  out.SetColumn("a", m.a_mps2);
+  return out;
+}
+
+}  // namespace
+
+PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
+                           const PipelineProgress& progress) {
+  options.Validate();
+  PipelineResult r;
+  r.inputs = inputs;
+  r.options = options;
+  auto step = [&](const std::string& name, auto&& body) {
+    if (progress) progress(name);
+    const auto t0 = std::chrono::steady_clock::now();
+    body();
+    r.step_seconds.emplace_back(
+        name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  };
+
+  std::vector<Recording> pulses;
+  Recording training, test;
+  std::vector<Recording> waveforms;
+  step("read recordings", [&] {
+    pulses = ReadAll(inputs.pulses);
+    training = WithDerivatives(ReadRecording(inputs.training));
+    test = WithDerivatives(ReadRecording(inputs.test));
+    waveforms = ReadAll(inputs.waveforms);
+  });
+
+  step("identify (pulse least squares)", [&] {
+    PulseIdentificationOptions po;
+    po.fit.a3 = inputs.a3.value_or(options.a3);
+    r.pulse = IdentifyFromPulses(pulses, po);
+    r.model = r.pulse.model;
+  });
+
+  if (options.tune_delay) {
+    step("tune delay (NLopt)", [&] {
+      DelayTuningOptions d = options.delay;
+      if (d.curve_points == 0) d.curve_points = 21;  // the report plots cost against tau
+      r.delay = TuneDelay(r.model, pulses, d);
+      if (r.delay->termination == DelayTermination::kNumericalFailure) {
+        r.notes.push_back("delay tuning failed (" + r.delay->message + "); tau = 0 kept");
+      } else {
+        r.model = r.delay->model;
+      }
+    });
+  }
+
+  if (options.refine) {
+    step("refine (Ceres output error)", [&] {
+      r.refine = RefineOutputError(r.model, pulses);
+      if (r.refine->converged && r.refine->final_cost <= r.refine->initial_cost) {
+        r.model = r.refine->model;
+      } else {
+        r.notes.push_back("output-error refinement did not improve the fit (" + r.refine->message +
+                          "); the pulse/delay model is kept");
+      }
+    });
+  }
+
+  step("dominance analysis", [&] {
+    r.dominance = AnalyzeDominanceBatch(r.model, {training, test});
+    // The paper's rule: the network takes the dominant variable only; the ranking of the others
+    // is in the report. A caller may name the inputs instead.
+    r.nn_inputs = options.nn_inputs.empty()
+                      ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
+                      : options.nn_inputs;
+  });
+
+  const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
+  step("NN hidden-size sweep (LM)", [&] {
+    const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
+    HiddenSweepOptions so;
+    so.hidden_sizes = options.hidden_sizes;
+    so.training = options.training;
+    r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
+    const auto chosen = static_cast<size_t>(r.sweep.chosen);
+    r.network = r.sweep.runs[chosen].network;
+    r.network_test_mse = r.sweep.rows[chosen].test_mse;
+  });
+
+  if (options.typical) {
+    step("typical (v, a) network", [&] {
+      const NeuralDataset train_va =
+          Subsample(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+      const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
+      NeuralTrainingOptions t = options.training;
+      t.hidden = options.typical_hidden;
+      t.max_epochs = options.typical_max_epochs;
+      r.typical = TrainNeuralNetwork(train_va, nullptr, t);
+      r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+    });
+  }
+
+  step("compare inverse models", [&] {
+    r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
+    for (const auto& w : waveforms)
+      r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
+  });
+
+  if (options.track && !inputs.stage.empty()) {
+    step("PI tracking with feedforward", [&] {
+      const StageParameters stage = ReadStageParameters(inputs.stage);
+      PiOptions pi = options.pi;
+      pi.sample_time_s = stage.sample_time_s();
+      for (double f : options.track_frequencies_hz) {
+        SmoothProfileOptions p;
+        p.frequency_hz = f;
+        p.amplitude_m = options.track_amplitude_m;
+        p.sample_rate_hz = stage.sample_rate_hz;
+        const PositionReference ref = MakeSmoothProfile(p);
+        for (const char* scheme : {"none", "analytic", "nn"}) {
+          VirtualStage plant(stage, 1);  // same plant and noise for every scheme
+          Feedforward ff;
+          const std::string s = scheme;
+          if (s == "analytic")
+            ff = SampledFeedforward(
+                AnalyticInverse(r.model, stage.sample_time_s(), ref.v_mps, ref.a_mps2));
+          if (s == "nn") ff = SampledFeedforward(NetworkInverse(r.network, ref.v_mps, ref.a_mps2));
+          r.tracking.push_back({f, s, RunClosedLoop(plant, ref, pi, ff)});
+        }
+      }
+    });
+  } else if (options.track) {
+    r.notes.push_back("no stage file: the tracking experiment was skipped");
+  }
+  return r;
+}
+
+}  // namespace sysid

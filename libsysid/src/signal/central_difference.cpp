@@ -1,0 +1,22 @@
+// Central differences: the paper's velocity and acceleration from the encoder position.
+#include "detail/signal_checks.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid {
+
+Eigen::VectorXd CentralDifference(const Eigen::VectorXd& y, double dt_s) {
+  constexpr const char* kWhere = "CentralDifference";
+  detail::CheckSampleInterval(kWhere, dt_s);
+  detail::CheckLength(kWhere, y.size(), 3, "a second-order difference");
+  detail::CheckFinite(kWhere, y);
+  const Eigen::Index n = y.size();
+  const double inv_2dt = 0.5 / dt_s;
+  Eigen::VectorXd d(n);
+  d.segment(1, n - 2) = (y.tail(n - 2) - y.head(n - 2)) * inv_2dt;
+  // One-sided second-order stencils keep the ends as accurate (in order) as the interior.
+  d[0] = (-3 * y[0] + 4 * y[1] - y[2]) * inv_2dt;
+  d[n - 1] = (3 * y[n - 1] - 4 * y[n - 2] + y[n - 3]) * inv_2dt;
+  return d;
+}
+
+}  // namespace sysid

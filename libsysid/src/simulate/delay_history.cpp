@@ -1,0 +1,35 @@
+#include "simulate/delay_history.hpp"
+
+namespace sysid::internal {
+
+DelayHistory::DelayHistory(double t0_s, double history_v_mps, double v0_mps)
+    : t0_(t0_s), history_v_(history_v_mps), v0_(v0_mps), end_(t0_s) {}
+
+void DelayHistory::AppendPolynomial(double t_right, double t_ref, double h, const double* c,
+                                    int order) {
+  if (!(t_right > end_)) return;
+  pieces_.push_back({end_, t_right, t_ref, 1.0 / h, coefficients_.size(), order});
+  coefficients_.insert(coefficients_.end(), c, c + order + 1);
+  end_ = t_right;
+}
+
+void DelayHistory::AppendConstant(double t_right, double value) {
+  AppendPolynomial(t_right, t_right, 1.0, &value, 0);
+}
+
+double DelayHistory::Value(double s) const {
+  if (s < t0_) return history_v_;
+  if (pieces_.empty()) return v0_;
+  std::size_t i = cursor_ < pieces_.size() ? cursor_ : pieces_.size() - 1;
+  while (i > 0 && s < pieces_[i].t_left) --i;
+  while (i + 1 < pieces_.size() && s >= pieces_[i].t_right) ++i;
+  cursor_ = i;
+  const Piece& p = pieces_[i];
+  const double theta = (s - p.t_ref) * p.inv_h;
+  const double* c = coefficients_.data() + p.offset;
+  double value = c[p.order];
+  for (int k = p.order - 1; k >= 0; --k) value = value * theta + c[k];
+  return value;
+}
+
+}  // namespace sysid::internal

@@ -1,0 +1,299 @@
+// The paper's data-collection procedures on the virtual stage: pulse test, tracking sets
+// (P-controlled sinusoid grid, one cycle per pair, concatenated in seeded random order) and the
+// excitation / reference signals alone for a real rig.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "detail/stage_noise.hpp"
+#include "sysid/error.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+namespace {
+
+std::string Fmt(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+[[noreturn]] void Violated(const std::string& field, double value, const std::string& rule) {
+  throw OptionsError(field + " = " + Fmt(value) + ". Violated constraint: " + rule);
+}
+
+long Samples(double seconds, double rate_hz) {
+  return static_cast<long>(std::llround(seconds * rate_hz));
+}
+
+const char* kUnits = "t [s], u [V], x [m], v [m/s], a [m/s^2]";
+
+void AddCommonMetadata(Recording& r, const StageParameters& stage, const std::string& procedure,
+                       std::uint64_t seed) {
+  r.metadata.emplace_back("stage", stage.name);
+  r.metadata.emplace_back("procedure", procedure);
+  r.metadata.emplace_back("seed", std::to_string(seed));
+  r.metadata.emplace_back("sample_rate_hz", Fmt(stage.sample_rate_hz));
+}
+
+Eigen::VectorXd Segment(const Eigen::VectorXd& y, long from, long to) {
+  return y.segment(from, to - from);
+}
+
+}  // namespace
+
+std::uint64_t DeriveSeed(std::uint64_t seed, std::uint64_t index) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+// ---- Pulse test --------------------------------------------------------------------------
+
+void PulseProcedure::Validate() const {
+  if (amplitudes_v.empty())
+    throw OptionsError(
+        "PulseProcedure::amplitudes_v is empty. Violated constraint: at least "
+        "one amplitude");
+  for (size_t i = 0; i < amplitudes_v.size(); ++i)
+    if (!std::isfinite(amplitudes_v[i]) || std::abs(amplitudes_v[i]) > 10.0)
+      Violated("PulseProcedure::amplitudes_v[" + std::to_string(i) + "]", amplitudes_v[i],
+               "|amplitude| <= 10 V and finite");
+  if (!(on_s > 0) || !std::isfinite(on_s)) Violated("PulseProcedure::on_s", on_s, "on_s > 0");
+  if (!(rest_s >= 0) || !std::isfinite(rest_s))
+    Violated("PulseProcedure::rest_s", rest_s, "rest_s >= 0");
+  if (!(lead_s >= 0) || !std::isfinite(lead_s))
+    Violated("PulseProcedure::lead_s", lead_s, "lead_s >= 0");
+}
+
+double PulseProcedure::PulseStart(std::size_t i) const {
+  return lead_s + static_cast<double>(i) * (on_s + rest_s);
+}
+
+Eigen::VectorXd PulseProcedure::Voltage(double rate) const {
+  Validate();
+  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  const long n = Samples(PulseStart(amplitudes_v.size()), rate);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+  for (size_t i = 0; i < amplitudes_v.size(); ++i) {
+    const long k0 = Samples(PulseStart(i), rate);
+    const long k1 = std::min(n, k0 + Samples(on_s, rate));
+    u.segment(k0, k1 - k0).setConstant(amplitudes_v[i]);
+  }
+  return u;
+}
+
+Recording PulseExcitation(const PulseProcedure& procedure, double rate) {
+  const Eigen::VectorXd u = procedure.Voltage(rate);
+  Recording r;
+  r.source = "pulses";
+  r.names = {"t", "u"};
+  r.data.resize(u.size(), 2);
+  for (Eigen::Index k = 0; k < u.size(); ++k) r.data(k, 0) = static_cast<double>(k) / rate;
+  r.data.col(1) = u;
+  r.metadata.emplace_back("procedure", "pulse test excitation");
+  r.metadata.emplace_back("units", "t [s], u [V]");
+  return r;
+}
+
+Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
+                       std::uint64_t seed, const DerivativeOptions& derivative) {
+  stage.Validate();
+  const double rate = stage.sample_rate_hz;
+  derivative.Validate(1.0 / rate);
+  const StageRun run = RunOpenLoop(stage, procedure.Voltage(rate), seed);
+  const Derivatives d = Differentiate(run.x_m, 1.0 / rate, derivative);
+  Recording r;
+  r.source = "pulses";
+  r.names = {"t", "u", "x", "v", "a"};
+  r.data.resize(run.t_s.size(), 5);
+  r.data << run.t_s, run.u_v, run.x_m, d.v_mps, d.a_mps2;
+  AddCommonMetadata(r, stage, "pulse test", seed);
+  std::string amps;
+  for (double a : procedure.amplitudes_v) amps += (amps.empty() ? "" : " ") + Fmt(a);
+  r.metadata.emplace_back("amplitudes_v", amps);
+  r.metadata.emplace_back("pulse_on_s", Fmt(procedure.on_s));
+  r.metadata.emplace_back("pulse_rest_s", Fmt(procedure.rest_s));
+  r.metadata.emplace_back("pulse_lead_s", Fmt(procedure.lead_s));
+  r.metadata.emplace_back("derivative", ToString(derivative.method));
+  r.metadata.emplace_back("limits", run.status.Describe());
+  r.metadata.emplace_back("units", kUnits);
+  return r;
+}
+
+// ---- Tracking ----------------------------------------------------------------------------
+
+void TrackingProcedure::Validate(const StageParameters& stage) const {
+  if (!(kp_v_per_m > 0) || !std::isfinite(kp_v_per_m))
+    Violated("TrackingProcedure::kp_v_per_m", kp_v_per_m, "kp_v_per_m > 0");
+  if (lead_cycles < 0) Violated("TrackingProcedure::lead_cycles", lead_cycles, "lead_cycles >= 0");
+  if (kept_cycles < 1) Violated("TrackingProcedure::kept_cycles", kept_cycles, "kept_cycles >= 1");
+  if (!(tail_s >= 0) || !std::isfinite(tail_s))
+    Violated("TrackingProcedure::tail_s", tail_s, "tail_s >= 0");
+  derivative.Validate(1.0 / stage.sample_rate_hz);
+}
+
+namespace {
+
+void CheckWaveform(const VelocityWaveform& w, const StageParameters& stage) {
+  if (w.terms.empty() || !(w.period_s > 0))
+    throw OptionsError("waveform '" + w.name + "': needs at least one term and period_s > 0");
+  for (const auto& t : w.terms)
+    if (!(t.omega_rad_s > 0))
+      Violated("waveform '" + w.name + "' omega_rad_s", t.omega_rad_s, "omega_rad_s > 0");
+  if (w.PeakVelocity() > stage.max_velocity_mps)
+    Violated("waveform '" + w.name + "' peak velocity [m/s]", w.PeakVelocity(),
+             "peak velocity <= the stage's max_velocity_mps (" + Fmt(stage.max_velocity_mps) + ")");
+}
+
+struct Tracked {
+  Eigen::VectorXd t, u, x, v, a, x_ref, v_ref;
+  StageStatus status;
+};
+
+Tracked Track(const StageParameters& stage, const VelocityWaveform& w,
+              const TrackingProcedure& procedure, std::uint64_t seed) {
+  CheckWaveform(w, stage);
+  const double rate = stage.sample_rate_hz;
+  const long c0 = Samples(procedure.lead_cycles * w.period_s, rate);
+  const long c1 = Samples((procedure.lead_cycles + procedure.kept_cycles) * w.period_s, rate);
+  const long n = c1 + Samples(procedure.tail_s, rate);
+  VirtualStage plant(stage, seed);
+  Eigen::VectorXd x(n), u(n), x_ref(n), v_ref(n);
+  for (long k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / rate;
+    x_ref[k] = w.Position(t);
+    v_ref[k] = w.Velocity(t);
+    x[k] = plant.measured_position_m();
+    u[k] =
+        std::clamp(procedure.kp_v_per_m * (x_ref[k] - x[k]), -stage.dac_range_v, stage.dac_range_v);
+    plant.Step(u[k]);
+  }
+  // Derivatives over the whole run, then the cut: the filter sees real samples on both sides
+  // of the cut, so the kept cycle has no end effects.
+  const Derivatives d = Differentiate(x, 1.0 / rate, procedure.derivative);
+  Tracked out;
+  out.t.resize(c1 - c0);
+  for (long k = 0; k < c1 - c0; ++k) out.t[k] = static_cast<double>(k) / rate;
+  out.u = Segment(u, c0, c1);
+  out.x = Segment(x, c0, c1);
+  out.v = Segment(d.v_mps, c0, c1);
+  out.a = Segment(d.a_mps2, c0, c1);
+  out.x_ref = Segment(x_ref, c0, c1);
+  out.v_ref = Segment(v_ref, c0, c1);
+  out.status = plant.status();
+  return out;
+}
+
+}  // namespace
+
+Recording TrackWaveform(const StageParameters& stage, const VelocityWaveform& waveform,
+                        const TrackingProcedure& procedure, std::uint64_t seed) {
+  stage.Validate();
+  procedure.Validate(stage);
+  const Tracked tr = Track(stage, waveform, procedure, seed);
+  Recording r;
+  r.source = waveform.name;
+  r.names = {"t", "u", "x", "v", "a", "x_ref", "v_ref"};
+  r.data.resize(tr.t.size(), 7);
+  r.data << tr.t, tr.u, tr.x, tr.v, tr.a, tr.x_ref, tr.v_ref;
+  AddCommonMetadata(r, stage, "tracking (P controller), waveform " + waveform.name, seed);
+  r.metadata.emplace_back("kp_v_per_m", Fmt(procedure.kp_v_per_m));
+  r.metadata.emplace_back("cycles", std::to_string(procedure.kept_cycles) + " kept after " +
+                                        std::to_string(procedure.lead_cycles) + " lead-in");
+  r.metadata.emplace_back("period_s", Fmt(waveform.period_s));
+  r.metadata.emplace_back("derivative", ToString(procedure.derivative.method));
+  r.metadata.emplace_back("limits", tr.status.Describe());
+  r.metadata.emplace_back("units", std::string(kUnits) + ", x_ref [m], v_ref [m/s]");
+  return r;
+}
+
+Recording RunTrackingSet(const StageParameters& stage, const std::vector<VelocityWaveform>& grid,
+                         const TrackingProcedure& procedure, std::uint64_t seed,
+                         const std::string& set_name) {
+  stage.Validate();
+  procedure.Validate(stage);
+  if (grid.empty()) throw OptionsError("RunTrackingSet: the grid is empty");
+  std::vector<Tracked> runs;
+  for (size_t i = 0; i < grid.size(); ++i)
+    runs.push_back(Track(stage, grid[i], procedure, DeriveSeed(seed, i)));
+  // Seeded Fisher-Yates (std::shuffle's use of the engine is implementation-defined).
+  std::vector<size_t> order(grid.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  detail::StageNoise rng(DeriveSeed(seed, 0xC0FFEE));
+  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.Index(i)]);
+
+  Eigen::Index rows = 0;
+  for (const auto& r : runs) rows += r.t.size();
+  Recording rec;
+  rec.source = set_name;
+  rec.names = {"t", "u", "x", "v", "a"};
+  rec.data.resize(rows, 5);
+  Eigen::Index at = 0;
+  std::string names, limits;
+  for (size_t i : order) {
+    const Tracked& r = runs[i];
+    const Eigen::Index m = r.t.size();
+    for (Eigen::Index k = 0; k < m; ++k)
+      rec.data(at + k, 0) = static_cast<double>(at + k) / stage.sample_rate_hz;
+    rec.data.block(at, 1, m, 1) = r.u;
+    rec.data.block(at, 2, m, 1) = r.x;
+    rec.data.block(at, 3, m, 1) = r.v;
+    rec.data.block(at, 4, m, 1) = r.a;
+    at += m;
+    names += (names.empty() ? "" : " ") + grid[i].name;
+    if (r.status.travel_limit_hit || r.status.velocity_limit_exceeded)
+      limits += (limits.empty() ? "" : "; ") + grid[i].name + ": " + r.status.Describe();
+  }
+  AddCommonMetadata(rec, stage, "tracking set '" + set_name + "' (P controller, sinusoid grid)",
+                    seed);
+  rec.metadata.emplace_back("kp_v_per_m", Fmt(procedure.kp_v_per_m));
+  rec.metadata.emplace_back("segments", names);
+  rec.metadata.emplace_back("cycles", std::to_string(procedure.kept_cycles) +
+                                          " per segment, after " +
+                                          std::to_string(procedure.lead_cycles) + " lead-in");
+  rec.metadata.emplace_back("derivative", ToString(procedure.derivative.method));
+  rec.metadata.emplace_back("limits", limits.empty() ? "none" : limits);
+  rec.metadata.emplace_back("units", kUnits);
+  return rec;
+}
+
+Recording ReferenceSignals(const std::vector<VelocityWaveform>& waveforms,
+                           const TrackingProcedure& procedure, double rate) {
+  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  if (procedure.kept_cycles < 1 || procedure.lead_cycles < 0)
+    throw OptionsError("ReferenceSignals: need kept_cycles >= 1 and lead_cycles >= 0");
+  std::vector<std::array<double, 5>> rows;
+  long offset = 0;
+  for (size_t i = 0; i < waveforms.size(); ++i) {
+    const VelocityWaveform& w = waveforms[i];
+    const long n = Samples((procedure.lead_cycles + procedure.kept_cycles) * w.period_s, rate);
+    for (long k = 0; k < n; ++k) {
+      const double t = static_cast<double>(k) / rate;
+      rows.push_back({static_cast<double>(offset + k) / rate, static_cast<double>(i), w.Position(t),
+                      w.Velocity(t), w.Acceleration(t)});
+    }
+    offset += n;
+  }
+  Recording r;
+  r.source = "references";
+  r.names = {"t", "waveform", "x_ref", "v_ref", "a_ref"};
+  r.data.resize(static_cast<Eigen::Index>(rows.size()), 5);
+  for (size_t k = 0; k < rows.size(); ++k)
+    for (int c = 0; c < 5; ++c) r.data(static_cast<Eigen::Index>(k), c) = rows[k][c];
+  std::string names;
+  for (size_t i = 0; i < waveforms.size(); ++i)
+    names += (i ? "; " : "") + std::to_string(i) + " = " + waveforms[i].name;
+  r.metadata.emplace_back("procedure", "tracking references (each from x = 0 at rest)");
+  r.metadata.emplace_back("waveforms", names);
+  r.metadata.emplace_back("units", "t [s], x_ref [m], v_ref [m/s], a_ref [m/s^2]");
+  return r;
+}
+
+}  // namespace sysid

@@ -1,0 +1,251 @@
+// The stage file: JSON with the unit in every key, grouped as drive / friction / rig /
+// integrator. Unknown keys are errors so that a typo never silently leaves a default.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+namespace {
+
+using Json = nlohmann::json;
+
+std::string Position(std::string_view text, size_t pos) {
+  long line = 1, col = 1;
+  for (size_t i = 0; i < pos && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(col);
+}
+
+// Where "key" first appears at or after the place where its parent object's key appears.
+std::string KeyPosition(std::string_view text, const std::string& parent, const std::string& key) {
+  size_t from = 0;
+  if (!parent.empty()) {
+    const size_t p = text.find("\"" + parent + "\"");
+    if (p != std::string_view::npos) from = p;
+  }
+  const size_t p = text.find("\"" + key + "\"", from);
+  return p == std::string_view::npos ? "1:1" : Position(text, p);
+}
+
+struct Context {
+  std::string_view text;
+  const std::string& source;
+  [[noreturn]] void Fail(const std::string& parent, const std::string& key,
+                         const std::string& what) const {
+    throw InputError(source + ":" + KeyPosition(text, parent, key) + ": " + what);
+  }
+};
+
+// Reads the object `j` (named `parent`), whose keys must all be in `numbers`, `ints`, `arrays`
+// or `objects` (handled by the caller).
+struct Section {
+  std::vector<std::pair<const char*, double*>> numbers;
+  std::vector<std::pair<const char*, int*>> ints;
+  std::vector<std::pair<const char*, std::vector<double>*>> arrays;
+  std::vector<const char*> objects;
+
+  void Read(const Context& c, const std::string& parent, const Json& j) const {
+    if (!j.is_object())
+      c.Fail("", parent, "key '" + parent + "': expected an object, found " + j.type_name());
+    for (const auto& [key, value] : j.items()) {
+      if (key == "units" || key == "note" || (!key.empty() && key[0] == '_')) continue;
+      bool known = false;
+      for (const auto& [k, target] : numbers) {
+        if (key != k) continue;
+        known = true;
+        if (!value.is_number())
+          c.Fail(parent, key, "key '" + key + "': expected a number, found " + value.type_name());
+        *target = value.get<double>();
+      }
+      for (const auto& [k, target] : ints) {
+        if (key != k) continue;
+        known = true;
+        if (!value.is_number_integer())
+          c.Fail(parent, key, "key '" + key + "': expected an integer, found " + value.dump());
+        *target = value.get<int>();
+      }
+      for (const auto& [k, target] : arrays) {
+        if (key != k) continue;
+        known = true;
+        if (!value.is_array())
+          c.Fail(parent, key,
+                 "key '" + key + "': expected an array of numbers, found " + value.type_name());
+        target->clear();
+        for (const auto& e : value) {
+          if (!e.is_number())
+            c.Fail(parent, key, "key '" + key + "': expected numbers, found " + e.dump());
+          target->push_back(e.get<double>());
+        }
+      }
+      for (const char* k : objects) known = known || key == k;
+      if (!known) {
+        std::string expected;
+        for (const auto& n : numbers)
+          expected += std::string(expected.empty() ? "" : ", ") + n.first;
+        for (const auto& n : ints) expected += std::string(expected.empty() ? "" : ", ") + n.first;
+        for (const auto& n : arrays)
+          expected += std::string(expected.empty() ? "" : ", ") + n.first;
+        for (const char* n : objects) expected += std::string(expected.empty() ? "" : ", ") + n;
+        c.Fail(parent, key,
+               "unknown key '" + key + "' in '" + (parent.empty() ? "(top)" : parent) +
+                   "' (expected " + expected + ")");
+      }
+    }
+  }
+};
+
+Section BranchSection(FrictionBranch& b) {
+  return Section{{{"coulomb_mps2", &b.coulomb_mps2},
+                  {"static_mps2", &b.static_mps2},
+                  {"stribeck_velocity_mps", &b.stribeck_velocity_mps},
+                  {"viscous_per_s", &b.viscous_per_s}},
+                 {},
+                 {},
+                 {}};
+}
+
+}  // namespace
+
+StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
+  Json j;
+  try {
+    j = Json::parse(json_text);
+  } catch (const Json::parse_error& e) {
+    const size_t at = e.byte > 0 ? e.byte - 1 : 0;
+    std::string what = e.what();
+    const size_t cut = what.find("parse error");
+    if (cut != std::string::npos) what = what.substr(cut);
+    throw InputError(source + ":" + Position(json_text, at) + ": invalid JSON: " + what);
+  }
+  const Context c{json_text, source};
+  if (!j.is_object())
+    throw InputError(source +
+                     ":1:1: expected a JSON object with keys name, drive, friction, "
+                     "rig, integrator");
+  StageParameters p = StageParameters::Default();
+  for (const auto& [key, value] : j.items()) {
+    if (key == "units" || key == "note" || (!key.empty() && key[0] == '_')) continue;
+    if (key == "name") {
+      if (!value.is_string()) c.Fail("", key, "key 'name': expected a string");
+      p.name = value.get<std::string>();
+    } else if (key == "drive") {
+      Section{{{"gain_mps2_per_v", &p.gain_mps2_per_v},
+               {"dead_zone_v", &p.dead_zone_v},
+               {"saturation_v", &p.saturation_v},
+               {"transport_delay_s", &p.transport_delay_s},
+               {"lag_time_constant_s", &p.lag_time_constant_s}},
+              {},
+              {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
+              {}}
+          .Read(c, key, value);
+    } else if (key == "friction") {
+      Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
+               {"bristle_damping_per_s", &p.bristle_damping_per_s}},
+              {},
+              {},
+              {"forward", "backward"}}
+          .Read(c, key, value);
+      if (value.contains("forward")) BranchSection(p.forward).Read(c, "forward", value["forward"]);
+      if (value.contains("backward"))
+        BranchSection(p.backward).Read(c, "backward", value["backward"]);
+    } else if (key == "rig") {
+      Section{{{"sample_rate_hz", &p.sample_rate_hz},
+               {"dac_range_v", &p.dac_range_v},
+               {"encoder_resolution_m", &p.encoder_resolution_m},
+               {"position_noise_m", &p.position_noise_m},
+               {"travel_min_m", &p.travel_min_m},
+               {"travel_max_m", &p.travel_max_m},
+               {"max_velocity_mps", &p.max_velocity_mps},
+               {"initial_position_m", &p.initial_position_m}},
+              {{"dac_bits", &p.dac_bits}},
+              {},
+              {}}
+          .Read(c, key, value);
+    } else if (key == "integrator") {
+      Section{{{"relative_tolerance", &p.relative_tolerance},
+               {"position_tolerance_m", &p.position_tolerance_m}},
+              {},
+              {},
+              {}}
+          .Read(c, key, value);
+    } else {
+      c.Fail("", key,
+             "unknown key '" + key + "' (expected name, drive, friction, rig, integrator)");
+    }
+  }
+  try {
+    p.Validate();
+  } catch (const OptionsError& e) {
+    throw InputError(source + ": invalid stage parameters: " + e.what());
+  }
+  return p;
+}
+
+StageParameters ReadStageParameters(const std::string& path) {
+  return ParseStageParameters(ReadFile(path), path);
+}
+
+std::string StageParametersToJson(const StageParameters& p) {
+  using OJ = nlohmann::ordered_json;
+  auto branch = [](const FrictionBranch& b) {
+    OJ o;
+    o["coulomb_mps2"] = b.coulomb_mps2;
+    o["static_mps2"] = b.static_mps2;
+    o["stribeck_velocity_mps"] = b.stribeck_velocity_mps;
+    o["viscous_per_s"] = b.viscous_per_s;
+    return o;
+  };
+  OJ j;
+  j["name"] = p.name;
+  j["note"] =
+      "Virtual piezo stage for libsysid (docs/virtual_stage.md). SI units; each key ends with "
+      "its unit (mps = m/s, mps2 = m/s^2, per_s = 1/s, per_s2 = 1/s^2, v = V). Forces are per "
+      "unit mass.";
+  OJ drive;
+  drive["gain_mps2_per_v"] = p.gain_mps2_per_v;
+  drive["dead_zone_v"] = p.dead_zone_v;
+  drive["saturation_v"] = p.saturation_v;
+  drive["transport_delay_s"] = p.transport_delay_s;
+  drive["lag_time_constant_s"] = p.lag_time_constant_s;
+  drive["map_in_v"] = p.drive_map_in_v;
+  drive["map_out_v"] = p.drive_map_out_v;
+  j["drive"] = drive;
+  OJ friction;
+  friction["bristle_stiffness_per_s2"] = p.bristle_stiffness_per_s2;
+  friction["bristle_damping_per_s"] = p.bristle_damping_per_s;
+  friction["forward"] = branch(p.forward);
+  friction["backward"] = branch(p.backward);
+  j["friction"] = friction;
+  OJ rig;
+  rig["sample_rate_hz"] = p.sample_rate_hz;
+  rig["dac_bits"] = p.dac_bits;
+  rig["dac_range_v"] = p.dac_range_v;
+  rig["encoder_resolution_m"] = p.encoder_resolution_m;
+  rig["position_noise_m"] = p.position_noise_m;
+  rig["travel_min_m"] = p.travel_min_m;
+  rig["travel_max_m"] = p.travel_max_m;
+  rig["max_velocity_mps"] = p.max_velocity_mps;
+  rig["initial_position_m"] = p.initial_position_m;
+  j["rig"] = rig;
+  OJ integ;
+  integ["relative_tolerance"] = p.relative_tolerance;
+  integ["position_tolerance_m"] = p.position_tolerance_m;
+  j["integrator"] = integ;
+  return j.dump(2) + "\n";
+}
+
+void WriteStageParameters(const std::string& path, const StageParameters& parameters) {
+  WriteFileAtomically(path, StageParametersToJson(parameters));
+}
+
+}  // namespace sysid

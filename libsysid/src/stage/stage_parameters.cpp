@@ -1,0 +1,189 @@
+// StageParameters: defaults (the calibrated virtual stage), validation, the static drive map and
+// the steady sliding velocity.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "sysid/error.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+namespace {
+
+std::string Fmt(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+void Require(bool ok, const std::string& field, double value, const std::string& rule) {
+  if (!ok)
+    throw OptionsError("StageParameters::" + field + " = " + Fmt(value) +
+                       ". Violated constraint: " + rule);
+}
+
+void RequireFinite(const std::string& field, double value) {
+  Require(std::isfinite(value), field, value, field + " is finite");
+}
+
+void ValidateBranch(const std::string& name, const FrictionBranch& b) {
+  RequireFinite(name + ".coulomb_mps2", b.coulomb_mps2);
+  RequireFinite(name + ".static_mps2", b.static_mps2);
+  RequireFinite(name + ".stribeck_velocity_mps", b.stribeck_velocity_mps);
+  RequireFinite(name + ".viscous_per_s", b.viscous_per_s);
+  Require(b.coulomb_mps2 > 0, name + ".coulomb_mps2", b.coulomb_mps2, "coulomb_mps2 > 0");
+  Require(b.static_mps2 >= b.coulomb_mps2, name + ".static_mps2", b.static_mps2,
+          "static_mps2 >= coulomb_mps2 (" + Fmt(b.coulomb_mps2) + ")");
+  Require(b.stribeck_velocity_mps > 0, name + ".stribeck_velocity_mps", b.stribeck_velocity_mps,
+          "stribeck_velocity_mps > 0");
+  Require(b.viscous_per_s >= 0, name + ".viscous_per_s", b.viscous_per_s, "viscous_per_s >= 0");
+}
+
+// Steady friction g(v) + s2 v of one branch at speed |v| = s >= 0.
+double SteadyFriction(const FrictionBranch& b, double s) {
+  const double r = s / b.stribeck_velocity_mps;
+  return b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r) + b.viscous_per_s * s;
+}
+
+}  // namespace
+
+StageParameters StageParameters::Default() {
+  StageParameters p;
+  // Friction branches near the paper's rough model (a1 ~ s2, a2 ~ Fc + a3 dz) with a Stribeck
+  // dip the rough model lacks; breakaway at dz + Fs/a3 = 0.63 V forward, 1.32 V backward.
+  p.forward = {2.2, 2.9, 0.004, 104.0};
+  p.backward = {5.9, 7.0, 0.004, 117.0};
+  // The driver's static characteristic, calibrated to the paper's pulse table: the knot at
+  // |u| - dz holds (g(v) + s2 v) / a3 for the paper's measured v at that amplitude u, so a
+  // held pulse settles at the paper's velocity (a near-identity map: corrections of <= 4 %).
+  p.drive_map_in_v = {-10.0, -2.35, -2.15, -1.95, -1.85, -1.65, 0.0,
+                      1.15,  1.35,  1.45,  1.55,  1.85,  10.0};
+  p.drive_map_out_v = {-10.0,  -2.37173, -2.06792, -1.95658, -1.88462, -1.64497, 0.0,
+                       1.1406, 1.36195,  1.44515,  1.55625,  1.84329,  10.0};
+  return p;
+}
+
+void StageParameters::Validate() const {
+  const struct {
+    const char* field;
+    double value;
+  } finite[] = {{"gain_mps2_per_v", gain_mps2_per_v},
+                {"dead_zone_v", dead_zone_v},
+                {"saturation_v", saturation_v},
+                {"transport_delay_s", transport_delay_s},
+                {"lag_time_constant_s", lag_time_constant_s},
+                {"bristle_stiffness_per_s2", bristle_stiffness_per_s2},
+                {"bristle_damping_per_s", bristle_damping_per_s},
+                {"sample_rate_hz", sample_rate_hz},
+                {"dac_range_v", dac_range_v},
+                {"encoder_resolution_m", encoder_resolution_m},
+                {"position_noise_m", position_noise_m},
+                {"travel_min_m", travel_min_m},
+                {"travel_max_m", travel_max_m},
+                {"max_velocity_mps", max_velocity_mps},
+                {"initial_position_m", initial_position_m},
+                {"relative_tolerance", relative_tolerance},
+                {"position_tolerance_m", position_tolerance_m}};
+  for (const auto& f : finite) RequireFinite(f.field, f.value);
+  Require(gain_mps2_per_v > 0, "gain_mps2_per_v", gain_mps2_per_v, "gain_mps2_per_v > 0");
+  Require(dead_zone_v >= 0, "dead_zone_v", dead_zone_v, "dead_zone_v >= 0");
+  Require(saturation_v > dead_zone_v, "saturation_v", saturation_v,
+          "saturation_v > dead_zone_v (" + Fmt(dead_zone_v) + ")");
+  Require(transport_delay_s >= 0 && transport_delay_s <= 1.0, "transport_delay_s",
+          transport_delay_s, "0 <= transport_delay_s <= 1");
+  Require(lag_time_constant_s > 0, "lag_time_constant_s", lag_time_constant_s,
+          "lag_time_constant_s > 0");
+  Require(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
+          "bristle_stiffness_per_s2 > 0");
+  Require(bristle_damping_per_s >= 0, "bristle_damping_per_s", bristle_damping_per_s,
+          "bristle_damping_per_s >= 0");
+  ValidateBranch("forward", forward);
+  ValidateBranch("backward", backward);
+  Require(sample_rate_hz > 0, "sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
+  Require(dac_bits >= 1 && dac_bits <= 32, "dac_bits", dac_bits, "1 <= dac_bits <= 32");
+  Require(dac_range_v > 0, "dac_range_v", dac_range_v, "dac_range_v > 0");
+  Require(encoder_resolution_m > 0, "encoder_resolution_m", encoder_resolution_m,
+          "encoder_resolution_m > 0");
+  Require(position_noise_m >= 0, "position_noise_m", position_noise_m, "position_noise_m >= 0");
+  Require(travel_max_m > travel_min_m, "travel_max_m", travel_max_m,
+          "travel_max_m > travel_min_m (" + Fmt(travel_min_m) + ")");
+  Require(initial_position_m >= travel_min_m && initial_position_m <= travel_max_m,
+          "initial_position_m", initial_position_m,
+          "travel_min_m <= initial_position_m <= travel_max_m");
+  Require(max_velocity_mps > 0, "max_velocity_mps", max_velocity_mps, "max_velocity_mps > 0");
+  Require(relative_tolerance > 0 && relative_tolerance <= 1e-2, "relative_tolerance",
+          relative_tolerance, "0 < relative_tolerance <= 1e-2");
+  Require(position_tolerance_m > 0, "position_tolerance_m", position_tolerance_m,
+          "position_tolerance_m > 0");
+  // The drive map.
+  const auto& in = drive_map_in_v;
+  const auto& out = drive_map_out_v;
+  Require(
+      in.size() == out.size(), "drive_map_out_v", static_cast<double>(out.size()),
+      "drive_map_out_v has as many knots as drive_map_in_v (" + std::to_string(in.size()) + ")");
+  Require(in.size() >= 2, "drive_map_in_v", static_cast<double>(in.size()), "at least 2 knots");
+  bool has_zero = false;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const std::string idx = "[" + std::to_string(i) + "]";
+    RequireFinite("drive_map_in_v" + idx, in[i]);
+    RequireFinite("drive_map_out_v" + idx, out[i]);
+    if (i > 0) {
+      Require(in[i] > in[i - 1], "drive_map_in_v" + idx, in[i],
+              "knots strictly increasing (previous " + Fmt(in[i - 1]) + ")");
+      Require(out[i] >= out[i - 1], "drive_map_out_v" + idx, out[i],
+              "values non-decreasing (previous " + Fmt(out[i - 1]) + ")");
+    }
+    if (in[i] == 0) {
+      has_zero = true;
+      Require(out[i] == 0, "drive_map_out_v" + idx, out[i], "M(0) = 0");
+    }
+  }
+  Require(has_zero, "drive_map_in_v", 0.0, "a knot at 0 V (with M(0) = 0)");
+}
+
+double StageParameters::DriveMap(double u) const {
+  const auto& in = drive_map_in_v;
+  const auto& out = drive_map_out_v;
+  // Segment [k, k+1] containing u; the end segments extrapolate linearly.
+  size_t k = static_cast<size_t>(std::upper_bound(in.begin(), in.end(), u) - in.begin());
+  k = std::clamp<size_t>(k, 1, in.size() - 1) - 1;
+  const double s = (u - in[k]) / (in[k + 1] - in[k]);
+  return out[k] + s * (out[k + 1] - out[k]);
+}
+
+double StageParameters::SteadyVelocity(double u_v) const {
+  const double u =
+      std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
+  if (std::abs(u) <= dead_zone_v) return 0.0;
+  const double sign = u > 0 ? 1.0 : -1.0;
+  const FrictionBranch& b = u > 0 ? forward : backward;
+  const double drive = sign * gain_mps2_per_v * DriveMap(u - sign * dead_zone_v);
+  if (drive <= b.static_mps2) return 0.0;
+  // g(v) + s2 v dips below Fs (Stribeck) and then rises; since drive > Fs >= g, friction
+  // crosses the drive exactly once, above the dip.
+  double lo = 0, hi = 1e-6;
+  while (SteadyFriction(b, hi) <= drive) {
+    lo = hi;
+    hi *= 2;
+    if (hi > 1e3) return sign * hi;  // friction never catches up (s2 = 0): unbounded
+  }
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (SteadyFriction(b, mid) > drive ? hi : lo) = mid;
+  }
+  return sign * 0.5 * (lo + hi);
+}
+
+std::string StageStatus::Describe() const {
+  std::string s;
+  if (travel_limit_hit) s += "travel limit hit at t = " + Fmt(first_travel_hit_s) + " s";
+  if (velocity_limit_exceeded) {
+    if (!s.empty()) s += "; ";
+    s += "velocity limit exceeded at t = " + Fmt(first_velocity_exceed_s) + " s";
+  }
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace sysid

@@ -1,0 +1,340 @@
+// The virtual stage's plant integrated with SUNDIALS CVODE (BDF: the LuGre bristle makes the
+// system stiff, eigenvalues up to s0 |v| / g ~ 1e4 1/s while sliding).
+//
+// The DAC output is piecewise constant and the transport delay shifts its edges by a fraction
+// of a sample, so within each sample the driver input has at most one edge, at t_k + f Ts. The
+// integration is restarted (CVodeReInit) at every edge where the input changes: the right-hand
+// side is then smooth on each integrated piece, which keeps BDF at full order and accuracy.
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "detail/stage_noise.hpp"
+#include "sysid/error.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+namespace {
+
+enum : int { kX = 0, kV = 1, kZ = 2, kW = 3, kStates = 4 };
+
+std::string Num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+class VirtualStage::Impl {
+ public:
+  Impl(const StageParameters& p, std::uint64_t seed) : p_(p), noise_(seed) {
+    p_.Validate();
+    ts_ = 1.0 / p_.sample_rate_hz;
+    const double d = p_.transport_delay_s / ts_;
+    delay_samples_ = static_cast<long>(std::floor(d + 1e-9));
+    delay_fraction_ = d - static_cast<double>(delay_samples_);
+    if (delay_fraction_ < 1e-9) delay_fraction_ = 0;
+    history_.assign(static_cast<size_t>(delay_samples_) + 2, 0.0);
+    dac_step_ = 2.0 * p_.dac_range_v / std::ldexp(1.0, p_.dac_bits);
+    const double inv_q = 1.0 / p_.encoder_resolution_m;
+    // Readings as n / (1/q) when 1/q is an integer: the decimal text of the reading is then
+    // short ("0.0123456"), which keeps the bundled CSV files small.
+    encoder_divisor_ = std::abs(inv_q - std::round(inv_q)) < 1e-9 * inv_q ? std::round(inv_q) : 0;
+
+    if (SUNContext_Create(nullptr, &ctx_) != 0) Fail("SUNContext_Create", -1);
+    y_ = N_VNew_Serial(kStates, ctx_);
+    double* y = N_VGetArrayPointer(y_);
+    y[kX] = p_.initial_position_m;
+    y[kV] = y[kZ] = y[kW] = 0;
+    atol_ = N_VNew_Serial(kStates, ctx_);
+    double* a = N_VGetArrayPointer(atol_);
+    a[kX] = p_.position_tolerance_m;
+    a[kV] = p_.position_tolerance_m / ts_;
+    a[kZ] = 0.1 * p_.position_tolerance_m;
+    a[kW] = p_.position_tolerance_m / ts_;
+    mem_ = CVodeCreate(CV_BDF, ctx_);
+    if (!mem_) Fail("CVodeCreate", -1);
+    Check(CVodeInit(mem_, &Impl::Rhs, 0.0, y_), "CVodeInit");
+    Check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
+    Check(CVodeSVtolerances(mem_, p_.relative_tolerance, atol_), "CVodeSVtolerances");
+    matrix_ = SUNDenseMatrix(kStates, kStates, ctx_);
+    solver_ = SUNLinSol_Dense(y_, matrix_, ctx_);
+    Check(CVodeSetLinearSolver(mem_, solver_, matrix_), "CVodeSetLinearSolver");
+    Check(CVodeSetJacFn(mem_, &Impl::Jacobian), "CVodeSetJacFn");
+    Check(CVodeSetMaxNumSteps(mem_, 100000), "CVodeSetMaxNumSteps");
+    EnableRoots(true);
+    reading_ = Measure();
+  }
+
+  ~Impl() {
+    if (mem_) CVodeFree(&mem_);
+    if (solver_) SUNLinSolFree(solver_);
+    if (matrix_) SUNMatDestroy(matrix_);
+    if (y_) N_VDestroy(y_);
+    if (atol_) N_VDestroy(atol_);
+    if (ctx_) SUNContext_Free(&ctx_);
+  }
+
+  double Dac(double u) const {
+    if (!std::isfinite(u))
+      throw OptionsError("VirtualStage::Step: u_command_v = " + Num(u) +
+                         ". Violated constraint: u_command_v is finite");
+    const double levels = std::ldexp(1.0, p_.dac_bits);
+    const double code = std::clamp(std::round((u + p_.dac_range_v) / dac_step_), 0.0, levels - 1);
+    return code * dac_step_ - p_.dac_range_v;
+  }
+
+  // Driver input after clipping, dead zone and the static map, for a DAC value u.
+  double Drive(double u) const {
+    const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
+    if (std::abs(s) <= p_.dead_zone_v) return 0.0;
+    return p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v);
+  }
+
+  double Step(double u_command) {
+    const double u = Dac(u_command);
+    // history_[j] = DAC output of sample k - j after the shift: [0] is this sample.
+    std::rotate(history_.rbegin(), history_.rbegin() + 1, history_.rend());
+    history_[0] = u;
+    const double t0 = static_cast<double>(k_) * ts_;
+    const double t1 = static_cast<double>(k_ + 1) * ts_;
+    const double now = history_[static_cast<size_t>(delay_samples_)];
+    if (delay_fraction_ > 0) {
+      // The delayed input is the older value until t_k + f Ts, then the newer one.
+      const double before = history_[static_cast<size_t>(delay_samples_) + 1];
+      Advance(t0 + delay_fraction_ * ts_, Drive(before));
+      Advance(t1, Drive(now));
+    } else {
+      Advance(t1, Drive(now));
+    }
+    ++k_;
+    const double v = N_VGetArrayPointer(y_)[kV];
+    if (std::abs(v) > p_.max_velocity_mps && !status_.velocity_limit_exceeded) {
+      status_.velocity_limit_exceeded = true;
+      status_.first_velocity_exceed_s = time_s();
+    }
+    reading_ = Measure();
+    return reading_;
+  }
+
+  double time_s() const { return static_cast<double>(k_) * ts_; }
+
+  StageState State() const {
+    const double* y = N_VGetArrayPointer(y_);
+    return {y[kX], y[kV], y[kZ], y[kW]};
+  }
+
+  StageStatus Status() const {
+    StageStatus s = status_;
+    long steps = 0;
+    CVodeGetNumSteps(mem_, &steps);
+    s.steps += steps;
+    return s;
+  }
+
+  const StageParameters& parameters() const { return p_; }
+  double reading() const { return reading_; }
+  long sample_index() const { return k_; }
+
+ private:
+  // Integrates to `t_end` with driver input `drive` (after dead zone and map).
+  void Advance(double t_end, double drive) {
+    double* y = N_VGetArrayPointer(y_);
+    if (stop_ != 0 && y[kW] * stop_ < 0) {
+      // The drive pulls away from the end stop: free the stage again.
+      stop_ = 0;
+      Restart();
+      EnableRoots(true);
+    }
+    if (drive != drive_) {
+      drive_ = drive;
+      Restart();
+    }
+    Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+    while (t_ < t_end) {
+      const int flag = CVode(mem_, t_end, y_, &t_, CV_NORMAL);
+      if (flag == CV_ROOT_RETURN) {
+        // At an end stop: the stage stops dead and stays until the drive reverses.
+        stop_ = y[kX] >= p_.travel_max_m ? 1 : -1;
+        y[kX] = stop_ > 0 ? p_.travel_max_m : p_.travel_min_m;
+        y[kV] = 0;
+        if (!status_.travel_limit_hit) {
+          status_.travel_limit_hit = true;
+          status_.first_travel_hit_s = t_;
+        }
+        Restart();
+        EnableRoots(false);
+        Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+      } else if (flag < 0) {
+        Fail("CVode", flag);
+      }
+    }
+  }
+
+  void Restart() {
+    long steps = 0;
+    CVodeGetNumSteps(mem_, &steps);
+    status_.steps += steps;
+    double h = 0;
+    CVodeGetLastStep(mem_, &h);
+    Check(CVodeReInit(mem_, t_, y_), "CVodeReInit");
+    // Start from the last successful step size instead of CVODE's cautious estimate.
+    if (h > 0) Check(CVodeSetInitStep(mem_, std::min(h, ts_)), "CVodeSetInitStep");
+    ++status_.reinitialisations;
+  }
+
+  void EnableRoots(bool on) {
+    Check(on ? CVodeRootInit(mem_, 2, &Impl::Roots) : CVodeRootInit(mem_, 0, nullptr),
+          "CVodeRootInit");
+  }
+
+  double Measure() {
+    const double x = N_VGetArrayPointer(y_)[kX] + p_.position_noise_m * noise_.Gaussian();
+    if (encoder_divisor_ > 0) return std::round(x * encoder_divisor_) / encoder_divisor_;
+    return std::round(x / p_.encoder_resolution_m) * p_.encoder_resolution_m;
+  }
+
+  const FrictionBranch& Branch(double v) const { return v < 0 ? p_.backward : p_.forward; }
+
+  static int Rhs(double, N_Vector yv, N_Vector ydot, void* data) {
+    const Impl& s = *static_cast<const Impl*>(data);
+    const double* y = N_VGetArrayPointer(yv);
+    double* d = N_VGetArrayPointer(ydot);
+    d[kW] = (s.drive_ - y[kW]) / s.p_.lag_time_constant_s;
+    if (s.stop_ != 0) {
+      d[kX] = d[kV] = d[kZ] = 0;
+      return 0;
+    }
+    const double v = y[kV];
+    const FrictionBranch& b = s.Branch(v);
+    const double r = v / b.stribeck_velocity_mps;
+    const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r);
+    const double s0 = s.p_.bristle_stiffness_per_s2;
+    const double dz = v - s0 * std::abs(v) * y[kZ] / g;
+    const double friction = s0 * y[kZ] + s.p_.bristle_damping_per_s * dz + b.viscous_per_s * v;
+    d[kX] = v;
+    d[kV] = s.p_.gain_mps2_per_v * y[kW] - friction;
+    d[kZ] = dz;
+    return 0;
+  }
+
+  // Analytic Jacobian (the finite-difference one struggles with |v| at v = 0).
+  static int Jacobian(double, N_Vector yv, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector,
+                      N_Vector) {
+    const Impl& s = *static_cast<const Impl*>(data);
+    const double* y = N_VGetArrayPointer(yv);
+    SUNMatZero(J);
+    const double inv_t = 1.0 / s.p_.lag_time_constant_s;
+    SM_ELEMENT_D(J, kW, kW) = -inv_t;
+    if (s.stop_ != 0) return 0;
+    const double v = y[kV], z = y[kZ];
+    const FrictionBranch& b = s.Branch(v);
+    const double vs = b.stribeck_velocity_mps;
+    const double r = v / vs;
+    const double e = std::exp(-r * r);
+    const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * e;
+    const double dg_dv = (b.static_mps2 - b.coulomb_mps2) * e * (-2.0 * v / (vs * vs));
+    const double s0 = s.p_.bristle_stiffness_per_s2, s1 = s.p_.bristle_damping_per_s;
+    const double sgn = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
+    // dz = v - s0 |v| z / g
+    const double ddz_dv = 1.0 - s0 * z * (sgn * g - std::abs(v) * dg_dv) / (g * g);
+    const double ddz_dz = -s0 * std::abs(v) / g;
+    SM_ELEMENT_D(J, kX, kV) = 1.0;
+    SM_ELEMENT_D(J, kZ, kV) = ddz_dv;
+    SM_ELEMENT_D(J, kZ, kZ) = ddz_dz;
+    // dv = a3 w - s0 z - s1 dz - s2 v
+    SM_ELEMENT_D(J, kV, kW) = s.p_.gain_mps2_per_v;
+    SM_ELEMENT_D(J, kV, kV) = -s1 * ddz_dv - b.viscous_per_s;
+    SM_ELEMENT_D(J, kV, kZ) = -s0 - s1 * ddz_dz;
+    return 0;
+  }
+
+  static int Roots(double, N_Vector yv, double* g, void* data) {
+    const Impl& s = *static_cast<const Impl*>(data);
+    const double x = N_VGetArrayPointer(yv)[kX];
+    g[0] = x - s.p_.travel_max_m;
+    g[1] = x - s.p_.travel_min_m;
+    return 0;
+  }
+
+  void Check(int flag, const char* what) const {
+    if (flag < 0) Fail(what, flag);
+  }
+
+  [[noreturn]] void Fail(const char* what, int flag) const {
+    const char* name = flag == -1 && !mem_ ? "allocation failed" : CVodeGetReturnFlagName(flag);
+    throw NumericalError(std::string("virtual stage: ") + what + " failed with " + name +
+                         " at t = " + Num(t_) + " s (sample " + std::to_string(k_) +
+                         "); try a larger integrator.relative_tolerance or a smaller "
+                         "friction.bristle_stiffness_per_s2");
+  }
+
+  StageParameters p_;
+  detail::StageNoise noise_;
+  double ts_ = 1e-3;
+  long delay_samples_ = 0;
+  double delay_fraction_ = 0;
+  std::vector<double> history_;
+  double dac_step_ = 0;
+  double encoder_divisor_ = 0;
+  long k_ = 0;
+  double t_ = 0;
+  double drive_ = 0;
+  int stop_ = 0;
+  double reading_ = 0;
+  StageStatus status_;
+  SUNContext ctx_ = nullptr;
+  N_Vector y_ = nullptr;
+  N_Vector atol_ = nullptr;
+  SUNMatrix matrix_ = nullptr;
+  SUNLinearSolver solver_ = nullptr;
+  void* mem_ = nullptr;
+};
+
+VirtualStage::VirtualStage(const StageParameters& parameters, std::uint64_t seed)
+    : impl_(std::make_unique<Impl>(parameters, seed)) {}
+VirtualStage::~VirtualStage() = default;
+VirtualStage::VirtualStage(VirtualStage&&) noexcept = default;
+VirtualStage& VirtualStage::operator=(VirtualStage&&) noexcept = default;
+
+double VirtualStage::Step(double u_command_v) { return impl_->Step(u_command_v); }
+double VirtualStage::measured_position_m() const { return impl_->reading(); }
+double VirtualStage::time_s() const { return impl_->time_s(); }
+long VirtualStage::sample_index() const { return impl_->sample_index(); }
+StageState VirtualStage::state() const { return impl_->State(); }
+StageStatus VirtualStage::status() const { return impl_->Status(); }
+const StageParameters& VirtualStage::parameters() const { return impl_->parameters(); }
+double VirtualStage::DacOutput(double u_command_v) const { return impl_->Dac(u_command_v); }
+
+StageRun RunOpenLoop(const StageParameters& parameters, const Eigen::VectorXd& u_v,
+                     std::uint64_t seed) {
+  VirtualStage stage(parameters, seed);
+  const Eigen::Index n = u_v.size();
+  StageRun run;
+  run.t_s.resize(n);
+  run.u_v = u_v;
+  run.x_m.resize(n);
+  run.x_true_m.resize(n);
+  run.v_true_mps.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    run.t_s[k] = static_cast<double>(k) / parameters.sample_rate_hz;
+    run.x_m[k] = stage.measured_position_m();
+    const StageState s = stage.state();
+    run.x_true_m[k] = s.x_m;
+    run.v_true_mps[k] = s.v_mps;
+    stage.Step(u_v[k]);
+  }
+  run.status = stage.status();
+  return run;
+}
+
+}  // namespace sysid

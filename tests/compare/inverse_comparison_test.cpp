@@ -1,0 +1,118 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.hpp"
+#include "sysid/compare.hpp"
+#include "sysid/error.hpp"
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+TEST_CASE("prediction errors match hand computation", "[compare]") {
+  Eigen::VectorXd u(4), p(4);
+  u << 0, 1, 2, 3;
+  p << 0, 1, 2, 5;  // one error of 2 V
+  const auto e = sysid::ComputePredictionErrors(u, p);
+  CHECK(e.rmse_v == Approx(1.0));  // sqrt(4 / 4)
+  CHECK(e.peak_error_v == 2.0);
+  CHECK(e.nrmse == Approx(1.0 / 3.0));
+  CHECK(e.r2 == Approx(1.0 - 4.0 / 5.0));  // SST = 2.25+0.25+0.25+2.25
+}
+
+TEST_CASE("delaying a ramp is exact for fractional delays", "[compare]") {
+  const double dt = 1e-3, tau = 2.5e-3;
+  Eigen::VectorXd y(20);
+  for (int k = 0; k < 20; ++k) y[k] = 3.0 * k * dt;
+  const Eigen::VectorXd d = sysid::DelaySignal(y, dt, tau);
+  for (int k = 3; k < 20; ++k) CHECK(d[k] == Approx(3.0 * (k * dt - tau)).margin(1e-14));
+  CHECK(d[0] == y[0]);  // before the start: the first sample
+  CHECK_THROWS_AS(sysid::DelaySignal(y, dt, -1.0), sysid::OptionsError);
+}
+
+TEST_CASE("analytic inverse matches the closed form on a sinusoid", "[compare]") {
+  // v = V sin(w t), a = V w cos(w t): the inverse evaluated at the exact delayed time is the
+  // reference; linear interpolation of v errs by at most dt^2/8 max|v''| = dt^2/8 V w^2.
+  const auto m = sysid::FrictionModel::Paper();
+  const double dt = 1e-3, V = 0.05, w = 2 * kPi * 0.7;
+  const int n = 3000;
+  Eigen::VectorXd v(n), a(n);
+  for (int k = 0; k < n; ++k) {
+    v[k] = V * std::sin(w * k * dt);
+    a[k] = V * w * std::cos(w * k * dt);
+  }
+  const Eigen::VectorXd u = sysid::AnalyticInverse(m, dt, v, a);
+  const double bound = dt * dt / 8 * V * w * w * std::max(m.a1p, m.a1n) / m.a3;
+  int checked = 0;
+  for (int k = 10; k < n; ++k) {
+    const double vd = V * std::sin(w * (k * dt - m.tau_s));
+    const double vk = v[k];
+    // Skip the few samples where v(t - tau) changes sign between grid points: a1 switches.
+    if ((vd > 0) != (sysid::DelaySignal(v, dt, m.tau_s)[k] > 0)) continue;
+    const double ref = m.InverseVoltage(a[k], vd, vk);
+    REQUIRE(std::abs(u[k] - ref) <= bound * 1.0001);
+    ++checked;
+  }
+  CHECK(checked > n - 20);
+}
+
+TEST_CASE("comparison on data made by the analytic inverse scores it near zero", "[compare]") {
+  const auto m = sysid::FrictionModel::Paper();
+  const double dt = 1e-3, V = 0.04, w = 2 * kPi * 0.5;
+  const int n = 2000;
+  Eigen::VectorXd t(n), v(n), a(n);
+  for (int k = 0; k < n; ++k) {
+    t[k] = k * dt;
+    v[k] = V * std::sin(w * t[k]);
+    a[k] = V * w * std::cos(w * t[k]);
+  }
+  sysid::Recording rec;
+  rec.source = "synthetic";
+  rec.SetColumn("t", t);
+  rec.SetColumn("u", sysid::AnalyticInverse(m, dt, v, a));
+  rec.SetColumn("v", v);
+  rec.SetColumn("a", a);
+  // A network that outputs the constant 0.5 V: zero weights, b2 = 0 on the range [0, 1] V.
+  sysid::NeuralNetwork net({{"v", "m/s", -0.1, 0.1}}, {"u", "V", 0.0, 1.0}, 4);
+  const auto c = sysid::CompareInverseModels(rec, m, &net);
+  CHECK(c.analytic.rmse_v < 1e-12);  // same formula, same samples
+  REQUIRE(c.has_nn);
+  const Eigen::VectorXd um = c.u_measured_v;
+  const double rmse_const = std::sqrt((um.array() - 0.5).square().mean());
+  CHECK(c.nn.rmse_v == Approx(rmse_const).epsilon(1e-12));
+  CHECK(c.t_s.size() == n - 10);  // 5 samples trimmed at each end
+}
+
+TEST_CASE("sysid compare reports per-recording errors and writes its folder", "[compare][cli]") {
+  sysid::test::TempDir dir;
+  const auto m = sysid::FrictionModel::Paper();
+  sysid::WriteModel(dir / "m.json", m);
+  const double dt = 1e-3;
+  const int n = 500;
+  Eigen::VectorXd t(n), x(n), u(n);
+  for (int k = 0; k < n; ++k) {
+    t[k] = k * dt;
+    x[k] = 0.01 * std::sin(2.0 * t[k]);
+    u[k] = 1.0;
+  }
+  sysid::Recording rec;
+  rec.SetColumn("t", t);
+  rec.SetColumn("u", u);
+  rec.SetColumn("x", x);
+  sysid::WriteRecording(dir / "run.csv", rec);
+  const auto r = sysid::test::RunCli({"compare", "--model", dir / "m.json", "--json", "-o",
+                                      dir / "out", "--no-plots", dir / "run.csv"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["recordings"][0]["samples"] == n - 10);
+  CHECK(j["recordings"][0]["analytic"]["rmse_v"].get<double>() > 0);
+  CHECK(sysid::test::ReadText(dir / "out/summary.csv").find("run,analytic,") != std::string::npos);
+  // A bad recording: exit 2, nothing written.
+  sysid::test::WriteText(dir / "bad.csv", "t,u,x\n0,1,0\n0.001,x,1\n");
+  const auto bad = sysid::test::RunCli(
+      {"compare", "--model", dir / "m.json", "-o", dir / "out2", dir / "run.csv", dir / "bad.csv"});
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("bad.csv:3:7:"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out2"));
+}

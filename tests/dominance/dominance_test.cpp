@@ -1,0 +1,107 @@
+// Dominance analysis against closed-form term sizes and a simulated paper-like stage.
+#include "sysid/dominance.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "identify/simulated_recording.hpp"
+#include "identify/synthetic_motion.hpp"
+#include "sysid/error.hpp"
+#include "sysid/input.hpp"
+
+using sysid::test::ClosedFormRecording;
+using sysid::test::MakeModel;
+
+namespace {
+
+// x = A sin(w t) over whole periods, symmetric a1, a2, tau = 0: closed-form RMS of the terms
+//   acceleration: A w^2 / sqrt(2)
+//   velocity:     sqrt(a1^2 A^2 w^2 / 2 + a2^2 + 4 a1 a2 A w / pi)   (E|cos| = 2/pi)
+struct Expected {
+  double acc, vel;
+};
+Expected ClosedForm(double a1, double a2, double A, double w) {
+  return {A * w * w / std::sqrt(2.0),
+          std::sqrt(a1 * a1 * A * A * w * w / 2 + a2 * a2 + 4 * a1 * a2 * A * w / M_PI)};
+}
+
+}  // namespace
+
+TEST_CASE("dominance ranks the variables by closed-form term sizes", "[dominance]") {
+  const auto m = MakeModel(50.0, 50.0, 2.0, 2.0, 6.0, 0.0);
+  sysid::DominanceOptions o;
+  o.min_speed_mps = 1e-9;  // (almost) every sample: the closed form averages over all of them
+  struct Case {
+    double A, f;
+    const char* dominant;
+  };
+  // Slow motion: viscous/Coulomb dominate; fast motion (w >> a1): inertia dominates.
+  for (const Case c : {Case{0.01, 0.5, "velocity"}, Case{0.001, 40.0, "acceleration"}}) {
+    const double w = 2 * M_PI * c.f;
+    // 10 whole periods at 10 kHz, no quantisation: central-difference error ~ (w dt)^2 / 6.
+    const auto rec = ClosedFormRecording(m, {{c.A, c.f, 0.0}}, 10.0 / c.f, 10000.0, 0, 0, 1);
+    const auto r = sysid::AnalyzeDominance(m, rec, o);
+    INFO(r.BriefReport());
+    const Expected e = ClosedForm(50.0, 2.0, c.A, w);
+    CHECK(r.dominant == c.dominant);
+    REQUIRE(r.ranking.size() == 2);
+    const auto& acc = r.ranking[0].name == "acceleration" ? r.ranking[0] : r.ranking[1];
+    const auto& vel = r.ranking[0].name == "velocity" ? r.ranking[0] : r.ranking[1];
+    // 0.5 %: differentiation error and the one-sided end samples of a finite record.
+    CHECK(acc.rms == Approx(e.acc).epsilon(0.005));
+    CHECK(vel.rms == Approx(e.vel).epsilon(0.005));
+    CHECK(acc.peak == Approx(c.A * w * w).epsilon(0.005));
+    CHECK(r.ranking[0].ratio_to_top == 1.0);
+    CHECK(r.margin == Approx(std::max(e.acc, e.vel) / std::min(e.acc, e.vel)).epsilon(0.01));
+    // Terms in fixed order: the viscous RMS alone is a1 A w / sqrt(2), Coulomb is a2.
+    CHECK(r.terms[1].rms == Approx(50.0 * c.A * w / std::sqrt(2.0)).epsilon(0.005));
+    CHECK(r.terms[2].rms == Approx(2.0).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("a paper-like stage under the paper's sine input is velocity-dominated",
+          "[dominance][sim]") {
+  // u = 1.5 sin(pi/2 t - pi/2) - 0.3 (the paper's dominance experiment), 8 s.
+  const sysid::SumOfSinesInput input({{1.5, 0.25, -M_PI / 2}}, -0.3);
+  sysid::test::RigSampling s;
+  s.seed = 42;
+  const auto paper = sysid::FrictionModel::Paper();
+  const auto rec = sysid::test::RigRecording(paper, input, 8.0, s, "paper-sine");
+  const auto r = sysid::AnalyzeDominance(paper, rec);
+  INFO(r.BriefReport());
+  CHECK(r.dominant == "velocity");
+  CHECK(r.margin > 3);  // the paper's O(10^-1) ratio means a wide margin
+  CHECK(r.ranking[1].name == "acceleration");
+  CHECK(r.ranking[1].ratio_to_top < 0.3);
+}
+
+TEST_CASE("batch dominance keeps input order, counts winners and names bad inputs", "[dominance]") {
+  const auto m = MakeModel(50.0, 50.0, 2.0, 2.0, 6.0, 0.0);
+  std::vector<sysid::Recording> recs;
+  for (int i = 0; i < 6; ++i) {
+    const bool fast = i % 3 == 0;
+    auto r = ClosedFormRecording(m, {{fast ? 0.001 : 0.01, fast ? 40.0 : 0.5, 0.1 * i}},
+                                 fast ? 0.5 : 4.0, 2000.0, 1e-7, 0, 1);
+    r.source = "rec" + std::to_string(i);
+    recs.push_back(std::move(r));
+  }
+  sysid::DominanceOptions o;
+  o.threads = 3;
+  const auto s = sysid::AnalyzeDominanceBatch(m, recs, o);
+  REQUIRE(s.results.size() == 6);
+  for (int i = 0; i < 6; ++i) {
+    CHECK(s.results[static_cast<size_t>(i)].source == "rec" + std::to_string(i));
+    CHECK(s.results[static_cast<size_t>(i)].dominant == (i % 3 == 0 ? "acceleration" : "velocity"));
+  }
+  CHECK(s.dominant == "velocity");
+  CHECK(s.dominant_counts[0].second == 4);
+  const std::string csv = sysid::DominanceTableCsv(s);
+  CHECK_THAT(csv, Catch::Contains("rec3,1,acceleration,"));
+  o.candidates.push_back({"jerk", "j", 1.0});
+  CHECK_THROWS_WITH(sysid::AnalyzeDominanceBatch(m, recs, o),
+                    Catch::Contains("rec0: candidate 'jerk' needs column 'j'"));
+  sysid::DominanceOptions bad;
+  bad.negligible_ratio = 2;
+  CHECK_THROWS_WITH(sysid::AnalyzeDominance(m, recs[0], bad),
+                    Catch::Contains("DominanceOptions::negligible_ratio = 2. Violated"));
+}

@@ -1,0 +1,92 @@
+// Input signals: values (right-continuous), edges, pulse trains, named waveforms, table files.
+#include "sysid/input.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "support/test_support.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+namespace {
+
+TEST_CASE("zero-order hold is right-continuous and reports its jumps", "[input]") {
+  const PiecewiseConstantInput u({0.0, 1.0, 2.0, 3.0}, {1.0, 2.0, 2.0, -1.0});
+  CHECK(u.Value(-5) == 1.0);  // first value holds before the table
+  CHECK(u.Value(0.999) == 1.0);
+  CHECK(u.Value(1.0) == 2.0);  // a value given at t applies from t on
+  CHECK(u.Value(3.0) == -1.0);
+  CHECK(u.Value(99) == -1.0);
+  CHECK(u.Edges(0.0, 10.0) == std::vector<double>{1.0, 3.0});  // 2.0 repeats the value
+  CHECK(u.Edges(1.0, 2.9) == std::vector<double>{});           // (t0, t1]: 1.0 excluded
+  CHECK(u.ConstantBetweenEdges());
+}
+
+TEST_CASE("linear interpolation reports its slope changes", "[input]") {
+  const PiecewiseLinearInput u({0.0, 1.0, 2.0, 3.0}, {0.0, 1.0, 2.0, 0.0});
+  CHECK(u.Value(0.5) == Approx(0.5));
+  CHECK(u.Value(2.5) == Approx(1.0));
+  CHECK(u.Value(-1) == 0.0);
+  CHECK(u.Value(4) == 0.0);
+  CHECK(u.Edges(-1.0, 5.0) == std::vector<double>{0.0, 2.0, 3.0});  // 1.0: same slope
+}
+
+TEST_CASE("the paper's pulse train", "[input]") {
+  const PulseTrainSpec spec;
+  CHECK(spec.duration_s() == Approx(10.0));
+  const PiecewiseConstantInput u = MakePulseTrain(spec);
+  CHECK(u.Value(-0.1) == 0.0);
+  CHECK(u.Value(0.0) == 1.6);
+  CHECK(u.Value(0.4) == 0.0);
+  CHECK(u.Value(1.0) == -2.3);
+  CHECK(u.Value(9.39) == -2.3);
+  CHECK(u.Value(9.4) == 0.0);
+  const auto edges = u.Edges(0.0, 10.0);
+  REQUIRE(edges.size() == 19);  // 20 switches, the one at t = 0 is not in (0, 10]
+  CHECK(edges[0] == 0.4);
+  CHECK(edges[18] == 9.4);
+  PulseTrainSpec bad;
+  bad.on_s = 0;
+  CHECK_THROWS_WITH(MakePulseTrain(bad),
+                    Catch::Contains("PulseTrainSpec::on_s") && Catch::Contains("on_s > 0"));
+}
+
+TEST_CASE("named waveforms", "[input]") {
+  for (const auto& name : NamedWaveformNames()) {
+    const NamedWaveform w = MakeNamedWaveform(name);
+    CHECK(w.duration_s > 0);
+    REQUIRE(w.signal);
+  }
+  const NamedWaveform sine = MakeNamedWaveform("paper-sine");
+  // u = 1.5 sin(pi/2 t - pi/2) - 0.3: -1.8 V at t = 0, +1.2 V at t = 2 s.
+  CHECK(sine.signal->Value(0) == Approx(-1.8));
+  CHECK(sine.signal->Value(2) == Approx(1.2));
+  CHECK(sine.signal->MaxStepHint() == Approx(0.2));  // 4 s period / 20
+  const NamedWaveform tri = MakeNamedWaveform("paper-triangle");
+  CHECK(tri.signal->Value(1.5) == Approx(1.5));
+  CHECK(tri.signal->Value(4.5) == Approx(-2.1));
+  CHECK_THROWS_WITH(MakeNamedWaveform("square"), Catch::Contains("paper-pulses"));
+}
+
+TEST_CASE("input tables from CSV", "[input]") {
+  test::TempDir dir;
+  const std::string ok = dir / "u.csv";
+  test::WriteText(ok, "t,u\n0,0\n0.5,1.2\n1.0,-1\n");
+  const auto zoh = ReadInputTable(ok, InputHold::kZeroOrder);
+  CHECK(zoh->Value(0.75) == 1.2);
+  const auto lin = ReadInputTable(ok, InputHold::kLinear);
+  CHECK(lin->Value(0.75) == Approx(0.1));
+  const std::string bad = dir / "bad.csv";
+  test::WriteText(bad, "t,u\n0,0\n0.5,abc\n");
+  CHECK_THROWS_AS(ReadInputTable(bad, InputHold::kZeroOrder), InputError);
+  CHECK_THROWS_WITH(ReadInputTable(bad, InputHold::kZeroOrder), Catch::Contains("bad.csv:3:"));
+  const std::string no_u = dir / "no_u.csv";
+  test::WriteText(no_u, "t,x\n0,0\n");
+  CHECK_THROWS_WITH(ReadInputTable(no_u, InputHold::kZeroOrder), Catch::Contains("'u'"));
+  CHECK_THROWS_WITH(MakeTableInput({0, 1, 1}, {0, 1, 2}, InputHold::kZeroOrder, "mine"),
+                    Catch::Contains("mine: row 3"));
+  CHECK_THROWS_AS(ParseInputHold("cubic"), OptionsError);
+}
+
+}  // namespace
+}  // namespace sysid

@@ -1,0 +1,174 @@
+// The virtual stage's plant against an independent tiny-step RK4 integrator of the documented
+// equations, and its rig effects (DAC, encoder, limits, noise).
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "detail/stage_noise.hpp"
+#include "sysid/error.hpp"
+#include "sysid/stage.hpp"
+
+namespace {
+
+// The plant equations of stage.hpp, written out again and integrated by classic RK4 with
+// h = 1 us (1000 steps per sample, the delay's half-sample edge on a step boundary).
+struct Rk4Reference {
+  sysid::StageParameters p;
+  double drive = 0;
+  std::vector<double> Rhs(const std::vector<double>& y) const {
+    const double v = y[1];
+    const sysid::FrictionBranch& b = v < 0 ? p.backward : p.forward;
+    const double r = v / b.stribeck_velocity_mps;
+    const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r);
+    const double dz = v - p.bristle_stiffness_per_s2 * std::abs(v) * y[2] / g;
+    const double f =
+        p.bristle_stiffness_per_s2 * y[2] + p.bristle_damping_per_s * dz + b.viscous_per_s * v;
+    return {v, p.gain_mps2_per_v * y[3] - f, dz, (drive - y[3]) / p.lag_time_constant_s};
+  }
+  void Step(std::vector<double>& y, double h) const {
+    auto add = [](const std::vector<double>& a, const std::vector<double>& b, double s) {
+      std::vector<double> c(a);
+      for (size_t i = 0; i < c.size(); ++i) c[i] += s * b[i];
+      return c;
+    };
+    const auto k1 = Rhs(y);
+    const auto k2 = Rhs(add(y, k1, h / 2));
+    const auto k3 = Rhs(add(y, k2, h / 2));
+    const auto k4 = Rhs(add(y, k3, h));
+    for (size_t i = 0; i < y.size(); ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  }
+  double Driver(double u_dac) const {
+    const double s = std::clamp(u_dac, -p.saturation_v, p.saturation_v);
+    if (std::abs(s) <= p.dead_zone_v) return 0;
+    return p.DriveMap(s > 0 ? s - p.dead_zone_v : s + p.dead_zone_v);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("the CVODE plant matches a tiny-step RK4 reference through pulses and reversals",
+          "[stage][plant]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.transport_delay_s = 0.0025;  // 2.5 samples: exercises the edge inside the sample
+  p.position_noise_m = 0;
+  const int n = 260;
+  std::vector<double> u(n, 0.0);
+  for (int k = 10; k < 110; ++k) u[k] = 2.0;
+  for (int k = 110; k < 210; ++k) u[k] = -2.3;  // reversal through stick and the Stribeck dip
+  sysid::VirtualStage stage(p, 1);
+  Rk4Reference ref{p};
+  std::vector<double> y = {p.initial_position_m, 0, 0, 0};
+  std::vector<double> dac;
+  double worst_x = 0, worst_v = 0;
+  for (int k = 0; k < n; ++k) {
+    stage.Step(u[k]);
+    dac.push_back(stage.DacOutput(u[k]));
+    // Delayed DAC value: 2.5 samples -> u[k-3] for the first half of sample k, u[k-2] after.
+    const double before = k >= 3 ? dac[k - 3] : 0.0, after = k >= 2 ? dac[k - 2] : 0.0;
+    for (int i = 0; i < 1000; ++i) {
+      ref.drive = ref.Driver(i < 500 ? before : after);
+      ref.Step(y, 1e-6);
+    }
+    const sysid::StageState s = stage.state();
+    worst_x = std::max(worst_x, std::abs(s.x_m - y[0]));
+    worst_v = std::max(worst_v, std::abs(s.v_mps - y[1]));
+  }
+  INFO("final x " << y[0] << " m, max |dx| " << worst_x << " m, max |dv| " << worst_v);
+  REQUIRE(std::abs(y[0]) > 1e-3);  // it really moved
+  CHECK(worst_x < 2e-8);           // [m] CVODE rtol 1e-7 on ~1 cm of travel, RK4 error ~1e-12
+  CHECK(worst_v < 2e-5);           // [m/s] same tolerances on velocities of ~0.1 m/s
+}
+
+TEST_CASE("a held voltage settles at the steady velocity found by bisection", "[stage][plant]") {
+  const sysid::StageParameters p = sysid::StageParameters::Default();
+  for (double u : {0.9, 3.0, -1.6, -4.0}) {
+    const Eigen::VectorXd cmd = Eigen::VectorXd::Constant(300, u);
+    const sysid::StageRun run = sysid::RunOpenLoop(p, cmd, 3);
+    // 0.3 s >> the ~10 ms mechanical time constant; the DAC moves u by < 1.6e-4 V.
+    CHECK(run.v_true_mps[299] == Approx(p.SteadyVelocity(u)).epsilon(2e-3));
+  }
+  // Below breakaway (dz + Fs/a3 = 0.633 V forward) the stage only creeps in pre-sliding.
+  const sysid::StageRun stuck = sysid::RunOpenLoop(p, Eigen::VectorXd::Constant(300, 0.5), 3);
+  CHECK(std::abs(stuck.x_true_m[299]) < 5e-6);  // [m] bristle deflection <= Fs/s0 = 2.9 um
+  CHECK(p.SteadyVelocity(0.5) == 0.0);
+}
+
+TEST_CASE("the transport delay holds the drive back by whole and half samples", "[stage][plant]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.transport_delay_s = 0.003;
+  sysid::VirtualStage stage(p, 1);
+  for (int k = 0; k < 3; ++k) {
+    stage.Step(5.0);
+    CHECK(stage.state().w_v == 0.0);  // the driver has not seen the step yet
+  }
+  stage.Step(5.0);
+  CHECK(stage.state().w_v > 0.0);
+}
+
+TEST_CASE("DAC, encoder and noise are what the rig specifies", "[stage][rig]") {
+  const sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::VirtualStage stage(p, 11);
+  const double q = 20.0 / 65536;
+  for (double u : {1.3, -2.5, 0.0, 0.1234567})
+    CHECK(std::abs(stage.DacOutput(u) - u) <= q / 2 + 1e-15);
+  CHECK(stage.DacOutput(25.0) == Approx(10.0 - q).epsilon(1e-15));
+  CHECK(stage.DacOutput(-25.0) == -10.0);
+  CHECK_THROWS_AS(stage.Step(std::nan("")), sysid::OptionsError);
+  const sysid::StageRun run = sysid::RunOpenLoop(p, Eigen::VectorXd::Constant(500, 1.5), 5);
+  double worst = 0, worst_error = 0;
+  for (Eigen::Index k = 0; k < run.x_m.size(); ++k) {
+    const double counts = run.x_m[k] / p.encoder_resolution_m;
+    worst = std::max(worst, std::abs(counts - std::round(counts)));
+    worst_error = std::max(worst_error, std::abs(run.x_m[k] - run.x_true_m[k]));
+  }
+  // reading = round((x + n)/q) q with |n| <= 6 sigma (Irwin-Hall bound) and q/2 rounding
+  CHECK(worst_error <= 6 * p.position_noise_m + 0.5e-7 + 1e-15);
+  CHECK(worst < 1e-6);  // readings are whole encoder counts (up to the double's rounding)  //
+                        // readings are whole encoder counts (up to the double's rounding)
+}
+
+TEST_CASE("the noise is seeded, standard-specified and close to N(0,1)", "[stage][noise]") {
+  // The C++ standard fixes mt19937_64's 10000th output ([rand.predef]).
+  std::mt19937_64 e;
+  e.discard(9999);
+  CHECK(e() == 9981545732273789042ULL);
+  sysid::detail::StageNoise a(5), b(5), c(6);
+  double s1 = 0, s2 = 0, s4 = 0;
+  bool differ = false, same_seed_same = true;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    const double x = a.Gaussian();
+    same_seed_same = same_seed_same && x == b.Gaussian();
+    differ = differ || x != c.Gaussian();
+    s1 += x;
+    s2 += x * x;
+    s4 += x * x * x * x;
+  }
+  CHECK(same_seed_same);
+  CHECK(differ);
+  // Irwin-Hall(12) - 6: mean 0, variance 1, kurtosis 3 - 1.2/12 = 2.9. Sampling errors at
+  // n = 1e5: sd(mean) = 0.0032, sd(var) ~ 0.0044, sd(kurtosis) ~ 0.02; bounds are ~5 sd.
+  CHECK(std::abs(s1 / n) < 0.016);
+  CHECK(s2 / n == Approx(1.0).margin(0.022));
+  CHECK(s4 / n == Approx(2.9).margin(0.1));
+}
+
+TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[stage][limits]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.initial_position_m = 0.055;
+  Eigen::VectorXd u(600);
+  u.head(300).setConstant(3.0);
+  u.tail(300).setConstant(-3.0);
+  const sysid::StageRun run = sysid::RunOpenLoop(p, u, 1);
+  CHECK(run.status.travel_limit_hit);
+  CHECK(run.status.first_travel_hit_s > 0.0);
+  CHECK(run.x_true_m.maxCoeff() <= p.travel_max_m);
+  CHECK(run.x_true_m[299] == p.travel_max_m);
+  CHECK(run.x_true_m[599] < p.travel_max_m - 0.01);  // reversed away from the stop
+  CHECK_THAT(run.status.Describe(), Catch::Contains("travel limit hit at t = "));
+  CHECK_FALSE(run.status.velocity_limit_exceeded);
+  const sysid::StageRun fast =
+      sysid::RunOpenLoop(sysid::StageParameters::Default(), Eigen::VectorXd::Constant(100, 9.0));
+  CHECK(fast.status.velocity_limit_exceeded);  // steady speed ~0.5 m/s > 0.23 m/s
+}
