@@ -1,0 +1,129 @@
+// The end-to-end pipeline and the tracking command: report presence and content, feedforward
+// paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_support.hpp"
+#include "sysid/compare.hpp"
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+#include "sysid/model.hpp"
+#include "sysid/nn.hpp"
+#include "sysid/pipeline.hpp"
+#include "sysid/stage.hpp"
+
+using sysid::test::RunCli;
+using sysid::test::SourcePath;
+using sysid::test::TempDir;
+
+TEST_CASE("a sampled feedforward plays its values in order and refuses to run past them",
+          "[pipeline][control]") {
+  Eigen::VectorXd u(3);
+  u << 0.5, -1.0, 2.0;
+  const sysid::Feedforward ff = sysid::SampledFeedforward(u);
+  CHECK(ff(9.0, 9.0) == 0.5);  // the reference arguments are ignored: values play in order
+  CHECK(ff(0.0, 0.0) == -1.0);
+  CHECK(ff(0.0, 0.0) == 2.0);
+  CHECK_THROWS_AS(ff(0.0, 0.0), sysid::InternalError);
+}
+
+TEST_CASE("the closed loop applies the feedforward sample by sample", "[pipeline][control]") {
+  // Plant: a pure integrator x_{k+1} = x_k + Ts * g * u_k. With zero gains, the loop output is
+  // the feedforward alone, so x follows the hand-summed integral of the played values.
+  const double ts = 1e-3, g = 0.2;
+  double x = 0;
+  const sysid::PlantStep plant = [&](double u) { return x += ts * g * u; };
+  sysid::PositionReference ref;
+  ref.t_s = Eigen::VectorXd::LinSpaced(5, 0, 4 * ts);
+  ref.x_m = ref.v_mps = ref.a_mps2 = Eigen::VectorXd::Zero(5);
+  sysid::PiOptions pi;
+  pi.kp_v_per_m = 0;
+  pi.ki_v_per_m_s = 0;
+  Eigen::VectorXd u(5);
+  u << 1, 2, 3, 4, 5;
+  const auto r = sysid::RunClosedLoop(plant, 0.0, ref, pi, sysid::SampledFeedforward(u));
+  CHECK(r.u_ff_v == u);
+  CHECK(r.u_v == u);
+  CHECK(x == Approx(ts * g * 15).epsilon(1e-12));
+}
+
+TEST_CASE("network inverse takes v and a by name and refuses other inputs", "[pipeline]") {
+  sysid::NeuralNetwork net({{"a", "m/s^2", -1, 1}, {"v", "m/s", -0.1, 0.1}}, {"u", "V", -2, 2},
+                           2);
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(net.parameter_count());
+  theta[0] = 1.0;  // W1(0, 0): unit 0 sees the first input, "a"
+  theta.tail(3) << 1.0, 0.0, 0.0;  // w2 = (1, 0), b2 = 0
+  net.set_parameters(theta);
+  Eigen::VectorXd v(1), a(1);
+  v << 0.05;
+  a << 0.5;
+  // y = tanh(z_a) with z_a = 0.5 on [-1, 1]; u = denormalised onto [-2, 2]: 2 tanh(0.5).
+  CHECK(sysid::NetworkInverse(net, v, a)[0] == Approx(2 * std::tanh(0.5)).epsilon(1e-12));
+  sysid::NeuralNetwork other({{"temperature", "K", 0, 1}}, {"u", "V", -1, 1}, 1);
+  CHECK_THROWS_AS(sysid::NetworkInverse(other, v, a), sysid::InputError);
+}
+
+TEST_CASE("sysid track runs every feedforward scheme on the virtual stage", "[pipeline][cli]") {
+  TempDir dir;
+  sysid::WriteModel(dir / "m.json", sysid::FrictionModel::Paper());
+  sysid::NeuralNetwork net({{"v", "m/s", -0.1, 0.1}}, {"u", "V", -2, 2}, 3);
+  sysid::WriteNeuralNetwork(dir / "nn.json", net);  // zero weights: u_ff = 0 V exactly
+  const auto r = RunCli({"track", "--ff", "none,analytic,nn", "--model", dir / "m.json", "--nn",
+                         dir / "nn.json", "--freq", "1", "--cycles", "1", "--kp", "3000", "--ki",
+                         "104100", "--json", "-o", dir / "out", "--no-plots"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["schemes"].size() == 3);
+  for (const auto& s : j["schemes"]) {
+    CHECK(s["max_error_m"].get<double>() > 0);
+    CHECK(s["max_error_m"].get<double>() < 2e-3);  // stable gains: well under the 10 mm stroke
+  }
+  // A zero network adds exactly nothing: same plant, same noise, same controller as PI alone.
+  CHECK(j["schemes"][2]["max_error_m"] == j["schemes"][0]["max_error_m"]);
+  CHECK(j["schemes"][1]["max_error_m"] != j["schemes"][0]["max_error_m"]);
+  const std::string traces = sysid::test::ReadText(dir / "out/track_analytic.csv");
+  CHECK(traces.find("t,x_ref,x,e,u,u_ff") != std::string::npos);
+  // Missing model for analytic feedforward: a usage error.
+  CHECK(RunCli({"track", "--ff", "analytic", "--freq", "1"}).exit_code == 1);
+}
+
+TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
+          "[pipeline][cli]") {
+  TempDir dir;
+  const std::string out = dir / "report";
+  const auto r = RunCli({"pipeline", SourcePath("datasets/virtual"), "-o", out, "--hidden",
+                         "4,6", "--max-epochs", "5", "--typical-epochs", "2",
+                         "--typical-stride", "20", "--json"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["dominant"] == "velocity");
+  CHECK(j["nn_inputs"] == nlohmann::json::array({"v"}));
+  CHECK(j["tracking"].size() == 6);  // 2 frequencies x 3 schemes
+  // The identified model is close to the stage's calibration (the paper's values, 10 %).
+  CHECK(j["model"]["a1p"].get<double>() == Approx(104.0154).epsilon(0.1));
+  CHECK(j["model"]["a2n"].get<double>() == Approx(6.8216).epsilon(0.1));
+  const std::string md = sysid::test::ReadText(out + "/report.md");
+  for (const char* section :
+       {"## 1. Pulse-test identification", "## 2. Delay of the viscous term",
+        "## 3. Dominant variable", "## 4. Inverse neural network", "### Typical (v, a) network",
+        "## 5. Analytic vs NN inverse model", "## 6. PI position control", "## Run"})
+    CHECK(md.find(section) != std::string::npos);
+  // Every model file it writes is a valid model file.
+  CHECK_NOTHROW(sysid::ReadModel(out + "/model.json"));
+  CHECK_NOTHROW(sysid::ReadNeuralNetwork(out + "/nn.json"));
+  CHECK_NOTHROW(sysid::ReadNeuralNetwork(out + "/nn_typical.json"));
+  CHECK(std::filesystem::exists(out + "/tracking.csv"));
+  CHECK(std::filesystem::exists(out + "/sweep.csv"));
+}
+
+TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "empty");
+  const auto r = RunCli({"pipeline", dir / "empty", "-o", dir / "report"});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("missing pulse recordings"));
+  CHECK_FALSE(std::filesystem::exists(dir / "report"));
+}
