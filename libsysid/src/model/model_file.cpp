@@ -1,60 +1,26 @@
 #include <nlohmann/json.hpp>
-
 #include <string>
 
+#include "detail/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 
 namespace sysid {
-namespace {
-
-// "LINE:COLUMN" (1-based) of byte offset `pos` in `text`.
-std::string Position(std::string_view text, size_t pos) {
-  long line = 1, col = 1;
-  for (size_t i = 0; i < pos && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
-
-// Where a key first appears as "key" in the text (for errors about its value).
-std::string KeyPosition(std::string_view text, const std::string& key) {
-  const size_t p = text.find("\"" + key + "\"");
-  return p == std::string_view::npos ? "1:1" : Position(text, p);
-}
-
-}  // namespace
-
 FrictionModel ParseModel(std::string_view json_text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is the 1-based offset just past the offending character.
-    const size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    std::string what = e.what();
-    const size_t cut = what.find("parse error");
-    if (cut != std::string::npos) what = what.substr(cut);
-    throw InputError(source + ":" + Position(json_text, at) + ": invalid JSON: " + what);
-  }
+  const auto j = detail::ParseJsonText(json_text, source);
   if (!j.is_object())
-    throw InputError(source + ":1:1: expected a JSON object with keys a1p, a1n, a2p, a2n, a3, "
-                              "tau");
+    throw InputError(source +
+                     ":1:1: expected a JSON object with keys a1p, a1n, a2p, a2n, a3, "
+                     "tau");
   FrictionModel m;
   struct Field {
     const char* key;
     double* target;
     bool required;
   };
-  const Field fields[] = {{"a1p", &m.a1p, true}, {"a1n", &m.a1n, true},
-                          {"a2p", &m.a2p, true}, {"a2n", &m.a2n, true},
-                          {"a3", &m.a3, true},   {"tau", &m.tau_s, false}};
+  const Field fields[] = {{"a1p", &m.a1p, true}, {"a1n", &m.a1n, true}, {"a2p", &m.a2p, true},
+                          {"a2n", &m.a2n, true}, {"a3", &m.a3, true},   {"tau", &m.tau_s, false}};
   for (const auto& [key, value] : j.items()) {
     // Reports and comments may ride along: "diagnostics", "units", "note", "_anything".
     if (key == "diagnostics" || key == "units" || key == "note" || key == "model" ||
@@ -63,20 +29,21 @@ FrictionModel ParseModel(std::string_view json_text, const std::string& source) 
     bool known = false;
     for (const auto& f : fields) known = known || key == f.key;
     if (!known)
-      throw InputError(source + ":" + KeyPosition(json_text, key) + ": unknown key '" + key +
-                       "' (expected a1p, a1n, a2p, a2n, a3, tau)");
+      throw InputError(source + ":" + detail::JsonKeyPosition(json_text, key) + ": unknown key '" +
+                       key + "' (expected a1p, a1n, a2p, a2n, a3, tau)");
   }
   for (const auto& f : fields) {
     if (!j.contains(f.key)) {
       if (f.required)
-        throw InputError(source + ": missing key '" + f.key + "' (a model file needs a1p, "
-                                  "a1n, a2p, a2n, a3 and optionally tau [s])");
+        throw InputError(source + ": missing key '" + f.key +
+                         "' (a model file needs a1p, "
+                         "a1n, a2p, a2n, a3 and optionally tau [s])");
       continue;
     }
     const auto& v = j.at(f.key);
     if (!v.is_number())
-      throw InputError(source + ":" + KeyPosition(json_text, f.key) + ": key '" + f.key +
-                       "': expected a number, found " + v.type_name());
+      throw InputError(source + ":" + detail::JsonKeyPosition(json_text, f.key) + ": key '" +
+                       f.key + "': expected a number, found " + v.type_name());
     *f.target = v.get<double>();
   }
   try {
@@ -97,7 +64,7 @@ std::string ModelToJson(const FrictionModel& m, int indent) {
   j["a2n"] = m.a2n;
   j["a3"] = m.a3;
   j["tau"] = m.tau_s;
-  j["units"] = {{"a1p", "1/s"}, {"a1n", "1/s"}, {"a2p", "m/s^2"},
+  j["units"] = {{"a1p", "1/s"},   {"a1n", "1/s"},      {"a2p", "m/s^2"},
                 {"a2n", "m/s^2"}, {"a3", "m/(s^2 V)"}, {"tau", "s"}};
   return j.dump(indent) + "\n";
 }

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "detail/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
@@ -12,29 +13,13 @@ namespace {
 
 using Json = nlohmann::json;
 
-// "LINE:COLUMN" (1-based) of byte offset `pos` in `text`.
-std::string Position(std::string_view text, size_t pos) {
-  long line = 1, col = 1;
-  for (size_t i = 0; i < pos && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
-
 // Reports errors about one key at the place the key first appears in the text.
 struct Reader {
   std::string_view text;
   std::string source;
 
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const {
-    const size_t p = key.empty() ? std::string_view::npos : text.find("\"" + key + "\"");
-    throw InputError(source + ":" + (p == std::string_view::npos ? "1:1" : Position(text, p)) +
-                     ": " + what);
+    throw InputError(source + ":" + detail::JsonKeyPosition(text, key) + ": " + what);
   }
   const Json& Get(const Json& obj, const std::string& key, const std::string& where) const {
     if (!obj.contains(key)) Fail(where, "missing key '" + key + "' in " + where);
@@ -84,17 +69,7 @@ struct Reader {
 }  // namespace
 
 NeuralNetwork ParseNeuralNetwork(std::string_view json_text, const std::string& source) {
-  Json j;
-  try {
-    j = Json::parse(json_text);
-  } catch (const Json::parse_error& e) {
-    // e.byte is the 1-based offset just past the offending character.
-    const size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    std::string what = e.what();
-    const size_t cut = what.find("parse error");
-    if (cut != std::string::npos) what = what.substr(cut);
-    throw InputError(source + ":" + Position(json_text, at) + ": invalid JSON: " + what);
-  }
+  const auto j = detail::ParseJsonText(json_text, source);
   const Reader rd{json_text, source};
   if (!j.is_object())
     throw InputError(source +

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "detail/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/pipeline.hpp"
@@ -58,12 +59,7 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
 
 PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
   const std::string text = ReadFile(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json j = detail::ParseJsonText(text, path);
   if (!j.is_object()) throw InputError(path + ": expected a JSON object");
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const nlohmann::json& v, const char* key) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "sysid/error.hpp"
@@ -95,25 +96,28 @@ class ReportWriter {
     WriteFileAtomically(Path("pulses.csv"), csv);
     md_ += "\nLeast squares (column-pivoted QR), condition number " + F(p.fit.condition_number, 4) +
            ", relative residual " + F(p.fit.relative_error, 3) + ":\n\n";
-    std::vector<std::string> header{"parameter", "estimate", "std. error"};
+    // The pulse method's estimates (a3 given, tau = 0) beside the final model after the delay
+    // (and refinement), so that neither hides the other.
+    std::vector<std::string> header{"parameter", "pulse LS", "std. error", "final model"};
     if (ref_ && ref_->has("model")) header.push_back(ref_->label);
     std::vector<std::vector<std::string>> prow;
-    const std::vector<std::pair<const char*, double>> final_values{
-        {"a1p", r_.model.a1p}, {"a1n", r_.model.a1n}, {"a2p", r_.model.a2p},
-        {"a2n", r_.model.a2n}, {"a3", r_.model.a3},   {"tau", r_.model.tau_s}};
-    for (const auto& [name, value] : final_values) {
+    const std::vector<std::tuple<const char*, double, double>> values{
+        {"a1p", p.model.a1p, r_.model.a1p}, {"a1n", p.model.a1n, r_.model.a1n},
+        {"a2p", p.model.a2p, r_.model.a2p}, {"a2n", p.model.a2n, r_.model.a2n},
+        {"a3", p.model.a3, r_.model.a3},    {"tau", p.model.tau_s, r_.model.tau_s}};
+    for (const auto& [name, pulse_value, final_value] : values) {
       std::string se = "—";
       for (size_t i = 0; i < p.fit.names.size(); ++i)
         if (p.fit.names[i] == name) se = F(p.fit.std_error[static_cast<Eigen::Index>(i)], 3);
-      std::vector<std::string> row{name, F(value, 7), se};
+      std::vector<std::string> row{name, F(pulse_value, 7), se, F(final_value, 7)};
       if (ref_ && ref_->has("model"))
         row.push_back(ref_->j["model"].contains(name) ? F(ref_->j["model"][name].get<double>(), 7)
                                                       : "");
       prow.push_back(row);
     }
     md_ += MarkdownTable(header, prow);
-    md_ += "\nThe final model (after the delay" +
-           std::string(r_.refine ? " and the output-error refinement" : "") +
+    md_ += "\nThe final model (a3 given, then the delay" +
+           std::string(r_.refine ? " and the output-error refinement of all six parameters" : "") +
            ") is `model.json`.\n";
     WriteModel(Path("model.json"), r_.model);
   }
@@ -295,7 +299,8 @@ class ReportWriter {
                      "\n**Not the paper's outcome:** the typical network's training MSE is {} "
                      "and its test MSE {} against the dominant network's {} and {}. With "
                      "encoder-quantised acceleration as an input, 120 units and the pipeline's "
-                     "epoch budget ({} epochs on every {}-th sample), this data does not "
+                     "epoch budget ({} epochs on every n-th training sample, n = {}), this data "
+                     "does not "
                      "reproduce the overfitting; see docs/neural.md.\n",
                      F(t.train_mse), F(r_.typical_test_mse), F(train_dom), F(r_.network_test_mse),
                      r_.options.typical_max_epochs, r_.options.typical_stride);
@@ -346,9 +351,9 @@ class ReportWriter {
         r_.options.pi.kp_v_per_m, r_.options.pi.ki_v_per_m_s, r_.options.pi.u_max_v,
         1e3 * r_.options.track_amplitude_m);
     const bool paper = ref_ && ref_->has("tracking_max_error_mm");
-    std::vector<std::string> header{"frequency [Hz]", "feedforward", "max |e| [mm]", "RMS e [mm]",
-                                    "RMS u [V]"};
-    if (paper) header.push_back(ref_->label + " max |e| [mm]");
+    std::vector<std::string> header{"frequency [Hz]", "feedforward", "max \\|e\\| [mm]",
+                                    "RMS e [mm]", "RMS u [V]"};
+    if (paper) header.push_back(ref_->label + " max \\|e\\| [mm]");
     std::vector<std::vector<std::string>> rows;
     std::string csv = "frequency_hz,ff,max_error_m,rms_error_m,rms_u_v\n";
     for (const auto& t : r_.tracking) {

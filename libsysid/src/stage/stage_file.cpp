@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "detail/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/stage.hpp"
@@ -13,36 +14,12 @@ namespace {
 
 using Json = nlohmann::json;
 
-std::string Position(std::string_view text, size_t pos) {
-  long line = 1, col = 1;
-  for (size_t i = 0; i < pos && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
-
-// Where "key" first appears at or after the place where its parent object's key appears.
-std::string KeyPosition(std::string_view text, const std::string& parent, const std::string& key) {
-  size_t from = 0;
-  if (!parent.empty()) {
-    const size_t p = text.find("\"" + parent + "\"");
-    if (p != std::string_view::npos) from = p;
-  }
-  const size_t p = text.find("\"" + key + "\"", from);
-  return p == std::string_view::npos ? "1:1" : Position(text, p);
-}
-
 struct Context {
   std::string_view text;
   const std::string& source;
   [[noreturn]] void Fail(const std::string& parent, const std::string& key,
                          const std::string& what) const {
-    throw InputError(source + ":" + KeyPosition(text, parent, key) + ": " + what);
+    throw InputError(source + ":" + detail::JsonKeyPosition(text, key, parent) + ": " + what);
   }
 };
 
@@ -117,16 +94,7 @@ Section BranchSection(FrictionBranch& b) {
 }  // namespace
 
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
-  Json j;
-  try {
-    j = Json::parse(json_text);
-  } catch (const Json::parse_error& e) {
-    const size_t at = e.byte > 0 ? e.byte - 1 : 0;
-    std::string what = e.what();
-    const size_t cut = what.find("parse error");
-    if (cut != std::string::npos) what = what.substr(cut);
-    throw InputError(source + ":" + Position(json_text, at) + ": invalid JSON: " + what);
-  }
+  const Json j = detail::ParseJsonText(json_text, source);
   const Context c{json_text, source};
   if (!j.is_object())
     throw InputError(source +
