@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -29,9 +30,7 @@ struct DominanceCli {
   int threads = 0;
   bool json = false;
   std::string output;
-  std::string derivative = "central";
-  double cutoff_hz = 50.0;
-  std::string velocity_column = "v";
+  MotionFlags motion;
 };
 
 CandidateTerm ParseCandidate(const std::string& spec) {
@@ -97,14 +96,9 @@ void RunDominance(const DominanceCli& o) {
   d.min_speed_mps = o.min_speed;
   d.negligible_ratio = o.negligible;
   d.threads = o.threads;
-  d.motion.derivative.method = ParseDerivativeMethod(o.derivative);
-  d.motion.derivative.cutoff_hz = o.cutoff_hz;
-  d.motion.velocity_column = o.velocity_column;
+  o.motion.ApplyTo(d.motion);
   for (const auto& c : o.candidates) d.candidates.push_back(ParseCandidate(c));
-  ReadOptions ro;
-  ro.any_of_columns = {"x", o.velocity_column};
-  std::vector<Recording> recs;
-  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
+  const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
   if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
   // Pooled ranking over all recordings: RMS over all moving samples, peak over all.
@@ -191,13 +185,7 @@ void AddDominanceCommand(CLI::App& app) {
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
                 "recordings} (rms, peak in m/s^2)");
   AddOutputOption(cmd, o->output, "write the per-recording table as CSV");
-  cmd->add_option("--derivative", o->derivative,
-                  "filter for v and x'' from x: central (default), butterworth, savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
-  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--velocity-column", o->velocity_column,
-                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  o->motion.Add(cmd, "filter for v and x'' from x: central (default), butterworth, savgol");
   cmd->callback([o] { RunDominance(*o); });
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -27,9 +28,7 @@ struct IdentifyCli {
   std::string output;
   bool json = false;
   double a3 = 6.0;
-  std::string derivative;  // empty: the method's default
-  double cutoff_hz = 50.0;
-  std::string velocity_column = "v";
+  MotionFlags motion;  // derivative empty: the method's default
   // pulse
   double min_duration_s = 0.2;
   double window_fraction = 0.5;
@@ -85,18 +84,12 @@ nlohmann::ordered_json ModelJson(const FrictionModel& m) {
 }
 
 MotionOptions Motion(const IdentifyCli& o, MotionOptions m) {
-  if (!o.derivative.empty()) m.derivative.method = ParseDerivativeMethod(o.derivative);
-  m.derivative.cutoff_hz = o.cutoff_hz;
-  m.velocity_column = o.velocity_column;
+  o.motion.ApplyTo(m);
   return m;
 }
 
 std::vector<Recording> ReadAll(const IdentifyCli& o) {
-  ReadOptions ro;
-  ro.any_of_columns = {"x", o.velocity_column};
-  std::vector<Recording> recs;
-  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
-  return recs;
+  return o.motion.ReadRecordings(o.recordings);
 }
 
 void RunIdentify(const IdentifyCli& o) {
@@ -217,14 +210,9 @@ void AddIdentifyCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print the model (a1p, a1n, a2p, a2n, a3, tau) plus a diagnostics object as JSON");
   AddOutputOption(cmd, o->output, "write the model file (same JSON as --json)");
-  cmd->add_option("--derivative", o->derivative,
-                  "velocity filter: central (pulse default), butterworth (trajectory default), "
-                  "savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
-  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--velocity-column", o->velocity_column,
-                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  o->motion.Add(cmd,
+                "velocity filter: central (pulse default), butterworth (trajectory default), "
+                "savgol");
   cmd->add_option("--min-duration", o->min_duration_s, "pulse: shortest pulse [s], default 0.2")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--window-fraction", o->window_fraction,

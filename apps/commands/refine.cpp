@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
@@ -29,9 +30,7 @@ struct RefineCli {
   int max_iterations = 50;
   int threads = 0;
   double min_duration_s = 0.2;
-  std::string derivative = "central";
-  double cutoff_hz = 50.0;
-  std::string velocity_column = "v";
+  MotionFlags motion;
 };
 
 void RunRefine(const RefineCli& o) {
@@ -43,13 +42,8 @@ void RunRefine(const RefineCli& o) {
   r.max_iterations = o.max_iterations;
   r.threads = o.threads;
   r.detection.min_duration_s = o.min_duration_s;
-  r.motion.derivative.method = ParseDerivativeMethod(o.derivative);
-  r.motion.derivative.cutoff_hz = o.cutoff_hz;
-  r.motion.velocity_column = o.velocity_column;
-  ReadOptions ro;
-  ro.any_of_columns = {"x", o.velocity_column};
-  std::vector<Recording> recs;
-  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
+  o.motion.ApplyTo(r.motion);
+  const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const RefineResult res = RefineOutputError(initial, recs, r);
   const FrictionModel& m = res.model;
   nlohmann::ordered_json j = {{"a1p", m.a1p}, {"a1n", m.a1n}, {"a2p", m.a2p},
@@ -100,13 +94,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("--threads", o->threads, "simulation threads [count], default all cores");
   cmd->add_option("--min-duration", o->min_duration_s,
                   "pulses (cut points) last at least this long [s], default 0.2");
-  cmd->add_option("--derivative", o->derivative,
-                  "filter for velocity from x: central (default), butterworth, savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
-  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--velocity-column", o->velocity_column,
-                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  o->motion.Add(cmd, "filter for velocity from x: central (default), butterworth, savgol");
   cmd->callback([o] { RunRefine(*o); });
 }
 

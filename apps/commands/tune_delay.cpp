@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
@@ -25,9 +26,7 @@ struct TuneDelayCli {
   int threads = 0;
   bool json = false;
   std::string output;
-  std::string derivative = "central";
-  double cutoff_hz = 50.0;
-  std::string velocity_column = "v";
+  MotionFlags motion;
 };
 
 void RunTuneDelay(const TuneDelayCli& o) {
@@ -38,13 +37,8 @@ void RunTuneDelay(const TuneDelayCli& o) {
   d.x_tolerance_s = o.x_tolerance_s;
   d.curve_points = o.curve_points;
   d.threads = o.threads;
-  d.motion.derivative.method = ParseDerivativeMethod(o.derivative);
-  d.motion.derivative.cutoff_hz = o.cutoff_hz;
-  d.motion.velocity_column = o.velocity_column;
-  ReadOptions ro;
-  ro.any_of_columns = {"x", o.velocity_column};
-  std::vector<Recording> recs;
-  for (const auto& p : o.recordings) recs.push_back(ReadRecording(p, ro));
+  o.motion.ApplyTo(d.motion);
+  const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DelayTuningResult r = TuneDelay(model, recs, d);
   const std::string model_text = ModelToJson(r.model) + "\n";
   if (!o.output.empty()) WriteFileAtomically(o.output, model_text);
@@ -95,13 +89,7 @@ void AddTuneDelayCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");
   AddOutputOption(cmd, o->output, "write the model with tau filled in");
-  cmd->add_option("--derivative", o->derivative,
-                  "filter for velocity from x: central (default), butterworth, savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
-  cmd->add_option("--cutoff", o->cutoff_hz, "Butterworth cut-off [Hz], default 50")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--velocity-column", o->velocity_column,
-                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+  o->motion.Add(cmd, "filter for velocity from x: central (default), butterworth, savgol");
   cmd->callback([o] { RunTuneDelay(*o); });
 }
 

@@ -1,0 +1,30 @@
+// --derivative, --cutoff, --velocity-column: how identify, tune-delay, refine and dominance get
+// velocity (and acceleration) from a recording's position or a measured-velocity column.
+#ifndef SYSID_APPS_CLI_MOTION_FLAGS_HPP_
+#define SYSID_APPS_CLI_MOTION_FLAGS_HPP_
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "sysid/identify.hpp"
+#include "sysid/io.hpp"
+
+namespace sysid::cli {
+
+struct MotionFlags {
+  std::string derivative;             ///< empty: keep the algorithm's default filter
+  double cutoff_hz = 50.0;            ///< [Hz] Butterworth cut-off
+  std::string velocity_column = "v";  ///< used when a recording has no x
+
+  /// Adds the three flags; `derivative_help` says what the filter is for and its default.
+  void Add(CLI::App* cmd, const std::string& derivative_help);
+  /// Sets the filter, cut-off and velocity column of `motion`.
+  void ApplyTo(MotionOptions& motion) const;
+  /// Reads recordings with t, u and x or the velocity column. Throws InputError.
+  std::vector<Recording> ReadRecordings(const std::vector<std::string>& paths) const;
+};
+
+}  // namespace sysid::cli
+
+#endif  // SYSID_APPS_CLI_MOTION_FLAGS_HPP_
