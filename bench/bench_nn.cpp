@@ -4,7 +4,12 @@
 //
 //   bench_nn --case v  --data p2_data_v.csv  --init p2_init_v.csv  [--best 0.0025549]
 //   bench_nn --case va --data p2_data_va.csv --init p2_init_va.csv [--epochs 5]
-//   bench_nn --case sweep --data p2_data_v.csv
+//   bench_nn --case sweep --data p2_data_v.csv [--threads T]
+//   bench_nn --case epoch --data p2_data_va.csv --init p2_init_va.csv [--threads T]
+//     one LM epoch (normal equations, Cholesky, trial forward pass) by the old kernels
+//     (legacy_mlp_kernels.hpp: default flags, one thread), the generic and the best SIMD
+//     kernels on 1 thread and on T threads (default: all cores); GFLOP/s of J'J + J'r; the
+//     largest relative difference to the old kernels.
 // Prints one JSON object per line.
 #include <fmt/format.h>
 
@@ -16,9 +21,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 #include <string>
 #include <vector>
 
+#include "legacy_mlp_kernels.hpp"
 #include "nn/mlp_kernels.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
@@ -53,7 +60,7 @@ Eigen::VectorXd ReadTheta(const std::string& path) {
 struct Args {
   std::string which = "v", data, init;
   double best = 0.0025549;  // the peer README's best known MSE for case v
-  int epochs = 5, repeats = 5;
+  int epochs = 5, repeats = 5, threads = 0;
 };
 
 sysid::NeuralTrainingOptions PeerProblem(const std::vector<std::string>& inputs) {
@@ -129,6 +136,83 @@ nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::Ve
   return j;
 }
 
+// One LM epoch by each kernel variant; see the file comment.
+void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, int H,
+                  int repeats, int threads) {
+  const int n = static_cast<int>(d.inputs.cols());
+  const int P = static_cast<int>(theta.size());
+  Eigen::MatrixXd Z = d.inputs.transpose();
+  for (int i = 0; i < n; ++i) Z.row(i) /= d.input_names[i] == "a" ? 0.6 : 0.1;
+  const Eigen::VectorXd& y = d.targets;
+  const double N = static_cast<double>(d.size());
+  const double flops = N * P * (P + 1.0) + 2.0 * N * P;  // J'J lower triangle + J'r
+  struct Out {
+    Eigen::MatrixXd JtJ;
+    Eigen::VectorXd g, step;
+    double sse = 0, trial = 0;
+  };
+  auto epoch = [&](const std::function<void(Out*)>& normal,
+                   const std::function<double(const Eigen::VectorXd&)>& sumsq, Out* out) {
+    normal(out);
+    Eigen::MatrixXd A = out->JtJ;
+    A.diagonal().array() += 1e-3;
+    Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(A);
+    out->step = -llt.solve(out->g);
+    out->trial = sumsq(theta + out->step);
+  };
+  auto legacy_normal = [&](Out* o) { legacy::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse); };
+  auto legacy_sumsq = [&](const Eigen::VectorXd& t) { return legacy::SumSquares(Z, y, H, t); };
+  Out ref;
+  const double t_legacy = Median(repeats, [&] { epoch(legacy_normal, legacy_sumsq, &ref); });
+  const Eigen::MatrixXd Lref = ref.JtJ.triangularView<Eigen::Lower>();
+  const int all = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  struct Variant {
+    const char* isa;
+    int threads;
+  };
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  rows.push_back({{"kernels", "old (default flags)"},
+                  {"threads", 1},
+                  {"epoch_s", t_legacy},
+                  {"gflops", flops / t_legacy / 1e9},
+                  {"max_rel_diff", 0.0}});
+  double t_best_1 = 0, t_best_all = 0;
+  for (const Variant v : {Variant{"generic", 1}, Variant{"auto", 1}, Variant{"auto", all}}) {
+    if (!sysid::nn::SetKernelIsa(v.isa)) continue;
+    auto normal = [&](Out* o) {
+      sysid::nn::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse, 0, v.threads);
+    };
+    auto sumsq = [&](const Eigen::VectorXd& t) {
+      return sysid::nn::SumSquares(Z, y, H, t, v.threads);
+    };
+    Out out;
+    const double t = Median(repeats, [&] { epoch(normal, sumsq, &out); });
+    const Eigen::MatrixXd L = out.JtJ.triangularView<Eigen::Lower>();
+    const double diff = std::max({(L - Lref).norm() / Lref.norm(),
+                                  (out.g - ref.g).norm() / ref.g.norm(),
+                                  std::abs(out.sse - ref.sse) / ref.sse,
+                                  std::abs(sumsq(theta + ref.step) - ref.trial) / ref.trial});
+    rows.push_back({{"kernels", std::string(sysid::nn::KernelIsa())},
+                    {"threads", v.threads},
+                    {"epoch_s", t},
+                    {"gflops", flops / t / 1e9},
+                    {"max_rel_diff", diff},
+                    {"step_rel_diff", (out.step - ref.step).norm() / ref.step.norm()}});
+    if (std::string(v.isa) == "auto") (v.threads == 1 ? t_best_1 : t_best_all) = t;
+  }
+  sysid::nn::SetKernelIsa("auto");
+  nlohmann::ordered_json j{{"what", "lm_epoch_targets"},
+                           {"N", d.size()},
+                           {"P", P},
+                           {"flop_per_epoch", flops},
+                           {"variants", rows},
+                           {"speedup_vs_old_1thread", t_legacy / t_best_1},
+                           {"speedup_vs_old_all_threads", t_legacy / t_best_all},
+                           {"thread_scaling", t_best_1 / t_best_all},
+                           {"threads", all}};
+  std::cout << j.dump() << std::endl;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -147,13 +231,24 @@ int main(int argc, char** argv) {
       a.epochs = std::stoi(v);
     else if (k == "--repeats")
       a.repeats = std::stoi(v);
+    else if (k == "--threads")
+      a.threads = std::stoi(v);
     else {
       std::cerr << "bench_nn: unknown option " << k << '\n';
       return 1;
     }
   }
   try {
-    if (a.which == "v" || a.which == "va") {
+    if (a.which == "epoch") {
+      const Eigen::VectorXd theta0 = ReadTheta(a.init);
+      const std::vector<std::string> inputs =
+          theta0.size() % 3 == 1 && a.data.find("_va") == std::string::npos
+              ? std::vector<std::string>{"v"}
+              : std::vector<std::string>{"v", "a"};
+      const auto d = sysid::ReadNeuralDataset(a.data, inputs, "u");
+      const int H = static_cast<int>((theta0.size() - 1) / (inputs.size() + 2));
+      EpochTargets(d, theta0, H, a.repeats, a.threads);
+    } else if (a.which == "v" || a.which == "va") {
       const std::vector<std::string> inputs =
           a.which == "v" ? std::vector<std::string>{"v"} : std::vector<std::string>{"v", "a"};
       const auto d = sysid::ReadNeuralDataset(a.data, inputs, "u");
@@ -176,7 +271,7 @@ int main(int argc, char** argv) {
             {"lm+output_ls", sysid::NeuralTrainer::kLevenbergMarquardt, true, false},
             {"lm paper rule (trainlm mu I)", sysid::NeuralTrainer::kLevenbergMarquardt, false,
              false},
-            {"ceres lm (dense qr)", sysid::NeuralTrainer::kCeres, false, false}};
+            {"ceres lm (dense normal cholesky)", sysid::NeuralTrainer::kCeres, false, false}};
         for (const Run& run : runs) {
           o.trainer = run.trainer;
           o.solve_output_layer = run.solve_output;
@@ -214,6 +309,7 @@ int main(int argc, char** argv) {
       so.training.max_epochs = a.epochs;
       so.training.seed = 1;
       so.training.solve_output_layer = true;
+      so.threads = a.threads;
       const auto r = sysid::SweepHiddenSize(d, nullptr, nullptr, so);
       nlohmann::ordered_json rows = nlohmann::ordered_json::array();
       for (const auto& row : r.rows)
@@ -227,7 +323,7 @@ int main(int argc, char** argv) {
                                {"rows", rows}};
       std::cout << j.dump() << std::endl;
     } else {
-      std::cerr << "bench_nn: --case must be v, va or sweep\n";
+      std::cerr << "bench_nn: --case must be v, va, sweep or epoch\n";
       return 1;
     }
   } catch (const std::exception& e) {

@@ -31,6 +31,7 @@ struct PipelineCliOptions {
   double kp = PiOptions::ForVirtualStage().kp_v_per_m;
   double ki = PiOptions::ForVirtualStage().ki_v_per_m_s;
   std::uint64_t seed = 1;
+  int threads = 0;
 };
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
@@ -51,6 +52,7 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   opt.pi.kp_v_per_m = o.kp;
   opt.pi.ki_v_per_m_s = o.ki;
   opt.reference_path = o.reference;
+  opt.threads = o.threads;
   const PipelineResult r = RunPipeline(inputs, opt, [](const std::string& step) {
     Progress("pipeline: " + step + " ...");
     ProgressDone();
@@ -150,6 +152,10 @@ void AddPipelineCommand(CLI::App& app) {
                   "stage, 3000; the paper's 19000 limit-cycles there)");
   cmd->add_option("--ki", o->ki, "PI integral gain [V/(m s)] (default 104100)");
   cmd->add_option("--seed", o->seed, "seed of the network initialisations");
+  cmd->add_option("--threads", o->threads,
+                  "threads for every long step; 0 = all cores (default); results do not "
+                  "depend on it")
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("--reference", o->reference,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);

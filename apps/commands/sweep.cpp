@@ -93,7 +93,7 @@ void AddSweepCommand(CLI::App& app) {
   cmd->add_option("--hidden", o->hidden,
                   "hidden sizes FIRST:LAST:STEP or a list H1,H2,...; default 16:32:2");
   cmd->add_option("--threads", o->threads, "worker threads; 0 = all cores (default)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
       ->type_name("NN.json");
   cmd->callback([o] { RunSweep(*o); });

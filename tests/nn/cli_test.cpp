@@ -87,6 +87,29 @@ TEST_CASE("sysid sweep tabulates hidden sizes and writes the chosen network", "[
   CHECK(sysid::ReadNeuralNetwork(dir / "best.json").input_count() == 2);
 }
 
+TEST_CASE("train and sweep give bit-identical networks on 1 and 2 threads", "[nn][cli][threads]") {
+  sysid::test::TempDir dir;
+  sysid::test::WriteText(dir / "train.csv", MakeCsv(1500, 5u));
+  sysid::test::WriteText(dir / "test.csv", MakeCsv(200, 6u));
+  for (const std::string command : {"train", "sweep"}) {
+    std::vector<Eigen::VectorXd> params;
+    for (const std::string threads : {"1", "2"}) {
+      const auto out = dir / (command + threads + ".json");
+      std::vector<std::string> args = {command,       "--train",      dir / "train.csv",
+                                       "--test",      dir / "test.csv", "--inputs",
+                                       "v,a",         "--max-epochs", "12",
+                                       "--threads",   threads,        "-o",
+                                       out};
+      if (command == "sweep") args.insert(args.end(), {"--hidden", "3:5:2"});
+      const auto r = RunCli(args);
+      INFO(r.err);
+      REQUIRE(r.exit_code == 0);
+      params.push_back(sysid::ReadNeuralNetwork(out).parameters());
+    }
+    CHECK(params[0] == params[1]);
+  }
+}
+
 TEST_CASE("bad input and options: exit codes, messages, no output file", "[nn][cli]") {
   sysid::test::TempDir dir;
   sysid::test::WriteText(dir / "train.csv", MakeCsv(50, 5u));

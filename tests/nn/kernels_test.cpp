@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "nn/mlp_kernels.hpp"
 
@@ -102,4 +103,67 @@ TEST_CASE("output-layer solve equals a QR least-squares fit", "[nn][kernels]") {
   CHECK((theta.segment(12, 7) - c).cwiseAbs().maxCoeff() < 1e-6 * c.cwiseAbs().maxCoeff());
   CHECK(sse == Approx((M * c - p.y).squaredNorm()).epsilon(1e-10));
   CHECK(theta.head(12) == p.theta.head(12));
+}
+
+TEST_CASE("every instruction set's kernels agree with the generic ones to 1e-12",
+          "[nn][kernels][simd]") {
+  // The AVX2/FMA kernels (when built and the CPU has them) against the default-flag ones:
+  // same formulas, different rounding (FMA, packet exp), so agreement to 1e-12 relative.
+  for (int n : {1, 2, 3}) {
+    const Problem p = MakeProblem(n, 13, 2100, 40u + static_cast<unsigned>(n));
+    auto run = [&](Eigen::MatrixXd* JtJ, Eigen::VectorXd* g, double* sse, Eigen::MatrixXd* J,
+                   double* ss) {
+      sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, JtJ, g, sse);
+      sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, J);
+      *ss = sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta);
+    };
+    REQUIRE(sysid::nn::SetKernelIsa("generic"));
+    CHECK(std::string(sysid::nn::KernelIsa()) == "generic");
+    Eigen::MatrixXd JtJ0, J0;
+    Eigen::VectorXd g0;
+    double sse0 = 0, ss0 = 0;
+    run(&JtJ0, &g0, &sse0, &J0, &ss0);
+    const bool avx2 = sysid::nn::SetKernelIsa("avx2+fma");
+    if (!avx2) WARN("AVX2+FMA kernels not built or not supported by this CPU: generic only");
+    Eigen::MatrixXd JtJ1, J1;
+    Eigen::VectorXd g1;
+    double sse1 = 0, ss1 = 0;
+    run(&JtJ1, &g1, &sse1, &J1, &ss1);
+    REQUIRE(sysid::nn::SetKernelIsa("auto"));
+    const Eigen::MatrixXd L0 = JtJ0.triangularView<Eigen::Lower>();
+    const Eigen::MatrixXd L1 = JtJ1.triangularView<Eigen::Lower>();
+    CHECK((L1 - L0).norm() <= 1e-12 * L0.norm());
+    CHECK((g1 - g0).norm() <= 1e-12 * g0.norm());
+    CHECK(std::abs(sse1 - sse0) <= 1e-12 * sse0);
+    CHECK(std::abs(ss1 - ss0) <= 1e-12 * ss0);
+    CHECK((J1 - J0).norm() <= 1e-12 * J0.norm());
+  }
+  CHECK_FALSE(sysid::nn::SetKernelIsa("no-such-isa"));
+}
+
+TEST_CASE("normal equations and sums of squares are bit-identical for 1 and N threads",
+          "[nn][kernels][threads]") {
+  // Fixed chunks with partial sums added in chunk order: the thread count cannot change a bit.
+  const Problem p = MakeProblem(2, 9, 5003, 77u);
+  Eigen::MatrixXd JtJ1, JtJ2, JtJ3;
+  Eigen::VectorXd g1, g2, g3;
+  double sse1 = 0, sse2 = 0, sse3 = 0;
+  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ1, &g1, &sse1, 64, 1);
+  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ2, &g2, &sse2, 64, 2);
+  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ3, &g3, &sse3, 64, 3);
+  CHECK(JtJ1 == JtJ2);
+  CHECK(JtJ1 == JtJ3);
+  CHECK(g1 == g2);
+  CHECK(g1 == g3);
+  CHECK(sse1 == sse2);
+  CHECK(sse1 == sse3);
+  CHECK(sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 1) ==
+        sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 2));
+  // And the chunked sums are the whole-Jacobian ones.
+  Eigen::MatrixXd J;
+  sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
+  const Eigen::MatrixXd ref = J.transpose() * J;
+  const Eigen::MatrixXd L = JtJ1.triangularView<Eigen::Lower>();
+  const Eigen::MatrixXd Lref = ref.triangularView<Eigen::Lower>();
+  CHECK((L - Lref).norm() <= 1e-12 * Lref.norm());
 }

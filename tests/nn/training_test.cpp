@@ -92,6 +92,25 @@ TEST_CASE("training is deterministic per seed; restarts keep the best", "[nn][tr
   CHECK(best.restart == (c.train_mse < a.train_mse ? 1 : 0));
 }
 
+TEST_CASE("training on 1 and 2 threads gives byte-identical networks", "[nn][train][threads]") {
+  const auto train = MakeSet(3000, 21u, kSigma, &Smooth);
+  const auto validation = MakeSet(500, 22u, kSigma, &Smooth);
+  for (bool solve_output_layer : {false, true}) {
+    sysid::NeuralTrainingOptions o;
+    o.solve_output_layer = solve_output_layer;
+    o.hidden = 8;
+    o.max_epochs = 15;
+    o.threads = 1;
+    const auto one = sysid::TrainNeuralNetwork(train, &validation, o);
+    o.threads = 2;
+    const auto two = sysid::TrainNeuralNetwork(train, &validation, o);
+    CHECK(one.network.parameters() == two.network.parameters());
+    CHECK(one.epochs == two.epochs);
+    CHECK(one.train_mse == two.train_mse);
+    CHECK(one.validation_mse == two.validation_mse);
+  }
+}
+
 TEST_CASE("momentum keeps LM monotone and converging", "[nn][train]") {
   const auto train = MakeSet(600, 7u, kSigma, &Smooth);
   sysid::NeuralTrainingOptions o;

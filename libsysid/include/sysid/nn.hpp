@@ -171,6 +171,10 @@ struct NeuralTrainingOptions {
   std::optional<Eigen::VectorXd> initial_parameters;
   /// Ceres only: samples per residual block (the Jacobian is evaluated block by block).
   int ceres_block_size = 512;
+  /// Threads for one network's LM epoch (Jacobian, J'J and forward passes); 0: all cores.
+  /// Results are identical for any value (fixed-order reductions). The Ceres trainer runs on
+  /// one thread (its parallel evaluator's sums depend on the schedule).
+  int threads = 0;
   /// Throws OptionsError naming the field and the violated rule.
   void Validate() const;
 };

@@ -70,6 +70,9 @@ struct PipelineOptions {
   /// JSON of reference numbers placed beside ours in the report (experiments/ passes the
   /// paper's); empty: none.
   std::string reference_path;
+  /// Threads for every long step (delay tuning, dominance, sweep, the typical network); 0: all
+  /// cores. Overrides the `threads` of `delay` and `training`; results do not depend on it.
+  int threads = 0;
   void Validate() const;
   static NeuralTrainingOptions DefaultTraining();
 };

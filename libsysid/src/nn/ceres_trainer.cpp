@@ -136,7 +136,8 @@ TrainerRun RunCeres(const NormalizedData& train, const NormalizedData* validatio
   ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
+  // N >> P: the normal equations (P x P) are far cheaper than a QR of the N x P Jacobian.
+  so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   so.max_num_iterations = o.max_epochs;
   so.initial_trust_region_radius = 1.0 / o.mu_initial;
   so.min_trust_region_radius = 1.0 / o.mu_max;
@@ -144,6 +145,9 @@ TrainerRun RunCeres(const NormalizedData& train, const NormalizedData* validatio
   so.gradient_tolerance = o.gradient_tolerance * static_cast<double>(N) / 2.0;
   so.function_tolerance = 1e-12;
   so.parameter_tolerance = 1e-12;
+  // One thread: Ceres' parallel evaluator adds per-thread partial costs and gradients in a
+  // schedule-dependent order, so results would change with the thread count (options.threads
+  // speeds up the library LM trainer, whose reductions are in a fixed order).
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;

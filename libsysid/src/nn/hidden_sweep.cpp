@@ -77,6 +77,14 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
   HiddenSweepResult result;
   result.rows.resize(count);
   result.runs.resize(count);
+  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, static_cast<unsigned>(count));
+  // Networks run side by side; each one's epoch gets the threads left over (results do not
+  // depend on either count).
+  const unsigned all = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                           : std::max(1u, std::thread::hardware_concurrency());
+  const int inner = static_cast<int>(std::max(1u, all / std::max(threads, 1u)));
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -85,6 +93,7 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
       try {
         NeuralTrainingOptions o = options.training;
         o.hidden = options.hidden_sizes[k];
+        o.threads = inner;
         // An initial theta only fits one size: a sweep always initialises from the seed.
         o.initial_parameters.reset();
         const auto w0 = std::chrono::steady_clock::now();
@@ -107,9 +116,6 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
       }
     }
   };
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(count));
   std::vector<std::thread> pool;
   for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
   worker();

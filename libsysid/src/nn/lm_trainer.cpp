@@ -31,7 +31,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   const double N = static_cast<double>(train.y.size());
   const int P = static_cast<int>(theta0.size());
   auto val_mse = [&](const Eigen::VectorXd& th) {
-    return validation ? mse_scale * SumSquares(validation->Z, validation->y, H, th) /
+    return validation ? mse_scale * SumSquares(validation->Z, validation->y, H, th, o.threads) /
                             static_cast<double>(validation->y.size())
                       : nan;
   };
@@ -39,7 +39,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   TrainerRun run;
   Eigen::VectorXd theta = theta0;
   Eigen::MatrixXd hidden_scratch;
-  double sse = SumSquares(train.Z, train.y, H, theta);
+  double sse = SumSquares(train.Z, train.y, H, theta, o.threads);
   if (o.solve_output_layer) {
     Eigen::VectorXd solved = theta;
     const double sse_solved = SolveOutputLayer(train.Z, train.y, H, &solved, &hidden_scratch);
@@ -83,7 +83,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       break;
     }
     double sse_check = 0;
-    NormalEquations(train.Z, train.y, H, theta, &JtJ, &g, &sse_check);
+    NormalEquations(train.Z, train.y, H, theta, &JtJ, &g, &sse_check, 0, o.threads);
     const double grad_norm = 2.0 * g.norm() / N;
     if (!(grad_norm >= o.gradient_tolerance)) {
       run.stop =
@@ -117,10 +117,10 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       candidate = theta + step;
       double sse_new = o.solve_output_layer
                            ? SolveOutputLayer(train.Z, train.y, H, &candidate, &hidden_scratch)
-                           : SumSquares(train.Z, train.y, H, candidate);
+                           : SumSquares(train.Z, train.y, H, candidate, o.threads);
       if (o.solve_output_layer && !std::isfinite(sse_new)) {
         candidate = theta + step;  // keep the plain LM trial when the solve fails
-        sse_new = SumSquares(train.Z, train.y, H, candidate);
+        sse_new = SumSquares(train.Z, train.y, H, candidate, o.threads);
       }
       if (!std::isfinite(sse_new)) ++non_finite;
       if (std::isfinite(sse_new) && sse_new < sse) {

@@ -3,7 +3,13 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <atomic>
 #include <limits>
+#include <string>
+#include <vector>
+
+#include "detail/parallel_for.hpp"
+#include "nn/mlp_kernels_isa.hpp"
 
 namespace sysid::nn {
 
@@ -24,25 +30,71 @@ void TanhInPlace(Eigen::Ref<Eigen::ArrayXXd> x) {
 
 namespace {
 
-// A = tanh(W1 Z_block + b1), r = w2' A + b2 - y_block.
-void ForwardBlock(const MatrixXd& Z, const VectorXd& y, const Weights& w, Index first, Index count,
-                  MatrixXd* A, VectorXd* r) {
-  A->resize(w.W1.rows(), count);
-  A->noalias() = w.W1 * Z.middleCols(first, count);
-  A->colwise() += w.b1;
-  TanhInPlace(A->array());
+bool CpuHasAvx2Fma() {
+#if defined(SYSID_HAVE_AVX2_KERNELS) && (defined(__GNUC__) || defined(__clang__))
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+  return false;
+#endif
+}
+
+const isa::Table* BestTable() {
+#ifdef SYSID_HAVE_AVX2_KERNELS
+  if (CpuHasAvx2Fma()) return &isa::avx2::kTable;
+#endif
+  return &isa::generic::kTable;
+}
+
+std::atomic<const isa::Table*>& Current() {
+  static std::atomic<const isa::Table*> table{BestTable()};
+  return table;
+}
+
+const isa::Table& Kernels() { return *Current().load(std::memory_order_relaxed); }
+
+isa::Problem MakeProblem(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta) {
+  return {Z.data(), static_cast<int>(Z.rows()), y.data(), H, theta.data()};
+}
+
+// The fixed partition of N samples into chunks of whole blocks: chunk c holds blocks
+// [c nb / C, (c + 1) nb / C). Independent of the thread count, so sums are too.
+constexpr Index kChunks = 8;
+struct Chunks {
+  Index N, B, nb, C;
+  Chunks(Index N_, Index B_) : N(N_), B(B_), nb((N_ + B_ - 1) / B_), C(std::min(kChunks, nb)) {}
+  Index First(Index c) const { return std::min(N, (c * nb / C) * B); }
+  Index Count(Index c) const { return First(c + 1) - First(c); }
+};
+
+void ForwardBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
+                  Index first, Index count, MatrixXd* A, VectorXd* r) {
+  A->resize(H, count);
   r->resize(count);
-  r->noalias() = A->transpose() * w.w2;
-  r->array() += w.b2 - y.segment(first, count).array();
+  Kernels().forward_block(MakeProblem(Z, y, H, theta), first, count, A->data(), r->data());
 }
 
 }  // namespace
+
+const char* KernelIsa() { return Kernels().name; }
+
+bool SetKernelIsa(const char* name) {
+  const std::string s = name;
+  const isa::Table* t = nullptr;
+  if (s == "auto") t = BestTable();
+  if (s == isa::generic::kTable.name) t = &isa::generic::kTable;
+#ifdef SYSID_HAVE_AVX2_KERNELS
+  if (s == isa::avx2::kTable.name && CpuHasAvx2Fma()) t = &isa::avx2::kTable;
+#endif
+  if (t == nullptr) return false;
+  Current().store(t);
+  return true;
+}
 
 int DefaultBlock(int P) { return std::clamp(32768 / std::max(P, 1), 32, 1024); }
 
 void Residuals(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, VectorXd* r) {
   const int n = static_cast<int>(Z.rows());
-  const Weights w(theta, n, H);
   const Index N = Z.cols();
   r->resize(N);
   MatrixXd A;
@@ -50,53 +102,40 @@ void Residuals(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& thet
   const Index B = DefaultBlock(ParameterCount(n, H));
   for (Index first = 0; first < N; first += B) {
     const Index count = std::min(B, N - first);
-    ForwardBlock(Z, y, w, first, count, &A, &rb);
+    ForwardBlock(Z, y, H, theta, first, count, &A, &rb);
     r->segment(first, count) = rb;
   }
 }
 
 void ResidualBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, Index first,
                    Index count, VectorXd* r) {
-  const Weights w(theta, static_cast<int>(Z.rows()), H);
   MatrixXd A;
-  ForwardBlock(Z, y, w, first, count, &A, r);
+  ForwardBlock(Z, y, H, theta, first, count, &A, r);
 }
 
-double SumSquares(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta) {
+double SumSquares(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
+                  int threads) {
   const int n = static_cast<int>(Z.rows());
-  const Weights w(theta, n, H);
-  const Index N = Z.cols();
-  MatrixXd A;
-  VectorXd rb;
+  const Chunks ch(Z.cols(), DefaultBlock(ParameterCount(n, H)));
+  const isa::Problem p = MakeProblem(Z, y, H, theta);
+  const isa::Table& k = Kernels();
+  double part[kChunks] = {};
+  detail::ParallelFor(ch.C, threads, [&](long c) {
+    part[c] = k.sum_squares_chunk(p, ch.First(c), ch.Count(c), ch.B);
+  });
   double sse = 0;
-  const Index B = DefaultBlock(ParameterCount(n, H));
-  for (Index first = 0; first < N; first += B) {
-    const Index count = std::min(B, N - first);
-    ForwardBlock(Z, y, w, first, count, &A, &rb);
-    sse += rb.squaredNorm();
-  }
+  for (Index c = 0; c < ch.C; ++c) sse += part[c];
   return sse;
 }
 
 void JacobianTransposeBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
                             Index first, Index count, MatrixXd* JT, MatrixXd* A, VectorXd* r) {
   const int n = static_cast<int>(Z.rows());
-  const int P = ParameterCount(n, H);
-  const Weights w(theta, n, H);
-  ForwardBlock(Z, y, w, first, count, A, r);
-  JT->resize(P, count);
-  // d r / d b1_h = w2_h (1 - a_h^2); d r / d W1_hi = that times z_i.
-  auto D = JT->middleRows(H * n, H);
-  D.array() = (1.0 - A->array().square()).colwise() * w.w2.array();
-  const auto Zb = Z.middleCols(first, count);
-  for (int i = 0; i < n; ++i) {
-    // Rows h n + i of JT (h = 0..H-1): a strided view.
-    Eigen::Map<MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>> rows_i(
-        JT->data() + i, H, count, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(P, n));
-    rows_i.array() = D.array().rowwise() * Zb.row(i).array();
-  }
-  JT->middleRows(H * n + H, H) = *A;
-  JT->row(P - 1).setOnes();
+  JT->resize(ParameterCount(n, H), count);
+  A->resize(H, count);
+  r->resize(count);
+  Kernels().jacobian_transpose_block(MakeProblem(Z, y, H, theta), first, count, JT->data(),
+                                     A->data(), r->data());
 }
 
 void Jacobian(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, MatrixXd* J) {
@@ -115,22 +154,35 @@ void Jacobian(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta
 }
 
 void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
-                     MatrixXd* JtJ, VectorXd* g, double* sse, int block) {
+                     MatrixXd* JtJ, VectorXd* g, double* sse, int block, int threads) {
   const int n = static_cast<int>(Z.rows());
   const int P = ParameterCount(n, H);
-  const Index N = Z.cols();
+  const Chunks ch(Z.cols(), block > 0 ? block : DefaultBlock(P));
+  const isa::Problem p = MakeProblem(Z, y, H, theta);
+  const isa::Table& k = Kernels();
+  // Chunk 0 accumulates into the outputs, the others into their own partial sums, which are
+  // then added in chunk order.
   JtJ->setZero(P, P);
   g->setZero(P);
-  *sse = 0;
-  MatrixXd JT, A;
-  VectorXd r;
-  const Index B = block > 0 ? block : DefaultBlock(P);
-  for (Index first = 0; first < N; first += B) {
-    const Index count = std::min(B, N - first);
-    JacobianTransposeBlock(Z, y, H, theta, first, count, &JT, &A, &r);
-    JtJ->selfadjointView<Eigen::Lower>().rankUpdate(JT);
-    g->noalias() += JT * r;
-    *sse += r.squaredNorm();
+  std::vector<MatrixXd> JtJ_part(static_cast<std::size_t>(std::max<Index>(ch.C - 1, 0)));
+  std::vector<VectorXd> g_part(JtJ_part.size());
+  double sse_part[kChunks] = {};
+  detail::ParallelFor(ch.C, threads, [&](long c) {
+    double* jtj = JtJ->data();
+    double* gp = g->data();
+    if (c > 0) {
+      JtJ_part[c - 1].setZero(P, P);
+      g_part[c - 1].setZero(P);
+      jtj = JtJ_part[c - 1].data();
+      gp = g_part[c - 1].data();
+    }
+    sse_part[c] = k.normal_chunk(p, ch.First(c), ch.Count(c), ch.B, jtj, gp);
+  });
+  *sse = sse_part[0];
+  for (Index c = 1; c < ch.C; ++c) {
+    JtJ->triangularView<Eigen::Lower>() += JtJ_part[c - 1];
+    *g += g_part[c - 1];
+    *sse += sse_part[c];
   }
 }
 

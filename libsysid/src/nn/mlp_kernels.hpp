@@ -2,7 +2,10 @@
 // residuals, the Jacobian of the residuals and the Gauss–Newton normal equations J'J, J'r.
 // theta = [W1 (H x n, row-major), b1, w2, b2]; data Z is n x N (one column per sample).
 // The normal equations are accumulated block by block (a few hundred samples at a time) so
-// that the Jacobian block stays in cache and is never stored whole.
+// that the Jacobian block stays in cache and is never stored whole. The hot loops run in the
+// kernels of the best instruction set the CPU has (mlp_kernels_isa.hpp), and the sample range
+// is cut into a fixed number of chunks whose partial sums are added in chunk order, so that
+// results are bit-identical for any number of threads.
 #ifndef SYSID_SRC_NN_MLP_KERNELS_HPP_
 #define SYSID_SRC_NN_MLP_KERNELS_HPP_
 
@@ -33,9 +36,10 @@ void ResidualBlock(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
                    const Eigen::VectorXd& theta, Eigen::Index first, Eigen::Index count,
                    Eigen::VectorXd* r);
 
-/// Sum of squared residuals (blocked; no N-sized temporaries).
+/// Sum of squared residuals (blocked; no N-sized temporaries), on `threads` threads (0: all
+/// cores); the result does not depend on `threads`.
 double SumSquares(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
-                  const Eigen::VectorXd& theta);
+                  const Eigen::VectorXd& theta, int threads = 1);
 
 /// Transposed Jacobian of the residuals of samples [first, first + count): P x count, column k
 /// is d r_(first+k) / d theta. `A` (H x count) receives tanh(W1 z + b1); `r` the residuals.
@@ -48,10 +52,11 @@ void Jacobian(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
               const Eigen::VectorXd& theta, Eigen::MatrixXd* J);
 
 /// Gauss–Newton pieces: the lower triangle of J'J (P x P), g = J'r and sum r^2, accumulated
-/// over blocks of `block` samples by symmetric rank-k updates.
+/// over blocks of `block` samples by symmetric rank-k updates, on `threads` threads (0: all
+/// cores); the result does not depend on `threads`.
 void NormalEquations(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
                      const Eigen::VectorXd& theta, Eigen::MatrixXd* JtJ, Eigen::VectorXd* g,
-                     double* sse, int block = 0);
+                     double* sse, int block = 0, int threads = 1);
 
 /// Replaces (w2, b2) in theta by the linear least-squares optimum for theta's hidden layer,
 /// min ||A' w2 + b2 - y||^2 with A = tanh(W1 Z + b1), and returns the new sum of squares.
@@ -62,6 +67,14 @@ double SolveOutputLayer(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int 
 
 /// The block size NormalEquations uses when block == 0 (keeps P x block near 256 KiB).
 int DefaultBlock(int P);
+
+/// The instruction set of the kernels in use: "generic" or "avx2+fma".
+const char* KernelIsa();
+
+/// Forces the kernels of one instruction set ("generic", "avx2+fma") or, with "auto", the best
+/// one the CPU has. Returns false (and changes nothing) when that set is not built or the CPU
+/// lacks it. For tests and benchmarks; not thread-safe against running kernels.
+bool SetKernelIsa(const char* name);
 
 }  // namespace sysid::nn
 

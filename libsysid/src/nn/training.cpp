@@ -151,6 +151,7 @@ void NeuralTrainingOptions::Validate() const {
   if (!(goal_mse >= 0)) fail("goal_mse", goal_mse, "goal_mse >= 0");
   if (restarts < 1) fail("restarts", restarts, "restarts >= 1");
   if (ceres_block_size < 1) fail("ceres_block_size", ceres_block_size, ">= 1");
+  if (threads < 0) fail("threads", threads, ">= 0 (0: all cores)");
   for (size_t i = 0; i < input_ranges.size(); ++i)
     if (!(input_ranges[i].first < input_ranges[i].second) ||
         !std::isfinite(input_ranges[i].first) || !std::isfinite(input_ranges[i].second))

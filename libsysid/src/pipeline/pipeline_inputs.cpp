@@ -104,6 +104,7 @@ void PipelineOptions::Validate() const {
   };
   if (!(a3 > 0)) fail("a3 = " + std::to_string(a3), "a3 > 0");
   if (hidden_sizes.empty()) fail("hidden_sizes = {}", "at least one hidden size");
+  if (threads < 0) fail("threads = " + std::to_string(threads), "threads >= 0 (0: all cores)");
   if (typical_hidden < 1) fail("typical_hidden", "typical_hidden >= 1");
   if (typical_stride < 1) fail("typical_stride", "typical_stride >= 1");
   if (typical_max_epochs < 0) fail("typical_max_epochs", "typical_max_epochs >= 0");

@@ -89,6 +89,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (options.tune_delay) {
     step("tune delay (NLopt)", [&] {
       DelayTuningOptions d = options.delay;
+      d.threads = options.threads;
       if (d.curve_points == 0) d.curve_points = 21;  // the report plots cost against tau
       r.delay = TuneDelay(r.model, pulses, d);
       if (r.delay->termination == DelayTermination::kNumericalFailure) {
@@ -112,7 +113,9 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   }
 
   step("dominance analysis", [&] {
-    r.dominance = AnalyzeDominanceBatch(r.model, {training, test});
+    DominanceOptions dopt;
+    dopt.threads = options.threads;
+    r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
     // The paper's rule: the network takes the dominant variable only; the ranking of the others
     // is in the report. A caller may name the inputs instead.
     r.nn_inputs = options.nn_inputs.empty()
@@ -126,6 +129,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     HiddenSweepOptions so;
     so.hidden_sizes = options.hidden_sizes;
     so.training = options.training;
+    so.threads = options.threads;
     r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
     const auto chosen = static_cast<size_t>(r.sweep.chosen);
     r.network = r.sweep.runs[chosen].network;
@@ -140,6 +144,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
       NeuralTrainingOptions t = options.training;
       t.hidden = options.typical_hidden;
       t.max_epochs = options.typical_max_epochs;
+      t.threads = options.threads;
       r.typical = TrainNeuralNetwork(train_va, nullptr, t);
       r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
     });

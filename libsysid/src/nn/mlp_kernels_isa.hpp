@@ -1,0 +1,48 @@
+// The hot loops of the network kernels behind a raw-pointer interface, compiled once per
+// instruction set (mlp_kernels_generic.cpp: the build's default flags; mlp_kernels_avx2.cpp:
+// -mavx2 -mfma) and chosen at start-up by mlp_kernels.cpp. No Eigen type crosses this
+// interface: the AVX2 translation unit renames Eigen's namespace so that its inline template
+// instantiations (compiled for AVX2) can never be picked by the linker for the default path.
+#ifndef SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_
+#define SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_
+
+namespace sysid::nn::isa {
+
+/// One network and data set in normalised units. Z is n x N column-major (one column per
+/// sample); theta = [W1 (H x n, row-major), b1, w2, b2].
+struct Problem {
+  const double* Z;
+  int n;
+  const double* y;
+  int H;
+  const double* theta;
+};
+
+/// The kernels of one instruction set.
+struct Table {
+  const char* name;
+  /// A (H x count) = tanh(W1 z + b1) and the residuals r (count) of samples
+  /// [first, first + count).
+  void (*forward_block)(const Problem&, long first, long count, double* A, double* r);
+  /// JT (P x count, column-major, column k = d r_(first+k) / d theta), A (H x count) =
+  /// tanh(W1 z + b1) and r (count) for samples [first, first + count).
+  void (*jacobian_transpose_block)(const Problem&, long first, long count, double* JT, double* A,
+                                   double* r);
+  /// Adds to the lower triangle of JtJ (P x P, column-major), to g (P) and returns the sum of
+  /// squared residuals of samples [first, first + count), in blocks of `block` samples.
+  double (*normal_chunk)(const Problem&, long first, long count, long block, double* JtJ,
+                         double* g);
+  /// Sum of squared residuals of samples [first, first + count), in blocks of `block`.
+  double (*sum_squares_chunk)(const Problem&, long first, long count, long block);
+};
+
+namespace generic {
+extern const Table kTable;
+}
+namespace avx2 {
+extern const Table kTable;  // defined only when SYSID_HAVE_AVX2_KERNELS is set
+}
+
+}  // namespace sysid::nn::isa
+
+#endif  // SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_
