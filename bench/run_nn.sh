@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Neural-network training speed: libsysid's LM beside the Python peers (SciPy MINPACK LM,
 # NumPy LM) on the same data, starting weights and scaling, in one script.
-#   bench/run_nn.sh [BUILD_DIR] [PEERS_DIR]
+#   bench/run_nn.sh [BUILD_DIR] [PEERS_DIR]   (default PEERS_DIR: $SYSID_PEERS or ../shared/bench/peers)
+# First the kernel targets: one LM epoch by the old kernels, the generic and SIMD kernels on
+# 1 and all threads, GFLOP/s against this run's Eigen dgemm rate (bench_dgemm).
 # Case v  (1-24-1, P = 73): time to reach a training MSE within 1 % of the best known
 #          (0.0025549, the peer README) and one epoch's cost split into its parts.
 # Case va (2-120-1, P = 481): time per epoch.
@@ -9,11 +11,23 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD="${1:-build}"
-PEERS="${2:-../shared/bench/peers}"
+PEERS="${2:-${SYSID_PEERS:-$(cd .. && pwd)/shared/bench/peers}}"
+[ -f "$PEERS/p2_data_v.csv" ] || { echo "run_nn.sh: no peer data in $PEERS" >&2; exit 1; }
 PY=/usr/bin/python3
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 BEST=0.0025549
+
+echo "== kernel targets: Eigen dgemm rate and one LM epoch (N = 20000) =="
+if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo; then
+  "$BUILD/bench/bench_dgemm" | tee "$TMP/dgemm.jsonl"
+else
+  echo '{"what":"eigen_dgemm","simd":"none","gflops_1":0,"gflops_all":0}' | tee "$TMP/dgemm.jsonl"
+fi
+"$BUILD/bench/bench_nn" --case epoch --data "$PEERS/p2_data_v.csv" --init "$PEERS/p2_init_v.csv" \
+  --repeats 7 | tee "$TMP/epoch_v.jsonl"
+"$BUILD/bench/bench_nn" --case epoch --data "$PEERS/p2_data_va.csv" --init "$PEERS/p2_init_va.csv" \
+  --repeats 5 | tee "$TMP/epoch_va.jsonl"
 
 echo "== case v: ours (lm + least-squares output layer, paper rule, Ceres) =="
 "$BUILD/bench/bench_nn" --case v --data "$PEERS/p2_data_v.csv" --init "$PEERS/p2_init_v.csv" \
@@ -41,6 +55,21 @@ split = next(o for o in ours if o["what"] == "lm_epoch_split")
 peer = json.load(open(tmp + "/peer_v.json"))["peers"][0]
 reach = [t for t, m in peer["traj"] if m <= target]
 print("\n=== summary ===")
+dg = json.loads(open(tmp + "/dgemm.jsonl").readline())
+print("Eigen dgemm (%s): %.1f GFLOP/s on 1 thread, %.1f GFLOP/s on %s threads"
+      % (dg["simd"], dg["gflops_1"], dg["gflops_all"], dg.get("threads", "?")))
+for name, f in (("1-24-1", "epoch_v"), ("2-120-1", "epoch_va")):
+    e = json.loads(open(tmp + "/" + f + ".jsonl").readline())
+    print("LM epoch %s (N=%d, P=%d, %.3g flop in J'J + J'r):" % (name, e["N"], e["P"], e["flop_per_epoch"]))
+    for v in e["variants"]:
+        share = ("  %5.1f %% of %d-thread dgemm" % (100 * v["gflops"] / (dg["gflops_all"] if v["threads"] > 1 else dg["gflops_1"]), v["threads"])) if dg["gflops_all"] else ""
+        print("  %-20s %d thread(s): %8.2f ms  %6.1f GFLOP/s%s  max rel diff vs old %.1e"
+              % (v["kernels"], v["threads"], 1e3 * v["epoch_s"], v["gflops"], share, v["max_rel_diff"]))
+    best = e["variants"][-1]
+    print("  TARGET ratio vs old kernel: %.2fx on all threads (%.2fx on 1); thread scaling %.2fx"
+          % (e["speedup_vs_old_all_threads"], e["speedup_vs_old_1thread"], e["thread_scaling"]))
+    if dg["gflops_all"]:
+        print("  TARGET share of %s-thread dgemm rate: %.0f %%" % (dg.get("threads", "?"), 100 * best["gflops"] / dg["gflops_all"]))
 print("case v target MSE %.7g (best known %.7g + 1 %%)" % (target, best))
 print("  ours (%s): %.3f s, %d epochs" % (hit["what"], hit["wall_s"], hit["epochs"]))
 if reach:
