@@ -26,12 +26,10 @@ double RateGflops(int threads, int repeats) {
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back([&, t] { C[t].noalias() = A[t] * B[t]; });
+    for (int t = 1; t < threads; ++t) pool.emplace_back([&, t] { C[t].noalias() = A[t] * B[t]; });
     C[0].noalias() = A[0] * B[0];
     for (auto& th : pool) th.join();
-    times.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   std::sort(times.begin(), times.end());
   return 2.0 * m * k * n * threads / times[times.size() / 2] / 1e9;

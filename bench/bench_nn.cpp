@@ -21,8 +21,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "legacy_mlp_kernels.hpp"
@@ -137,8 +137,8 @@ nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::Ve
 }
 
 // One LM epoch by each kernel variant; see the file comment.
-void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, int H,
-                  int repeats, int threads) {
+void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, int H, int repeats,
+                  int threads) {
   const int n = static_cast<int>(d.inputs.cols());
   const int P = static_cast<int>(theta.size());
   Eigen::MatrixXd Z = d.inputs.transpose();
@@ -160,12 +160,15 @@ void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, i
     out->step = -llt.solve(out->g);
     out->trial = sumsq(theta + out->step);
   };
-  auto legacy_normal = [&](Out* o) { legacy::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse); };
+  auto legacy_normal = [&](Out* o) {
+    legacy::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse);
+  };
   auto legacy_sumsq = [&](const Eigen::VectorXd& t) { return legacy::SumSquares(Z, y, H, t); };
   Out ref;
   const double t_legacy = Median(repeats, [&] { epoch(legacy_normal, legacy_sumsq, &ref); });
   const Eigen::MatrixXd Lref = ref.JtJ.triangularView<Eigen::Lower>();
-  const int all = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int all =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   struct Variant {
     const char* isa;
     int threads;
@@ -188,10 +191,10 @@ void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, i
     Out out;
     const double t = Median(repeats, [&] { epoch(normal, sumsq, &out); });
     const Eigen::MatrixXd L = out.JtJ.triangularView<Eigen::Lower>();
-    const double diff = std::max({(L - Lref).norm() / Lref.norm(),
-                                  (out.g - ref.g).norm() / ref.g.norm(),
-                                  std::abs(out.sse - ref.sse) / ref.sse,
-                                  std::abs(sumsq(theta + ref.step) - ref.trial) / ref.trial});
+    const double diff =
+        std::max({(L - Lref).norm() / Lref.norm(), (out.g - ref.g).norm() / ref.g.norm(),
+                  std::abs(out.sse - ref.sse) / ref.sse,
+                  std::abs(sumsq(theta + ref.step) - ref.trial) / ref.trial});
     rows.push_back({{"kernels", std::string(sysid::nn::KernelIsa())},
                     {"threads", v.threads},
                     {"epoch_s", t},

@@ -97,6 +97,12 @@ TEST_CASE("batch dominance keeps input order, counts winners and names bad input
   CHECK(s.dominant_counts[0].second == 4);
   const std::string csv = sysid::DominanceTableCsv(s);
   CHECK_THAT(csv, Catch::Contains("rec3,1,acceleration,"));
+  // 1 and 2 threads: the same table, byte for byte.
+  o.threads = 1;
+  const std::string csv1 = sysid::DominanceTableCsv(sysid::AnalyzeDominanceBatch(m, recs, o));
+  o.threads = 2;
+  CHECK(sysid::DominanceTableCsv(sysid::AnalyzeDominanceBatch(m, recs, o)) == csv1);
+  CHECK(csv1 == csv);
   o.candidates.push_back({"jerk", "j", 1.0});
   CHECK_THROWS_WITH(sysid::AnalyzeDominanceBatch(m, recs, o),
                     Catch::Contains("rec0: candidate 'jerk' needs column 'j'"));

@@ -95,10 +95,10 @@ TEST_CASE("train and sweep give bit-identical networks on 1 and 2 threads", "[nn
     std::vector<Eigen::VectorXd> params;
     for (const std::string threads : {"1", "2"}) {
       const auto out = dir / (command + threads + ".json");
-      std::vector<std::string> args = {command,       "--train",      dir / "train.csv",
-                                       "--test",      dir / "test.csv", "--inputs",
-                                       "v,a",         "--max-epochs", "12",
-                                       "--threads",   threads,        "-o",
+      std::vector<std::string> args = {command,     "--train",        dir / "train.csv",
+                                       "--test",    dir / "test.csv", "--inputs",
+                                       "v,a",       "--max-epochs",   "12",
+                                       "--threads", threads,          "-o",
                                        out};
       if (command == "sweep") args.insert(args.end(), {"--hidden", "3:5:2"});
       const auto r = RunCli(args);

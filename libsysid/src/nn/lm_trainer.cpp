@@ -42,7 +42,8 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   double sse = SumSquares(train.Z, train.y, H, theta, o.threads);
   if (o.solve_output_layer) {
     Eigen::VectorXd solved = theta;
-    const double sse_solved = SolveOutputLayer(train.Z, train.y, H, &solved, &hidden_scratch);
+    const double sse_solved =
+        SolveOutputLayer(train.Z, train.y, H, &solved, &hidden_scratch, o.threads);
     if (std::isfinite(sse_solved) && sse_solved < sse) {
       theta = solved;
       sse = sse_solved;
@@ -115,9 +116,9 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       step = -llt.solve(g);
       if (with_momentum) step += o.momentum * dw_prev;
       candidate = theta + step;
-      double sse_new = o.solve_output_layer
-                           ? SolveOutputLayer(train.Z, train.y, H, &candidate, &hidden_scratch)
-                           : SumSquares(train.Z, train.y, H, candidate, o.threads);
+      double sse_new = o.solve_output_layer ? SolveOutputLayer(train.Z, train.y, H, &candidate,
+                                                               &hidden_scratch, o.threads)
+                                            : SumSquares(train.Z, train.y, H, candidate, o.threads);
       if (o.solve_output_layer && !std::isfinite(sse_new)) {
         candidate = theta + step;  // keep the plain LM trial when the solve fails
         sse_new = SumSquares(train.Z, train.y, H, candidate, o.threads);

@@ -67,8 +67,8 @@ struct Chunks {
   Index Count(Index c) const { return First(c + 1) - First(c); }
 };
 
-void ForwardBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
-                  Index first, Index count, MatrixXd* A, VectorXd* r) {
+void ForwardBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, Index first,
+                  Index count, MatrixXd* A, VectorXd* r) {
   A->resize(H, count);
   r->resize(count);
   Kernels().forward_block(MakeProblem(Z, y, H, theta), first, count, A->data(), r->data());
@@ -113,8 +113,7 @@ void ResidualBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& 
   ForwardBlock(Z, y, H, theta, first, count, &A, r);
 }
 
-double SumSquares(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
-                  int threads) {
+double SumSquares(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, int threads) {
   const int n = static_cast<int>(Z.rows());
   const Chunks ch(Z.cols(), DefaultBlock(ParameterCount(n, H)));
   const isa::Problem p = MakeProblem(Z, y, H, theta);
@@ -186,35 +185,35 @@ void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd
   }
 }
 
-double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* theta, MatrixXd* A) {
+double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* theta, MatrixXd* A,
+                        int threads) {
+  (void)A;  // the hidden layer is recomputed block by block (no H x N matrix is kept)
   const int n = static_cast<int>(Z.rows());
-  const Index N = Z.cols();
-  {
-    const Weights w(*theta, n, H);
-    A->resize(H, N);
-    A->noalias() = w.W1 * Z;
-    A->colwise() += w.b1;
+  const Chunks ch(Z.cols(), DefaultBlock(ParameterCount(n, H)));
+  const isa::Problem p = MakeProblem(Z, y, H, *theta);
+  const isa::Table& k = Kernels();
+  // Normal equations of M = [A' 1]: G = M'M, c = M'y, by chunks added in chunk order.
+  std::vector<MatrixXd> G(static_cast<std::size_t>(ch.C));
+  std::vector<VectorXd> c(G.size());
+  detail::ParallelFor(ch.C, threads, [&](long i) {
+    G[i].setZero(H + 1, H + 1);
+    c[i].setZero(H + 1);
+    k.output_normal_chunk(p, ch.First(i), ch.Count(i), ch.B, G[i].data(), c[i].data());
+  });
+  for (Index i = 1; i < ch.C; ++i) {
+    G[0].triangularView<Eigen::Lower>() += G[i];
+    c[0] += c[i];
   }
-  TanhInPlace(A->array());
-  // Normal equations of M = [A' 1]: G = M'M, c = M'y, accumulated by blocks.
-  MatrixXd G = MatrixXd::Zero(H + 1, H + 1);
-  VectorXd c(H + 1);
-  c.head(H).noalias() = *A * y;
-  c[H] = y.sum();
-  G.topLeftCorner(H, H).selfadjointView<Eigen::Lower>().rankUpdate(*A);
-  G.block(H, 0, 1, H) = A->rowwise().sum().transpose();
-  G(H, H) = static_cast<double>(N);
-  const double ridge = 1e-12 * G.diagonal().mean() + std::numeric_limits<double>::min();
-  G.diagonal().array() += ridge;
-  Eigen::LDLT<MatrixXd, Eigen::Lower> ldlt(G);
-  const VectorXd sol = ldlt.solve(c);
+  MatrixXd& Gs = G[0];
+  const double ridge = 1e-12 * Gs.diagonal().mean() + std::numeric_limits<double>::min();
+  Gs.diagonal().array() += ridge;
+  Eigen::LDLT<MatrixXd, Eigen::Lower> ldlt(Gs);
+  const VectorXd sol = ldlt.solve(c[0]);
   if (ldlt.info() != Eigen::Success || !sol.allFinite())
     return std::numeric_limits<double>::quiet_NaN();
   theta->segment(H * n + H, H) = sol.head(H);
   (*theta)[H * n + 2 * H] = sol[H];
-  VectorXd r = A->transpose() * sol.head(H);
-  r.array() += sol[H] - y.array();
-  return r.squaredNorm();
+  return SumSquares(Z, y, H, *theta, threads);
 }
 
 }  // namespace sysid::nn

@@ -34,6 +34,10 @@ struct Table {
                          double* g);
   /// Sum of squared residuals of samples [first, first + count), in blocks of `block`.
   double (*sum_squares_chunk)(const Problem&, long first, long count, long block);
+  /// Adds the output layer's normal equations of samples [first, first + count) to G (lower
+  /// triangle, (H+1) x (H+1), column-major) and c (H+1): M = [A' 1], G += M'M, c += M'y.
+  void (*output_normal_chunk)(const Problem&, long first, long count, long block, double* G,
+                              double* c);
 };
 
 namespace generic {
