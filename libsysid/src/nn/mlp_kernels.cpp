@@ -187,18 +187,20 @@ void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd
 
 double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* theta, MatrixXd* A,
                         int threads) {
-  (void)A;  // the hidden layer is recomputed block by block (no H x N matrix is kept)
   const int n = static_cast<int>(Z.rows());
   const Chunks ch(Z.cols(), DefaultBlock(ParameterCount(n, H)));
   const isa::Problem p = MakeProblem(Z, y, H, *theta);
   const isa::Table& k = Kernels();
   // Normal equations of M = [A' 1]: G = M'M, c = M'y, by chunks added in chunk order.
+  // A keeps the hidden layer for the final residuals (no second tanh pass).
+  A->resize(H, Z.cols());
   std::vector<MatrixXd> G(static_cast<std::size_t>(ch.C));
   std::vector<VectorXd> c(G.size());
   detail::ParallelFor(ch.C, threads, [&](long i) {
     G[i].setZero(H + 1, H + 1);
     c[i].setZero(H + 1);
-    k.output_normal_chunk(p, ch.First(i), ch.Count(i), ch.B, G[i].data(), c[i].data());
+    k.output_normal_chunk(p, ch.First(i), ch.Count(i), ch.B, G[i].data(), c[i].data(),
+                          A->data() + ch.First(i) * H);
   });
   for (Index i = 1; i < ch.C; ++i) {
     G[0].triangularView<Eigen::Lower>() += G[i];
@@ -213,7 +215,14 @@ double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* t
     return std::numeric_limits<double>::quiet_NaN();
   theta->segment(H * n + H, H) = sol.head(H);
   (*theta)[H * n + 2 * H] = sol[H];
-  return SumSquares(Z, y, H, *theta, threads);
+  const isa::Problem solved = MakeProblem(Z, y, H, *theta);
+  double part[kChunks] = {};
+  detail::ParallelFor(ch.C, threads, [&](long i) {
+    part[i] = k.output_sse_chunk(solved, ch.First(i), ch.Count(i), A->data() + ch.First(i) * H);
+  });
+  double sse = 0;
+  for (Index i = 0; i < ch.C; ++i) sse += part[i];
+  return sse;
 }
 
 }  // namespace sysid::nn

@@ -60,7 +60,7 @@ void NormalEquations(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
 
 /// Replaces (w2, b2) in theta by the linear least-squares optimum for theta's hidden layer,
 /// min ||A' w2 + b2 - y||^2 with A = tanh(W1 Z + b1), and returns the new sum of squares.
-/// `A` is unused (kept for callers). A tiny ridge (1e-12 of the mean diagonal) keeps the
+/// `A` receives the hidden layer (H x N). A tiny ridge (1e-12 of the mean diagonal) keeps the
 /// normal equations solvable when hidden units saturate alike. On `threads` threads (0: all
 /// cores); the result does not depend on `threads`.
 double SolveOutputLayer(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,

@@ -36,8 +36,12 @@ struct Table {
   double (*sum_squares_chunk)(const Problem&, long first, long count, long block);
   /// Adds the output layer's normal equations of samples [first, first + count) to G (lower
   /// triangle, (H+1) x (H+1), column-major) and c (H+1): M = [A' 1], G += M'M, c += M'y.
+  /// A (H x count, column-major) receives the hidden layer of those samples.
   void (*output_normal_chunk)(const Problem&, long first, long count, long block, double* G,
-                              double* c);
+                              double* c, double* A);
+  /// Sum of squared residuals of samples [first, first + count) from their stored hidden
+  /// layer A (H x count) and theta's output layer.
+  double (*output_sse_chunk)(const Problem&, long first, long count, const double* A);
 };
 
 namespace generic {
