@@ -77,14 +77,12 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
   HiddenSweepResult result;
   result.rows.resize(count);
   result.runs.resize(count);
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(count));
   // Networks run side by side; each one's epoch gets the threads left over (results do not
   // depend on either count).
   const unsigned all = options.threads > 0 ? static_cast<unsigned>(options.threads)
                                            : std::max(1u, std::thread::hardware_concurrency());
-  const int inner = static_cast<int>(std::max(1u, all / std::max(threads, 1u)));
+  const unsigned threads = std::max(1u, std::min<unsigned>(all, static_cast<unsigned>(count)));
+  const int inner = static_cast<int>(std::max(1u, all / threads));
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
