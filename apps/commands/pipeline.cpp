@@ -175,10 +175,10 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_option("--inputs", o->inputs,
                   "network inputs, comma separated (v, a); default: the dominant variable");
   cmd->add_option("--max-epochs", o->max_epochs, "LM epoch limit per network (default 100)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--typical-epochs", o->typical_epochs,
                   "LM epoch limit of the typical 120-unit (v, a) network (default 60)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--typical-stride", o->typical_stride,
                   "train the typical network on every n-th training row (default 2)")
       ->check(CLI::PositiveNumber);
@@ -190,7 +190,8 @@ void AddPipelineCommand(CLI::App& app) {
                   "PI proportional gain [V/m] (default: stable on the virtual "
                   "stage, 3000; the paper's 19000 limit-cycles there)");
   cmd->add_option("--ki", o->ki, "PI integral gain [V/(m s)] (default 104100)");
-  cmd->add_option("--seed", o->seed, "seed of the network initialisations");
+  cmd->add_option("--seed", o->seed, "seed of the network initialisations")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--reference", o->reference,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);
