@@ -104,7 +104,8 @@ void AddGenerateCommand(CLI::App& app) {
                   "calibrated stage, identical to datasets/virtual/stage.json)")
       ->type_name("STAGE.json");
   cmd->add_option("--seed", o->seed,
-                  "noise seed [integer]; the same seed gives byte-identical files (default 1)");
+                  "noise seed [integer]; the same seed gives byte-identical files (default 1)")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("-o,--output", o->out_dir,
                   "output folder, created if missing (default: the current folder)")
       ->type_name("DIR");

@@ -75,7 +75,8 @@ inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
       ->check(CLI::IsMember({"lm", "ceres"}));
   cmd->add_option("--momentum", o.training.momentum,
                   "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm; default 0");
-  cmd->add_option("--seed", o.training.seed, "initialisation seed; restart r uses seed + r");
+  cmd->add_option("--seed", o.training.seed, "initialisation seed; restart r uses seed + r")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--restarts", o.training.restarts,
                   "random initialisations, best kept (by validation MSE, else training MSE)");
   cmd->add_option("--max-epochs", o.training.max_epochs, "epoch limit; default 1000");

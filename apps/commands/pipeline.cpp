@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -17,9 +18,21 @@ namespace sysid::cli {
 namespace {
 namespace fs = std::filesystem;
 
+// A folder this toolkit wrote holds this marker; only such a folder (or an empty one) may be
+// replaced, so `-o` never deletes a user's files.
+constexpr const char* kOutputMarker = ".sysid-output";
+
+bool IsEmptyDir(const std::filesystem::path& p) {
+  return std::filesystem::is_directory(p) && std::filesystem::is_empty(p);
+}
+bool HasMarker(const std::filesystem::path& p) {
+  return std::filesystem::is_directory(p) && std::filesystem::exists(p / kOutputMarker);
+}
+
 struct PipelineCliOptions {
   std::string input;
   std::string out_dir = "sysid-report";
+  bool force = false;
   std::string reference;
   std::string hidden = "16:32:2";
   double a3 = 6.0;
@@ -35,6 +48,30 @@ struct PipelineCliOptions {
 };
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
+  // Check the output folder before any work: trailing slashes are dropped, inputs are never
+  // inside it, and only an empty folder or one with the toolkit's marker is ever replaced.
+  fs::path out = fs::absolute(o.out_dir).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();
+  {
+    const fs::path in = fs::weakly_canonical(fs::absolute(o.input));
+    const fs::path outc = fs::weakly_canonical(out);
+    const std::string ins = in.string() + "/", outs = outc.string() + "/";
+    if (ins.rfind(outs, 0) == 0)
+      throw OptionsError("-o " + o.out_dir + ": the output folder is or contains the input " +
+                         o.input + "; choose another folder");
+  }
+  if (fs::exists(out) && !IsEmptyDir(out)) {
+    if (!HasMarker(out))
+      throw OptionsError("-o " + o.out_dir +
+                         ": exists and was not written by sysid (no .sysid-output marker); "
+                         "refusing to replace it: choose a new or empty folder");
+    if (!o.force)
+      throw OptionsError("-o " + o.out_dir +
+                         ": holds an earlier sysid report; pass --force to replace it");
+  }
+  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".tmp");
+  if (fs::exists(tmp) && !IsEmptyDir(tmp) && !HasMarker(tmp))
+    throw OptionsError(tmp.string() + ": exists and was not written by sysid; remove it first");
   const PipelineInputs inputs = fs::is_directory(o.input) ? PipelineInputs::FromDirectory(o.input)
                                                           : PipelineInputs::FromManifest(o.input);
   PipelineOptions opt;
@@ -59,17 +96,17 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   });
   // The report is written into a temporary sibling folder and renamed into place: a failure
   // never leaves a half-written report behind, and a previous one is replaced whole.
-  const fs::path out = fs::absolute(o.out_dir);
-  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".tmp");
-  fs::remove_all(tmp);
+  fs::remove_all(tmp);  // checked above: absent, empty or ours
   std::vector<std::string> notes;
   try {
+    fs::create_directories(tmp);
+    std::ofstream(tmp / kOutputMarker) << "written by sysid pipeline\n";
     notes = WritePipelineReport(r, tmp.string());
   } catch (...) {
     fs::remove_all(tmp);
     throw;
   }
-  fs::remove_all(out);
+  if (fs::exists(out) && (IsEmptyDir(out) || HasMarker(out))) fs::remove_all(out);
   fs::rename(tmp, out);
   for (const auto& n : notes) std::cerr << "sysid pipeline: " << n << '\n';
 
@@ -124,8 +161,12 @@ void AddPipelineCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingPath)
       ->type_name("DIR|MANIFEST");
-  AddOutputOption(cmd, o->out_dir, "report folder (replaced whole; default sysid-report)")
+  AddOutputOption(cmd, o->out_dir,
+                  "report folder: new, empty, or an earlier sysid report with --force "
+                  "(default sysid-report)")
       ->type_name("DIR");
+  cmd->add_flag("--force", o->force,
+                "replace an earlier sysid report folder (one holding .sysid-output)");
   cmd->add_option("--a3", o->a3,
                   "actuator gain for the pulse method [m/(s^2 V)] (default 6; "
                   "a manifest's a3 wins)")
@@ -136,10 +177,10 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_option("--inputs", o->inputs,
                   "network inputs, comma separated (v, a); default: the dominant variable");
   cmd->add_option("--max-epochs", o->max_epochs, "LM epoch limit per network (default 100)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--typical-epochs", o->typical_epochs,
                   "LM epoch limit of the typical 120-unit (v, a) network (default 60)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--typical-stride", o->typical_stride,
                   "train the typical network on every n-th training row (default 2)")
       ->check(CLI::PositiveNumber);
@@ -151,7 +192,8 @@ void AddPipelineCommand(CLI::App& app) {
                   "PI proportional gain [V/m] (default: stable on the virtual "
                   "stage, 3000; the paper's 19000 limit-cycles there)");
   cmd->add_option("--ki", o->ki, "PI integral gain [V/(m s)] (default 104100)");
-  cmd->add_option("--seed", o->seed, "seed of the network initialisations");
+  cmd->add_option("--seed", o->seed, "seed of the network initialisations")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--threads", o->threads,
                   "threads for every long step; 0 = all cores (default); results do not "
                   "depend on it")

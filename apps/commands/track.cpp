@@ -205,14 +205,15 @@ void AddTrackCommand(CLI::App& app) {
   cmd->add_option("--kp", o->kp,
                   "proportional gain [V/m] (paper: 19000; on the bundled "
                   "virtual stage 3000 is stable, see docs/control.md)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--ki", o->ki,
                   "integral gain [V/(m s)] (paper: 660000; virtual stage: "
                   "104100)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--u-max", o->u_max, "output saturation [V] (default 10)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise");
+  cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   AddOutputOption(cmd, o->out_dir, "folder for track_<ff>.csv traces, plots and summary.json")
       ->type_name("DIR");
   cmd->add_flag("--json", o->json, "print one JSON object (max_error_m, rms_error_m, schemes)");

@@ -1,6 +1,9 @@
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -10,16 +13,43 @@
 #include "sysid/io.hpp"
 #include "sysid/report.hpp"
 
+extern char** environ;  // POSIX: the environment passed to the spawned gnuplot
+
 namespace sysid {
 namespace {
 
-std::string Escape(const std::string& s) {
+// Titles and labels may hold file names: gnuplot substitutes back-quoted text and macros even in
+// a script file, so everything that could quote, substitute or end a line is dropped, not escaped.
+std::string Sanitise(const std::string& s) {
   std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+  for (unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f || c == '`' || c == '$' || c == '"' || c == '\'' || c == '\\' ||
+        c == '@')
+      continue;
+    out += static_cast<char>(c);
   }
   return out;
+}
+
+// Runs gnuplot on `script` with an argument vector (no shell); stderr goes to `err`.
+int RunGnuplot(const std::string& script, const std::string& err) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  std::string prog = "gnuplot";
+  std::string arg = script;
+  char* argv[] = {prog.data(), arg.data(), nullptr};
+  pid_t pid = 0;
+  const int spawn = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace
@@ -52,15 +82,18 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
   if (!mkdtemp(tmpl.data())) return {false, "plot " + path + " skipped: no temp folder"};
   const fs::path dir(tmpl);
   const fs::path target(path);
+  // gnuplot only ever sees toolkit-made names inside the private folder; the image is then
+  // copied next to the target and renamed into place.
+  const fs::path gp_image = dir / (svg ? "image.svg" : "image.png");
   const fs::path tmp_image = (target.has_parent_path() ? target.parent_path() : fs::path(".")) /
                              ("." + target.filename().string() + ".tmp");
   std::ofstream script(dir / "plot.gp");
   script << (svg ? "set terminal svg size " : "set terminal pngcairo size ") << spec.width_px << ","
          << spec.height_px << (svg ? " dynamic\n" : "\n");
-  script << "set output \"" << Escape(tmp_image.string()) << "\"\n";
-  script << "set title \"" << Escape(spec.title) << "\" noenhanced\n";
-  script << "set xlabel \"" << Escape(spec.x_label) << "\" noenhanced\n";
-  script << "set ylabel \"" << Escape(spec.y_label) << "\" noenhanced\n";
+  script << "set output \"" << Sanitise(gp_image.string()) << "\"\n";
+  script << "set title \"" << Sanitise(spec.title) << "\" noenhanced\n";
+  script << "set xlabel \"" << Sanitise(spec.x_label) << "\" noenhanced\n";
+  script << "set ylabel \"" << Sanitise(spec.y_label) << "\" noenhanced\n";
   script << "set grid\nset key outside right top noenhanced\n";
   if (spec.log_y) script << "set logscale y\n";
   script << "plot ";
@@ -71,18 +104,17 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
     d.precision(10);
     for (Eigen::Index k = 0; k < std::min(s.x.size(), s.y.size()); ++k)
       d << s.x[k] << ' ' << s.y[k] << '\n';
-    script << (i ? ", " : "") << '"' << Escape(data.string()) << "\" using 1:2 with " << s.style
-           << " title \"" << Escape(s.label) << '"';
+    script << (i ? ", " : "") << '"' << Sanitise(data.string()) << "\" using 1:2 with " << s.style
+           << " title \"" << Sanitise(s.label) << '"';
   }
   script << "\n";
   script.close();
-  const std::string cmd =
-      "gnuplot \"" + (dir / "plot.gp").string() + "\" 2>\"" + (dir / "err.txt").string() + "\"";
-  const int rc = std::system(cmd.c_str());
+  const int rc = RunGnuplot((dir / "plot.gp").string(), (dir / "err.txt").string());
   PlotOutcome outcome;
-  if (rc == 0 && fs::exists(tmp_image)) {
+  if (rc == 0 && fs::exists(gp_image)) {
     std::error_code ec;
-    fs::rename(tmp_image, target, ec);
+    fs::copy_file(gp_image, tmp_image, fs::copy_options::overwrite_existing, ec);
+    if (!ec) fs::rename(tmp_image, target, ec);
     outcome = ec ? PlotOutcome{false, "plot " + path + ": " + ec.message()} : PlotOutcome{true, ""};
   } else {
     std::ifstream e(dir / "err.txt");
