@@ -29,7 +29,7 @@ struct GenerateOptions {
 
 void RunGenerate(const GenerateOptions& o) {
   const StageParameters stage =
-      o.stage_path.empty() ? StageParameters::Default() : ReadStageParameters(o.stage_path);
+      o.stage_path.empty() ? StageParameters::Default() : LoadStage(o.stage_path);
   TrackingProcedure tracking;
   tracking.derivative.method = ParseDerivativeMethod(o.derivative);
   tracking.Validate(stage);
@@ -48,6 +48,12 @@ void RunGenerate(const GenerateOptions& o) {
     Progress("generate: test set");
     files.emplace_back("test.csv",
                        RunTrackingSet(stage, TestGrid(), tracking, DeriveSeed(o.seed, 2), "test"));
+  }
+  if (all || o.what == "triangle") {
+    Progress("generate: triangle loop");
+    files.emplace_back("loop_triangle.csv", RunTriangleTest(stage, TriangleProcedure{},
+                                                            DeriveSeed(o.seed, 3),
+                                                            tracking.derivative));
   }
   if (all || o.what == "waveforms") {
     const auto waves = PaperTestWaveforms();
@@ -94,15 +100,19 @@ void AddGenerateCommand(CLI::App& app) {
       "generate",
       "Run the paper's data-collection procedures on the virtual stage and write recordings "
       "(t [s], u [V], x [m], v [m/s], a [m/s^2]) with '#' metadata: pulses -> pulses.csv, "
-      "tracking -> training.csv + test.csv, waveforms -> waveform_<name>.csv, all -> every one "
-      "plus stage.json");
-  cmd->add_option("what", o->what, "which procedure: pulses, tracking, waveforms or all")
+      "tracking -> training.csv + test.csv, waveforms -> waveform_<name>.csv, triangle -> "
+      "loop_triangle.csv (open-loop 6 s triangle, +1.5 / -2.1 V: the voltage-velocity loop), "
+      "all -> every one plus stage.json");
+  cmd->add_option("what", o->what,
+                  "which procedure: pulses, tracking, waveforms, triangle or all")
       ->required()
-      ->check(CLI::IsMember({"pulses", "tracking", "waveforms", "all"}));
+      ->check(CLI::IsMember({"pulses", "tracking", "waveforms", "triangle", "all"}));
   cmd->add_option("--stage", o->stage_path,
-                  "stage parameter file (JSON, SI units in the keys; default: the built-in "
-                  "calibrated stage, identical to datasets/virtual/stage.json)")
-      ->type_name("STAGE.json");
+                  "stage parameter file (JSON, SI units in the keys) or a preset: virtual (the "
+                  "default, the calibrated velocity-source stage identical to "
+                  "datasets/virtual/stage.json) or actuator-delay (the former stage, on which "
+                  "the paper's feedforward does not help; docs/virtual_stage.md)")
+      ->type_name("STAGE.json|PRESET");
   cmd->add_option("--seed", o->seed,
                   "noise seed [integer]; the same seed gives byte-identical files (default 1)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1

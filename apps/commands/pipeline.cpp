@@ -41,8 +41,8 @@ struct PipelineCliOptions {
   int typical_epochs = 60;
   int typical_stride = 2;
   bool refine = false, typical = true, track = true, tune_delay = true, json = false;
-  double kp = PiOptions::ForVirtualStage().kp_v_per_m;
-  double ki = PiOptions::ForVirtualStage().ki_v_per_m_s;
+  double kp = PiOptions{}.kp_v_per_m;
+  double ki = PiOptions{}.ki_v_per_m_s;
   std::uint64_t seed = 1;
   int threads = 0;
 };
@@ -189,9 +189,11 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_flag("--refine", o->refine, "refine all parameters by output error (Ceres)");
   cmd->add_flag("!--no-track", o->track, "skip the PI tracking experiment");
   cmd->add_option("--kp", o->kp,
-                  "PI proportional gain [V/m] (default: stable on the virtual "
-                  "stage, 3000; the paper's 19000 limit-cycles there)");
-  cmd->add_option("--ki", o->ki, "PI integral gain [V/(m s)] (default 104100)");
+                  "PI proportional gain [V/m] (default the paper's 19000, stable on the "
+                  "bundled velocity-source stage; the actuator-delay preset needs 3000)");
+  cmd->add_option("--ki", o->ki,
+                  "PI integral gain [V/(m s)] (default the paper's 660000; actuator-delay "
+                  "preset: 104100)");
   cmd->add_option("--seed", o->seed, "seed of the network initialisations")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--threads", o->threads,

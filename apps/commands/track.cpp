@@ -63,8 +63,7 @@ Eigen::VectorXd FeedforwardValues(const std::string& scheme, const PositionRefer
 
 void RunTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
-  const StageParameters stage =
-      o.plant == "virtual" ? StageParameters::Default() : ReadStageParameters(o.plant);
+  const StageParameters stage = LoadStage(o.plant);
   const std::vector<std::string> schemes = SplitList(o.ff);
   std::optional<FrictionModel> model;
   std::optional<NeuralNetwork> nn;
@@ -117,7 +116,7 @@ void RunTrack(const TrackCliOptions& o) {
   ProgressDone();
 
   nlohmann::ordered_json j;
-  j["plant"] = o.plant == "virtual" ? stage.name : o.plant;
+  j["plant"] = StageParameters::IsPresetName(o.plant) ? stage.name : o.plant;
   j["reference"] = ref.description;
   j["kp_v_per_m"] = o.kp;
   j["ki_v_per_m_s"] = o.ki;
@@ -183,8 +182,9 @@ void AddTrackCommand(CLI::App& app) {
       "PI position control of the virtual stage with feedforward (none, the analytic "
       "inverse, or the NN inverse): maximum and RMS tracking error and control effort");
   cmd->add_option("--plant", o->plant,
-                  "stage parameter file STAGE.json, or 'virtual' for the "
-                  "bundled calibrated stage");
+                  "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
+                  "calibrated velocity-source stage) or 'actuator-delay' (the former stage, on "
+                  "which the paper's gains limit-cycle and feedforward does not help)");
   cmd->add_option("--ff", o->ff, "feedforward scheme(s), comma separated: none, analytic, nn");
   cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
       ->check(CLI::ExistingFile);
@@ -203,11 +203,11 @@ void AddTrackCommand(CLI::App& app) {
   cmd->add_option("--cycles", o->cycles, "profile periods to run (default 2)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--kp", o->kp,
-                  "proportional gain [V/m] (paper: 19000; on the bundled "
-                  "virtual stage 3000 is stable, see docs/control.md)")
+                  "proportional gain [V/m] (default the paper's 19000, stable on the bundled "
+                  "virtual stage; the actuator-delay preset needs 3000, see docs/control.md)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--ki", o->ki,
-                  "integral gain [V/(m s)] (paper: 660000; virtual stage: "
+                  "integral gain [V/(m s)] (default the paper's 660000; actuator-delay preset: "
                   "104100)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
   cmd->add_option("--u-max", o->u_max, "output saturation [V] (default 10)")

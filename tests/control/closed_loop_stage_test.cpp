@@ -5,15 +5,15 @@
 #include "sysid/control.hpp"
 #include "sysid/stage.hpp"
 
-TEST_CASE("PI with the virtual-stage gains tracks the 0.5 Hz profile; feedforward helps",
+TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile; feedforward helps",
           "[control][stage]") {
-  const sysid::StageParameters p = sysid::StageParameters::Default();
+  const sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
   sysid::SmoothProfileOptions o;
   o.frequency_hz = 0.5;
   o.cycles = 1;
   const auto ref = sysid::MakeSmoothProfile(o);
   sysid::VirtualStage plain(p, 7);
-  const auto pi_only = sysid::RunClosedLoop(plain, ref, sysid::PiOptions::ForVirtualStage());
+  const auto pi_only = sysid::RunClosedLoop(plain, ref, sysid::PiOptions::ForActuatorDelayStage());
   INFO("PI alone: " << pi_only.BriefReport());
   // Stable and tracking: errors well below the 10 mm stroke (measured 0.23 mm; paper ~0.1 mm).
   CHECK(pi_only.max_error_m < 1e-3);
@@ -30,7 +30,7 @@ TEST_CASE("PI with the virtual-stage gains tracks the 0.5 Hz profile; feedforwar
   };
   sysid::VirtualStage ff_stage(p, 7);
   const auto with_ff =
-      sysid::RunClosedLoop(ff_stage, ref, sysid::PiOptions::ForVirtualStage(), inverse);
+      sysid::RunClosedLoop(ff_stage, ref, sysid::PiOptions::ForActuatorDelayStage(), inverse);
   INFO("PI + inverse feedforward: " << with_ff.BriefReport());
   CHECK(with_ff.rms_error_m < pi_only.rms_error_m);
 }

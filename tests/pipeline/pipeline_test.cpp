@@ -71,9 +71,10 @@ TEST_CASE("sysid track runs every feedforward scheme on the virtual stage", "[pi
   sysid::WriteModel(dir / "m.json", sysid::FrictionModel::Paper());
   sysid::NeuralNetwork net({{"v", "m/s", -0.1, 0.1}}, {"u", "V", -2, 2}, 3);
   sysid::WriteNeuralNetwork(dir / "nn.json", net);  // zero weights: u_ff = 0 V exactly
+  // The default stage with the paper's default gains.
   const auto r = RunCli({"track", "--ff", "none,analytic,nn", "--model", dir / "m.json", "--nn",
-                         dir / "nn.json", "--freq", "1", "--cycles", "1", "--kp", "3000", "--ki",
-                         "104100", "--json", "-o", dir / "out", "--no-plots"});
+                         dir / "nn.json", "--freq", "1", "--cycles", "1", "--json", "-o",
+                         dir / "out", "--no-plots"});
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["schemes"].size() == 3);
@@ -86,6 +87,12 @@ TEST_CASE("sysid track runs every feedforward scheme on the virtual stage", "[pi
   CHECK(j["schemes"][1]["max_error_m"] != j["schemes"][0]["max_error_m"]);
   const std::string traces = sysid::test::ReadText(dir / "out/track_analytic.csv");
   CHECK(traces.find("t,x_ref,x,e,u,u_ff") != std::string::npos);
+  // The actuator-delay preset by name, with the gains that are stable on it.
+  const auto ad = RunCli({"track", "--plant", "actuator-delay", "--freq", "1", "--cycles", "1",
+                          "--kp", "3000", "--ki", "104100", "--json", "--no-plots"});
+  REQUIRE(ad.exit_code == 0);
+  CHECK_THAT(nlohmann::json::parse(ad.out)["plant"].get<std::string>(),
+             Catch::Contains("actuator delay"));
   // Missing model for analytic feedforward: a usage error.
   CHECK(RunCli({"track", "--ff", "analytic", "--freq", "1"}).exit_code == 1);
 }

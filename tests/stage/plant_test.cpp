@@ -45,11 +45,140 @@ struct Rk4Reference {
   }
 };
 
+// The velocity-source equations of stage.hpp written out again: RK4 with h = 1 us while
+// sliding; the Karnopp switches are checked after every step (a sign change of v ends the
+// slide: stick when |p v_f| <= Fs, else reverse; stuck, it breaks away once |p v_f| > Fs).
+struct VelocitySourceReference {
+  sysid::StageParameters p;
+  double x = 0, v = 0, w = 0;
+  bool stuck = true;
+  double d = 1;  // sliding direction
+  double Accel(double vv, double ww) const {
+    return p.motor.pole_per_s * (p.NoLoadSpeed(ww) - vv) - d * p.rail.Sliding(std::abs(vv));
+  }
+  void Step(double u_drive, double h) {
+    const double t = p.lag_time_constant_s;
+    auto dw = [&](double ww) { return (u_drive - ww) / t; };
+    if (stuck) {
+      const double k1 = dw(w), k2 = dw(w + h / 2 * k1), k3 = dw(w + h / 2 * k2),
+                   k4 = dw(w + h * k3);
+      w += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+      const double vf = p.NoLoadSpeed(w);
+      if (std::abs(p.motor.pole_per_s * vf) > p.rail.static_mps2) {
+        stuck = false;
+        d = vf > 0 ? 1 : -1;
+      }
+      return;
+    }
+    const double x1 = v, v1 = Accel(v, w), w1 = dw(w);
+    const double x2 = v + h / 2 * v1, v2 = Accel(v + h / 2 * v1, w + h / 2 * w1),
+                 w2 = dw(w + h / 2 * w1);
+    const double x3 = v + h / 2 * v2, v3 = Accel(v + h / 2 * v2, w + h / 2 * w2),
+                 w3 = dw(w + h / 2 * w2);
+    const double x4 = v + h * v3, v4 = Accel(v + h * v3, w + h * w3), w4 = dw(w + h * w3);
+    x += h / 6 * (x1 + 2 * x2 + 2 * x3 + x4);
+    v += h / 6 * (v1 + 2 * v2 + 2 * v3 + v4);
+    w += h / 6 * (w1 + 2 * w2 + 2 * w3 + w4);
+    if (v * d < 0) {  // came to rest within the step
+      v = 0;
+      const double vf = p.NoLoadSpeed(w);
+      if (std::abs(p.motor.pole_per_s * vf) <= p.rail.static_mps2)
+        stuck = true;
+      else
+        d = vf > 0 ? 1 : -1;
+    }
+  }
+};
+
 }  // namespace
 
-TEST_CASE("the CVODE plant matches a tiny-step RK4 reference through pulses and reversals",
+TEST_CASE("the velocity-source plant matches a tiny-step reference through stick, slip and "
+          "reversals",
           "[stage][plant]") {
   sysid::StageParameters p = sysid::StageParameters::Default();
+  REQUIRE(p.model == sysid::StageModel::kVelocitySource);
+  p.position_noise_m = 0;
+  const int n = 420;
+  std::vector<double> u(n, 0.0);
+  for (int k = 10; k < 110; ++k) u[k] = 2.0;     // forward pulse, decays to rest in the dead zone
+  for (int k = 110; k < 210; ++k) u[k] = -2.3;   // direct reversal
+  for (int k = 230; k < 330; ++k) u[k] = 1.25;   // the steep low-speed segment
+  for (int k = 330; k < 400; ++k) u[k] = -1.75;  // just past the backward dead zone
+  sysid::VirtualStage stage(p, 1);
+  VelocitySourceReference ref{p};
+  double worst_x = 0, worst_v = 0;
+  bool saw_stuck = false, saw_slide_after = false;
+  for (int k = 0; k < n; ++k) {
+    stage.Step(u[k]);
+    const double drive = std::clamp(stage.DacOutput(u[k]), -p.saturation_v, p.saturation_v);
+    for (int i = 0; i < 1000; ++i) ref.Step(drive, 1e-6);
+    const sysid::StageState s = stage.state();
+    worst_x = std::max(worst_x, std::abs(s.x_m - ref.x));
+    worst_v = std::max(worst_v, std::abs(s.v_mps - ref.v));
+    if (k > 20) {
+      CHECK(s.stuck == ref.stuck);
+      saw_stuck = saw_stuck || s.stuck;
+      saw_slide_after = saw_slide_after || (saw_stuck && !s.stuck);
+    }
+  }
+  INFO("final x " << ref.x << " m, max |dx| " << worst_x << " m, max |dv| " << worst_v);
+  REQUIRE(std::abs(ref.x) > 1e-3);  // it really moved
+  CHECK(saw_stuck);
+  CHECK(saw_slide_after);
+  // CVODE rtol 1e-7 over ~2.5 cm of path (measured 3.9e-8 m); the reference locates each
+  // switch to within its 1 us step, where the velocity moves by up to |v'| h ~ 3e-5 m/s.
+  CHECK(worst_x < 6e-8);  // [m]
+  CHECK(worst_v < 5e-5);  // [m/s]
+}
+
+TEST_CASE("velocity source: speed map, steady velocities and breakaway against closed forms",
+          "[stage][plant]") {
+  const sysid::StageParameters p = sysid::StageParameters::Default();
+  const double pp = p.motor.pole_per_s;
+  // The map passes its knots, is 0 in the dead zone and extends its end segments linearly.
+  for (size_t i = 0; i < p.motor.speed_map_in_v.size(); ++i)
+    CHECK(p.NoLoadSpeed(p.motor.speed_map_in_v[i]) == Approx(p.motor.speed_map_out_mps[i]));
+  CHECK(p.NoLoadSpeed(0.0) == 0.0);
+  CHECK(p.NoLoadSpeed(p.motor.dead_zone_forward_v) == 0.0);
+  CHECK(p.NoLoadSpeed(-p.motor.dead_zone_backward_v) == 0.0);
+  const double f13 = p.NoLoadSpeed(1.3), f17 = p.NoLoadSpeed(1.7), f20 = p.NoLoadSpeed(2.0);
+  const double dz = p.motor.dead_zone_forward_v;
+  CHECK(p.NoLoadSpeed(0.5 * (dz + 1.3)) == Approx(0.5 * f13));
+  CHECK(p.NoLoadSpeed(3.0) == Approx(f20 + (f20 - f17) / 0.3 * 1.0));
+  // Steady sliding p (v_f - v) = g(v): the paper's ten pulse points come out exactly.
+  const double table[10][2] = {{1.3, 0.04465},   {1.5, 0.05742},   {1.6, 0.06222},
+                               {1.7, 0.06863},   {2.0, 0.08519},   {-1.8, -0.03393},
+                               {-2.0, -0.04622}, {-2.1, -0.04991}, {-2.3, -0.05562},
+                               {-2.5, -0.07120}};
+  for (const auto& row : table) {
+    const double v = p.SteadyVelocity(row[0]);
+    CHECK(v == Approx(row[1]).epsilon(1e-10));
+    CHECK(pp * (p.NoLoadSpeed(row[0]) - v) == Approx((v > 0 ? 1 : -1) * p.rail.Sliding(std::abs(v))));
+  }
+  // Breakaway from rest where p v_f(u) = Fs: on the first segment v_f = f13 (u - dz)/(1.3 - dz).
+  const double u_start = dz + p.rail.static_mps2 / pp * (1.3 - dz) / f13;
+  CHECK(p.SteadyVelocity(u_start - 1e-6) == 0.0);
+  CHECK(p.SteadyVelocity(u_start + 1e-3) > 0.0);
+  // Held inside the threshold the stage does not move at all (the preload holds it).
+  sysid::StageParameters quiet = p;
+  quiet.position_noise_m = 0;
+  const sysid::StageRun held =
+      sysid::RunOpenLoop(quiet, Eigen::VectorXd::Constant(200, u_start - 0.002), 3);
+  CHECK(held.x_true_m.cwiseAbs().maxCoeff() == 0.0);
+  const sysid::StageRun back = sysid::RunOpenLoop(
+      quiet, Eigen::VectorXd::Constant(200, -p.motor.dead_zone_backward_v + 0.01), 3);
+  CHECK(back.x_true_m.cwiseAbs().maxCoeff() == 0.0);
+  // A held voltage settles at the steady velocity (time constant 1/p = 3.3 ms << 0.3 s).
+  for (double u : {1.25, 1.6, 3.0, -1.9, -4.0}) {
+    const sysid::StageRun run = sysid::RunOpenLoop(quiet, Eigen::VectorXd::Constant(300, u), 3);
+    // The DAC moves u by <= 1.5e-4 V; on the steepest segment that is ~1e-4 of v.
+    CHECK(run.v_true_mps[299] == Approx(p.SteadyVelocity(u)).epsilon(2e-3));
+  }
+}
+
+TEST_CASE("the actuator-delay plant matches a tiny-step RK4 reference through pulses and reversals",
+          "[stage][plant]") {
+  sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
   p.transport_delay_s = 0.0025;  // 2.5 samples: exercises the edge inside the sample
   p.position_noise_m = 0;
   const int n = 260;
@@ -80,8 +209,9 @@ TEST_CASE("the CVODE plant matches a tiny-step RK4 reference through pulses and 
   CHECK(worst_v < 2e-5);           // [m/s] same tolerances on velocities of ~0.1 m/s
 }
 
-TEST_CASE("a held voltage settles at the steady velocity found by bisection", "[stage][plant]") {
-  const sysid::StageParameters p = sysid::StageParameters::Default();
+TEST_CASE("actuator delay: a held voltage settles at the steady velocity found by bisection",
+          "[stage][plant]") {
+  const sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
   for (double u : {0.9, 3.0, -1.6, -4.0}) {
     const Eigen::VectorXd cmd = Eigen::VectorXd::Constant(300, u);
     const sysid::StageRun run = sysid::RunOpenLoop(p, cmd, 3);
@@ -95,7 +225,7 @@ TEST_CASE("a held voltage settles at the steady velocity found by bisection", "[
 }
 
 TEST_CASE("the transport delay holds the drive back by whole and half samples", "[stage][plant]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
   p.transport_delay_s = 0.003;
   sysid::VirtualStage stage(p, 1);
   for (int k = 0; k < 3; ++k) {
@@ -155,20 +285,23 @@ TEST_CASE("the noise is seeded, standard-specified and close to N(0,1)", "[stage
 }
 
 TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[stage][limits]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
-  p.initial_position_m = 0.055;
-  Eigen::VectorXd u(600);
-  u.head(300).setConstant(3.0);
-  u.tail(300).setConstant(-3.0);
-  const sysid::StageRun run = sysid::RunOpenLoop(p, u, 1);
-  CHECK(run.status.travel_limit_hit);
-  CHECK(run.status.first_travel_hit_s > 0.0);
-  CHECK(run.x_true_m.maxCoeff() <= p.travel_max_m);
-  CHECK(run.x_true_m[299] == p.travel_max_m);
-  CHECK(run.x_true_m[599] < p.travel_max_m - 0.01);  // reversed away from the stop
-  CHECK_THAT(run.status.Describe(), Catch::Contains("travel limit hit at t = "));
-  CHECK_FALSE(run.status.velocity_limit_exceeded);
-  const sysid::StageRun fast =
-      sysid::RunOpenLoop(sysid::StageParameters::Default(), Eigen::VectorXd::Constant(100, 9.0));
-  CHECK(fast.status.velocity_limit_exceeded);  // steady speed ~0.5 m/s > 0.23 m/s
+  for (const auto& preset : {sysid::StageParameters::Default(),
+                             sysid::StageParameters::ActuatorDelay()}) {
+    INFO(preset.name);
+    sysid::StageParameters p = preset;
+    p.initial_position_m = 0.055;
+    Eigen::VectorXd u(600);
+    u.head(300).setConstant(3.0);
+    u.tail(300).setConstant(-3.0);
+    const sysid::StageRun run = sysid::RunOpenLoop(p, u, 1);
+    CHECK(run.status.travel_limit_hit);
+    CHECK(run.status.first_travel_hit_s > 0.0);
+    CHECK(run.x_true_m.maxCoeff() <= p.travel_max_m);
+    CHECK(run.x_true_m[299] == p.travel_max_m);
+    CHECK(run.x_true_m[599] < p.travel_max_m - 0.01);  // reversed away from the stop
+    CHECK_THAT(run.status.Describe(), Catch::Contains("travel limit hit at t = "));
+    CHECK_FALSE(run.status.velocity_limit_exceeded);
+    const sysid::StageRun fast = sysid::RunOpenLoop(preset, Eigen::VectorXd::Constant(100, 9.0));
+    CHECK(fast.status.velocity_limit_exceeded);  // steady speed ~0.5 m/s > 0.23 m/s
+  }
 }

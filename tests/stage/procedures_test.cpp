@@ -82,7 +82,7 @@ TEST_CASE("sysid generate reproduces the bundled datasets byte for byte", "[stag
           sysid::test::ReadText((bundled / name).string()));
     ++compared;
   }
-  CHECK(compared == 10);  // stage.json, pulses, training, test and six waveforms
+  CHECK(compared == 11);  // stage.json, pulses, training, test, triangle loop, six waveforms
 }
 
 TEST_CASE("generate and excite report bad input with the documented exit codes", "[stage][cli]") {

@@ -27,11 +27,12 @@ struct PiOptions {
   double u_max_v = 10.0;         ///< [V] output saturation +-u_max_v, > 0
   AntiWindup anti_windup = AntiWindup::kConditionalIntegration;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
-  /// Gains that are stable on the virtual stage (datasets/virtual/stage.json): Kp = 3000 V/m,
-  /// Ki = 104100 V/(m s) (the paper's ratio Ki/Kp = 34.7 1/s). The paper's Kp = 19000 V/m puts
-  /// the crossover of Kp a3 / (s (s + a1)) near 330 rad/s, where the stage's 3.5 ms of delay
-  /// and lag cost ~66 degrees: on the virtual stage that loop limit-cycles at +-10 V.
-  static PiOptions ForVirtualStage();
+  /// Gains that are stable on the actuator-delay preset (StageParameters::ActuatorDelay()):
+  /// Kp = 3000 V/m, Ki = 104100 V/(m s) (the paper's ratio Ki/Kp = 34.7 1/s). The paper's
+  /// Kp = 19000 V/m puts the crossover of Kp a3 / (s (s + a1)) near 330 rad/s, where that
+  /// stage's 3.5 ms of delay and lag cost ~66 degrees: there that loop limit-cycles at +-10 V.
+  /// The default velocity-source stage runs the paper's gains (the defaults above).
+  static PiOptions ForActuatorDelayStage();
 };
 
 /// The discrete PI law above, one sample at a time.

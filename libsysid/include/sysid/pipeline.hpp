@@ -66,7 +66,7 @@ struct PipelineOptions {
   bool track = true;       ///< PI tracking when a stage file is available
   std::vector<double> track_frequencies_hz{0.5, 1.0};
   double track_amplitude_m = 0.01;  ///< [m] stroke of the smooth profile
-  PiOptions pi = PiOptions::ForVirtualStage();
+  PiOptions pi;             ///< the paper's gains (stable on the default velocity-source stage)
   /// JSON of reference numbers placed beside ours in the report (experiments/ passes the
   /// paper's); empty: none.
   std::string reference_path;

@@ -1,8 +1,29 @@
 // The virtual piezo stage: a simulated ultrasonic-motor stage (PBA PLS8 + Nanomotion HR-8 as in
 // the paper) that is deliberately richer than the rough model of model.hpp, and the paper's
 // data-collection procedures (pulse test, tracking sets, test waveforms) that run on it.
+// Two plant models share the rig (DAC, encoder, end stops) and the integrator (CVODE):
 //
-// Plant (all forces per unit mass, [m/s^2]):
+// VELOCITY SOURCE (model "velocity-source", the default; docs/virtual_stage.md). An ultrasonic
+// motor's fingertips push with a force that droops linearly with speed, from the stall force at
+// rest to zero at the no-load speed v_f(u): per unit mass p (v_f(u) - v).
+//   DAC:     u_dac as below; driver: u_s = clip(u_dac(t - transport_delay_s), +-saturation_v),
+//            first-order envelope lag  T_l u_d' = u_s - u_d   (lag_time_constant_s, ~0.3 ms)
+//   motor:   v_f(u_d) = 0 for -dz_b <= u_d <= dz_f (the fingertip preload: below these
+//            voltages the fingers do not slide on the belt and hold the stage), else piecewise
+//            linear through (dz_f, 0), the speed-map knots and (-dz_b, 0), extrapolated linearly
+//   motion:  x' = v,  v' = p (v_f(u_d) - v) - F_r      (p = motor.pole_per_s [1/s])
+//   rail:    Karnopp stick-slip: sliding F_r = sgn(v) g(v), g(v) = Fc + (Fs - Fc) exp(-(v/vs)^2);
+//            stuck (v = 0) while |p v_f(u_d)| <= Fs, then it breaks away in the sign of v_f;
+//            a sliding stage that reaches v = 0 sticks again unless |p v_f| > Fs.
+//   Steady sliding: p (v_f(u) - v) = g(v), so the speed map is calibrated as
+//   v_f(u_i) = v_i + g(v_i) / p through the paper's ten pulse points (u_i, v_i).
+//   Start and stop differ: from rest the stage starts when |v_f| > Fs / p; sliding, it stops
+//   when v_f falls to ~Fc / p (start/stop hysteresis of the rail's static friction).
+//
+// ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
+// paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
+// than the rough model, so no viscous delay tau > 0 fits, and its delay + lag eat the phase
+// margin of the paper's PI gains). Plant (all forces per unit mass, [m/s^2]):
 //   DAC:     u_dac = 16-bit quantisation of the command over +-dac_range_v, held for one sample
 //   driver:  u_d(t) = u_dac(t - transport_delay_s), clipped to +-saturation_v,
 //            dead zone: u_z = u_d - dz sgn(u_d) for |u_d| > dz, else 0,
@@ -11,11 +32,12 @@
 //   motion:  x' = v,  v' = a3 w - F,   F = s0 z + s1 z' + s2(v) v            (LuGre friction)
 //            z' = v - s0 |v| z / g(v),  g(v) = Fc + (Fs - Fc) exp(-(v / vs)^2)
 //            with (Fc, Fs, vs, s2) taken from the forward branch for v > 0, the backward for v < 0.
-//   rig:     the encoder reads round((x + n) / q) q with n ~ N(0, position_noise_m^2) (seeded),
-//            q = encoder_resolution_m; travel limits are hard end stops; exceeding
-//            max_velocity_mps is reported (not clipped).
-// In steady sliding the friction is g(v) + s2 v, so a constant voltage u gives
-// a3 M(|u| - dz) = g(v) + s2 |v|: the rough model's a1 ~ s2 and a2 ~ Fc + a3 dz.
+//   In steady sliding the friction is g(v) + s2 v, so a constant voltage u gives
+//   a3 M(|u| - dz) = g(v) + s2 |v|: the rough model's a1 ~ s2 and a2 ~ Fc + a3 dz.
+//
+// Rig (both): the encoder reads round((x + n) / q) q with n ~ N(0, position_noise_m^2) (seeded),
+// q = encoder_resolution_m; travel limits are hard end stops; exceeding max_velocity_mps is
+// reported (not clipped).
 //
 // Determinism: the noise comes from std::mt19937_64 (whose output the standard fixes) through an
 // Irwin-Hall transform (sum of 12 uniforms - 6: only additions, so identical on every IEEE-754
@@ -43,18 +65,51 @@ struct FrictionBranch {
   double viscous_per_s = 0;          ///< [1/s] s2 >= 0, viscous coefficient
 };
 
+/// Which plant equations the virtual stage integrates (see the top of this file).
+enum class StageModel {
+  kVelocitySource,  ///< "velocity-source": ultrasonic motor as a drooping velocity source
+  kActuatorDelay,   ///< "actuator-delay": force actuator behind a transport delay, LuGre rail
+};
+std::string ToString(StageModel model);
+/// "velocity-source" or "actuator-delay"; throws OptionsError naming both otherwise.
+StageModel ParseStageModel(const std::string& text);
+
+/// Rail friction of the velocity-source model (Karnopp stick-slip), per unit mass, both
+/// directions alike.
+struct RailFriction {
+  double coulomb_mps2 = 0.3;             ///< [m/s^2] Fc > 0, sliding level
+  double static_mps2 = 0.5;              ///< [m/s^2] Fs >= Fc, breakaway level
+  double stribeck_velocity_mps = 0.002;  ///< [m/s] vs > 0, width of the Stribeck dip
+  /// [m/s^2] g(|v|) = Fc + (Fs - Fc) exp(-(v / vs)^2), the sliding friction magnitude.
+  double Sliding(double speed_mps) const;
+};
+
+/// The velocity-source motor: force per unit mass p (v_f(u_d) - v).
+struct MotorParameters {
+  double pole_per_s = 300;             ///< [1/s] p > 0, stall force / no-load speed per volt
+  double dead_zone_forward_v = 1.2;    ///< [V] dz_f >= 0: v_f = 0 for 0 <= u_d <= dz_f
+  double dead_zone_backward_v = 1.7;   ///< [V] dz_b >= 0: v_f = 0 for -dz_b <= u_d <= 0
+  std::vector<double> speed_map_in_v;  ///< [V] knots, increasing, all outside [-dz_b, dz_f]
+  std::vector<double> speed_map_out_mps;  ///< [m/s] v_f at the knots (sign of the knot)
+};
+
 /// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.
 struct StageParameters {
-  std::string name = "virtual PLS8/HR-8";
-  // Driver and motor.
+  std::string name = "virtual PLS8/HR-8 (velocity source)";
+  StageModel model = StageModel::kVelocitySource;
+  // Velocity-source model (used when model == kVelocitySource).
+  MotorParameters motor;
+  RailFriction rail;
+  // Driver (both models: saturation, transport delay, lag).
+  double saturation_v = 10.0;           ///< [V] driver input clip, > dead_zone_v
+  double transport_delay_s = 0.0;       ///< [s] >= 0, any multiple of the sample time
+  double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
+  // Actuator-delay model only: force actuator and LuGre rail friction.
   double gain_mps2_per_v = 6.0;         ///< [m/(s^2 V)] a3, force per volt per unit mass
   double dead_zone_v = 0.15;            ///< [V] dz >= 0
-  double saturation_v = 10.0;           ///< [V] driver input clip, > dead_zone_v
-  double transport_delay_s = 0.002;     ///< [s] >= 0, any multiple of the sample time
-  double lag_time_constant_s = 0.0015;  ///< [s] T > 0, first-order lag of the drive force
   std::vector<double> drive_map_in_v;   ///< [V] knots of M (after the dead zone), increasing
   std::vector<double> drive_map_out_v;  ///< [V] M at the knots, non-decreasing, M(0) = 0
-  // Friction (LuGre, per unit mass).
+  // Friction (LuGre, per unit mass; actuator-delay model only).
   double bristle_stiffness_per_s2 = 1e6;  ///< [1/s^2] s0 > 0
   double bristle_damping_per_s = 1000;    ///< [1/s] s1 >= 0
   FrictionBranch forward;                 ///< branch for v > 0
@@ -74,16 +129,32 @@ struct StageParameters {
   double position_tolerance_m = 1e-10;  ///< [m] CVODE atol of x and z (v, w scaled by 1/Ts)
 
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
+  /// Checks the rig, the driver and the parameters of `model` (the other model's are unused).
   void Validate() const;
-  /// The calibrated virtual stage (identical to datasets/virtual/stage.json).
+  /// The calibrated virtual stage (identical to datasets/virtual/stage.json): velocity source.
   static StageParameters Default();
+  /// The stage of libsysid before the velocity-source model (transport delay + lag + LuGre):
+  /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
+  static StageParameters ActuatorDelay();
+  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay".
+  /// Throws OptionsError listing the names otherwise.
+  static StageParameters Preset(const std::string& name);
+  /// True when `name` is one of Preset's names.
+  static bool IsPresetName(const std::string& name);
   /// [s] 1 / sample_rate_hz.
   double sample_time_s() const { return 1.0 / sample_rate_hz; }
   /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
   double DriveMap(double u_v) const;
-  /// [m/s] steady sliding velocity under a constant voltage (ignoring noise and limits), found
-  /// by bisection on a3 M(|u| - dz) = g(v) + s2 |v|; 0 when the drive does not break away.
+  /// [m/s] no-load speed v_f(u) of the velocity-source motor (0 inside the dead zone).
+  double NoLoadSpeed(double u_v) const;
+  /// [m/s] steady sliding velocity under a constant voltage reached from rest (ignoring noise
+  /// and limits), found by bisection on the model's steady force balance; 0 when the drive
+  /// does not break away (velocity source: |p v_f(u)| <= Fs; actuator delay: a3 M <= Fs).
   double SteadyVelocity(double u_v) const;
+
+ private:
+  void ValidateVelocitySource() const;
+  void ValidateDriveMap() const;
 };
 
 /// Parses a stage file's JSON text; `source` names it in errors ("FILE:LINE:COLUMN: ...").
@@ -93,13 +164,18 @@ StageParameters ReadStageParameters(const std::string& path);
 /// JSON text with nested objects "drive", "friction", "rig", "integrator"; units in key names.
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
+/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay) or
+/// the path of a stage file.
+StageParameters LoadStage(const std::string& preset_or_path);
 
 /// The true (unmeasured) state of the plant.
 struct StageState {
   double x_m = 0;    ///< [m] position
   double v_mps = 0;  ///< [m/s] velocity
-  double z_m = 0;    ///< [m] LuGre bristle deflection
-  double w_v = 0;    ///< [V] driver lag state (drive force / a3)
+  double z_m = 0;    ///< [m] LuGre bristle deflection (actuator delay; 0 for velocity source)
+  double w_v = 0;    ///< [V] driver lag state (actuator delay: drive force / a3; velocity
+                     ///  source: the lagged drive voltage u_d)
+  bool stuck = false;  ///< velocity source: held by the rail's static friction (v = 0)
 };
 
 /// Limits reached so far, and integrator work.
@@ -228,6 +304,22 @@ Recording RunTrackingSet(const StageParameters& stage, const std::vector<Velocit
 /// Runs the pulse test; columns t, u, x, v, a.
 Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
                        std::uint64_t seed, const DerivativeOptions& derivative = {});
+
+/// The paper's section-3/4 voltage-velocity check: an open-loop triangle voltage of period
+/// period_s rising from 0 to peak_forward_v, back through 0 to -peak_backward_v and back to 0
+/// (four straight quarters), repeated `cycles` times. Shows the stage's asymmetric
+/// voltage-velocity loop (the paper's Fig. 7: 6 s, +1.5 V / -2.1 V).
+struct TriangleProcedure {
+  double period_s = 6.0;         ///< [s] > 0
+  double peak_forward_v = 1.5;   ///< [V] >= 0
+  double peak_backward_v = 2.1;  ///< [V] >= 0 (magnitude of the negative peak)
+  int cycles = 1;                ///< >= 1
+  void Validate() const;
+  Eigen::VectorXd Voltage(double sample_rate_hz) const;  ///< one value per sample
+};
+/// Runs the triangle test; columns t, u, x, v, a.
+Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure& procedure,
+                          std::uint64_t seed, const DerivativeOptions& derivative = {});
 
 /// The excitation alone (for a real rig): columns t, u.
 Recording PulseExcitation(const PulseProcedure& procedure, double sample_rate_hz);

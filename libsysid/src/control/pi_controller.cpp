@@ -26,7 +26,7 @@ void PiOptions::Validate() const {
   if (!std::isfinite(u_max_v) || !(u_max_v > 0)) Violated("u_max_v", u_max_v, "u_max_v > 0");
 }
 
-PiOptions PiOptions::ForVirtualStage() {
+PiOptions PiOptions::ForActuatorDelayStage() {
   PiOptions o;
   o.kp_v_per_m = 3000;
   o.ki_v_per_m_s = 104100;

@@ -127,6 +127,61 @@ Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& proce
   return r;
 }
 
+// ---- Triangle (voltage-velocity loop) ----------------------------------------------------
+
+void TriangleProcedure::Validate() const {
+  if (!(period_s > 0) || !std::isfinite(period_s))
+    Violated("TriangleProcedure::period_s", period_s, "period_s > 0");
+  if (!(peak_forward_v >= 0) || peak_forward_v > 10)
+    Violated("TriangleProcedure::peak_forward_v", peak_forward_v, "0 <= peak_forward_v <= 10");
+  if (!(peak_backward_v >= 0) || peak_backward_v > 10)
+    Violated("TriangleProcedure::peak_backward_v", peak_backward_v, "0 <= peak_backward_v <= 10");
+  if (cycles < 1 || cycles > 1000) Violated("TriangleProcedure::cycles", cycles, "1 <= cycles <= 1000");
+}
+
+Eigen::VectorXd TriangleProcedure::Voltage(double rate) const {
+  Validate();
+  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  const long n = Samples(cycles * period_s, rate);
+  Eigen::VectorXd u(n);
+  for (long k = 0; k < n; ++k) {
+    const double phase = std::fmod(static_cast<double>(k) / rate, period_s) / period_s;  // [0, 1)
+    // Quarters: 0 -> +peak, +peak -> 0, 0 -> -peak, -peak -> 0.
+    if (phase < 0.25)
+      u[k] = peak_forward_v * phase / 0.25;
+    else if (phase < 0.5)
+      u[k] = peak_forward_v * (0.5 - phase) / 0.25;
+    else if (phase < 0.75)
+      u[k] = -peak_backward_v * (phase - 0.5) / 0.25;
+    else
+      u[k] = -peak_backward_v * (1.0 - phase) / 0.25;
+  }
+  return u;
+}
+
+Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure& procedure,
+                          std::uint64_t seed, const DerivativeOptions& derivative) {
+  stage.Validate();
+  const double rate = stage.sample_rate_hz;
+  derivative.Validate(1.0 / rate);
+  const StageRun run = RunOpenLoop(stage, procedure.Voltage(rate), seed);
+  const Derivatives d = Differentiate(run.x_m, 1.0 / rate, derivative);
+  Recording r;
+  r.source = "triangle";
+  r.names = {"t", "u", "x", "v", "a"};
+  r.data.resize(run.t_s.size(), 5);
+  r.data << run.t_s, run.u_v, run.x_m, d.v_mps, d.a_mps2;
+  AddCommonMetadata(r, stage, "open-loop triangle (voltage-velocity loop)", seed);
+  r.metadata.emplace_back("triangle", "period " + Fmt(procedure.period_s) + " s, peaks +" +
+                                          Fmt(procedure.peak_forward_v) + " / -" +
+                                          Fmt(procedure.peak_backward_v) + " V, " +
+                                          std::to_string(procedure.cycles) + " cycle(s)");
+  r.metadata.emplace_back("derivative", ToString(derivative.method));
+  r.metadata.emplace_back("limits", run.status.Describe());
+  r.metadata.emplace_back("units", kUnits);
+  return r;
+}
+
 // ---- Tracking ----------------------------------------------------------------------------
 
 void TrackingProcedure::Validate(const StageParameters& stage) const {

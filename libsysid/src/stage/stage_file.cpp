@@ -1,5 +1,5 @@
-// The stage file: JSON with the unit in every key, grouped as drive / friction / rig /
-// integrator. Unknown keys are errors so that a typo never silently leaves a default.
+// The stage file: JSON with the unit in every key, grouped as model, drive, motor + rail
+// (velocity source) or friction (actuator delay), rig, integrator. Unknown keys are errors so that a typo never silently leaves a default.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -93,20 +93,58 @@ Section BranchSection(FrictionBranch& b) {
 
 }  // namespace
 
+namespace {
+
+// The model a file describes: its "model" key, else inferred from its sections (files written
+// before the key existed describe the actuator-delay stage and carry "friction" or the drive's
+// force-actuator keys), else the default velocity source.
+StageModel FileModel(const Context& c, const Json& j) {
+  if (j.contains("model")) {
+    const Json& m = j["model"];
+    if (!m.is_string())
+      c.Fail("", "model", "key 'model': expected \"velocity-source\" or \"actuator-delay\"");
+    try {
+      return ParseStageModel(m.get<std::string>());
+    } catch (const OptionsError& e) {
+      c.Fail("", "model", std::string("key 'model': ") + e.what());
+    }
+  }
+  if (j.contains("friction")) return StageModel::kActuatorDelay;
+  if (j.contains("drive") && j["drive"].is_object())
+    for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
+      if (j["drive"].contains(k)) return StageModel::kActuatorDelay;
+  return StageModel::kVelocitySource;
+}
+
+}  // namespace
+
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
   const Json j = detail::ParseJsonText(json_text, source);
   const Context c{json_text, source};
   if (!j.is_object())
     throw InputError(source +
-                     ":1:1: expected a JSON object with keys name, drive, friction, "
-                     "rig, integrator");
-  StageParameters p = StageParameters::Default();
+                     ":1:1: expected a JSON object with keys name, model, drive, motor, rail "
+                     "(velocity-source) or friction (actuator-delay), rig, integrator");
+  const StageModel model = FileModel(c, j);
+  const bool vs = model == StageModel::kVelocitySource;
+  StageParameters p =
+      vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
+  const std::string model_name = ToString(model);
+  auto other_model = [&](const std::string& parent, const std::string& key) {
+    c.Fail(parent, key,
+           "key '" + key + "' belongs to the " + (vs ? "actuator-delay" : "velocity-source") +
+               " model; this stage's model is " + model_name + " (key 'model')");
+  };
   for (const auto& [key, value] : j.items()) {
-    if (key == "units" || key == "note" || (!key.empty() && key[0] == '_')) continue;
+    if (key == "units" || key == "note" || key == "model" || (!key.empty() && key[0] == '_'))
+      continue;
     if (key == "name") {
       if (!value.is_string()) c.Fail("", key, "key 'name': expected a string");
       p.name = value.get<std::string>();
     } else if (key == "drive") {
+      if (vs && value.is_object())
+        for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
+          if (value.contains(k)) other_model(key, k);
       Section{{{"gain_mps2_per_v", &p.gain_mps2_per_v},
                {"dead_zone_v", &p.dead_zone_v},
                {"saturation_v", &p.saturation_v},
@@ -116,7 +154,27 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
               {}}
           .Read(c, key, value);
+    } else if (key == "motor") {
+      if (!vs) other_model("", key);
+      Section{{{"pole_per_s", &p.motor.pole_per_s},
+               {"dead_zone_forward_v", &p.motor.dead_zone_forward_v},
+               {"dead_zone_backward_v", &p.motor.dead_zone_backward_v}},
+              {},
+              {{"speed_map_in_v", &p.motor.speed_map_in_v},
+               {"speed_map_out_mps", &p.motor.speed_map_out_mps}},
+              {}}
+          .Read(c, key, value);
+    } else if (key == "rail") {
+      if (!vs) other_model("", key);
+      Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
+               {"static_mps2", &p.rail.static_mps2},
+               {"stribeck_velocity_mps", &p.rail.stribeck_velocity_mps}},
+              {},
+              {},
+              {}}
+          .Read(c, key, value);
     } else if (key == "friction") {
+      if (vs) other_model("", key);
       Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
                {"bristle_damping_per_s", &p.bristle_damping_per_s}},
               {},
@@ -148,7 +206,8 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
           .Read(c, key, value);
     } else {
       c.Fail("", key,
-             "unknown key '" + key + "' (expected name, drive, friction, rig, integrator)");
+             "unknown key '" + key +
+                 "' (expected name, model, drive, motor, rail, friction, rig, integrator)");
     }
   }
   try {
@@ -173,27 +232,48 @@ std::string StageParametersToJson(const StageParameters& p) {
     o["viscous_per_s"] = b.viscous_per_s;
     return o;
   };
+  const bool vs = p.model == StageModel::kVelocitySource;
   OJ j;
   j["name"] = p.name;
+  j["model"] = ToString(p.model);
   j["note"] =
       "Virtual piezo stage for libsysid (docs/virtual_stage.md). SI units; each key ends with "
       "its unit (mps = m/s, mps2 = m/s^2, per_s = 1/s, per_s2 = 1/s^2, v = V). Forces are per "
-      "unit mass.";
+      "unit mass. Only the sections of this model are written.";
   OJ drive;
-  drive["gain_mps2_per_v"] = p.gain_mps2_per_v;
-  drive["dead_zone_v"] = p.dead_zone_v;
+  if (!vs) {
+    drive["gain_mps2_per_v"] = p.gain_mps2_per_v;
+    drive["dead_zone_v"] = p.dead_zone_v;
+  }
   drive["saturation_v"] = p.saturation_v;
   drive["transport_delay_s"] = p.transport_delay_s;
   drive["lag_time_constant_s"] = p.lag_time_constant_s;
-  drive["map_in_v"] = p.drive_map_in_v;
-  drive["map_out_v"] = p.drive_map_out_v;
+  if (!vs) {
+    drive["map_in_v"] = p.drive_map_in_v;
+    drive["map_out_v"] = p.drive_map_out_v;
+  }
   j["drive"] = drive;
-  OJ friction;
-  friction["bristle_stiffness_per_s2"] = p.bristle_stiffness_per_s2;
-  friction["bristle_damping_per_s"] = p.bristle_damping_per_s;
-  friction["forward"] = branch(p.forward);
-  friction["backward"] = branch(p.backward);
-  j["friction"] = friction;
+  if (vs) {
+    OJ motor;
+    motor["pole_per_s"] = p.motor.pole_per_s;
+    motor["dead_zone_forward_v"] = p.motor.dead_zone_forward_v;
+    motor["dead_zone_backward_v"] = p.motor.dead_zone_backward_v;
+    motor["speed_map_in_v"] = p.motor.speed_map_in_v;
+    motor["speed_map_out_mps"] = p.motor.speed_map_out_mps;
+    j["motor"] = motor;
+    OJ rail;
+    rail["coulomb_mps2"] = p.rail.coulomb_mps2;
+    rail["static_mps2"] = p.rail.static_mps2;
+    rail["stribeck_velocity_mps"] = p.rail.stribeck_velocity_mps;
+    j["rail"] = rail;
+  } else {
+    OJ friction;
+    friction["bristle_stiffness_per_s2"] = p.bristle_stiffness_per_s2;
+    friction["bristle_damping_per_s"] = p.bristle_damping_per_s;
+    friction["forward"] = branch(p.forward);
+    friction["backward"] = branch(p.backward);
+    j["friction"] = friction;
+  }
   OJ rig;
   rig["sample_rate_hz"] = p.sample_rate_hz;
   rig["dac_bits"] = p.dac_bits;
@@ -210,6 +290,11 @@ std::string StageParametersToJson(const StageParameters& p) {
   integ["position_tolerance_m"] = p.position_tolerance_m;
   j["integrator"] = integ;
   return j.dump(2) + "\n";
+}
+
+StageParameters LoadStage(const std::string& preset_or_path) {
+  if (StageParameters::IsPresetName(preset_or_path)) return StageParameters::Preset(preset_or_path);
+  return ReadStageParameters(preset_or_path);
 }
 
 void WriteStageParameters(const std::string& path, const StageParameters& parameters) {

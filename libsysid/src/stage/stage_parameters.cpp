@@ -49,8 +49,58 @@ double SteadyFriction(const FrictionBranch& b, double s) {
 
 }  // namespace
 
+// The paper's pulse table (section "Parameter Identification"): amplitude [V], measured
+// steady velocity [m/s].
+const double kPaperPulseTable[10][2] = {
+    {-2.5, -0.07120}, {-2.3, -0.05562}, {-2.1, -0.04991}, {-2.0, -0.04622}, {-1.8, -0.03393},
+    {1.3, 0.04465},   {1.5, 0.05742},   {1.6, 0.06222},   {1.7, 0.06863},   {2.0, 0.08519}};
+
 StageParameters StageParameters::Default() {
+  StageParameters p;  // velocity source: the member defaults are the calibrated values
+  // Speed map through the paper's ten pulse points: a held pulse settles where
+  // p (v_f(u_i) - v) = g(v), so v_f(u_i) = v_i + sgn(v_i) g(|v_i|) / p gives exactly v_i.
+  for (const auto& row : kPaperPulseTable) {
+    const double u = row[0], v = row[1];
+    p.motor.speed_map_in_v.push_back(u);
+    p.motor.speed_map_out_mps.push_back(
+        v + (v > 0 ? 1.0 : -1.0) * p.rail.Sliding(std::abs(v)) / p.motor.pole_per_s);
+  }
+  return p;
+}
+
+bool StageParameters::IsPresetName(const std::string& name) {
+  return name == "virtual" || name == "velocity-source" || name == "actuator-delay";
+}
+
+StageParameters StageParameters::Preset(const std::string& name) {
+  if (name == "virtual" || name == "velocity-source") return Default();
+  if (name == "actuator-delay") return ActuatorDelay();
+  throw OptionsError("stage preset '" + name +
+                     "' is not one of virtual (= velocity-source), velocity-source, "
+                     "actuator-delay");
+}
+
+std::string ToString(StageModel model) {
+  return model == StageModel::kActuatorDelay ? "actuator-delay" : "velocity-source";
+}
+
+StageModel ParseStageModel(const std::string& text) {
+  if (text == "velocity-source") return StageModel::kVelocitySource;
+  if (text == "actuator-delay") return StageModel::kActuatorDelay;
+  throw OptionsError("stage model '" + text + "' is not one of velocity-source, actuator-delay");
+}
+
+double RailFriction::Sliding(double speed_mps) const {
+  const double r = speed_mps / stribeck_velocity_mps;
+  return coulomb_mps2 + (static_mps2 - coulomb_mps2) * std::exp(-r * r);
+}
+
+StageParameters StageParameters::ActuatorDelay() {
   StageParameters p;
+  p.name = "virtual PLS8/HR-8 (actuator delay)";
+  p.model = StageModel::kActuatorDelay;
+  p.transport_delay_s = 0.002;
+  p.lag_time_constant_s = 0.0015;
   // Friction branches near the paper's rough model (a1 ~ s2, a2 ~ Fc + a3 dz) with a Stribeck
   // dip the rough model lacks; breakaway at dz + Fs/a3 = 0.63 V forward, 1.32 V backward.
   p.forward = {2.2, 2.9, 0.004, 104.0};
@@ -95,12 +145,6 @@ void StageParameters::Validate() const {
           transport_delay_s, "0 <= transport_delay_s <= 1");
   Require(lag_time_constant_s > 0, "lag_time_constant_s", lag_time_constant_s,
           "lag_time_constant_s > 0");
-  Require(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
-          "bristle_stiffness_per_s2 > 0");
-  Require(bristle_damping_per_s >= 0, "bristle_damping_per_s", bristle_damping_per_s,
-          "bristle_damping_per_s >= 0");
-  ValidateBranch("forward", forward);
-  ValidateBranch("backward", backward);
   Require(sample_rate_hz > 0, "sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
   Require(dac_bits >= 1 && dac_bits <= 32, "dac_bits", dac_bits, "1 <= dac_bits <= 32");
   Require(dac_range_v > 0, "dac_range_v", dac_range_v, "dac_range_v > 0");
@@ -117,7 +161,78 @@ void StageParameters::Validate() const {
           relative_tolerance, "0 < relative_tolerance <= 1e-2");
   Require(position_tolerance_m > 0, "position_tolerance_m", position_tolerance_m,
           "position_tolerance_m > 0");
+  if (model == StageModel::kVelocitySource) {
+    ValidateVelocitySource();
+    return;
+  }
+  // Actuator-delay model: LuGre rail and drive map.
+  Require(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
+          "bristle_stiffness_per_s2 > 0");
+  Require(bristle_damping_per_s >= 0, "bristle_damping_per_s", bristle_damping_per_s,
+          "bristle_damping_per_s >= 0");
+  ValidateBranch("forward", forward);
+  ValidateBranch("backward", backward);
   // The drive map.
+  ValidateDriveMap();
+}
+
+void StageParameters::ValidateVelocitySource() const {
+  RequireFinite("motor.pole_per_s", motor.pole_per_s);
+  RequireFinite("motor.dead_zone_forward_v", motor.dead_zone_forward_v);
+  RequireFinite("motor.dead_zone_backward_v", motor.dead_zone_backward_v);
+  Require(motor.pole_per_s > 0, "motor.pole_per_s", motor.pole_per_s, "pole_per_s > 0");
+  Require(motor.dead_zone_forward_v >= 0 && motor.dead_zone_forward_v < saturation_v,
+          "motor.dead_zone_forward_v", motor.dead_zone_forward_v,
+          "0 <= dead_zone_forward_v < saturation_v");
+  Require(motor.dead_zone_backward_v >= 0 && motor.dead_zone_backward_v < saturation_v,
+          "motor.dead_zone_backward_v", motor.dead_zone_backward_v,
+          "0 <= dead_zone_backward_v < saturation_v");
+  {
+    const auto& in = motor.speed_map_in_v;
+    const auto& out = motor.speed_map_out_mps;
+    Require(in.size() == out.size(), "motor.speed_map_out_mps", static_cast<double>(out.size()),
+            "as many knots as speed_map_in_v (" + std::to_string(in.size()) + ")");
+    bool pos = false, neg = false;
+    for (size_t i = 0; i < in.size(); ++i) {
+      const std::string idx = "[" + std::to_string(i) + "]";
+      RequireFinite("motor.speed_map_in_v" + idx, in[i]);
+      RequireFinite("motor.speed_map_out_mps" + idx, out[i]);
+      Require(in[i] > motor.dead_zone_forward_v || in[i] < -motor.dead_zone_backward_v,
+              "motor.speed_map_in_v" + idx, in[i],
+              "knots outside the dead zone [-dead_zone_backward_v, dead_zone_forward_v]");
+      Require(in[i] > 0 ? out[i] > 0 : out[i] < 0, "motor.speed_map_out_mps" + idx, out[i],
+              "v_f has the sign of its knot's voltage");
+      if (i > 0) {
+        Require(in[i] > in[i - 1], "motor.speed_map_in_v" + idx, in[i],
+                "knots strictly increasing (previous " + Fmt(in[i - 1]) + ")");
+        Require(out[i] > out[i - 1], "motor.speed_map_out_mps" + idx, out[i],
+                "values increasing (previous " + Fmt(out[i - 1]) + ")");
+      }
+      (in[i] > 0 ? pos : neg) = true;
+    }
+    Require(pos && neg, "motor.speed_map_in_v", static_cast<double>(in.size()),
+            "at least one knot on each side of the dead zone");
+  }
+  RequireFinite("rail.coulomb_mps2", rail.coulomb_mps2);
+  RequireFinite("rail.static_mps2", rail.static_mps2);
+  RequireFinite("rail.stribeck_velocity_mps", rail.stribeck_velocity_mps);
+  Require(rail.coulomb_mps2 > 0, "rail.coulomb_mps2", rail.coulomb_mps2, "coulomb_mps2 > 0");
+  Require(rail.static_mps2 >= rail.coulomb_mps2, "rail.static_mps2", rail.static_mps2,
+          "static_mps2 >= coulomb_mps2 (" + Fmt(rail.coulomb_mps2) + ")");
+  Require(rail.stribeck_velocity_mps > 0, "rail.stribeck_velocity_mps",
+          rail.stribeck_velocity_mps, "stribeck_velocity_mps > 0");
+  // Stick-slip is well posed only while the sliding force balance p (v_f - v) - g(v) falls
+  // with v (one steady speed per voltage): p > max |g'| = (Fs - Fc) sqrt(2/e) / vs.
+  {
+    const double slope = (rail.static_mps2 - rail.coulomb_mps2) * std::sqrt(2.0 / std::exp(1.0)) /
+                         rail.stribeck_velocity_mps;
+    Require(motor.pole_per_s > slope, "motor.pole_per_s", motor.pole_per_s,
+            "pole_per_s > (Fs - Fc) sqrt(2/e) / vs = " + Fmt(slope) +
+                " (a single steady speed per voltage)");
+  }
+}
+
+void StageParameters::ValidateDriveMap() const {
   const auto& in = drive_map_in_v;
   const auto& out = drive_map_out_v;
   Require(
@@ -153,9 +268,49 @@ double StageParameters::DriveMap(double u) const {
   return out[k] + s * (out[k + 1] - out[k]);
 }
 
+double StageParameters::NoLoadSpeed(double u) const {
+  const auto& in = motor.speed_map_in_v;
+  const auto& out = motor.speed_map_out_mps;
+  const bool forward = u > 0;
+  if (forward ? u <= motor.dead_zone_forward_v : u >= -motor.dead_zone_backward_v) return 0.0;
+  // This side's knots, preceded by the dead-zone edge (|u| = dz, v_f = 0), in order of |u|.
+  double prev_u = forward ? motor.dead_zone_forward_v : -motor.dead_zone_backward_v;
+  double prev_v = 0;
+  double last_u = prev_u, last_v = 0;
+  bool have_segment = false;
+  const size_t n = in.size();
+  for (size_t j = 0; j < n; ++j) {
+    const size_t i = forward ? j : n - 1 - j;
+    if ((in[i] > 0) != forward) continue;
+    const double ku = in[i], kv = out[i];
+    if (forward ? u <= ku : u >= ku) return prev_v + (u - prev_u) / (ku - prev_u) * (kv - prev_v);
+    last_u = prev_u;
+    last_v = prev_v;
+    prev_u = ku;
+    prev_v = kv;
+    have_segment = true;
+  }
+  if (!have_segment) return 0.0;
+  // Beyond the last knot: the last segment extended.
+  return prev_v + (u - prev_u) / (prev_u - last_u) * (prev_v - last_v);
+}
+
 double StageParameters::SteadyVelocity(double u_v) const {
   const double u =
       std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
+  if (model == StageModel::kVelocitySource) {
+    const double vf = NoLoadSpeed(u);
+    const double p = motor.pole_per_s;
+    if (std::abs(p * vf) <= rail.static_mps2) return 0.0;
+    // h(s) = p (|v_f| - s) - g(s) falls strictly with s (Validate: p > max |g'|); h(0) > 0 and
+    // h(|v_f|) < 0, so one root in (0, |v_f|).
+    double lo = 0, hi = std::abs(vf);
+    for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (p * (std::abs(vf) - mid) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
+    }
+    return (vf > 0 ? 1.0 : -1.0) * 0.5 * (lo + hi);
+  }
   if (std::abs(u) <= dead_zone_v) return 0.0;
   const double sign = u > 0 ? 1.0 : -1.0;
   const FrictionBranch& b = u > 0 ? forward : backward;

@@ -1,5 +1,11 @@
 // The virtual stage's plant integrated with SUNDIALS CVODE (BDF: the LuGre bristle makes the
-// system stiff, eigenvalues up to s0 |v| / g ~ 1e4 1/s while sliding).
+// actuator-delay system stiff, eigenvalues up to s0 |v| / g ~ 1e4 1/s while sliding).
+//
+// The velocity-source model's Karnopp rail is a hybrid system: sliding in direction d = +-1
+// (v' = p (v_f(u_d) - v) - d g(|v|)) or stuck (v = 0, v' = 0). CVODE's root finding locates the
+// switches exactly: while sliding the root function is v (the stage reaches rest: it sticks
+// when |p v_f| <= Fs, else reverses), while stuck it is |p v_f(u_d)| - Fs (breakaway). Each
+// switch restarts the integrator, so every integrated piece has a smooth right-hand side.
 //
 // The DAC output is piecewise constant and the transport delay shifts its edges by a fraction
 // of a sample, so within each sample the driver input has at most one edge, at t_k + f Ts. The
@@ -55,6 +61,7 @@ class VirtualStage::Impl {
     double* y = N_VGetArrayPointer(y_);
     y[kX] = p_.initial_position_m;
     y[kV] = y[kZ] = y[kW] = 0;
+    vs_ = p_.model == StageModel::kVelocitySource;
     atol_ = N_VNew_Serial(kStates, ctx_);
     double* a = N_VGetArrayPointer(atol_);
     a[kX] = p_.position_tolerance_m;
@@ -93,9 +100,11 @@ class VirtualStage::Impl {
     return code * dac_step_ - p_.dac_range_v;
   }
 
-  // Driver input after clipping, dead zone and the static map, for a DAC value u.
+  // Driver input after clipping, dead zone and the static map, for a DAC value u (velocity
+  // source: after clipping only; its dead zone acts on the lagged voltage through v_f).
   double Drive(double u) const {
     const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
+    if (vs_) return s;
     if (std::abs(s) <= p_.dead_zone_v) return 0.0;
     return p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v);
   }
@@ -130,7 +139,7 @@ class VirtualStage::Impl {
 
   StageState State() const {
     const double* y = N_VGetArrayPointer(y_);
-    return {y[kX], y[kV], y[kZ], y[kW]};
+    return {y[kX], y[kV], y[kZ], y[kW], vs_ && (stuck_ || stop_ != 0)};
   }
 
   StageStatus Status() const {
@@ -149,9 +158,11 @@ class VirtualStage::Impl {
   // Integrates to `t_end` with driver input `drive` (after dead zone and map).
   void Advance(double t_end, double drive) {
     double* y = N_VGetArrayPointer(y_);
-    if (stop_ != 0 && y[kW] * stop_ < 0) {
+    const double pull = vs_ ? p_.NoLoadSpeed(y[kW]) : y[kW];
+    if (stop_ != 0 && pull * stop_ < 0) {
       // The drive pulls away from the end stop: free the stage again.
       stop_ = 0;
+      stuck_ = true;
       Restart();
       EnableRoots(true);
     }
@@ -159,10 +170,27 @@ class VirtualStage::Impl {
       drive_ = drive;
       Restart();
     }
+    if (vs_ && stop_ == 0 && stuck_ && Breakaway(y[kW]) > 0) BreakAway();
     Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
     while (t_ < t_end) {
       const int flag = CVode(mem_, t_end, y_, &t_, CV_NORMAL);
-      if (flag == CV_ROOT_RETURN) {
+      int which[3] = {0, 0, 0};
+      if (flag == CV_ROOT_RETURN) Check(CVodeGetRootInfo(mem_, which), "CVodeGetRootInfo");
+      if (flag == CV_ROOT_RETURN && vs_ && which[0] == 0 && which[1] == 0) {
+        // A stick-slip switch of the rail.
+        if (stuck_) {
+          BreakAway();
+        } else {
+          y[kV] = 0;
+          if (Breakaway(y[kW]) <= 0) {
+            stuck_ = true;
+          } else {
+            direction_ = p_.NoLoadSpeed(y[kW]) > 0 ? 1 : -1;
+          }
+          Restart();
+        }
+        Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+      } else if (flag == CV_ROOT_RETURN) {
         // At an end stop: the stage stops dead and stays until the drive reverses.
         stop_ = y[kX] >= p_.travel_max_m ? 1 : -1;
         y[kX] = stop_ > 0 ? p_.travel_max_m : p_.travel_min_m;
@@ -180,6 +208,19 @@ class VirtualStage::Impl {
     }
   }
 
+  // Velocity source: |p v_f(u_d)| - Fs, > 0 when the fingertips' stall force beats the rail's
+  // static friction.
+  double Breakaway(double w) const {
+    return std::abs(p_.motor.pole_per_s * p_.NoLoadSpeed(w)) - p_.rail.static_mps2;
+  }
+
+  void BreakAway() {
+    stuck_ = false;
+    direction_ = p_.NoLoadSpeed(N_VGetArrayPointer(y_)[kW]) > 0 ? 1 : -1;
+    N_VGetArrayPointer(y_)[kV] = 0;
+    Restart();
+  }
+
   void Restart() {
     long steps = 0;
     CVodeGetNumSteps(mem_, &steps);
@@ -193,7 +234,7 @@ class VirtualStage::Impl {
   }
 
   void EnableRoots(bool on) {
-    Check(on ? CVodeRootInit(mem_, 2, &Impl::Roots) : CVodeRootInit(mem_, 0, nullptr),
+    Check(on ? CVodeRootInit(mem_, vs_ ? 3 : 2, &Impl::Roots) : CVodeRootInit(mem_, 0, nullptr),
           "CVodeRootInit");
   }
 
@@ -210,11 +251,18 @@ class VirtualStage::Impl {
     const double* y = N_VGetArrayPointer(yv);
     double* d = N_VGetArrayPointer(ydot);
     d[kW] = (s.drive_ - y[kW]) / s.p_.lag_time_constant_s;
-    if (s.stop_ != 0) {
+    if (s.stop_ != 0 || (s.vs_ && s.stuck_)) {
       d[kX] = d[kV] = d[kZ] = 0;
       return 0;
     }
     const double v = y[kV];
+    if (s.vs_) {
+      const double p = s.p_.motor.pole_per_s;
+      d[kX] = v;
+      d[kV] = p * (s.p_.NoLoadSpeed(y[kW]) - v) - s.direction_ * s.p_.rail.Sliding(std::abs(v));
+      d[kZ] = 0;
+      return 0;
+    }
     const FrictionBranch& b = s.Branch(v);
     const double r = v / b.stribeck_velocity_mps;
     const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r);
@@ -235,7 +283,23 @@ class VirtualStage::Impl {
     SUNMatZero(J);
     const double inv_t = 1.0 / s.p_.lag_time_constant_s;
     SM_ELEMENT_D(J, kW, kW) = -inv_t;
-    if (s.stop_ != 0) return 0;
+    if (s.stop_ != 0 || (s.vs_ && s.stuck_)) return 0;
+    if (s.vs_) {
+      const double v = y[kV], w = y[kW];
+      const double p = s.p_.motor.pole_per_s;
+      const RailFriction& r = s.p_.rail;
+      const double q = std::abs(v) / r.stribeck_velocity_mps;
+      // d/dv of d g(|v|) = d sgn(v) g'(|v|) (= g'(|v|) while v has the sliding direction).
+      const double g_prime =
+          (r.static_mps2 - r.coulomb_mps2) * std::exp(-q * q) * (-2.0 * q) / r.stribeck_velocity_mps;
+      const double dg = g_prime * (v * s.direction_ >= 0 ? 1.0 : -1.0);
+      const double h = 1e-6;  // [V] v_f is piecewise linear: a difference is its slope
+      const double slope = (s.p_.NoLoadSpeed(w + h) - s.p_.NoLoadSpeed(w - h)) / (2 * h);
+      SM_ELEMENT_D(J, kX, kV) = 1.0;
+      SM_ELEMENT_D(J, kV, kV) = -p - dg;
+      SM_ELEMENT_D(J, kV, kW) = p * slope;
+      return 0;
+    }
     const double v = y[kV], z = y[kZ];
     const FrictionBranch& b = s.Branch(v);
     const double vs = b.stribeck_velocity_mps;
@@ -263,6 +327,7 @@ class VirtualStage::Impl {
     const double x = N_VGetArrayPointer(yv)[kX];
     g[0] = x - s.p_.travel_max_m;
     g[1] = x - s.p_.travel_min_m;
+    if (s.vs_) g[2] = s.stuck_ ? s.Breakaway(N_VGetArrayPointer(yv)[kW]) : N_VGetArrayPointer(yv)[kV];
     return 0;
   }
 
@@ -290,6 +355,9 @@ class VirtualStage::Impl {
   double t_ = 0;
   double drive_ = 0;
   int stop_ = 0;
+  bool vs_ = false;        // velocity-source model
+  bool stuck_ = true;      // velocity source: held by the rail's static friction
+  int direction_ = 1;      // velocity source: sliding direction d while not stuck
   double reading_ = 0;
   StageStatus status_;
   SUNContext ctx_ = nullptr;
