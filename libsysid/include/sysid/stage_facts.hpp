@@ -1,0 +1,167 @@
+// The paper's measured facts, checked on a stage: runs the paper's experiments on a virtual stage
+// and compares what they give with what the paper printed. Ids are fixed:
+//
+//   F1 pulse plateaus     the ten 0.4 s pulses' steady velocities, each within 2 % of the paper's
+//   F2 pulse LS           a1p, a1n, a2p, a2n within 5 % of 104.0154, 117.1441, 3.1023, 6.8216
+//   F3 delay              tune-delay on the pulse recording: tau in [2.5, 4.5] ms and
+//                         RMS dv(tau) <= 0.8 RMS dv(0)
+//   F4 paper gains        PI Kp = 19000 V/m, Ki = 660000 V/(m s) on the 0.5 and 1 Hz references:
+//                         no limit cycle (ripple and pinning defined below)
+//   F5 tracking table     max |e|: PI > PI + analytic > PI + NN at both frequencies, each within a
+//                         factor 3 of the paper's table
+//   F6 dominance          u = 1.5 sin(pi/2 t - pi/2) - 0.3 V open loop: the ratio of peaks
+//                         max |x''| / max |a1 x'| over the moving part <= 0.3 (O(10^-1))
+//   F7 networks           typical (v, a) 120-unit vs dominant v 24-unit network MSEs; reported,
+//                         not required (the paper's contrast: typical fits training, not test)
+//
+// F4's criteria, on the PI-alone runs of the smooth profile (control.hpp, MakeSmoothProfile;
+// dwell 10 % of the period at each end):
+//   ripple  for every dwell after the first cycle, the last half of the dwell (the reference is at
+//           rest and the move's transient has had half a dwell to decay); ripple amplitude =
+//           max over these windows of (max e - min e) / 2 [m]. Ripple when it exceeds
+//           FactsOptions::ripple_tolerance_m (default 1 um = 10 counts of a 0.1 um encoder).
+//   pinned  any sample, from the start, at which the PI output was clipped at +-u_max
+//           (TrackingResult::saturated_samples > 0).
+//
+// Every experiment is seeded; the same stage and options give the same numbers.
+#ifndef SYSID_STAGE_FACTS_HPP_
+#define SYSID_STAGE_FACTS_HPP_
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sysid/control.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/identify.hpp"
+#include "sysid/nn.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+
+/// The paper's printed numbers the facts compare against.
+struct PaperFacts {
+  /// The pulse table: (amplitude [V], steady velocity [m/s]), as in datasets/paper.
+  static const std::vector<std::pair<double, double>>& PulseTable();
+  static FrictionModel PulseModel();         ///< a1p 104.0154, a1n 117.1441, a2p 3.1023, a2n 6.8216
+  static constexpr double kTauS = 0.0035;    ///< [s] the paper's delay
+  static constexpr double kKpVPerM = 19000;  ///< [V/m]
+  static constexpr double kKiVPerMS = 660000;  ///< [V/(m s)]
+  /// Max tracking error [m] at 0.5 Hz and 1 Hz for "none", "analytic", "nn".
+  static double TrackingMaxErrorM(double frequency_hz, const std::string& scheme);
+  static constexpr double kTypicalHidden = 120;
+  static constexpr double kDominantHidden = 24;
+  static constexpr double kDominantTrainMseV2 = 0.118161;  ///< [V^2] H = 24
+  static constexpr double kDominantTestMseV2 = 0.052982;   ///< [V^2] H = 24
+};
+
+struct FactsOptions {
+  /// Facts to run ("F1".."F7"); empty: all. Prerequisites run as needed.
+  std::vector<std::string> facts;
+  std::uint64_t seed = 1;                     ///< noise seed of every experiment
+  int threads = 0;                            ///< for delay tuning and training (0: all cores)
+  PulseProcedure pulse;                       ///< the paper's ten pulses
+  DelayTuningOptions delay = DefaultDelay();  ///< F3; curve_points >= 2 (includes tau = 0)
+  PiOptions pi;                               ///< F4/F5: the paper's gains
+  std::vector<double> track_frequencies_hz{0.5, 1.0};  ///< [Hz]
+  double track_amplitude_m = 0.01;                     ///< [m] stroke, as the pipeline
+  int track_cycles = 2;                                ///< >= 2 (ripple needs a second cycle)
+  double ripple_tolerance_m = 1e-6;                    ///< [m] F4's ripple threshold
+  /// The dominant network (H = 24, the paper's choice) and the typical one, as the pipeline.
+  NeuralTrainingOptions training = DefaultTraining();
+  int typical_hidden = 120;
+  int typical_max_epochs = 60;
+  int typical_stride = 2;  ///< typical network trains on every n-th training row
+  /// F6's open-loop test: u = amplitude sin(omega t - pi/2) + offset for duration_s.
+  double dominance_amplitude_v = 1.5;
+  double dominance_omega_rad_s = 1.5707963267948966;  ///< pi/2
+  double dominance_offset_v = -0.3;
+  double dominance_duration_s = 4.0;      ///< one period
+  double dominance_min_speed_mps = 1e-3;  ///< [m/s] the moving part
+  void Validate() const;                  ///< throws OptionsError naming the field and the rule
+  static DelayTuningOptions DefaultDelay();
+  static NeuralTrainingOptions DefaultTraining();
+  /// For tests: the same experiments with small networks and short training (F7 numbers are
+  /// then not the paper's experiment; F1-F6 except F5's NN row are unchanged).
+  static FactsOptions Reduced();
+};
+
+/// One fact: text for the table and JSON, and the numbers behind it.
+struct StageFact {
+  std::string id;             ///< "F1".."F7"
+  std::string fact;           ///< what is checked, one line
+  std::string paper;          ///< the paper's value(s)
+  std::string virtual_value;  ///< the stage's value(s) (JSON key "virtual")
+  std::string tolerance;      ///< the criterion
+  bool met = false;
+  bool required = true;                                ///< F7: false (reported only)
+  std::string note;                                    ///< why not met / what the numbers mean
+  std::vector<std::pair<std::string, double>> values;  ///< named numbers (SI units in names)
+};
+
+struct FactsTrackingRow {
+  double frequency_hz = 0;
+  std::string scheme;      ///< "none", "analytic", "nn"
+  double max_error_m = 0;  ///< [m]
+  double ripple_m = 0;     ///< [m] F4's ripple amplitude (see above)
+  long saturated_samples = 0;
+  double max_abs_u_v = 0;  ///< [V]
+};
+
+struct StageFacts {
+  std::string stage_name;
+  std::vector<StageFact> facts;  ///< the facts run, in id order
+  // The experiments' results (filled as far as the facts run needed them).
+  std::vector<std::pair<double, double>> plateaus;  ///< (u [V], v [m/s]) per pulse, input order
+  std::optional<FrictionModel> pulse_model;         ///< pulse LS, tau = 0
+  std::optional<DelayTuningResult> delay;
+  double rms_at_zero_mps = 0;  ///< [m/s] RMS dv at tau = 0 (F3)
+  std::vector<FactsTrackingRow> tracking;
+  double dominance_peak_ratio = 0;     ///< max |x''| / max |a1 x'| (the paper's bound)
+  double dominance_pointwise_q99 = 0;  ///< 99 % quantile of |x''(t)| / |a1 x'(t)|
+  double dominant_train_mse = 0, dominant_test_mse = 0;  ///< [V^2]
+  double typical_train_mse = 0, typical_test_mse = 0;    ///< [V^2]
+
+  const StageFact* Find(const std::string& id) const;
+  /// Every required fact that was run is met.
+  bool RequiredMet() const;
+  /// {"stage": ..., "facts": [{"id", "fact", "paper", "virtual", "tolerance", "met", "required",
+  ///  "note", "values": {...}}], "required_met": bool}
+  std::string ToJson() const;
+  /// A Markdown table: id | fact | paper | stage | tolerance | met.
+  std::string ToMarkdown() const;
+};
+
+/// The criteria alone, on numbers (so they can be tested without running a stage).
+namespace facts {
+/// F1: every |v - v_paper| <= 0.02 |v_paper|; `stage` and `paper` in the same order.
+bool PlateausMet(const std::vector<double>& stage_mps, const std::vector<double>& paper_mps);
+/// F2: every coefficient within 5 %.
+bool PulseModelMet(const FrictionModel& stage, const FrictionModel& paper);
+/// F3: tau in [2.5, 4.5] ms and rms_at_tau <= 0.8 rms_at_zero.
+bool DelayMet(double tau_s, double rms_at_tau_mps, double rms_at_zero_mps);
+/// F4's ripple amplitude [m] of a PI run on a smooth profile made with `profile`.
+double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile);
+/// F5: none > analytic > nn, and each within a factor 3 of the paper's (both ways).
+bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,
+                      double paper_analytic_m, double paper_nn_m);
+/// F6: ratio of peaks <= 0.3.
+bool DominanceMet(double peak_ratio);
+/// F7's contrast: the typical network's test MSE >= 2x its training MSE, and the dominant
+/// network's test MSE below the typical's.
+bool NetworkContrast(double typical_train, double typical_test, double dominant_test);
+}  // namespace facts
+
+using FactsProgress = std::function<void(const std::string& step)>;
+
+/// Runs the experiments the selected facts need on `stage` and checks them. Throws OptionsError
+/// for bad options or an unknown fact id, NumericalError when an experiment fails.
+StageFacts RunStageFacts(const StageParameters& stage, const FactsOptions& options = {},
+                         const FactsProgress& progress = {});
+
+}  // namespace sysid
+
+#endif  // SYSID_STAGE_FACTS_HPP_

@@ -1,0 +1,153 @@
+// The paper's numbers, the facts' criteria on plain numbers, and the result's JSON / Markdown.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/stage_facts.hpp"
+
+namespace sysid {
+
+// ---- The paper's printed numbers ------------------------------------------------------------
+
+const std::vector<std::pair<double, double>>& PaperFacts::PulseTable() {
+  // Section "Parameter Identification" (datasets/paper/pulse_table.csv), in the pulse order of
+  // PulseProcedure's default amplitudes.
+  static const std::vector<std::pair<double, double>> table{
+      {-1.8, -0.03393}, {1.3, 0.04465},   {-2.0, -0.04622}, {1.5, 0.05742},   {-2.1, -0.04991},
+      {1.6, 0.06222},   {-2.3, -0.05562}, {1.7, 0.06863},   {-2.5, -0.07120}, {2.0, 0.08519}};
+  return table;
+}
+
+FrictionModel PaperFacts::PulseModel() {
+  FrictionModel m = FrictionModel::Paper();
+  m.tau_s = 0;
+  return m;
+}
+
+double PaperFacts::TrackingMaxErrorM(double frequency_hz, const std::string& scheme) {
+  // The tracking table of "Prediction Performance in Feedforward Compensation" [mm].
+  const bool half = std::abs(frequency_hz - 0.5) < 1e-9, one = std::abs(frequency_hz - 1.0) < 1e-9;
+  if (!half && !one) return std::nan("");
+  double mm = std::nan("");
+  if (scheme == "none") mm = half ? 0.10651 : 0.17156;
+  if (scheme == "analytic") mm = half ? 0.03609 : 0.10579;
+  if (scheme == "nn") mm = half ? 0.01779 : 0.07292;
+  return 1e-3 * mm;
+}
+
+// ---- Criteria -------------------------------------------------------------------------------
+
+namespace facts {
+
+bool PlateausMet(const std::vector<double>& stage_mps, const std::vector<double>& paper_mps) {
+  if (stage_mps.size() != paper_mps.size() || stage_mps.empty()) return false;
+  for (size_t i = 0; i < stage_mps.size(); ++i)
+    if (!(std::abs(stage_mps[i] - paper_mps[i]) <= 0.02 * std::abs(paper_mps[i]))) return false;
+  return true;
+}
+
+bool PulseModelMet(const FrictionModel& s, const FrictionModel& p) {
+  auto within = [](double a, double b) { return std::abs(a - b) <= 0.05 * std::abs(b); };
+  return within(s.a1p, p.a1p) && within(s.a1n, p.a1n) && within(s.a2p, p.a2p) &&
+         within(s.a2n, p.a2n);
+}
+
+bool DelayMet(double tau_s, double rms_at_tau_mps, double rms_at_zero_mps) {
+  return tau_s >= 2.5e-3 && tau_s <= 4.5e-3 && rms_at_tau_mps <= 0.8 * rms_at_zero_mps;
+}
+
+double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p) {
+  const double period = 1.0 / p.frequency_hz, dwell = p.dwell_fraction * period;
+  const double tm = 0.5 * period - dwell;
+  double ripple = 0;
+  for (int c = 1; c < p.cycles; ++c) {
+    for (const double start : {c * period, c * period + dwell + tm}) {
+      // The last half of the dwell: [start + dwell/2, start + dwell).
+      const auto k0 =
+          static_cast<Eigen::Index>(std::ceil((start + 0.5 * dwell) * p.sample_rate_hz));
+      const auto k1 = std::min<Eigen::Index>(
+          e_m.size(), static_cast<Eigen::Index>(std::ceil((start + dwell) * p.sample_rate_hz)));
+      if (k1 - k0 < 1) continue;
+      const Eigen::VectorXd w = e_m.segment(k0, k1 - k0);
+      ripple = std::max(ripple, 0.5 * (w.maxCoeff() - w.minCoeff()));
+    }
+  }
+  return ripple;
+}
+
+bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,
+                      double paper_analytic_m, double paper_nn_m) {
+  auto within3 = [](double s, double p) { return s <= 3 * p && s >= p / 3; };
+  return none_m > analytic_m && analytic_m > nn_m && within3(none_m, paper_none_m) &&
+         within3(analytic_m, paper_analytic_m) && within3(nn_m, paper_nn_m);
+}
+
+bool DominanceMet(double peak_ratio) { return peak_ratio <= 0.3; }
+
+bool NetworkContrast(double typical_train, double typical_test, double dominant_test) {
+  return typical_test >= 2 * typical_train && dominant_test < typical_test;
+}
+
+}  // namespace facts
+
+// ---- Output ---------------------------------------------------------------------------------
+
+const StageFact* StageFacts::Find(const std::string& id) const {
+  for (const auto& f : facts)
+    if (f.id == id) return &f;
+  return nullptr;
+}
+
+bool StageFacts::RequiredMet() const {
+  return std::all_of(facts.begin(), facts.end(),
+                     [](const StageFact& f) { return !f.required || f.met; });
+}
+
+std::string StageFacts::ToJson() const {
+  nlohmann::ordered_json j;
+  j["stage"] = stage_name;
+  j["facts"] = nlohmann::ordered_json::array();
+  for (const auto& f : facts) {
+    nlohmann::ordered_json o;
+    o["id"] = f.id;
+    o["fact"] = f.fact;
+    o["paper"] = f.paper;
+    o["virtual"] = f.virtual_value;
+    o["tolerance"] = f.tolerance;
+    o["met"] = f.met;
+    o["required"] = f.required;
+    o["note"] = f.note;
+    nlohmann::ordered_json values = nlohmann::ordered_json::object();
+    for (const auto& [name, value] : f.values) {
+      if (std::isfinite(value))
+        values[name] = value;
+      else
+        values[name] = nullptr;
+    }
+    o["values"] = values;
+    j["facts"].push_back(o);
+  }
+  j["required_met"] = RequiredMet();
+  return j.dump(2);
+}
+
+std::string StageFacts::ToMarkdown() const {
+  auto cell = [](std::string s) {
+    for (size_t p = s.find('|'); p != std::string::npos; p = s.find('|', p + 2))
+      s.replace(p, 1, "\\|");
+    return s;
+  };
+  std::string md = "| id | fact | paper | stage | tolerance | met |\n|---|---|---|---|---|---|\n";
+  for (const auto& f : facts)
+    md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", f.id, cell(f.fact), cell(f.paper),
+                      cell(f.virtual_value), cell(f.tolerance),
+                      f.met ? "yes" : (f.required ? "**no**" : "no (reported only)"));
+  return md;
+}
+
+}  // namespace sysid

@@ -1,0 +1,294 @@
+// sysid stage facts: the criteria on synthetic numbers, F1/F2 against the stage's closed-form
+// steady states, F3 against an independent tiny-step reference integrator, F4's ripple on a
+// synthetic error, F6 recomputed from the raw run, and the command's JSON and exit codes.
+#include "sysid/stage_facts.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "simulate/reference_integrator.hpp"
+#include "support/test_support.hpp"
+#include "sysid/identify.hpp"
+#include "sysid/input.hpp"
+#include "sysid/stage.hpp"
+
+namespace {
+
+using sysid::FactsOptions;
+using sysid::FrictionModel;
+using sysid::StageParameters;
+namespace facts = sysid::facts;
+
+FactsOptions Only(std::vector<std::string> ids) {
+  FactsOptions o = FactsOptions::Reduced();
+  o.facts = std::move(ids);
+  o.threads = 2;
+  return o;
+}
+
+double Value(const sysid::StageFact& f, const std::string& name) {
+  for (const auto& [n, v] : f.values)
+    if (n == name) return v;
+  FAIL("no value " << name << " in " << f.id);
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE("fact criteria on synthetic numbers", "[stage][facts]") {
+  // F1: 2 % of each paper velocity.
+  CHECK(facts::PlateausMet({0.0500, -0.0300}, {0.0505, -0.0303}));        // 0.99 %
+  CHECK_FALSE(facts::PlateausMet({0.0500, -0.0300}, {0.0511, -0.0300}));  // 2.15 %
+  CHECK_FALSE(facts::PlateausMet({0.05}, {0.05, 0.06}));                  // a missing plateau
+  CHECK_FALSE(facts::PlateausMet({std::nan("")}, {0.05}));
+  // F2: 5 % of each coefficient.
+  const FrictionModel p = sysid::PaperFacts::PulseModel();
+  FrictionModel s = p;
+  s.a1p *= 1.049;
+  s.a2n *= 0.951;
+  CHECK(facts::PulseModelMet(s, p));
+  s.a2p *= 1.051;
+  CHECK_FALSE(facts::PulseModelMet(s, p));
+  // F3: tau window and RMS ratio.
+  CHECK(facts::DelayMet(3.5e-3, 0.8, 1.0));
+  CHECK(facts::DelayMet(2.5e-3, 0.5, 1.0));
+  CHECK_FALSE(facts::DelayMet(3.5e-3, 0.81, 1.0));
+  CHECK_FALSE(facts::DelayMet(0.0, 0.5, 1.0));
+  CHECK_FALSE(facts::DelayMet(4.6e-3, 0.5, 1.0));
+  // F5: strict ordering and a factor 3 both ways, with the paper's 0.5 Hz row.
+  const double pn = sysid::PaperFacts::TrackingMaxErrorM(0.5, "none");
+  const double pa = sysid::PaperFacts::TrackingMaxErrorM(0.5, "analytic");
+  const double pnn = sysid::PaperFacts::TrackingMaxErrorM(0.5, "nn");
+  CHECK(pn == Approx(0.10651e-3));
+  CHECK(sysid::PaperFacts::TrackingMaxErrorM(1.0, "nn") == Approx(0.07292e-3));
+  CHECK(std::isnan(sysid::PaperFacts::TrackingMaxErrorM(2.0, "nn")));
+  CHECK(facts::TrackingOrderMet(pn, pa, pnn, pn, pa, pnn));
+  CHECK(facts::TrackingOrderMet(3 * pn, 2.9 * pa, pnn / 3, pn, pa, pnn));
+  CHECK_FALSE(facts::TrackingOrderMet(pn, pnn, pa, pn, pa, pnn));        // NN worse than analytic
+  CHECK_FALSE(facts::TrackingOrderMet(3.1 * pn, pa, pnn, pn, pa, pnn));  // PI too large
+  CHECK_FALSE(facts::TrackingOrderMet(pn, pa, pnn / 3.1, pn, pa, pnn));  // NN too small
+  // F6 and F7.
+  CHECK(facts::DominanceMet(0.3));
+  CHECK_FALSE(facts::DominanceMet(0.31));
+  CHECK(facts::NetworkContrast(0.05, 0.3, 0.06));
+  CHECK_FALSE(facts::NetworkContrast(0.08, 0.062, 0.065));  // today's stage: no overfitting
+  CHECK_FALSE(facts::NetworkContrast(0.05, 0.3, 0.31));     // dominant no better
+}
+
+TEST_CASE("F4 ripple: the last half of each dwell after the first cycle", "[stage][facts]") {
+  sysid::SmoothProfileOptions p;
+  p.frequency_hz = 1.0;
+  p.cycles = 3;
+  p.sample_rate_hz = 1000;  // period 1000 samples: dwell 100, move 400
+  Eigen::VectorXd e = Eigen::VectorXd::Constant(3001, 1e-3);  // large error everywhere ...
+  for (int c = 0; c < 3; ++c)
+    for (int start : {1000 * c, 1000 * c + 500}) e.segment(start, 100).setZero();  // ... but dwells
+  e.segment(50, 50).setConstant(5e-5);    // first cycle: ignored
+  e.segment(1000, 50).setConstant(5e-5);  // first half of a dwell: ignored
+  for (int k = 1550; k < 1600; ++k) e[k] = (k % 2 ? 3e-6 : -3e-6);  // cycle 2, dwell at A
+  for (int k = 2050; k < 2100; ++k) e[k] = (k % 2 ? 1e-6 : 0.0);
+  CHECK(facts::RippleAmplitude(e, p) == Approx(3e-6).epsilon(1e-12));
+  p.cycles = 1;
+  CHECK(facts::RippleAmplitude(e, p) == 0.0);
+}
+
+TEST_CASE("F1 and F2 follow the stage's closed-form steady velocities", "[stage][facts]") {
+  for (const double gain_scale : {1.0, 1.1}) {
+    StageParameters stage = StageParameters::Default();
+    stage.gain_mps2_per_v *= gain_scale;  // 10 % more drive force: faster plateaus
+    const sysid::StageFacts r = sysid::RunStageFacts(stage, Only({"F1", "F2"}));
+    REQUIRE(r.facts.size() == 2);
+    REQUIRE(r.plateaus.size() == sysid::PaperFacts::PulseTable().size());
+    std::vector<double> closed, paper;
+    std::vector<sysid::PulsePoint> points;
+    for (size_t i = 0; i < r.plateaus.size(); ++i) {
+      const auto [u, v] = r.plateaus[i];
+      CHECK(u == Approx(sysid::PaperFacts::PulseTable()[i].first).margin(1e-9));
+      const double v_closed = stage.SteadyVelocity(u);  // bisection on the stage's steady law
+      CHECK(v == Approx(v_closed).epsilon(2e-3));       // noise and quantisation only
+      closed.push_back(v_closed);
+      paper.push_back(sysid::PaperFacts::PulseTable()[i].second);
+      points.push_back({u, v_closed, ""});
+    }
+    const FrictionModel fit = sysid::FitPulseTable(points).model;
+    CHECK(r.facts[0].id == "F1");
+    CHECK(r.facts[0].met == facts::PlateausMet(closed, paper));
+    CHECK(r.facts[1].id == "F2");
+    CHECK(r.facts[1].met == facts::PulseModelMet(fit, sysid::PaperFacts::PulseModel()));
+    CHECK(r.pulse_model->a1p == Approx(fit.a1p).epsilon(5e-3));
+    CHECK(r.pulse_model->a2n == Approx(fit.a2n).epsilon(2e-2));
+    if (gain_scale > 1) CHECK_FALSE(r.facts[0].met);  // > 10 % faster
+  }
+}
+
+TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stage][facts]") {
+  // The facts tune tau with CVODE on pieces of the recording (TuneDelay). The reference: the
+  // test's own fixed-step RK4 method of steps (tests/simulate/reference_integrator) over the
+  // whole pulse recording, velocity from both positions by the same central difference, RMS
+  // against tau on a 0.5 ms grid. tau = 0 is taken as one step h (the reference needs tau >= h).
+  const StageParameters stage = StageParameters::Default();
+  FactsOptions o = Only({"F3"});
+  o.delay.curve_points = 21;  // tau = 0, 1, ..., 20 ms
+  const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
+  REQUIRE(r.delay.has_value());
+  const sysid::Recording rec = sysid::RunPulseTest(stage, o.pulse, o.seed);
+  const Eigen::VectorXd t = rec.column("t"), u = rec.column("u"), x = rec.column("x");
+  const double dt = 1.0 / stage.sample_rate_hz, h = 5e-5;
+  const sysid::PiecewiseConstantInput input(std::vector<double>(t.data(), t.data() + t.size()),
+                                            std::vector<double>(u.data(), u.data() + u.size()));
+  auto central = [&](const std::vector<double>& y, Eigen::Index k) {
+    const Eigen::Index n = static_cast<Eigen::Index>(y.size());
+    const Eigen::Index lo = k == 0 ? 0 : k - 1, hi = k == n - 1 ? n - 1 : k + 1;
+    return (y[static_cast<size_t>(hi)] - y[static_cast<size_t>(lo)]) / ((hi - lo) * dt);
+  };
+  const std::vector<double> xm(x.data(), x.data() + x.size());
+  auto reference_rms = [&](double tau) {
+    FrictionModel m = *r.pulse_model;
+    m.tau_s = std::max(tau, h);
+    const auto ref = sysid::test::ReferenceRk4(m, input, t[t.size() - 1], h,
+                                               static_cast<int>(std::lround(dt / h)));
+    REQUIRE(ref.x.size() == xm.size());
+    double sum = 0;
+    for (Eigen::Index k = 0; k < t.size(); ++k) {
+      const double e = central(ref.x, k) - central(xm, k);
+      sum += e * e;
+    }
+    return std::sqrt(sum / static_cast<double>(t.size()));
+  };
+  // The CVODE curve at tau = 0, 1, ..., 8 ms against the reference.
+  for (const auto& [tau, cost] : r.delay->curve) {
+    const double ms = tau * 1e3;
+    if (ms > 8.0 || std::abs(ms - std::round(ms)) > 1e-9) continue;
+    const double rms = std::sqrt(cost / static_cast<double>(r.delay->samples));
+    INFO("tau = " << ms << " ms");
+    CHECK(reference_rms(tau) == Approx(rms).epsilon(0.01));
+  }
+  // The reference's own tau-hat on the 0.5 ms grid and its verdict on F3.
+  double best_tau = 0, best = reference_rms(0);
+  const double at_zero = best;
+  for (int i = 1; i <= 16; ++i) {
+    const double rms = reference_rms(0.5e-3 * i);
+    if (rms < best) best = rms, best_tau = 0.5e-3 * i;
+  }
+  INFO("reference tau-hat " << best_tau * 1e3 << " ms, facts " << r.delay->tau_s * 1e3 << " ms");
+  CHECK(std::abs(best_tau - r.delay->tau_s) <= 0.5e-3);
+  CHECK(r.rms_at_zero_mps == Approx(at_zero).epsilon(0.01));
+  CHECK(r.Find("F3")->met == facts::DelayMet(best_tau, best, at_zero));
+}
+
+TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stage][facts]") {
+  const StageParameters stage = StageParameters::Default();
+  const FactsOptions o = Only({"F4", "F6"});
+  const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
+  REQUIRE(r.facts.size() == 2);
+  // F4: PI alone at both frequencies.
+  REQUIRE(r.tracking.size() == 2);
+  bool no_limit_cycle = true;
+  for (const auto& row : r.tracking) {
+    CHECK(row.scheme == "none");
+    no_limit_cycle =
+        no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m && row.saturated_samples == 0;
+    CHECK((row.saturated_samples > 0) == (row.max_abs_u_v >= o.pi.u_max_v - 1e-12));
+  }
+  CHECK(r.Find("F4")->met == no_limit_cycle);
+  // F6: the ratio of peaks recomputed here from the same open-loop run (seeded): v and a by
+  // central differences (a = central difference of v, the paper's "numerical differentiation"),
+  // the moving part |x'| >= 1 mm/s, a1 by the direction of motion.
+  const double rate = stage.sample_rate_hz;
+  const Eigen::Index n = static_cast<Eigen::Index>(std::llround(o.dominance_duration_s * rate)) + 1;
+  Eigen::VectorXd u(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    u[k] = 1.5 * std::sin(M_PI / 2 * static_cast<double>(k) / rate - M_PI / 2) - 0.3;
+  const sysid::StageRun run = sysid::RunOpenLoop(stage, u, sysid::DeriveSeed(o.seed, 3));
+  const sysid::FrictionModel m = *r.pulse_model;
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index k = 1; k + 1 < n; ++k) v[k] = (run.x_m[k + 1] - run.x_m[k - 1]) * rate / 2;
+  double peak_a = 0, peak_v = 0;
+  for (Eigen::Index k = 2; k + 2 < n; ++k) {
+    const double a = (v[k + 1] - v[k - 1]) * rate / 2;
+    if (std::abs(v[k]) < o.dominance_min_speed_mps) continue;
+    peak_a = std::max(peak_a, std::abs(a));
+    peak_v = std::max(peak_v, std::abs((v[k] > 0 ? m.a1p : m.a1n) * v[k]));
+  }
+  CHECK(Value(*r.Find("F6"), "peak_acceleration_mps2") == Approx(peak_a).epsilon(1e-9));
+  CHECK(Value(*r.Find("F6"), "peak_viscous_mps2") == Approx(peak_v).epsilon(1e-9));
+  CHECK(r.dominance_peak_ratio == Approx(peak_a / peak_v).epsilon(1e-9));
+  CHECK(r.Find("F6")->met == (peak_a / peak_v <= 0.3));
+  CHECK(r.dominance_pointwise_q99 > 0);
+}
+
+TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
+  const sysid::StageFacts r = sysid::RunStageFacts(StageParameters::Default(), Only({"F5", "F7"}));
+  REQUIRE(r.facts.size() == 2);
+  REQUIRE(r.tracking.size() == 6);  // none, analytic, nn at 0.5 and 1 Hz
+  const auto* f5 = r.Find("F5");
+  bool order = true;
+  for (double hz : {0.5, 1.0}) {
+    auto err = [&](const std::string& s) {
+      for (const auto& row : r.tracking)
+        if (row.frequency_hz == hz && row.scheme == s) return row.max_error_m;
+      FAIL("no row");
+      return 0.0;
+    };
+    order = order && facts::TrackingOrderMet(err("none"), err("analytic"), err("nn"),
+                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "none"),
+                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "analytic"),
+                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "nn"));
+  }
+  CHECK(f5->met == order);
+  const auto* f7 = r.Find("F7");
+  CHECK_FALSE(f7->required);
+  CHECK(r.dominant_train_mse > 0);
+  CHECK(r.typical_test_mse > 0);
+  CHECK(f7->met ==
+        facts::NetworkContrast(r.typical_train_mse, r.typical_test_mse, r.dominant_test_mse));
+  CHECK(r.RequiredMet() == f5->met);  // F7 does not count
+}
+
+TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]") {
+  const auto ok =
+      sysid::test::RunCli({"stage", "facts", "--json", "--reduced", "--facts", "F2,F1"});
+  REQUIRE(ok.exit_code == 0);
+  const auto j = nlohmann::json::parse(ok.out);
+  REQUIRE(j["facts"].is_array());
+  REQUIRE(j["facts"].size() == 2);
+  CHECK(j["facts"][0]["id"] == "F1");  // id order, whatever the order asked
+  CHECK(j["facts"][1]["id"] == "F2");
+  for (const auto& f : j["facts"]) {
+    for (const char* key : {"id", "fact", "paper", "virtual", "tolerance", "note"})
+      CHECK(f[key].is_string());
+    CHECK(f["met"].is_boolean());
+    CHECK(f["required"] == true);
+    CHECK(f["values"].is_object());
+  }
+  CHECK(j["required_met"] ==
+        (j["facts"][0]["met"].get<bool>() && j["facts"][1]["met"].get<bool>()));
+  // F2's verdict from its own numbers.
+  const auto& v = j["facts"][1]["values"];
+  FrictionModel m;
+  m.a1p = v["a1p_per_s"];
+  m.a1n = v["a1n_per_s"];
+  m.a2p = v["a2p_mps2"];
+  m.a2n = v["a2n_mps2"];
+  CHECK(j["facts"][1]["met"] == facts::PulseModelMet(m, sysid::PaperFacts::PulseModel()));
+
+  const auto table = sysid::test::RunCli({"stage", "facts", "--reduced", "--facts", "F1"});
+  CHECK(table.exit_code == 0);
+  CHECK(table.out.find("F1") != std::string::npos);
+  CHECK(table.out.find("tolerance") != std::string::npos);
+
+  CHECK(sysid::test::RunCli({"stage", "facts", "--facts", "F9"}).exit_code == 1);
+  CHECK(sysid::test::RunCli({"stage"}).exit_code == 1);
+  const auto missing = sysid::test::RunCli({"stage", "facts", "--stage", "no_such_stage.json"});
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.out.empty());
+  sysid::test::TempDir dir;
+  sysid::test::WriteText(dir / "bad.json", "{\"drive\": {\"gain_mps2_per_v\": -1}}");
+  const auto bad = sysid::test::RunCli({"stage", "facts", "--stage", dir / "bad.json"});
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.out.empty());
+}
