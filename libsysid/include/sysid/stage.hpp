@@ -77,9 +77,9 @@ StageModel ParseStageModel(const std::string& text);
 /// Rail friction of the velocity-source model (Karnopp stick-slip), per unit mass, both
 /// directions alike.
 struct RailFriction {
-  double coulomb_mps2 = 0.3;             ///< [m/s^2] Fc > 0, sliding level
-  double static_mps2 = 0.5;              ///< [m/s^2] Fs >= Fc, breakaway level
-  double stribeck_velocity_mps = 0.002;  ///< [m/s] vs > 0, width of the Stribeck dip
+  double coulomb_mps2 = 0.6;             ///< [m/s^2] Fc > 0, sliding level
+  double static_mps2 = 1.0;              ///< [m/s^2] Fs >= Fc, breakaway level
+  double stribeck_velocity_mps = 0.003;  ///< [m/s] vs > 0, width of the Stribeck dip
   /// [m/s^2] g(|v|) = Fc + (Fs - Fc) exp(-(v / vs)^2), the sliding friction magnitude.
   double Sliding(double speed_mps) const;
 };
@@ -87,8 +87,8 @@ struct RailFriction {
 /// The velocity-source motor: force per unit mass p (v_f(u_d) - v).
 struct MotorParameters {
   double pole_per_s = 300;             ///< [1/s] p > 0, stall force / no-load speed per volt
-  double dead_zone_forward_v = 1.2;    ///< [V] dz_f >= 0: v_f = 0 for 0 <= u_d <= dz_f
-  double dead_zone_backward_v = 1.7;   ///< [V] dz_b >= 0: v_f = 0 for -dz_b <= u_d <= 0
+  double dead_zone_forward_v = 1.15;   ///< [V] dz_f >= 0: v_f = 0 for 0 <= u_d <= dz_f
+  double dead_zone_backward_v = 1.65;  ///< [V] dz_b >= 0: v_f = 0 for -dz_b <= u_d <= 0
   std::vector<double> speed_map_in_v;  ///< [V] knots, increasing, all outside [-dz_b, dz_f]
   std::vector<double> speed_map_out_mps;  ///< [m/s] v_f at the knots (sign of the knot)
 };
