@@ -83,8 +83,9 @@ nlohmann::ordered_json ResultJson(const DominanceResult& r) {
   nlohmann::ordered_json terms = nlohmann::ordered_json::array();
   for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
   j["terms"] = terms;
-  j["paper_ratio_bound"] = r.paper_ratio_bound;
-  j["paper_ratio_max"] = r.paper_ratio_max;
+  j["peak_ratio"] = r.peak_ratio;
+  j["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
+  j["pointwise_ratio_max"] = r.pointwise_ratio_max;
   j["samples"] = r.samples;
   j["moving_samples"] = r.moving_samples;
   return j;

@@ -56,6 +56,13 @@ TEST_CASE("dominance ranks the variables by closed-form term sizes", "[dominance
     // Terms in fixed order: the viscous RMS alone is a1 A w / sqrt(2), Coulomb is a2.
     CHECK(r.terms[1].rms == Approx(50.0 * c.A * w / std::sqrt(2.0)).epsilon(0.005));
     CHECK(r.terms[2].rms == Approx(2.0).epsilon(1e-9));
+    // |x''| / |a1 x'| = (w / a1) |tan(w t)|: the ratio of peaks is w / a1 (the paper's bound);
+    // the pointwise ratio's 99 % quantile is tan(0.99 pi / 2) w / a1 = 63.66 w / a1 (uniform
+    // phase, resolved at 20000 samples per period: the slow case), a different quantity.
+    CHECK(r.peak_ratio == Approx(w / 50.0).epsilon(0.005));
+    if (c.f < 1)
+      CHECK(r.pointwise_ratio_quantile ==
+            Approx(std::tan(0.99 * M_PI / 2) * w / 50.0).epsilon(0.02));
   }
 }
 

@@ -6,8 +6,11 @@
 // Coulomb term T_c = a2 sgn(v) (+ any user-named candidate term g * column). Candidate input
 // VARIABLES are ranked by the terms they generate: the acceleration generates T_a; the velocity
 // generates T_v + T_c (the Coulomb term depends on the velocity's sign only; the paper neglects
-// it as "effectively a constant" — the per-term table keeps it separate, and the ratio
-// |T_a| / |T_v| the paper bounds is reported as `paper_ratio_*`).
+// it as "effectively a constant" — the per-term table keeps it separate). The ratio
+// |T_a| / |T_v| the paper bounds is reported two ways: `peak_ratio` = max |T_a| / max |T_v|, the
+// ratio of the two curves' peaks, which is how the paper read "the bound" off its figure of the
+// two terms; and `pointwise_ratio_*`, statistics of the pointwise ratio |T_a(t)| / |T_v(t)|, a
+// different and much larger quantity (T_v passes near zero while T_a does not).
 // Statistics are taken over the moving part of the record (|v| >= min_speed_mps), where the
 // sliding equation holds. A variable is negligible when its RMS is at most negligible_ratio
 // times the top variable's RMS.
@@ -64,8 +67,11 @@ struct DominanceResult {
   std::vector<TermStats> ranking;   ///< variables, largest RMS first
   std::string dominant;             ///< ranking[0].name
   double margin = 0;                ///< rms(top) / rms(second); inf with a single candidate
-  double paper_ratio_bound = 0;     ///< quantile of |x''| / |a1 v(t - tau)| (the paper's bound)
-  double paper_ratio_max = 0;       ///< max of |x''| / |a1 v(t - tau)|
+  /// max |x''| / max |a1 v(t - tau)| over the moving part: the ratio of peaks (the paper's bound)
+  double peak_ratio = 0;
+  /// bound_quantile quantile of the pointwise ratio |x''(t)| / |a1 v(t - tau)| (not the paper's)
+  double pointwise_ratio_quantile = 0;
+  double pointwise_ratio_max = 0;  ///< max of the pointwise ratio |x''(t)| / |a1 v(t - tau)|
   std::string BriefReport() const;
 };
 

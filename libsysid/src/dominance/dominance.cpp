@@ -137,7 +137,10 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   r.dominant = r.ranking[0].name;
   r.margin = r.ranking.size() > 1 && r.ranking[1].rms > 0 ? r.ranking[0].rms / r.ranking[1].rms
                                                           : std::numeric_limits<double>::infinity();
-  RatioStats(ta, tv, options.bound_quantile, &r.paper_ratio_bound, &r.paper_ratio_max);
+  RatioStats(ta, tv, options.bound_quantile, &r.pointwise_ratio_quantile, &r.pointwise_ratio_max);
+  const double peak_v = tv.cwiseAbs().maxCoeff();
+  r.peak_ratio =
+      peak_v > 0 ? ta.cwiseAbs().maxCoeff() / peak_v : std::numeric_limits<double>::infinity();
   return r;
 }
 
@@ -210,8 +213,10 @@ std::string DominanceResult::BriefReport() const {
   for (const auto& t : ranking)
     s += fmt::format("  {:<14} rms {:.4g} m/s^2  peak {:.4g} m/s^2  ratio {:.3g}{}\n", t.name,
                      t.rms, t.peak, t.ratio_to_top, t.negligible ? "  (negligible)" : "");
-  s += fmt::format("  |x''| / |a1 v(t-tau)|: bound {:.3g} (max {:.3g})\n", paper_ratio_bound,
-                   paper_ratio_max);
+  s += fmt::format(
+      "  max |x''| / max |a1 v(t-tau)| (ratio of peaks) {:.3g}; pointwise |x''(t)| / |a1 v(t-tau)|:"
+      " quantile {:.3g}, max {:.3g}\n",
+      peak_ratio, pointwise_ratio_quantile, pointwise_ratio_max);
   return s;
 }
 

@@ -341,8 +341,8 @@ class FactsRun {
     dopt.threads = 1;
     const DominanceResult d = AnalyzeDominance(model, rec, dopt);
     // terms: acceleration, viscous, coulomb (dominance.hpp's fixed order).
-    r_.dominance_peak_ratio = d.terms[0].peak / d.terms[1].peak;
-    r_.dominance_pointwise_q99 = d.paper_ratio_bound;
+    r_.dominance_peak_ratio = d.peak_ratio;
+    r_.dominance_pointwise_q99 = d.pointwise_ratio_quantile;
     StageFact f;
     f.id = "F6";
     f.fact = "dominance: u = 1.5 sin(pi/2 t - pi/2) - 0.3 V, bound of |x''| / |a1 x'|";
