@@ -28,7 +28,7 @@ struct StageFactsCli {
 
 void RunStageFactsCommand(const StageFactsCli& o) {
   const StageParameters stage =
-      o.stage_path.empty() ? StageParameters::Default() : ReadStageParameters(o.stage_path);
+      o.stage_path.empty() ? StageParameters::Default() : LoadStage(o.stage_path);
   FactsOptions f;
   if (o.reduced) f = FactsOptions::Reduced();
   f.facts = o.facts;
@@ -68,8 +68,9 @@ void AddStageCommand(CLI::App& app) {
       "stage's, the tolerance and met / not met. F1-F6 are required, F7 is reported. Exit 0 "
       "whether or not the facts are met (read \"met\" / \"required_met\" in the JSON)");
   cmd->add_option("--stage", o->stage_path,
-                  "stage parameter file (JSON; default: the built-in calibrated stage)")
-      ->type_name("S.json");
+                  "stage parameter file (JSON) or a preset: virtual (default, the calibrated "
+                  "velocity-source stage) or actuator-delay")
+      ->type_name("S.json|PRESET");
   cmd->add_option("--facts", o->facts, "only these facts (and what they need), e.g. F1,F3")
       ->delimiter(',')
       ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7"}))

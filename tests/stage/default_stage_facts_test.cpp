@@ -1,0 +1,57 @@
+// Issue #12's acceptance: the default (velocity-source) stage meets the paper's facts F1-F6, as
+// computed by `sysid stage facts --json` (never stored), and the actuator-delay preset does not.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+const nlohmann::json* FindFact(const nlohmann::json& j, const std::string& id) {
+  for (const auto& f : j["facts"])
+    if (f["id"] == id) return &f;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("the default stage meets F1-F6 (sysid stage facts --json)", "[stage][facts][cli]") {
+  // --reduced shortens delay tuning and trains a small network (8 hidden units, 15 epochs) so
+  // that this runs in seconds under the sanitizers; F1-F4 and F6 are the full experiments, F5's
+  // PI and analytic rows too, its NN row uses the reduced network (the full 24-unit run is
+  // `sysid stage facts`, docs/virtual_stage.md). F7 is reported only, so not asked here.
+  const auto r = sysid::test::RunCli(
+      {"stage", "facts", "--json", "--reduced", "--threads", "2", "--facts", "F1,F2,F3,F4,F5,F6"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["facts"].size() == 6);
+  for (const char* id : {"F1", "F2", "F3", "F4", "F5", "F6"}) {
+    const auto* f = FindFact(j, id);
+    REQUIRE(f != nullptr);
+    INFO(id << ": " << (*f)["virtual"].get<std::string>() << " (tolerance "
+            << (*f)["tolerance"].get<std::string>() << ")");
+    CHECK((*f)["required"] == true);
+    CHECK((*f)["met"] == true);
+  }
+  CHECK(j["required_met"] == true);
+  // F3's numbers themselves: tau in 2.5-4.5 ms.
+  const auto& f3 = (*FindFact(j, "F3"))["values"];
+  REQUIRE(f3.contains("tau_s"));
+  CHECK(f3["tau_s"].get<double>() >= 0.0025);
+  CHECK(f3["tau_s"].get<double>() <= 0.0045);
+}
+
+TEST_CASE("the actuator-delay preset runs and fails the delay and gain facts",
+          "[stage][facts][cli]") {
+  // The preset by name.
+  const auto r = sysid::test::RunCli({"stage", "facts", "--json", "--reduced", "--threads", "2",
+                                      "--stage", "actuator-delay", "--facts", "F3,F4"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  // On the actuator-delay stage tau-hat = 0 (its delay is in the actuator path) and the
+  // paper's gains limit-cycle at +-10 V.
+  CHECK((*FindFact(j, "F3"))["met"] == false);
+  CHECK((*FindFact(j, "F4"))["met"] == false);
+  CHECK(j["required_met"] == false);
+}
