@@ -195,15 +195,18 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
     CHECK((row.saturated_samples > 0) == (row.max_abs_u_v >= o.pi.u_max_v - 1e-12));
   }
   CHECK(r.Find("F4")->met == no_limit_cycle);
-  // F6: the ratio of peaks recomputed here from the same open-loop run (seeded): v and a by
-  // central differences (a = central difference of v, the paper's "numerical differentiation"),
-  // the moving part |x'| >= 1 mm/s, a1 by the direction of motion.
+  // F6: the ratio of peaks recomputed here from the same open-loop run (seeded; one lead-in
+  // period, the second analysed): v and a by central differences (a = central difference of v,
+  // the paper's "numerical differentiation"), moving part |x'| >= 1 mm/s, a1 by direction.
   const double rate = stage.sample_rate_hz;
   const Eigen::Index n = static_cast<Eigen::Index>(std::llround(o.dominance_duration_s * rate)) + 1;
-  Eigen::VectorXd u(n);
-  for (Eigen::Index k = 0; k < n; ++k)
+  Eigen::VectorXd u(2 * n - 1);
+  for (Eigen::Index k = 0; k < u.size(); ++k)
     u[k] = 1.5 * std::sin(M_PI / 2 * static_cast<double>(k) / rate - M_PI / 2) - 0.3;
-  const sysid::StageRun run = sysid::RunOpenLoop(stage, u, sysid::DeriveSeed(o.seed, 3));
+  const sysid::StageRun full = sysid::RunOpenLoop(stage, u, sysid::DeriveSeed(o.seed, 3));
+  struct {
+    Eigen::VectorXd x_m;
+  } run{full.x_m.tail(n)};
   const sysid::FrictionModel m = *r.pulse_model;
   Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
   for (Eigen::Index k = 1; k + 1 < n; ++k) v[k] = (run.x_m[k + 1] - run.x_m[k - 1]) * rate / 2;
