@@ -2,7 +2,9 @@
 # The README's first command: set-up (scripts/setup.sh), then the project's main job on the
 # bundled data: the whole pipeline on the virtual stage's recordings (identify -> delay ->
 # dominance -> NN sweep -> compare -> PI tracking -> report), plus the paper's pulse table and
-# a look at the real EMPS recording. Results go to out/ (override with SYSID_OUT).
+# a look at the real EMPS recording; it ends with the paper's measured facts checked on the bundled
+# stage (sysid stage facts: paper vs stage, tolerance, met). Results go to out/ (override with
+# SYSID_OUT).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh build
@@ -17,3 +19,6 @@ echo "== real measured data: the EMPS estimation recording =="
 echo
 echo "== the pipeline on the bundled virtual-stage recordings (datasets/virtual) =="
 "$SYSID" --progress pipeline datasets/virtual -o "$OUT/pipeline"
+echo
+echo "== the paper's facts on the bundled stage: paper vs stage (sysid stage facts) =="
+"$SYSID" --progress stage facts --stage datasets/virtual/stage.json | tee "$OUT/facts.txt"

@@ -23,6 +23,15 @@ out="$(mktemp)"
     echo '```'
     "$SYSID" "$cmd" --help
     echo '```'
+    # Nested subcommands (e.g. sysid stage facts).
+    for sub in $("$SYSID" "$cmd" --help | awk '/^Subcommands:/{f=1;next} f&&NF{print $1}'); do
+      echo
+      echo "## sysid $cmd $sub"
+      echo
+      echo '```'
+      "$SYSID" "$cmd" "$sub" --help
+      echo '```'
+    done
   done
 } > "$out"
 mv "$out" docs/cli.md

@@ -41,6 +41,7 @@ struct PipelineCliOptions {
   int typical_epochs = 60;
   int typical_stride = 2;
   bool refine = false, typical = true, track = true, tune_delay = true, json = false;
+  bool facts = false;
   double kp = PiOptions{}.kp_v_per_m;
   double ki = PiOptions{}.ki_v_per_m_s;
   std::uint64_t seed = 1;
@@ -86,6 +87,7 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   opt.typical_max_epochs = o.typical_epochs;
   opt.typical_stride = o.typical_stride;
   opt.track = o.track;
+  opt.facts = o.facts;
   opt.pi.kp_v_per_m = o.kp;
   opt.pi.ki_v_per_m_s = o.ki;
   opt.reference_path = o.reference;
@@ -128,6 +130,7 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
                              {"ff", t.scheme},
                              {"max_error_m", t.result.max_error_m},
                              {"rms_error_m", t.result.rms_error_m}});
+  if (r.facts) j["facts_required_met"] = r.facts->RequiredMet();
   j["steps"] = nlohmann::ordered_json::object();
   for (const auto& [name, s] : r.step_seconds) j["steps"][name] = s;
   if (o.json) {
@@ -188,6 +191,9 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_flag("!--no-delay", o->tune_delay, "keep tau = 0 (no delay tuning)");
   cmd->add_flag("--refine", o->refine, "refine all parameters by output error (Ceres)");
   cmd->add_flag("!--no-track", o->track, "skip the PI tracking experiment");
+  cmd->add_flag("--facts", o->facts,
+                "also check the paper's facts F1-F7 on the stage file (sysid stage facts, ~20 s): "
+                "table in the report, facts.json");
   cmd->add_option("--kp", o->kp,
                   "PI proportional gain [V/m] (default the paper's 19000, stable on the "
                   "bundled velocity-source stage; the actuator-delay preset needs 3000)");

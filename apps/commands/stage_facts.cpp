@@ -45,14 +45,19 @@ void RunStageFactsCommand(const StageFactsCli& o) {
     std::cout << r.ToMarkdown();
     return;
   }
+  // One block per fact: the texts are too long for one table row in a terminal.
   std::cout << "stage: " << r.stage_name << '\n';
-  Table t({"id", "fact", "paper", "stage", "tolerance", "met"});
-  for (const auto& x : r.facts)
-    t.AddRow({x.id, x.fact, x.paper, x.virtual_value, x.tolerance,
-              x.met ? "yes" : (x.required ? "NO" : "no (reported)")});
-  std::cout << t.Render();
-  for (const auto& x : r.facts)
-    if (!x.note.empty() && (!x.met || x.id == "F6")) std::cout << x.id << ": " << x.note << '\n';
+  for (const auto& x : r.facts) {
+    std::cout << '\n'
+              << x.id << "  " << x.fact << "  ["
+              << (x.met ? "met" : (x.required ? "NOT MET" : "not met, reported only")) << "]\n";
+    std::cout << "    paper:     " << x.paper << '\n';
+    std::cout << "    stage:     " << x.virtual_value << '\n';
+    std::cout << "    tolerance: " << x.tolerance << '\n';
+    if (!x.note.empty() && (!x.met || x.id == "F6"))
+      std::cout << "    note:      " << x.note << '\n';
+  }
+  std::cout << '\n';
   std::cout << (r.RequiredMet() ? "all required facts met\n" : "some required facts not met\n");
 }
 

@@ -1,7 +1,8 @@
 // The end-to-end pipeline and the tracking command: report presence and content, feedforward
 // paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
-#include <catch2/catch.hpp>
+#include "sysid/pipeline.hpp"
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,7 +13,6 @@
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
-#include "sysid/pipeline.hpp"
 #include "sysid/stage.hpp"
 
 using sysid::test::RunCli;
@@ -51,10 +51,9 @@ TEST_CASE("the closed loop applies the feedforward sample by sample", "[pipeline
 }
 
 TEST_CASE("network inverse takes v and a by name and refuses other inputs", "[pipeline]") {
-  sysid::NeuralNetwork net({{"a", "m/s^2", -1, 1}, {"v", "m/s", -0.1, 0.1}}, {"u", "V", -2, 2},
-                           2);
+  sysid::NeuralNetwork net({{"a", "m/s^2", -1, 1}, {"v", "m/s", -0.1, 0.1}}, {"u", "V", -2, 2}, 2);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(net.parameter_count());
-  theta[0] = 1.0;  // W1(0, 0): unit 0 sees the first input, "a"
+  theta[0] = 1.0;                  // W1(0, 0): unit 0 sees the first input, "a"
   theta.tail(3) << 1.0, 0.0, 0.0;  // w2 = (1, 0), b2 = 0
   net.set_parameters(theta);
   Eigen::VectorXd v(1), a(1);
@@ -101,9 +100,9 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
           "[pipeline][cli]") {
   TempDir dir;
   const std::string out = dir / "report";
-  const auto r = RunCli({"pipeline", SourcePath("datasets/virtual"), "-o", out, "--hidden",
-                         "4,6", "--max-epochs", "5", "--typical-epochs", "2",
-                         "--typical-stride", "20", "--json"});
+  const auto r =
+      RunCli({"pipeline", SourcePath("datasets/virtual"), "-o", out, "--hidden", "4,6",
+              "--max-epochs", "5", "--typical-epochs", "2", "--typical-stride", "20", "--json"});
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["dominant"] == "velocity");
@@ -133,4 +132,32 @@ TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("missing pulse recordings"));
   CHECK_FALSE(std::filesystem::exists(dir / "report"));
+}
+
+TEST_CASE("the pipeline report carries the paper's facts table on request", "[pipeline][facts]") {
+  sysid::PipelineOptions o;
+  o.hidden_sizes = {4};
+  o.training.max_epochs = 3;
+  o.typical = false;
+  o.track = false;
+  o.threads = 2;
+  o.facts = true;
+  o.facts_options = sysid::FactsOptions::Reduced();
+  o.facts_options.facts = {"F1", "F2", "F3"};
+  const auto inputs = sysid::PipelineInputs::FromDirectory(SourcePath("datasets/virtual"));
+  const sysid::PipelineResult r = sysid::RunPipeline(inputs, o);
+  REQUIRE(r.facts.has_value());
+  REQUIRE(r.facts->facts.size() == 3);
+  TempDir dir;
+  sysid::WritePipelineReport(r, dir / "report");
+  const std::string md = sysid::test::ReadText(dir / "report/report.md");
+  CHECK(md.find("## 7. The paper's facts on the stage") != std::string::npos);
+  CHECK(md.find("| F3 |") != std::string::npos);
+  // The report says which required facts fail, or that all are met.
+  const bool all = r.facts->RequiredMet();
+  CHECK((md.find("Every required fact is met.") != std::string::npos) == all);
+  CHECK((md.find("Not met on this stage") != std::string::npos) == !all);
+  const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "report/facts.json"));
+  CHECK(j["facts"].size() == 3);
+  CHECK(j["required_met"] == all);
 }

@@ -22,6 +22,7 @@
 #include "sysid/dominance.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/stage_facts.hpp"
 
 namespace sysid {
 
@@ -67,6 +68,10 @@ struct PipelineOptions {
   std::vector<double> track_frequencies_hz{0.5, 1.0};
   double track_amplitude_m = 0.01;  ///< [m] stroke of the smooth profile
   PiOptions pi;             ///< the paper's gains (stable on the default velocity-source stage)
+  /// Also run the paper's experiments on the stage file (RunStageFacts, F1-F7, ~20 s) and put
+  /// the facts table (paper vs stage, tolerance, met) in the report and facts.json.
+  bool facts = false;
+  FactsOptions facts_options;  ///< the paper's experiments by default (threads: `threads`)
   /// JSON of reference numbers placed beside ours in the report (experiments/ passes the
   /// paper's); empty: none.
   std::string reference_path;
@@ -99,6 +104,7 @@ struct PipelineResult {
   double typical_test_mse = 0;                 ///< [V^2]
   std::vector<InverseComparison> comparisons;  ///< test set, then waveforms
   std::vector<TrackingRow> tracking;
+  std::optional<StageFacts> facts;  ///< when options.facts and a stage file
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report
 };

@@ -79,7 +79,9 @@ struct FactsOptions {
   double dominance_amplitude_v = 1.5;
   double dominance_omega_rad_s = 1.5707963267948966;  ///< pi/2
   double dominance_offset_v = -0.3;
-  double dominance_duration_s = 4.0;      ///< one period
+  /// [s] analysed, after a lead-in of the same length (the input starts with a -1.8 V step
+  /// from rest, a start-up transient the paper did not plot); default one period.
+  double dominance_duration_s = 4.0;
   double dominance_min_speed_mps = 1e-3;  ///< [m/s] the moving part
   void Validate() const;                  ///< throws OptionsError naming the field and the rule
   static DelayTuningOptions DefaultDelay();

@@ -61,6 +61,7 @@ class ReportWriter {
     Neural();
     Comparison();
     Tracking();
+    Facts();
     Timing();
     WriteFileAtomically(Path("report.md"), md_);
     return notes_;
@@ -394,6 +395,26 @@ class ReportWriter {
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
     md_ += "\n";
+  }
+
+  void Facts() {
+    if (!r_.facts) return;
+    md_ += "\n## 7. The paper's facts on the stage (`sysid stage facts`)\n\n";
+    md_ +=
+        "Each fact of the paper measured on this stage by the paper's own experiment "
+        "(docs/virtual_stage.md, \"Stage facts\"). F1-F6 are required of a stage that stands "
+        "in for the paper's; F7 is reported.\n\n";
+    md_ += r_.facts->ToMarkdown();
+    std::string failed;
+    for (const auto& f : r_.facts->facts)
+      if (f.required && !f.met) failed += (failed.empty() ? "" : ", ") + f.id;
+    md_ += failed.empty() ? "\nEvery required fact is met.\n"
+                          : "\n**Not met on this stage: " + failed +
+                                ".** Numbers downstream of these facts describe this stage, not "
+                                "the paper's.\n";
+    for (const auto& f : r_.facts->facts)
+      if (!f.met && !f.note.empty()) md_ += "- " + f.id + ": " + f.note + "\n";
+    WriteFileAtomically(Path("facts.json"), r_.facts->ToJson() + "\n");
   }
 
   void Timing() {

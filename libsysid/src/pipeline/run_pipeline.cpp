@@ -182,6 +182,16 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   } else if (options.track) {
     r.notes.push_back("no stage file: the tracking experiment was skipped");
   }
+
+  if (options.facts && !inputs.stage.empty()) {
+    step("paper facts on the stage (F1-F7)", [&] {
+      FactsOptions fo = options.facts_options;
+      fo.threads = options.threads;
+      r.facts = RunStageFacts(ReadStageParameters(inputs.stage), fo);
+    });
+  } else if (options.facts) {
+    r.notes.push_back("no stage file: the paper's facts were not checked");
+  }
   return r;
 }
 
