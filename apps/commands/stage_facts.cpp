@@ -81,7 +81,9 @@ void AddStageCommand(CLI::App& app) {
       ->type_name("ID,...");
   cmd->add_option("--seed", o->seed, "noise seed of every experiment [integer], default 1")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
-  cmd->add_option("--threads", o->threads, "threads for delay tuning and training, default all")
+  cmd->add_option(
+         "--threads", o->threads,
+         "threads for delay tuning, default all (the networks train on one thread: repeatable)")
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "
