@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "sysid/compare.hpp"
@@ -313,6 +314,17 @@ class FactsRun {
       f.values.emplace_back(fmt::format("max_error_m at {:g} Hz nn", hz), snn);
       // A frequency the paper did not measure has no table entry: not met.
       f.met = f.met && facts::TrackingOrderMet(sn, sa, snn, pn, pa, pnn);
+      // Where it fails, precisely.
+      std::vector<std::string> why;
+      if (!(sn > sa)) why.push_back(fmt::format("analytic {} >= PI {}", Mm(sa), Mm(sn)));
+      if (!(sa > snn)) why.push_back(fmt::format("NN {} >= analytic {}", Mm(snn), Mm(sa)));
+      for (const auto& [name, s, p] : {std::tuple<const char*, double, double>{"PI", sn, pn},
+                                       {"analytic", sa, pa},
+                                       {"NN", snn, pnn}})
+        if (!(s <= 3 * p && s >= p / 3))
+          why.push_back(fmt::format("{} {} mm is {:.3g} x the paper's", name, Mm(s), s / p));
+      for (const auto& w : why)
+        f.note += fmt::format("{}{:g} Hz: {}", f.note.empty() ? "" : "; ", hz, w);
     }
     r_.facts.push_back(f);
   }
