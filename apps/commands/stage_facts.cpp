@@ -58,7 +58,15 @@ void RunStageFactsCommand(const StageFactsCli& o) {
       std::cout << "    note:      " << x.note << '\n';
   }
   std::cout << '\n';
-  std::cout << (r.RequiredMet() ? "all required facts met\n" : "some required facts not met\n");
+  std::string failed, run;
+  for (const auto& x : r.facts) {
+    run += (run.empty() ? "" : ", ") + x.id;
+    if (x.required && !x.met) failed += (failed.empty() ? "" : ", ") + x.id;
+  }
+  const std::string scope = o.facts.empty() ? "" : " (of the facts run: " + run + ")";
+  std::cout << (failed.empty() ? "every required fact is met" + scope
+                               : "required facts not met: " + failed + scope)
+            << '\n';
 }
 
 void AddStageCommand(CLI::App& app) {
