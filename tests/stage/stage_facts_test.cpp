@@ -297,3 +297,19 @@ TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]")
   CHECK(bad.exit_code != 0);
   CHECK(bad.out.empty());
 }
+
+TEST_CASE("stage facts options are validated before any experiment", "[stage][facts]") {
+  const StageParameters stage = StageParameters::Default();
+  FactsOptions o = FactsOptions::Reduced();
+  o.facts = {"F8"};
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("ids are F1"));
+  o = FactsOptions::Reduced();
+  o.track_frequencies_hz = {1e-9};  // would ask for 2e12 samples
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("0.01 <= f <= 50 Hz"));
+  o = FactsOptions::Reduced();
+  o.delay.tau_min_s = 1e-3;  // F3 compares with tau = 0
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("tau_min_s = 0"));
+  o = FactsOptions::Reduced();
+  o.track_cycles = 1;  // no cycle after the first: no ripple window
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("2 <= track_cycles"));
+}

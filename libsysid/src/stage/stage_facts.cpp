@@ -462,7 +462,8 @@ void FactsOptions::Validate() const {
   pi.Validate();
   if (track_frequencies_hz.empty()) fail("track_frequencies_hz = {}", "at least one frequency");
   for (double f : track_frequencies_hz)
-    if (!(f > 0) || !std::isfinite(f)) fail(fmt::format("track_frequencies_hz has {:g}", f), "> 0");
+    if (!(f >= 0.01 && f <= 50))  // bounds the run length: cycles / f seconds of samples
+      fail(fmt::format("track_frequencies_hz has {:g}", f), "0.01 <= f <= 50 Hz");
   if (!(std::abs(track_amplitude_m) > 0) || !std::isfinite(track_amplitude_m))
     fail(fmt::format("track_amplitude_m = {:g}", track_amplitude_m), "finite and != 0");
   if (track_cycles < 2 || track_cycles > 100)
