@@ -252,6 +252,13 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK(f7->met ==
         facts::NetworkContrast(r.typical_train_mse, r.typical_test_mse, r.dominant_test_mse));
   CHECK(r.RequiredMet() == f5->met);  // F7 does not count
+  // F7's physical context: coverage of (v, a) and the acceleration's differentiation noise.
+  const double outside = Value(*f7, "test_rows_outside_training_box_fraction");
+  CHECK(outside >= 0.0);
+  CHECK(outside <= 1.0);
+  CHECK(Value(*f7, "training_a_noise_rms_mps2") > 0);
+  CHECK(Value(*f7, "training_a_noise_rms_mps2") < Value(*f7, "training_a_rms_mps2"));
+  CHECK(Value(*f7, "training_max_abs_v_mps") > 0);
 }
 
 TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]") {
