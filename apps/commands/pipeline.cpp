@@ -192,7 +192,7 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_flag("--refine", o->refine, "refine all parameters by output error (Ceres)");
   cmd->add_flag("!--no-track", o->track, "skip the PI tracking experiment");
   cmd->add_flag("--facts", o->facts,
-                "also check the paper's facts F1-F7 on the stage file (sysid stage facts, ~20 s): "
+                "also check the paper's facts F1-F7 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");
   cmd->add_option("--kp", o->kp,
                   "PI proportional gain [V/m] (default the paper's 19000, stable on the "

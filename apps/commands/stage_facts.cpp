@@ -58,7 +58,15 @@ void RunStageFactsCommand(const StageFactsCli& o) {
       std::cout << "    note:      " << x.note << '\n';
   }
   std::cout << '\n';
-  std::cout << (r.RequiredMet() ? "all required facts met\n" : "some required facts not met\n");
+  std::string failed, run;
+  for (const auto& x : r.facts) {
+    run += (run.empty() ? "" : ", ") + x.id;
+    if (x.required && !x.met) failed += (failed.empty() ? "" : ", ") + x.id;
+  }
+  const std::string scope = o.facts.empty() ? "" : " (of the facts run: " + run + ")";
+  std::cout << (failed.empty() ? "every required fact is met" + scope
+                               : "required facts not met: " + failed + scope)
+            << '\n';
 }
 
 void AddStageCommand(CLI::App& app) {
@@ -82,7 +90,9 @@ void AddStageCommand(CLI::App& app) {
       ->type_name("ID,...");
   cmd->add_option("--seed", o->seed, "noise seed of every experiment [integer], default 1")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
-  cmd->add_option("--threads", o->threads, "threads for delay tuning and training, default all")
+  cmd->add_option(
+         "--threads", o->threads,
+         "threads for delay tuning, default all (the networks train on one thread: repeatable)")
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "

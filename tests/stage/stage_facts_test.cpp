@@ -260,6 +260,13 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK(f7->met ==
         facts::NetworkContrast(r.typical_train_mse, r.typical_test_mse, r.dominant_test_mse));
   CHECK(r.RequiredMet() == f5->met);  // F7 does not count
+  // F7's physical context: coverage of (v, a) and the acceleration's differentiation noise.
+  const double outside = Value(*f7, "test_rows_outside_training_box_fraction");
+  CHECK(outside >= 0.0);
+  CHECK(outside <= 1.0);
+  CHECK(Value(*f7, "training_a_noise_rms_mps2") > 0);
+  CHECK(Value(*f7, "training_a_noise_rms_mps2") < Value(*f7, "training_a_rms_mps2"));
+  CHECK(Value(*f7, "training_max_abs_v_mps") > 0);
 }
 
 TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]") {
@@ -304,4 +311,20 @@ TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]")
   const auto bad = sysid::test::RunCli({"stage", "facts", "--stage", dir / "bad.json"});
   CHECK(bad.exit_code != 0);
   CHECK(bad.out.empty());
+}
+
+TEST_CASE("stage facts options are validated before any experiment", "[stage][facts]") {
+  const StageParameters stage = StageParameters::Default();
+  FactsOptions o = FactsOptions::Reduced();
+  o.facts = {"F8"};
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("ids are F1"));
+  o = FactsOptions::Reduced();
+  o.track_frequencies_hz = {1e-9};  // would ask for 2e12 samples
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("0.01 <= f <= 50 Hz"));
+  o = FactsOptions::Reduced();
+  o.delay.tau_min_s = 1e-3;  // F3 compares with tau = 0
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("tau_min_s = 0"));
+  o = FactsOptions::Reduced();
+  o.track_cycles = 1;  // no cycle after the first: no ripple window
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("2 <= track_cycles"));
 }

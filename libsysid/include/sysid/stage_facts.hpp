@@ -61,11 +61,11 @@ struct PaperFacts {
 struct FactsOptions {
   /// Facts to run ("F1".."F7"); empty: all. Prerequisites run as needed.
   std::vector<std::string> facts;
-  std::uint64_t seed = 1;                     ///< noise seed of every experiment
-  int threads = 0;                            ///< for delay tuning and training (0: all cores)
-  PulseProcedure pulse;                       ///< the paper's ten pulses
-  DelayTuningOptions delay = DefaultDelay();  ///< F3; curve_points >= 2 (includes tau = 0)
-  PiOptions pi;                               ///< F4/F5: the paper's gains
+  std::uint64_t seed = 1;  ///< noise seed of every experiment
+  int threads = 0;         ///< for delay tuning (0: all cores); training uses one (repeatable)
+  PulseProcedure pulse;    ///< the paper's ten pulses
+  DelayTuningOptions delay = DefaultDelay();           ///< F3; curve_points >= 2 (includes tau = 0)
+  PiOptions pi;                                        ///< F4/F5: the paper's gains
   std::vector<double> track_frequencies_hz{0.5, 1.0};  ///< [Hz]
   double track_amplitude_m = 0.01;                     ///< [m] stroke, as the pipeline
   int track_cycles = 2;                                ///< >= 2 (ripple needs a second cycle)
