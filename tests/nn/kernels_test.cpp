@@ -2,11 +2,16 @@
 // Jacobian, a dense product for the blocked J'J, std::tanh, and a QR least-squares solve.
 #include <Eigen/QR>
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "nn/mlp_kernels.hpp"
+#include "nn/mlp_kernels_isa.hpp"
 
 namespace {
 
@@ -159,6 +164,13 @@ TEST_CASE("normal equations and sums of squares are bit-identical for 1 and N th
   CHECK(sse1 == sse3);
   CHECK(sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 1) ==
         sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 2));
+  Eigen::VectorXd theta1 = p.theta, theta2 = p.theta;
+  Eigen::MatrixXd A1, A2;
+  const double out1 = sysid::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta1, &A1, 1);
+  const double out2 = sysid::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta2, &A2, 2);
+  CHECK(out1 == out2);
+  CHECK(theta1 == theta2);
+  CHECK(A1 == A2);
   // And the chunked sums are the whole-Jacobian ones.
   Eigen::MatrixXd J;
   sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
@@ -166,4 +178,101 @@ TEST_CASE("normal equations and sums of squares are bit-identical for 1 and N th
   const Eigen::MatrixXd L = JtJ1.triangularView<Eigen::Lower>();
   const Eigen::MatrixXd Lref = ref.triangularView<Eigen::Lower>();
   CHECK((L - Lref).norm() <= 1e-12 * Lref.norm());
+}
+
+namespace {
+
+// One kernel call's inputs and outputs copied into buffers that start `offset` bytes past a
+// 32-byte boundary, so that a test controls what malloc otherwise decides.
+class OffsetBuffer {
+ public:
+  OffsetBuffer(const double* src, std::size_t size, std::size_t offset)
+      : store_(size + 8), data_(nullptr) {
+    auto base = reinterpret_cast<std::uintptr_t>(store_.data());
+    base = (base + 31) / 32 * 32 + offset;
+    data_ = reinterpret_cast<double*>(base);
+    if (src != nullptr) std::memcpy(data_, src, size * sizeof(double));
+    else std::fill(data_, data_ + size, 0.0);
+    size_ = size;
+  }
+  double* data() { return data_; }
+  std::vector<double> Copy() const { return {data_, data_ + size_}; }
+
+ private:
+  std::vector<double> store_;
+  double* data_;
+  std::size_t size_ = 0;
+};
+
+// Every output of every kernel of the active table for one problem, with all buffers placed
+// `offset` bytes past a 32-byte boundary.
+std::vector<std::vector<double>> RunKernelsAt(const Problem& prob, std::size_t offset) {
+  namespace isa = sysid::nn::isa;
+  const isa::Table& k = isa::ActiveTable();
+  const int n = static_cast<int>(prob.Z.rows()), H = prob.H;
+  const long N = prob.Z.cols();
+  const auto P = static_cast<std::size_t>(sysid::nn::ParameterCount(n, H));
+  const auto uH = static_cast<std::size_t>(H), uN = static_cast<std::size_t>(N);
+  OffsetBuffer Z(prob.Z.data(), prob.Z.size(), offset), y(prob.y.data(), uN, offset),
+      theta(prob.theta.data(), P, offset);
+  const isa::Problem p{Z.data(), n, y.data(), H, theta.data()};
+  std::vector<std::vector<double>> out;
+  // Start at sample 3 so that the samples' own offsets differ from the buffers' too.
+  const long first = 3, count = N - 3, block = 64;
+  OffsetBuffer A(nullptr, uH * uN, offset), r(nullptr, uN, offset), JT(nullptr, P * uN, offset);
+  k.forward_block(p, first, count, A.data(), r.data());
+  out.push_back(A.Copy());
+  out.push_back(r.Copy());
+  k.jacobian_transpose_block(p, first, count, JT.data(), A.data(), r.data());
+  out.push_back(JT.Copy());
+  out.push_back(A.Copy());
+  out.push_back(r.Copy());
+  OffsetBuffer JtJ(nullptr, P * P, offset), g(nullptr, P, offset);
+  const double sse = k.normal_chunk(p, first, count, block, JtJ.data(), g.data());
+  out.push_back(JtJ.Copy());
+  out.push_back(g.Copy());
+  out.push_back({sse, k.sum_squares_chunk(p, first, count, block)});
+  OffsetBuffer G(nullptr, (uH + 1) * (uH + 1), offset), c(nullptr, uH + 1, offset);
+  k.output_normal_chunk(p, first, count, block, G.data(), c.data(), A.data());
+  out.push_back(G.Copy());
+  out.push_back(c.Copy());
+  out.push_back(A.Copy());
+  out.push_back({k.output_sse_chunk(p, first, count, A.data())});
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every kernel's results are bit-identical wherever malloc puts the buffers",
+          "[nn][kernels][simd][threads]") {
+  // The AVX2 kernels work on 32-byte packets, but the program's buffers are only 16-byte
+  // aligned (glibc malloc), and where each lands depends on the heap's history (threads,
+  // earlier work). Results must not depend on it, or training is not reproducible.
+  for (const char* isa_name : {"generic", "avx2+fma"}) {
+    if (!sysid::nn::SetKernelIsa(isa_name)) {
+      WARN(isa_name << " kernels not built or not supported by this CPU: skipped");
+      continue;
+    }
+    for (int n : {1, 2}) {
+      for (int H : {13, 24}) {
+        const Problem p = MakeProblem(n, H, 263, 90u + static_cast<unsigned>(n * H));
+        const auto ref = RunKernelsAt(p, 0);
+        for (std::size_t offset : {8u, 16u, 24u}) {
+          INFO(isa_name << " n=" << n << " H=" << H << " offset " << offset << " bytes");
+          const auto got = RunKernelsAt(p, offset);
+          REQUIRE(got.size() == ref.size());
+          for (std::size_t i = 0; i < ref.size(); ++i) {
+            // Count the differing values rather than print thousands of them.
+            std::size_t differ = got[i].size() == ref[i].size() ? 0 : ref[i].size();
+            for (std::size_t j = 0; j < ref[i].size() && j < got[i].size(); ++j) {
+              if (std::memcmp(&got[i][j], &ref[i][j], sizeof(double)) != 0) ++differ;
+            }
+            INFO("output " << i << ": " << differ << " of " << ref[i].size() << " values differ");
+            CHECK(differ == 0);
+          }
+        }
+      }
+    }
+  }
+  REQUIRE(sysid::nn::SetKernelIsa("auto"));
 }

@@ -76,6 +76,8 @@ void ForwardBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& t
 
 }  // namespace
 
+const isa::Table& isa::ActiveTable() { return Kernels(); }
+
 const char* KernelIsa() { return Kernels().name; }
 
 bool SetKernelIsa(const char* name) {

@@ -47,6 +47,9 @@ struct Table {
 namespace generic {
 extern const Table kTable;
 }
+
+/// The table in use (nn::SetKernelIsa chooses it); lets tests call the raw kernels.
+const Table& ActiveTable();
 namespace avx2 {
 extern const Table kTable;  // defined only when SYSID_HAVE_AVX2_KERNELS is set
 }
