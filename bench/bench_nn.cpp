@@ -10,6 +10,10 @@
 //     (legacy_mlp_kernels.hpp: default flags, one thread), the generic and the best SIMD
 //     kernels on 1 thread and on T threads (default: all cores); GFLOP/s of J'J + J'r; the
 //     largest relative difference to the old kernels.
+//   bench_nn --case kernels --data p2_data_v.csv --init p2_init_v.csv [--repeats 31]
+//     each kernel entry point on one thread (best instruction set), minimum and median time:
+//     sum of squares, normal equations, output-layer solve, residuals, Jacobian. For
+//     before/after comparisons of a kernel change (two builds, runs interleaved).
 // Prints one JSON object per line.
 #include <fmt/format.h>
 
@@ -23,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "legacy_mlp_kernels.hpp"
@@ -70,6 +75,44 @@ sysid::NeuralTrainingOptions PeerProblem(const std::vector<std::string>& inputs)
   o.output_range = std::pair{-1.0, 1.0};  // y in volts, unscaled, as in the peer
   o.gradient_tolerance = 0;
   return o;
+}
+
+// Minimum wall time of `repeats` calls of f (the least disturbed by other load).
+double Minimum(int repeats, const std::function<void()>& f) {
+  double best = 1e300;
+  for (int i = 0; i < repeats; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    best = std::min(best, Seconds(t0));
+  }
+  return best;
+}
+
+// Each kernel entry point on one thread; see the file comment.
+void KernelTimes(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, int H,
+                 int repeats) {
+  const int n = static_cast<int>(d.inputs.cols());
+  Eigen::MatrixXd Z = d.inputs.transpose();
+  for (int i = 0; i < n; ++i) Z.row(i) /= d.input_names[i] == "a" ? 0.6 : 0.1;
+  const Eigen::VectorXd& y = d.targets;
+  Eigen::MatrixXd JtJ, J, A;
+  Eigen::VectorXd g, r, t = theta;
+  double sse = 0;
+  const std::vector<std::pair<const char*, std::function<void()>>> kernels = {
+      {"sum_squares", [&] { sse = sysid::nn::SumSquares(Z, y, H, theta); }},
+      {"normal_equations", [&] { sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse); }},
+      {"solve_output_layer", [&] { sse = sysid::nn::SolveOutputLayer(Z, y, H, &t, &A); }},
+      {"residuals", [&] { sysid::nn::Residuals(Z, y, H, theta, &r); }},
+      {"jacobian", [&] { sysid::nn::Jacobian(Z, y, H, theta, &J); }}};
+  nlohmann::ordered_json j{{"what", "kernel_times"}, {"isa", sysid::nn::KernelIsa()},
+                           {"N", Z.cols()},         {"H", H},
+                           {"threads", 1},          {"repeats", repeats}};
+  for (const auto& [name, f] : kernels) {
+    f();  // warm-up: first-touch allocation
+    j[std::string(name) + "_min_s"] = Minimum(repeats, f);
+    j[std::string(name) + "_median_s"] = Median(repeats, f);
+  }
+  std::cout << j.dump() << std::endl;
 }
 
 // One LM epoch's parts on the full Jacobian, against the fused blocked epoch.
@@ -251,6 +294,14 @@ int main(int argc, char** argv) {
       const auto d = sysid::ReadNeuralDataset(a.data, inputs, "u");
       const int H = static_cast<int>((theta0.size() - 1) / (inputs.size() + 2));
       EpochTargets(d, theta0, H, a.repeats, a.threads);
+    } else if (a.which == "kernels") {
+      const Eigen::VectorXd theta0 = ReadTheta(a.init);
+      const std::vector<std::string> inputs =
+          a.data.find("_va") == std::string::npos ? std::vector<std::string>{"v"}
+                                                  : std::vector<std::string>{"v", "a"};
+      const auto d = sysid::ReadNeuralDataset(a.data, inputs, "u");
+      const int H = static_cast<int>((theta0.size() - 1) / (inputs.size() + 2));
+      KernelTimes(d, theta0, H, a.repeats);
     } else if (a.which == "v" || a.which == "va") {
       const std::vector<std::string> inputs =
           a.which == "v" ? std::vector<std::string>{"v"} : std::vector<std::string>{"v", "a"};
@@ -326,7 +377,7 @@ int main(int argc, char** argv) {
                                {"rows", rows}};
       std::cout << j.dump() << std::endl;
     } else {
-      std::cerr << "bench_nn: --case must be v, va, sweep or epoch\n";
+      std::cerr << "bench_nn: --case must be v, va, sweep, epoch or kernels\n";
       return 1;
     }
   } catch (const std::exception& e) {
