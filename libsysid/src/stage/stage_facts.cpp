@@ -118,11 +118,9 @@ class FactsRun {
     const NeuralDataset test_v = MakeNeuralDataset(test, {"v"}, "u");
     Step(fmt::format("dominant network (v, {} units)", o_.training.hidden));
     NeuralTrainingOptions t = o_.training;
-    // One thread: with two or more, LM training is not repeatable run to run in the last bits
-    // (observed: 1 run in 4 gives another 24-unit network, test MSE 0.0653801 vs 0.0653828 V^2),
-    // which moves the NN tracking row. Even on one thread the AVX2 kernels' last bits follow
-    // the process's earlier work (e.g. the delay tuning's thread count), not only the data: a
-    // given command repeats exactly, the same network trained elsewhere may differ slightly.
+    // One thread, as every network of the facts. Training no longer depends on the thread
+    // count or on where malloc puts its buffers (nn kernels test), so this only keeps the
+    // facts' CPU use predictable beside the experiments' own threads.
     t.threads = 1;
     network_ = TrainNeuralNetwork(train_v, nullptr, t).network;
     r_.dominant_train_mse = MeanSquaredError(*network_, train_v);
