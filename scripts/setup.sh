@@ -16,6 +16,8 @@ PACKAGES=(
   gnuplot-nox                          # plots in reports
   libboost-dev                         # Boost.Math (test cross-check of the smoothing derivative)
   python3-numpy python3-scipy          # the Python peers that benchmarks run side by side
+  pybind11-dev python3-pybind11        # the Python package sysid (python/)
+  python3-pandas python3-dask python3-distributed python3-pytest python3-matplotlib
 )
 
 missing=()

@@ -1,0 +1,374 @@
+// Identification (sysid/identify.hpp), delay tuning (sysid/delay.hpp) and dominance
+// (sysid/dominance.hpp). Results keep the C++ field names; dominance results also give plain
+// dicts and records that pandas.DataFrame takes directly.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bind_common.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/dominance.hpp"
+#include "sysid/identify.hpp"
+
+namespace sysid::python {
+namespace {
+
+py::object FiniteOrNone(double x) { return std::isfinite(x) ? py::object(py::float_(x)) : py::none(); }
+
+py::dict StatsDict(const TermStats& s, bool ranking) {
+  py::dict d;
+  d[ranking ? "variable" : "term"] = s.name;
+  d["rms"] = s.rms;
+  d["peak"] = s.peak;
+  d["ratio_to_top"] = s.ratio_to_top;
+  if (ranking) {
+    d["ratio_bound"] = s.ratio_bound;
+    d["ratio_max"] = s.ratio_max;
+    d["negligible"] = s.negligible;
+  }
+  return d;
+}
+
+/// The CLI's per-recording JSON object (`sysid dominance --json`, "recordings" entries).
+py::dict DominanceDict(const DominanceResult& r) {
+  py::dict d;
+  d["source"] = r.source;
+  py::list ranking, terms;
+  for (const auto& s : r.ranking) ranking.append(StatsDict(s, true));
+  for (const auto& s : r.terms) terms.append(StatsDict(s, false));
+  d["ranking"] = ranking;
+  d["dominant"] = r.dominant;
+  d["margin"] = FiniteOrNone(r.margin);
+  d["terms"] = terms;
+  d["paper_ratio_bound"] = r.paper_ratio_bound;
+  d["paper_ratio_max"] = r.paper_ratio_max;
+  d["samples"] = r.samples;
+  d["moving_samples"] = r.moving_samples;
+  return d;
+}
+
+/// One flat row per recording: source, dominant, margin, sample counts, the paper's ratio and
+/// rms_<variable> / ratio_<variable> for every ranked variable.
+py::dict DominanceRow(const DominanceResult& r) {
+  py::dict d;
+  d["source"] = r.source;
+  d["dominant"] = r.dominant;
+  d["margin"] = r.margin;
+  d["samples"] = r.samples;
+  d["moving_samples"] = r.moving_samples;
+  d["paper_ratio_bound"] = r.paper_ratio_bound;
+  d["paper_ratio_max"] = r.paper_ratio_max;
+  for (const auto& s : r.ranking) {
+    d[py::str("rms_" + s.name)] = s.rms;
+    d[py::str("ratio_" + s.name)] = s.ratio_to_top;
+  }
+  return d;
+}
+
+/// Rows of DominanceTableCsv: one per (recording, ranked variable).
+py::list DominanceRecords(const std::vector<DominanceResult>& results) {
+  py::list rows;
+  for (const auto& r : results) {
+    int rank = 0;
+    for (const auto& s : r.ranking) {
+      py::dict d;
+      d["source"] = r.source;
+      d["rank"] = ++rank;
+      d["variable"] = s.name;
+      d["rms"] = s.rms;
+      d["peak"] = s.peak;
+      d["ratio_to_top"] = s.ratio_to_top;
+      d["ratio_bound"] = s.ratio_bound;
+      d["ratio_max"] = s.ratio_max;
+      d["negligible"] = s.negligible;
+      d["dominant"] = r.dominant == s.name;
+      d["margin"] = r.margin;
+      d["moving_samples"] = r.moving_samples;
+      rows.append(d);
+    }
+  }
+  return rows;
+}
+
+template <typename R>
+void AddSolvedTermination(py::class_<R>& cls) {
+  // Least squares either returns a solution or throws NumericalError: no other termination.
+  cls.def_property_readonly("termination", [](const R&) { return "solved"; });
+}
+
+}  // namespace
+
+void BindIdentify(py::module_& m) {
+  // ---- Pulses ----
+  py::class_<PulseDetectionOptions> detection(m, "PulseDetectionOptions");
+  AddKeywordInit(detection);
+  detection.def_readwrite("min_duration_s", &PulseDetectionOptions::min_duration_s)
+      .def_readwrite("u_tolerance_v", &PulseDetectionOptions::u_tolerance_v)
+      .def_readwrite("zero_tolerance_v", &PulseDetectionOptions::zero_tolerance_v)
+      .def("validate", &PulseDetectionOptions::Validate);
+  py::class_<PlateauOptions> plateau(m, "PlateauOptions");
+  AddKeywordInit(plateau);
+  plateau.def_readwrite("window_fraction", &PlateauOptions::window_fraction)
+      .def_readwrite("settle_tolerance", &PlateauOptions::settle_tolerance)
+      .def_readwrite("min_speed_mps", &PlateauOptions::min_speed_mps)
+      .def_readwrite("max_speed_mps", &PlateauOptions::max_speed_mps)
+      .def_readwrite("travel_min_m", &PlateauOptions::travel_min_m)
+      .def_readwrite("travel_max_m", &PlateauOptions::travel_max_m)
+      .def_readwrite("min_window_samples", &PlateauOptions::min_window_samples)
+      .def("validate", &PlateauOptions::Validate);
+  py::class_<PulseFitOptions> fit_options(m, "PulseFitOptions");
+  AddKeywordInit(fit_options);
+  fit_options.def_readwrite("a3", &PulseFitOptions::a3).def("validate", &PulseFitOptions::Validate);
+  py::class_<PulseIdentificationOptions> pulse_options(m, "PulseIdentificationOptions");
+  AddKeywordInit(pulse_options);
+  pulse_options.def_readwrite("motion", &PulseIdentificationOptions::motion)
+      .def_readwrite("detection", &PulseIdentificationOptions::detection)
+      .def_readwrite("plateau", &PulseIdentificationOptions::plateau)
+      .def_readwrite("fit", &PulseIdentificationOptions::fit)
+      .def("validate", &PulseIdentificationOptions::Validate);
+
+  py::class_<Pulse>(m, "Pulse")
+      .def_readonly("source", &Pulse::source)
+      .def_readonly("first_row", &Pulse::first_row)
+      .def_readonly("end_row", &Pulse::end_row)
+      .def_readonly("t_start_s", &Pulse::t_start_s)
+      .def_readonly("duration_s", &Pulse::duration_s)
+      .def_readonly("amplitude_v", &Pulse::amplitude_v)
+      .def_readonly("at_record_start", &Pulse::at_record_start)
+      .def_readonly("at_record_end", &Pulse::at_record_end);
+  m.def("detect_pulses", &DetectPulses, py::arg("t_s"), py::arg("u_v"),
+        py::arg("options") = PulseDetectionOptions{}, py::arg("source") = "");
+  py::class_<PulseEstimate>(m, "PulseEstimate")
+      .def_readonly("pulse", &PulseEstimate::pulse)
+      .def_readonly("v_mps", &PulseEstimate::v_mps)
+      .def_readonly("v_stderr_mps", &PulseEstimate::v_stderr_mps)
+      .def_readonly("drift_mps", &PulseEstimate::drift_mps)
+      .def_readonly("window_samples", &PulseEstimate::window_samples)
+      .def_property_readonly("status", [](const PulseEstimate& p) { return ToString(p.status); })
+      .def_readonly("reason", &PulseEstimate::reason)
+      .def_property_readonly("usable", &PulseEstimate::usable);
+
+  py::class_<LinearFit>(m, "LinearFit")
+      .def_readonly("names", &LinearFit::names)
+      .def_readonly("theta", &LinearFit::theta)
+      .def_readonly("std_error", &LinearFit::std_error)
+      .def_readonly("covariance", &LinearFit::covariance)
+      .def_readonly("residuals", &LinearFit::residuals)
+      .def_readonly("rows", &LinearFit::rows)
+      .def_readonly("rank", &LinearFit::rank)
+      .def_readonly("dof", &LinearFit::dof)
+      .def_readonly("rms_residual", &LinearFit::rms_residual)
+      .def_readonly("relative_error", &LinearFit::relative_error)
+      .def_readonly("condition_number", &LinearFit::condition_number)
+      .def_readonly("r_diagonal", &LinearFit::r_diagonal);
+  py::class_<PulsePoint>(m, "PulsePoint")
+      .def(py::init([](double u, double v, std::string label) {
+             return PulsePoint{u, v, std::move(label)};
+           }),
+           py::arg("u_v"), py::arg("v_mps"), py::arg("label") = "")
+      .def_readwrite("u_v", &PulsePoint::u_v)
+      .def_readwrite("v_mps", &PulsePoint::v_mps)
+      .def_readwrite("label", &PulsePoint::label);
+  m.def("read_pulse_table", &ReadPulseTable, py::arg("path"));
+
+  py::class_<PulseIdentificationResult> pulse_result(m, "PulseIdentificationResult");
+  pulse_result.def_readonly("model", &PulseIdentificationResult::model)
+      .def_readonly("fit", &PulseIdentificationResult::fit)
+      .def_readonly("points", &PulseIdentificationResult::points)
+      .def_readonly("pulses", &PulseIdentificationResult::pulses)
+      .def_property_readonly("message",
+                             [](const PulseIdentificationResult& r) {
+                               return fmt::format("{} equations, rank {}", r.fit.rows, r.fit.rank);
+                             })
+      .def("brief_report", &PulseIdentificationResult::BriefReport);
+  AddSolvedTermination(pulse_result);
+  m.def("fit_pulse_table", &FitPulseTable, py::arg("points"),
+        py::arg("options") = PulseFitOptions{});
+  m.def("identify_pulses_recordings", &IdentifyFromPulses, py::arg("recordings"),
+        py::arg("options") = PulseIdentificationOptions{}, ReleaseGil());
+
+  // ---- Trajectory ----
+  py::class_<TrajectoryOptions> trajectory_options(m, "TrajectoryOptions");
+  AddKeywordInit(trajectory_options);
+  trajectory_options.def_readwrite("motion", &TrajectoryOptions::motion)
+      .def_readwrite("tau_s", &TrajectoryOptions::tau_s)
+      .def_readwrite("tune_delay", &TrajectoryOptions::tune_delay)
+      .def_readwrite("tau_min_s", &TrajectoryOptions::tau_min_s)
+      .def_readwrite("tau_max_s", &TrajectoryOptions::tau_max_s)
+      .def_readwrite("decimation", &TrajectoryOptions::decimation)
+      .def_readwrite("min_speed_mps", &TrajectoryOptions::min_speed_mps)
+      .def_readwrite("trim_samples", &TrajectoryOptions::trim_samples)
+      .def_readwrite("offset", &TrajectoryOptions::offset)
+      .def_readwrite("symmetric_viscous", &TrajectoryOptions::symmetric_viscous)
+      .def("validate", &TrajectoryOptions::Validate);
+  py::class_<TrajectoryIdentificationResult> trajectory_result(m,
+                                                              "TrajectoryIdentificationResult");
+  trajectory_result.def_readonly("model", &TrajectoryIdentificationResult::model)
+      .def_readonly("fit", &TrajectoryIdentificationResult::fit)
+      .def_readonly("names", &TrajectoryIdentificationResult::names)
+      .def_readonly("estimate", &TrajectoryIdentificationResult::estimate)
+      .def_readonly("std_error", &TrajectoryIdentificationResult::std_error)
+      .def_readonly("covariance", &TrajectoryIdentificationResult::covariance)
+      .def_readonly("offset_mps2", &TrajectoryIdentificationResult::offset_mps2)
+      .def_readonly("samples_used", &TrajectoryIdentificationResult::samples_used)
+      .def_readonly("relative_error", &TrajectoryIdentificationResult::relative_error)
+      .def_readonly("tau_curve", &TrajectoryIdentificationResult::tau_curve)
+      .def_property_readonly("message",
+                             [](const TrajectoryIdentificationResult& r) {
+                               return fmt::format("{} moving samples, relative error {:.4g}",
+                                                  r.samples_used, r.relative_error);
+                             })
+      .def("brief_report", &TrajectoryIdentificationResult::BriefReport);
+  AddSolvedTermination(trajectory_result);
+  m.def("identify_trajectory_recordings", &IdentifyFromTrajectory, py::arg("recordings"),
+        py::arg("options") = TrajectoryOptions{}, ReleaseGil());
+
+  // ---- Delay tuning ----
+  py::class_<SegmentOptions> segments(m, "SegmentOptions");
+  AddKeywordInit(segments);
+  segments.def_readwrite("detection", &SegmentOptions::detection)
+      .def_readwrite("rest_speed_mps", &SegmentOptions::rest_speed_mps)
+      .def_readwrite("reuse_identical_segments", &SegmentOptions::reuse_identical_segments)
+      .def("validate", &SegmentOptions::Validate);
+  py::class_<DelayTuningOptions> delay_options(m, "DelayTuningOptions");
+  AddKeywordInit(delay_options);
+  delay_options.def_readwrite("tau_min_s", &DelayTuningOptions::tau_min_s)
+      .def_readwrite("tau_max_s", &DelayTuningOptions::tau_max_s)
+      .def_readwrite("x_tolerance_s", &DelayTuningOptions::x_tolerance_s)
+      .def_readwrite("coarse_evaluations", &DelayTuningOptions::coarse_evaluations)
+      .def_readwrite("max_evaluations", &DelayTuningOptions::max_evaluations)
+      .def_readwrite("curve_points", &DelayTuningOptions::curve_points)
+      .def_readwrite("motion", &DelayTuningOptions::motion)
+      .def_readwrite("segments", &DelayTuningOptions::segments)
+      .def_readwrite("sim_rtol", &DelayTuningOptions::sim_rtol)
+      .def_readwrite("sim_atol", &DelayTuningOptions::sim_atol)
+      .def_readwrite("threads", &DelayTuningOptions::threads)
+      .def("validate", &DelayTuningOptions::Validate);
+  py::class_<DelayTuningResult>(m, "DelayTuningResult")
+      .def_property_readonly("termination",
+                             [](const DelayTuningResult& r) { return ToString(r.termination); })
+      .def_readonly("message", &DelayTuningResult::message)
+      .def_readonly("model", &DelayTuningResult::model)
+      .def_readonly("tau_s", &DelayTuningResult::tau_s)
+      .def_readonly("cost", &DelayTuningResult::cost)
+      .def_readonly("rms_error_mps", &DelayTuningResult::rms_error_mps)
+      .def_readonly("evaluations", &DelayTuningResult::evaluations)
+      .def_readonly("simulations", &DelayTuningResult::simulations)
+      .def_readonly("segments", &DelayTuningResult::segments)
+      .def_readonly("samples", &DelayTuningResult::samples)
+      .def_readonly("curve", &DelayTuningResult::curve)
+      .def_readonly("wall_time_s", &DelayTuningResult::wall_time_s)
+      .def("brief_report", &DelayTuningResult::BriefReport);
+  m.def("tune_delay_recordings", &TuneDelay, py::arg("model"), py::arg("recordings"),
+        py::arg("options") = DelayTuningOptions{}, ReleaseGil());
+
+  // ---- Refinement ----
+  py::class_<RefineOptions> refine_options(m, "RefineOptions");
+  AddKeywordInit(refine_options);
+  refine_options.def_readwrite("motion", &RefineOptions::motion)
+      .def_readwrite("detection", &RefineOptions::detection)
+      .def_readwrite("refine_a3", &RefineOptions::refine_a3)
+      .def_readwrite("refine_tau", &RefineOptions::refine_tau)
+      .def_readwrite("tau_max_s", &RefineOptions::tau_max_s)
+      .def_readwrite("max_iterations", &RefineOptions::max_iterations)
+      .def_readwrite("threads", &RefineOptions::threads)
+      .def_readwrite("sim_rtol", &RefineOptions::sim_rtol)
+      .def("validate", &RefineOptions::Validate);
+  py::class_<RefineResult>(m, "RefineResult")
+      .def_readonly("initial", &RefineResult::initial)
+      .def_readonly("model", &RefineResult::model)
+      .def_readonly("names", &RefineResult::names)
+      .def_readonly("std_error", &RefineResult::std_error)
+      .def_readonly("initial_cost", &RefineResult::initial_cost)
+      .def_readonly("final_cost", &RefineResult::final_cost)
+      .def_readonly("rms_error_mps", &RefineResult::rms_error_mps)
+      .def_readonly("iterations", &RefineResult::iterations)
+      .def_readonly("simulations", &RefineResult::simulations)
+      .def_readonly("converged", &RefineResult::converged)
+      .def_property_readonly(
+          "termination",
+          [](const RefineResult& r) { return r.converged ? "converged" : "not converged"; })
+      .def_readonly("message", &RefineResult::message)
+      .def_readonly("wall_time_s", &RefineResult::wall_time_s)
+      .def("brief_report", &RefineResult::BriefReport);
+  m.def("refine_recordings", &RefineOutputError, py::arg("initial"), py::arg("recordings"),
+        py::arg("options") = RefineOptions{}, ReleaseGil());
+
+  // ---- Dominance ----
+  py::class_<CandidateTerm>(m, "CandidateTerm")
+      .def(py::init([](std::string variable, std::string column, double gain) {
+             return CandidateTerm{std::move(variable), std::move(column), gain};
+           }),
+           py::arg("variable"), py::arg("column"), py::arg("gain") = 1.0,
+           "The candidate term gain * column [m/s^2] named `variable` in the ranking.")
+      .def_readwrite("variable", &CandidateTerm::variable)
+      .def_readwrite("column", &CandidateTerm::column)
+      .def_readwrite("gain", &CandidateTerm::gain);
+  py::class_<DominanceOptions> dominance_options(m, "DominanceOptions");
+  AddKeywordInit(dominance_options);
+  dominance_options.def_readwrite("motion", &DominanceOptions::motion)
+      .def_readwrite("min_speed_mps", &DominanceOptions::min_speed_mps)
+      .def_readwrite("negligible_ratio", &DominanceOptions::negligible_ratio)
+      .def_readwrite("bound_quantile", &DominanceOptions::bound_quantile)
+      .def_readwrite("candidates", &DominanceOptions::candidates)
+      .def_readwrite("threads", &DominanceOptions::threads)
+      .def("validate", &DominanceOptions::Validate);
+  py::class_<TermStats>(m, "TermStats")
+      .def_readonly("name", &TermStats::name)
+      .def_readonly("rms", &TermStats::rms)
+      .def_readonly("peak", &TermStats::peak)
+      .def_readonly("ratio_to_top", &TermStats::ratio_to_top)
+      .def_readonly("ratio_bound", &TermStats::ratio_bound)
+      .def_readonly("ratio_max", &TermStats::ratio_max)
+      .def_readonly("negligible", &TermStats::negligible);
+  py::class_<DominanceResult>(m, "DominanceResult")
+      .def_readonly("source", &DominanceResult::source)
+      .def_readonly("samples", &DominanceResult::samples)
+      .def_readonly("moving_samples", &DominanceResult::moving_samples)
+      .def_readonly("terms", &DominanceResult::terms)
+      .def_readonly("ranking", &DominanceResult::ranking)
+      .def_readonly("dominant", &DominanceResult::dominant)
+      .def_readonly("margin", &DominanceResult::margin)
+      .def_readonly("paper_ratio_bound", &DominanceResult::paper_ratio_bound)
+      .def_readonly("paper_ratio_max", &DominanceResult::paper_ratio_max)
+      .def_property_readonly("termination", [](const DominanceResult&) { return "analysed"; })
+      .def_property_readonly("message",
+                             [](const DominanceResult& r) {
+                               return fmt::format("dominant variable {} (margin {:.3g})",
+                                                  r.dominant, r.margin);
+                             })
+      .def("brief_report", &DominanceResult::BriefReport)
+      .def("to_dict", &DominanceDict, "The CLI's JSON object for this recording, as a dict.")
+      .def("row", &DominanceRow, "One flat dict: source, dominant, margin, rms_<variable>, ...")
+      .def("records", [](const DominanceResult& r) { return DominanceRecords({r}); },
+           "One dict per ranked variable (the CSV table's rows).");
+  py::class_<DominanceSummary>(m, "DominanceSummary")
+      .def_readonly("results", &DominanceSummary::results)
+      .def_readonly("dominant_counts", &DominanceSummary::dominant_counts)
+      .def_readonly("dominant", &DominanceSummary::dominant)
+      .def_readonly("min_margin", &DominanceSummary::min_margin)
+      .def_readonly("median_margin", &DominanceSummary::median_margin)
+      .def("records", [](const DominanceSummary& s) { return DominanceRecords(s.results); },
+           "One dict per (recording, ranked variable): the rows of table_csv().")
+      .def("rows",
+           [](const DominanceSummary& s) {
+             py::list rows;
+             for (const auto& r : s.results) rows.append(DominanceRow(r));
+             return rows;
+           },
+           "One flat dict per recording.")
+      .def("table_csv", &DominanceTableCsv, "The CLI's -o table.")
+      .def("brief_report", [](const DominanceSummary& s) {
+        std::string out;
+        for (const auto& r : s.results) out += r.BriefReport();
+        return out;
+      });
+  m.def("analyze_dominance", &AnalyzeDominance, py::arg("model"), py::arg("recording"),
+        py::arg("options") = DominanceOptions{}, ReleaseGil());
+  m.def("analyze_dominance_batch", &AnalyzeDominanceBatch, py::arg("model"),
+        py::arg("recordings"), py::arg("options") = DominanceOptions{}, ReleaseGil());
+}
+
+}  // namespace sysid::python

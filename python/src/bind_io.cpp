@@ -1,0 +1,181 @@
+// Recordings (sysid/io.hpp) and signal conditioning (sysid/signal.hpp, the motion part of
+// sysid/identify.hpp).
+#include <fmt/format.h>
+
+#include <string>
+#include <vector>
+
+#include "bind_common.hpp"
+#include "sysid/error.hpp"
+#include "sysid/identify.hpp"
+#include "sysid/io.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid::python {
+namespace {
+
+/// A recording from named 1-D arrays. The columns go through the strict reader's rules (the
+/// same checks and messages as a file: finite numbers, strictly increasing t, required columns)
+/// by rendering them at 17 significant digits, which round-trips every double exactly.
+Recording RecordingFromArrays(const py::dict& columns, const std::string& source,
+                              const ReadOptions& options,
+                              const std::vector<std::pair<std::string, std::string>>& metadata) {
+  Recording r;
+  r.source = source;
+  r.metadata = metadata;
+  Eigen::Index rows = -1;
+  for (const auto& item : columns) {
+    const std::string name = py::str(item.first);
+    const auto values = py::cast<Eigen::VectorXd>(
+        py::array_t<double, py::array::forcecast>::ensure(item.second).attr("ravel")());
+    if (rows >= 0 && values.size() != rows)
+      throw InputError(fmt::format("{}: column '{}' has {} values, the others {}", source, name,
+                                   values.size(), rows));
+    rows = values.size();
+    r.SetColumn(name, values);
+  }
+  if (rows < 0) throw InputError(source + ": no columns");
+  return ParseRecording(FormatRecording(r), source, options);
+}
+
+Recording DeriveRecording(Recording recording, const DerivativeOptions& options,
+                          double max_relative_jitter) {
+  const SamplingReport sampling = AnalyzeSampling(recording.column("t"), max_relative_jitter);
+  if (sampling.irregular)
+    throw InputError(fmt::format(
+        "{}: irregular sampling: t[{}] - t[{}] (data rows, 0-based) deviates {:.3g} % from the "
+        "median interval {:.6g} s (tolerance {:.3g} %); resample first",
+        recording.source, sampling.worst_index + 1, sampling.worst_index,
+        100 * sampling.max_relative_jitter, sampling.nominal_dt_s, 100 * max_relative_jitter));
+  const Derivatives d = Differentiate(recording.column("x"), sampling.nominal_dt_s, options);
+  recording.SetColumn("v", d.v_mps);
+  recording.SetColumn("a", d.a_mps2);
+  return recording;
+}
+
+}  // namespace
+
+void BindIo(py::module_& m) {
+  py::class_<ReadOptions> read_options(m, "ReadOptions",
+                                       "Which columns the recording reader insists on.");
+  AddKeywordInit(read_options);
+  read_options.def_readwrite("required_columns", &ReadOptions::required_columns)
+      .def_readwrite("any_of_columns", &ReadOptions::any_of_columns)
+      .def_readwrite("require_increasing_time", &ReadOptions::require_increasing_time);
+
+  py::class_<Recording> recording(
+      m, "Recording",
+      "A table of named, equally long columns in SI units (t [s], u [V], x [m], v [m/s], "
+      "a [m/s^2]) with the file's '# key: value' metadata. rec['x'] is a NumPy view (no copy).");
+  recording.def(py::init<>())
+      .def_readwrite("source", &Recording::source)
+      .def_readonly("names", &Recording::names)
+      .def_readwrite("metadata", &Recording::metadata)
+      .def_property_readonly(
+          "data", [](Recording& r) -> Eigen::MatrixXd& { return r.data; },
+          py::return_value_policy::reference_internal, "rows x columns view (column-major)")
+      .def_property_readonly("rows", &Recording::rows)
+      .def("__len__", &Recording::rows)
+      .def("__contains__", &Recording::has)
+      .def(
+          "__getitem__",
+          [](py::object self, const std::string& name) {
+            Recording& r = self.cast<Recording&>();
+            const int c = r.index_of(name);
+            if (c < 0) {
+              // The library's message for a missing column.
+              (void)r.column(name);
+            }
+            const double* p = r.data.data() + static_cast<Eigen::Index>(c) * r.data.rows();
+            return py::array_t<double>({r.data.rows()},
+                                       {static_cast<py::ssize_t>(sizeof(double))}, p, self);
+          },
+          "The named column as a NumPy view [SI unit of the column]; DataError if absent.")
+      .def("set_column", &Recording::SetColumn, py::arg("name"), py::arg("values"),
+           "Appends or replaces a column.")
+      .def("meta", &Recording::meta, py::arg("key"), py::arg("fallback") = "")
+      .def("to_csv", &FormatRecording, "CSV text: metadata lines, header, 17 significant digits")
+      .def("save", [](const Recording& r, const std::string& path) { WriteRecording(path, r); },
+           py::arg("path"), "Writes the CSV atomically (temporary file, then rename).")
+      .def("__repr__", [](const Recording& r) {
+        std::string cols;
+        for (const auto& n : r.names) cols += (cols.empty() ? "" : ", ") + n;
+        return fmt::format("<sysid.Recording '{}': {} rows [{}]>", r.source, r.rows(), cols);
+      });
+  recording.def_static("from_arrays", &RecordingFromArrays, py::arg("columns"),
+                       py::arg("source") = "arrays", py::arg("options") = ReadOptions{},
+                       py::arg("metadata") = std::vector<std::pair<std::string, std::string>>{},
+                       "A recording from {name: 1-D array}, checked by the reader's rules.");
+
+  m.def("read_recording", &ReadRecording, py::arg("path"), py::arg("options") = ReadOptions{},
+        ReleaseGil(),
+        "Reads and validates a recording CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
+        "...' for any bad cell).");
+  m.def("parse_recording", &ParseRecording, py::arg("text"), py::arg("source"),
+        py::arg("options") = ReadOptions{}, ReleaseGil());
+
+  py::class_<SamplingReport>(m, "SamplingReport")
+      .def_readonly("nominal_dt_s", &SamplingReport::nominal_dt_s)
+      .def_readonly("sample_rate_hz", &SamplingReport::sample_rate_hz)
+      .def_readonly("max_jitter_s", &SamplingReport::max_jitter_s)
+      .def_readonly("rms_jitter_s", &SamplingReport::rms_jitter_s)
+      .def_readonly("max_relative_jitter", &SamplingReport::max_relative_jitter)
+      .def_readonly("irregular", &SamplingReport::irregular)
+      .def_readonly("worst_index", &SamplingReport::worst_index);
+  m.def("analyze_sampling", &AnalyzeSampling, py::arg("t_s"), py::arg("tolerance") = 0.01);
+  m.def("resample", &Resample, py::arg("recording"), py::arg("rate_hz"), ReleaseGil());
+
+  // ---- Signal conditioning ----
+  py::enum_<DerivativeMethod> method(m, "DerivativeMethod");
+  method.value("central", DerivativeMethod::kCentral)
+      .value("butterworth", DerivativeMethod::kButterworthCentral)
+      .value("savgol", DerivativeMethod::kSavitzkyGolay)
+      .def(py::init(&ParseDerivativeMethod))
+      .def("__str__", [](DerivativeMethod d) { return ToString(d); });
+  py::implicitly_convertible<py::str, DerivativeMethod>();
+
+  py::class_<DerivativeOptions> derivative(m, "DerivativeOptions",
+                                           "How v and a come from x (method: 'central', "
+                                           "'butterworth', 'savgol').");
+  AddKeywordInit(derivative);
+  derivative.def_readwrite("method", &DerivativeOptions::method)
+      .def_readwrite("cutoff_hz", &DerivativeOptions::cutoff_hz)
+      .def_readwrite("butterworth_order", &DerivativeOptions::butterworth_order)
+      .def_readwrite("savgol_window", &DerivativeOptions::savgol_window)
+      .def_readwrite("savgol_order", &DerivativeOptions::savgol_order)
+      .def("validate", &DerivativeOptions::Validate, py::arg("dt_s"));
+
+  py::class_<Derivatives>(m, "Derivatives")
+      .def_readonly("x_m", &Derivatives::x_m)
+      .def_readonly("v_mps", &Derivatives::v_mps)
+      .def_readonly("a_mps2", &Derivatives::a_mps2);
+  m.def("differentiate", &Differentiate, py::arg("x_m"), py::arg("dt_s"),
+        py::arg("options") = DerivativeOptions{}, ReleaseGil(),
+        "Velocity [m/s] and acceleration [m/s^2] of a uniformly sampled position [m].");
+  m.def("derive", &DeriveRecording, py::arg("recording"), py::arg("options") = DerivativeOptions{},
+        py::arg("max_relative_jitter") = 0.01, ReleaseGil(),
+        "The recording with columns v [m/s] and a [m/s^2] from x (as `sysid derive`).");
+
+  py::class_<MotionOptions> motion(m, "MotionOptions",
+                                   "How velocity and acceleration are obtained from a recording.");
+  AddKeywordInit(motion);
+  motion.def_readwrite("derivative", &MotionOptions::derivative)
+      .def_readwrite("velocity_column", &MotionOptions::velocity_column)
+      .def_readwrite("prefer_velocity_column", &MotionOptions::prefer_velocity_column)
+      .def_readwrite("max_relative_jitter", &MotionOptions::max_relative_jitter)
+      .def("validate", &MotionOptions::Validate);
+
+  py::class_<MotionSignals>(m, "MotionSignals")
+      .def_readonly("source", &MotionSignals::source)
+      .def_readonly("dt_s", &MotionSignals::dt_s)
+      .def_readonly("t_s", &MotionSignals::t_s)
+      .def_readonly("u_v", &MotionSignals::u_v)
+      .def_readonly("x_m", &MotionSignals::x_m)
+      .def_readonly("v_mps", &MotionSignals::v_mps)
+      .def_readonly("a_mps2", &MotionSignals::a_mps2)
+      .def_readonly("velocity_from", &MotionSignals::velocity_from);
+  m.def("extract_motion", &ExtractMotion, py::arg("recording"),
+        py::arg("options") = MotionOptions{}, ReleaseGil());
+}
+
+}  // namespace sysid::python

@@ -1,0 +1,193 @@
+// The friction model and its JSON files (sysid/model.hpp), inputs (sysid/input.hpp) and the
+// simulator (sysid/simulate.hpp).
+#include <fmt/format.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bind_common.hpp"
+#include "sysid/input.hpp"
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+#include "sysid/simulate.hpp"
+
+namespace sysid::python {
+namespace {
+
+std::shared_ptr<InputSignal> TableInput(std::vector<double> t_s, std::vector<double> u_v,
+                                        const std::string& hold, const std::string& source) {
+  return std::shared_ptr<InputSignal>(
+      MakeTableInput(std::move(t_s), std::move(u_v), ParseInputHold(hold), source));
+}
+
+Recording TrajectoryRecording(const Trajectory& tr, const std::string& source) {
+  Recording r;
+  r.source = source;
+  r.SetColumn("t", tr.t_s);
+  r.SetColumn("u", tr.u_v);
+  r.SetColumn("x", tr.x_m);
+  r.SetColumn("v", tr.v_mps);
+  r.SetColumn("a", tr.a_mps2);
+  return r;
+}
+
+}  // namespace
+
+void BindModel(py::module_& m) {
+  py::class_<FrictionModel> model(
+      m, "Model",
+      "The rough friction model x'' = -a1 v(t - tau) - a2 sgn(v) + a3 u with direction-dependent "
+      "a1p, a1n [1/s], a2p, a2n [m/s^2], gain a3 [m/(s^2 V)] and delay tau_s [s].");
+  AddKeywordInit(model);
+  model.def_readwrite("a1p", &FrictionModel::a1p)
+      .def_readwrite("a1n", &FrictionModel::a1n)
+      .def_readwrite("a2p", &FrictionModel::a2p)
+      .def_readwrite("a2n", &FrictionModel::a2n)
+      .def_readwrite("a3", &FrictionModel::a3)
+      .def_readwrite("tau_s", &FrictionModel::tau_s)
+      .def("validate", &FrictionModel::Validate)
+      .def_static("paper", &FrictionModel::Paper, "The paper's identified model.")
+      .def("steady_velocity",
+           [](const FrictionModel& f, const py::object& u) {
+             return py::vectorize([&f](double x) { return f.SteadyVelocity(x); })(u);
+           },
+           py::arg("u_v"),
+           "Steady sliding velocity [m/s] under constant voltage(s) u_v [V].")
+      .def("inverse_voltage",
+           [](const FrictionModel& f, const py::object& a, const py::object& vd,
+              const py::object& v) {
+             return py::vectorize([&f](double x, double y, double z) {
+               return f.InverseVoltage(x, y, z);
+             })(a, vd, v);
+           },
+           py::arg("a_mps2"),
+           py::arg("v_delayed_mps"), py::arg("v_mps"), "The analytic inverse u [V].")
+      .def_static("load", &ReadModel, py::arg("path"), "Reads a model JSON file (the CLI's).")
+      .def("save", [](const FrictionModel& f, const std::string& path) { WriteModel(path, f); },
+           py::arg("path"), "Writes the model JSON file atomically.")
+      .def_static("from_json", &ParseModel, py::arg("text"), py::arg("source") = "json")
+      .def("to_json", &ModelToJson, py::arg("indent") = 2)
+      .def("__eq__", [](const FrictionModel& a, const FrictionModel& b) {
+        return a.a1p == b.a1p && a.a1n == b.a1n && a.a2p == b.a2p && a.a2n == b.a2n &&
+               a.a3 == b.a3 && a.tau_s == b.tau_s;
+      });
+
+  // ---- Inputs ----
+  py::class_<InputSignal, std::shared_ptr<InputSignal>>(m, "InputSignal",
+                                                        "An input voltage u(t) [V].")
+      .def("value",
+           [](const InputSignal& s, const py::object& t) {
+             return py::vectorize([&s](double x) { return s.Value(x); })(t);
+           },
+           py::arg("t_s"))
+      .def("edges", &InputSignal::Edges, py::arg("t0_s"), py::arg("t1_s"));
+  m.def("table_input", &TableInput, py::arg("t_s"), py::arg("u_v"), py::arg("hold") = "zoh",
+        py::arg("source") = "table",
+        "An input from a table of (t [s], u [V]); hold 'zoh' or 'linear'.");
+  py::class_<SineComponent>(m, "SineComponent")
+      .def(py::init<double, double, double>(), py::arg("amplitude_v"), py::arg("frequency_hz"),
+           py::arg("phase_rad") = 0.0)
+      .def_readwrite("amplitude_v", &SineComponent::amplitude_v)
+      .def_readwrite("frequency_hz", &SineComponent::frequency_hz)
+      .def_readwrite("phase_rad", &SineComponent::phase_rad);
+  m.def(
+      "sines_input",
+      [](std::vector<SineComponent> c, double offset_v) -> std::shared_ptr<InputSignal> {
+        return std::make_shared<SumOfSinesInput>(std::move(c), offset_v);
+      },
+      py::arg("components"), py::arg("offset_v") = 0.0);
+  py::class_<PulseTrainSpec> pulses(m, "PulseTrainSpec");
+  AddKeywordInit(pulses);
+  pulses.def_readwrite("amplitudes_v", &PulseTrainSpec::amplitudes_v)
+      .def_readwrite("on_s", &PulseTrainSpec::on_s)
+      .def_readwrite("off_s", &PulseTrainSpec::off_s)
+      .def_readwrite("repeats", &PulseTrainSpec::repeats)
+      .def_readwrite("start_s", &PulseTrainSpec::start_s)
+      .def_property_readonly("duration_s", &PulseTrainSpec::duration_s);
+  m.def(
+      "pulse_train",
+      [](const PulseTrainSpec& spec) -> std::shared_ptr<InputSignal> {
+        return std::make_shared<PiecewiseConstantInput>(MakePulseTrain(spec));
+      },
+      py::arg("spec"));
+  m.def("waveform_names", &NamedWaveformNames);
+  m.def(
+      "waveform",
+      [](const std::string& name) {
+        const NamedWaveform w = MakeNamedWaveform(name);
+        return py::make_tuple(std::const_pointer_cast<InputSignal>(w.signal), w.duration_s);
+      },
+      py::arg("name"), "(input, natural duration [s]) of a named test waveform of the paper.");
+
+  // ---- Simulation ----
+  py::enum_<IntegratorMethod>(m, "IntegratorMethod")
+      .value("adams", IntegratorMethod::kAdams)
+      .value("bdf", IntegratorMethod::kBdf)
+      .def(py::init(&ParseIntegratorMethod));
+  py::implicitly_convertible<py::str, IntegratorMethod>();
+
+  py::class_<SimulationOptions> sim(m, "SimulationOptions");
+  AddKeywordInit(sim);
+  sim.def_readwrite("t0_s", &SimulationOptions::t0_s)
+      .def_readwrite("t_end_s", &SimulationOptions::t_end_s)
+      .def_readwrite("dt_out_s", &SimulationOptions::dt_out_s)
+      .def_readwrite("output_times_s", &SimulationOptions::output_times_s)
+      .def_readwrite("x0_m", &SimulationOptions::x0_m)
+      .def_readwrite("v0_mps", &SimulationOptions::v0_mps)
+      .def_readwrite("history_v_mps", &SimulationOptions::history_v_mps)
+      .def_readwrite("rtol", &SimulationOptions::rtol)
+      .def_readwrite("atol", &SimulationOptions::atol)
+      .def_readwrite("method", &SimulationOptions::method)
+      .def_readwrite("max_steps", &SimulationOptions::max_steps)
+      .def_readwrite("max_step_s", &SimulationOptions::max_step_s)
+      .def_readwrite("breakpoint_order", &SimulationOptions::breakpoint_order)
+      .def_readwrite("max_order", &SimulationOptions::max_order)
+      .def("validate", &SimulationOptions::Validate);
+
+  py::class_<Trajectory>(m, "Trajectory")
+      .def_readonly("t_s", &Trajectory::t_s)
+      .def_readonly("u_v", &Trajectory::u_v)
+      .def_readonly("x_m", &Trajectory::x_m)
+      .def_readonly("v_mps", &Trajectory::v_mps)
+      .def_readonly("a_mps2", &Trajectory::a_mps2);
+  py::class_<SimulationEvent>(m, "SimulationEvent")
+      .def_readonly("t_s", &SimulationEvent::t_s)
+      .def_property_readonly("kind", [](const SimulationEvent& e) { return ToString(e.kind); })
+      .def("__repr__", [](const SimulationEvent& e) {
+        return fmt::format("<SimulationEvent {} at {} s>", ToString(e.kind), e.t_s);
+      });
+  py::class_<SimulationSummary>(m, "SimulationSummary")
+      .def_readonly("success", &SimulationSummary::success)
+      .def_readonly("message", &SimulationSummary::message)
+      .def_readonly("cvode_flag", &SimulationSummary::cvode_flag)
+      .def_readonly("failure_time_s", &SimulationSummary::failure_time_s)
+      .def_readonly("steps", &SimulationSummary::steps)
+      .def_readonly("rhs_evaluations", &SimulationSummary::rhs_evaluations)
+      .def_readonly("events", &SimulationSummary::events)
+      .def_readonly("reinitialisations", &SimulationSummary::reinitialisations)
+      .def_readonly("wall_time_s", &SimulationSummary::wall_time_s)
+      .def("brief_report", &SimulationSummary::BriefReport);
+  py::class_<SimulationResult>(m, "SimulationResult")
+      .def_readonly("trajectory", &SimulationResult::trajectory)
+      .def_readonly("events", &SimulationResult::events)
+      .def_readonly("summary", &SimulationResult::summary)
+      .def_property_readonly("termination",
+                             [](const SimulationResult& r) {
+                               return r.summary.success ? "success" : "failure";
+                             })
+      .def_property_readonly("message",
+                             [](const SimulationResult& r) { return r.summary.message; })
+      .def("brief_report", [](const SimulationResult& r) { return r.summary.BriefReport(); })
+      .def(
+          "to_recording",
+          [](const SimulationResult& r, const std::string& source) {
+            return TrajectoryRecording(r.trajectory, source);
+          },
+          py::arg("source") = "simulation", "Columns t, u, x, v, a.");
+  m.def("simulate_input", &Simulate, py::arg("model"), py::arg("input"), py::arg("options"),
+        ReleaseGil());
+}
+
+}  // namespace sysid::python

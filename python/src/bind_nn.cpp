@@ -1,0 +1,191 @@
+// Neural inverse models (sysid/nn.hpp): the network and its JSON files, datasets, both trainers
+// and the hidden-size sweep.
+#include <string>
+#include <vector>
+
+#include "bind_common.hpp"
+#include "sysid/error.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::python {
+namespace {
+
+NeuralTrainer ParseTrainer(const std::string& name) {
+  if (name == "lm") return NeuralTrainer::kLevenbergMarquardt;
+  if (name == "ceres") return NeuralTrainer::kCeres;
+  throw OptionsError("trainer '" + name + "': expected 'lm' or 'ceres'");
+}
+
+NeuralInit ParseInit(const std::string& name) {
+  if (name == "nguyen-widrow") return NeuralInit::kNguyenWidrow;
+  if (name == "uniform") return NeuralInit::kUniform;
+  throw OptionsError("init '" + name + "': expected 'nguyen-widrow' or 'uniform'");
+}
+
+/// Outputs [output unit] for inputs given as an N x n array, or as a Recording / dict whose
+/// columns are named like the network's inputs.
+Eigen::VectorXd Predict(const NeuralNetwork& net, const py::object& data) {
+  Eigen::MatrixXd X;
+  if (py::isinstance<Recording>(data) || py::isinstance<py::dict>(data) ||
+      py::hasattr(data, "columns")) {
+    const int n = net.input_count();
+    for (int i = 0; i < n; ++i) {
+      const auto column = py::cast<Eigen::VectorXd>(py::array_t<double, py::array::forcecast>::ensure(
+          data[py::str(net.inputs()[static_cast<size_t>(i)].name)]));
+      if (i == 0) X.resize(column.size(), n);
+      if (column.size() != X.rows())
+        throw InputError("predict: input columns of different lengths");
+      X.col(i) = column;
+    }
+  } else {
+    X = py::cast<Eigen::MatrixXd>(py::array_t<double, py::array::forcecast>::ensure(data));
+    if (X.cols() != net.input_count() && X.rows() == 1 && net.input_count() == 1) X.transposeInPlace();
+  }
+  if (X.cols() != net.input_count())
+    throw InputError("predict: " + std::to_string(X.cols()) + " input columns, the network has " +
+                     std::to_string(net.input_count()));
+  py::gil_scoped_release release;
+  return net.EvaluateBatch(X);
+}
+
+}  // namespace
+
+void BindNeural(py::module_& m) {
+  py::class_<ScaledVariable>(m, "ScaledVariable")
+      .def(py::init([](std::string name, std::string unit, double min, double max) {
+             return ScaledVariable{std::move(name), std::move(unit), min, max};
+           }),
+           py::arg("name"), py::arg("unit") = "", py::arg("min") = -1.0, py::arg("max") = 1.0)
+      .def_readwrite("name", &ScaledVariable::name)
+      .def_readwrite("unit", &ScaledVariable::unit)
+      .def_readwrite("min", &ScaledVariable::min)
+      .def_readwrite("max", &ScaledVariable::max);
+
+  py::class_<NeuralNetwork>(m, "Network",
+                            "A one-hidden-layer tanh network with mapminmax input/output scaling.")
+      .def(py::init<>())
+      .def(py::init<std::vector<ScaledVariable>, ScaledVariable, int>(), py::arg("inputs"),
+           py::arg("output"), py::arg("hidden"))
+      .def_property_readonly("inputs", &NeuralNetwork::inputs)
+      .def_property_readonly("output", &NeuralNetwork::output)
+      .def_property_readonly("input_names", &NeuralNetwork::input_names)
+      .def_property_readonly("hidden_size", &NeuralNetwork::hidden_size)
+      .def_property_readonly("parameter_count", &NeuralNetwork::parameter_count)
+      .def_property_readonly("W1", &NeuralNetwork::W1)
+      .def_property_readonly("b1", &NeuralNetwork::b1)
+      .def_property_readonly("w2", &NeuralNetwork::w2)
+      .def_property_readonly("b2", &NeuralNetwork::b2)
+      .def_property("parameters", &NeuralNetwork::parameters, &NeuralNetwork::set_parameters)
+      .def_readwrite("note", &NeuralNetwork::note)
+      .def("validate", &NeuralNetwork::Validate)
+      .def("predict", &Predict, py::arg("inputs"),
+           "Outputs for an N x n array (physical units, columns in input order) or for a "
+           "Recording / dict / DataFrame with the input columns.")
+      .def_static("load", &ReadNeuralNetwork, py::arg("path"), "Reads the CLI's network JSON.")
+      .def(
+          "save",
+          [](const NeuralNetwork& n, const std::string& path, const std::string& extra) {
+            WriteNeuralNetwork(path, n, extra);
+          },
+          py::arg("path"), py::arg("training_json") = "", "Writes the network JSON atomically.")
+      .def_static("from_json", &ParseNeuralNetwork, py::arg("text"), py::arg("source") = "json")
+      .def("to_json", &NeuralNetworkToJson, py::arg("indent") = 2, py::arg("training_json") = "");
+
+  py::class_<NeuralDataset>(m, "NeuralDataset")
+      .def_readonly("input_names", &NeuralDataset::input_names)
+      .def_readonly("output_name", &NeuralDataset::output_name)
+      .def_readonly("inputs", &NeuralDataset::inputs)
+      .def_readonly("targets", &NeuralDataset::targets)
+      .def_readonly("source", &NeuralDataset::source)
+      .def("__len__", &NeuralDataset::size);
+  m.def("make_dataset", &MakeNeuralDataset, py::arg("recording"), py::arg("inputs"),
+        py::arg("output"));
+  m.def("read_dataset", &ReadNeuralDataset, py::arg("path"), py::arg("inputs"),
+        py::arg("output"), ReleaseGil());
+  m.def("mean_squared_error", &MeanSquaredError, py::arg("network"), py::arg("data"));
+
+  py::enum_<NeuralTrainer>(m, "Trainer")
+      .value("lm", NeuralTrainer::kLevenbergMarquardt)
+      .value("ceres", NeuralTrainer::kCeres)
+      .def(py::init(&ParseTrainer))
+      .def("__str__", [](NeuralTrainer t) { return ToString(t); });
+  py::implicitly_convertible<py::str, NeuralTrainer>();
+  py::enum_<NeuralInit>(m, "Init")
+      .value("nguyen_widrow", NeuralInit::kNguyenWidrow)
+      .value("uniform", NeuralInit::kUniform)
+      .def(py::init(&ParseInit));
+  py::implicitly_convertible<py::str, NeuralInit>();
+
+  py::class_<NeuralTrainingOptions> training(m, "TrainingOptions");
+  AddKeywordInit(training);
+  training.def_readwrite("hidden", &NeuralTrainingOptions::hidden)
+      .def_readwrite("trainer", &NeuralTrainingOptions::trainer)
+      .def_readwrite("init", &NeuralTrainingOptions::init)
+      .def_readwrite("momentum", &NeuralTrainingOptions::momentum)
+      .def_readwrite("solve_output_layer", &NeuralTrainingOptions::solve_output_layer)
+      .def_readwrite("mu_initial", &NeuralTrainingOptions::mu_initial)
+      .def_readwrite("mu_decrease", &NeuralTrainingOptions::mu_decrease)
+      .def_readwrite("mu_increase", &NeuralTrainingOptions::mu_increase)
+      .def_readwrite("mu_max", &NeuralTrainingOptions::mu_max)
+      .def_readwrite("gradient_tolerance", &NeuralTrainingOptions::gradient_tolerance)
+      .def_readwrite("max_epochs", &NeuralTrainingOptions::max_epochs)
+      .def_readwrite("max_validation_failures", &NeuralTrainingOptions::max_validation_failures)
+      .def_readwrite("goal_mse", &NeuralTrainingOptions::goal_mse)
+      .def_readwrite("seed", &NeuralTrainingOptions::seed)
+      .def_readwrite("restarts", &NeuralTrainingOptions::restarts)
+      .def_readwrite("input_ranges", &NeuralTrainingOptions::input_ranges)
+      .def_readwrite("output_range", &NeuralTrainingOptions::output_range)
+      .def_readwrite("initial_parameters", &NeuralTrainingOptions::initial_parameters)
+      .def_readwrite("ceres_block_size", &NeuralTrainingOptions::ceres_block_size)
+      .def_readwrite("threads", &NeuralTrainingOptions::threads)
+      .def("validate", &NeuralTrainingOptions::Validate);
+
+  py::class_<EpochRecord>(m, "EpochRecord")
+      .def_readonly("epoch", &EpochRecord::epoch)
+      .def_readonly("restart", &EpochRecord::restart)
+      .def_readonly("mu", &EpochRecord::mu)
+      .def_readonly("train_mse", &EpochRecord::train_mse)
+      .def_readonly("validation_mse", &EpochRecord::validation_mse)
+      .def_readonly("gradient_norm", &EpochRecord::gradient_norm);
+  py::class_<NeuralTrainingResult>(m, "TrainingResult")
+      .def_readonly("network", &NeuralTrainingResult::network)
+      .def_property_readonly("termination",
+                             [](const NeuralTrainingResult& r) { return ToString(r.stop); })
+      .def_readonly("message", &NeuralTrainingResult::message)
+      .def_readonly("epochs", &NeuralTrainingResult::epochs)
+      .def_readonly("restart", &NeuralTrainingResult::restart)
+      .def_readonly("train_mse", &NeuralTrainingResult::train_mse)
+      .def_readonly("validation_mse", &NeuralTrainingResult::validation_mse)
+      .def_readonly("wall_time_s", &NeuralTrainingResult::wall_time_s)
+      .def_readonly("history", &NeuralTrainingResult::history)
+      .def("brief_report", &NeuralTrainingResult::BriefReport);
+  m.def("train_dataset", &TrainNeuralNetwork, py::arg("train"), py::arg("validation"),
+        py::arg("options"), ReleaseGil());
+
+  py::class_<HiddenSweepOptions> sweep(m, "SweepOptions");
+  AddKeywordInit(sweep);
+  sweep.def_readwrite("hidden_sizes", &HiddenSweepOptions::hidden_sizes)
+      .def_readwrite("training", &HiddenSweepOptions::training)
+      .def_readwrite("threads", &HiddenSweepOptions::threads)
+      .def("validate", &HiddenSweepOptions::Validate);
+  py::class_<HiddenSweepRow>(m, "SweepRow")
+      .def_readonly("hidden", &HiddenSweepRow::hidden)
+      .def_readonly("epochs", &HiddenSweepRow::epochs)
+      .def_readonly("train_mse", &HiddenSweepRow::train_mse)
+      .def_readonly("validation_mse", &HiddenSweepRow::validation_mse)
+      .def_readonly("test_mse", &HiddenSweepRow::test_mse)
+      .def_property_readonly("termination",
+                             [](const HiddenSweepRow& r) { return ToString(r.stop); })
+      .def_readonly("wall_time_s", &HiddenSweepRow::wall_time_s);
+  py::class_<HiddenSweepResult>(m, "SweepResult")
+      .def_readonly("rows", &HiddenSweepResult::rows)
+      .def_readonly("runs", &HiddenSweepResult::runs)
+      .def_readonly("chosen", &HiddenSweepResult::chosen)
+      .def_readonly("rule", &HiddenSweepResult::rule)
+      .def_readonly("wall_time_s", &HiddenSweepResult::wall_time_s);
+  m.def("sweep_datasets", &SweepHiddenSize, py::arg("train"), py::arg("validation"),
+        py::arg("test"), py::arg("options"), ReleaseGil());
+  m.def("parse_hidden_sizes", &ParseHiddenSizes, py::arg("spec"));
+}
+
+}  // namespace sysid::python

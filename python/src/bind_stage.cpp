@@ -1,0 +1,111 @@
+// The virtual piezo stage (sysid/stage.hpp): its parameter files, open-loop runs, the pulse test
+// and the tracking experiment that generate the bundled datasets/virtual recordings.
+#include <cstdint>
+#include <string>
+
+#include "bind_common.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid::python {
+
+void BindStage(py::module_& m) {
+  py::module_ s = m.def_submodule("stage", "The virtual piezo stage and its procedures.");
+
+  py::class_<StageParameters>(s, "StageParameters",
+                              "Every parameter of the virtual stage (SI units); see "
+                              "docs/virtual_stage.md. Edit through to_json / from_json.")
+      .def(py::init(&StageParameters::Default))
+      .def_static("default", &StageParameters::Default)
+      .def_static("load", &ReadStageParameters, py::arg("path"))
+      .def("save",
+           [](const StageParameters& p, const std::string& path) {
+             WriteStageParameters(path, p);
+           },
+           py::arg("path"))
+      .def_static("from_json", &ParseStageParameters, py::arg("text"), py::arg("source") = "json")
+      .def("to_json", &StageParametersToJson)
+      .def_readwrite("name", &StageParameters::name)
+      .def_readwrite("gain_mps2_per_v", &StageParameters::gain_mps2_per_v)
+      .def_readwrite("dead_zone_v", &StageParameters::dead_zone_v)
+      .def_readwrite("position_noise_m", &StageParameters::position_noise_m)
+      .def_readwrite("encoder_resolution_m", &StageParameters::encoder_resolution_m)
+      .def_readwrite("sample_rate_hz", &StageParameters::sample_rate_hz)
+      .def_property_readonly("sample_time_s", &StageParameters::sample_time_s)
+      .def("validate", &StageParameters::Validate)
+      .def("steady_velocity",
+           [](const StageParameters& p, const py::object& u) {
+             return py::vectorize([&p](double x) { return p.SteadyVelocity(x); })(u);
+           },
+           py::arg("u_v"));
+
+  py::class_<StageStatus>(s, "StageStatus")
+      .def_readonly("travel_limit_hit", &StageStatus::travel_limit_hit)
+      .def_readonly("velocity_limit_exceeded", &StageStatus::velocity_limit_exceeded)
+      .def_readonly("steps", &StageStatus::steps)
+      .def("describe", &StageStatus::Describe);
+  py::class_<StageRun>(s, "StageRun")
+      .def_readonly("t_s", &StageRun::t_s)
+      .def_readonly("u_v", &StageRun::u_v)
+      .def_readonly("x_m", &StageRun::x_m)
+      .def_readonly("x_true_m", &StageRun::x_true_m)
+      .def_readonly("v_true_mps", &StageRun::v_true_mps)
+      .def_readonly("status", &StageRun::status);
+  s.def("run_open_loop", &RunOpenLoop, py::arg("parameters"), py::arg("u_v"),
+        py::arg("seed") = 1, ReleaseGil(),
+        "Drives a fresh stage with one command [V] per sample.");
+
+  py::class_<PulseProcedure> pulse(s, "PulseProcedure");
+  AddKeywordInit(pulse);
+  pulse.def_readwrite("amplitudes_v", &PulseProcedure::amplitudes_v)
+      .def_readwrite("on_s", &PulseProcedure::on_s)
+      .def_readwrite("rest_s", &PulseProcedure::rest_s)
+      .def_readwrite("lead_s", &PulseProcedure::lead_s)
+      .def("validate", &PulseProcedure::Validate);
+
+  py::class_<VelocityWaveform::Term>(s, "WaveformTerm")
+      .def_readwrite("omega_rad_s", &VelocityWaveform::Term::omega_rad_s)
+      .def_readwrite("sin_mps", &VelocityWaveform::Term::sin_mps)
+      .def_readwrite("cos_mps", &VelocityWaveform::Term::cos_mps);
+  py::class_<VelocityWaveform>(s, "VelocityWaveform")
+      .def_readwrite("name", &VelocityWaveform::name)
+      .def_readwrite("terms", &VelocityWaveform::terms)
+      .def_readwrite("period_s", &VelocityWaveform::period_s)
+      .def("velocity",
+           [](const VelocityWaveform& w, const py::object& t) {
+             return py::vectorize([&w](double x) { return w.Velocity(x); })(t);
+           },
+           py::arg("t_s"))
+      .def("position",
+           [](const VelocityWaveform& w, const py::object& t) {
+             return py::vectorize([&w](double x) { return w.Position(x); })(t);
+           },
+           py::arg("t_s"))
+      .def_static("sine", &VelocityWaveform::Sine, py::arg("amplitude_m"),
+                  py::arg("omega_rad_s"));
+  s.def("paper_test_waveforms", &PaperTestWaveforms);
+  s.def("training_grid", &TrainingGrid);
+  s.def("test_grid", &TestGrid);
+
+  py::class_<TrackingProcedure> tracking(s, "TrackingProcedure");
+  AddKeywordInit(tracking);
+  tracking.def_readwrite("kp_v_per_m", &TrackingProcedure::kp_v_per_m)
+      .def_readwrite("lead_cycles", &TrackingProcedure::lead_cycles)
+      .def_readwrite("kept_cycles", &TrackingProcedure::kept_cycles)
+      .def_readwrite("tail_s", &TrackingProcedure::tail_s)
+      .def_readwrite("derivative", &TrackingProcedure::derivative)
+      .def("validate", &TrackingProcedure::Validate, py::arg("stage"));
+
+  s.def("run_pulse_test", &RunPulseTest, py::arg("parameters"),
+        py::arg("procedure") = PulseProcedure{}, py::arg("seed") = 1,
+        py::arg("derivative") = DerivativeOptions{}, ReleaseGil(),
+        "The paper's pulse test on the virtual stage: columns t, u, x, v, a.");
+  s.def("track_waveform", &TrackWaveform, py::arg("parameters"), py::arg("waveform"),
+        py::arg("procedure") = TrackingProcedure{}, py::arg("seed") = 1, ReleaseGil(),
+        "One waveform tracked by the P controller: columns t, u, x, v, a, x_ref.");
+  s.def("run_tracking_set", &RunTrackingSet, py::arg("parameters"), py::arg("grid"),
+        py::arg("procedure") = TrackingProcedure{}, py::arg("seed") = 1,
+        py::arg("set_name") = "tracking", ReleaseGil());
+  s.def("derive_seed", &DeriveSeed, py::arg("seed"), py::arg("index"));
+}
+
+}  // namespace sysid::python

@@ -1,0 +1,316 @@
+"""libsysid from Python: identification and inverse models of friction-dominated actuators.
+
+The heavy lifting is the C++ library (the extension module ``sysid._sysid``); this layer gives
+the workflow Pythonic names, accepts paths, globs and arrays where the library wants recordings,
+and turns keyword arguments into the library's option structs (whose defaults are the C++
+ones). Units are SI everywhere: t [s], u [V], x [m], v [m/s], a [m/s^2].
+
+    import sysid
+    recs = sysid.read_recordings("datasets/virtual/pulses.csv")
+    model = sysid.identify_pulses(recs).model
+    print(sysid.dominance(model, "datasets/virtual/waveform_*.csv").brief_report())
+"""
+
+import copy as _copy
+import glob as _glob
+import os as _os
+
+from . import _sysid
+from ._sysid import (  # noqa: F401  (re-exported)
+    Error, DataError, OptionsError, NumericalError, InternalError,
+    ReadOptions, Recording, SamplingReport, analyze_sampling, resample, parse_recording,
+    DerivativeMethod, DerivativeOptions, Derivatives, differentiate, MotionOptions, MotionSignals,
+    extract_motion,
+    Model, InputSignal, table_input, SineComponent, sines_input, PulseTrainSpec, pulse_train,
+    waveform_names, waveform, IntegratorMethod, SimulationOptions, SimulationResult, Trajectory,
+    PulseDetectionOptions, PlateauOptions, PulseFitOptions, PulseIdentificationOptions, Pulse,
+    PulseEstimate, LinearFit, PulsePoint, read_pulse_table, detect_pulses,
+    PulseIdentificationResult, TrajectoryOptions, TrajectoryIdentificationResult,
+    SegmentOptions, DelayTuningOptions, DelayTuningResult, RefineOptions, RefineResult,
+    CandidateTerm, DominanceOptions, TermStats, DominanceResult, DominanceSummary,
+    ScaledVariable, Network, NeuralDataset, make_dataset, read_dataset, mean_squared_error,
+    Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
+    SweepResult, parse_hidden_sizes,
+    stage,
+)
+
+__version__ = "0.1.0"
+
+# ---- Option structs: keyword construction (C++ defaults), repr, to_dict, pickling ----------
+
+OPTION_TYPES = (
+    ReadOptions, DerivativeOptions, MotionOptions, Model, PulseTrainSpec, SimulationOptions,
+    PulseDetectionOptions, PlateauOptions, PulseFitOptions, PulseIdentificationOptions,
+    TrajectoryOptions, SegmentOptions, DelayTuningOptions, RefineOptions, DominanceOptions,
+    TrainingOptions, SweepOptions, stage.PulseProcedure, stage.TrackingProcedure,
+)
+
+
+def fields(obj_or_type):
+    """Names of the writable fields of a bound struct, in declaration order."""
+    cls = obj_or_type if isinstance(obj_or_type, type) else type(obj_or_type)
+    return [n for n, v in vars(cls).items()
+            if isinstance(v, property) and v.fset is not None and not n.startswith("_")]
+
+
+def _to_plain(value):
+    if type(value) in OPTION_TYPES:
+        return {n: _to_plain(getattr(value, n)) for n in fields(value)}
+    if isinstance(value, (list, tuple)):
+        return type(value)(_to_plain(v) for v in value)
+    if hasattr(type(value), "__members__"):  # a bound enum: its name
+        return next(k for k, v in type(value).__members__.items() if v == value)
+    return value
+
+
+def _to_dict(self):
+    """The fields as a plain dict (nested option structs as dicts, enums as names)."""
+    return _to_plain(self)
+
+
+def _rebuild(cls, state):
+    obj = cls()
+    for name, value in state.items():
+        setattr(obj, name, value)
+    return obj
+
+
+def _reduce(self):
+    return (_rebuild, (type(self), {n: getattr(self, n) for n in fields(self)}))
+
+
+def _repr(self):
+    body = ", ".join(f"{n}={getattr(self, n)!r}" for n in fields(self))
+    return f"{type(self).__name__}({body})"
+
+
+for _cls in OPTION_TYPES:
+    _cls.to_dict = _to_dict
+    _cls.__reduce__ = _reduce
+    _cls.__repr__ = _repr
+
+for _enum in (DerivativeMethod, IntegratorMethod, Trainer, Init):
+    _enum.__reduce__ = lambda self: (type(self), (int(self),))
+
+
+def _recording_state(rec):
+    return (_recording_from_state,
+            (rec.source, list(rec.names), rec.data.copy(), list(rec.metadata)))
+
+
+def _recording_from_state(source, names, data, metadata):
+    rec = Recording()
+    rec.source = source
+    for i, name in enumerate(names):
+        rec.set_column(name, data[:, i])
+    rec.metadata = metadata
+    return rec
+
+
+Recording.__reduce__ = _recording_state
+Recording.columns = property(lambda self: list(self.names))
+
+
+def _recording_to_dict(self):
+    """{column: NumPy view}; pandas.DataFrame(rec.to_dict()) gives the table."""
+    return {name: self[name] for name in self.names}
+
+
+Recording.to_dict = _recording_to_dict
+
+
+def _options(cls, options, kwargs):
+    """`options` (copied) with `kwargs` applied, or cls(**kwargs); unknown keys raise TypeError."""
+    if options is None:
+        return cls(**kwargs)
+    if not isinstance(options, cls):
+        raise TypeError(f"options: expected sysid.{cls.__name__}, got {type(options).__name__}")
+    options = _copy.copy(options)
+    for name, value in kwargs.items():
+        if name not in fields(cls):
+            raise TypeError(f"{cls.__name__}: unknown option '{name}'")
+        setattr(options, name, value)
+    return options
+
+
+# ---- Recordings ------------------------------------------------------------------------------
+
+def expand_paths(paths):
+    """A path, glob pattern or list of them -> sorted list of paths (a pattern matching nothing
+    is a DataError naming it)."""
+    if isinstance(paths, (str, _os.PathLike)):
+        paths = [paths]
+    out = []
+    for p in paths:
+        p = _os.fspath(p)
+        if _glob.has_magic(p):
+            matched = sorted(_glob.glob(p))
+            if not matched:
+                raise DataError(f"{p}: no file matches the pattern")
+            out.extend(matched)
+        else:
+            out.append(p)
+    return out
+
+
+def read_recording(path, options=None, **kwargs):
+    """Reads a recording CSV with the strict reader (DataError 'FILE:LINE:COLUMN: ...')."""
+    return _sysid.read_recording(_os.fspath(path), _options(ReadOptions, options, kwargs))
+
+
+def read_recordings(paths, options=None, **kwargs):
+    """Reads every file of a path, glob or list of them, in sorted order per pattern."""
+    opts = _options(ReadOptions, options, kwargs)
+    return [_sysid.read_recording(p, opts) for p in expand_paths(paths)]
+
+
+def recording(source="arrays", metadata=(), options=None, **columns):
+    """A recording from 1-D arrays, checked by the reader's rules:
+    ``sysid.recording(t=t, u=u, x=x)``."""
+    return Recording.from_arrays(columns, source, _options(ReadOptions, options, {}),
+                                 list(metadata))
+
+
+def _as_recordings(recordings):
+    if isinstance(recordings, Recording):
+        return [recordings]
+    if isinstance(recordings, (str, _os.PathLike)):
+        return read_recordings(recordings)
+    out = []
+    for r in recordings:
+        out.extend(_as_recordings(r))
+    return out
+
+
+def _as_model(model):
+    if isinstance(model, Model):
+        return model
+    if isinstance(model, (str, _os.PathLike)):
+        return Model.load(_os.fspath(model))
+    if isinstance(model, dict):
+        return Model(**model)
+    raise TypeError(f"model: expected sysid.Model, a model file path or a dict, got "
+                    f"{type(model).__name__}")
+
+
+def derive(recording, options=None, max_relative_jitter=0.01, **kwargs):
+    """The recording with v [m/s] and a [m/s^2] derived from x by the chosen filter
+    (method='central' | 'butterworth' | 'savgol'), as ``sysid derive``."""
+    rec = _as_recordings(recording)
+    if len(rec) != 1:
+        raise TypeError("derive: one recording")
+    return _sysid.derive(rec[0], _options(DerivativeOptions, options, kwargs),
+                         max_relative_jitter)
+
+
+# ---- Model, simulation, identification --------------------------------------------------------
+
+def simulate(model, input, options=None, **kwargs):
+    """Simulates the friction model. `input`: a waveform name ('paper-pulses', ...; its natural
+    duration is the default t_end_s), an InputSignal, or a (t [s], u [V]) pair held
+    zero-order."""
+    model = _as_model(model)
+    if isinstance(input, str):
+        signal, duration = waveform(input)
+        if options is None and "t_end_s" not in kwargs:
+            kwargs["t_end_s"] = duration
+        input = signal
+    elif isinstance(input, tuple):
+        input = table_input(list(map(float, input[0])), list(map(float, input[1])))
+    return _sysid.simulate_input(model, input, _options(SimulationOptions, options, kwargs))
+
+
+def identify_pulses(recordings, options=None, a3=None, **kwargs):
+    """Pulse-test least squares (the paper's method) over the pulses of every recording.
+    `recordings`: Recording(s), path(s) or glob(s); or a list of PulsePoint."""
+    opts = _options(PulseIdentificationOptions, options, kwargs)
+    if a3 is not None:
+        opts.fit.a3 = a3
+    if isinstance(recordings, (list, tuple)) and recordings and isinstance(recordings[0],
+                                                                           PulsePoint):
+        return _sysid.fit_pulse_table(list(recordings), opts.fit)
+    return _sysid.identify_pulses_recordings(_as_recordings(recordings), opts)
+
+
+def identify_trajectory(recordings, options=None, **kwargs):
+    """Trajectory (inverse-model) least squares: a3, a1p, a1n, a2p, a2n (and tau)."""
+    return _sysid.identify_trajectory_recordings(_as_recordings(recordings),
+                                                 _options(TrajectoryOptions, options, kwargs))
+
+
+def tune_delay(model, recordings, options=None, **kwargs):
+    """The delay tau [s] that makes simulated and measured velocity agree best."""
+    return _sysid.tune_delay_recordings(_as_model(model), _as_recordings(recordings),
+                                        _options(DelayTuningOptions, options, kwargs))
+
+
+def refine(model, recordings, options=None, **kwargs):
+    """Output-error refinement of all parameters (Ceres) from `model`."""
+    return _sysid.refine_recordings(_as_model(model), _as_recordings(recordings),
+                                    _options(RefineOptions, options, kwargs))
+
+
+def dominance(model, recordings, options=None, **kwargs):
+    """Dominant-variable analysis. One Recording (or one file path) gives a DominanceResult;
+    a list or glob gives a DominanceSummary over all of them (parallel threads).
+    ``pandas.DataFrame(result.records())`` is the CLI's CSV table."""
+    model = _as_model(model)
+    opts = _options(DominanceOptions, options, kwargs)
+    single = isinstance(recordings, Recording) or (
+        isinstance(recordings, (str, _os.PathLike)) and not _glob.has_magic(
+            _os.fspath(recordings)))
+    recs = _as_recordings(recordings)
+    if single:
+        return _sysid.analyze_dominance(model, recs[0], opts)
+    return _sysid.analyze_dominance_batch(model, recs, opts)
+
+
+# ---- Neural inverse models --------------------------------------------------------------------
+
+def _as_dataset(data, inputs, output):
+    if data is None or isinstance(data, NeuralDataset):
+        return data
+    if isinstance(data, Recording):
+        return make_dataset(data, list(inputs), output)
+    if isinstance(data, (str, _os.PathLike)):
+        return read_dataset(_os.fspath(data), list(inputs), output)
+    raise TypeError(f"expected a NeuralDataset, Recording or CSV path, got {type(data).__name__}")
+
+
+def train(train, validation=None, inputs=("v",), output="u", options=None, **kwargs):
+    """Trains a tanh network (trainer='lm' | 'ceres') on `train` (a CSV path, Recording or
+    NeuralDataset with the input and output columns); early-stopped on `validation` if given."""
+    if isinstance(inputs, str):
+        inputs = inputs.split(",")
+    return _sysid.train_dataset(_as_dataset(train, inputs, output),
+                                _as_dataset(validation, inputs, output),
+                                _options(TrainingOptions, options, kwargs))
+
+
+def sweep(train, validation=None, test=None, inputs=("v",), output="u", hidden_sizes=None,
+          options=None, **kwargs):
+    """Trains one network per hidden size (parallel threads), as ``sysid sweep``.
+    Training options go in `options` (a TrainingOptions) or as keywords."""
+    if isinstance(inputs, str):
+        inputs = inputs.split(",")
+    so = SweepOptions()
+    so.training = _options(TrainingOptions, options, kwargs)
+    if hidden_sizes is not None:
+        so.hidden_sizes = (parse_hidden_sizes(hidden_sizes) if isinstance(hidden_sizes, str)
+                           else list(hidden_sizes))
+    return _sysid.sweep_datasets(_as_dataset(train, inputs, output),
+                                 _as_dataset(validation, inputs, output),
+                                 _as_dataset(test, inputs, output), so)
+
+
+def _sweep_rows(self):
+    """One dict per hidden size (pandas.DataFrame takes the list)."""
+    return [{"hidden": r.hidden, "epochs": r.epochs, "train_mse": r.train_mse,
+             "validation_mse": r.validation_mse, "test_mse": r.test_mse,
+             "termination": r.termination, "wall_time_s": r.wall_time_s,
+             "chosen": i == self.chosen} for i, r in enumerate(self.rows)]
+
+
+SweepResult.records = _sweep_rows
+
+from .batch import batch, sweep_grid  # noqa: E402,F401

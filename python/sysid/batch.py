@@ -1,0 +1,147 @@
+"""Batch analysis over many recordings and the hidden-size x seed sweep, on Dask when given.
+
+Each task is one recording (or one (hidden size, seed) pair) and runs the C++ library with the
+GIL released, so the local thread pool uses every core; with a ``dask.distributed.Client`` the
+tasks go to its workers instead (a LocalCluster or a lab's scheduler). Nothing here schedules:
+the executor is concurrent.futures or Dask. The result is one pandas.DataFrame in input order.
+"""
+
+import concurrent.futures as _futures
+import os as _os
+
+from . import _sysid
+
+TASKS = ("dominance", "identify_pulses", "identify_trajectory", "tune_delay")
+
+
+def _model_row(prefix, model):
+    return {f"{prefix}{k}": getattr(model, k) for k in ("a1p", "a1n", "a2p", "a2n", "a3", "tau_s")}
+
+
+def _run_one(item, task, model, options):
+    """One recording -> one row (a dict). Runs in a worker thread or a Dask worker process."""
+    import sysid  # in a fresh Dask worker process
+    rec = item if isinstance(item, sysid.Recording) else sysid.read_recording(item)
+    row = {"source": rec.source}
+    if task == "dominance":
+        row.update(_sysid.analyze_dominance(model, rec, options).row())
+    elif task == "identify_pulses":
+        r = _sysid.identify_pulses_recordings([rec], options)
+        row.update(_model_row("", r.model))
+        row.update({"equations": r.fit.rows, "rank": r.fit.rank,
+                    "rms_residual_mps2": r.fit.rms_residual, "termination": r.termination})
+    elif task == "identify_trajectory":
+        r = _sysid.identify_trajectory_recordings([rec], options)
+        row.update(_model_row("", r.model))
+        row.update({"samples_used": r.samples_used, "relative_error": r.relative_error,
+                    "termination": r.termination})
+    elif task == "tune_delay":
+        r = _sysid.tune_delay_recordings(model, [rec], options)
+        row.update({"tau_s": r.tau_s, "cost": r.cost, "rms_error_mps": r.rms_error_mps,
+                    "evaluations": r.evaluations, "termination": r.termination,
+                    "message": r.message})
+    return row
+
+
+def _guarded(item, task, model, options, errors):
+    try:
+        return _run_one(item, task, model, options)
+    except _sysid.Error as e:
+        if errors == "raise":
+            raise
+        source = item.source if isinstance(item, _sysid.Recording) else _os.fspath(item)
+        return {"source": source, "error": f"{type(e).__name__}: {e}"}
+
+
+def _default_options(task, options, kwargs):
+    import sysid
+    cls = {"dominance": sysid.DominanceOptions, "identify_pulses": sysid.PulseIdentificationOptions,
+           "identify_trajectory": sysid.TrajectoryOptions,
+           "tune_delay": sysid.DelayTuningOptions}[task]
+    opts = sysid._options(cls, options, kwargs)
+    # One task per recording: the parallelism is across recordings, so each task uses one
+    # thread (results do not depend on the thread count).
+    if "threads" in sysid.fields(cls):
+        opts.threads = 1
+    return opts
+
+
+def _map(fn, items, client, threads, **kw):
+    if client is not None:
+        futures = client.map(fn, items, pure=False, **kw)
+        return client.gather(futures)
+    workers = threads or _os.cpu_count() or 1
+    if workers == 1:
+        return [fn(i, **kw) for i in items]
+    with _futures.ThreadPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(lambda i: fn(i, **kw), items))
+
+
+def batch(recordings, task="dominance", model=None, client=None, threads=None, options=None,
+          errors="raise", **kwargs):
+    """Runs `task` on every recording and returns one pandas.DataFrame, a row per recording in
+    input order.
+
+    recordings: a glob pattern, a path, or a list of paths / sysid.Recording objects (paths
+                are read where the task runs, so Dask workers read their own files).
+    task:       'dominance' (needs `model`), 'identify_pulses', 'identify_trajectory',
+                'tune_delay' (needs `model`).
+    model:      sysid.Model or a model JSON path.
+    client:     a dask.distributed.Client: tasks run on its workers; None: a local thread pool
+                of `threads` (default: all cores).
+    options:    the task's option struct; keywords set its fields (e.g. min_speed_mps=2e-3).
+    errors:     'raise' (the first failing recording raises its sysid.Error) or 'record' (the
+                row gets an 'error' column with the message and the batch goes on).
+    """
+    import pandas
+    import sysid
+    if task not in TASKS:
+        raise sysid.OptionsError(f"batch: task '{task}': expected one of {', '.join(TASKS)}")
+    if errors not in ("raise", "record"):
+        raise sysid.OptionsError("batch: errors must be 'raise' or 'record'")
+    if task in ("dominance", "tune_delay"):
+        if model is None:
+            raise sysid.OptionsError(f"batch: task '{task}' needs a model")
+        model = sysid._as_model(model)
+    items = recordings
+    if isinstance(recordings, (str, _os.PathLike)):
+        items = sysid.expand_paths(recordings)
+    items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
+    opts = _default_options(task, options, kwargs)
+    rows = _map(_guarded, items, client, threads, task=task, model=model, options=opts,
+                errors=errors)
+    return pandas.DataFrame.from_records(rows)
+
+
+def _train_one(pair, train, validation, test, inputs, output, options):
+    import sysid
+    hidden, seed = pair
+    opts = sysid._options(sysid.TrainingOptions, options, {})
+    opts.hidden, opts.seed, opts.threads = int(hidden), int(seed), 1
+    tr = sysid._as_dataset(train, inputs, output)
+    va = sysid._as_dataset(validation, inputs, output)
+    r = _sysid.train_dataset(tr, va, opts)
+    te = sysid._as_dataset(test, inputs, output)
+    return {"hidden": int(hidden), "seed": int(seed), "epochs": r.epochs,
+            "train_mse": r.train_mse, "validation_mse": r.validation_mse,
+            "test_mse": _sysid.mean_squared_error(r.network, te) if te is not None else
+            float("nan"),
+            "termination": r.termination, "wall_time_s": r.wall_time_s}
+
+
+def sweep_grid(train, hidden_sizes, seeds=(1,), validation=None, test=None, inputs=("v",),
+               output="u", client=None, threads=None, options=None, **kwargs):
+    """Trains one network per (hidden size, seed) and returns one pandas.DataFrame (hidden,
+    seed, epochs, train/validation/test MSE [output unit^2], termination, wall time), rows in
+    sizes-major order. Data are CSV paths (read where the task runs) or Recordings."""
+    import pandas
+    import sysid
+    if isinstance(hidden_sizes, str):
+        hidden_sizes = sysid.parse_hidden_sizes(hidden_sizes)
+    if isinstance(inputs, str):
+        inputs = inputs.split(",")
+    opts = sysid._options(sysid.TrainingOptions, options, kwargs)
+    pairs = [(h, s) for h in hidden_sizes for s in seeds]
+    rows = _map(_train_one, pairs, client, threads, train=train, validation=validation,
+                test=test, inputs=list(inputs), output=output, options=opts)
+    return pandas.DataFrame.from_records(rows)
