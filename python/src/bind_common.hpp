@@ -27,7 +27,13 @@ T FromKeywords(const py::kwargs& kwargs) {
     if (name.empty() || name[0] == '_' || !py::hasattr(object, name.c_str()))
       throw py::type_error(std::string(py::str(py::type::of(object).attr("__name__"))) +
                            ": unknown option '" + name + "'");
-    py::setattr(object, item.first, item.second);
+    py::object value = py::reinterpret_borrow<py::object>(item.second);
+    // A string for an enum field goes through the enum's parser, so a bad name raises the
+    // library's OptionsError listing the accepted names (not pybind11's generic TypeError).
+    const py::object current = py::getattr(object, name.c_str());
+    if (py::isinstance<py::str>(value) && py::hasattr(py::type::of(current), "__members__"))
+      value = py::type::of(current)(value);
+    py::setattr(object, item.first, value);
   }
   return object.cast<T>();
 }

@@ -130,8 +130,7 @@ void BindIo(py::module_& m) {
   method.value("central", DerivativeMethod::kCentral)
       .value("butterworth", DerivativeMethod::kButterworthCentral)
       .value("savgol", DerivativeMethod::kSavitzkyGolay)
-      .def(py::init(&ParseDerivativeMethod))
-      .def("__str__", [](DerivativeMethod d) { return ToString(d); });
+      .def(py::init(&ParseDerivativeMethod));
   py::implicitly_convertible<py::str, DerivativeMethod>();
 
   py::class_<DerivativeOptions> derivative(m, "DerivativeOptions",

@@ -107,8 +107,7 @@ void BindNeural(py::module_& m) {
   py::enum_<NeuralTrainer>(m, "Trainer")
       .value("lm", NeuralTrainer::kLevenbergMarquardt)
       .value("ceres", NeuralTrainer::kCeres)
-      .def(py::init(&ParseTrainer))
-      .def("__str__", [](NeuralTrainer t) { return ToString(t); });
+      .def(py::init(&ParseTrainer));
   py::implicitly_convertible<py::str, NeuralTrainer>();
   py::enum_<NeuralInit>(m, "Init")
       .value("nguyen_widrow", NeuralInit::kNguyenWidrow)

@@ -89,8 +89,14 @@ for _cls in OPTION_TYPES:
     _cls.__reduce__ = _reduce
     _cls.__repr__ = _repr
 
+def _enum_name(value):
+    return next(k for k, v in type(value).__members__.items() if v == value).replace("_", "-")
+
+
 for _enum in (DerivativeMethod, IntegratorMethod, Trainer, Init):
     _enum.__reduce__ = lambda self: (type(self), (int(self),))
+    _enum.__str__ = _enum_name  # the name the CLI and the parsers use: 'butterworth', 'lm'
+
 
 
 def _recording_state(rec):

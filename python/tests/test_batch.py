@@ -1,0 +1,74 @@
+"""sysid.batch and sysid.sweep_grid: a thread pool of 2 gives the table of 1 thread, and a Dask
+LocalCluster of 2 worker processes gives the table of the serial run."""
+import pandas
+import pytest
+
+import sysid
+from conftest import VIRTUAL
+
+WAVEFORMS = str(VIRTUAL / "waveform_*.csv")
+
+
+@pytest.fixture(scope="module")
+def model():
+    return sysid.identify_pulses(VIRTUAL / "pulses.csv").model
+
+
+def test_batch_dominance_matches_per_recording_and_threads(model):
+    serial = sysid.batch(WAVEFORMS, model=model, threads=1)
+    two = sysid.batch(WAVEFORMS, model=model, threads=2)
+    pandas.testing.assert_frame_equal(serial, two)
+    files = sysid.expand_paths(WAVEFORMS)
+    assert list(serial["source"]) == files and len(files) == 6
+    for row, path in zip(serial.to_dict("records"), files):
+        single = sysid.dominance(model, path)
+        assert row["dominant"] == single.dominant and row["margin"] == single.margin
+    # Recording objects work as well as paths.
+    recs = sysid.read_recordings(WAVEFORMS)
+    pandas.testing.assert_frame_equal(sysid.batch(recs, model=model, threads=2), serial)
+
+
+def test_batch_other_tasks_and_errors(model, tmp_path):
+    ident = sysid.batch([VIRTUAL / "pulses.csv"], task="identify_pulses", threads=2)
+    assert ident.loc[0, "a1p"] == sysid.identify_pulses(VIRTUAL / "pulses.csv").model.a1p
+    tuned = sysid.batch([VIRTUAL / "pulses.csv"], task="tune_delay", model=model, threads=1,
+                        max_evaluations=20)
+    assert tuned.loc[0, "tau_s"] == sysid.tune_delay(model, VIRTUAL / "pulses.csv",
+                                                     max_evaluations=20).tau_s
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,u,x\n0,0,0\n0.001,1,abc\n")
+    with pytest.raises(sysid.DataError, match="bad.csv:3:"):
+        sysid.batch([bad], model=model)
+    table = sysid.batch([VIRTUAL / "waveform_square.csv", bad], model=model, errors="record")
+    assert pandas.isna(table.loc[0, "error"]) and "DataError" in table.loc[1, "error"]
+    with pytest.raises(sysid.OptionsError, match="task"):
+        sysid.batch([bad], task="nope")
+    with pytest.raises(sysid.DataError, match="no file matches"):
+        sysid.batch(str(tmp_path / "none_*.csv"), model=model)
+
+
+def test_sweep_grid_threads():
+    kw = dict(hidden_sizes=[2, 3], seeds=[1, 2], max_epochs=4)
+    one = sysid.sweep_grid(str(VIRTUAL / "training.csv"), threads=1, **kw)
+    two = sysid.sweep_grid(str(VIRTUAL / "training.csv"), threads=2, **kw)
+    pandas.testing.assert_frame_equal(one.drop(columns="wall_time_s"),
+                                      two.drop(columns="wall_time_s"))
+    assert list(zip(one.hidden, one.seed)) == [(2, 1), (2, 2), (3, 1), (3, 2)]
+    r = sysid.train(VIRTUAL / "training.csv", hidden=3, seed=2, max_epochs=4, threads=1)
+    assert one.train_mse[3] == r.train_mse
+
+
+def test_dask_local_cluster_of_two_processes_equals_serial(model):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        table = sysid.batch(WAVEFORMS, model=model, client=client)
+        grid = sysid.sweep_grid(str(VIRTUAL / "training.csv"), hidden_sizes=[2, 3], seeds=[1],
+                                max_epochs=4, client=client)
+        assert len(client.scheduler_info()["workers"]) == 2
+    pandas.testing.assert_frame_equal(table, sysid.batch(WAVEFORMS, model=model, threads=1))
+    serial = sysid.sweep_grid(str(VIRTUAL / "training.csv"), hidden_sizes=[2, 3], seeds=[1],
+                              max_epochs=4, threads=1)
+    pandas.testing.assert_frame_equal(grid.drop(columns="wall_time_s"),
+                                      serial.drop(columns="wall_time_s"))

@@ -1,0 +1,178 @@
+"""Each binding against the CLI on the same files: the CLI prints doubles with all 17
+significant digits in --json, so the numbers must be equal, not merely close."""
+import json
+
+import numpy as np
+import pandas
+import pytest
+
+import sysid
+from conftest import VIRTUAL, cli_json, run_cli
+
+MODEL_KEYS = {"a1p": "a1p", "a1n": "a1n", "a2p": "a2p", "a2n": "a2n", "a3": "a3", "tau": "tau_s"}
+
+
+def assert_model_equals_json(model, j):
+    for key, attr in MODEL_KEYS.items():
+        assert getattr(model, attr) == j[key], key
+
+
+def test_read_recording_matches_cli_info():
+    rec = sysid.read_recording(VIRTUAL / "pulses.csv")
+    info = cli_json("info", VIRTUAL / "pulses.csv")
+    assert rec.rows == info["rows"]
+    assert rec.names == info["columns"]
+    s = sysid.analyze_sampling(rec["t"])
+    assert s.nominal_dt_s == info["sampling"]["nominal_dt_s"]
+    assert s.max_jitter_s == info["sampling"]["max_jitter_s"]
+    assert rec.meta("procedure") == "pulse test"
+    # The column is a view on the recording's memory, not a copy.
+    x = rec["x"]
+    assert not x.flags.owndata and x.base is not None
+    frame = pandas.DataFrame(rec.to_dict())
+    assert list(frame.columns) == rec.names and len(frame) == rec.rows
+
+
+def test_identify_pulses(model_file):
+    j = cli_json("identify", VIRTUAL / "pulses.csv")
+    r = sysid.identify_pulses(VIRTUAL / "pulses.csv")
+    assert_model_equals_json(r.model, j)
+    assert r.termination == "solved" and "10 equations" in r.message
+    assert "pulse least squares: 10 equations" in r.brief_report()
+    assert len(r.pulses) == 10 and all(p.usable for p in r.pulses)
+    # The CLI's model file loads to the same model.
+    assert sysid.Model.load(str(model_file)) == r.model
+
+
+def test_identify_trajectory():
+    j = cli_json("identify", "--method", "trajectory", VIRTUAL / "training.csv")
+    r = sysid.identify_trajectory(VIRTUAL / "training.csv")
+    assert_model_equals_json(r.model, j)
+    assert r.relative_error == j["diagnostics"]["relative_error"]
+
+
+def test_tune_delay(model_file):
+    j = cli_json("tune-delay", "--model", model_file, VIRTUAL / "pulses.csv")
+    r = sysid.tune_delay(str(model_file), VIRTUAL / "pulses.csv")
+    assert r.tau_s == j["tau"] and r.cost == j["cost"]
+    assert r.evaluations == j["evaluations"] and r.termination == j["termination"]
+    assert r.message == j["message"]
+    assert "tau" in r.brief_report()
+
+
+def test_refine(model_file):
+    args = ("--model", model_file, "--max-iterations", "2", VIRTUAL / "pulses.csv")
+    j = cli_json("refine", *args)
+    r = sysid.refine(str(model_file), VIRTUAL / "pulses.csv", max_iterations=2)
+    d = j["diagnostics"]
+    assert r.final_cost == d["final_cost"] and r.message == d["message"]
+    assert r.iterations == d["iterations"]
+    assert_model_equals_json(r.model, j)
+    assert r.termination in ("converged", "not converged")
+
+
+def test_dominance_single_and_batch(model_file, tmp_path):
+    files = sorted(VIRTUAL.glob("waveform_*.csv"))
+    table = tmp_path / "table.csv"
+    j = cli_json("dominance", "--model", model_file, "-o", table, *files)
+    model = sysid.Model.load(str(model_file))
+    summary = sysid.dominance(model, str(VIRTUAL / "waveform_*.csv"))
+    assert [r.to_dict() for r in summary.results] == j["recordings"]
+    assert summary.min_margin == j["summary"]["min_margin"]
+    # The records are the CLI's CSV table (printed to 9 significant digits).
+    cli_table = pandas.read_csv(table, comment="#")
+    ours = pandas.DataFrame(summary.records())
+    assert list(ours.columns) == list(cli_table.columns)
+    for col in ("rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max", "margin"):
+        np.testing.assert_array_equal(ours[col].map(lambda v: float(f"{v:.9g}")), cli_table[col])
+    assert summary.table_csv() == table.read_text()
+    # One recording: a DominanceResult equal to the batch's entry.
+    single = sysid.dominance(model, files[0])
+    assert single.to_dict() == j["recordings"][0]
+    assert single.brief_report() == summary.results[0].brief_report()
+    assert single.termination == "analysed" and "dominant variable" in single.message
+
+
+def test_derive_matches_cli(tmp_path):
+    out = tmp_path / "d.csv"
+    run_cli("derive", "--method", "butterworth", "--cutoff", "30", "-o", out,
+            VIRTUAL / "pulses.csv")
+    cli = sysid.read_recording(out)
+    ours = sysid.derive(VIRTUAL / "pulses.csv", method="butterworth", cutoff_hz=30)
+    np.testing.assert_array_equal(ours["v"], cli["v"])
+    np.testing.assert_array_equal(ours["a"], cli["a"])
+
+
+def test_simulate_matches_cli(tmp_path):
+    out = tmp_path / "s.csv"
+    run_cli("simulate", "--paper-model", "--waveform", "paper-pulses", "--t-end", "2", "-o", out)
+    cli = sysid.read_recording(out)
+    r = sysid.simulate(sysid.Model.paper(), "paper-pulses", t_end_s=2.0)
+    assert r.termination == "success" and r.summary.success
+    rec = r.to_recording()
+    for c in ("t", "u", "x", "v", "a"):
+        np.testing.assert_array_equal(rec[c], cli[c])
+    assert "steps" in r.brief_report()
+
+
+def test_train_both_trainers_and_predict(tmp_path):
+    for trainer in ("lm", "ceres"):
+        nn = tmp_path / f"nn_{trainer}.json"
+        j = cli_json("train", "--train", VIRTUAL / "training.csv", "--hidden", "3",
+                     "--max-epochs", "8", "--trainer", trainer, "-o", nn)
+        r = sysid.train(VIRTUAL / "training.csv", hidden=3, max_epochs=8, trainer=trainer)
+        assert r.train_mse == j["train_mse"] and r.epochs == j["epochs"]
+        assert r.termination == j["stop_reason"] and r.message == j["message"]
+        net = sysid.Network.load(str(nn))
+        np.testing.assert_array_equal(net.parameters, r.network.parameters)
+    # predict: the CLI's MSE on the test set from the saved network.
+    p = cli_json("predict", "--nn", nn, VIRTUAL / "test.csv")
+    test = sysid.read_recording(VIRTUAL / "test.csv")
+    net = sysid.Network.load(str(nn))
+    y = net.predict(test)
+    assert np.mean((y - test["u"]) ** 2) == pytest.approx(p["mse"], rel=1e-14)
+    np.testing.assert_array_equal(net.predict(test["v"][:, None]), y)
+    # save -> load round trip through the library's writer.
+    net.save(str(tmp_path / "copy.json"))
+    np.testing.assert_array_equal(sysid.Network.load(str(tmp_path / "copy.json")).parameters,
+                                  net.parameters)
+
+
+def test_sweep(tmp_path):
+    j = cli_json("sweep", "--train", VIRTUAL / "training.csv", "--test", VIRTUAL / "test.csv",
+                 "--hidden", "2,3", "--max-epochs", "5")
+    r = sysid.sweep(VIRTUAL / "training.csv", test=VIRTUAL / "test.csv", hidden_sizes="2,3",
+                    max_epochs=5)
+    assert r.rule == j["rule"]
+    assert r.rows[r.chosen].hidden == j["chosen_hidden"]
+    for row, cj in zip(r.records(), j["rows"]):
+        assert row["hidden"] == cj["hidden"] and row["train_mse"] == cj["train_mse"]
+        assert row["test_mse"] == cj["test_mse"] and row["termination"] == cj["stop_reason"]
+
+
+def test_stage_pulse_test_matches_cli_generate(tmp_path):
+    run_cli("generate", "pulses", "-o", tmp_path)
+    cli = sysid.read_recording(tmp_path / "pulses.csv")
+    rec = sysid.stage.run_pulse_test(sysid.stage.StageParameters.default(), seed=1)
+    for c in ("t", "u", "x", "v", "a"):
+        np.testing.assert_array_equal(rec[c], cli[c])
+
+
+def test_stage_tracking_matches_bundled_waveform():
+    # datasets/virtual/waveform_*.csv are `sysid generate waveforms` with seed 1.
+    waves = sysid.stage.paper_test_waveforms()
+    i = next(k for k, w in enumerate(waves) if w.name == "square")
+    rec = sysid.stage.track_waveform(sysid.stage.StageParameters.default(), waves[i],
+                                     seed=sysid.stage.derive_seed(1, 100 + i))
+    bundled = sysid.read_recording(VIRTUAL / "waveform_square.csv")
+    for c in ("t", "u", "x"):
+        np.testing.assert_allclose(rec[c], bundled[c], rtol=1e-15, atol=0)
+
+
+def test_model_json_round_trip(tmp_path, model_file):
+    m = sysid.Model.load(str(model_file))
+    m.tau_s = 0.004
+    m.save(str(tmp_path / "m.json"))
+    assert json.loads((tmp_path / "m.json").read_text())["tau"] == 0.004
+    assert sysid.Model.load(str(tmp_path / "m.json")) == m
+    assert sysid.Model.from_json(m.to_json()) == m

@@ -1,0 +1,83 @@
+"""Library errors as Python exceptions with the library's messages (the CLI prints the same
+text after 'sysid: error: ')."""
+import pytest
+
+import sysid
+from conftest import VIRTUAL, run_cli
+
+
+def cli_error(*args, expect):
+    stderr = run_cli(*args, expect=expect).stderr.strip()
+    assert stderr.startswith("sysid: error: ")
+    return stderr[len("sysid: error: "):]
+
+
+def test_bad_cell_is_data_error_with_location(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,u,x\n0,0,0\n0.001,1,2e\n")
+    with pytest.raises(sysid.DataError) as info:
+        sysid.read_recording(bad)
+    e = info.value
+    assert (e.file, e.line, e.column) == (str(bad), 3, 9)
+    assert str(e) == cli_error("identify", bad, expect=2)
+    assert "expected a number, found \"2e\"" in str(e)
+    assert isinstance(e, sysid.Error) and isinstance(e, RuntimeError)
+
+
+def test_missing_file_and_non_increasing_time(tmp_path):
+    with pytest.raises(sysid.DataError, match="cannot open"):
+        sysid.read_recording(tmp_path / "none.csv")
+    back = tmp_path / "back.csv"
+    back.write_text("t,u,x\n0,0,0\n0.002,0,0\n0.001,0,0\n")
+    with pytest.raises(sysid.DataError) as info:
+        sysid.read_recording(back)
+    assert info.value.line == 4
+    assert str(info.value) == cli_error("identify", back, expect=2)
+
+
+def test_from_arrays_uses_the_reader_rules():
+    rec = sysid.recording(t=[0.0, 0.001, 0.002], u=[0, 1, 1], x=[0.0, 1e-6, 3e-6], source="mine")
+    assert rec.rows == 3 and rec.names == ["t", "u", "x"] and rec.source == "mine"
+    with pytest.raises(sysid.DataError, match="mine:.*'x'"):
+        sysid.recording(t=[0.0, 0.001], u=[0, 1], x=[0.0, float("nan")], source="mine")
+    with pytest.raises(sysid.DataError, match="increasing"):
+        sysid.recording(t=[0.0, 0.0], u=[0, 1], x=[0.0, 0.0])
+    with pytest.raises(sysid.DataError, match="has 1 values"):
+        sysid.recording(t=[0.0, 0.001], u=[0], x=[0.0, 0.0])
+    with pytest.raises(sysid.DataError, match="column"):
+        rec["nope"]
+
+
+def test_options_error_names_field_and_rule(model_file):
+    with pytest.raises(sysid.OptionsError) as info:
+        sysid.dominance(str(model_file), VIRTUAL / "pulses.csv", min_speed_mps=-1)
+    assert str(info.value) == cli_error("dominance", "--model", model_file, "--min-speed", "-1",
+                                        VIRTUAL / "pulses.csv", expect=1)
+    with pytest.raises(sysid.OptionsError, match="a1p"):
+        sysid.Model(a1p=-1.0).validate()
+    with pytest.raises(sysid.OptionsError, match="'lm' or 'ceres'"):
+        sysid.TrainingOptions(trainer="adam")
+
+
+def test_unknown_keyword_is_type_error():
+    with pytest.raises(TypeError, match="unknown option 'min_speed'"):
+        sysid.DominanceOptions(min_speed=1e-3)
+    with pytest.raises(TypeError, match="unknown option"):
+        sysid.tune_delay(sysid.Model.paper(), VIRTUAL / "pulses.csv", tau_max=0.1)
+
+
+def test_numerical_error_names_parameters():
+    points = [sysid.PulsePoint(1.5, 0.05), sysid.PulsePoint(2.0, 0.09)]
+    with pytest.raises(sysid.NumericalError, match="a1n, a2n"):
+        sysid.identify_pulses(points)
+
+
+def test_options_defaults_come_from_cpp():
+    # The values below are the C++ structs' initialisers; nothing in Python repeats them.
+    d = sysid.DominanceOptions()
+    assert d.min_speed_mps == 1e-3 and d.negligible_ratio == 0.1 and d.threads == 0
+    assert str(d.motion.derivative.method) == "central"
+    t = sysid.TrajectoryOptions()
+    assert str(t.motion.derivative.method) == "butterworth"  # TrajectoryOptions::DefaultMotion
+    assert sysid.TrainingOptions().hidden == 24
+    assert sysid.DelayTuningOptions(tau_max_s=0.05).to_dict()["tau_max_s"] == 0.05
