@@ -4,13 +4,16 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bind_common.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
+#include "sysid/error.hpp"
 #include "sysid/identify.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid::python {
 namespace {
@@ -86,6 +89,54 @@ py::list DominanceRecords(const std::vector<DominanceResult>& results) {
       d["dominant"] = r.dominant == s.name;
       d["margin"] = r.margin;
       d["moving_samples"] = r.moving_samples;
+      rows.append(d);
+    }
+  }
+  return rows;
+}
+
+/// Dominance of many recordings on the calling thread with the GIL released (one task of
+/// sysid.batch): files are read here too. Each entry is the result, or the error message with
+/// the exception's Python name when that recording failed (the batch decides whether to raise).
+struct BatchEntry {
+  std::optional<DominanceResult> result;
+  std::string error_type, error;
+};
+
+template <typename Item, typename Analyze>
+std::vector<BatchEntry> RunEntries(const std::vector<Item>& items, const Analyze& analyze) {
+  std::vector<BatchEntry> out(items.size());
+  py::gil_scoped_release release;
+  for (size_t i = 0; i < items.size(); ++i) {
+    try {
+      out[i].result = analyze(items[i]);
+    } catch (const InputError& e) {
+      out[i].error_type = "DataError";
+      out[i].error = e.what();
+    } catch (const OptionsError& e) {
+      out[i].error_type = "OptionsError";
+      out[i].error = e.what();
+    } catch (const NumericalError& e) {
+      out[i].error_type = "NumericalError";
+      out[i].error = e.what();
+    } catch (const Error& e) {
+      out[i].error_type = "Error";
+      out[i].error = e.what();
+    }
+  }
+  return out;
+}
+
+py::list EntryRows(const std::vector<BatchEntry>& entries, const std::vector<std::string>& sources) {
+  py::list rows;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].result) {
+      rows.append(DominanceRow(*entries[i].result));
+    } else {
+      py::dict d;
+      d["source"] = sources[i];
+      d["error_type"] = entries[i].error_type;
+      d["error"] = entries[i].error_type + ": " + entries[i].error;
       rows.append(d);
     }
   }
@@ -367,6 +418,29 @@ void BindIdentify(py::module_& m) {
       });
   m.def("analyze_dominance", &AnalyzeDominance, py::arg("model"), py::arg("recording"),
         py::arg("options") = DominanceOptions{}, ReleaseGil());
+  m.def(
+      "dominance_rows_files",
+      [](const FrictionModel& model, const std::vector<std::string>& paths,
+         const DominanceOptions& options) {
+        const auto entries = RunEntries(paths, [&](const std::string& path) {
+          return AnalyzeDominance(model, ReadRecording(path), options);
+        });
+        return EntryRows(entries, paths);
+      },
+      py::arg("model"), py::arg("paths"), py::arg("options"),
+      "Rows (one flat dict per file) of a chunk of sysid.batch; failures give source/error.");
+  m.def(
+      "dominance_rows",
+      [](const FrictionModel& model, const std::vector<const Recording*>& recordings,
+         const DominanceOptions& options) {
+        std::vector<std::string> sources;
+        for (const Recording* r : recordings) sources.push_back(r->source);
+        const auto entries = RunEntries(recordings, [&](const Recording* r) {
+          return AnalyzeDominance(model, *r, options);
+        });
+        return EntryRows(entries, sources);
+      },
+      py::arg("model"), py::arg("recordings"), py::arg("options"));
   m.def("analyze_dominance_batch", &AnalyzeDominanceBatch, py::arg("model"),
         py::arg("recordings"), py::arg("options") = DominanceOptions{}, ReleaseGil());
 }
