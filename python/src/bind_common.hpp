@@ -57,6 +57,7 @@ void BindModel(py::module_& m);
 void BindIdentify(py::module_& m);
 void BindNeural(py::module_& m);
 void BindStage(py::module_& m);
+void BindControl(py::module_& m);  // after BindStage: adds to sysid.stage
 
 }  // namespace sysid::python
 

@@ -59,6 +59,7 @@ PYBIND11_MODULE(_sysid, m) {
   BindIdentify(m);
   BindNeural(m);
   BindStage(m);
+  BindControl(m);
 }
 
 }  // namespace sysid::python

@@ -31,7 +31,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
     ScaledVariable, Network, NeuralDataset, make_dataset, read_dataset, mean_squared_error,
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
     SweepResult, parse_hidden_sizes,
-    stage,
+    stage, analytic_inverse, network_inverse,
 )
 
 __version__ = "0.1.0"
@@ -43,6 +43,7 @@ OPTION_TYPES = (
     PulseDetectionOptions, PlateauOptions, PulseFitOptions, PulseIdentificationOptions,
     TrajectoryOptions, SegmentOptions, DelayTuningOptions, RefineOptions, DominanceOptions,
     TrainingOptions, SweepOptions, stage.PulseProcedure, stage.TrackingProcedure,
+    stage.PiOptions, stage.SmoothProfileOptions,
 )
 
 
@@ -93,7 +94,7 @@ def _enum_name(value):
     return next(k for k, v in type(value).__members__.items() if v == value).replace("_", "-")
 
 
-for _enum in (DerivativeMethod, IntegratorMethod, Trainer, Init):
+for _enum in (DerivativeMethod, IntegratorMethod, Trainer, Init, stage.AntiWindup):
     _enum.__reduce__ = lambda self: (type(self), (int(self),))
     _enum.__str__ = _enum_name  # the name the CLI and the parsers use: 'butterworth', 'lm'
 
@@ -318,5 +319,42 @@ def _sweep_rows(self):
 
 
 SweepResult.records = _sweep_rows
+
+
+def _track(parameters=None, reference=None, feedforward="none", model=None, network=None,
+           pi=None, seed=1, **profile):
+    """The tracking experiment of ``sysid track``: PI position control of the virtual stage
+    with feedforward 'none', 'analytic' (needs `model`), 'nn' (needs `network`) or an array of
+    voltages [V] per sample. `reference`: a PositionReference, else the smooth profile from the
+    keywords (frequency_hz, amplitude_m, cycles, ...). Returns (TrackingResult, limits text)."""
+    parameters = parameters or stage.StageParameters.default()
+    if reference is None:
+        options = _options(stage.SmoothProfileOptions, None, profile)
+        options.sample_rate_hz = 1.0 / parameters.sample_time_s
+        reference = stage.smooth_profile(options)
+    elif profile:
+        raise TypeError("track: profile keywords only without a reference")
+    pi = _options(stage.PiOptions, pi, {})
+    if isinstance(feedforward, str):
+        if feedforward == "none":
+            feedforward = None
+        elif feedforward == "analytic":
+            if model is None:
+                raise OptionsError("track: feedforward 'analytic' needs a model")
+            feedforward = analytic_inverse(_as_model(model), parameters.sample_time_s,
+                                           reference.v_mps, reference.a_mps2)
+        elif feedforward == "nn":
+            if network is None:
+                raise OptionsError("track: feedforward 'nn' needs a network")
+            if not isinstance(network, Network):
+                network = Network.load(_os.fspath(network))
+            feedforward = network_inverse(network, reference.v_mps, reference.a_mps2)
+        else:
+            raise OptionsError(f"track: feedforward '{feedforward}' is not one of none, "
+                               f"analytic, nn")
+    return stage.track_stage(parameters, reference, pi, feedforward, seed)
+
+
+stage.track = _track
 
 from .batch import batch, sweep_grid  # noqa: E402,F401

@@ -176,3 +176,30 @@ def test_model_json_round_trip(tmp_path, model_file):
     assert json.loads((tmp_path / "m.json").read_text())["tau"] == 0.004
     assert sysid.Model.load(str(tmp_path / "m.json")) == m
     assert sysid.Model.from_json(m.to_json()) == m
+
+
+def test_tracking_experiment_matches_cli_track(model_file, tmp_path):
+    nn = tmp_path / "nn.json"
+    run_cli("train", "--train", VIRTUAL / "training.csv", "--hidden", "3", "--max-epochs", "5",
+            "-o", nn)
+    j = cli_json("track", "--ff", "none,analytic,nn", "--model", model_file, "--nn", nn,
+                 "--kp", "3000", "--ki", "104100", "--cycles", "1")
+    pi = sysid.stage.PiOptions(kp_v_per_m=3000, ki_v_per_m_s=104100)
+    for scheme in j["schemes"]:
+        r, limits = sysid.stage.track(feedforward=scheme["ff"], model=str(model_file),
+                                      network=str(nn), pi=pi, cycles=1)
+        assert r.max_error_m == scheme["max_error_m"], scheme["ff"]
+        assert r.rms_error_m == scheme["rms_error_m"] and r.rms_u_v == scheme["rms_u_v"]
+        assert limits == scheme["stage_limits"]
+        assert "max |e|" in r.brief_report()
+
+
+def test_derive_each_filter_matches_cli(tmp_path):
+    for method, extra in (("central", {}), ("savgol", {"savgol_window": 31})):
+        out = tmp_path / f"{method}.csv"
+        args = ["--window", "31"] if method == "savgol" else []
+        run_cli("derive", "--method", method, *args, "-o", out, VIRTUAL / "waveform_square.csv")
+        cli = sysid.read_recording(out)
+        ours = sysid.derive(VIRTUAL / "waveform_square.csv", method=method, **extra)
+        np.testing.assert_array_equal(ours["v"], cli["v"])
+        np.testing.assert_array_equal(ours["a"], cli["a"])

@@ -1,0 +1,102 @@
+// PI position control with feedforward on the virtual stage (sysid/control.hpp) and the inverse
+// models as feedforward (sysid/compare.hpp): the tracking experiment of `sysid track`.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "bind_common.hpp"
+#include "sysid/compare.hpp"
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid::python {
+namespace {
+
+/// One closed-loop run on a fresh virtual stage seeded with `seed` (every scheme of a
+/// comparison sees the same plant and noise), playing `u_ff_v` [V] sample by sample.
+py::tuple TrackStage(const StageParameters& stage, const PositionReference& reference,
+                     PiOptions pi, const std::optional<Eigen::VectorXd>& u_ff_v,
+                     std::uint64_t seed) {
+  if (u_ff_v && u_ff_v->size() != reference.t_s.size())
+    throw InputError("track: the feedforward has " + std::to_string(u_ff_v->size()) +
+                     " values, the reference " + std::to_string(reference.t_s.size()));
+  pi.sample_time_s = stage.sample_time_s();
+  TrackingResult result;
+  std::string limits;
+  {
+    py::gil_scoped_release release;
+    VirtualStage plant(stage, seed);
+    result = RunClosedLoop(plant, reference, pi,
+                           u_ff_v ? SampledFeedforward(*u_ff_v) : Feedforward{});
+    limits = plant.status().Describe();
+  }
+  return py::make_tuple(result, limits);
+}
+
+}  // namespace
+
+void BindControl(py::module_& m) {
+  py::module_ s = m.attr("stage").cast<py::module_>();
+
+  py::enum_<AntiWindup>(s, "AntiWindup")
+      .value("none", AntiWindup::kNone)
+      .value("conditional_integration", AntiWindup::kConditionalIntegration);
+  py::class_<PiOptions> pi(s, "PiOptions", "Discrete PI position controller (paper's gains).");
+  AddKeywordInit(pi);
+  pi.def_readwrite("kp_v_per_m", &PiOptions::kp_v_per_m)
+      .def_readwrite("ki_v_per_m_s", &PiOptions::ki_v_per_m_s)
+      .def_readwrite("sample_time_s", &PiOptions::sample_time_s)
+      .def_readwrite("u_max_v", &PiOptions::u_max_v)
+      .def_readwrite("anti_windup", &PiOptions::anti_windup)
+      .def("validate", &PiOptions::Validate)
+      .def_static("for_virtual_stage", &PiOptions::ForVirtualStage);
+
+  py::class_<SmoothProfileOptions> profile(s, "SmoothProfileOptions");
+  AddKeywordInit(profile);
+  profile.def_readwrite("frequency_hz", &SmoothProfileOptions::frequency_hz)
+      .def_readwrite("amplitude_m", &SmoothProfileOptions::amplitude_m)
+      .def_readwrite("dwell_fraction", &SmoothProfileOptions::dwell_fraction)
+      .def_readwrite("cycles", &SmoothProfileOptions::cycles)
+      .def_readwrite("sample_rate_hz", &SmoothProfileOptions::sample_rate_hz)
+      .def("validate", &SmoothProfileOptions::Validate);
+
+  py::class_<PositionReference>(s, "PositionReference")
+      .def_readonly("t_s", &PositionReference::t_s)
+      .def_readonly("x_m", &PositionReference::x_m)
+      .def_readonly("v_mps", &PositionReference::v_mps)
+      .def_readonly("a_mps2", &PositionReference::a_mps2)
+      .def_readonly("description", &PositionReference::description);
+  s.def("smooth_profile", &MakeSmoothProfile, py::arg("options") = SmoothProfileOptions{},
+        "The minimum-jerk back-and-forth profile of the tracking experiment.");
+  s.def("reference_from_positions", &ReferenceFromPositions, py::arg("t_s"), py::arg("x_m"));
+
+  py::class_<TrackingResult>(s, "TrackingResult")
+      .def_readonly("t_s", &TrackingResult::t_s)
+      .def_readonly("x_ref_m", &TrackingResult::x_ref_m)
+      .def_readonly("x_m", &TrackingResult::x_m)
+      .def_readonly("e_m", &TrackingResult::e_m)
+      .def_readonly("u_v", &TrackingResult::u_v)
+      .def_readonly("u_ff_v", &TrackingResult::u_ff_v)
+      .def_readonly("max_error_m", &TrackingResult::max_error_m)
+      .def_readonly("rms_error_m", &TrackingResult::rms_error_m)
+      .def_readonly("rms_u_v", &TrackingResult::rms_u_v)
+      .def_readonly("max_abs_u_v", &TrackingResult::max_abs_u_v)
+      .def_readonly("total_variation_v", &TrackingResult::total_variation_v)
+      .def_readonly("saturated_samples", &TrackingResult::saturated_samples)
+      .def("brief_report", &TrackingResult::BriefReport);
+  s.def("track_stage", &TrackStage, py::arg("parameters"), py::arg("reference"), py::arg("pi"),
+        py::arg("u_ff_v"), py::arg("seed"));
+
+  m.def("analytic_inverse", &AnalyticInverse, py::arg("model"), py::arg("dt_s"), py::arg("v_mps"),
+        py::arg("a_mps2"), "u [V] of the analytic inverse with v(t - tau) interpolated.");
+  m.def(
+      "network_inverse",
+      [](const NeuralNetwork& n, const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
+        return NetworkInverse(n, v, a);
+      },
+      py::arg("network"), py::arg("v_mps"), py::arg("a_mps2"),
+      "u [V] of a network on v [m/s] (and a [m/s^2]).");
+}
+
+}  // namespace sysid::python
