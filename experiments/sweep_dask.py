@@ -40,7 +40,7 @@ def main(argv=None):
         cluster, client = None, Client(a.scheduler)
     else:
         cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=":0")
         client = Client(cluster)
     try:
         table = sysid.sweep_grid(paths["train"], a.hidden, seeds, validation=paths["validation"],

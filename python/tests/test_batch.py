@@ -61,7 +61,7 @@ def test_sweep_grid_threads():
 def test_dask_local_cluster_of_two_processes_equals_serial(model):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
+                                  dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         table = sysid.batch(WAVEFORMS, model=model, client=client)
         grid = sysid.sweep_grid(str(VIRTUAL / "training.csv"), hidden_sizes=[2, 3], seeds=[1],
