@@ -319,6 +319,18 @@ def _sweep_rows(self):
 
 
 SweepResult.records = _sweep_rows
+SweepResult.termination = property(lambda self: "chosen" if self.chosen >= 0 else "none")
+SweepResult.message = property(
+    lambda self: (f"H = {self.rows[self.chosen].hidden} by {self.rule}" if self.chosen >= 0
+                  else "no network trained"))
+SweepResult.brief_report = lambda self: "".join(
+    f"H {r['hidden']:>4}  epochs {r['epochs']:>5}  train MSE {r['train_mse']:.6g}  "
+    f"validation MSE {r['validation_mse']:.6g}  test MSE {r['test_mse']:.6g}  "
+    f"{r['termination']}{'  <- chosen' if r['chosen'] else ''}\n" for r in self.records())
+DominanceSummary.termination = property(lambda self: "analysed")
+DominanceSummary.message = property(
+    lambda self: f"{len(self.results)} recordings: dominant {self.dominant}, margin min "
+                 f"{self.min_margin:.3g}, median {self.median_margin:.3g}")
 
 
 def _track(parameters=None, reference=None, feedforward="none", model=None, network=None,

@@ -203,3 +203,15 @@ def test_derive_each_filter_matches_cli(tmp_path):
         ours = sysid.derive(VIRTUAL / "waveform_square.csv", method=method, **extra)
         np.testing.assert_array_equal(ours["v"], cli["v"])
         np.testing.assert_array_equal(ours["a"], cli["a"])
+
+
+def test_every_result_has_termination_message_and_report(model_file):
+    summary = sysid.dominance(str(model_file), str(VIRTUAL / "waveform_*.csv"))
+    sweep = sysid.sweep(VIRTUAL / "training.csv", hidden_sizes=[2], max_epochs=2)
+    for r in (summary, sweep, sysid.simulate(sysid.Model.paper(), "paper-sine", t_end_s=0.5),
+              sysid.identify_trajectory(VIRTUAL / "training.csv")):
+        assert isinstance(r.termination, str) and r.termination
+        assert isinstance(r.message, str) and r.message
+        assert isinstance(r.brief_report(), str) and r.brief_report()
+    assert "6 recordings: dominant velocity" in summary.message
+    assert "<- chosen" in sweep.brief_report()
