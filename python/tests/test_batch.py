@@ -72,3 +72,18 @@ def test_dask_local_cluster_of_two_processes_equals_serial(model):
                               max_epochs=4, threads=1)
     pandas.testing.assert_frame_equal(grid.drop(columns="wall_time_s"),
                                       serial.drop(columns="wall_time_s"))
+
+
+def test_user_thread_pool_of_two_equals_one(model):
+    # Long calls release the GIL: a plain concurrent.futures pool runs them side by side, and
+    # the results are those of the serial loop.
+    import concurrent.futures
+    recs = sysid.read_recordings(WAVEFORMS) * 3
+    serial = [sysid.dominance(model, r).to_dict() for r in recs]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        pooled = list(pool.map(lambda r: sysid.dominance(model, r).to_dict(), recs))
+    assert pooled == serial
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        tuned = list(pool.map(lambda r: sysid.tune_delay(model, r, threads=1).tau_s,
+                              recs[:2]))
+    assert tuned == [sysid.tune_delay(model, r, threads=1).tau_s for r in recs[:2]]
