@@ -151,7 +151,7 @@ def expand_paths(paths):
     for p in paths:
         p = _os.fspath(p)
         if _glob.has_magic(p):
-            matched = sorted(_glob.glob(p))
+            matched = sorted(_glob.glob(p, recursive=True))
             if not matched:
                 raise DataError(f"{p}: no file matches the pattern")
             out.extend(matched)
