@@ -96,7 +96,8 @@ def main():
         py, py_top = best_of_pair(
             30, lambda: [sysid._sysid.analyze_dominance(model, r, opts) for r in recs],
             lambda: [sysid.dominance(model, r, opts) for r in recs])
-        print(f"\n1. binding overhead, dominance over the {len(recs)} bundled recordings (1 thread):")
+        print(f"\n1. binding overhead, dominance over the {len(recs)} bundled recordings "
+              "(1 thread):")
         print(f"   C++ {cpp * 1e3:.3f} ms   Python sysid._sysid {py * 1e3:.3f} ms "
               f"({py / cpp:.3f}x)   sysid.dominance {py_top * 1e3:.3f} ms ({py_top / cpp:.3f}x)")
 

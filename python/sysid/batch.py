@@ -8,6 +8,7 @@ the executor is concurrent.futures or Dask. The result is one pandas.DataFrame i
 
 import concurrent.futures as _futures
 import os as _os
+import sys as _sys
 
 from . import _sysid
 
@@ -91,10 +92,11 @@ def _dominance_chunk(chunk, task, model, options, errors):
     return rows
 
 
-def _map(fn, items, client, threads, chunksize=None, **kw):
+def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
     """fn(item, **kw) for every item, in order: on the Dask client's workers, else on a local
     thread pool. Items go in chunks (default: about 4 per worker) so that per-task overhead
-    (a Dask round trip is about a millisecond) stays small beside the work."""
+    (a Dask round trip is about a millisecond) stays small beside the work. Progress ("k/n")
+    goes to stderr when asked, or by default when stderr is a terminal."""
     if client is not None:
         workers = max(1, sum(client.nthreads().values()))
     else:
@@ -102,19 +104,42 @@ def _map(fn, items, client, threads, chunksize=None, **kw):
     if chunksize is None:
         chunksize = max(1, -(-len(items) // (4 * workers)))
     chunks = [items[i:i + chunksize] for i in range(0, len(items), chunksize)]
+    if progress is None:
+        progress = _sys.stderr.isatty()
+    results = [None] * len(chunks)
+    done = 0
+
+    def report(k):
+        nonlocal done
+        done += len(chunks[k])
+        if progress:
+            print(f"\rsysid batch: {done}/{len(items)}", end="" if done < len(items) else "\n",
+                  file=_sys.stderr, flush=True)
+
     if client is not None:
+        from distributed import as_completed
         futures = client.map(_run_chunk, chunks, fn=fn, kw=kw, pure=False)
-        results = client.gather(futures)
+        index = {f.key: k for k, f in enumerate(futures)}
+        for future in as_completed(futures):
+            k = index[future.key]
+            results[k] = future.result()
+            report(k)
     elif workers == 1:
-        results = [_run_chunk(c, fn, kw) for c in chunks]
+        for k, c in enumerate(chunks):
+            results[k] = _run_chunk(c, fn, kw)
+            report(k)
     else:
         with _futures.ThreadPoolExecutor(max_workers=workers) as pool:
-            results = list(pool.map(lambda c: _run_chunk(c, fn, kw), chunks))
+            futures = {pool.submit(_run_chunk, c, fn, kw): k for k, c in enumerate(chunks)}
+            for future in _futures.as_completed(futures):
+                k = futures[future]
+                results[k] = future.result()
+                report(k)
     return [row for chunk in results for row in chunk]
 
 
 def batch(recordings, task="dominance", model=None, client=None, threads=None, options=None,
-          errors="raise", chunksize=None, **kwargs):
+          errors="raise", chunksize=None, progress=None, **kwargs):
     """Runs `task` on every recording and returns one pandas.DataFrame, a row per recording in
     input order.
 
@@ -126,9 +151,10 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
     client:     a dask.distributed.Client: tasks run on its workers; None: a local thread pool
                 of `threads` (default: all cores).
     options:    the task's option struct; keywords set its fields (e.g. min_speed_mps=2e-3).
-    errors:     'raise' (the first failing recording raises its sysid.Error) or 'record' (the
+    errors:     'raise' (a failing recording raises its sysid.Error) or 'record' (the
                 row gets an 'error' column with the message and the batch goes on).
     chunksize:  recordings per task (default: about 4 tasks per worker thread).
+    progress:   print "k/n" to stderr as tasks finish (default: when stderr is a terminal).
     """
     import pandas
     import sysid
@@ -145,7 +171,7 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
         items = sysid.expand_paths(recordings)
     items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
     opts = _default_options(task, options, kwargs)
-    rows = _map(_guarded, items, client, threads, chunksize, task=task, model=model,
+    rows = _map(_guarded, items, client, threads, chunksize, progress, task=task, model=model,
                 options=opts, errors=errors)
     return pandas.DataFrame.from_records(rows)
 
@@ -167,7 +193,8 @@ def _train_one(pair, train, validation, test, inputs, output, options):
 
 
 def sweep_grid(train, hidden_sizes, seeds=(1,), validation=None, test=None, inputs=("v",),
-               output="u", client=None, threads=None, options=None, chunksize=1, **kwargs):
+               output="u", client=None, threads=None, options=None, chunksize=1, progress=None,
+               **kwargs):
     """Trains one network per (hidden size, seed) and returns one pandas.DataFrame (hidden,
     seed, epochs, train/validation/test MSE [output unit^2], termination, wall time), rows in
     sizes-major order. Data are CSV paths (read where the task runs) or Recordings."""
@@ -179,6 +206,7 @@ def sweep_grid(train, hidden_sizes, seeds=(1,), validation=None, test=None, inpu
         inputs = inputs.split(",")
     opts = sysid._options(sysid.TrainingOptions, options, kwargs)
     pairs = [(h, s) for h in hidden_sizes for s in seeds]
-    rows = _map(_train_one, pairs, client, threads, chunksize, train=train, validation=validation,
-                test=test, inputs=list(inputs), output=output, options=opts)
+    rows = _map(_train_one, pairs, client, threads, chunksize, progress, train=train,
+                validation=validation, test=test, inputs=list(inputs), output=output,
+                options=opts)
     return pandas.DataFrame.from_records(rows)

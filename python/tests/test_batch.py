@@ -87,3 +87,11 @@ def test_user_thread_pool_of_two_equals_one(model):
         tuned = list(pool.map(lambda r: sysid.tune_delay(model, r, threads=1).tau_s,
                               recs[:2]))
     assert tuned == [sysid.tune_delay(model, r, threads=1).tau_s for r in recs[:2]]
+
+
+def test_progress_on_stderr(model, capsys):
+    sysid.batch(WAVEFORMS, model=model, threads=2, chunksize=2, progress=True)
+    err = capsys.readouterr().err
+    assert "sysid batch: 2/6" in err and err.endswith("sysid batch: 6/6\n")
+    sysid.batch(WAVEFORMS, model=model, threads=2, progress=False)
+    assert capsys.readouterr().err == ""
