@@ -50,7 +50,7 @@ void BindControl(py::module_& m) {
       .def_readwrite("u_max_v", &PiOptions::u_max_v)
       .def_readwrite("anti_windup", &PiOptions::anti_windup)
       .def("validate", &PiOptions::Validate)
-      .def_static("for_virtual_stage", &PiOptions::ForVirtualStage);
+      .def_static("for_actuator_delay_stage", &PiOptions::ForActuatorDelayStage);
 
   py::class_<SmoothProfileOptions> profile(s, "SmoothProfileOptions");
   AddKeywordInit(profile);

@@ -45,14 +45,15 @@ py::dict DominanceDict(const DominanceResult& r) {
   d["dominant"] = r.dominant;
   d["margin"] = FiniteOrNone(r.margin);
   d["terms"] = terms;
-  d["paper_ratio_bound"] = r.paper_ratio_bound;
-  d["paper_ratio_max"] = r.paper_ratio_max;
+  d["peak_ratio"] = r.peak_ratio;
+  d["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
+  d["pointwise_ratio_max"] = r.pointwise_ratio_max;
   d["samples"] = r.samples;
   d["moving_samples"] = r.moving_samples;
   return d;
 }
 
-/// One flat row per recording: source, dominant, margin, sample counts, the paper's ratio and
+/// One flat row per recording: source, dominant, margin, sample counts, the paper's ratios and
 /// rms_<variable> / ratio_<variable> for every ranked variable.
 py::dict DominanceRow(const DominanceResult& r) {
   py::dict d;
@@ -61,8 +62,9 @@ py::dict DominanceRow(const DominanceResult& r) {
   d["margin"] = r.margin;
   d["samples"] = r.samples;
   d["moving_samples"] = r.moving_samples;
-  d["paper_ratio_bound"] = r.paper_ratio_bound;
-  d["paper_ratio_max"] = r.paper_ratio_max;
+  d["peak_ratio"] = r.peak_ratio;
+  d["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
+  d["pointwise_ratio_max"] = r.pointwise_ratio_max;
   for (const auto& s : r.ranking) {
     d[py::str("rms_" + s.name)] = s.rms;
     d[py::str("ratio_" + s.name)] = s.ratio_to_top;
@@ -382,8 +384,9 @@ void BindIdentify(py::module_& m) {
       .def_readonly("ranking", &DominanceResult::ranking)
       .def_readonly("dominant", &DominanceResult::dominant)
       .def_readonly("margin", &DominanceResult::margin)
-      .def_readonly("paper_ratio_bound", &DominanceResult::paper_ratio_bound)
-      .def_readonly("paper_ratio_max", &DominanceResult::paper_ratio_max)
+      .def_readonly("peak_ratio", &DominanceResult::peak_ratio)
+      .def_readonly("pointwise_ratio_quantile", &DominanceResult::pointwise_ratio_quantile)
+      .def_readonly("pointwise_ratio_max", &DominanceResult::pointwise_ratio_max)
       .def_property_readonly("termination", [](const DominanceResult&) { return "analysed"; })
       .def_property_readonly("message",
                              [](const DominanceResult& r) {
