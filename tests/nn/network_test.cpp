@@ -9,6 +9,7 @@
 #include "sysid/nn.hpp"
 
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 
 namespace {
 
@@ -89,17 +90,37 @@ TEST_CASE("model file errors name the place and the rule", "[nn][file]") {
     std::string bad = good;
     bad.replace(bad.find("\"hidden\": 3"), 11, "\"hidden\": 4");
     CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
-                      Contains("'W1': expected 4 rows"));
+                      Contains(": W1: expected an array of 4 values, found an array of 3 values"));
   }
   SECTION("inverted range") {
     std::string bad = good;
     bad.replace(bad.find("\"max\": 2.0"), 10, "\"max\": -4.0");
-    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"), Contains("min < max"));
+    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
+                      Contains(": output.max: expected a number > min (-3.0), found -4.0"));
   }
   SECTION("not a number") {
     std::string bad = good;
     const size_t p = bad.find("\"b2\": ") + 6;
     bad.replace(p, bad.find('\n', p) - p, "\"x\"");
-    CHECK_THROWS_AS(sysid::ParseNeuralNetwork(bad, "net.json"), sysid::InputError);
+    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
+                      Contains(": b2: expected a finite number, found string \"x\""));
+  }
+  SECTION("a hidden size past the bound is refused before allocation") {
+    std::string bad = good;
+    bad.replace(bad.find("\"hidden\": 3"), 11, "\"hidden\": 100000000");
+    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
+                      Contains(": hidden: expected an integer in [1, 100000], found 100000000"));
+  }
+  SECTION("a missing section is named") {
+    std::string bad = good;
+    bad.replace(bad.find("\"b1\""), 4, "\"_b1\"");
+    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
+                      StartsWith("net.json:1:1: missing required key 'b1'"));
+  }
+  SECTION("an element of an input variable") {
+    std::string bad = good;
+    bad.replace(bad.find("\"min\": "), 7, "\"min\": true, \"_x\": ");
+    CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
+                      Contains(": inputs[0].min: expected a finite number, found true"));
   }
 }

@@ -1,11 +1,13 @@
 // Private: JSON text helpers shared by the model, network and stage file parsers, so that every
-// file error names "SOURCE:LINE:COLUMN:" the same way.
+// file error names "SOURCE:LINE:COLUMN: key: expected ..., found ..." the same way.
 #ifndef SYSID_DETAIL_JSON_TEXT_HPP_
 #define SYSID_DETAIL_JSON_TEXT_HPP_
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sysid::detail {
 
@@ -19,6 +21,113 @@ std::string JsonKeyPosition(std::string_view text, const std::string& key,
 
 /// Parses `text`; a syntax error throws InputError "SOURCE:LINE:COLUMN: invalid JSON: ...".
 nlohmann::json ParseJsonText(std::string_view text, const std::string& source);
+
+/// `s` safe to print on a terminal: control bytes, DEL and NUL become \xHH, and text past
+/// `max_chars` is cut with "...". Used wherever an error message quotes file data.
+std::string Printable(std::string_view s, size_t max_chars = 80);
+
+/// The accepted range of a number read from a file, with the rule as it is printed
+/// ("a number > 0"). Every number must also be finite.
+struct NumberRule {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  bool hi_open = false;
+
+  static NumberRule Finite() { return {}; }
+  static NumberRule Positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+  static NumberRule NonNegative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+  static NumberRule Closed(double lo, double hi) { return {lo, hi, false, false}; }
+  bool Accepts(double v) const;
+  std::string Describe() const;  ///< "a number > 0", "a number in [0, 1]", "a finite number"
+};
+
+class JsonDocument;
+
+/// One value of a parsed document together with its JSON pointer, so that any complaint about it
+/// names the place in the text ("FILE:LINE:COL: rig.sample_rate_hz: expected a number > 0,
+/// found 0"). Cheap to copy; valid while its document lives.
+class JsonNode {
+ public:
+  const nlohmann::json& json() const { return *json_; }
+  const std::string& pointer() const { return pointer_; }
+  /// Dotted name of the value for messages: "rig.sample_rate_hz", "inputs[0].min", "(top)".
+  const std::string& Name() const { return name_; }
+  /// Throws InputError "SOURCE:LINE:COL: NAME: what" at this value's key (or the value itself
+  /// for array elements and the root).
+  [[noreturn]] void Fail(const std::string& what) const;
+  /// Throws "...: NAME: expected <expected>, found <what this value is>".
+  [[noreturn]] void Expected(const std::string& expected) const;
+
+  bool Has(const std::string& key) const;
+  /// A required member: the object must hold `key`, else "NAME: missing required key 'key'"
+  /// at this object. This node must be an object (checked).
+  JsonNode Get(const std::string& key) const;
+  size_t Size() const { return json_->size(); }
+  JsonNode Element(size_t index) const;
+
+  /// Checks this is an object and every key is in `known` or starts with '_' (comments).
+  /// `allowed_extra` keys ride along unread (reports, notes).
+  void ExpectObject(const std::vector<std::string>& known,
+                    const std::vector<std::string>& allowed_extra = {}) const;
+  /// Checks this is an array with `size` elements (any size when 0, at least one when
+  /// `non_empty`).
+  void ExpectArray(size_t size = 0, bool non_empty = false) const;
+  double Number(const NumberRule& rule = NumberRule::Finite()) const;
+  long Integer(long lo, long hi) const;
+  std::string String(bool non_empty = false) const;
+  std::vector<double> Numbers(size_t size = 0, const NumberRule& rule = NumberRule::Finite()) const;
+
+ private:
+  friend class JsonDocument;
+  JsonNode(const JsonDocument* doc, const nlohmann::json* json, std::string pointer,
+           std::string name)
+      : doc_(doc), json_(json), pointer_(std::move(pointer)), name_(std::move(name)) {}
+  const JsonDocument* doc_;
+  const nlohmann::json* json_;
+  std::string pointer_;
+  std::string name_;
+};
+
+/// A parsed JSON file that can say where each of its values is written.
+class JsonDocument {
+ public:
+  /// Parses `text` (kept by reference: it must outlive the document); syntax errors and numbers
+  /// beyond double range throw a positioned InputError.
+  JsonDocument(std::string_view text, std::string source);
+  JsonNode Root() const { return JsonNode(this, &json_, "", "(top)"); }
+  const std::string& source() const { return source_; }
+
+  /// "SOURCE:LINE:COL" of the key of the member at JSON pointer `pointer` (of the value for
+  /// array elements); the nearest ancestor that is written in the text when it is not.
+  std::string Where(const std::string& pointer) const;
+  /// True when the value at `pointer` is written in the text.
+  bool Contains(const std::string& pointer) const;
+  /// The pointer of a written value whose pointer ends with `suffix` ("/sample_rate_hz",
+  /// "/forward/coulomb_mps2"); empty when none.
+  std::string FindSuffix(const std::string& suffix) const;
+
+  /// Re-throws a Validate() error ("Type::field = value. Violated constraint: rule") as a
+  /// positioned InputError "SOURCE:LINE:COL: NAME: expected rule, found value", where
+  /// `pointer` is the JSON pointer of the field (empty when the field is not in the file).
+  [[noreturn]] void FailValidation(const std::string& message, const std::string& pointer) const;
+  /// The field of a Validate() message ("forward.coulomb_mps2", "drive_map_in_v[3]"); empty when
+  /// the message has another form.
+  static std::string ValidationField(const std::string& message);
+
+ private:
+  struct Place {
+    size_t key;    // offset of the key's quote (of the value for elements and the root)
+    size_t value;  // offset of the value
+  };
+  const std::vector<std::pair<std::string, Place>>& Places() const;
+
+  std::string_view text_;
+  std::string source_;
+  nlohmann::json json_;
+  mutable std::vector<std::pair<std::string, Place>> places_;  // built on the first error
+  mutable bool indexed_ = false;
+};
 
 }  // namespace sysid::detail
 

@@ -8,48 +8,25 @@
 
 namespace sysid {
 FrictionModel ParseModel(std::string_view json_text, const std::string& source) {
-  const auto j = detail::ParseJsonText(json_text, source);
-  if (!j.is_object())
-    throw InputError(source +
-                     ":1:1: expected a JSON object with keys a1p, a1n, a2p, a2n, a3, "
-                     "tau");
+  const detail::JsonDocument doc(json_text, source);
+  const detail::JsonNode root = doc.Root();
+  // Reports and comments may ride along: "diagnostics", "units", "note", "model", "_anything".
+  root.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau"},
+                    {"diagnostics", "units", "note", "model"});
+  using Rule = detail::NumberRule;
   FrictionModel m;
-  struct Field {
-    const char* key;
-    double* target;
-    bool required;
-  };
-  const Field fields[] = {{"a1p", &m.a1p, true}, {"a1n", &m.a1n, true}, {"a2p", &m.a2p, true},
-                          {"a2n", &m.a2n, true}, {"a3", &m.a3, true},   {"tau", &m.tau_s, false}};
-  for (const auto& [key, value] : j.items()) {
-    // Reports and comments may ride along: "diagnostics", "units", "note", "_anything".
-    if (key == "diagnostics" || key == "units" || key == "note" || key == "model" ||
-        (!key.empty() && key[0] == '_'))
-      continue;
-    bool known = false;
-    for (const auto& f : fields) known = known || key == f.key;
-    if (!known)
-      throw InputError(source + ":" + detail::JsonKeyPosition(json_text, key) + ": unknown key '" +
-                       key + "' (expected a1p, a1n, a2p, a2n, a3, tau)");
-  }
-  for (const auto& f : fields) {
-    if (!j.contains(f.key)) {
-      if (f.required)
-        throw InputError(source + ": missing key '" + f.key +
-                         "' (a model file needs a1p, "
-                         "a1n, a2p, a2n, a3 and optionally tau [s])");
-      continue;
-    }
-    const auto& v = j.at(f.key);
-    if (!v.is_number())
-      throw InputError(source + ":" + detail::JsonKeyPosition(json_text, f.key) + ": key '" +
-                       f.key + "': expected a number, found " + v.type_name());
-    *f.target = v.get<double>();
-  }
+  m.a1p = root.Get("a1p").Number(Rule::Positive());
+  m.a1n = root.Get("a1n").Number(Rule::Positive());
+  m.a2p = root.Get("a2p").Number(Rule::NonNegative());
+  m.a2n = root.Get("a2n").Number(Rule::NonNegative());
+  m.a3 = root.Get("a3").Number(Rule::Positive());
+  // tau [s] is optional (0: no delay); a delay of more than a second is no actuator's.
+  if (root.Has("tau")) m.tau_s = root.Get("tau").Number(Rule::Closed(0.0, 1.0));
   try {
     m.Validate();
   } catch (const OptionsError& e) {
-    throw InputError(source + ": invalid model: " + e.what());
+    const std::string field = detail::JsonDocument::ValidationField(e.what());
+    doc.FailValidation(e.what(), field.empty() ? "" : "/" + field);
   }
   return m;
 }

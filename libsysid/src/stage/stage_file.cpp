@@ -1,5 +1,6 @@
 // The stage file: JSON with the unit in every key, grouped as model, drive, motor + rail
 // (velocity source) or friction (actuator delay), rig, integrator. Unknown keys are errors so that a typo never silently leaves a default.
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -12,74 +13,46 @@
 namespace sysid {
 namespace {
 
-using Json = nlohmann::json;
+constexpr double kMaxStageSampleRateHz = 1e6;
 
-struct Context {
-  std::string_view text;
-  const std::string& source;
-  [[noreturn]] void Fail(const std::string& parent, const std::string& key,
-                         const std::string& what) const {
-    throw InputError(source + ":" + detail::JsonKeyPosition(text, key, parent) + ": " + what);
-  }
-};
-
-// Reads the object `j` (named `parent`), whose keys must all be in `numbers`, `ints`, `arrays`
-// or `objects` (handled by the caller).
+// Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
+// (handled by the caller). Keys left out keep the preset's value.
 struct Section {
   std::vector<std::pair<const char*, double*>> numbers;
   std::vector<std::pair<const char*, int*>> ints;
   std::vector<std::pair<const char*, std::vector<double>*>> arrays;
   std::vector<const char*> objects;
 
-  void Read(const Context& c, const std::string& parent, const Json& j) const {
-    if (!j.is_object())
-      c.Fail("", parent, "key '" + parent + "': expected an object, found " + j.type_name());
-    for (const auto& [key, value] : j.items()) {
-      if (key == "units" || key == "note" || (!key.empty() && key[0] == '_')) continue;
-      bool known = false;
-      for (const auto& [k, target] : numbers) {
-        if (key != k) continue;
-        known = true;
-        if (!value.is_number())
-          c.Fail(parent, key, "key '" + key + "': expected a number, found " + value.type_name());
-        *target = value.get<double>();
-      }
-      for (const auto& [k, target] : ints) {
-        if (key != k) continue;
-        known = true;
-        if (!value.is_number_integer())
-          c.Fail(parent, key, "key '" + key + "': expected an integer, found " + value.dump());
-        *target = value.get<int>();
-      }
-      for (const auto& [k, target] : arrays) {
-        if (key != k) continue;
-        known = true;
-        if (!value.is_array())
-          c.Fail(parent, key,
-                 "key '" + key + "': expected an array of numbers, found " + value.type_name());
-        target->clear();
-        for (const auto& e : value) {
-          if (!e.is_number())
-            c.Fail(parent, key, "key '" + key + "': expected numbers, found " + e.dump());
-          target->push_back(e.get<double>());
-        }
-      }
-      for (const char* k : objects) known = known || key == k;
-      if (!known) {
-        std::string expected;
-        for (const auto& n : numbers)
-          expected += std::string(expected.empty() ? "" : ", ") + n.first;
-        for (const auto& n : ints) expected += std::string(expected.empty() ? "" : ", ") + n.first;
-        for (const auto& n : arrays)
-          expected += std::string(expected.empty() ? "" : ", ") + n.first;
-        for (const char* n : objects) expected += std::string(expected.empty() ? "" : ", ") + n;
-        c.Fail(parent, key,
-               "unknown key '" + key + "' in '" + (parent.empty() ? "(top)" : parent) +
-                   "' (expected " + expected + ")");
-      }
-    }
+  void Read(const detail::JsonNode& node) const {
+    std::vector<std::string> known;
+    for (const auto& n : numbers) known.push_back(n.first);
+    for (const auto& n : ints) known.push_back(n.first);
+    for (const auto& n : arrays) known.push_back(n.first);
+    for (const char* n : objects) known.push_back(n);
+    node.ExpectObject(known, {"units", "note"});
+    for (const auto& [k, target] : numbers)
+      if (node.Has(k)) *target = node.Get(k).Number();
+    for (const auto& [k, target] : ints)
+      if (node.Has(k))
+        *target = static_cast<int>(node.Get(k).Integer(std::numeric_limits<int>::min(),
+                                                       std::numeric_limits<int>::max()));
+    for (const auto& [k, target] : arrays)
+      if (node.Has(k)) *target = node.Get(k).Numbers();
   }
 };
+
+// The JSON pointer of the StageParameters field a Validate() message names
+// ("forward.coulomb_mps2", "drive_map_in_v[3]", "sample_rate_hz"); empty when not in the file.
+std::string FieldPointer(const detail::JsonDocument& doc, const std::string& field) {
+  std::string suffix = "/";
+  for (char ch : field) {
+    if (ch == '.' || ch == '[') suffix += '/';
+    else if (ch != ']') suffix += ch;
+  }
+  std::string p = doc.FindSuffix(suffix);
+  if (p.empty() && suffix.rfind("/drive_", 0) == 0) p = doc.FindSuffix("/" + suffix.substr(7));
+  return p;
+}
 
 Section BranchSection(FrictionBranch& b) {
   return Section{{{"coulomb_mps2", &b.coulomb_mps2},
@@ -98,15 +71,15 @@ namespace {
 // The model a file describes: its "model" key, else inferred from its sections (files written
 // before the key existed describe the actuator-delay stage and carry "friction" or the drive's
 // force-actuator keys), else the default velocity source.
-StageModel FileModel(const Context& c, const Json& j) {
-  if (j.contains("model")) {
-    const Json& m = j["model"];
-    if (!m.is_string())
-      c.Fail("", "model", "key 'model': expected \"velocity-source\" or \"actuator-delay\"");
+StageModel FileModel(const detail::JsonNode& root) {
+  const nlohmann::json& j = root.json();
+  if (root.Has("model")) {
+    const detail::JsonNode m = root.Get("model");
+    const std::string name = m.String();
     try {
-      return ParseStageModel(m.get<std::string>());
-    } catch (const OptionsError& e) {
-      c.Fail("", "model", std::string("key 'model': ") + e.what());
+      return ParseStageModel(name);
+    } catch (const OptionsError&) {
+      m.Expected("\"velocity-source\" or \"actuator-delay\"");
     }
   }
   if (j.contains("friction")) return StageModel::kActuatorDelay;
@@ -119,32 +92,28 @@ StageModel FileModel(const Context& c, const Json& j) {
 }  // namespace
 
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
-  const Json j = detail::ParseJsonText(json_text, source);
-  const Context c{json_text, source};
-  if (!j.is_object())
-    throw InputError(source +
-                     ":1:1: expected a JSON object with keys name, model, drive, motor, rail "
-                     "(velocity-source) or friction (actuator-delay), rig, integrator");
-  const StageModel model = FileModel(c, j);
+  const detail::JsonDocument doc(json_text, source);
+  const detail::JsonNode root = doc.Root();
+  root.ExpectObject({"name", "model", "drive", "motor", "rail", "friction", "rig", "integrator"},
+                    {"units", "note"});
+  const StageModel model = FileModel(root);
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
       vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
   const std::string model_name = ToString(model);
-  auto other_model = [&](const std::string& parent, const std::string& key) {
-    c.Fail(parent, key,
-           "key '" + key + "' belongs to the " + (vs ? "actuator-delay" : "velocity-source") +
-               " model; this stage's model is " + model_name + " (key 'model')");
+  auto other_model = [&](const detail::JsonNode& at) {
+    at.Fail("belongs to the " + std::string(vs ? "actuator-delay" : "velocity-source") +
+            " model; this stage's model is " + model_name + " (key 'model')");
   };
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& [key, value] : root.json().items()) {
     if (key == "units" || key == "note" || key == "model" || (!key.empty() && key[0] == '_'))
       continue;
     if (key == "name") {
-      if (!value.is_string()) c.Fail("", key, "key 'name': expected a string");
-      p.name = value.get<std::string>();
+      p.name = root.Get(key).String();
     } else if (key == "drive") {
       if (vs && value.is_object())
         for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
-          if (value.contains(k)) other_model(key, k);
+          if (value.contains(k)) other_model(root.Get(key).Get(k));
       Section{{{"gain_mps2_per_v", &p.gain_mps2_per_v},
                {"dead_zone_v", &p.dead_zone_v},
                {"saturation_v", &p.saturation_v},
@@ -153,9 +122,9 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
               {}}
-          .Read(c, key, value);
+          .Read(root.Get(key));
     } else if (key == "motor") {
-      if (!vs) other_model("", key);
+      if (!vs) other_model(root.Get(key));
       Section{{{"pole_per_s", &p.motor.pole_per_s},
                {"dead_zone_forward_v", &p.motor.dead_zone_forward_v},
                {"dead_zone_backward_v", &p.motor.dead_zone_backward_v}},
@@ -163,27 +132,27 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"speed_map_in_v", &p.motor.speed_map_in_v},
                {"speed_map_out_mps", &p.motor.speed_map_out_mps}},
               {}}
-          .Read(c, key, value);
+          .Read(root.Get(key));
     } else if (key == "rail") {
-      if (!vs) other_model("", key);
+      if (!vs) other_model(root.Get(key));
       Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
                {"static_mps2", &p.rail.static_mps2},
                {"stribeck_velocity_mps", &p.rail.stribeck_velocity_mps}},
               {},
               {},
               {}}
-          .Read(c, key, value);
+          .Read(root.Get(key));
     } else if (key == "friction") {
-      if (vs) other_model("", key);
+      if (vs) other_model(root.Get(key));
       Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
                {"bristle_damping_per_s", &p.bristle_damping_per_s}},
               {},
               {},
               {"forward", "backward"}}
-          .Read(c, key, value);
-      if (value.contains("forward")) BranchSection(p.forward).Read(c, "forward", value["forward"]);
-      if (value.contains("backward"))
-        BranchSection(p.backward).Read(c, "backward", value["backward"]);
+          .Read(root.Get(key));
+      if (root.Get(key).Has("forward")) BranchSection(p.forward).Read(root.Get(key).Get("forward"));
+      if (root.Get(key).Has("backward"))
+        BranchSection(p.backward).Read(root.Get(key).Get("backward"));
     } else if (key == "rig") {
       Section{{{"sample_rate_hz", &p.sample_rate_hz},
                {"dac_range_v", &p.dac_range_v},
@@ -196,25 +165,36 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"dac_bits", &p.dac_bits}},
               {},
               {}}
-          .Read(c, key, value);
+          .Read(root.Get(key));
     } else if (key == "integrator") {
       Section{{{"relative_tolerance", &p.relative_tolerance},
                {"position_tolerance_m", &p.position_tolerance_m}},
               {},
               {},
               {}}
-          .Read(c, key, value);
-    } else {
-      c.Fail("", key,
-             "unknown key '" + key +
-                 "' (expected name, model, drive, motor, rail, friction, rig, integrator)");
+          .Read(root.Get(key));
     }
+  }
+  // A file without a section would silently run on built-in values: the physical sections of
+  // its model are required (their keys may be left out), the integrator settings are optional.
+  // Checked after the keys, so that a misspelt section is reported as the unknown key it is.
+  if (vs) {
+    for (const char* required : {"drive", "motor", "rail", "rig"}) (void)root.Get(required);
+  } else {
+    for (const char* required : {"drive", "friction", "rig"}) (void)root.Get(required);
+    (void)root.Get("friction").Get("forward");
+    (void)root.Get("friction").Get("backward");
   }
   try {
     p.Validate();
   } catch (const OptionsError& e) {
-    throw InputError(source + ": invalid stage parameters: " + e.what());
+    doc.FailValidation(e.what(),
+                       FieldPointer(doc, detail::JsonDocument::ValidationField(e.what())));
   }
+  // A bound beyond the physics that keeps every procedure's work finite (1e12 Hz would ask for
+  // terabytes); only a file can set it, so it is reported at its place.
+  if (p.sample_rate_hz > kMaxStageSampleRateHz)
+    root.Get("rig").Get("sample_rate_hz").Expected("a number in (0, 1e+06] (sample rate [Hz])");
   return p;
 }
 
