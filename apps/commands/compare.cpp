@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
 #include "sysid/report.hpp"
@@ -24,6 +25,7 @@ struct CompareCliOptions {
   std::string nn_path;
   std::vector<std::string> files;
   std::string out_dir;
+  bool force = false;
   std::string derivative = "central";
   bool json = false;
   bool plots = true;
@@ -36,6 +38,14 @@ nlohmann::ordered_json ErrorsJson(const PredictionErrors& e) {
 
 void RunCompare(const CompareCliOptions& o) {
   namespace fs = std::filesystem;
+  // The output folder is checked before any work (cli/output_folder.hpp).
+  std::optional<OutputFolder> folder;
+  if (!o.out_dir.empty()) {
+    std::vector<std::string> inputs = o.files;
+    inputs.push_back(o.model_path);
+    if (!o.nn_path.empty()) inputs.push_back(o.nn_path);
+    folder.emplace(o.out_dir, o.force, inputs, "compare");
+  }
   const FrictionModel model = ReadModel(o.model_path);
   std::optional<NeuralNetwork> nn;
   if (!o.nn_path.empty()) nn = ReadNeuralNetwork(o.nn_path);
@@ -73,25 +83,26 @@ void RunCompare(const CompareCliOptions& o) {
     row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
   }
-  if (!o.out_dir.empty()) {
-    fs::create_directories(o.out_dir);
+  if (folder) {
     std::vector<std::string> notes;
-    for (const auto& c : results) {
-      const std::string stem = fs::path(c.source).stem().string();
-      WriteRecording((fs::path(o.out_dir) / (stem + "_traces.csv")).string(), c.AsRecording());
-      if (!o.plots) continue;
-      PlotSpec spec;
-      spec.title = "inverse models on " + stem;
-      spec.x_label = "t [s]";
-      spec.y_label = "u [V]";
-      spec.series.push_back({"measured", c.t_s, c.u_measured_v, "lines"});
-      spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
-      if (c.has_nn) spec.series.push_back({"NN inverse", c.t_s, c.u_nn_v, "lines"});
-      const auto p = WritePlot((fs::path(o.out_dir) / (stem + ".png")).string(), spec);
-      if (!p.written) notes.push_back(p.message);
-    }
-    WriteFileAtomically((fs::path(o.out_dir) / "summary.csv").string(), csv);
-    WriteFileAtomically((fs::path(o.out_dir) / "summary.json").string(), j.dump(2) + "\n");
+    folder->Write([&](const fs::path& dir) {
+      for (const auto& c : results) {
+        const std::string stem = fs::path(c.source).stem().string();
+        WriteRecording((dir / (stem + "_traces.csv")).string(), c.AsRecording());
+        if (!o.plots) continue;
+        PlotSpec spec;
+        spec.title = "inverse models on " + stem;
+        spec.x_label = "t [s]";
+        spec.y_label = "u [V]";
+        spec.series.push_back({"measured", c.t_s, c.u_measured_v, "lines"});
+        spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
+        if (c.has_nn) spec.series.push_back({"NN inverse", c.t_s, c.u_nn_v, "lines"});
+        const auto p = WritePlot((dir / (stem + ".png")).string(), spec);
+        if (!p.written) notes.push_back(p.message);
+      }
+      WriteFileAtomically((dir / "summary.csv").string(), csv);
+      WriteFileAtomically((dir / "summary.json").string(), j.dump(2) + "\n");
+    });
     for (const auto& n : notes) std::cerr << "sysid compare: " << n << '\n';
   }
   if (o.json) {
@@ -125,8 +136,10 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
       ->check(CLI::NonNegativeNumber);
   AddOutputOption(cmd, o->out_dir,
-                  "folder for <name>_traces.csv, <name>.png, summary.csv, summary.json")
+                  "new folder for <name>_traces.csv, <name>.png, summary.csv, summary.json")
       ->type_name("DIR");
+  cmd->add_flag("--force", o->force,
+                "replace a folder an earlier sysid compare wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object with the metrics per recording");
   cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
   cmd->callback([o] { RunCompare(*o); });

@@ -1,11 +1,14 @@
-// sysid excite pulses|tracking|waveforms [...] [-o FILE]: the excitation or reference signals
-// of a procedure alone, as CSV, to play on a real rig.
+// sysid excite pulses|tracking|waveforms [...] [-o FILE|DIR]: the excitation or reference
+// signals of a procedure alone, as CSV, to play on a real rig.
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -17,6 +20,7 @@ namespace {
 struct ExciteOptions {
   std::string what;
   std::string output;
+  bool force = false;
   double rate_hz = 1000;
   std::vector<double> amplitudes_v;
   double on_s = 0.4, rest_s = 0.3, lead_s = 0.1;
@@ -24,7 +28,17 @@ struct ExciteOptions {
   int cycles = 2;
 };
 
+bool EndsWithCsv(const std::string& path) {
+  return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||
+                              path.compare(path.size() - 4, 4, ".CSV") == 0);
+}
+
 void RunExcite(const ExciteOptions& o) {
+  // References with -o DIR (no .csv ending): one file per waveform in a new folder, under the
+  // same folder rule as pipeline; checked before any work.
+  const bool per_waveform = o.what != "pulses" && !o.output.empty() && !EndsWithCsv(o.output);
+  std::optional<OutputFolder> folder;
+  if (per_waveform) folder.emplace(o.output, o.force, std::vector<std::string>{}, "excite");
   Recording r;
   if (o.what == "pulses") {
     PulseProcedure p;
@@ -40,6 +54,19 @@ void RunExcite(const ExciteOptions& o) {
     const auto waves = o.what == "waveforms" ? PaperTestWaveforms()
                        : o.set == "test"     ? TestGrid()
                                              : TrainingGrid();
+    if (per_waveform) {
+      folder->Write([&](const std::filesystem::path& dir) {
+        for (const auto& w : waves) {
+          Recording one = ReferenceSignals({w}, t, o.rate_hz);
+          one.metadata.emplace_back("waveform_name", w.name);
+          one.metadata.emplace_back("sample_rate_hz", Num(o.rate_hz, 12));
+          WriteRecording((dir / ("waveform_" + w.name + ".csv")).string(), one);
+        }
+      });
+      std::cout << "wrote " << waves.size() << " references to " << folder->path().string()
+                << "/waveform_<name>.csv\n";
+      return;
+    }
     r = ReferenceSignals(waves, t, o.rate_hz);
   }
   r.metadata.emplace_back("sample_rate_hz", Num(o.rate_hz, 12));
@@ -59,7 +86,12 @@ void AddExciteCommand(CLI::App& app) {
   cmd->add_option("what", o->what, "pulses, tracking or waveforms")
       ->required()
       ->check(CLI::IsMember({"pulses", "tracking", "waveforms"}));
-  AddOutputOption(cmd, o->output, "CSV file (default: standard output)");
+  AddOutputOption(cmd, o->output,
+                  "CSV file (default: standard output); for tracking and waveforms a name "
+                  "without .csv is a new folder with one waveform_<name>.csv per waveform")
+      ->type_name("FILE|DIR");
+  cmd->add_flag("--force", o->force,
+                "replace a folder an earlier sysid excite wrote (one holding .sysid-output)");
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz] (default 1000)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--amplitudes", o->amplitudes_v,

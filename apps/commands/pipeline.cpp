@@ -11,23 +11,13 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid::cli {
 namespace {
 namespace fs = std::filesystem;
-
-// A folder this toolkit wrote holds this marker; only such a folder (or an empty one) may be
-// replaced, so `-o` never deletes a user's files.
-constexpr const char* kOutputMarker = ".sysid-output";
-
-bool IsEmptyDir(const std::filesystem::path& p) {
-  return std::filesystem::is_directory(p) && std::filesystem::is_empty(p);
-}
-bool HasMarker(const std::filesystem::path& p) {
-  return std::filesystem::is_directory(p) && std::filesystem::exists(p / kOutputMarker);
-}
 
 struct PipelineCliOptions {
   std::string input;
@@ -49,30 +39,9 @@ struct PipelineCliOptions {
 };
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
-  // Check the output folder before any work: trailing slashes are dropped, inputs are never
-  // inside it, and only an empty folder or one with the toolkit's marker is ever replaced.
-  fs::path out = fs::absolute(o.out_dir).lexically_normal();
-  if (out.filename().empty()) out = out.parent_path();
-  {
-    const fs::path in = fs::weakly_canonical(fs::absolute(o.input));
-    const fs::path outc = fs::weakly_canonical(out);
-    const std::string ins = in.string() + "/", outs = outc.string() + "/";
-    if (ins.rfind(outs, 0) == 0)
-      throw OptionsError("-o " + o.out_dir + ": the output folder is or contains the input " +
-                         o.input + "; choose another folder");
-  }
-  if (fs::exists(out) && !IsEmptyDir(out)) {
-    if (!HasMarker(out))
-      throw OptionsError("-o " + o.out_dir +
-                         ": exists and was not written by sysid (no .sysid-output marker); "
-                         "refusing to replace it: choose a new or empty folder");
-    if (!o.force)
-      throw OptionsError("-o " + o.out_dir +
-                         ": holds an earlier sysid report; pass --force to replace it");
-  }
-  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".tmp");
-  if (fs::exists(tmp) && !IsEmptyDir(tmp) && !HasMarker(tmp))
-    throw OptionsError(tmp.string() + ": exists and was not written by sysid; remove it first");
+  // Check the output folder before any work (cli/output_folder.hpp).
+  const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
+  const fs::path& out = folder.path();
   const PipelineInputs inputs = fs::is_directory(o.input) ? PipelineInputs::FromDirectory(o.input)
                                                           : PipelineInputs::FromManifest(o.input);
   PipelineOptions opt;
@@ -98,18 +67,8 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   });
   // The report is written into a temporary sibling folder and renamed into place: a failure
   // never leaves a half-written report behind, and a previous one is replaced whole.
-  fs::remove_all(tmp);  // checked above: absent, empty or ours
   std::vector<std::string> notes;
-  try {
-    fs::create_directories(tmp);
-    std::ofstream(tmp / kOutputMarker) << "written by sysid pipeline\n";
-    notes = WritePipelineReport(r, tmp.string());
-  } catch (...) {
-    fs::remove_all(tmp);
-    throw;
-  }
-  if (fs::exists(out) && (IsEmptyDir(out) || HasMarker(out))) fs::remove_all(out);
-  fs::rename(tmp, out);
+  folder.Write([&](const fs::path& dir) { notes = WritePipelineReport(r, dir.string()); });
   for (const auto& n : notes) std::cerr << "sysid pipeline: " << n << '\n';
 
   nlohmann::ordered_json j;

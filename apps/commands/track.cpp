@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
@@ -37,6 +38,7 @@ struct TrackCliOptions {
   std::uint64_t seed = 1;
   bool json = false;
   bool plots = true;
+  bool force = false;
 };
 
 std::vector<std::string> SplitList(const std::string& s) {
@@ -63,6 +65,14 @@ Eigen::VectorXd FeedforwardValues(const std::string& scheme, const PositionRefer
 
 void RunTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
+  // The output folder is checked before any work (cli/output_folder.hpp).
+  std::optional<OutputFolder> folder;
+  if (!o.out_dir.empty()) {
+    std::vector<std::string> inputs;  // files only (--plant may name a preset)
+    for (const auto* path : {&o.plant, &o.model_path, &o.nn_path, &o.reference_path})
+      if (!path->empty() && fs::exists(*path)) inputs.push_back(*path);
+    folder.emplace(o.out_dir, o.force, inputs, "track");
+  }
   const StageParameters stage = LoadStage(o.plant);
   const std::vector<std::string> schemes = SplitList(o.ff);
   std::optional<FrictionModel> model;
@@ -141,33 +151,34 @@ void RunTrack(const TrackCliOptions& o) {
     j["max_error_m"] = results[0].max_error_m;
     j["rms_error_m"] = results[0].rms_error_m;
   }
-  if (!o.out_dir.empty()) {
-    fs::create_directories(o.out_dir);
-    PlotSpec err{"tracking error", "t [s]", "e [mm]", {}, false, 900, 500};
-    PlotSpec u{"control signal", "t [s]", "u [V]", {}, false, 900, 500};
-    for (size_t i = 0; i < schemes.size(); ++i) {
-      const auto& r = results[i];
-      Recording rec;
-      rec.metadata = {{"ff", schemes[i]},
-                      {"units", "t [s], x_ref [m], x [m], e [m], u [V], u_ff [V]"}};
-      rec.SetColumn("t", r.t_s);
-      rec.SetColumn("x_ref", r.x_ref_m);
-      rec.SetColumn("x", r.x_m);
-      rec.SetColumn("e", r.e_m);
-      rec.SetColumn("u", r.u_v);
-      rec.SetColumn("u_ff", r.u_ff_v);
-      WriteRecording((fs::path(o.out_dir) / ("track_" + schemes[i] + ".csv")).string(), rec);
-      err.series.push_back({schemes[i], r.t_s, 1e3 * r.e_m, "lines"});
-      u.series.push_back({schemes[i], r.t_s, r.u_v, "lines"});
-    }
-    if (o.plots) {
-      for (const auto& [name, spec] :
-           {std::pair{"tracking_error.png", err}, std::pair{"control_signal.png", u}}) {
-        const auto p = WritePlot((fs::path(o.out_dir) / name).string(), spec);
-        if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
+  if (folder) {
+    folder->Write([&](const fs::path& dir) {
+      PlotSpec err{"tracking error", "t [s]", "e [mm]", {}, false, 900, 500};
+      PlotSpec u{"control signal", "t [s]", "u [V]", {}, false, 900, 500};
+      for (size_t i = 0; i < schemes.size(); ++i) {
+        const auto& r = results[i];
+        Recording rec;
+        rec.metadata = {{"ff", schemes[i]},
+                        {"units", "t [s], x_ref [m], x [m], e [m], u [V], u_ff [V]"}};
+        rec.SetColumn("t", r.t_s);
+        rec.SetColumn("x_ref", r.x_ref_m);
+        rec.SetColumn("x", r.x_m);
+        rec.SetColumn("e", r.e_m);
+        rec.SetColumn("u", r.u_v);
+        rec.SetColumn("u_ff", r.u_ff_v);
+        WriteRecording((dir / ("track_" + schemes[i] + ".csv")).string(), rec);
+        err.series.push_back({schemes[i], r.t_s, 1e3 * r.e_m, "lines"});
+        u.series.push_back({schemes[i], r.t_s, r.u_v, "lines"});
       }
-    }
-    WriteFileAtomically((fs::path(o.out_dir) / "summary.json").string(), j.dump(2) + "\n");
+      if (o.plots) {
+        for (const auto& [name, spec] :
+             {std::pair{"tracking_error.png", err}, std::pair{"control_signal.png", u}}) {
+          const auto p = WritePlot((dir / name).string(), spec);
+          if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
+        }
+      }
+      WriteFileAtomically((dir / "summary.json").string(), j.dump(2) + "\n");
+    });
   }
   if (o.json)
     std::cout << j.dump(2) << '\n';
@@ -214,8 +225,11 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
-  AddOutputOption(cmd, o->out_dir, "folder for track_<ff>.csv traces, plots and summary.json")
+  AddOutputOption(cmd, o->out_dir,
+                  "new folder for track_<ff>.csv traces, plots and summary.json")
       ->type_name("DIR");
+  cmd->add_flag("--force",
+                o->force, "replace a folder an earlier sysid track wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object (max_error_m, rms_error_m, schemes)");
   cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots");
   cmd->callback([o] { RunTrack(*o); });
