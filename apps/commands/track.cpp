@@ -101,6 +101,13 @@ void RunTrack(const TrackCliOptions& o) {
     p.amplitude_m = o.amplitude_m;
     p.cycles = o.cycles;
     p.sample_rate_hz = stage.sample_rate_hz;
+    // The stroke must fit the stage's travel from where it starts.
+    const double end = stage.initial_position_m + o.amplitude_m;
+    if (!(end >= stage.travel_min_m && end <= stage.travel_max_m))
+      throw OptionsError(fmt::format(
+          "--amplitude = {} m. Violated constraint: the stroke from the start position {} m "
+          "stays within the stage's travel [{}, {}] m",
+          o.amplitude_m, stage.initial_position_m, stage.travel_min_m, stage.travel_max_m));
     ref = MakeSmoothProfile(p);
   }
   PiOptions pi;
@@ -216,11 +223,11 @@ void AddTrackCommand(CLI::App& app) {
   cmd->add_option("--kp", o->kp,
                   "proportional gain [V/m] (default the paper's 19000, stable on the bundled "
                   "virtual stage; the actuator-delay preset needs 3000, see docs/control.md)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+      ->check(CLI::Range(0.0, 1e9));
   cmd->add_option("--ki", o->ki,
                   "integral gain [V/(m s)] (default the paper's 660000; actuator-delay preset: "
                   "104100)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+      ->check(CLI::Range(0.0, 1e12));
   cmd->add_option("--u-max", o->u_max, "output saturation [V] (default 10)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")

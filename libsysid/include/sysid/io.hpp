@@ -17,6 +17,11 @@
 
 namespace sysid {
 
+/// The most samples (rows) of one signal the toolkit generates or simulates: larger requests
+/// (a long --t-end, a high rate, many cycles) are refused with OptionsError before allocation.
+/// 2e7 rows is 5.5 h at 1 kHz, about 1 GB in a five-column recording.
+inline constexpr double kMaxSignalSamples = 2e7;
+
 /// A table of named, equally long numeric columns with the file's metadata.
 struct Recording {
   std::string source;                  ///< file path, or a name given by the caller

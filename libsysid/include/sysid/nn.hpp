@@ -142,6 +142,10 @@ enum class TrainingStop {
 std::string ToString(TrainingStop stop);
 std::string ToString(NeuralTrainer trainer);
 
+/// [bytes] Training refuses (OptionsError) before allocating when its estimated memory,
+/// 16 P^2 + 8 N H for P weights and N training rows, passes this limit.
+inline constexpr double kTrainingMemoryLimitBytes = 4e9;
+
 struct NeuralTrainingOptions {
   int hidden = 24;  ///< H, number of tanh units (>= 1)
   NeuralTrainer trainer = NeuralTrainer::kLevenbergMarquardt;

@@ -4,6 +4,7 @@
 
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 
@@ -23,6 +24,12 @@ void SmoothProfileOptions::Validate() const {
   if (cycles < 1) fail("cycles", cycles, "cycles >= 1");
   if (!std::isfinite(sample_rate_hz) || !(sample_rate_hz > 0))
     fail("sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
+  // Each move of the profile needs samples to be a profile at all; and the run is bounded
+  // before its vectors are allocated.
+  if (!(frequency_hz <= sample_rate_hz / 20))
+    fail("frequency_hz", frequency_hz, "frequency_hz <= sample_rate_hz / 20 (20 samples a period)");
+  if (!(cycles / frequency_hz * sample_rate_hz <= kMaxSignalSamples))
+    fail("cycles", cycles, "cycles / frequency_hz * sample_rate_hz <= 2e7 samples (kMaxSignalSamples)");
 }
 
 PositionReference MakeSmoothProfile(const SmoothProfileOptions& o) {

@@ -45,6 +45,7 @@ std::vector<int> ParseHiddenSizes(const std::string& spec) {
     }
     if (used != s.size()) throw bad("'" + s + "' is not an integer");
     if (v < 1) throw bad("sizes must be >= 1");
+    if (v > 100000) throw bad("sizes must be <= 100000");
     return v;
   };
   std::vector<int> out;
@@ -58,11 +59,16 @@ std::vector<int> ParseHiddenSizes(const std::string& spec) {
     const int first = to_int(parts[0]), last = to_int(parts[1]);
     const int step = parts.size() == 3 ? to_int(parts[2]) : 1;
     if (last < first) throw bad("LAST < FIRST");
-    for (int h = first; h <= last; h += step) out.push_back(h);
+    // Counted before anything is allocated (and without int overflow near INT_MAX).
+    const long count = (static_cast<long>(last) - first) / step + 1;
+    if (count > 1000) throw bad("more than 1000 sizes (" + std::to_string(count) + ")");
+    for (long h = first; h <= last; h += step) out.push_back(static_cast<int>(h));
   } else {
     size_t start = 0;
-    for (size_t p; (p = spec.find(',', start)) != std::string::npos; start = p + 1)
+    for (size_t p; (p = spec.find(',', start)) != std::string::npos; start = p + 1) {
+      if (out.size() >= 1000) throw bad("more than 1000 sizes");
       out.push_back(to_int(spec.substr(start, p - start)));
+    }
     out.push_back(to_int(spec.substr(start)));
   }
   if (out.size() > 1000) throw bad("more than 1000 sizes");

@@ -145,11 +145,12 @@ void NeuralTrainingOptions::Validate() const {
     fail("mu_increase", mu_increase, "mu_increase > 1");
   if (!(mu_max > mu_initial)) fail("mu_max", mu_max, "mu_max > mu_initial");
   if (!(gradient_tolerance >= 0)) fail("gradient_tolerance", gradient_tolerance, ">= 0");
-  if (max_epochs < 0) fail("max_epochs", max_epochs, "max_epochs >= 0");
+  if (max_epochs < 0 || max_epochs > 1000000)
+    fail("max_epochs", max_epochs, "0 <= max_epochs <= 1000000");
   if (max_validation_failures < 1)
     fail("max_validation_failures", max_validation_failures, "max_validation_failures >= 1");
   if (!(goal_mse >= 0)) fail("goal_mse", goal_mse, "goal_mse >= 0");
-  if (restarts < 1) fail("restarts", restarts, "restarts >= 1");
+  if (restarts < 1 || restarts > 1000) fail("restarts", restarts, "1 <= restarts <= 1000");
   if (ceres_block_size < 1) fail("ceres_block_size", ceres_block_size, ">= 1");
   if (threads < 0) fail("threads", threads, ">= 0 (0: all cores)");
   for (size_t i = 0; i < input_ranges.size(); ++i)
@@ -182,6 +183,21 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
   if (validation) CheckData(*validation, "validation", &train);
   const int n = static_cast<int>(train.input_names.size());
   const int H = options.hidden;
+  {
+    // LM holds J^T J and its damped copy (P x P each) and the hidden layer of the training set
+    // (N x H): refuse before allocating when that passes the documented limit.
+    const double P = static_cast<double>(H) * (n + 2) + 1;
+    const double bytes = 16.0 * P * P + 8.0 * static_cast<double>(train.targets.size()) * H;
+    if (bytes > kTrainingMemoryLimitBytes) {
+      std::ostringstream s;
+      s << "NeuralTrainingOptions::hidden = " << H << ". Violated constraint: training " << H
+        << " hidden units on " << n << " inputs (" << static_cast<long>(P) << " weights) and "
+        << train.targets.size() << " rows needs about " << bytes / 1e9
+        << " GB, above the limit of " << kTrainingMemoryLimitBytes / 1e9
+        << " GB; use fewer hidden units";
+      throw OptionsError(s.str());
+    }
+  }
   if (!options.input_ranges.empty() && static_cast<int>(options.input_ranges.size()) != n)
     throw OptionsError(
         "NeuralTrainingOptions::input_ranges has " + std::to_string(options.input_ranges.size()) +

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/simulate.hpp"
 
 namespace sysid {
@@ -25,8 +26,9 @@ void SimulationOptions::Validate() const {
   Require(std::isfinite(t_end_s) && t_end_s > t0_s, "t_end_s", t_end_s, "finite, t_end_s > t0_s");
   if (output_times_s.empty()) {
     Require(std::isfinite(dt_out_s) && dt_out_s > 0, "dt_out_s", dt_out_s, "dt_out_s > 0");
-    Require((t_end_s - t0_s) / dt_out_s <= 1e9, "dt_out_s", dt_out_s,
-            "(t_end_s - t0_s) / dt_out_s <= 1e9 output samples");
+    Require((t_end_s - t0_s) / dt_out_s <= kMaxSignalSamples, "dt_out_s", dt_out_s,
+            "(t_end_s - t0_s) / dt_out_s <= 2e7 output samples (sysid::kMaxSignalSamples; "
+            "asked for " + std::to_string((t_end_s - t0_s) / dt_out_s) + ")");
   }
   for (size_t k = 0; k < output_times_s.size(); ++k) {
     const double t = output_times_s[k];

@@ -11,6 +11,7 @@
 
 #include "detail/stage_noise.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -27,8 +28,15 @@ std::string Fmt(double v) {
   throw OptionsError(field + " = " + Fmt(value) + ". Violated constraint: " + rule);
 }
 
+// Every signal a procedure makes is sized here, so the sample limit is checked before any
+// allocation (a rate of 1e12 Hz or 1e9 cycles is refused, not attempted).
 long Samples(double seconds, double rate_hz) {
-  return static_cast<long>(std::llround(seconds * rate_hz));
+  const double n = seconds * rate_hz;
+  if (!(n <= kMaxSignalSamples))
+    throw OptionsError("a signal of " + Fmt(seconds) + " s at " + Fmt(rate_hz) + " Hz needs " +
+                       Fmt(n) + " samples. Violated constraint: at most " +
+                       Fmt(kMaxSignalSamples) + " samples per signal (shorten it or lower the rate)");
+  return static_cast<long>(std::llround(n));
 }
 
 const char* kUnits = "t [s], u [V], x [m], v [m/s], a [m/s^2]";
@@ -329,6 +337,7 @@ Recording ReferenceSignals(const std::vector<VelocityWaveform>& waveforms,
   for (size_t i = 0; i < waveforms.size(); ++i) {
     const VelocityWaveform& w = waveforms[i];
     const long n = Samples((procedure.lead_cycles + procedure.kept_cycles) * w.period_s, rate);
+    (void)Samples(static_cast<double>(offset + n) / rate, rate);  // the whole set, too
     for (long k = 0; k < n; ++k) {
       const double t = static_cast<double>(k) / rate;
       rows.push_back({static_cast<double>(offset + k) / rate, static_cast<double>(i), w.Position(t),
