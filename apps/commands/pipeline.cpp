@@ -70,6 +70,12 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   std::vector<std::string> notes;
   folder.Write([&](const fs::path& dir) { notes = WritePipelineReport(r, dir.string()); });
   for (const auto& n : notes) std::cerr << "sysid pipeline: " << n << '\n';
+  {
+    // Timing goes to stderr (and --json), not into the report, which stays reproducible.
+    std::string times;
+    for (const auto& [name, s] : r.step_seconds) times += fmt::format(" {} {:.3g} s;", name, s);
+    std::cerr << "sysid pipeline: wall time:" << times << '\n';
+  }
 
   nlohmann::ordered_json j;
   j["report"] = (out / "report.md").string();

@@ -63,6 +63,7 @@ void RunSweep(SweepCliOptions& o) {
   j["wall_time_s"] = r.wall_time_s;
   if (!o.nn.model_path.empty()) {
     nlohmann::ordered_json summary = j["rows"][r.chosen];
+    summary.erase("wall_time_s");  // the model file is reproducible: same seed, same bytes
     summary["rule"] = r.rule;
     summary["trainer"] = j["trainer"];
     summary["train_file"] = o.nn.train_path;

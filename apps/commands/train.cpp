@@ -80,6 +80,7 @@ void RunTrain(TrainCliOptions& o) {
   if (!o.nn.model_path.empty()) {
     nlohmann::ordered_json summary = j;
     summary.erase("history");
+    summary.erase("wall_time_s");  // the model file is reproducible: same seed, same bytes
     WriteNeuralNetwork(o.nn.model_path, r.network, summary.dump());
   }
   if (r.stop == TrainingStop::kNumericalFailure)

@@ -129,9 +129,8 @@ class ReportWriter {
     md_ += "\n## 2. Delay of the viscous term\n\n";
     md_ += fmt::format(
         "NLopt (DIRECT-L then BOBYQA) over tau: **tau = {:.4g} ms**, cost {:.4g} m²/s² (RMS "
-        "velocity error {:.3g} m/s), {} evaluations, {} simulations, {:.2f} s. {}\n",
-        1e3 * d.tau_s, d.cost, d.rms_error_mps, d.evaluations, d.simulations, d.wall_time_s,
-        d.message);
+        "velocity error {:.3g} m/s), {} evaluations, {} simulations. {}\n",
+        1e3 * d.tau_s, d.cost, d.rms_error_mps, d.evaluations, d.simulations, d.message);
     if (ref_ && ref_->contains_tau())
       md_ += fmt::format("\n{}: tau = {:.4g} ms.\n", ref_->label,
                          1e3 * ref_->j["model"]["tau"].get<double>());
@@ -245,7 +244,7 @@ class ReportWriter {
       header.push_back(ref_->label + " test MSE");
     }
     std::vector<std::vector<std::string>> rows;
-    std::string csv = "hidden,epochs,train_mse,test_mse,stop,wall_time_s\n";
+    std::string csv = "hidden,epochs,train_mse,test_mse,stop\n";
     for (size_t i = 0; i < s.rows.size(); ++i) {
       const auto& row = s.rows[i];
       std::vector<std::string> cells{
@@ -260,8 +259,8 @@ class ReportWriter {
         cells.insert(cells.end(), extra.begin(), extra.end());
       }
       rows.push_back(cells);
-      csv += fmt::format("{},{},{:.9g},{:.9g},{},{:.4g}\n", row.hidden, row.epochs, row.train_mse,
-                         row.test_mse, ToString(row.stop), row.wall_time_s);
+      csv += fmt::format("{},{},{:.9g},{:.9g},{}\n", row.hidden, row.epochs, row.train_mse,
+                         row.test_mse, ToString(row.stop));
     }
     md_ += MarkdownTable(header, rows);
     md_ += "\nRule: " + s.rule + ". The chosen network is `nn.json`.\n";
@@ -418,15 +417,14 @@ class ReportWriter {
   }
 
   void Timing() {
-    md_ += "\n## Run\n\n";
-    std::vector<std::vector<std::string>> rows;
-    double total = 0;
+    // Wall times go to stderr and `pipeline --json`, never into the report: the same inputs
+    // and seed give a byte-identical report folder.
+    md_ += "\n## Run\n\nSteps:";
     for (const auto& [name, s] : r_.step_seconds) {
-      rows.push_back({name, F(s, 3)});
-      total += s;
+      (void)s;
+      md_ += " " + name + ";";
     }
-    rows.push_back({"total", F(total, 3)});
-    md_ += MarkdownTable({"step", "wall time [s]"}, rows);
+    md_ += " wall times are printed on stderr and in `sysid pipeline --json`.\n";
     if (!r_.notes.empty()) {
       md_ += "\nNotes:\n";
       for (const auto& n : r_.notes) md_ += "- " + n + "\n";
