@@ -65,14 +65,21 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
   std::atomic<long> simulations{0};
   std::string first_failure;
   Eigen::VectorXd residuals;
+  int successes = 0;
   auto cost = [&](double tau) {
     FrictionModel m = model;
     m.tau_s = tau;
     std::string failure;
     if (!detail::SegmentResiduals(m, segments, sim, &residuals, &failure, &simulations)) {
       if (first_failure.empty()) first_failure = fmt::format("tau = {:.6g} s: {}", tau, failure);
+      // The rule `simulate` applies: a model that cannot be simulated is a numerical failure,
+      // found at the first evaluation instead of after the whole budget.
+      if (successes == 0)
+        throw NumericalError("delay tuning: the model cannot be simulated at any tau tried "
+                             "(first failure: " + first_failure + ")");
       return std::numeric_limits<double>::infinity();
     }
+    ++successes;
     return residuals.squaredNorm();
   };
   detail::ScalarSearchOptions so;

@@ -21,6 +21,9 @@ struct Context {
 double Objective(unsigned, const double* x, double*, void* data) {
   auto* c = static_cast<Context*>(data);
   double value = std::numeric_limits<double>::max();
+  // After a thrown error the run is over: skip the remaining (costly) evaluations until NLopt
+  // returns and the error is rethrown.
+  if (c->error) return value;
   try {
     value = (*c->f)(x[0]);
   } catch (...) {

@@ -1,0 +1,70 @@
+#!/bin/sh
+# Every bad number in a model, network or stage file exits 2 with
+# "FILE:LINE:COL: key: expected ..., found ..."; never exit 4; control bytes never reach the
+# terminal; a tau at its search bound is warned about (issue #14).
+# Usage: bad_values.sh SYSID SOURCE_DIR
+set -u
+sysid=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+fail() { echo "FAIL: $*" >&2; [ -f err.txt ] && cat err.txt >&2; exit 1; }
+v="$src/datasets/virtual"
+model() {  # model FILE JSON-TEXT
+  printf '%s' "$2" > "$1"
+}
+expect_model() {  # expect_model MESSAGE JSON-TEXT
+  model m.json "$2"
+  "$sysid" simulate --model m.json --pulses 1 -o sim.csv >/dev/null 2>err.txt; rc=$?
+  [ "$rc" -eq 2 ] || fail "model $2: exit $rc, expected 2"
+  grep -q -- "$1" err.txt || fail "model $2: message lacks '$1'"
+  [ ! -e sim.csv ] || fail "partial output"
+}
+ok='"a1n": 117, "a2p": 3, "a2n": 6.8, "a3": 6'
+expect_model "m.json:1:2: a1p: expected a number > 0, found -5" "{\"a1p\": -5, $ok}"
+expect_model "m.json:1:2: a1p: expected a number > 0, found 0" "{\"a1p\": 0, $ok}"
+expect_model "a3: expected a number > 0, found 0" '{"a1p": 1, "a1n": 117, "a2p": 3, "a2n": 6.8, "a3": 0}'
+expect_model "tau: expected a number in \[0, 1\], found -1" "{\"a1p\": 1, $ok, \"tau\": -1}"
+expect_model "m.json:1:1: missing required key 'a2n'" '{"a1p": 1, "a1n": 117, "a2p": 3, "a3": 6}'
+expect_model "a1p: expected a number > 0, found string" "{\"a1p\": \"1\", $ok}"
+expect_model "m.json:1:9: expected a finite number, found 1e400" "{\"a1p\": 1e400, $ok}"
+expect_model "unknown key 'tua'" "{\"a1p\": 1, $ok, \"tua\": 0}"
+# Control bytes of a hostile file are escaped in the message.
+printf '{"a1p": "\\u001b[2J\\u0007", %s}' "$ok" > m.json
+"$sysid" simulate --model m.json --pulses 1 -o sim.csv >/dev/null 2>err.txt
+grep -q 'x1B\[2J\\x07' err.txt || fail "control bytes not escaped"
+LC_ALL=C grep -q "$(printf '\033')" err.txt && fail "raw ESC on the terminal"
+# Stage files: value, missing section, overflow.
+expect_stage() {  # expect_stage MESSAGE SED-EXPRESSION
+  sed "$2" "$v/stage.json" > s.json
+  "$sysid" generate pulses --stage s.json -o gen >/dev/null 2>err.txt; rc=$?
+  [ "$rc" -eq 2 ] || fail "stage $2: exit $rc, expected 2"
+  grep -q -- "$1" err.txt || fail "stage $2: message lacks '$1'"
+  [ ! -e gen ] || fail "partial output"
+}
+expect_stage "s.json:[0-9]*:[0-9]*: rig.sample_rate_hz: expected sample_rate_hz > 0, found 0" \
+  's/"sample_rate_hz": [0-9.e]*/"sample_rate_hz": 0/'
+expect_stage "friction.forward.coulomb_mps2: expected coulomb_mps2 > 0, found -1" \
+  '0,/"coulomb_mps2": [0-9.e]*/s//"coulomb_mps2": -1/'
+expect_stage "drive.gain_mps2_per_v: expected gain_mps2_per_v > 0, found -6" \
+  's/"gain_mps2_per_v": [0-9.e]*/"gain_mps2_per_v": -6/'
+expect_stage "drive.map_out_v: expected drive_map_out_v has as many knots" 's/"map_out_v": \[/"map_out_v": [-11,/'
+expect_stage "unknown key 'frixion'" 's/"friction"/"frixion"/'
+expect_stage "expected a finite number, found 1e400" 's/"dead_zone_v": [0-9.e]*/"dead_zone_v": 1e400/'
+echo '{}' > s.json
+"$sysid" generate pulses --stage s.json -o gen >/dev/null 2>err.txt; rc=$?
+[ "$rc" -eq 2 ] && grep -q "s.json:1:1: missing required key 'drive'" err.txt || fail "stage {} accepted"
+# Network files.
+sed 's/"hidden": 24/"hidden": 100000000/' "$src/datasets/paper/nn24.json" > n.json
+"$sysid" predict --nn n.json "$v/test.csv" >/dev/null 2>err.txt; rc=$?
+[ "$rc" -eq 2 ] && grep -q "n.json:[0-9]*:[0-9]*: hidden: expected an integer in \[1, 100000\], found 100000000" err.txt ||
+  fail "network hidden size: exit $rc"
+# tune-delay warns when tau ends at its search bound (the bundled pulses give tau = 0).
+"$sysid" identify --a3 6 "$v/pulses.csv" -o model.json >/dev/null 2>&1 || fail "identify"
+"$sysid" tune-delay --model model.json "$v/pulses.csv" --json >out.json 2>err.txt || fail "tune-delay"
+grep -q "warning: tau = .* is at the search bound" err.txt || fail "no warning at the bound"
+grep -q '"warnings"' out.json || fail "warning not in --json"
+"$sysid" tune-delay --model model.json "$v/pulses.csv" --max 5 >/dev/null 2>err.txt
+[ $? -eq 1 ] || fail "tune-delay --max 5 accepted"
+echo "ok: every bad value is a positioned exit-2 error"
