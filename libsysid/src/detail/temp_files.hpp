@@ -1,0 +1,26 @@
+// Private: temporary files removed when the process is interrupted. A file being written
+// atomically (".out.csv.tmp.XXXXXX") is registered while it exists; SIGINT, SIGTERM or SIGHUP
+// then unlinks it before the signal's default action, so Ctrl-C leaves nothing behind.
+#ifndef SYSID_DETAIL_TEMP_FILES_HPP_
+#define SYSID_DETAIL_TEMP_FILES_HPP_
+
+#include <string>
+
+namespace sysid::detail {
+
+/// Registers `path` until the guard is destroyed. The signal handlers are installed at
+/// registration, only where the program left the default disposition (its own handlers win). Paths longer than 4095 bytes, or more than 64 at once, are simply not registered.
+class TempFileGuard {
+ public:
+  explicit TempFileGuard(const std::string& path);
+  ~TempFileGuard();
+  TempFileGuard(const TempFileGuard&) = delete;
+  TempFileGuard& operator=(const TempFileGuard&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+}  // namespace sysid::detail
+
+#endif  // SYSID_DETAIL_TEMP_FILES_HPP_
