@@ -67,4 +67,7 @@ grep -q "warning: tau = .* is at the search bound" err.txt || fail "no warning a
 grep -q '"warnings"' out.json || fail "warning not in --json"
 "$sysid" tune-delay --model model.json "$v/pulses.csv" --max 5 >/dev/null 2>err.txt
 [ $? -eq 1 ] || fail "tune-delay --max 5 accepted"
+# identify refuses a gain that would write a model every other command rejects.
+"$sysid" identify --a3 -6 "$v/pulses.csv" -o neg.json >/dev/null 2>err.txt; rc=$?
+[ "$rc" -eq 1 ] && grep -q "a3 > 0" err.txt && [ ! -e neg.json ] || fail "identify --a3 -6: exit $rc"
 echo "ok: every bad value is a positioned exit-2 error"

@@ -14,9 +14,11 @@
 namespace sysid {
 
 void PulseFitOptions::Validate() const {
-  if (!std::isfinite(a3) || a3 == 0)
+  // A model file requires a3 > 0 (FrictionModel::Validate): a negative gain would only write a
+  // model that every other command rejects.
+  if (!std::isfinite(a3) || !(a3 > 0))
     throw OptionsError(fmt::format(
-        "PulseFitOptions::a3 = {}. Violated constraint: a3 finite and != 0 [m/(s^2 V)]", a3));
+        "PulseFitOptions::a3 = {}. Violated constraint: a3 > 0 and finite [m/(s^2 V)]", a3));
 }
 
 std::vector<PulsePoint> ReadPulseTable(const std::string& path) {
