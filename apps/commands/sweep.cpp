@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
@@ -61,6 +62,13 @@ void RunSweep(SweepCliOptions& o) {
   j["chosen_hidden"] = best.hidden;
   j["rule"] = r.rule;
   j["wall_time_s"] = r.wall_time_s;
+  std::vector<std::string> warnings;
+  for (const auto& row : r.rows)
+    if (row.stop == TrainingStop::kMaxEpochs && o.nn.training.max_epochs > 0)
+      warnings.push_back(fmt::format("H = {} stopped at --max-epochs {}; it may be under-trained",
+                                     row.hidden, o.nn.training.max_epochs));
+  for (const auto& w : warnings) std::cerr << "sysid sweep: warning: " << w << '\n';
+  j["warnings"] = warnings;
   if (!o.nn.model_path.empty()) {
     nlohmann::ordered_json summary = j["rows"][r.chosen];
     summary.erase("wall_time_s");  // the model file is reproducible: same seed, same bytes

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
@@ -63,6 +64,15 @@ void RunTrain(TrainCliOptions& o) {
       ")^2";
   j["stop_reason"] = ToString(r.stop);
   j["message"] = r.message;
+  // A network that ran out of epochs may not be trained: said on stderr and in --json.
+  std::vector<std::string> warnings;
+  if (r.stop == TrainingStop::kMaxEpochs && o.nn.training.max_epochs > 0)
+    warnings.push_back(fmt::format(
+        "training stopped at --max-epochs {} before a convergence test was met; the network may "
+        "be under-trained (raise --max-epochs or check --goal-mse/--min-gradient)",
+        o.nn.training.max_epochs));
+  for (const auto& w : warnings) std::cerr << "sysid train: warning: " << w << '\n';
+  j["warnings"] = warnings;
   j["wall_time_s"] = r.wall_time_s;
   j["train_file"] = o.nn.train_path;
   if (test) j["test_file"] = o.nn.test_path;
@@ -81,6 +91,7 @@ void RunTrain(TrainCliOptions& o) {
     nlohmann::ordered_json summary = j;
     summary.erase("history");
     summary.erase("wall_time_s");  // the model file is reproducible: same seed, same bytes
+    summary.erase("warnings");
     WriteNeuralNetwork(o.nn.model_path, r.network, summary.dump());
   }
   if (r.stop == TrainingStop::kNumericalFailure)
