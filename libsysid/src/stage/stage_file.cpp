@@ -78,8 +78,8 @@ StageModel FileModel(const detail::JsonNode& root) {
     const std::string name = m.String();
     try {
       return ParseStageModel(name);
-    } catch (const OptionsError&) {
-      m.Expected("\"velocity-source\" or \"actuator-delay\"");
+    } catch (const OptionsError& e) {
+      m.Fail(e.what());
     }
   }
   if (j.contains("friction")) return StageModel::kActuatorDelay;
@@ -102,8 +102,10 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
       vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
   const std::string model_name = ToString(model);
   auto other_model = [&](const detail::JsonNode& at) {
-    at.Fail("belongs to the " + std::string(vs ? "actuator-delay" : "velocity-source") +
-            " model; this stage's model is " + model_name + " (key 'model')");
+    const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);
+    throw InputError(doc.Where(at.pointer()) + ": key '" + key + "' belongs to the " +
+                     (vs ? "actuator-delay" : "velocity-source") + " model; this stage's model is " +
+                     model_name + " (key 'model')");
   };
   for (const auto& [key, value] : root.json().items()) {
     if (key == "units" || key == "note" || key == "model" || (!key.empty() && key[0] == '_'))
@@ -174,16 +176,6 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {}}
           .Read(root.Get(key));
     }
-  }
-  // A file without a section would silently run on built-in values: the physical sections of
-  // its model are required (their keys may be left out), the integrator settings are optional.
-  // Checked after the keys, so that a misspelt section is reported as the unknown key it is.
-  if (vs) {
-    for (const char* required : {"drive", "motor", "rail", "rig"}) (void)root.Get(required);
-  } else {
-    for (const char* required : {"drive", "friction", "rig"}) (void)root.Get(required);
-    (void)root.Get("friction").Get("forward");
-    (void)root.Get("friction").Get("backward");
   }
   try {
     p.Validate();
