@@ -24,11 +24,11 @@ TEST_CASE("model file errors name the place and the rule", "[model][errors]") {
                     Catch::StartsWith("m.json:1:1: missing required key 'a2n'"));
   CHECK_THROWS_WITH(
       sysid::ParseModel(R"({"a1p":"1","a1n":1,"a2p":1,"a2n":1,"a3":6})", "m.json"),
-      Catch::Equals("m.json:1:2: a1p: expected a number > 0, found string \"1\""));
+      Catch::Equals("m.json:1:2: a1p: expected a number >= 0, found string \"1\""));
   // Every value error is positioned and says what was expected and what was found.
   CHECK_THROWS_WITH(
       sysid::ParseModel(R"({"a1p":-1,"a1n":1,"a2p":1,"a2n":1,"a3":6})", "m.json"),
-      Catch::Equals("m.json:1:2: a1p: expected a number > 0, found -1"));
+      Catch::Equals("m.json:1:2: a1p: expected a number >= 0, found -1"));
   CHECK_THROWS_WITH(
       sysid::ParseModel("{\"a1p\":1,\"a1n\":1,\"a2p\":1,\"a2n\":1,\n  \"a3\":0}", "m.json"),
       Catch::Equals("m.json:2:3: a3: expected a number > 0, found 0"));
@@ -45,7 +45,9 @@ TEST_CASE("model file errors name the place and the rule", "[model][errors]") {
   // Control bytes of a hostile file never reach the terminal.
   CHECK_THROWS_WITH(
       sysid::ParseModel("{\"a1p\":\"\\u001b[2J\",\"a1n\":1,\"a2p\":1,\"a2n\":1,\"a3\":6}", "m.json"),
-      Catch::Equals("m.json:1:2: a1p: expected a number > 0, found string \"\\x1B[2J\""));
+      Catch::Equals("m.json:1:2: a1p: expected a number >= 0, found string \"\\x1B[2J\""));
+  // a1 = 0 is pure Coulomb friction, a valid model.
+  CHECK(sysid::ParseModel(R"({"a1p":0,"a1n":0,"a2p":1,"a2n":1,"a3":6})", "m.json").a1p == 0.0);
   // Reports may ride along in a model file.
   CHECK_NOTHROW(sysid::ParseModel(
       R"({"a1p":1,"a1n":1,"a2p":1,"a2n":1,"a3":6,"diagnostics":{"x":1},"_c":"y"})", "m.json"));

@@ -2,6 +2,7 @@
 // thresholds that differ by direction; and the event log.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "sysid/input.hpp"
 #include "sysid/simulate.hpp"
@@ -147,6 +148,45 @@ TEST_CASE("a sinusoid below the breakaway force never moves the stage; above, it
   REQUIRE(!moving.events.empty());
   CHECK(moving.events[0].kind == EventKind::kSlipForward);
   CHECK(moving.events[0].t_s == Approx(t_release).margin(1e-9));  // root location
+}
+
+TEST_CASE("pure Coulomb friction (a1p = a1n = 0) follows its piecewise-parabolic closed form",
+          "[simulate]") {
+  // x'' = -a2 sgn(v) + a3 u: constant accelerations between events. u = 1 V from rest gives
+  // a = a3 - a2p = 5 until 0.1 s (v 0.5 m/s, x 0.025 m); at 0 V the stage decelerates at a2p
+  // and sticks at 0.6 s (x 0.15 m); -2 V from 0.8 s beats a2n: a = -12 + 2 = -10 m/s^2.
+  // The delay of the (absent) viscous term must change nothing.
+  const double tau = GENERATE(0.0, 0.0035);
+  FrictionModel m = Model(0, 1, 2, tau);
+  REQUIRE_NOTHROW(m.Validate());
+  CHECK(m.SteadyVelocity(1.0) == std::numeric_limits<double>::infinity());
+  CHECK(m.SteadyVelocity(0.1) == 0.0);
+  const PiecewiseConstantInput u({0.0, 0.1, 0.8}, {1.0, 0.0, -2.0});
+  SimulationOptions o;
+  o.t_end_s = 1.0;
+  o.dt_out_s = 1e-3;
+  const SimulationResult r = Simulate(m, u, o);
+  REQUIRE(r.summary.success);
+  REQUIRE(r.events.size() >= 3);
+  CHECK(r.events[0].kind == EventKind::kSlipForward);
+  CHECK(r.events[1].kind == EventKind::kStick);
+  CHECK(r.events[1].t_s == Approx(0.6).margin(1e-9));
+  const Trajectory& tr = r.trajectory;
+  for (Eigen::Index k = 0; k < tr.t_s.size(); ++k) {
+    const double t = tr.t_s[k];
+    double x = 0, v = 0;
+    if (t <= 0.1) {
+      x = 2.5 * t * t, v = 5 * t;
+    } else if (t <= 0.6) {
+      x = 0.025 + 0.5 * (t - 0.1) - 0.5 * (t - 0.1) * (t - 0.1), v = 0.5 - (t - 0.1);
+    } else if (t <= 0.8) {
+      x = 0.15, v = 0;
+    } else {
+      x = 0.15 - 5 * (t - 0.8) * (t - 0.8), v = -10 * (t - 0.8);
+    }
+    CHECK(tr.x_m[k] == Approx(x).margin(1e-9));
+    CHECK(tr.v_mps[k] == Approx(v).margin(1e-9));
+  }
 }
 
 }  // namespace

@@ -15,14 +15,14 @@
 namespace sysid {
 
 struct FrictionModel {
-  double a1p = 0;    ///< [1/s] viscous coefficient for motion in +x
-  double a1n = 0;    ///< [1/s] viscous coefficient for motion in -x
+  double a1p = 0;    ///< [1/s] viscous coefficient for motion in +x, >= 0 (0: pure Coulomb)
+  double a1n = 0;    ///< [1/s] viscous coefficient for motion in -x, >= 0 (0: pure Coulomb)
   double a2p = 0;    ///< [m/s^2] Coulomb level for motion in +x (breakaway threshold forward)
   double a2n = 0;    ///< [m/s^2] Coulomb level for motion in -x (breakaway threshold backward)
   double a3 = 6.0;   ///< [m/(s^2 V)] actuator gain
   double tau_s = 0;  ///< [s] delay of the viscous term, >= 0
 
-  /// Throws OptionsError naming the field and the violated rule (finite, a1 > 0, a2 >= 0,
+  /// Throws OptionsError naming the field and the violated rule (finite, a1 >= 0, a2 >= 0,
   /// a3 != 0, tau_s >= 0).
   void Validate() const;
 
@@ -31,7 +31,8 @@ struct FrictionModel {
   static FrictionModel Paper();
 
   /// Steady-state sliding velocity [m/s] under a constant voltage `u_v` [V]:
-  /// (a3 u - a2p)/a1p when a3 u > a2p, (a3 u + a2n)/a1n when a3 u < -a2n, else 0 (stuck).
+  /// (a3 u - a2p)/a1p when a3 u > a2p, (a3 u + a2n)/a1n when a3 u < -a2n, else 0 (stuck);
+  /// +-infinity when the force wins and that direction's a1 is 0 (pure Coulomb: no steady state).
   double SteadyVelocity(double u_v) const;
 
   /// The analytic inverse u = (a + a1 v_delayed + a2 sgn v) / a3 [V] from acceleration

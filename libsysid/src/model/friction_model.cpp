@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "sysid/error.hpp"
@@ -19,8 +20,9 @@ void FrictionModel::Validate() const {
   const double fields[] = {a1p, a1n, a2p, a2n, a3, tau_s};
   const char* names[] = {"a1p", "a1n", "a2p", "a2n", "a3", "tau"};
   for (int i = 0; i < 6; ++i) Require(std::isfinite(fields[i]), names[i], fields[i], "finite");
-  Require(a1p > 0, "a1p", a1p, "a1p > 0");
-  Require(a1n > 0, "a1n", a1n, "a1n > 0");
+  // a1 = 0 is pure Coulomb friction: a valid model (no viscous term), the textbook case.
+  Require(a1p >= 0, "a1p", a1p, "a1p >= 0");
+  Require(a1n >= 0, "a1n", a1n, "a1n >= 0");
   Require(a2p >= 0, "a2p", a2p, "a2p >= 0");
   Require(a2n >= 0, "a2n", a2n, "a2n >= 0");
   Require(a3 > 0, "a3", a3, "a3 > 0");
@@ -40,8 +42,9 @@ FrictionModel FrictionModel::Paper() {
 
 double FrictionModel::SteadyVelocity(double u_v) const {
   const double f = a3 * u_v;
-  if (f > a2p) return (f - a2p) / a1p;
-  if (f < -a2n) return (f + a2n) / a1n;
+  // With a1 = 0 (pure Coulomb) an unbalanced force accelerates for ever: +-infinity.
+  if (f > a2p) return a1p > 0 ? (f - a2p) / a1p : std::numeric_limits<double>::infinity();
+  if (f < -a2n) return a1n > 0 ? (f + a2n) / a1n : -std::numeric_limits<double>::infinity();
   return 0.0;
 }
 

@@ -15,8 +15,8 @@ FrictionModel ParseModel(std::string_view json_text, const std::string& source) 
                     {"diagnostics", "units", "note", "model"});
   using Rule = detail::NumberRule;
   FrictionModel m;
-  m.a1p = root.Get("a1p").Number(Rule::Positive());
-  m.a1n = root.Get("a1n").Number(Rule::Positive());
+  m.a1p = root.Get("a1p").Number(Rule::NonNegative());
+  m.a1n = root.Get("a1n").Number(Rule::NonNegative());
   m.a2p = root.Get("a2p").Number(Rule::NonNegative());
   m.a2n = root.Get("a2n").Number(Rule::NonNegative());
   m.a3 = root.Get("a3").Number(Rule::Positive());
