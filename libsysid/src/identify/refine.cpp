@@ -53,11 +53,11 @@ Layout MakeLayout(const FrictionModel& m, const RefineOptions& o) {
   return l;
 }
 
-// Central differences step across the bounds (tau = 0, a2 = 0): the model clamps there, so the
+// Central differences step across the bounds (tau = 0, a1 = 0, a2 = 0): the model clamps there, so the
 // cost is flat outside and the simulator never sees an invalid model.
 FrictionModel Apply(FrictionModel m, const Layout& l, const double* z) {
   for (size_t i = 0; i < l.names.size(); ++i) {
-    const bool positive = l.names[i] == "a1p" || l.names[i] == "a1n" || l.names[i] == "a3";
+    const bool positive = l.names[i] == "a3";  // a1 = 0 is pure Coulomb, a valid model
     const double p = std::max(positive ? 1e-9 * l.scale[i] : 0.0, z[i] * l.scale[i]);
     const std::string& n = l.names[i];
     if (n == "a1p")
@@ -145,7 +145,7 @@ RefineResult RefineOutputError(const FrictionModel& initial,
   for (int i = 0; i < np; ++i) {
     const std::string& name = layout.names[static_cast<size_t>(i)];
     problem.SetParameterLowerBound(z.data(), i,
-                                   name == "a1p" || name == "a1n" || name == "a3" ? 1e-6 : 0.0);
+                                   name == "a3" ? 1e-6 : 0.0);
     if (name == "tau")
       problem.SetParameterUpperBound(z.data(), i,
                                      options.tau_max_s / layout.scale[static_cast<size_t>(i)]);
