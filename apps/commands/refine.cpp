@@ -12,7 +12,7 @@
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
-#include "sysid/identify.hpp"
+#include "sysid/delay.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 

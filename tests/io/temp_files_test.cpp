@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "detail/temp_files.hpp"
+#include "io/temp_files.hpp"
 #include "support/test_support.hpp"
 
 TEST_CASE("SIGINT and SIGTERM remove registered temporary files", "[io][signals]") {

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "detail/json_text.hpp"
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 
 using sysid::detail::JsonDocument;

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <complex>
 
-#include "detail/signal_filters.hpp"
+#include "signal/filters.hpp"
 #include "signal_test_util.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"

@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
-#include "detail/signal_filters.hpp"
+#include "signal/filters.hpp"
 #include "signal_test_util.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"

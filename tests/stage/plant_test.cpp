@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "detail/stage_noise.hpp"
+#include "stage/stage_noise.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
 

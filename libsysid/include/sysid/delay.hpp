@@ -1,3 +1,5 @@
+// Fitting simulations to recordings.
+//
 // Delay tuning: the delay tau of the viscous term that makes simulated and measured velocity
 // agree best,
 //   tau* = argmin_{tau in [tau_min, tau_max]} sum_k (v_sim(t_k; tau) - v_meas(t_k))^2,
@@ -5,12 +7,16 @@
 // cost is not smooth in tau, so the search is derivative-free and bounded (NLopt DIRECT-L over
 // the interval, then BOBYQA). Recordings are split at pulse starts where the stage is at rest
 // and the pieces are simulated in parallel threads.
+//
+// Output-error refinement: all six parameters (Ceres) by the same velocity cost, from a starting
+// model (usually the pulse least squares), on the same segments.
 #ifndef SYSID_DELAY_HPP_
 #define SYSID_DELAY_HPP_
 
 #include <Eigen/Core>
 #include <string>
 #include <utility>
+#include <limits>
 #include <vector>
 
 #include "sysid/identify.hpp"
@@ -71,6 +77,44 @@ struct DelayTuningResult {
 /// Tunes the delay of `model` on `recordings` (t, u and x or a velocity column).
 DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Recording>& recordings,
                             const DelayTuningOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// Output-error refinement (Ceres)
+// ----------------------------------------------------------------------------------------------
+
+struct RefineOptions {
+  MotionOptions motion;
+  PulseDetectionOptions detection;  ///< recordings are split at pulse starts (parallel sims)
+  bool refine_a3 = true;            ///< otherwise a3 stays at the initial value
+  bool refine_tau = true;           ///< otherwise tau stays at the initial value
+  double tau_max_s = 0.05;          ///< [s] upper bound for tau
+  int max_iterations = 50;
+  int threads = 0;         ///< simulation threads (0: hardware concurrency)
+  double sim_rtol = 1e-7;  ///< CVODE relative tolerance of each simulation
+  void Validate() const;
+};
+
+struct RefineResult {
+  FrictionModel initial;
+  FrictionModel model;
+  std::vector<std::string> names;  ///< refined parameters: a1p, a1n, a2p, a2n[, a3][, tau]
+  Eigen::VectorXd std_error;       ///< from s^2 (J^T J)^-1 at the optimum; NaN if singular
+  double initial_cost = 0;         ///< [m^2/s^2] sum of squared velocity errors
+  double final_cost = 0;           ///< [m^2/s^2]
+  double rms_error_mps = 0;        ///< [m/s] at the optimum
+  int iterations = 0;
+  long simulations = 0;
+  bool converged = false;
+  std::string message;  ///< Ceres' termination in words
+  double wall_time_s = 0;
+  std::string BriefReport() const;
+};
+
+/// Refines all parameters by minimising sum (v_sim - v_meas)^2 over every sample of every
+/// recording, starting from `initial`. Simulations of different segments run in parallel.
+RefineResult RefineOutputError(const FrictionModel& initial,
+                               const std::vector<Recording>& recordings,
+                               const RefineOptions& options = {});
 
 }  // namespace sysid
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "sysid/identify.hpp"
+#include "sysid/motion.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 

@@ -6,8 +6,8 @@
 //  - Trajectory (inverse-model) least squares, as robotics IDIM-LS: every moving sample gives
 //      u = (1/a3) x'' + (a1/a3) v(t - tau) + (a2/a3) sgn(v)  [+ offset]
 //    with direction-split regressors, so a3 is identified too.
-//  - Output-error refinement (Ceres): all six parameters by matching simulated and measured
-//    velocity, transients included.
+// Output-error refinement of all six parameters lives beside delay tuning (delay.hpp): both fit
+// simulations to recordings.
 // Units are SI: t [s], u [V], x [m], v [m/s], a [m/s^2], a1 [1/s], a2 [m/s^2], a3 [m/(s^2 V)].
 #ifndef SYSID_IDENTIFY_HPP_
 #define SYSID_IDENTIFY_HPP_
@@ -20,42 +20,10 @@
 
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/motion.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {
-
-// ----------------------------------------------------------------------------------------------
-// Measured motion of a recording
-// ----------------------------------------------------------------------------------------------
-
-/// How velocity and acceleration are obtained from a recording.
-struct MotionOptions {
-  /// Filter used to differentiate the position x (default: central differences, as the paper).
-  DerivativeOptions derivative;
-  /// Name of a measured-velocity column [m/s]; used when the recording has no x column, or
-  /// always when prefer_velocity_column is set. Acceleration is then its derivative.
-  std::string velocity_column = "v";
-  bool prefer_velocity_column = false;
-  /// Sampling must be uniform: max |dt_k - dt| / dt must not exceed this [dimensionless].
-  double max_relative_jitter = 0.01;
-  void Validate() const;  ///< throws OptionsError naming the field and the rule
-};
-
-/// Uniformly sampled signals of one recording, all of the same length.
-struct MotionSignals {
-  std::string source;         ///< the recording's source (file path)
-  double dt_s = 0;            ///< [s] nominal sample interval
-  Eigen::VectorXd t_s;        ///< [s]
-  Eigen::VectorXd u_v;        ///< [V]
-  Eigen::VectorXd x_m;        ///< [m] position (empty when the recording has only velocity)
-  Eigen::VectorXd v_mps;      ///< [m/s] velocity
-  Eigen::VectorXd a_mps2;     ///< [m/s^2] acceleration
-  std::string velocity_from;  ///< "x (central)", "column v_meas", ... (for reports)
-};
-
-/// Velocity and acceleration of a recording (t, u and x or a velocity column). Throws
-/// InputError when the sampling is irregular or there are fewer than 3 samples.
-MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options = {});
 
 // ----------------------------------------------------------------------------------------------
 // Pulses and their steady-state velocities
@@ -239,44 +207,6 @@ struct TrajectoryIdentificationResult {
 /// rank deficiency (naming the parameters) or too few moving samples.
 TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recording>& recordings,
                                                       const TrajectoryOptions& options = {});
-
-// ----------------------------------------------------------------------------------------------
-// Output-error refinement (Ceres)
-// ----------------------------------------------------------------------------------------------
-
-struct RefineOptions {
-  MotionOptions motion;
-  PulseDetectionOptions detection;  ///< recordings are split at pulse starts (parallel sims)
-  bool refine_a3 = true;            ///< otherwise a3 stays at the initial value
-  bool refine_tau = true;           ///< otherwise tau stays at the initial value
-  double tau_max_s = 0.05;          ///< [s] upper bound for tau
-  int max_iterations = 50;
-  int threads = 0;         ///< simulation threads (0: hardware concurrency)
-  double sim_rtol = 1e-7;  ///< CVODE relative tolerance of each simulation
-  void Validate() const;
-};
-
-struct RefineResult {
-  FrictionModel initial;
-  FrictionModel model;
-  std::vector<std::string> names;  ///< refined parameters: a1p, a1n, a2p, a2n[, a3][, tau]
-  Eigen::VectorXd std_error;       ///< from s^2 (J^T J)^-1 at the optimum; NaN if singular
-  double initial_cost = 0;         ///< [m^2/s^2] sum of squared velocity errors
-  double final_cost = 0;           ///< [m^2/s^2]
-  double rms_error_mps = 0;        ///< [m/s] at the optimum
-  int iterations = 0;
-  long simulations = 0;
-  bool converged = false;
-  std::string message;  ///< Ceres' termination in words
-  double wall_time_s = 0;
-  std::string BriefReport() const;
-};
-
-/// Refines all parameters by minimising sum (v_sim - v_meas)^2 over every sample of every
-/// recording, starting from `initial`. Simulations of different segments run in parallel.
-RefineResult RefineOutputError(const FrictionModel& initial,
-                               const std::vector<Recording>& recordings,
-                               const RefineOptions& options = {});
 
 }  // namespace sysid
 

@@ -4,7 +4,7 @@
 
 #include "sysid/compare.hpp"
 #include "sysid/error.hpp"
-#include "sysid/identify.hpp"
+#include "sysid/motion.hpp"
 
 namespace sysid {
 

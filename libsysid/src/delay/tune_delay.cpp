@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/delay_search.hpp"
-#include "detail/identify_segments.hpp"
+#include "numerics/bounded_search.hpp"
+#include "delay/segments.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
 

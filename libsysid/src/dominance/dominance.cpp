@@ -11,7 +11,7 @@
 #include <map>
 #include <thread>
 
-#include "detail/identify_delay_shift.hpp"
+#include "numerics/delay_shift.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/identify_linear_fit.hpp"
+#include "identify/linear_fit.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "detail/delay_search.hpp"
-#include "detail/identify_delay_shift.hpp"
-#include "detail/identify_linear_fit.hpp"
+#include "numerics/bounded_search.hpp"
+#include "numerics/delay_shift.hpp"
+#include "identify/linear_fit.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/signal.hpp"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "detail/temp_files.hpp"
+#include "io/temp_files.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 

@@ -1,4 +1,4 @@
-#include "detail/temp_files.hpp"
+#include "io/temp_files.hpp"
 
 #include <unistd.h>
 

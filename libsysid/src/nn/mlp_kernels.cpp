@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/parallel_for.hpp"
+#include "core/parallel_for.hpp"
 #include "nn/mlp_kernels_isa.hpp"
 
 namespace sysid::nn {

@@ -1,5 +1,5 @@
 // Central differences: the paper's velocity and acceleration from the encoder position.
-#include "detail/signal_checks.hpp"
+#include "signal/checks.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {

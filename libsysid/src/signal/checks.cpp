@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "detail/signal_checks.hpp"
+#include "signal/checks.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 

@@ -1,7 +1,7 @@
 // Decimation behind a zero-phase anti-alias low-pass.
 #include <string>
 
-#include "detail/signal_checks.hpp"
+#include "signal/checks.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 

@@ -1,7 +1,7 @@
 // Differentiate(): the three derivative methods behind one options struct.
 #include <fmt/format.h>
 
-#include "detail/signal_checks.hpp"
+#include "signal/checks.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 

@@ -7,8 +7,8 @@
 #include <Eigen/QR>
 #include <string>
 
-#include "detail/signal_checks.hpp"
-#include "detail/signal_filters.hpp"
+#include "signal/checks.hpp"
+#include "signal/filters.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 

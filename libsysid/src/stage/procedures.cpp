@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/stage_noise.hpp"
+#include "stage/stage_noise.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/stage.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "detail/json_text.hpp"
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/stage.hpp"

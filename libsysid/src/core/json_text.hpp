@@ -1,7 +1,7 @@
 // Private: JSON text helpers shared by the model, network and stage file parsers, so that every
 // file error names "SOURCE:LINE:COLUMN: key: expected ..., found ..." the same way.
-#ifndef SYSID_DETAIL_JSON_TEXT_HPP_
-#define SYSID_DETAIL_JSON_TEXT_HPP_
+#ifndef SYSID_SRC_CORE_JSON_TEXT_HPP_
+#define SYSID_SRC_CORE_JSON_TEXT_HPP_
 
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -131,4 +131,4 @@ class JsonDocument {
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_JSON_TEXT_HPP_
+#endif  // SYSID_SRC_CORE_JSON_TEXT_HPP_

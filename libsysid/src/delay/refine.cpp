@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "detail/identify_segments.hpp"
+#include "delay/segments.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"

@@ -1,8 +1,8 @@
 // Private: temporary files removed when the process is interrupted. A file being written
 // atomically (".out.csv.tmp.XXXXXX") is registered while it exists; SIGINT, SIGTERM or SIGHUP
 // then unlinks it before the signal's default action, so Ctrl-C leaves nothing behind.
-#ifndef SYSID_DETAIL_TEMP_FILES_HPP_
-#define SYSID_DETAIL_TEMP_FILES_HPP_
+#ifndef SYSID_SRC_IO_TEMP_FILES_HPP_
+#define SYSID_SRC_IO_TEMP_FILES_HPP_
 
 #include <string>
 
@@ -23,4 +23,4 @@ class TempFileGuard {
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_TEMP_FILES_HPP_
+#endif  // SYSID_SRC_IO_TEMP_FILES_HPP_

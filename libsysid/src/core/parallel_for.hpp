@@ -1,8 +1,8 @@
 // A deterministic parallel loop: items 0..count-1 are handed out to `threads` std::threads
 // (the caller's thread is one of them). Results must be written per item, so the outcome does
 // not depend on the thread count; reductions are then done by the caller in item order.
-#ifndef SYSID_SRC_DETAIL_PARALLEL_FOR_HPP_
-#define SYSID_SRC_DETAIL_PARALLEL_FOR_HPP_
+#ifndef SYSID_SRC_CORE_PARALLEL_FOR_HPP_
+#define SYSID_SRC_CORE_PARALLEL_FOR_HPP_
 
 #include <algorithm>
 #include <atomic>
@@ -58,4 +58,4 @@ void ParallelFor(long count, int threads, const F& f) {
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_SRC_DETAIL_PARALLEL_FOR_HPP_
+#endif  // SYSID_SRC_CORE_PARALLEL_FOR_HPP_

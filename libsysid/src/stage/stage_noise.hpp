@@ -3,8 +3,8 @@
 // with libstdc++ and libc++. std::mt19937_64's output sequence is fixed by the standard; the
 // Gaussian transform below uses only exact operations (a 53-bit integer scaled by 2^-53, and
 // additions), so a seed gives bit-identical noise on every IEEE-754 machine.
-#ifndef SYSID_DETAIL_STAGE_NOISE_HPP_
-#define SYSID_DETAIL_STAGE_NOISE_HPP_
+#ifndef SYSID_SRC_STAGE_STAGE_NOISE_HPP_
+#define SYSID_SRC_STAGE_STAGE_NOISE_HPP_
 
 #include <cstdint>
 #include <random>
@@ -35,4 +35,4 @@ class StageNoise {
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_STAGE_NOISE_HPP_
+#endif  // SYSID_SRC_STAGE_STAGE_NOISE_HPP_

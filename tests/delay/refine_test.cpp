@@ -4,7 +4,7 @@
 
 #include "identify/simulated_recording.hpp"
 #include "sysid/error.hpp"
-#include "sysid/identify.hpp"
+#include "sysid/delay.hpp"
 
 using sysid::test::MakeModel;
 

@@ -1,6 +1,6 @@
 // Private argument checks of the signal module, phrased like the options' Validate() messages.
-#ifndef SYSID_DETAIL_SIGNAL_CHECKS_HPP_
-#define SYSID_DETAIL_SIGNAL_CHECKS_HPP_
+#ifndef SYSID_SRC_SIGNAL_CHECKS_HPP_
+#define SYSID_SRC_SIGNAL_CHECKS_HPP_
 
 #include <Eigen/Core>
 #include <string>
@@ -23,4 +23,4 @@ void CheckFinite(const char* where, const Eigen::VectorXd& y);
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_SIGNAL_CHECKS_HPP_
+#endif  // SYSID_SRC_SIGNAL_CHECKS_HPP_

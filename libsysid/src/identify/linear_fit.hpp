@@ -1,6 +1,6 @@
 // Private: rank-revealing linear least squares with the diagnostics of sysid::LinearFit.
-#ifndef SYSID_DETAIL_IDENTIFY_LINEAR_FIT_HPP_
-#define SYSID_DETAIL_IDENTIFY_LINEAR_FIT_HPP_
+#ifndef SYSID_SRC_IDENTIFY_LINEAR_FIT_HPP_
+#define SYSID_SRC_IDENTIFY_LINEAR_FIT_HPP_
 
 #include <Eigen/Core>
 #include <string>
@@ -26,4 +26,4 @@ double RelativeRankThreshold();
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_IDENTIFY_LINEAR_FIT_HPP_
+#endif  // SYSID_SRC_IDENTIFY_LINEAR_FIT_HPP_

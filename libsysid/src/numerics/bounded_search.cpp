@@ -1,4 +1,4 @@
-#include "detail/delay_search.hpp"
+#include "numerics/bounded_search.hpp"
 
 #include <nlopt.h>
 

@@ -1,6 +1,6 @@
 // Private: a uniformly sampled signal delayed by a fraction of samples.
-#ifndef SYSID_DETAIL_IDENTIFY_DELAY_SHIFT_HPP_
-#define SYSID_DETAIL_IDENTIFY_DELAY_SHIFT_HPP_
+#ifndef SYSID_SRC_NUMERICS_DELAY_SHIFT_HPP_
+#define SYSID_SRC_NUMERICS_DELAY_SHIFT_HPP_
 
 #include <Eigen/Core>
 #include <cmath>
@@ -28,4 +28,4 @@ inline Eigen::VectorXd DelayedSignal(const Eigen::VectorXd& y, double dt_s, doub
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_IDENTIFY_DELAY_SHIFT_HPP_
+#endif  // SYSID_SRC_NUMERICS_DELAY_SHIFT_HPP_

@@ -1,4 +1,4 @@
-#include "detail/identify_linear_fit.hpp"
+#include "identify/linear_fit.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>

@@ -1,7 +1,7 @@
 // Private: recordings cut into pieces that are simulated independently and in parallel, and
 // the velocity error of a model on them (delay tuning and output-error refinement).
-#ifndef SYSID_DETAIL_IDENTIFY_SEGMENTS_HPP_
-#define SYSID_DETAIL_IDENTIFY_SEGMENTS_HPP_
+#ifndef SYSID_SRC_DELAY_SEGMENTS_HPP_
+#define SYSID_SRC_DELAY_SEGMENTS_HPP_
 
 #include <Eigen/Core>
 #include <atomic>
@@ -62,4 +62,4 @@ bool SegmentResiduals(const FrictionModel& model, const std::vector<SimSegment>&
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_IDENTIFY_SEGMENTS_HPP_
+#endif  // SYSID_SRC_DELAY_SEGMENTS_HPP_

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sysid/error.hpp"
-#include "sysid/identify.hpp"
+#include "sysid/motion.hpp"
 #include "sysid/io.hpp"
 #include "sysid/signal.hpp"
 

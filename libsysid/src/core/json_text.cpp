@@ -1,4 +1,4 @@
-#include "detail/json_text.hpp"
+#include "core/json_text.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Private: bounded derivative-free minimisation of a scalar function of the delay tau with
 // NLopt: DIRECT-L over the whole interval (the cost is not smooth and may have local minima),
 // then BOBYQA from the best point found, with a step of the coarse stage's resolution.
-#ifndef SYSID_DETAIL_DELAY_SEARCH_HPP_
-#define SYSID_DETAIL_DELAY_SEARCH_HPP_
+#ifndef SYSID_SRC_NUMERICS_BOUNDED_SEARCH_HPP_
+#define SYSID_SRC_NUMERICS_BOUNDED_SEARCH_HPP_
 
 #include <functional>
 #include <string>
@@ -35,4 +35,4 @@ ScalarSearchResult MinimizeScalar(const std::function<double(double)>& f,
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_DELAY_SEARCH_HPP_
+#endif  // SYSID_SRC_NUMERICS_BOUNDED_SEARCH_HPP_

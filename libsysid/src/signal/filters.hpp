@@ -1,8 +1,8 @@
 // Private helpers of the signal module: Butterworth design as second-order sections, the
 // sections' filter with steady-state initial conditions, and Savitzky–Golay weights.
 // Tests include this file to check the design against closed forms.
-#ifndef SYSID_DETAIL_SIGNAL_FILTERS_HPP_
-#define SYSID_DETAIL_SIGNAL_FILTERS_HPP_
+#ifndef SYSID_SRC_SIGNAL_FILTERS_HPP_
+#define SYSID_SRC_SIGNAL_FILTERS_HPP_
 
 #include <Eigen/Core>
 #include <complex>
@@ -43,4 +43,4 @@ Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv);
 
 }  // namespace sysid::detail
 
-#endif  // SYSID_DETAIL_SIGNAL_FILTERS_HPP_
+#endif  // SYSID_SRC_SIGNAL_FILTERS_HPP_

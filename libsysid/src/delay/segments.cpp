@@ -1,4 +1,4 @@
-#include "detail/identify_segments.hpp"
+#include "delay/segments.hpp"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,47 @@
+// Measured motion of a recording: uniformly sampled u, x, v and a, with v and a from the
+// position (a differentiating filter) or from a measured-velocity column. Every analysis of a
+// recording (identification, delay tuning, dominance, comparison) starts here.
+// Units are SI: t [s], u [V], x [m], v [m/s], a [m/s^2].
+#ifndef SYSID_MOTION_HPP_
+#define SYSID_MOTION_HPP_
+
+#include <Eigen/Core>
+#include <string>
+
+#include "sysid/io.hpp"
+#include "sysid/signal.hpp"
+
+namespace sysid {
+
+/// How velocity and acceleration are obtained from a recording.
+struct MotionOptions {
+  /// Filter used to differentiate the position x (default: central differences, as the paper).
+  DerivativeOptions derivative;
+  /// Name of a measured-velocity column [m/s]; used when the recording has no x column, or
+  /// always when prefer_velocity_column is set. Acceleration is then its derivative.
+  std::string velocity_column = "v";
+  bool prefer_velocity_column = false;
+  /// Sampling must be uniform: max |dt_k - dt| / dt must not exceed this [dimensionless].
+  double max_relative_jitter = 0.01;
+  void Validate() const;  ///< throws OptionsError naming the field and the rule
+};
+
+/// Uniformly sampled signals of one recording, all of the same length.
+struct MotionSignals {
+  std::string source;         ///< the recording's source (file path)
+  double dt_s = 0;            ///< [s] nominal sample interval
+  Eigen::VectorXd t_s;        ///< [s]
+  Eigen::VectorXd u_v;        ///< [V]
+  Eigen::VectorXd x_m;        ///< [m] position (empty when the recording has only velocity)
+  Eigen::VectorXd v_mps;      ///< [m/s] velocity
+  Eigen::VectorXd a_mps2;     ///< [m/s^2] acceleration
+  std::string velocity_from;  ///< "x (central)", "column v_meas", ... (for reports)
+};
+
+/// Velocity and acceleration of a recording (t, u and x or a velocity column). Throws
+/// InputError when the sampling is irregular or there are fewer than 3 samples.
+MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options = {});
+
+}  // namespace sysid
+
+#endif  // SYSID_MOTION_HPP_
