@@ -1,8 +1,9 @@
 # Installs the library, its public headers, the sysid program and a CMake package so that a
-# downstream project can write find_package(Sysid) + target_link_libraries(app sysid::sysid).
+# downstream project can write find_package(Sysid) + target_link_libraries(app sysid::sysid)
+# (and sysid::report for plots and the pipeline report).
 include(CMakePackageConfigHelpers)
 
-install(TARGETS sysid EXPORT SysidTargets
+install(TARGETS sysid sysid_report EXPORT SysidTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -1,6 +1,7 @@
 // sysid pipeline DIR|MANIFEST.json [-o OUT] [--json] ...: the whole workflow, recordings in,
 // report + model files out.
 #include "sysid/pipeline.hpp"
+#include "sysid/report.hpp"
 
 #include <fmt/format.h>
 

@@ -115,10 +115,7 @@ using PipelineProgress = std::function<void(const std::string& step)>;
 PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
                            const PipelineProgress& progress = {});
 
-/// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
-/// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).
-std::vector<std::string> WritePipelineReport(const PipelineResult& result,
-                                             const std::string& out_dir);
+// The pipeline's written report (report.md, plots) is WritePipelineReport in report.hpp.
 
 }  // namespace sysid
 

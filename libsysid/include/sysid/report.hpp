@@ -1,4 +1,5 @@
-// Report building blocks: plots through gnuplot (Debian's gnuplot-nox) and markdown tables.
+// Reports (target sysid::report, above the numerical library): plots through gnuplot (Debian's
+// gnuplot-nox, run as a child process), markdown tables and the pipeline's written report.
 // Plotting is optional: when gnuplot is missing the plot is skipped with a clear message and
 // the report says so; numbers and CSV traces never depend on it.
 #ifndef SYSID_REPORT_HPP_
@@ -7,6 +8,8 @@
 #include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include "sysid/pipeline.hpp"
 
 namespace sysid {
 
@@ -38,6 +41,11 @@ bool GnuplotAvailable();
 /// Renders `spec` to `path` (.png or .svg by extension) with gnuplot, atomically. Returns
 /// written = false and the reason when gnuplot is missing or fails; never throws for that.
 PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec);
+
+/// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
+/// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).
+std::vector<std::string> WritePipelineReport(const PipelineResult& result,
+                                             const std::string& out_dir);
 
 /// A GitHub-flavoured markdown table.
 std::string MarkdownTable(const std::vector<std::string>& header,

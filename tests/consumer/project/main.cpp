@@ -1,6 +1,7 @@
 // A downstream program (docs/api.md): identify the paper's pulse table, simulate the pulse
 // train with the identified model, compare a plateau with its closed form.
 #include <sysid/identify.hpp>
+#include <sysid/report.hpp>
 #include <sysid/simulate.hpp>
 
 #include <cmath>
@@ -28,5 +29,8 @@ int main(int argc, char** argv) {
   // 3. The plateau of the first pulse is the closed-form steady state (a3 u - a2p) / a1p.
   const double v = sim.trajectory.v_mps[390], ref = model.SteadyVelocity(1.6);
   std::printf("v(0.39 s) = %.6f m/s, closed form %.6f m/s\n", v, ref);
+  // 4. The report target links too: a markdown table of the result.
+  std::printf("%s", sysid::MarkdownTable({"v [m/s]", "closed form [m/s]"},
+                                         {{std::to_string(v), std::to_string(ref)}}).c_str());
   return std::abs(v - ref) < 1e-6 ? 0 : 1;  // settled to 1e-6 m/s after 0.39 s (e^-40)
 }
