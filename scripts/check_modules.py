@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""The module graph of libsysid: which module's files include which module's headers.
+
+A module is a folder of libsysid/src/ together with its public header(s) in
+libsysid/include/sysid/ (sysid/<module>.hpp or sysid/<module>_*.hpp; sysid/error.hpp is core's).
+Dependencies must run one way, down the layers below (docs/architecture.md): a file may include
+headers of its own module and of modules in lower layers only. Any other include is reported
+with the file and line, and the check fails: an include cycle between modules is always such
+a violation.
+
+  scripts/check_modules.py            check; exit 1 on a violation
+  scripts/check_modules.py --graph    print the module graph as markdown (for the docs)
+  scripts/check_modules.py --root DIR check another source tree (the check's own test)
+"""
+import pathlib
+import re
+import sys
+
+# Lowest first. Modules on one line share a layer and must not include each other.
+LAYERS = [
+    ["core"],
+    ["numerics"],
+    ["io"],
+    ["signal"],
+    ["motion"],
+    ["model", "input"],
+    ["simulate"],
+    ["identify"],
+    ["delay"],
+    ["dominance"],
+    ["nn"],
+    ["compare"],
+    ["stage"],
+    ["control"],
+    ["pipeline"],
+    ["report"],
+]
+HEADER_MODULE = {"error": "core"}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+
+
+def module_of_header(name, modules):
+    """sysid/<name>.hpp -> module, or None when unknown."""
+    if name in HEADER_MODULE:
+        return HEADER_MODULE[name]
+    if name in modules:
+        return name
+    prefix = name.split("_")[0]
+    return prefix if prefix in modules else None
+
+
+def main():
+    root = pathlib.Path(__file__).resolve().parent.parent
+    if "--root" in sys.argv:
+        root = pathlib.Path(sys.argv[sys.argv.index("--root") + 1]).resolve()
+    src = root / "libsysid" / "src"
+    public = root / "libsysid" / "include" / "sysid"
+    rank = {m: i for i, layer in enumerate(LAYERS) for m in layer}
+    modules = {p.name for p in src.iterdir() if p.is_dir() and any(p.iterdir())}
+    problems = []
+    for m in sorted(modules - rank.keys()):
+        problems.append(f"libsysid/src/{m}/: module not placed in a layer (LAYERS in {__file__})")
+
+    files = []  # (module, path)
+    for m in sorted(modules):
+        files += [(m, p) for p in sorted((src / m).rglob("*")) if p.suffix in (".cpp", ".hpp", ".inc")]
+    for h in sorted(public.glob("*.hpp")):
+        m = module_of_header(h.stem, modules)
+        if m is None:
+            problems.append(f"{h.relative_to(root)}: public header of no module")
+            continue
+        files.append((m, h))
+
+    edges = {}
+    for m, path in files:
+        for lineno, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            hit = INCLUDE.match(line)
+            if not hit:
+                continue
+            target = hit.group(1)
+            head, _, rest = target.partition("/")
+            if head == "sysid":
+                n = module_of_header(pathlib.Path(rest).stem, modules)
+            elif head in modules:
+                n = head
+            else:
+                continue  # same-folder or test-support includes
+            where = f"{path.relative_to(root)}:{lineno}"
+            if n is None:
+                problems.append(f"{where}: includes {target}, a header of no module")
+                continue
+            if n == m:
+                continue
+            edges.setdefault((m, n), where)
+            if m in rank and n in rank and rank[n] >= rank[m]:
+                problems.append(
+                    f"{where}: module '{m}' includes {target} of module '{n}', which is "
+                    f"{'in the same layer' if rank[n] == rank[m] else 'above it'}")
+
+    if "--graph" in sys.argv:
+        print("| module | depends on |\n|---|---|")
+        for layer in LAYERS:
+            for m in layer:
+                deps = sorted({n for (a, n) in edges if a == m}, key=lambda n: rank.get(n, 99))
+                print(f"| {m} | {', '.join(deps) or '—'} |")
+    for p in problems:
+        print(p, file=sys.stderr)
+    if problems:
+        print(f"check_modules: {len(problems)} violation(s) of the one-way module graph",
+              file=sys.stderr)
+        return 1
+    if "--graph" not in sys.argv:
+        print(f"check_modules: {len(modules)} modules, {len(edges)} dependencies, all one-way")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

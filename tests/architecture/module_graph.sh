@@ -1,0 +1,18 @@
+#!/bin/sh
+# The module graph check passes on the tree and fails, naming file and line, on a seeded cycle
+# (a copy of the tree where signal includes identification, which includes signal).
+# Usage: module_graph.sh SOURCE_DIR
+set -eu
+src=$1
+python3 "$src/scripts/check_modules.py" --root "$src"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$tmp/libsysid"
+cp -R "$src/libsysid/src" "$src/libsysid/include" "$tmp/libsysid/"
+printf '#include "sysid/identify.hpp"\n' >> "$tmp/libsysid/src/signal/checks.cpp"
+if python3 "$src/scripts/check_modules.py" --root "$tmp" 2> "$tmp/err"; then
+  echo "FAIL: a seeded cycle signal -> identify -> signal passed the check"; exit 1
+fi
+grep -q "libsysid/src/signal/checks.cpp:[0-9]*: module 'signal' includes sysid/identify.hpp of module 'identify', which is above it" "$tmp/err" \
+  || { echo "FAIL: the violation does not name file, line and modules:"; cat "$tmp/err"; exit 1; }
+echo "ok: the seeded cycle is reported"
