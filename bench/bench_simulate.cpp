@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
       cpus.push_back(ThreadCpuSeconds() - c0);
       walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
     }
-    if (!r.summary.success) {
+    if (!r.summary.IsSolutionUsable()) {
       fmt::print("simulation failed: {}\n", r.summary.message);
       return 3;
     }
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     for (int k = 0; k < n_threads; ++k)
       pool.emplace_back([&] {
         for (int i; (i = next++) < batch;)
-          if (!sysid::Simulate(models[static_cast<size_t>(i)], input, bo).summary.success)
+          if (!sysid::Simulate(models[static_cast<size_t>(i)], input, bo).summary.IsSolutionUsable())
             ++failures;
       });
     for (auto& th : pool) th.join();

@@ -35,7 +35,7 @@ LAYERS = [
     ["pipeline"],
     ["report"],
 ]
-HEADER_MODULE = {"error": "core"}
+HEADER_MODULE = {"error": "core", "termination": "core"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 

@@ -60,7 +60,7 @@ void RunRefine(const RefineCli& o) {
                       {"rms_error_mps", res.rms_error_mps},
                       {"iterations", res.iterations},
                       {"simulations", res.simulations},
-                      {"converged", res.converged},
+                      {"termination", ToString(res.termination)},
                       {"message", res.message},
                       {"wall_time_s", res.wall_time_s}};
   const std::string rendered = j.dump(2) + "\n";

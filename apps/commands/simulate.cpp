@@ -105,7 +105,7 @@ void RunSimulate(SimulateCliOptions o) {
   sim.dt_out_s = o.dt_s;
   const SimulationResult r = Simulate(model, *input.signal, sim);
   const SimulationSummary& s = r.summary;
-  if (!s.success)
+  if (!s.IsSolutionUsable())
     throw NumericalError(fmt::format("simulation failed at t = {:.9g} s ({}): {}", s.failure_time_s,
                                      s.cvode_flag, s.message));
 
@@ -136,7 +136,7 @@ void RunSimulate(SimulateCliOptions o) {
     nlohmann::ordered_json ev = nlohmann::ordered_json::array();
     for (const auto& e : r.events) ev.push_back({{"t_s", e.t_s}, {"kind", ToString(e.kind)}});
     j["events"] = ev;
-    j["summary"] = {{"success", s.success},
+    j["summary"] = {{"termination", ToString(s.termination)},
                     {"method", ToString(sim.method)},
                     {"rtol", sim.rtol},
                     {"atol", sim.atol},

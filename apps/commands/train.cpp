@@ -62,6 +62,7 @@ void RunTrain(TrainCliOptions& o) {
   j["mse_unit"] =
       "(" + (DefaultUnit(o.nn.output).empty() ? std::string("unit") : DefaultUnit(o.nn.output)) +
       ")^2";
+  j["termination"] = ToString(r.termination);
   j["stop_reason"] = ToString(r.stop);
   j["message"] = r.message;
   // A network that ran out of epochs may not be trained: said on stderr and in --json.
@@ -94,7 +95,7 @@ void RunTrain(TrainCliOptions& o) {
     summary.erase("warnings");
     WriteNeuralNetwork(o.nn.model_path, r.network, summary.dump());
   }
-  if (r.stop == TrainingStop::kNumericalFailure)
+  if (!IsSolutionUsable(r.termination))
     std::cerr << "sysid: warning: training stopped on a numerical failure (" << r.message
               << "); the best finite weights were kept\n";
   if (o.nn.json) {

@@ -40,7 +40,7 @@ inline Recording RigRecording(const FrictionModel& model, const InputSignal& inp
   o.rtol = 1e-9;
   o.atol = 1e-12;
   const SimulationResult r = Simulate(model, dac, o);
-  if (!r.summary.success) throw std::runtime_error("test simulation failed: " + r.summary.message);
+  if (!r.summary.IsSolutionUsable()) throw std::runtime_error("test simulation failed: " + r.summary.message);
   const auto& tr = r.trajectory;
   std::mt19937 rng(s.seed);
   std::normal_distribution<double> noise(0.0, s.noise_m);

@@ -148,6 +148,7 @@ TEST_CASE("non-finite errors are a stop reason, not a crash", "[nn][train]") {
   o.initial_parameters = Eigen::VectorXd::Constant(7, 1e308);  // output overflows to inf
   const auto r = sysid::TrainNeuralNetwork(train, nullptr, o);
   CHECK(r.stop == sysid::TrainingStop::kNumericalFailure);
+  CHECK(r.termination == sysid::Termination::kFailure);
   CHECK_THAT(r.message, Contains("non-finite"));
 }
 

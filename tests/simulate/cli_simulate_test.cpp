@@ -39,7 +39,7 @@ TEST_CASE("sysid simulate --json and the input shortcuts", "[cli][simulate]") {
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["t_end_s"] == 2.0);
   CHECK(j["samples"] == 2001);
-  CHECK(j["summary"]["success"] == true);
+  CHECK(j["summary"]["termination"] == "converged");
   CHECK(j["summary"]["steps"].get<long>() > 0);
   CHECK(j["events"][0]["kind"] == "slip+");
   const auto w = test::RunCli(

@@ -41,7 +41,8 @@ TEST_CASE("running out of steps is reported, not thrown", "[simulate][options]")
   o.t_end_s = 2;
   o.max_steps = 50;
   const SimulationResult r = Simulate(FrictionModel::Paper(), MakePulseTrain({}), o);
-  CHECK_FALSE(r.summary.success);
+  CHECK_FALSE(r.summary.IsSolutionUsable());
+  CHECK(r.summary.termination == Termination::kBudgetExhausted);
   CHECK(r.summary.cvode_flag == "CV_TOO_MUCH_WORK");
   CHECK(r.summary.failure_time_s > 0);
   CHECK(r.summary.failure_time_s < 2);
@@ -73,14 +74,14 @@ TEST_CASE("the summary counts the work", "[simulate]") {
   SimulationOptions o;
   o.t_end_s = 10;
   const SimulationResult r = Simulate(FrictionModel::Paper(), MakePulseTrain({}), o);
-  REQUIRE(r.summary.success);
+  REQUIRE(r.summary.IsSolutionUsable());
   CHECK(r.summary.steps > 100);
   CHECK(r.summary.rhs_evaluations >= r.summary.steps);
   CHECK(r.summary.root_evaluations > 0);
   CHECK(r.summary.events == static_cast<long>(r.events.size()));
   CHECK(r.summary.reinitialisations > 0);
   CHECK(r.trajectory.t_s.size() == 10001);
-  CHECK(r.summary.BriefReport().find("success") == 0);
+  CHECK(r.summary.BriefReport().find("converged") == 0);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ TEST_CASE("a stop followed by sticking: v exactly 0 and x constant afterwards", 
   o.t_end_s = 1.0;
   o.dt_out_s = 1e-4;
   const SimulationResult r = Simulate(m, u, o);
-  REQUIRE(r.summary.success);
+  REQUIRE(r.summary.IsSolutionUsable());
   REQUIRE(r.events.size() == 2);
   CHECK(r.events[0].kind == EventKind::kSlipForward);
   CHECK(r.events[0].t_s == 0.0);
@@ -63,7 +63,7 @@ TEST_CASE("a stop followed by reversal (tau = 0, closed form)", "[simulate]") {
   o.dt_out_s = 1e-3;
   o.v0_mps = v0;
   const SimulationResult r = Simulate(m, PiecewiseConstantInput({0.0}, {u}), o);
-  REQUIRE(r.summary.success);
+  REQUIRE(r.summary.IsSolutionUsable());
   REQUIRE(r.events.size() == 2);  // reverse, and the a1 branch follows v (tau = 0)
   CHECK(r.events[0].kind == EventKind::kReverse);
   CHECK(r.events[0].t_s == Approx(t_c).margin(1e-11));  // root location, |v'| ~ 13 m/s^2
@@ -84,7 +84,7 @@ TEST_CASE("a release exactly at an input edge", "[simulate]") {
   o.t_end_s = 0.51;
   o.dt_out_s = 1e-3;
   const SimulationResult r = Simulate(m, u, o);
-  REQUIRE(r.summary.success);
+  REQUIRE(r.summary.IsSolutionUsable());
   REQUIRE(!r.events.empty());
   CHECK(r.events[0].kind == EventKind::kSlipForward);
   CHECK(r.events[0].t_s == 0.5);  // exactly the edge, not a root near it
@@ -108,7 +108,7 @@ TEST_CASE("breakaway thresholds differ by direction", "[simulate]") {
   o.t_end_s = 0.2;
   SECTION("forward: 0.8 V breaks away") {
     const SimulationResult r = Simulate(m, PiecewiseConstantInput({0.0}, {0.8}), o);
-    REQUIRE(r.summary.success);
+    REQUIRE(r.summary.IsSolutionUsable());
     REQUIRE(!r.events.empty());
     CHECK(r.events[0].kind == EventKind::kSlipForward);
     const double v_end = r.trajectory.v_mps[r.trajectory.v_mps.size() - 1];
@@ -116,14 +116,14 @@ TEST_CASE("breakaway thresholds differ by direction", "[simulate]") {
   }
   SECTION("backward: -0.8 V stays stuck") {
     const SimulationResult r = Simulate(m, PiecewiseConstantInput({0.0}, {-0.8}), o);
-    REQUIRE(r.summary.success);
+    REQUIRE(r.summary.IsSolutionUsable());
     CHECK(r.events.empty());
     CHECK(r.trajectory.v_mps.cwiseAbs().maxCoeff() == 0.0);
     CHECK(r.trajectory.x_m.cwiseAbs().maxCoeff() == 0.0);
   }
   SECTION("backward: -1.2 V breaks away") {
     const SimulationResult r = Simulate(m, PiecewiseConstantInput({0.0}, {-1.2}), o);
-    REQUIRE(r.summary.success);
+    REQUIRE(r.summary.IsSolutionUsable());
     REQUIRE(!r.events.empty());
     CHECK(r.events[0].kind == EventKind::kSlipBackward);
     const double v_end = r.trajectory.v_mps[r.trajectory.v_mps.size() - 1];
@@ -137,11 +137,11 @@ TEST_CASE("a sinusoid below the breakaway force never moves the stage; above, it
   SimulationOptions o;
   o.t_end_s = 4;
   const SimulationResult quiet = Simulate(m, SumOfSinesInput({{0.5, 1.0, 0.0}}), o);
-  REQUIRE(quiet.summary.success);
+  REQUIRE(quiet.summary.IsSolutionUsable());
   CHECK(quiet.events.empty());  // a3 * 0.5 = 3 < a2p
   CHECK(quiet.trajectory.v_mps.cwiseAbs().maxCoeff() == 0.0);
   const SimulationResult moving = Simulate(m, SumOfSinesInput({{1.5, 1.0, 0.0}}), o);
-  REQUIRE(moving.summary.success);
+  REQUIRE(moving.summary.IsSolutionUsable());
   // Released forward once per period, a3 * 1.5 sin = a2p at sin = a2p / 9.
   const double pi = std::acos(-1.0);
   const double t_release = std::asin(m.a2p / (m.a3 * 1.5)) / (2 * pi);
@@ -166,7 +166,7 @@ TEST_CASE("pure Coulomb friction (a1p = a1n = 0) follows its piecewise-parabolic
   o.t_end_s = 1.0;
   o.dt_out_s = 1e-3;
   const SimulationResult r = Simulate(m, u, o);
-  REQUIRE(r.summary.success);
+  REQUIRE(r.summary.IsSolutionUsable());
   REQUIRE(r.events.size() >= 3);
   CHECK(r.events[0].kind == EventKind::kSlipForward);
   CHECK(r.events[1].kind == EventKind::kStick);

@@ -22,6 +22,7 @@
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/termination.hpp"
 
 namespace sysid {
 
@@ -54,11 +55,9 @@ struct DelayTuningOptions {
   void Validate() const;   ///< throws OptionsError naming the field and the rule
 };
 
-enum class DelayTermination { kConverged, kMaxEvaluations, kNumericalFailure };
-std::string ToString(DelayTermination termination);
-
 struct DelayTuningResult {
-  DelayTermination termination = DelayTermination::kConverged;
+  /// kConverged: the search met its tolerance; kBudgetExhausted: max evaluations reached.
+  Termination termination = Termination::kConverged;
   std::string message;       ///< why it stopped, in words
   FrictionModel model;       ///< the input model with tau_s = the optimum
   double tau_s = 0;          ///< [s]
@@ -104,7 +103,8 @@ struct RefineResult {
   double rms_error_mps = 0;        ///< [m/s] at the optimum
   int iterations = 0;
   long simulations = 0;
-  bool converged = false;
+  /// Ceres' CONVERGENCE, NO_CONVERGENCE (iterations) and FAILURE.
+  Termination termination = Termination::kFailure;
   std::string message;  ///< Ceres' termination in words
   double wall_time_s = 0;
   std::string BriefReport() const;

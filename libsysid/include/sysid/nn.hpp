@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "sysid/io.hpp"
+#include "sysid/termination.hpp"
 
 namespace sysid {
 
@@ -140,6 +141,10 @@ enum class TrainingStop {
   kNumericalFailure,    ///< NaN/Inf or divergence; the best finite weights are kept
 };
 std::string ToString(TrainingStop stop);
+/// The shared vocabulary (termination.hpp): a goal, a small gradient, mu too large (no step
+/// lowers the error: a stationary point), early stopping on validation and Ceres' tolerances
+/// are kConverged; max epochs is kBudgetExhausted; a numerical failure is kFailure.
+Termination TerminationOf(TrainingStop stop);
 std::string ToString(NeuralTrainer trainer);
 
 /// [bytes] Training refuses (OptionsError) before allocating when its estimated memory,
@@ -195,7 +200,8 @@ struct EpochRecord {
 
 struct NeuralTrainingResult {
   NeuralNetwork network;  ///< best weights (lowest validation MSE, else training MSE)
-  TrainingStop stop = TrainingStop::kMaxEpochs;
+  Termination termination = Termination::kBudgetExhausted;  ///< TerminationOf(stop)
+  TrainingStop stop = TrainingStop::kMaxEpochs;             ///< the stopping rule that fired
   std::string message;               ///< why it stopped, in words
   int epochs = 0;                    ///< epochs of the kept restart
   int restart = 0;                   ///< index of the kept restart

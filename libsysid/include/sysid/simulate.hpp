@@ -15,6 +15,7 @@
 
 #include "sysid/input.hpp"
 #include "sysid/model.hpp"
+#include "sysid/termination.hpp"
 
 namespace sysid {
 
@@ -68,7 +69,11 @@ struct SimulationEvent {
 };
 
 struct SimulationSummary {
-  bool success = true;
+  /// kConverged: reached t_end; kBudgetExhausted: max_steps spent (CV_TOO_MUCH_WORK);
+  /// kFailure: any other CVODE failure (cvode_flag names it).
+  Termination termination = Termination::kConverged;
+  /// A trajectory is usable only when complete: samples after a stop are missing.
+  bool IsSolutionUsable() const { return termination == Termination::kConverged; }
   std::string message;        ///< why it stopped, in words
   std::string cvode_flag;     ///< CVODE flag name on failure ("CV_TOO_MUCH_WORK", ...)
   double failure_time_s = 0;  ///< [s] time reached when it failed

@@ -167,7 +167,10 @@ RefineResult RefineOutputError(const FrictionModel& initial,
   r.final_cost = 2 * summary.final_cost;
   r.rms_error_mps = std::sqrt(r.final_cost / static_cast<double>(n));
   r.iterations = static_cast<int>(summary.iterations.size());
-  r.converged = summary.termination_type == ceres::CONVERGENCE;
+  r.termination = summary.termination_type == ceres::CONVERGENCE ? Termination::kConverged
+                  : summary.termination_type == ceres::NO_CONVERGENCE
+                      ? Termination::kBudgetExhausted
+                      : Termination::kFailure;
   r.message = summary.message;
   if (summary.termination_type == ceres::FAILURE || !std::isfinite(r.final_cost))
     throw NumericalError("output-error refinement failed: " + summary.message);
@@ -197,8 +200,9 @@ RefineResult RefineOutputError(const FrictionModel& initial,
 std::string RefineResult::BriefReport() const {
   std::string s = fmt::format(
       "output-error refinement: cost {:.6g} -> {:.6g} m^2/s^2 (rms {:.4g} m/s), {} iterations, "
-      "{} simulations, {:.3g} s; {}\n",
-      initial_cost, final_cost, rms_error_mps, iterations, simulations, wall_time_s, message);
+      "{} simulations, {:.3g} s; {} ({})\n",
+      initial_cost, final_cost, rms_error_mps, iterations, simulations, wall_time_s,
+      ToString(termination), message);
   const double p[] = {model.a1p, model.a1n, model.a2p, model.a2n, model.a3, model.tau_s};
   const char* all[] = {"a1p", "a1n", "a2p", "a2n", "a3", "tau"};
   for (size_t i = 0; i < 6; ++i) {

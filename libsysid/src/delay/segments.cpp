@@ -126,7 +126,7 @@ bool SegmentResiduals(const FrictionModel& model_in, const std::vector<SimSegmen
         const SimulationResult r = Simulate(model, input, o);
         if (counter) ++*counter;
         const auto len = static_cast<Eigen::Index>(s.t_out_s.size());
-        if (!r.summary.success || r.trajectory.v_mps.size() != len) {
+        if (!r.summary.IsSolutionUsable() || r.trajectory.v_mps.size() != len) {
           errors[i] = fmt::format(
               "{}: simulation of t = {:.6g} .. {:.6g} s failed at t = {:.6g} "
               "s: {}",

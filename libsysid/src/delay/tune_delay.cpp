@@ -14,18 +14,6 @@
 
 namespace sysid {
 
-std::string ToString(DelayTermination termination) {
-  switch (termination) {
-    case DelayTermination::kConverged:
-      return "converged";
-    case DelayTermination::kMaxEvaluations:
-      return "max-evaluations";
-    case DelayTermination::kNumericalFailure:
-      return "numerical-failure";
-  }
-  return "?";
-}
-
 void DelayTuningOptions::Validate() const {
   auto rule = [](const char* field, double value, const char* what) {
     throw OptionsError(
@@ -103,13 +91,13 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
   result.model.tau_s = result.tau_s;
   result.simulations = simulations.load();
   if (!std::isfinite(result.cost) || result.cost == std::numeric_limits<double>::max()) {
-    result.termination = DelayTermination::kNumericalFailure;
+    result.termination = Termination::kFailure;
     result.message = "every simulation failed; first failure: " + first_failure;
     throw NumericalError("delay tuning: " + result.message);
   }
   result.rms_error_mps = std::sqrt(result.cost / static_cast<double>(result.samples));
   result.termination =
-      search.converged ? DelayTermination::kConverged : DelayTermination::kMaxEvaluations;
+      search.converged ? Termination::kConverged : Termination::kBudgetExhausted;
   result.message = search.message;
   if (!first_failure.empty())
     result.message +=

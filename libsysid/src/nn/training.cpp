@@ -125,6 +125,22 @@ std::string ToString(TrainingStop stop) {
   return "unknown";
 }
 
+Termination TerminationOf(TrainingStop stop) {
+  switch (stop) {
+    case TrainingStop::kMaxEpochs:
+      return Termination::kBudgetExhausted;
+    case TrainingStop::kNumericalFailure:
+      return Termination::kFailure;
+    case TrainingStop::kGoalReached:
+    case TrainingStop::kSmallGradient:
+    case TrainingStop::kMuTooLarge:
+    case TrainingStop::kValidationFailures:
+    case TrainingStop::kConverged:
+      return Termination::kConverged;
+  }
+  return Termination::kFailure;
+}
+
 std::string ToString(NeuralTrainer trainer) {
   return trainer == NeuralTrainer::kCeres ? "ceres" : "lm";
 }
@@ -171,7 +187,8 @@ std::string NeuralTrainingResult::BriefReport() const {
   std::ostringstream s;
   s << "epochs " << epochs << ", train MSE " << train_mse;
   if (!std::isnan(validation_mse)) s << ", validation MSE " << validation_mse;
-  s << ", stop " << ToString(stop) << " (" << message << "), " << wall_time_s << " s";
+  s << ", " << ToString(termination) << " on " << ToString(stop) << " (" << message << "), "
+    << wall_time_s << " s";
   return s.str();
 }
 
@@ -250,6 +267,7 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
       best_score = std::isfinite(score) ? score : std::numeric_limits<double>::infinity();
       net.set_parameters(run.theta);
       result.stop = run.stop;
+      result.termination = TerminationOf(run.stop);
       result.message = run.message;
       result.epochs = run.epochs;
       result.restart = r;

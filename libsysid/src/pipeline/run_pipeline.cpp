@@ -92,7 +92,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
       d.threads = options.threads;
       if (d.curve_points == 0) d.curve_points = 21;  // the report plots cost against tau
       r.delay = TuneDelay(r.model, pulses, d);
-      if (r.delay->termination == DelayTermination::kNumericalFailure) {
+      if (!IsSolutionUsable(r.delay->termination)) {
         r.notes.push_back("delay tuning failed (" + r.delay->message + "); tau = 0 kept");
       } else {
         r.model = r.delay->model;
@@ -103,7 +103,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (options.refine) {
     step("refine (Ceres output error)", [&] {
       r.refine = RefineOutputError(r.model, pulses);
-      if (r.refine->converged && r.refine->final_cost <= r.refine->initial_cost) {
+      if (r.refine->termination == Termination::kConverged && r.refine->final_cost <= r.refine->initial_cost) {
         r.model = r.refine->model;
       } else {
         r.notes.push_back("output-error refinement did not improve the fit (" + r.refine->message +

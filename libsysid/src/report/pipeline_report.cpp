@@ -180,7 +180,7 @@ class ReportWriter {
          {std::pair<std::string, FrictionModel>{"model, tau = 0", no_delay},
           {fmt::format("model, tau = {:.3g} ms", 1e3 * r_.model.tau_s), r_.model}}) {
       const SimulationResult s = Simulate(model, input, so);
-      if (!s.summary.success) {
+      if (!s.summary.IsSolutionUsable()) {
         notes_.push_back("velocity plot: simulation failed: " + s.summary.message);
         return;
       }

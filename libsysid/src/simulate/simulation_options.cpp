@@ -80,10 +80,10 @@ std::string ToString(EventKind kind) {
 
 std::string SimulationSummary::BriefReport() const {
   std::ostringstream os;
-  os << (success ? "success" : "FAILED (" + cvode_flag + ")") << ": " << steps << " steps, "
+  os << ToString(termination) << (IsSolutionUsable() ? "" : " (" + cvode_flag + ")") << ": " << steps << " steps, "
      << rhs_evaluations << " rhs evaluations, " << root_evaluations << " root evaluations, "
      << events << " events, " << reinitialisations << " reinitialisations, " << wall_time_s << " s";
-  if (!success) os << "; " << message;
+  if (!IsSolutionUsable()) os << "; " << message;
   return os.str();
 }
 

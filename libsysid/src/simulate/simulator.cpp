@@ -368,7 +368,8 @@ SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
   N_Vector dky_v = cv.work;
 
   auto fail = [&](const std::string& flag, const std::string& message, double t_fail) {
-    summary.success = false;
+    summary.termination =
+        flag == "CV_TOO_MUCH_WORK" ? Termination::kBudgetExhausted : Termination::kFailure;
     summary.cvode_flag = flag;
     summary.failure_time_s = t_fail;
     summary.message = message;
@@ -391,7 +392,7 @@ SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
     add_breakpoints(t);
   };
 
-  while (summary.success) {
+  while (summary.IsSolutionUsable()) {
     // Stops within TimeEps are this instant: move onto them exactly (Taylor step of < 1e-12 s)
     // so that u is read on the right side of an edge.
     double next_stop = stops.Next(t);
@@ -407,7 +408,7 @@ SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
         next_stop = stops.Next(t);
       }
     }
-    if (!summary.success) break;
+    if (!summary.IsSolutionUsable()) break;
     if (p.mode == 0) v = 0.0;
 
     // Viscous branch from the right-hand limit of v(t - tau).
@@ -507,7 +508,7 @@ SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
       }
       if (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN || t_ret >= next_stop) break;
     }
-    if (!summary.success) break;
+    if (!summary.IsSolutionUsable()) break;
 
     // Segment end: right-hand limit and the next mode.
     t = t_ret;
@@ -543,7 +544,7 @@ SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
     tr.v_mps.conservativeResize(next_out);
     tr.a_mps2.conservativeResize(next_out);
   }
-  if (!summary.success)
+  if (!summary.IsSolutionUsable())
     summary.message = "at t = " + std::to_string(summary.failure_time_s) + " s: " + summary.message;
   else
     summary.message = "reached t_end";

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   sysid::SimulationOptions options;
   options.t_end_s = 2.0;  // [s]
   const sysid::SimulationResult sim = sysid::Simulate(model, input, options);
-  if (!sim.summary.success) {  // numerical trouble is reported, not thrown
+  if (!sim.summary.IsSolutionUsable()) {  // numerical trouble is reported, not thrown
     std::fprintf(stderr, "%s\n", sim.summary.message.c_str());
     return 3;
   }
