@@ -32,10 +32,11 @@ LAYERS = [
     ["compare"],
     ["stage"],
     ["control"],
+    ["facts"],
     ["pipeline"],
     ["report"],
 ]
-HEADER_MODULE = {"error": "core", "termination": "core"}
+HEADER_MODULE = {"error": "core", "termination": "core", "stage_facts": "facts"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 

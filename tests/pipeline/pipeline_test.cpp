@@ -1,6 +1,7 @@
 // The end-to-end pipeline and the tracking command: report presence and content, feedforward
 // paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
 #include "sysid/pipeline.hpp"
+#include "sysid/report.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

@@ -95,7 +95,7 @@ class FactsRun {
       DelayTuningOptions d = o_.delay;
       d.threads = o_.threads;
       r_.delay = TuneDelay(model, {pulse_rec_}, d);
-      if (r_.delay->termination == DelayTermination::kNumericalFailure)
+      if (!IsSolutionUsable(r_.delay->termination))
         throw NumericalError("stage facts: delay tuning failed: " + r_.delay->message);
       // The curve holds tau_min = 0 (Validate: tau_min_s = 0, curve_points >= 2).
       double cost0 = std::nan("");
