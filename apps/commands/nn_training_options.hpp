@@ -108,8 +108,6 @@ inline void ResolveNeuralOptions(NeuralCliOptions& o) {
   NeuralTrainingOptions& t = o.training;
   t.trainer = o.trainer == "ceres" ? NeuralTrainer::kCeres : NeuralTrainer::kLevenbergMarquardt;
   t.init = o.init == "uniform" ? NeuralInit::kUniform : NeuralInit::kNguyenWidrow;
-  if (t.solve_output_layer && t.trainer == NeuralTrainer::kCeres)
-    throw OptionsError("--solve-output-layer applies to --trainer lm only");
   if (!o.input_ranges.empty()) {
     t.input_ranges.assign(names.size(), {0.0, 0.0});
     std::vector<bool> given(names.size(), false);

@@ -162,6 +162,13 @@ TEST_CASE("options and data are checked", "[nn][train]") {
   o.input_ranges = {{0.1, -0.1}};
   CHECK_THROWS_AS(sysid::TrainNeuralNetwork(train, nullptr, o), sysid::OptionsError);
   o = {};
+  // The output-layer step exists in the library's LM trainer only: under Ceres it is an error,
+  // not silently ignored.
+  o.trainer = sysid::NeuralTrainer::kCeres;
+  o.solve_output_layer = true;
+  CHECK_THROWS_WITH(sysid::TrainNeuralNetwork(train, nullptr, o),
+                    Contains("solve_output_layer needs trainer = lm"));
+  o = {};
   auto constant = train;
   constant.inputs.setConstant(0.05);
   CHECK_THROWS_WITH(sysid::TrainNeuralNetwork(constant, nullptr, o),

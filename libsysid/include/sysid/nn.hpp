@@ -159,7 +159,7 @@ struct NeuralTrainingOptions {
   /// After every trial step, replace (w2, b2) by their linear least-squares optimum for the
   /// trial's hidden layer (the output layer is linear: a partial variable projection). The
   /// step is still accepted only if it lowers the error. false: the paper's rule exactly.
-  /// Library LM trainer only.
+  /// Library LM trainer only: Validate() rejects it with trainer = kCeres.
   bool solve_output_layer = false;
   double mu_initial = 1e-3;          ///< initial mu (trainlm: 1e-3); Ceres: 1/mu = trust radius
   double mu_decrease = 0.1;          ///< mu *= this after a successful step, in (0, 1)

@@ -169,6 +169,9 @@ void NeuralTrainingOptions::Validate() const {
   if (restarts < 1 || restarts > 1000) fail("restarts", restarts, "1 <= restarts <= 1000");
   if (ceres_block_size < 1) fail("ceres_block_size", ceres_block_size, ">= 1");
   if (threads < 0) fail("threads", threads, ">= 0 (0: all cores)");
+  if (solve_output_layer && trainer == NeuralTrainer::kCeres)
+    fail("solve_output_layer", 1,
+         "solve_output_layer needs trainer = lm (the Ceres trainer has no output-layer step)");
   for (size_t i = 0; i < input_ranges.size(); ++i)
     if (!(input_ranges[i].first < input_ranges[i].second) ||
         !std::isfinite(input_ranges[i].first) || !std::isfinite(input_ranges[i].second))
