@@ -21,16 +21,6 @@ TEST_CASE("prediction errors match hand computation", "[compare]") {
   CHECK(e.r2 == Approx(1.0 - 4.0 / 5.0));  // SST = 2.25+0.25+0.25+2.25
 }
 
-TEST_CASE("delaying a ramp is exact for fractional delays", "[compare]") {
-  const double dt = 1e-3, tau = 2.5e-3;
-  Eigen::VectorXd y(20);
-  for (int k = 0; k < 20; ++k) y[k] = 3.0 * k * dt;
-  const Eigen::VectorXd d = sysid::DelaySignal(y, dt, tau);
-  for (int k = 3; k < 20; ++k) CHECK(d[k] == Approx(3.0 * (k * dt - tau)).margin(1e-14));
-  CHECK(d[0] == y[0]);  // before the start: the first sample
-  CHECK_THROWS_AS(sysid::DelaySignal(y, dt, -1.0), sysid::OptionsError);
-}
-
 TEST_CASE("analytic inverse matches the closed form on a sinusoid", "[compare]") {
   // v = V sin(w t), a = V w cos(w t): the inverse evaluated at the exact delayed time is the
   // reference; linear interpolation of v errs by at most dt^2/8 max|v''| = dt^2/8 V w^2.

@@ -34,10 +34,6 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2);
 
-/// `y` delayed by tau_s on its uniform grid: y(t_k - tau) by linear interpolation, y[0] before
-/// the start.
-Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s);
-
 /// The network's voltage [V] per sample. Inputs are taken by name: "v" from v_mps [m/s], "a" from
 /// a_mps2 [m/s^2], any other name from the column of `recording` (when given). Throws InputError
 /// for an input it cannot supply.

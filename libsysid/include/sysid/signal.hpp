@@ -82,6 +82,18 @@ Eigen::VectorXd SavitzkyGolay(const Eigen::VectorXd& y, double dt_s, int window,
 /// factor < 1, InputError when y is too short for the filter's padding.
 Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor);
 
+/// What DelaySignal gives before the record starts (t_k - tau < t_0).
+enum class DelayStart {
+  kHoldFirst,  ///< y[0]: the signal is taken as constant before the record (a stage at rest)
+  kNaN,        ///< NaN: unknown, so a caller can drop those samples (regressions)
+};
+
+/// `y` delayed by tau_s >= 0 on its uniform grid dt_s > 0: y(t_k - tau) by linear
+/// interpolation between the two neighbouring samples; before the start as `start` says.
+/// Throws OptionsError for dt_s <= 0 or tau_s < 0.
+Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
+                            DelayStart start = DelayStart::kHoldFirst);
+
 }  // namespace sysid
 
 #endif  // SYSID_SIGNAL_HPP_

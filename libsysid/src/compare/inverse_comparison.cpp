@@ -23,25 +23,6 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
   return r;
 }
 
-Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s) {
-  if (!(dt_s > 0) || !(tau_s >= 0))
-    throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
-                       std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
-  const double shift = tau_s / dt_s;  // delay in samples, possibly fractional
-  const auto whole = static_cast<Eigen::Index>(std::floor(shift));
-  const double frac = shift - static_cast<double>(whole);
-  const Eigen::Index n = y.size();
-  Eigen::VectorXd out(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    // y(t_k - tau) lies between samples k - whole - 1 and k - whole.
-    const Eigen::Index hi = k - whole, lo = hi - 1;
-    const double y_hi = y[std::clamp<Eigen::Index>(hi, 0, n - 1)];
-    const double y_lo = y[std::clamp<Eigen::Index>(lo, 0, n - 1)];
-    out[k] = (1 - frac) * y_hi + frac * y_lo;
-  }
-  return out;
-}
-
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2) {
   const Eigen::VectorXd v_delayed = DelaySignal(v_mps, dt_s, model.tau_s);

@@ -11,7 +11,6 @@
 #include <map>
 #include <thread>
 
-#include "numerics/delay_shift.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {
@@ -81,7 +80,7 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   options.Validate();
   model.Validate();
   const MotionSignals m = ExtractMotion(recording, options.motion);
-  const Eigen::VectorXd vd = detail::DelayedSignal(m.v_mps, m.dt_s, model.tau_s);
+  const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, model.tau_s, DelayStart::kNaN);
   std::vector<Eigen::Index> rows;
   for (Eigen::Index k = 0; k < m.v_mps.size(); ++k)
     if (std::isfinite(vd[k]) && std::abs(m.v_mps[k]) >= options.min_speed_mps) rows.push_back(k);

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "numerics/bounded_search.hpp"
-#include "numerics/delay_shift.hpp"
 #include "identify/linear_fit.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
@@ -55,7 +54,7 @@ Regression Build(const std::vector<MotionSignals>& motions, const TrajectoryOpti
   Eigen::Index total = 0;
   std::vector<std::array<Eigen::VectorXd, 4>> signals;  // u, a, v, v_delayed
   for (const auto& m : motions) {
-    Eigen::VectorXd vd = detail::DelayedSignal(m.v_mps, m.dt_s, tau_s);
+    Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, tau_s, DelayStart::kNaN);
     std::array<Eigen::VectorXd, 4> s{m.u_v, m.a_mps2, m.v_mps, vd};
     if (o.decimation > 1) {
       // The samples before the delay's start are not data: hold the first real value for the
