@@ -3,11 +3,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/portable_random.hpp"
 #include "nn/mlp_kernels.hpp"
 #include "nn/trainers.hpp"
 #include "sysid/error.hpp"
@@ -16,25 +16,8 @@
 namespace sysid {
 namespace {
 
-// Uniform in [-1, 1) from the standard-specified mt19937_64 (portable, unlike the
-// implementation-defined std distributions).
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : gen_(seed) {}
-  double Symmetric() { return 2.0 * static_cast<double>(gen_() >> 11) * 0x1.0p-53 - 1.0; }
-  double Normal() {
-    double u1 = 0;
-    while (u1 <= 0) u1 = static_cast<double>(gen_() >> 11) * 0x1.0p-53;
-    const double u2 = static_cast<double>(gen_() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-  }
-
- private:
-  std::mt19937_64 gen_;
-};
-
 Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t seed) {
-  Random rng(seed);
+  detail::PortableRandom rng(seed);
   Eigen::VectorXd theta(nn::ParameterCount(n, H));
   Eigen::MatrixXd W1(H, n);
   Eigen::VectorXd b1(H), w2(H);

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "stage/stage_noise.hpp"
+#include "core/portable_random.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
 
@@ -239,7 +239,7 @@ class VirtualStage::Impl {
   }
 
   double Measure() {
-    const double x = N_VGetArrayPointer(y_)[kX] + p_.position_noise_m * noise_.Gaussian();
+    const double x = N_VGetArrayPointer(y_)[kX] + p_.position_noise_m * noise_.IrwinHallGaussian();
     if (encoder_divisor_ > 0) return std::round(x * encoder_divisor_) / encoder_divisor_;
     return std::round(x / p_.encoder_resolution_m) * p_.encoder_resolution_m;
   }
@@ -344,7 +344,7 @@ class VirtualStage::Impl {
   }
 
   StageParameters p_;
-  detail::StageNoise noise_;
+  detail::PortableRandom noise_;
   double ts_ = 1e-3;
   long delay_samples_ = 0;
   double delay_fraction_ = 0;
