@@ -339,10 +339,8 @@ void BindIdentify(py::module_& m) {
       .def_readonly("rms_error_mps", &RefineResult::rms_error_mps)
       .def_readonly("iterations", &RefineResult::iterations)
       .def_readonly("simulations", &RefineResult::simulations)
-      .def_readonly("converged", &RefineResult::converged)
-      .def_property_readonly(
-          "termination",
-          [](const RefineResult& r) { return r.converged ? "converged" : "not converged"; })
+      .def_property_readonly("termination",
+                             [](const RefineResult& r) { return ToString(r.termination); })
       .def_readonly("message", &RefineResult::message)
       .def_readonly("wall_time_s", &RefineResult::wall_time_s)
       .def("brief_report", &RefineResult::BriefReport);

@@ -159,7 +159,9 @@ void BindModel(py::module_& m) {
         return fmt::format("<SimulationEvent {} at {} s>", ToString(e.kind), e.t_s);
       });
   py::class_<SimulationSummary>(m, "SimulationSummary")
-      .def_readonly("success", &SimulationSummary::success)
+      .def_property_readonly("termination",
+                             [](const SimulationSummary& s) { return ToString(s.termination); })
+      .def("is_solution_usable", &SimulationSummary::IsSolutionUsable)
       .def_readonly("message", &SimulationSummary::message)
       .def_readonly("cvode_flag", &SimulationSummary::cvode_flag)
       .def_readonly("failure_time_s", &SimulationSummary::failure_time_s)
@@ -175,7 +177,7 @@ void BindModel(py::module_& m) {
       .def_readonly("summary", &SimulationResult::summary)
       .def_property_readonly("termination",
                              [](const SimulationResult& r) {
-                               return r.summary.success ? "success" : "failure";
+                               return ToString(r.summary.termination);
                              })
       .def_property_readonly("message",
                              [](const SimulationResult& r) { return r.summary.message; })

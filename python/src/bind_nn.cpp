@@ -148,7 +148,9 @@ void BindNeural(py::module_& m) {
       .def_readonly("gradient_norm", &EpochRecord::gradient_norm);
   py::class_<NeuralTrainingResult>(m, "TrainingResult")
       .def_readonly("network", &NeuralTrainingResult::network)
-      .def_property_readonly("termination",
+      .def_property_readonly(
+          "termination", [](const NeuralTrainingResult& r) { return ToString(r.termination); })
+      .def_property_readonly("stop_reason",
                              [](const NeuralTrainingResult& r) { return ToString(r.stop); })
       .def_readonly("message", &NeuralTrainingResult::message)
       .def_readonly("epochs", &NeuralTrainingResult::epochs)
@@ -173,7 +175,9 @@ void BindNeural(py::module_& m) {
       .def_readonly("train_mse", &HiddenSweepRow::train_mse)
       .def_readonly("validation_mse", &HiddenSweepRow::validation_mse)
       .def_readonly("test_mse", &HiddenSweepRow::test_mse)
-      .def_property_readonly("termination",
+      .def_property_readonly(
+          "termination", [](const HiddenSweepRow& r) { return ToString(TerminationOf(r.stop)); })
+      .def_property_readonly("stop_reason",
                              [](const HiddenSweepRow& r) { return ToString(r.stop); })
       .def_readonly("wall_time_s", &HiddenSweepRow::wall_time_s);
   py::class_<HiddenSweepResult>(m, "SweepResult")

@@ -314,8 +314,8 @@ def _sweep_rows(self):
     """One dict per hidden size (pandas.DataFrame takes the list)."""
     return [{"hidden": r.hidden, "epochs": r.epochs, "train_mse": r.train_mse,
              "validation_mse": r.validation_mse, "test_mse": r.test_mse,
-             "termination": r.termination, "wall_time_s": r.wall_time_s,
-             "chosen": i == self.chosen} for i, r in enumerate(self.rows)]
+             "termination": r.termination, "stop_reason": r.stop_reason,
+             "wall_time_s": r.wall_time_s, "chosen": i == self.chosen} for i, r in enumerate(self.rows)]
 
 
 SweepResult.records = _sweep_rows
