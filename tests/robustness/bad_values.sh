@@ -22,12 +22,12 @@ expect_model() {  # expect_model MESSAGE JSON-TEXT
   [ ! -e sim.csv ] || fail "partial output"
 }
 ok='"a1n": 117, "a2p": 3, "a2n": 6.8, "a3": 6'
-expect_model "m.json:1:2: a1p: expected a number > 0, found -5" "{\"a1p\": -5, $ok}"
-expect_model "m.json:1:2: a1p: expected a number > 0, found 0" "{\"a1p\": 0, $ok}"
+expect_model "m.json:1:2: a1p: expected a number >= 0, found -5" "{\"a1p\": -5, $ok}"
+expect_model "m.json:1:2: a1p: expected a number >= 0, found -0.5" "{\"a1p\": -0.5, $ok}"
 expect_model "a3: expected a number > 0, found 0" '{"a1p": 1, "a1n": 117, "a2p": 3, "a2n": 6.8, "a3": 0}'
 expect_model "tau: expected a number in \[0, 1\], found -1" "{\"a1p\": 1, $ok, \"tau\": -1}"
 expect_model "m.json:1:1: missing required key 'a2n'" '{"a1p": 1, "a1n": 117, "a2p": 3, "a3": 6}'
-expect_model "a1p: expected a number > 0, found string" "{\"a1p\": \"1\", $ok}"
+expect_model "a1p: expected a number >= 0, found string" "{\"a1p\": \"1\", $ok}"
 expect_model "m.json:1:9: expected a finite number, found 1e400" "{\"a1p\": 1e400, $ok}"
 expect_model "unknown key 'tua'" "{\"a1p\": 1, $ok, \"tua\": 0}"
 # Control bytes of a hostile file are escaped in the message.
