@@ -120,6 +120,11 @@ NeuralDataset ReadNeuralDataset(const std::string& path,
                                 const std::vector<std::string>& input_names,
                                 const std::string& output_name);
 
+/// Every `stride`-th row (rows 0, stride, 2 stride, ...); stride <= 1 returns the set unchanged.
+/// The typical (v, a) network's 481 parameters make each LM epoch cost N P^2 flops: the
+/// pipeline and the stage facts train it on every 2nd row.
+NeuralDataset SubsampleRows(const NeuralDataset& data, int stride);
+
 /// Mean of (net(x_k) - target_k)^2 over the set [output unit^2].
 double MeanSquaredError(const NeuralNetwork& net, const NeuralDataset& data);
 

@@ -27,21 +27,6 @@ const std::vector<std::string> kIds{"F1", "F2", "F3", "F4", "F5", "F6", "F7"};
 std::string Mm(double m) { return fmt::format("{:.4g}", 1e3 * m); }
 std::string Pct(double r) { return fmt::format("{:.2g} %", 100 * r); }
 
-// Every n-th row (the typical network's 481 parameters make each LM epoch cost N P^2 flops; the
-// pipeline trains it on every 2nd row too).
-NeuralDataset Subsample(const NeuralDataset& d, int stride) {
-  if (stride <= 1) return d;
-  NeuralDataset out = d;
-  const Eigen::Index n = (d.size() + stride - 1) / stride;
-  out.inputs.resize(n, d.inputs.cols());
-  out.targets.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    out.inputs.row(k) = d.inputs.row(k * stride);
-    out.targets[k] = d.targets[k * stride];
-  }
-  return out;
-}
-
 class FactsRun {
  public:
   FactsRun(const StageParameters& stage, const FactsOptions& o, const FactsProgress& progress)
@@ -132,7 +117,7 @@ class FactsRun {
     t.hidden = o_.typical_hidden;
     t.max_epochs = o_.typical_max_epochs;
     const NeuralNetwork typical =
-        TrainNeuralNetwork(Subsample(train_va, o_.typical_stride), nullptr, t).network;
+        TrainNeuralNetwork(SubsampleRows(train_va, o_.typical_stride), nullptr, t).network;
     r_.typical_train_mse = MeanSquaredError(typical, train_va);
     r_.typical_test_mse = MeanSquaredError(typical, test_va);
   }

@@ -40,4 +40,17 @@ double MeanSquaredError(const NeuralNetwork& net, const NeuralDataset& data) {
          static_cast<double>(data.size());
 }
 
+NeuralDataset SubsampleRows(const NeuralDataset& data, int stride) {
+  if (stride <= 1) return data;
+  NeuralDataset out = data;
+  const Eigen::Index n = (data.size() + stride - 1) / stride;
+  out.inputs.resize(n, data.inputs.cols());
+  out.targets.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    out.inputs.row(k) = data.inputs.row(k * stride);
+    out.targets[k] = data.targets[k * stride];
+  }
+  return out;
+}
+
 }  // namespace sysid

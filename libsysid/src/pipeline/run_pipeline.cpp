@@ -27,21 +27,6 @@ std::string ColumnOf(const std::string& variable) {
   return variable;
 }
 
-// Every row `stride`-th of a data set (the typical network's P = 481 makes each LM epoch cost
-// N P^2 flops; a stride keeps the pipeline inside its time budget).
-NeuralDataset Subsample(const NeuralDataset& d, int stride) {
-  if (stride <= 1) return d;
-  NeuralDataset out = d;
-  const Eigen::Index n = (d.size() + stride - 1) / stride;
-  out.inputs.resize(n, d.inputs.cols());
-  out.targets.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    out.inputs.row(k) = d.inputs.row(k * stride);
-    out.targets[k] = d.targets[k * stride];
-  }
-  return out;
-}
-
 // v and a columns for the network data sets: recorded ones when present (made with the filter
 // chosen at collection time), else derived with the default motion filter.
 Recording WithDerivatives(const Recording& rec) {
@@ -139,7 +124,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (options.typical) {
     step("typical (v, a) network", [&] {
       const NeuralDataset train_va =
-          Subsample(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+          SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
       const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
       NeuralTrainingOptions t = options.training;
       t.hidden = options.typical_hidden;
