@@ -110,28 +110,51 @@ Recording PulseExcitation(const PulseProcedure& procedure, double rate) {
   return r;
 }
 
-Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
-                       std::uint64_t seed, const DerivativeOptions& derivative) {
-  stage.Validate();
+namespace {
+
+// An open-loop run of `u` as a recording t, u, x, v, a (v and a from the encoder's x by
+// `derivative`), with the common metadata; the caller adds its procedure's own and finishes
+// with FinishOpenLoopRecording.
+Recording OpenLoopRecording(const StageParameters& stage, const Eigen::VectorXd& u,
+                            std::uint64_t seed, const DerivativeOptions& derivative,
+                            const std::string& source, const std::string& procedure,
+                            std::string* limits) {
   const double rate = stage.sample_rate_hz;
-  derivative.Validate(1.0 / rate);
-  const StageRun run = RunOpenLoop(stage, procedure.Voltage(rate), seed);
+  const StageRun run = RunOpenLoop(stage, u, seed);
   const Derivatives d = Differentiate(run.x_m, 1.0 / rate, derivative);
   Recording r;
-  r.source = "pulses";
+  r.source = source;
   r.names = {"t", "u", "x", "v", "a"};
   r.data.resize(run.t_s.size(), 5);
   r.data << run.t_s, run.u_v, run.x_m, d.v_mps, d.a_mps2;
-  AddCommonMetadata(r, stage, "pulse test", seed);
+  AddCommonMetadata(r, stage, procedure, seed);
+  *limits = run.status.Describe();
+  return r;
+}
+
+void FinishOpenLoopRecording(const DerivativeOptions& derivative, const std::string& limits,
+                             Recording* r) {
+  r->metadata.emplace_back("derivative", ToString(derivative.method));
+  r->metadata.emplace_back("limits", limits);
+  r->metadata.emplace_back("units", kUnits);
+}
+
+}  // namespace
+
+Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
+                       std::uint64_t seed, const DerivativeOptions& derivative) {
+  stage.Validate();
+  derivative.Validate(1.0 / stage.sample_rate_hz);
+  std::string limits;
+  Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
+                                  derivative, "pulses", "pulse test", &limits);
   std::string amps;
   for (double a : procedure.amplitudes_v) amps += (amps.empty() ? "" : " ") + Fmt(a);
   r.metadata.emplace_back("amplitudes_v", amps);
   r.metadata.emplace_back("pulse_on_s", Fmt(procedure.on_s));
   r.metadata.emplace_back("pulse_rest_s", Fmt(procedure.rest_s));
   r.metadata.emplace_back("pulse_lead_s", Fmt(procedure.lead_s));
-  r.metadata.emplace_back("derivative", ToString(derivative.method));
-  r.metadata.emplace_back("limits", run.status.Describe());
-  r.metadata.emplace_back("units", kUnits);
+  FinishOpenLoopRecording(derivative, limits, &r);
   return r;
 }
 
@@ -170,23 +193,16 @@ Eigen::VectorXd TriangleProcedure::Voltage(double rate) const {
 Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure& procedure,
                           std::uint64_t seed, const DerivativeOptions& derivative) {
   stage.Validate();
-  const double rate = stage.sample_rate_hz;
-  derivative.Validate(1.0 / rate);
-  const StageRun run = RunOpenLoop(stage, procedure.Voltage(rate), seed);
-  const Derivatives d = Differentiate(run.x_m, 1.0 / rate, derivative);
-  Recording r;
-  r.source = "triangle";
-  r.names = {"t", "u", "x", "v", "a"};
-  r.data.resize(run.t_s.size(), 5);
-  r.data << run.t_s, run.u_v, run.x_m, d.v_mps, d.a_mps2;
-  AddCommonMetadata(r, stage, "open-loop triangle (voltage-velocity loop)", seed);
+  derivative.Validate(1.0 / stage.sample_rate_hz);
+  std::string limits;
+  Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
+                                  derivative, "triangle",
+                                  "open-loop triangle (voltage-velocity loop)", &limits);
   r.metadata.emplace_back("triangle", "period " + Fmt(procedure.period_s) + " s, peaks +" +
                                           Fmt(procedure.peak_forward_v) + " / -" +
                                           Fmt(procedure.peak_backward_v) + " V, " +
                                           std::to_string(procedure.cycles) + " cycle(s)");
-  r.metadata.emplace_back("derivative", ToString(derivative.method));
-  r.metadata.emplace_back("limits", run.status.Describe());
-  r.metadata.emplace_back("units", kUnits);
+  FinishOpenLoopRecording(derivative, limits, &r);
   return r;
 }
 
