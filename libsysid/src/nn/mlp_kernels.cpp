@@ -18,10 +18,22 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 Weights::Weights(const VectorXd& theta, int n, int H)
-    : W1(theta.data(), H, n),
-      b1(theta.data() + H * n, H),
-      w2(theta.data() + H * n + H, H),
-      b2(theta[H * n + 2 * H]) {}
+    : W1(theta.data() + ParameterLayout{n, H}.W1(), H, n),
+      b1(theta.data() + ParameterLayout{n, H}.b1(), H),
+      w2(theta.data() + ParameterLayout{n, H}.w2(), H),
+      b2(theta[ParameterLayout{n, H}.b2()]) {}
+
+VectorXd PackParameters(const MatrixXd& W1, const VectorXd& b1, const VectorXd& w2, double b2) {
+  const int H = static_cast<int>(W1.rows()), n = static_cast<int>(W1.cols());
+  const ParameterLayout l{n, H};
+  VectorXd theta(l.count());
+  for (int h = 0; h < H; ++h)
+    for (int i = 0; i < n; ++i) theta[l.W1() + h * n + i] = W1(h, i);
+  theta.segment(l.b1(), H) = b1;
+  theta.segment(l.w2(), H) = w2;
+  theta[l.b2()] = b2;
+  return theta;
+}
 
 void TanhInPlace(Eigen::Ref<Eigen::ArrayXXd> x) {
   // tanh(x) = 1 - 2 / (exp(2x) + 1); exp(2x) = inf gives exactly 1, exp(2x) = 0 exactly -1.
@@ -215,8 +227,8 @@ double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* t
   const VectorXd sol = ldlt.solve(c[0]);
   if (ldlt.info() != Eigen::Success || !sol.allFinite())
     return std::numeric_limits<double>::quiet_NaN();
-  theta->segment(H * n + H, H) = sol.head(H);
-  (*theta)[H * n + 2 * H] = sol[H];
+  theta->segment(ParameterLayout{n, H}.w2(), H) = sol.head(H);
+  (*theta)[ParameterLayout{n, H}.b2()] = sol[H];
   const isa::Problem solved = MakeProblem(Z, y, H, *theta);
   double part[kChunks] = {};
   detail::ParallelFor(ch.C, threads, [&](long i) {

@@ -13,6 +13,19 @@
 
 namespace sysid::nn {
 
+/// Where each part of theta = [W1 (H x n, row-major), b1, w2, b2] starts: the one definition of
+/// the network's parameter layout (the kernels in mlp_kernels_impl.inc, which may not include
+/// Eigen-using headers, spell the same offsets out; the kernel tests check them against the
+/// network's own evaluation).
+struct ParameterLayout {
+  int n, H;
+  int W1() const { return 0; }
+  int b1() const { return H * n; }
+  int w2() const { return H * n + H; }
+  int b2() const { return H * n + 2 * H; }
+  int count() const { return H * (n + 2) + 1; }
+};
+
 /// Views of theta's parts.
 struct Weights {
   Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> W1;
@@ -21,7 +34,11 @@ struct Weights {
   Weights(const Eigen::VectorXd& theta, int n, int H);
 };
 
-inline int ParameterCount(int n, int H) { return H * (n + 2) + 1; }
+inline int ParameterCount(int n, int H) { return ParameterLayout{n, H}.count(); }
+
+/// theta from its parts (W1 H x n, b1, w2 of size H, b2).
+Eigen::VectorXd PackParameters(const Eigen::MatrixXd& W1, const Eigen::VectorXd& b1,
+                               const Eigen::VectorXd& w2, double b2);
 
 /// tanh through exp (Eigen vectorises exp for double but not tanh): absolute error ~1e-16,
 /// exact limits +-1 for large |x|, NaN in gives NaN out.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "nn/mlp_kernels.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
@@ -51,21 +52,18 @@ NeuralNetwork ParseNeuralNetwork(std::string_view json_text, const std::string& 
   const auto w2 = root.Get("W2").Numbers(static_cast<size_t>(H));
   const double b2 = root.Get("b2").Number();
   NeuralNetwork net(inputs, output, H);
-  Eigen::VectorXd theta(net.parameter_count());
+  Eigen::MatrixXd W1(H, n);
   for (int h = 0; h < H; ++h) {
     // A single-input network may list W1 as plain numbers instead of 1-element rows.
     const detail::JsonNode row = jw1.Element(static_cast<size_t>(h));
     const std::vector<double> w = (n == 1 && row.json().is_number())
                                       ? std::vector<double>{row.Number()}
                                       : row.Numbers(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) theta[h * n + i] = w[i];
+    for (int i = 0; i < n; ++i) W1(h, i) = w[i];
   }
-  for (int h = 0; h < H; ++h) {
-    theta[H * n + h] = b1[h];
-    theta[H * n + H + h] = w2[h];
-  }
-  theta[H * n + 2 * H] = b2;
-  net.set_parameters(theta);
+  net.set_parameters(nn::PackParameters(
+      W1, Eigen::Map<const Eigen::VectorXd>(b1.data(), H),
+      Eigen::Map<const Eigen::VectorXd>(w2.data(), H), b2));
   if (root.Has("note")) net.note = root.Get("note").String();
   return net;
 }

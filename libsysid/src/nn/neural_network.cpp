@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "nn/mlp_kernels.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 
@@ -51,14 +52,7 @@ std::vector<std::string> NeuralNetwork::input_names() const {
 }
 
 Eigen::VectorXd NeuralNetwork::parameters() const {
-  const int H = hidden_size(), n = input_count();
-  Eigen::VectorXd theta(parameter_count());
-  for (int h = 0; h < H; ++h)
-    for (int i = 0; i < n; ++i) theta[h * n + i] = W1_(h, i);
-  theta.segment(H * n, H) = b1_;
-  theta.segment(H * n + H, H) = w2_;
-  theta[H * n + 2 * H] = b2_;
-  return theta;
+  return nn::PackParameters(W1_, b1_, w2_, b2_);
 }
 
 void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
@@ -68,11 +62,11 @@ void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
                        " entries. Violated constraint: size = "
                        "H n + 2 H + 1 = " +
                        std::to_string(parameter_count()));
-  for (int h = 0; h < H; ++h)
-    for (int i = 0; i < n; ++i) W1_(h, i) = theta[h * n + i];
-  b1_ = theta.segment(H * n, H);
-  w2_ = theta.segment(H * n + H, H);
-  b2_ = theta[H * n + 2 * H];
+  const nn::Weights w(theta, n, H);
+  W1_ = w.W1;
+  b1_ = w.b1;
+  w2_ = w.w2;
+  b2_ = w.b2;
 }
 
 void NeuralNetwork::set_input_range(int i, double min, double max) {

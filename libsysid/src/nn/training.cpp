@@ -18,7 +18,6 @@ namespace {
 
 Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t seed) {
   detail::PortableRandom rng(seed);
-  Eigen::VectorXd theta(nn::ParameterCount(n, H));
   Eigen::MatrixXd W1(H, n);
   Eigen::VectorXd b1(H), w2(H);
   double b2 = 0;
@@ -41,12 +40,7 @@ Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t s
     for (int h = 0; h < H; ++h) b1[h] = 2.0 * rng.Symmetric();
     for (int h = 0; h < H; ++h) w2[h] = rng.Normal() / std::sqrt(static_cast<double>(H));
   }
-  for (int h = 0; h < H; ++h)
-    for (int i = 0; i < n; ++i) theta[h * n + i] = W1(h, i);
-  theta.segment(H * n, H) = b1;
-  theta.segment(H * n + H, H) = w2;
-  theta[H * n + 2 * H] = b2;
-  return theta;
+  return nn::PackParameters(W1, b1, w2, b2);
 }
 
 void CheckData(const NeuralDataset& d, const char* role, const NeuralDataset* reference) {
