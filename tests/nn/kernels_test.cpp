@@ -36,6 +36,31 @@ Problem MakeProblem(int n, int H, int N, unsigned seed) {
 
 }  // namespace
 
+TEST_CASE("the kernels read theta in the one parameter layout", "[nn][kernels]") {
+  // The kernels spell the layout's offsets out (mlp_kernels_impl.inc may not include the
+  // header that defines them): their residuals must be the network written with the layout's
+  // parts, w2' tanh(W1 z + b1) + b2 - y, by std::tanh.
+  for (int n : {1, 2, 3}) {
+    const Problem p = MakeProblem(n, 7, 40, 11u + static_cast<unsigned>(n));
+    const sysid::nn::ParameterLayout l{n, p.H};
+    REQUIRE(p.theta.size() == l.count());
+    Eigen::VectorXd r;
+    sysid::nn::Residuals(p.Z, p.y, p.H, p.theta, &r);
+    for (Eigen::Index k = 0; k < p.Z.cols(); ++k) {
+      double out = p.theta[l.b2()];
+      for (int h = 0; h < p.H; ++h) {
+        double z = p.theta[l.b1() + h];
+        for (int i = 0; i < n; ++i) z += p.theta[l.W1() + h * n + i] * p.Z(i, k);
+        out += p.theta[l.w2() + h] * std::tanh(z);
+      }
+      CHECK(r[k] == Approx(out - p.y[k]).margin(1e-13));
+    }
+    // PackParameters and Weights are each other's inverse.
+    const sysid::nn::Weights w(p.theta, n, p.H);
+    CHECK(sysid::nn::PackParameters(w.W1, w.b1, w.w2, w.b2) == p.theta);
+  }
+}
+
 TEST_CASE("Jacobian matches central finite differences", "[nn][kernels]") {
   for (int n : {1, 2, 3}) {
     const Problem p = MakeProblem(n, 5, 37, 11u + static_cast<unsigned>(n));
