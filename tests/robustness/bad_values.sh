@@ -4,12 +4,7 @@
 # terminal; a tau at its search bound is warned about (issue #14).
 # Usage: bad_values.sh SYSID SOURCE_DIR
 set -u
-sysid=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-fail() { echo "FAIL: $*" >&2; [ -f err.txt ] && cat err.txt >&2; exit 1; }
+. "$(dirname "$0")/common.sh"
 v="$src/datasets/virtual"
 model() {  # model FILE JSON-TEXT
   printf '%s' "$2" > "$1"

@@ -3,12 +3,7 @@
 # model files carry no wall time, the pipeline report keeps timing on stderr.
 # Usage: determinism.sh SYSID SOURCE_DIR
 set -u
-sysid=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/common.sh"
 run() { "$sysid" "$@" >/dev/null 2>err.txt || { cat err.txt >&2; fail "$* exited $?"; }; }
 v="$src/datasets/virtual"
 for k in 1 2; do

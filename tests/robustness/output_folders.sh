@@ -3,18 +3,7 @@
 # one sysid wrote (with --force); a user's folder is refused with exit 1 and nothing is deleted
 # (issue #14). Usage: output_folders.sh SYSID SOURCE_DIR
 set -u
-sysid=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-fail() { echo "FAIL: $*" >&2; [ -f err.txt ] && cat err.txt >&2; exit 1; }
-expect() {  # expect CODE MESSAGE-PART ARGS...
-  code=$1; part=$2; shift 2
-  "$sysid" "$@" >out.txt 2>err.txt; rc=$?
-  [ "$rc" -eq "$code" ] || fail "$* exited $rc, expected $code"
-  [ -z "$part" ] || grep -q -- "$part" err.txt || fail "$*: message lacks '$part'"
-}
+. "$(dirname "$0")/common.sh"
 mkdir thesis && echo keep > thesis/thesis.tex
 # excite waveforms -o DIR: one CSV per waveform (the tutorial's next step globs them).
 expect 0 "" excite waveforms -o refs

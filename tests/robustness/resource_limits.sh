@@ -3,20 +3,7 @@
 # at once, naming the option or key and the limit, instead of running out of memory (issue #14).
 # Usage: resource_limits.sh SYSID SOURCE_DIR
 set -u
-sysid=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work" || exit 1
-fail() { echo "FAIL: $*" >&2; [ -f err.txt ] && cat err.txt >&2; exit 1; }
-expect() {  # expect CODE MESSAGE-PART ARGS...
-  code=$1; part=$2; shift 2
-  "$sysid" "$@" >out.txt 2>err.txt; rc=$?
-  [ "$rc" -eq "$code" ] || fail "$* exited $rc, expected $code"
-  grep -q -- "$part" err.txt || fail "$*: message lacks '$part'"
-  grep -q "internal error" err.txt && fail "$*: internal error"
-  return 0
-}
+. "$(dirname "$0")/common.sh"
 train="$src/datasets/virtual/training.csv"
 expect 1 "at most 20000000 samples" excite pulses --rate 1e12
 expect 1 "at most 20000000 samples" excite pulses --on 1e9
