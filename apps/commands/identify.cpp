@@ -78,9 +78,9 @@ nlohmann::ordered_json ParametersJson(const std::vector<std::string>& names,
   return {{"parameters", p}, {"covariance_order", names}, {"covariance", c}};
 }
 
+// The model file's own text (ModelToJson: parameters and their units); diagnostics follow.
 nlohmann::ordered_json ModelJson(const FrictionModel& m) {
-  return {{"a1p", m.a1p}, {"a1n", m.a1n}, {"a2p", m.a2p},
-          {"a2n", m.a2n}, {"a3", m.a3},   {"tau", m.tau_s}};
+  return nlohmann::ordered_json::parse(ModelToJson(m, -1));
 }
 
 MotionOptions Motion(const IdentifyCli& o, MotionOptions m) {
