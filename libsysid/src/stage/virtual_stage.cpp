@@ -11,18 +11,17 @@
 // of a sample, so within each sample the driver input has at most one edge, at t_k + f Ts. The
 // integration is restarted (CVodeReInit) at every edge where the input changes: the right-hand
 // side is then smooth on each integrated piece, which keeps BDF at full order and accuracy.
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/cvode_solver.hpp"
 #include "core/portable_random.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
@@ -56,39 +55,22 @@ class VirtualStage::Impl {
     // short ("0.0123456"), which keeps the bundled CSV files small.
     encoder_divisor_ = std::abs(inv_q - std::round(inv_q)) < 1e-9 * inv_q ? std::round(inv_q) : 0;
 
-    if (SUNContext_Create(nullptr, &ctx_) != 0) Fail("SUNContext_Create", -1);
-    y_ = N_VNew_Serial(kStates, ctx_);
-    double* y = N_VGetArrayPointer(y_);
-    y[kX] = p_.initial_position_m;
-    y[kV] = y[kZ] = y[kW] = 0;
     vs_ = p_.model == StageModel::kVelocitySource;
-    atol_ = N_VNew_Serial(kStates, ctx_);
-    double* a = N_VGetArrayPointer(atol_);
-    a[kX] = p_.position_tolerance_m;
-    a[kV] = p_.position_tolerance_m / ts_;
-    a[kZ] = 0.1 * p_.position_tolerance_m;
-    a[kW] = p_.position_tolerance_m / ts_;
-    mem_ = CVodeCreate(CV_BDF, ctx_);
-    if (!mem_) Fail("CVodeCreate", -1);
-    Check(CVodeInit(mem_, &Impl::Rhs, 0.0, y_), "CVodeInit");
-    Check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
-    Check(CVodeSVtolerances(mem_, p_.relative_tolerance, atol_), "CVodeSVtolerances");
-    matrix_ = SUNDenseMatrix(kStates, kStates, ctx_);
-    solver_ = SUNLinSol_Dense(y_, matrix_, ctx_);
-    Check(CVodeSetLinearSolver(mem_, solver_, matrix_), "CVodeSetLinearSolver");
-    Check(CVodeSetJacFn(mem_, &Impl::Jacobian), "CVodeSetJacFn");
-    Check(CVodeSetMaxNumSteps(mem_, 100000), "CVodeSetMaxNumSteps");
+    const std::array<double, kStates> y0{p_.initial_position_m, 0.0, 0.0, 0.0};
+    cv_.emplace(kStates, detail::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
+                "virtual stage",
+                "try a larger integrator.relative_tolerance or a smaller "
+                "friction.bristle_stiffness_per_s2");
+    std::array<double, kStates> atol{};
+    atol[kX] = p_.position_tolerance_m;
+    atol[kV] = p_.position_tolerance_m / ts_;
+    atol[kZ] = 0.1 * p_.position_tolerance_m;
+    atol[kW] = p_.position_tolerance_m / ts_;
+    cv_->SetTolerances(p_.relative_tolerance, atol.data());
+    cv_->SetJacobian(&Impl::Jacobian);
+    cv_->SetMaxNumSteps(100000);
     EnableRoots(true);
     reading_ = Measure();
-  }
-
-  ~Impl() {
-    if (mem_) CVodeFree(&mem_);
-    if (solver_) SUNLinSolFree(solver_);
-    if (matrix_) SUNMatDestroy(matrix_);
-    if (y_) N_VDestroy(y_);
-    if (atol_) N_VDestroy(atol_);
-    if (ctx_) SUNContext_Free(&ctx_);
   }
 
   double Dac(double u) const {
@@ -126,7 +108,7 @@ class VirtualStage::Impl {
       Advance(t1, Drive(now));
     }
     ++k_;
-    const double v = N_VGetArrayPointer(y_)[kV];
+    const double v = cv_->state()[kV];
     if (std::abs(v) > p_.max_velocity_mps && !status_.velocity_limit_exceeded) {
       status_.velocity_limit_exceeded = true;
       status_.first_velocity_exceed_s = time_s();
@@ -138,15 +120,13 @@ class VirtualStage::Impl {
   double time_s() const { return static_cast<double>(k_) * ts_; }
 
   StageState State() const {
-    const double* y = N_VGetArrayPointer(y_);
+    const double* y = cv_->state();
     return {y[kX], y[kV], y[kZ], y[kW], vs_ && (stuck_ || stop_ != 0)};
   }
 
   StageStatus Status() const {
     StageStatus s = status_;
-    long steps = 0;
-    CVodeGetNumSteps(mem_, &steps);
-    s.steps += steps;
+    s.steps = cv_->Counters().steps;
     return s;
   }
 
@@ -157,7 +137,7 @@ class VirtualStage::Impl {
  private:
   // Integrates to `t_end` with driver input `drive` (after dead zone and map).
   void Advance(double t_end, double drive) {
-    double* y = N_VGetArrayPointer(y_);
+    double* y = cv_->state();
     const double pull = vs_ ? p_.NoLoadSpeed(y[kW]) : y[kW];
     if (stop_ != 0 && pull * stop_ < 0) {
       // The drive pulls away from the end stop: free the stage again.
@@ -171,11 +151,11 @@ class VirtualStage::Impl {
       Restart();
     }
     if (vs_ && stop_ == 0 && stuck_ && Breakaway(y[kW]) > 0) BreakAway();
-    Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+    cv_->SetStopTime(t_end);
     while (t_ < t_end) {
-      const int flag = CVode(mem_, t_end, y_, &t_, CV_NORMAL);
+      const int flag = cv_->Advance(t_end, &t_, CV_NORMAL);
       int which[3] = {0, 0, 0};
-      if (flag == CV_ROOT_RETURN) Check(CVodeGetRootInfo(mem_, which), "CVodeGetRootInfo");
+      if (flag == CV_ROOT_RETURN) cv_->GetRootInfo(which);
       if (flag == CV_ROOT_RETURN && vs_ && which[0] == 0 && which[1] == 0) {
         // A stick-slip switch of the rail.
         if (stuck_) {
@@ -189,7 +169,7 @@ class VirtualStage::Impl {
           }
           Restart();
         }
-        Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+        cv_->SetStopTime(t_end);
       } else if (flag == CV_ROOT_RETURN) {
         // At an end stop: the stage stops dead and stays until the drive reverses.
         stop_ = y[kX] >= p_.travel_max_m ? 1 : -1;
@@ -201,9 +181,9 @@ class VirtualStage::Impl {
         }
         Restart();
         EnableRoots(false);
-        Check(CVodeSetStopTime(mem_, t_end), "CVodeSetStopTime");
+        cv_->SetStopTime(t_end);
       } else if (flag < 0) {
-        Fail("CVode", flag);
+        cv_->Throw(flag, "CVode");
       }
     }
   }
@@ -216,30 +196,24 @@ class VirtualStage::Impl {
 
   void BreakAway() {
     stuck_ = false;
-    direction_ = p_.NoLoadSpeed(N_VGetArrayPointer(y_)[kW]) > 0 ? 1 : -1;
-    N_VGetArrayPointer(y_)[kV] = 0;
+    direction_ = p_.NoLoadSpeed(cv_->state()[kW]) > 0 ? 1 : -1;
+    cv_->state()[kV] = 0;
     Restart();
   }
 
   void Restart() {
-    long steps = 0;
-    CVodeGetNumSteps(mem_, &steps);
-    status_.steps += steps;
     double h = 0;
-    CVodeGetLastStep(mem_, &h);
-    Check(CVodeReInit(mem_, t_, y_), "CVodeReInit");
+    CVodeGetLastStep(cv_->mem(), &h);
+    cv_->ReInit(t_);
     // Start from the last successful step size instead of CVODE's cautious estimate.
-    if (h > 0) Check(CVodeSetInitStep(mem_, std::min(h, ts_)), "CVodeSetInitStep");
+    if (h > 0) cv_->SetInitStep(std::min(h, ts_));
     ++status_.reinitialisations;
   }
 
-  void EnableRoots(bool on) {
-    Check(on ? CVodeRootInit(mem_, vs_ ? 3 : 2, &Impl::Roots) : CVodeRootInit(mem_, 0, nullptr),
-          "CVodeRootInit");
-  }
+  void EnableRoots(bool on) { cv_->SetRoots(on ? (vs_ ? 3 : 2) : 0, &Impl::Roots); }
 
   double Measure() {
-    const double x = N_VGetArrayPointer(y_)[kX] + p_.position_noise_m * noise_.IrwinHallGaussian();
+    const double x = cv_->state()[kX] + p_.position_noise_m * noise_.IrwinHallGaussian();
     if (encoder_divisor_ > 0) return std::round(x * encoder_divisor_) / encoder_divisor_;
     return std::round(x / p_.encoder_resolution_m) * p_.encoder_resolution_m;
   }
@@ -331,18 +305,6 @@ class VirtualStage::Impl {
     return 0;
   }
 
-  void Check(int flag, const char* what) const {
-    if (flag < 0) Fail(what, flag);
-  }
-
-  [[noreturn]] void Fail(const char* what, int flag) const {
-    const char* name = flag == -1 && !mem_ ? "allocation failed" : CVodeGetReturnFlagName(flag);
-    throw NumericalError(std::string("virtual stage: ") + what + " failed with " + name +
-                         " at t = " + Num(t_) + " s (sample " + std::to_string(k_) +
-                         "); try a larger integrator.relative_tolerance or a smaller "
-                         "friction.bristle_stiffness_per_s2");
-  }
-
   StageParameters p_;
   detail::PortableRandom noise_;
   double ts_ = 1e-3;
@@ -360,12 +322,7 @@ class VirtualStage::Impl {
   int direction_ = 1;      // velocity source: sliding direction d while not stuck
   double reading_ = 0;
   StageStatus status_;
-  SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr;
-  N_Vector atol_ = nullptr;
-  SUNMatrix matrix_ = nullptr;
-  SUNLinearSolver solver_ = nullptr;
-  void* mem_ = nullptr;
+  std::optional<detail::CvodeSolver> cv_;  // made once p_ is validated
 };
 
 VirtualStage::VirtualStage(const StageParameters& parameters, std::uint64_t seed)

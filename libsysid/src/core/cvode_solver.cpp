@@ -1,0 +1,196 @@
+#include "core/cvode_solver.hpp"
+
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+#include "sysid/error.hpp"
+
+namespace sysid::detail {
+namespace {
+
+/// What a flag means, in words a user can act on (CVODE's names are terse).
+const char* Reason(int flag) {
+  switch (flag) {
+    case CV_TOO_MUCH_WORK: return "too much work (the step budget ran out before the stop time)";
+    case CV_TOO_MUCH_ACC: return "more accuracy requested than the machine precision allows";
+    case CV_ERR_FAILURE: return "the error test failed repeatedly (the solution changes too fast)";
+    case CV_CONV_FAILURE: return "the nonlinear solver failed to converge repeatedly";
+    case CV_LINIT_FAIL: return "the linear solver could not be initialised";
+    case CV_LSETUP_FAIL: return "the linear solver's setup failed";
+    case CV_LSOLVE_FAIL: return "the linear solver failed";
+    case CV_RHSFUNC_FAIL: return "the right-hand side failed (a non-finite value)";
+    case CV_FIRST_RHSFUNC_ERR: return "the right-hand side failed at the first call";
+    case CV_REPTD_RHSFUNC_ERR: return "the right-hand side failed repeatedly";
+    case CV_UNREC_RHSFUNC_ERR: return "the right-hand side failed unrecoverably";
+    case CV_RTFUNC_FAIL: return "a root function failed";
+    case CV_MEM_FAIL: return "out of memory";
+    case CV_ILL_INPUT: return "an input to CVODE is illegal";
+    case CV_TOO_CLOSE: return "the output time is too close to the start time";
+    default: return "CVODE error";
+  }
+}
+
+std::string Seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", t);
+  return text;
+}
+
+}  // namespace
+
+CvodeSolver::CvodeSolver(int states, Method method, CVRhsFn rhs, void* user_data, double t0,
+                         const double* y0, std::string context, std::string hint)
+    : method_(method), context_(std::move(context)), hint_(std::move(hint)) {
+  // A constructor that throws runs no destructor: free what was made on the way.
+  try {
+    if (SUNContext_Create(nullptr, &ctx_) != 0) ctx_ = nullptr;
+    if (ctx_) y_ = N_VNew_Serial(states, ctx_);
+    if (!y_) Throw(CV_MEM_FAIL, "SUNContext_Create/N_VNew_Serial");
+    // Fused vector operations: one call per linear combination instead of one per term
+    // (CVODE's Nordsieck updates and CVodeGetDky are linear combinations of up to 13 vectors).
+    Check(N_VEnableFusedOps_Serial(y_, SUNTRUE), "N_VEnableFusedOps_Serial");
+    double* y = state();
+    for (int i = 0; i < states; ++i) y[i] = y0[i];
+    mem_ = CVodeCreate(method == Method::kBdf ? CV_BDF : CV_ADAMS, ctx_);
+    if (!mem_) Throw(CV_MEM_FAIL, "CVodeCreate");
+    Check(CVodeSetErrHandlerFn(mem_, &CvodeSolver::HandleError, this), "CVodeSetErrHandlerFn");
+    Check(CVodeInit(mem_, rhs, t0, y_), "CVodeInit");
+    Check(CVodeSetUserData(mem_, user_data), "CVodeSetUserData");
+    if (method == Method::kBdf) {
+      matrix_ = SUNDenseMatrix(states, states, ctx_);
+      if (matrix_) linear_ = SUNLinSol_Dense(y_, matrix_, ctx_);
+      if (!linear_) Throw(CV_MEM_FAIL, "SUNLinSol_Dense");
+      Check(CVodeSetLinearSolver(mem_, linear_, matrix_), "CVodeSetLinearSolver");
+    } else {
+      // Adams is for nonstiff problems: fixed-point iteration needs no Jacobian.
+      fixed_point_ = SUNNonlinSol_FixedPoint(y_, 0, ctx_);
+      if (!fixed_point_) Throw(CV_MEM_FAIL, "SUNNonlinSol_FixedPoint");
+      Check(CVodeSetNonlinearSolver(mem_, fixed_point_), "CVodeSetNonlinearSolver");
+    }
+  } catch (...) {
+    Release();
+    throw;
+  }
+}
+
+CvodeSolver::~CvodeSolver() { Release(); }
+
+void CvodeSolver::Release() {
+  if (mem_) CVodeFree(&mem_);
+  if (fixed_point_) SUNNonlinSolFree(fixed_point_);
+  if (linear_) SUNLinSolFree(linear_);
+  if (matrix_) SUNMatDestroy(matrix_);
+  if (work_) N_VDestroy(work_);
+  if (atol_) N_VDestroy(atol_);
+  if (y_) N_VDestroy(y_);
+  if (ctx_) SUNContext_Free(&ctx_);
+  fixed_point_ = nullptr;
+  linear_ = nullptr;
+  matrix_ = nullptr;
+  work_ = atol_ = y_ = nullptr;
+}
+
+void CvodeSolver::SetTolerances(double rtol, double atol) {
+  Check(CVodeSStolerances(mem_, rtol, atol), "CVodeSStolerances");
+}
+
+void CvodeSolver::SetTolerances(double rtol, const double* atol) {
+  if (!atol_) atol_ = N_VClone(y_);
+  if (!atol_) Throw(CV_MEM_FAIL, "N_VClone");
+  double* a = N_VGetArrayPointer(atol_);
+  for (sunindextype i = 0; i < N_VGetLength(atol_); ++i) a[i] = atol[i];
+  Check(CVodeSVtolerances(mem_, rtol, atol_), "CVodeSVtolerances");
+}
+
+void CvodeSolver::SetJacobian(CVLsJacFn jacobian) {
+  Check(CVodeSetJacFn(mem_, jacobian), "CVodeSetJacFn");
+}
+
+void CvodeSolver::SetRoots(int count, CVRootFn g) {
+  Check(CVodeRootInit(mem_, count, count > 0 ? g : nullptr), "CVodeRootInit");
+  // Callers switch root functions off by making them a nonzero constant: not worth a warning.
+  if (count > 0) Check(CVodeSetNoInactiveRootWarn(mem_), "CVodeSetNoInactiveRootWarn");
+}
+
+void CvodeSolver::SetRootDirections(int* directions) {
+  Check(CVodeSetRootDirection(mem_, directions), "CVodeSetRootDirection");
+}
+
+void CvodeSolver::SetMaxOrder(int order) { Check(CVodeSetMaxOrd(mem_, order), "CVodeSetMaxOrd"); }
+
+void CvodeSolver::SetMaxStep(double h_s) { Check(CVodeSetMaxStep(mem_, h_s), "CVodeSetMaxStep"); }
+
+void CvodeSolver::SetMaxNumSteps(long steps) {
+  Check(CVodeSetMaxNumSteps(mem_, steps), "CVodeSetMaxNumSteps");
+}
+
+void CvodeSolver::SetInitStep(double h_s) { Check(CVodeSetInitStep(mem_, h_s), "CVodeSetInitStep"); }
+
+void CvodeSolver::SetStopTime(double t_s) { Check(CVodeSetStopTime(mem_, t_s), "CVodeSetStopTime"); }
+
+void CvodeSolver::ReInit(double t_s) {
+  before_reinit_ = Counters();
+  Check(CVodeReInit(mem_, t_s, y_), "CVodeReInit");
+}
+
+const double* CvodeSolver::Dky(double t_s, int k) {
+  if (!work_) work_ = N_VClone(y_);
+  if (!work_) Throw(CV_MEM_FAIL, "N_VClone");
+  Check(CVodeGetDky(mem_, t_s, k, work_), "CVodeGetDky");
+  return N_VGetArrayPointer(work_);
+}
+
+CvodeCounters CvodeSolver::Counters() const {
+  long steps = 0, fe = 0, fe_jacobian = 0, ge = 0;
+  CVodeGetNumSteps(mem_, &steps);
+  CVodeGetNumRhsEvals(mem_, &fe);
+  CVodeGetNumGEvals(mem_, &ge);
+  if (method_ == Method::kBdf) CVodeGetNumLinRhsEvals(mem_, &fe_jacobian);
+  CvodeCounters c = before_reinit_;
+  c.steps += steps;
+  c.rhs_evaluations += fe + fe_jacobian;
+  c.root_evaluations += ge;
+  return c;
+}
+
+double CvodeSolver::CurrentTime() const {
+  double t = 0;
+  if (mem_) CVodeGetCurrentTime(mem_, &t);
+  return t;
+}
+
+std::string CvodeSolver::FlagName(int flag) {
+  char* name = CVodeGetReturnFlagName(flag);  // allocated by CVODE: ours to free
+  std::string result = name ? name : "CV_UNKNOWN";
+  std::free(name);
+  return result;
+}
+
+std::string CvodeSolver::Describe(int flag, const char* call) const {
+  std::string text = "CVODE failed";
+  if (mem_) text += " at t = " + Seconds(CurrentTime()) + " s";
+  text += std::string(": ") + Reason(flag) + " (" + FlagName(flag) + ") in " + call;
+  if (!cvode_message_.empty()) text += ": " + cvode_message_;
+  return text;
+}
+
+void CvodeSolver::Throw(int flag, const char* call) const {
+  std::string text = context_ + ": " + Describe(flag, call);
+  if (!hint_.empty()) text += "; " + hint_;
+  throw NumericalError(text);
+}
+
+void CvodeSolver::HandleError(int code, const char* module, const char* function, char* message,
+                              void* self) {
+  if (code >= 0) return;  // warnings (e.g. t + h = t) do not stop a run
+  static_cast<CvodeSolver*>(self)->cvode_message_ =
+      std::string(module) + "::" + function + ": " + message;
+}
+
+}  // namespace sysid::detail

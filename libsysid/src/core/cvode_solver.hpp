@@ -1,0 +1,115 @@
+// The one SUNDIALS CVODE wrapper: an integrator with everything it owns, and one way of turning
+// CVODE's negative return flags into readable errors.
+//
+// Both CVODE users (the simulator, simulate/, and the virtual stage, stage/) need the same
+// machinery: a SUNContext per integrator (no globals, so concurrent runs are thread-safe), a
+// serial state vector, the CVODE memory, and the nonlinear solver that suits the method —
+// fixed-point iteration for Adams (nonstiff: no Jacobian), Newton with a dense direct linear
+// solver and the caller's analytic Jacobian for BDF. Owning them in one RAII object frees them
+// on every path, exceptions included. CVODE's messages are captured (never printed to stderr)
+// and every failure reads the same way:
+//   "CVODE failed at t = 1.40716 s: too much work (CV_TOO_MUCH_WORK) in CVode: <CVODE's text>".
+#ifndef SYSID_SRC_CORE_CVODE_SOLVER_HPP_
+#define SYSID_SRC_CORE_CVODE_SOLVER_HPP_
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+
+#include <string>
+
+namespace sysid::detail {
+
+/// CVODE's counters summed over re-initialisations (CVodeReInit zeroes CVODE's own).
+struct CvodeCounters {
+  long steps = 0;
+  long rhs_evaluations = 0;  ///< f calls, those for difference-quotient Jacobians included
+  long root_evaluations = 0;
+};
+
+class CvodeSolver {
+ public:
+  enum class Method {
+    kAdams,  ///< Adams–Moulton, fixed-point iteration (nonstiff)
+    kBdf,    ///< BDF, Newton with a dense linear solver (stiff); give SetJacobian
+  };
+
+  /// An integrator of `states` equations y' = rhs(t, y) from y(t0) = y0. `user_data` reaches
+  /// rhs, the roots and the Jacobian. `context` starts every error message ("virtual stage");
+  /// `hint` ends it (what the user can change), may be empty.
+  CvodeSolver(int states, Method method, CVRhsFn rhs, void* user_data, double t0,
+              const double* y0, std::string context, std::string hint = {});
+  ~CvodeSolver();
+  CvodeSolver(const CvodeSolver&) = delete;
+  CvodeSolver& operator=(const CvodeSolver&) = delete;
+
+  /// The state vector: CVode writes the solution here, ReInit restarts from it.
+  N_Vector y() const { return y_; }
+  double* state() const { return N_VGetArrayPointer(y_); }
+  /// CVODE memory, for the Get functions (CVodeGetDky, CVodeGetLastStep, ...).
+  void* mem() const { return mem_; }
+  Method method() const { return method_; }
+
+  void SetTolerances(double rtol, double atol);
+  /// Absolute tolerance per state (`atol` has `states` entries).
+  void SetTolerances(double rtol, const double* atol);
+  void SetJacobian(CVLsJacFn jacobian);
+  /// `count` root functions g; 0 switches root finding off.
+  void SetRoots(int count, CVRootFn g);
+  void SetRootDirections(int* directions);
+  void SetMaxOrder(int order);
+  void SetMaxStep(double h_s);
+  void SetMaxNumSteps(long steps);
+  void SetInitStep(double h_s);
+  void SetStopTime(double t_s);
+  /// Restarts at t from state() (after a discontinuity): CVODE forgets its history.
+  void ReInit(double t_s);
+  /// One CVode call. Returns its flag; a negative flag is the caller's to handle (Check or
+  /// Describe), so a caller that reports failures without throwing can.
+  int Advance(double t_out_s, double* t_reached_s, int task) {
+    return CVode(mem_, t_out_s, y_, t_reached_s, task);
+  }
+
+  /// Which root functions CVode's last CV_ROOT_RETURN found (+1 rising, -1 falling, 0 not).
+  void GetRootInfo(int* found) const { Check(CVodeGetRootInfo(mem_, found), "CVodeGetRootInfo"); }
+  /// The k-th derivative of the interpolating polynomial at t (inside the last step); points
+  /// into a work vector that the next call overwrites.
+  const double* Dky(double t_s, int k);
+
+  /// CVODE's counters since construction.
+  CvodeCounters Counters() const;
+  /// CVODE's current internal time (where it stopped, also on failure).
+  double CurrentTime() const;
+
+  /// CVODE's name of a flag ("CV_TOO_MUCH_WORK").
+  static std::string FlagName(int flag);
+  /// One sentence for a failed call: "CVODE failed at t = T s: <reason> (<FLAG>) in <call>:
+  /// <CVODE's own message>" (without context and hint).
+  std::string Describe(int flag, const char* call) const;
+  /// Throws NumericalError("<context>: " + Describe(flag, call) + "; <hint>") if flag < 0.
+  void Check(int flag, const char* call) const {
+    if (flag < 0) Throw(flag, call);
+  }
+  [[noreturn]] void Throw(int flag, const char* call) const;
+
+ private:
+  static void HandleError(int code, const char* module, const char* function, char* message,
+                          void* self);
+  void Release();
+
+  Method method_;
+  std::string context_, hint_;
+  std::string cvode_message_;  // the last error CVODE reported through HandleError
+  CvodeCounters before_reinit_;
+  SUNContext ctx_ = nullptr;
+  N_Vector y_ = nullptr;
+  N_Vector atol_ = nullptr;
+  N_Vector work_ = nullptr;  // for Dky
+  void* mem_ = nullptr;
+  SUNMatrix matrix_ = nullptr;
+  SUNLinearSolver linear_ = nullptr;
+  SUNNonlinearSolver fixed_point_ = nullptr;
+};
+
+}  // namespace sysid::detail
+
+#endif  // SYSID_SRC_CORE_CVODE_SOLVER_HPP_
