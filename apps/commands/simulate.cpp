@@ -106,8 +106,7 @@ void RunSimulate(SimulateCliOptions o) {
   const SimulationResult r = Simulate(model, *input.signal, sim);
   const SimulationSummary& s = r.summary;
   if (!s.IsSolutionUsable())
-    throw NumericalError(fmt::format("simulation failed at t = {:.9g} s ({}): {}", s.failure_time_s,
-                                     s.cvode_flag, s.message));
+    throw NumericalError(fmt::format("simulation failed ({}): {}", s.cvode_flag, s.message));
 
   Recording out;
   out.source = o.output.empty() ? "stdout" : o.output;
