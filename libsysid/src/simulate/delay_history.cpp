@@ -11,6 +11,7 @@ void DelayHistory::AppendPolynomial(double t_right, double t_ref, double h, cons
   pieces_.push_back({end_, t_right, t_ref, 1.0 / h, coefficients_.size(), order});
   coefficients_.insert(coefficients_.end(), c, c + order + 1);
   end_ = t_right;
+  last_s_ = std::numeric_limits<double>::quiet_NaN();
 }
 
 void DelayHistory::AppendConstant(double t_right, double value) {
@@ -20,6 +21,7 @@ void DelayHistory::AppendConstant(double t_right, double value) {
 double DelayHistory::Value(double s) const {
   if (s < t0_) return history_v_;
   if (pieces_.empty()) return v0_;
+  if (s == last_s_) return last_value_;
   std::size_t i = cursor_ < pieces_.size() ? cursor_ : pieces_.size() - 1;
   while (i > 0 && s < pieces_[i].t_left) --i;
   while (i + 1 < pieces_.size() && s >= pieces_[i].t_right) ++i;
@@ -29,6 +31,8 @@ double DelayHistory::Value(double s) const {
   const double* c = coefficients_.data() + p.offset;
   double value = c[p.order];
   for (int k = p.order - 1; k >= 0; --k) value = value * theta + c[k];
+  last_s_ = s;
+  last_value_ = value;
   return value;
 }
 

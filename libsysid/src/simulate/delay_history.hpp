@@ -9,6 +9,7 @@
 #define SYSID_SRC_SIMULATE_DELAY_HISTORY_HPP_
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace sysid::internal {
@@ -46,6 +47,11 @@ class DelayHistory {
   std::vector<Piece> pieces_;
   std::vector<double> coefficients_;
   mutable std::size_t cursor_ = 0;  // lookups move forward in time: amortised O(1)
+  // The last look-up: CVODE evaluates f at one time several times (fixed-point iterations),
+  // then the roots at the same time, so most look-ups repeat the previous one exactly.
+  // Appending a piece may change values (past end() the last piece is extrapolated): it resets.
+  mutable double last_s_ = std::numeric_limits<double>::quiet_NaN();
+  mutable double last_value_ = 0;
 };
 
 }  // namespace sysid::internal

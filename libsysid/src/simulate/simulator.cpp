@@ -204,7 +204,7 @@ class Simulator {
         break;
       }
       ++steps_;
-      StoreStep(end.t_s);
+      StoreStep(end);
       EmitInsideStep(end.t_s);
       if (end.flag == CV_ROOT_RETURN || end.flag == CV_TSTOP_RETURN || end.t_s >= next_stop_)
         break;
@@ -214,7 +214,7 @@ class Simulator {
 
   /// The accepted step's polynomial (Taylor coefficients at tn in theta = (t - tn) / hu) into
   /// the delay history; a stuck step is an exact zero piece.
-  void StoreStep(double t_reached) {
+  void StoreStep(const SegmentEnd& end) {
     double tn = 0, hu = 0;
     int q = 0;
     CVodeGetCurrentTime(cv_.mem(), &tn);
@@ -222,7 +222,7 @@ class Simulator {
     CVodeGetLastOrder(cv_.mem(), &q);
     step_.tn = tn;
     step_.hu = hu;
-    const double piece_end = std::min(t_reached, tn);
+    const double piece_end = std::min(end.t_s, tn);
     if (p_.mode == 0) {
       step_.order = 0;
       step_.x[0] = cv_.state()[0];
@@ -231,8 +231,17 @@ class Simulator {
       return;
     }
     step_.order = q;
-    double scale = 1.0;
-    for (int k = 0; k <= q; ++k) {
+    // A plain step returns y(tn) itself (CVODE copies its Nordsieck vector z[0]): the same
+    // numbers CVodeGetDky(tn, 0) would form, without its linear combination of q + 1 vectors
+    // (at a root or stop time CVode returns an interpolated y, so there Dky it is).
+    int k0 = 0;
+    if (end.flag == CV_SUCCESS) {
+      step_.x[0] = cv_.state()[0];
+      step_.v[0] = cv_.state()[1];
+      k0 = 1;
+    }
+    double scale = k0 == 0 ? 1.0 : hu;
+    for (int k = k0; k <= q; ++k) {
       const double* d = cv_.Dky(tn, k);
       step_.x[k] = d[0] * scale;
       step_.v[k] = d[1] * scale;
