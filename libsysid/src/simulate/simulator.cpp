@@ -231,16 +231,17 @@ class Simulator {
       return;
     }
     step_.order = q;
-    // A plain step returns y(tn) itself (CVODE copies its Nordsieck vector z[0]): the same
-    // numbers CVodeGetDky(tn, 0) would form, without its linear combination of q + 1 vectors
-    // (at a root or stop time CVode returns an interpolated y, so there Dky it is).
+    // After a plain step CVode has copied y(tn), its Nordsieck vector z[0], into the state: the
+    // same numbers CVodeGetDky(tn, 0) would form with a linear combination of q + 1 vectors
+    // (one of the q + 1 extraction calls per step that dominate our share of the profile). At
+    // a root or a stop time the state is interpolated at the return time instead: ask Dky.
     int k0 = 0;
     if (end.flag == CV_SUCCESS) {
       step_.x[0] = cv_.state()[0];
       step_.v[0] = cv_.state()[1];
       k0 = 1;
     }
-    double scale = k0 == 0 ? 1.0 : hu;
+    double scale = k0 == 0 ? 1.0 : hu;  // hu^k / k!
     for (int k = k0; k <= q; ++k) {
       const double* d = cv_.Dky(tn, k);
       step_.x[k] = d[0] * scale;
