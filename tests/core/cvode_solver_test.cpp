@@ -62,6 +62,7 @@ TEST_CASE("CvodeSolver failures read as one sentence with the flag's name", "[co
                        Catch::Contains("(CV_TOO_MUCH_WORK) in CVode: "));
   CHECK_THROWS_AS(cv.Check(flag, "CVode"), NumericalError);
   CHECK_THROWS_WITH(cv.Check(flag, "CVode"), Catch::StartsWith("my integrator: CVODE failed at t = ") &&
+                                                 !Catch::Contains(".;") &&
                                                  Catch::EndsWith("; try a smaller t"));
   CHECK_NOTHROW(cv.Check(CV_SUCCESS, "CVode"));
 

@@ -305,3 +305,18 @@ TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[
     CHECK(fast.status.velocity_limit_exceeded);  // steady speed ~0.5 m/s > 0.23 m/s
   }
 }
+
+TEST_CASE("an integrator failure is the CVODE wrapper's sentence with the stage's hint",
+          "[stage][plant]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.relative_tolerance = 1e-300;  // valid (> 0) but below what a double can deliver
+  p.position_tolerance_m = 1e-300;
+  sysid::VirtualStage stage(p, 1);
+  CHECK_THROWS_AS(stage.Step(2.0), sysid::NumericalError);
+  sysid::VirtualStage again(p, 1);
+  CHECK_THROWS_WITH(again.Step(2.0),
+                    Catch::StartsWith("virtual stage: CVODE failed at t = ") &&
+                        Catch::Contains("(CV_TOO_MUCH_ACC) in CVode") &&
+                        Catch::EndsWith("; try a larger integrator.relative_tolerance or a smaller "
+                                        "friction.bristle_stiffness_per_s2"));
+}

@@ -189,8 +189,9 @@ void CvodeSolver::Throw(int flag, const char* call) const {
 void CvodeSolver::HandleError(int code, const char* module, const char* function, char* message,
                               void* self) {
   if (code >= 0) return;  // warnings (e.g. t + h = t) do not stop a run
-  static_cast<CvodeSolver*>(self)->cvode_message_ =
-      std::string(module) + "::" + function + ": " + message;
+  std::string text = std::string(module) + "::" + function + ": " + message;
+  if (!text.empty() && text.back() == '.') text.pop_back();  // it goes inside our sentence
+  static_cast<CvodeSolver*>(self)->cvode_message_ = std::move(text);
 }
 
 }  // namespace sysid::detail
