@@ -14,6 +14,7 @@ PACKAGES=(
   libsundials-dev libnlopt-cxx-dev     # CVODE integrator, derivative-free optimisation
   catch2 libcli11-dev nlohmann-json3-dev libfmt-dev   # tests, CLI, JSON, formatting
   gnuplot-nox                          # plots in reports
+  clang libclang-rt-dev                # libFuzzer + sanitizers for scripts/fuzz.sh (CI's fuzz step)
   libboost-dev                         # Boost.Math (test cross-check of the smoothing derivative)
   python3-numpy python3-scipy          # the Python peers that benchmarks run side by side
   pybind11-dev python3-pybind11        # the Python package sysid (python/)
