@@ -26,7 +26,34 @@ struct ExciteOptions {
   double on_s = 0.4, rest_s = 0.3, lead_s = 0.1;
   std::string set = "training";
   int cycles = 2;
+  bool json = false;
 };
+
+// SI unit of a column excite writes ("1" for the waveform index).
+std::string ColumnUnit(const std::string& name) {
+  if (name == "t") return "s";
+  if (name == "u") return "V";
+  if (name == "x_ref") return "m";
+  if (name == "v_ref") return "m/s";
+  if (name == "a_ref") return "m/s^2";
+  return "1";
+}
+
+// --json: one entry per signal written (or, without -o, the signal that would go to stdout).
+nlohmann::ordered_json Describe(const Recording& r, const std::string& path,
+                                const std::string& waveform) {
+  nlohmann::ordered_json f;
+  f["path"] = path.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(path);
+  if (!waveform.empty()) f["waveform"] = waveform;
+  f["samples"] = r.rows();
+  const Eigen::Index t = r.index_of("t");
+  f["duration_s"] = r.rows() > 0 && t >= 0 ? r.data(r.rows() - 1, t) - r.data(0, t) : 0.0;
+  f["columns"] = r.names;
+  nlohmann::ordered_json units = nlohmann::ordered_json::object();
+  for (const auto& n : r.names) units[n] = ColumnUnit(n);
+  f["units"] = units;
+  return f;
+}
 
 bool EndsWithCsv(const std::string& path) {
   return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||
@@ -39,6 +66,17 @@ void RunExcite(const ExciteOptions& o) {
   const bool per_waveform = o.what != "pulses" && !o.output.empty() && !EndsWithCsv(o.output);
   std::optional<OutputFolder> folder;
   if (per_waveform) folder.emplace(o.output, o.force, std::vector<std::string>{}, "excite");
+  nlohmann::ordered_json summary;
+  summary["what"] = o.what;
+  if (o.what == "tracking") summary["set"] = o.set;
+  summary["sample_rate_hz"] = o.rate_hz;
+  summary["files"] = nlohmann::ordered_json::array();
+  auto finish = [&] {
+    size_t total = 0;
+    for (const auto& f : summary["files"]) total += f["samples"].get<size_t>();
+    summary["total_samples"] = total;
+    PrintJson(summary);
+  };
   Recording r;
   if (o.what == "pulses") {
     PulseProcedure p;
@@ -60,9 +98,12 @@ void RunExcite(const ExciteOptions& o) {
           Recording one = ReferenceSignals({w}, t, o.rate_hz);
           one.metadata.emplace_back("waveform_name", w.name);
           one.metadata.emplace_back("sample_rate_hz", Num(o.rate_hz, 12));
-          WriteRecording((dir / ("waveform_" + w.name + ".csv")).string(), one);
+          const std::string name = "waveform_" + w.name + ".csv";
+          WriteRecording((dir / name).string(), one);
+          summary["files"].push_back(Describe(one, (folder->path() / name).string(), w.name));
         }
       });
+      if (o.json) return finish();
       std::cout << "wrote " << waves.size() << " references to " << folder->path().string()
                 << "/waveform_<name>.csv\n";
       return;
@@ -70,10 +111,12 @@ void RunExcite(const ExciteOptions& o) {
     r = ReferenceSignals(waves, t, o.rate_hz);
   }
   r.metadata.emplace_back("sample_rate_hz", Num(o.rate_hz, 12));
-  if (o.output.empty())
-    std::cout << FormatRecording(r);
-  else
-    WriteRecording(o.output, r);
+  if (!o.output.empty()) WriteRecording(o.output, r);
+  if (o.json) {
+    summary["files"].push_back(Describe(r, o.output, ""));
+    return finish();
+  }
+  if (o.output.empty()) std::cout << FormatRecording(r);
 }
 
 void AddExciteCommand(CLI::App& app) {
@@ -107,6 +150,10 @@ void AddExciteCommand(CLI::App& app) {
       ->check(CLI::IsMember({"training", "test"}));
   cmd->add_option("--cycles", o->cycles, "reference cycles per waveform [1] (default 2)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--json", o->json,
+                "print one JSON object: what, sample_rate_hz, files (path, waveform, samples, "
+                "duration_s, columns, units), total_samples; without -o nothing is written and "
+                "path is null");
   cmd->callback([o] { RunExcite(*o); });
 }
 

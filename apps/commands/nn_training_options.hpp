@@ -5,10 +5,12 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cli/common.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 
@@ -98,6 +100,26 @@ inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
                   "default: the training targets' min/max")
       ->type_name("MIN:MAX");
   cmd->add_flag("--json", o.json, "print one JSON object to stdout");
+}
+
+// Per-epoch progress of `train` on stderr (a terminal or --progress): the first epoch, then at
+// most five lines a second, so that fast epochs do not flood a log.
+// `mse_unit` is the output's unit squared, e.g. "V^2".
+inline void AttachEpochProgress(NeuralTrainingOptions& t, size_t inputs, const std::string& mse_unit) {
+  if (!ProgressEnabled()) return;
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
+  const int hidden = t.hidden, max_epochs = t.max_epochs, restarts = t.restarts;
+  t.on_epoch = [=](const EpochRecord& e) {
+    const auto now = std::chrono::steady_clock::now();
+    if (e.epoch > 1 && e.epoch < max_epochs && now - *last < std::chrono::milliseconds(200))
+      return;
+    *last = now;
+    std::string line = fmt::format("training {}-{}-1: epoch {}/{}", inputs, hidden, e.epoch,
+                                   max_epochs);
+    if (restarts > 1) line += fmt::format(" (restart {}/{})", e.restart + 1, restarts);
+    line += fmt::format(", training MSE {:.4g} {}", e.train_mse, mse_unit);
+    Progress(line);
+  };
 }
 
 // Turns the flags into library options (input names, ranges, trainer).

@@ -39,7 +39,15 @@ void RunSweep(SweepCliOptions& o) {
   if (!o.nn.validation_path.empty())
     validation = std::make_unique<NeuralDataset>(
         ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
-  if (ProgressEnabled()) Progress(fmt::format("training {} networks ...", so.hidden_sizes.size()));
+  if (ProgressEnabled()) {
+    Progress(fmt::format("training {} networks ...", so.hidden_sizes.size()));
+    const std::string unit =
+        DefaultUnit(o.nn.output).empty() ? "(unit)^2" : DefaultUnit(o.nn.output) + "^2";
+    so.on_network = [unit](const HiddenSweepRow& row, size_t done, size_t total) {
+      Progress(fmt::format("trained {}/{} networks (last: H = {}, {} epochs, training MSE {:.4g} {})",
+                           done, total, row.hidden, row.epochs, row.train_mse, unit));
+    };
+  }
   const HiddenSweepResult r = SweepHiddenSize(train, validation.get(), test.get(), so);
   ProgressDone();
   const auto& best = r.rows[r.chosen];

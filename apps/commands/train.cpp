@@ -40,6 +40,8 @@ void RunTrain(TrainCliOptions& o) {
         ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
   if (ProgressEnabled())
     Progress(fmt::format("training {}-{}-1 ...", names.size(), o.nn.training.hidden));
+  AttachEpochProgress(o.nn.training, names.size(),
+                      DefaultUnit(o.nn.output).empty() ? "(unit)^2" : DefaultUnit(o.nn.output) + "^2");
   const NeuralTrainingResult r = TrainNeuralNetwork(train, validation.get(), o.nn.training);
   ProgressDone();
   const double test_mse =

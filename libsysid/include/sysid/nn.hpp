@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -156,6 +157,16 @@ std::string ToString(NeuralTrainer trainer);
 /// 16 P^2 + 8 N H for P weights and N training rows, passes this limit.
 inline constexpr double kTrainingMemoryLimitBytes = 4e9;
 
+/// One epoch of training (one accepted or final step).
+struct EpochRecord {
+  int epoch = 0;              ///< 1-based
+  int restart = 0;            ///< which initialisation
+  double mu = 0;              ///< mu after this epoch (Ceres: 1 / trust region radius)
+  double train_mse = 0;       ///< [output unit^2]
+  double validation_mse = 0;  ///< [output unit^2], NaN without a validation set
+  double gradient_norm = 0;   ///< ||2 J'e / N||_2 in normalised units at the epoch's start
+};
+
 struct NeuralTrainingOptions {
   int hidden = 24;  ///< H, number of tanh units (>= 1)
   NeuralTrainer trainer = NeuralTrainer::kLevenbergMarquardt;
@@ -189,19 +200,14 @@ struct NeuralTrainingOptions {
   /// Results are identical for any value (fixed-order reductions). The Ceres trainer runs on
   /// one thread (its parallel evaluator's sums depend on the schedule).
   int threads = 0;
+  /// Called after every epoch of every restart, on the training thread (progress reports; it
+  /// must not throw). Does not change the result. SweepHiddenSize ignores it (its networks
+  /// train side by side): use HiddenSweepOptions::on_network there.
+  std::function<void(const EpochRecord&)> on_epoch;
   /// Throws OptionsError naming the field and the violated rule.
   void Validate() const;
 };
 
-/// One epoch of training (one accepted or final step).
-struct EpochRecord {
-  int epoch = 0;              ///< 1-based
-  int restart = 0;            ///< which initialisation
-  double mu = 0;              ///< mu after this epoch (Ceres: 1 / trust region radius)
-  double train_mse = 0;       ///< [output unit^2]
-  double validation_mse = 0;  ///< [output unit^2], NaN without a validation set
-  double gradient_norm = 0;   ///< ||2 J'e / N||_2 in normalised units at the epoch's start
-};
 
 struct NeuralTrainingResult {
   NeuralNetwork network;  ///< best weights (lowest validation MSE, else training MSE)
@@ -223,10 +229,15 @@ struct NeuralTrainingResult {
 NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const NeuralDataset* validation,
                                         const NeuralTrainingOptions& options = {});
 
+struct HiddenSweepRow;
+
 struct HiddenSweepOptions {
   std::vector<int> hidden_sizes{16, 18, 20, 22, 24, 26, 28, 30, 32};  ///< H values to try
   NeuralTrainingOptions training;                                     ///< everything but `hidden`
   int threads = 0;  ///< worker threads; 0: std::thread::hardware_concurrency()
+  /// Called when a network has finished, with its row and how many of `total` are done (in
+  /// completion order, one call at a time; it must not throw). Does not change the result.
+  std::function<void(const HiddenSweepRow& row, size_t done, size_t total)> on_network;
   void Validate() const;
 };
 

@@ -78,6 +78,7 @@ class Monitor final : public ceres::IterationCallback {
       rec.validation_mse = val;
       rec.gradient_norm = 2.0 * s.gradient_norm / N;
       run_->history.push_back(rec);
+      if (o_.on_epoch) o_.on_epoch(rec);
     }
     if (validation_) {
       if (s.iteration == 0 || val < best_val_) {

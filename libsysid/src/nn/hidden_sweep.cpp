@@ -92,6 +92,8 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
+  std::mutex progress_mutex;
+  size_t done = 0;  // networks finished, under progress_mutex
   auto worker = [&] {
     for (size_t k; (k = next++) < count;) {
       try {
@@ -100,6 +102,7 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
         o.threads = inner;
         // An initial theta only fits one size: a sweep always initialises from the seed.
         o.initial_parameters.reset();
+        o.on_epoch = nullptr;  // networks train side by side: on_network reports
         const auto w0 = std::chrono::steady_clock::now();
         NeuralTrainingResult run = TrainNeuralNetwork(train, validation, o);
         HiddenSweepRow& row = result.rows[k];
@@ -113,6 +116,10 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
         row.wall_time_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
         result.runs[k] = std::move(run);
+        if (options.on_network) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          options.on_network(row, ++done, count);
+        }
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

@@ -160,6 +160,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
     rec.validation_mse = val_mse(theta);
     rec.gradient_norm = grad_norm;
     run.history.push_back(rec);
+    if (o.on_epoch) o.on_epoch(rec);
     if (validation) {
       if (rec.validation_mse < best_val) {
         best_val = rec.validation_mse;

@@ -232,11 +232,20 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
     const Eigen::VectorXd theta0 = options.initial_parameters
                                        ? *options.initial_parameters
                                        : InitialParameters(options.init, n, H, options.seed + r);
+    // The trainers call on_epoch with restart 0; the restart index is added here.
+    NeuralTrainingOptions run_options = options;
+    if (options.on_epoch)
+      run_options.on_epoch = [&options, r](const EpochRecord& rec) {
+        EpochRecord with_restart = rec;
+        with_restart.restart = r;
+        options.on_epoch(with_restart);
+      };
     nn::TrainerRun run =
         options.trainer == NeuralTrainer::kCeres
-            ? nn::RunCeres(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale, options)
+            ? nn::RunCeres(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
+                           run_options)
             : nn::RunLevenbergMarquardt(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
-                                        options);
+                                        run_options);
     for (auto& rec : run.history) {
       rec.restart = r;
       result.history.push_back(rec);
