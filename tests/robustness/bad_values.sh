@@ -48,6 +48,13 @@ expect_stage "motor.speed_map_out_mps: expected as many knots as speed_map_in_v"
   's/"speed_map_out_mps": \[/"speed_map_out_mps": [-11,/'
 expect_stage "unknown key 'rial'" 's/"rail"/"rial"/'
 expect_stage "expected a finite number, found 1e400" 's/"pole_per_s": [0-9.e]*/"pole_per_s": 1e400/'
+# A stage file without "preset" must give every section and key; with it, a partial file is fine.
+expect_stage "s.json:1:1: expected section 'drive' of the velocity-source model" '$!d;s/.*/{}/'
+expect_stage "s.json:1:1: expected section 'rail' of the velocity-source model" '/"rail"/,/}/d'
+expect_stage "s.json:[0-9]*:3: rig: missing required key 'dac_bits'" '/"dac_bits"/d'
+printf '{"preset": "virtual", "rig": {"position_noise_m": 0}}\n' > p.json
+"$sysid" generate pulses --stage p.json -o gen >/dev/null 2>err.txt || fail "stage with preset"
+rm -rf gen
 # Network files.
 sed 's/"hidden": 24/"hidden": 100000000/' "$src/datasets/paper/nn24.json" > n.json
 "$sysid" predict --nn n.json "$v/test.csv" >/dev/null 2>err.txt; rc=$?

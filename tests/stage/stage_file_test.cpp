@@ -26,10 +26,26 @@ TEST_CASE("stage files name their model, presets load by name", "[stage][file]")
   CHECK(sysid::LoadStage("actuator-delay").transport_delay_s == 0.002);
   CHECK(sysid::LoadStage("virtual").model == sysid::StageModel::kVelocitySource);
   // A file without "model" written before the key existed (it has "friction") is actuator delay.
-  CHECK(sysid::ParseStageParameters("{\"friction\": {\"bristle_damping_per_s\": 900}}", "o.json")
-            .model == sysid::StageModel::kActuatorDelay);
-  CHECK(sysid::ParseStageParameters("{\"rig\": {\"position_noise_m\": 0}}", "n.json").model ==
-        sysid::StageModel::kVelocitySource);
+  std::string old_file = sysid::StageParametersToJson(sysid::StageParameters::ActuatorDelay());
+  old_file.erase(old_file.find("\"model\""), old_file.find("\"note\"") - old_file.find("\"model\""));
+  CHECK(sysid::ParseStageParameters(old_file, "o.json").model ==
+        sysid::StageModel::kActuatorDelay);
+  // "preset": a partial file changes a preset, which gives the model and the other values.
+  const auto partial = sysid::ParseStageParameters(
+      "{\"preset\": \"actuator-delay\", \"friction\": {\"bristle_damping_per_s\": 900}}", "p.json");
+  CHECK(partial.model == sysid::StageModel::kActuatorDelay);
+  CHECK(partial.bristle_damping_per_s == 900);
+  CHECK(partial.transport_delay_s == sysid::StageParameters::ActuatorDelay().transport_delay_s);
+  CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual\", \"rig\": {\"position_noise_m\": 0}}",
+                                    "n.json")
+            .model == sysid::StageModel::kVelocitySource);
+  CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json"),
+                    Catch::StartsWith("p.json:1:2: preset: expected a preset name"));
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters("{\"preset\": \"virtual\",\n \"model\": \"actuator-delay\"}",
+                                  "p.json"),
+      Catch::StartsWith("p.json:2:2: model: expected the model of preset 'virtual' "
+                        "(velocity-source), found 'actuator-delay'"));
   // A section of the other model is an error naming both.
   CHECK_THROWS_WITH(
       sysid::ParseStageParameters("{\"model\": \"velocity-source\",\n \"friction\": {}}", "m.json"),
@@ -37,9 +53,42 @@ TEST_CASE("stage files name their model, presets load by name", "[stage][file]")
   CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"model\": \"piezo\"}", "m.json"),
                     Catch::Contains("is not one of velocity-source, actuator-delay"));
   CHECK_THROWS_WITH(
-      sysid::ParseStageParameters("{\"motor\": {\"dead_zone_forward_v\": 1.35}}", "m.json"),
+      sysid::ParseStageParameters(
+          "{\"preset\": \"virtual\", \"motor\": {\"dead_zone_forward_v\": 1.35}}", "m.json"),
       Catch::Contains("knots outside the dead zone"));
   CHECK_THROWS_AS(sysid::StageParameters::Preset("fast"), sysid::OptionsError);
+}
+
+TEST_CASE("a stage file without a preset must give every section and key", "[stage][file]") {
+  // Issue #14: `{}` or a file missing `friction` used to run on built-in defaults.
+  CHECK_THROWS_WITH(sysid::ParseStageParameters("{}", "e.json"),
+                    Catch::StartsWith("e.json:1:1: expected section 'drive' of the "
+                                      "velocity-source model, found none (a stage file gives "
+                                      "every section and key of its model, or names \"preset\""));
+  std::string text = sysid::StageParametersToJson(sysid::StageParameters::ActuatorDelay());
+  const size_t from = text.find("  \"friction\"");
+  const size_t to = text.find("  \"rig\"");
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(text.substr(0, from) + text.substr(to), "f.json"),
+                    Catch::StartsWith("f.json:1:1: expected section 'friction' of the "
+                                      "actuator-delay model"));
+  // A missing key inside a section: at the section, naming the key.
+  text = sysid::StageParametersToJson(sysid::StageParameters::Default());
+  const size_t key = text.find("    \"dac_bits\"");
+  REQUIRE(key != std::string::npos);
+  text.erase(key, text.find('\n', key) + 1 - key);
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(text, "k.json"),
+                    Catch::StartsWith("k.json:" + std::to_string(1 + std::count(text.begin(),
+                                      text.begin() + static_cast<long>(text.find("\"rig\"")), '\n')) +
+                                      ":3: rig: missing required key 'dac_bits'"));
+  // The same file with a preset is complete: the key comes from the preset.
+  text.insert(1, "\"preset\": \"virtual\",");
+  CHECK(sysid::ParseStageParameters(text, "k.json").dac_bits ==
+        sysid::StageParameters::Default().dac_bits);
+  // The velocity-source drive section does not need the actuator-delay drive keys.
+  CHECK_NOTHROW(sysid::ParseStageParameters(
+      sysid::StageParametersToJson(sysid::StageParameters::Default()), "vs.json"));
 }
 
 TEST_CASE("stage file errors name the place and the rule", "[stage][file]") {

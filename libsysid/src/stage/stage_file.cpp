@@ -1,7 +1,9 @@
 // The stage file: JSON with the unit in every key, grouped as model, drive, motor + rail
 // (velocity source) or friction (actuator delay), rig, integrator. Unknown keys are errors so that a typo never silently leaves a default.
+#include <algorithm>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,16 +16,22 @@ namespace sysid {
 namespace {
 
 constexpr double kMaxStageSampleRateHz = 1e6;
+// Why a key or section is required: said in every such message.
+constexpr const char* kCompleteRule =
+    "a stage file gives every section and key of its model, or names \"preset\": NAME "
+    "(virtual, velocity-source, actuator-delay) whose values fill what it leaves out";
 
 // Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
-// (handled by the caller). Keys left out keep the preset's value.
+// (handled by the caller). With `complete` (a file that names no "preset") every key but those
+// in `optional` must be written; otherwise keys left out keep the preset's value.
 struct Section {
   std::vector<std::pair<const char*, double*>> numbers;
   std::vector<std::pair<const char*, int*>> ints;
   std::vector<std::pair<const char*, std::vector<double>*>> arrays;
   std::vector<const char*> objects;
 
-  void Read(const detail::JsonNode& node) const {
+  void Read(const detail::JsonNode& node, bool complete,
+            const std::vector<std::string>& optional = {}) const {
     std::vector<std::string> known;
     for (const auto& n : numbers) known.push_back(n.first);
     for (const auto& n : ints) known.push_back(n.first);
@@ -38,6 +46,10 @@ struct Section {
                                                        std::numeric_limits<int>::max()));
     for (const auto& [k, target] : arrays)
       if (node.Has(k)) *target = node.Get(k).Numbers();
+    if (!complete) return;
+    for (const auto& k : known)
+      if (!node.Has(k) && std::find(optional.begin(), optional.end(), k) == optional.end())
+        node.Fail("missing required key '" + k + "' (" + kCompleteRule + ")");
   }
 };
 
@@ -71,8 +83,15 @@ namespace {
 // The model a file describes: its "model" key, else inferred from its sections (files written
 // before the key existed describe the actuator-delay stage and carry "friction" or the drive's
 // force-actuator keys), else the default velocity source.
-StageModel FileModel(const detail::JsonNode& root) {
+StageModel FileModel(const detail::JsonNode& root, const StageParameters* preset) {
   const nlohmann::json& j = root.json();
+  if (preset) {
+    if (root.Has("model") && root.Get("model").String() != ToString(preset->model))
+      root.Get("model").Fail("expected the model of preset '" + root.Get("preset").String() +
+                             "' (" + ToString(preset->model) + "), found '" +
+                             root.Get("model").String() + "'");
+    return preset->model;
+  }
   if (root.Has("model")) {
     const detail::JsonNode m = root.Get("model");
     const std::string name = m.String();
@@ -94,12 +113,24 @@ StageModel FileModel(const detail::JsonNode& root) {
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
   const detail::JsonDocument doc(json_text, source);
   const detail::JsonNode root = doc.Root();
-  root.ExpectObject({"name", "model", "drive", "motor", "rail", "friction", "rig", "integrator"},
-                    {"units", "note"});
-  const StageModel model = FileModel(root);
+  root.ExpectObject(
+      {"name", "preset", "model", "drive", "motor", "rail", "friction", "rig", "integrator"},
+      {"units", "note"});
+  // "preset": the file changes a preset, which supplies every value it leaves out. Without
+  // it the file must be complete (a missing section or key is an error, never a default).
+  std::optional<StageParameters> preset;
+  if (root.Has("preset")) {
+    const detail::JsonNode at = root.Get("preset");
+    const std::string name = at.String();
+    if (!StageParameters::IsPresetName(name))
+      at.Expected("a preset name (virtual, velocity-source, actuator-delay)");
+    preset = StageParameters::Preset(name);
+  }
+  const bool complete = !preset;
+  const StageModel model = FileModel(root, preset ? &*preset : nullptr);
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
-      vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
+      preset ? *preset : vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
   const std::string model_name = ToString(model);
   auto other_model = [&](const detail::JsonNode& at) {
     const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);
@@ -108,7 +139,8 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                      model_name + " (key 'model')");
   };
   for (const auto& [key, value] : root.json().items()) {
-    if (key == "units" || key == "note" || key == "model" || (!key.empty() && key[0] == '_'))
+    if (key == "units" || key == "note" || key == "model" || key == "preset" ||
+        (!key.empty() && key[0] == '_'))
       continue;
     if (key == "name") {
       p.name = root.Get(key).String();
@@ -124,7 +156,10 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
               {}}
-          .Read(root.Get(key));
+          .Read(root.Get(key), complete,
+                vs ? std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v", "map_in_v",
+                                              "map_out_v"}
+                   : std::vector<std::string>{});
     } else if (key == "motor") {
       if (!vs) other_model(root.Get(key));
       Section{{{"pole_per_s", &p.motor.pole_per_s},
@@ -134,7 +169,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"speed_map_in_v", &p.motor.speed_map_in_v},
                {"speed_map_out_mps", &p.motor.speed_map_out_mps}},
               {}}
-          .Read(root.Get(key));
+          .Read(root.Get(key), complete);
     } else if (key == "rail") {
       if (!vs) other_model(root.Get(key));
       Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
@@ -143,7 +178,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {},
               {}}
-          .Read(root.Get(key));
+          .Read(root.Get(key), complete);
     } else if (key == "friction") {
       if (vs) other_model(root.Get(key));
       Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
@@ -151,10 +186,11 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {},
               {"forward", "backward"}}
-          .Read(root.Get(key));
-      if (root.Get(key).Has("forward")) BranchSection(p.forward).Read(root.Get(key).Get("forward"));
+          .Read(root.Get(key), complete);
+      if (root.Get(key).Has("forward"))
+        BranchSection(p.forward).Read(root.Get(key).Get("forward"), complete);
       if (root.Get(key).Has("backward"))
-        BranchSection(p.backward).Read(root.Get(key).Get("backward"));
+        BranchSection(p.backward).Read(root.Get(key).Get("backward"), complete);
     } else if (key == "rig") {
       Section{{{"sample_rate_hz", &p.sample_rate_hz},
                {"dac_range_v", &p.dac_range_v},
@@ -167,15 +203,24 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"dac_bits", &p.dac_bits}},
               {},
               {}}
-          .Read(root.Get(key));
+          .Read(root.Get(key), complete);
     } else if (key == "integrator") {
       Section{{{"relative_tolerance", &p.relative_tolerance},
                {"position_tolerance_m", &p.position_tolerance_m}},
               {},
               {},
               {}}
-          .Read(root.Get(key));
+          .Read(root.Get(key), complete);
     }
+  }
+  if (complete) {
+    const std::vector<const char*> sections =
+        vs ? std::vector<const char*>{"drive", "motor", "rail", "rig", "integrator"}
+           : std::vector<const char*>{"drive", "friction", "rig", "integrator"};
+    for (const char* section : sections)
+      if (!root.Has(section))
+        root.Fail(std::string("expected section '") + section + "' of the " + model_name +
+                  " model, found none (" + kCompleteRule + ")");
   }
   try {
     p.Validate();
