@@ -3,7 +3,7 @@
 # order, in a fresh empty folder with the built sysid first on PATH; the first failing command
 # fails the test (set -e, each command echoed). Plain ``` blocks (file contents) are not run.
 #   sh tests/tutorial/run_tutorial.sh SYSID_EXECUTABLE SOURCE_DIR [TUTORIAL.md]
-# CTest: label "tutorial" (about 15 s in Release on two cores).
+# CTest: label "tutorial" (about 6 s in Release).
 set -eu
 sysid=$1
 src=$2
