@@ -97,31 +97,7 @@ void RunDominance(const DominanceCli& o) {
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
   if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
-  // Pooled ranking over all recordings: RMS over all moving samples, peak over all.
-  std::map<std::string, std::pair<double, double>> pooled;  // name -> (sum of squares, peak)
-  Eigen::Index moving = 0;
-  for (const auto& r : s.results) {
-    moving += r.moving_samples;
-    for (const auto& t : r.ranking) {
-      auto& p = pooled[t.name];
-      p.first += t.rms * t.rms * static_cast<double>(r.moving_samples);
-      p.second = std::max(p.second, t.peak);
-    }
-  }
-  std::vector<TermStats> ranking;
-  for (const auto& [name, p] : pooled) {
-    TermStats t;
-    t.name = name;
-    t.rms = std::sqrt(p.first / static_cast<double>(moving));
-    t.peak = p.second;
-    ranking.push_back(t);
-  }
-  std::sort(ranking.begin(), ranking.end(),
-            [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
-  for (auto& t : ranking) {
-    t.ratio_to_top = t.rms / ranking[0].rms;
-    t.negligible = &t != &ranking[0] && t.ratio_to_top <= d.negligible_ratio;
-  }
+  const std::vector<TermStats> ranking = PooledRanking(s, d.negligible_ratio);
   if (o.json) {
     nlohmann::ordered_json j;
     nlohmann::ordered_json rank = nlohmann::ordered_json::array();

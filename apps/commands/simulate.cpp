@@ -37,43 +37,21 @@ struct SimulateCliOptions {
   std::string method;  // set from sim.method
 };
 
-struct InputChoice {
-  std::shared_ptr<const InputSignal> signal;
-  std::string description;
-  double natural_end_s = 0;
-};
-
-InputChoice ChooseInput(const SimulateCliOptions& o) {
+NamedWaveform ChooseInput(const SimulateCliOptions& o) {
   const int given = !o.input_path.empty() + !o.pulses.empty() + !o.waveform.empty();
   if (given != 1)
     throw OptionsError(
         "give exactly one input: --input U.csv, --pulses A[,A...] or --waveform "
         "NAME");
-  InputChoice c;
-  if (!o.input_path.empty()) {
-    auto table = ReadInputTable(o.input_path, ParseInputHold(o.hold));
-    ReadOptions ro;
-    ro.required_columns = {"t", "u"};
-    ro.any_of_columns = {};
-    const Recording rec = ReadRecording(o.input_path, ro);
-    c.natural_end_s = rec.column("t")[rec.rows() - 1];
-    c.signal = std::move(table);
-    c.description = o.input_path + " (" + o.hold + ")";
-  } else if (!o.pulses.empty()) {
+  if (!o.input_path.empty()) return ReadInputWaveform(o.input_path, ParseInputHold(o.hold));
+  if (!o.pulses.empty()) {
     PulseTrainSpec spec = o.pulse_train;
     spec.amplitudes_v = o.pulses;
-    c.signal = std::make_shared<PiecewiseConstantInput>(MakePulseTrain(spec));
-    c.natural_end_s = spec.duration_s();
-    c.description =
-        fmt::format("pulses {} V, {} s on, {} s off, {} repeats", fmt::join(o.pulses, "/"),
-                    spec.on_s, spec.off_s, spec.repeats);
-  } else {
-    NamedWaveform w = MakeNamedWaveform(o.waveform);
-    c.signal = w.signal;
-    c.natural_end_s = w.duration_s;
-    c.description = w.name + ": " + w.description;
+    return PulseTrainWaveform(spec);
   }
-  return c;
+  NamedWaveform w = MakeNamedWaveform(o.waveform);
+  w.description = w.name + ": " + w.description;
+  return w;
 }
 
 std::string EventsCsv(const std::vector<SimulationEvent>& events) {
@@ -86,16 +64,16 @@ void RunSimulate(SimulateCliOptions o) {
   if (o.model_path.empty() == !o.paper_model)
     throw OptionsError("give exactly one model: --model M.json or --paper-model");
   const FrictionModel model = o.paper_model ? FrictionModel::Paper() : ReadModel(o.model_path);
-  const InputChoice input = ChooseInput(o);
+  const NamedWaveform input = ChooseInput(o);
   SimulationOptions sim = o.sim;
   sim.method = ParseIntegratorMethod(o.method);
   sim.t0_s = 0.0;
-  sim.t_end_s = o.t_end_s > 0 ? o.t_end_s : input.natural_end_s;
+  sim.t_end_s = o.t_end_s > 0 ? o.t_end_s : input.duration_s;
   if (!(sim.t_end_s > 0))
     throw OptionsError(
         fmt::format("--t-end = {}. Violated constraint: t_end > 0 (the input "
                     "ends at {} s; give --t-end)",
-                    sim.t_end_s, input.natural_end_s));
+                    sim.t_end_s, input.duration_s));
   const SimulationResult r = Simulate(model, *input.signal, sim);
   const SimulationSummary& s = r.summary;
   if (!s.IsSolutionUsable())

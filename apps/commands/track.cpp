@@ -77,12 +77,7 @@ void RunTrack(const TrackCliOptions& o) {
   }
   PositionReference ref;
   if (!o.reference_path.empty()) {
-    ReadOptions ro;
-    ro.required_columns = {"t"};
-    ro.any_of_columns = {"x_ref", "x"};
-    const Recording r = ReadRecording(o.reference_path, ro);
-    ref = ReferenceFromPositions(r.column("t"), r.column(r.has("x_ref") ? "x_ref" : "x"));
-    ref.description = o.reference_path;
+    ref = ReadPositionReference(o.reference_path);
   } else {
     SmoothProfileOptions p = o.profile;
     p.sample_rate_hz = stage.sample_rate_hz;

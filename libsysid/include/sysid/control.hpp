@@ -88,6 +88,9 @@ PositionReference MakeSmoothProfile(const SmoothProfileOptions& options = {});
 
 /// Reference from sampled positions (e.g. a CSV column): v and a by central differences.
 PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen::VectorXd& x_m);
+/// Reference from a CSV with columns t [s] and x_ref [m] (or x [m] when there is no x_ref), as
+/// ReferenceFromPositions; the description is the path. Throws InputError as ReadRecording.
+PositionReference ReadPositionReference(const std::string& path);
 
 /// Traces and metrics of a closed-loop run; row k is sample k.
 struct TrackingResult {
