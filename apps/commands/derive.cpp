@@ -156,9 +156,10 @@ void AddDeriveCommand(CLI::App& app) {
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--decimate", o->decimate,
-                  "keep every K-th sample after a zero-phase order-8 Butterworth anti-alias "
-                  "low-pass at 0.8 x the new Nyquist frequency (all columns but t) "
-                  "[samples, >= 1]")
+                  fmt::format("keep every K-th sample after a zero-phase order-{} Butterworth "
+                              "anti-alias low-pass at {} x the new Nyquist frequency (all "
+                              "columns but t) [samples, >= 1]",
+                              kDecimateButterworthOrder, kDecimateCutoffFraction))
       ->type_name("K")
       ->capture_default_str();
   cmd->add_option("--resample", o->resample_hz,

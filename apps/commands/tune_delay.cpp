@@ -82,18 +82,19 @@ void AddTuneDelayCommand(CLI::App& app) {
       ->required()
       ->type_name("REC.csv");
   DelayTuningOptions& d = o->options;
+  const double tau_limit = DelayTuningOptions::kMaxTau_s;
   cmd->add_option("--min", d.tau_min_s, "lower bound of tau [s]")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(CLI::Range(0.0, tau_limit))
       ->capture_default_str();
-  cmd->add_option("--max", d.tau_max_s, "upper bound of tau [s] (at most 1 s)")
-      ->check(CLI::Range(0.0, 1.0))
+  cmd->add_option("--max", d.tau_max_s, fmt::format("upper bound of tau [s], <= {}", tau_limit))
+      ->check(CLI::Range(0.0, tau_limit))
       ->capture_default_str();
   cmd->add_option("--xtol", d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
       ->check(CLI::Range(1e-12, 1.0))
       ->capture_default_str();
   cmd->add_option("--curve", d.curve_points,
                   "also evaluate the cost on this many evenly spaced tau values [count]")
-      ->check(CLI::Range(0, 10000))
+      ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
       ->capture_default_str();
   cmd->add_option("--threads", d.threads, "simulation threads [count]; 0 = all cores")
       ->check(CLI::Range(0, 1024))
