@@ -60,6 +60,18 @@ std::string Table::Render() const {
 
 std::string Num(double value, int digits) { return fmt::format("{:.{}g}", value, digits); }
 
+std::string FormatHiddenSizes(const std::vector<int>& sizes) {
+  if (sizes.size() >= 3) {
+    const int step = sizes[1] - sizes[0];
+    bool even = step > 0;
+    for (size_t i = 2; i < sizes.size() && even; ++i) even = sizes[i] - sizes[i - 1] == step;
+    if (even) return fmt::format("{}:{}:{}", sizes.front(), sizes.back(), step);
+  }
+  std::string out;
+  for (size_t i = 0; i < sizes.size(); ++i) out += (i ? "," : "") + std::to_string(sizes[i]);
+  return out;
+}
+
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what) {
   return cmd->add_option("-o,--output", path, what + " (written atomically)")
       ->type_name("FILE");

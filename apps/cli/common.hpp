@@ -46,6 +46,10 @@ class Table {
 /// Formats a double with `digits` significant digits (%.{digits}g).
 std::string Num(double value, int digits = 6);
 
+/// Hidden sizes as ParseHiddenSizes reads them: FIRST:LAST:STEP when evenly spaced, else a
+/// comma-separated list (the shown default of --hidden).
+std::string FormatHiddenSizes(const std::vector<int>& sizes);
+
 /// Adds the standard "-o,--output FILE" option.
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what);
 

@@ -2,13 +2,17 @@
 
 namespace sysid::cli {
 
-void MotionFlags::Add(CLI::App* cmd, const std::string& derivative_help) {
-  cmd->add_option("--derivative", derivative, derivative_help)
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
-  cmd->add_option("--cutoff", cutoff_hz, "Butterworth cut-off [Hz], default 50")
-      ->check(CLI::PositiveNumber);
+void MotionFlags::Add(CLI::App* cmd, const std::string& derivative_help,
+                      const std::string& default_filter) {
+  cmd->add_option("--derivative", derivative, derivative_help + ": central, butterworth, savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+      ->default_str(default_filter);
+  cmd->add_option("--cutoff", cutoff_hz, "Butterworth cut-off [Hz]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--velocity-column", velocity_column,
-                  "measured-velocity column [m/s] used when a recording has no x (default v)");
+                  "measured-velocity column [m/s] used when a recording has no x")
+      ->capture_default_str();
 }
 
 void MotionFlags::ApplyTo(MotionOptions& motion) const {

@@ -7,18 +7,19 @@
 #include <string>
 #include <vector>
 
-#include "sysid/identify.hpp"
 #include "sysid/io.hpp"
+#include "sysid/motion.hpp"
 
 namespace sysid::cli {
 
 struct MotionFlags {
-  std::string derivative;             ///< empty: keep the algorithm's default filter
-  double cutoff_hz = 50.0;            ///< [Hz] Butterworth cut-off
-  std::string velocity_column = "v";  ///< used when a recording has no x
+  std::string derivative;  ///< empty: keep the algorithm's default filter
+  double cutoff_hz = MotionOptions{}.derivative.cutoff_hz;            ///< [Hz] Butterworth cut-off
+  std::string velocity_column = MotionOptions{}.velocity_column;  ///< used when a recording has no x
 
-  /// Adds the three flags; `derivative_help` says what the filter is for and its default.
-  void Add(CLI::App* cmd, const std::string& derivative_help);
+  /// Adds the three flags; `derivative_help` says what the filter is for, `default_filter`
+  /// names the filter the algorithm's options choose (shown as the default).
+  void Add(CLI::App* cmd, const std::string& derivative_help, const std::string& default_filter);
   /// Sets the filter, cut-off and velocity column of `motion`.
   void ApplyTo(MotionOptions& motion) const;
   /// Reads recordings with t, u and x or the velocity column. Throws InputError.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/motion.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid::cli {
@@ -21,32 +23,29 @@ namespace {
 struct DeriveCliOptions {
   std::string path;
   std::string output;
-  std::string method = "central";
-  double cutoff_hz = DerivativeOptions{}.cutoff_hz;
-  std::optional<int> order;
-  int window = DerivativeOptions{}.savgol_window;
+  std::string method;  // set from derivative.method
+  DerivativeOptions derivative;  // the flags' defaults are the library's
+  std::optional<int> order;      // the method's order field when given
   int decimate = 1;
   std::optional<double> resample_hz;
-  double jitter_tolerance = 0.01;
+  double jitter_tolerance = MotionOptions{}.max_relative_jitter;
   bool json = false;
 };
 
-// Library option messages name the struct fields; the user typed flags.
+// Library option errors name the struct field (OptionsError::field()); the user typed flags.
 [[noreturn]] void RethrowWithFlag(const OptionsError& e) {
-  const std::string what = e.what();
-  std::string flag = "--method";
-  if (what.find("cutoff_hz") != std::string::npos) flag = "--cutoff";
-  if (what.find("_order") != std::string::npos) flag = "--order";
-  if (what.find("savgol_window") != std::string::npos) flag = "--window";
-  if (what.find("Decimate") != std::string::npos) flag = "--decimate";
-  throw OptionsError(flag + ": " + what);
+  static const std::map<std::string, std::string> kFlags = {
+      {"cutoff_hz", "--cutoff"},     {"butterworth_order", "--order"},
+      {"savgol_order", "--order"},   {"savgol_window", "--window"},
+      {"factor", "--decimate"}};
+  const auto flag = kFlags.find(e.field());
+  throw OptionsError((flag == kFlags.end() ? "--method" : flag->second) + ": " + e.what(),
+                     e.field());
 }
 
 void RunDerive(const DeriveCliOptions& o) {
-  DerivativeOptions opt;
+  DerivativeOptions opt = o.derivative;
   opt.method = ParseDerivativeMethod(o.method);
-  opt.cutoff_hz = o.cutoff_hz;
-  opt.savgol_window = o.window;
   if (o.order && opt.method == DerivativeMethod::kSavitzkyGolay) opt.savgol_order = *o.order;
   if (o.order && opt.method != DerivativeMethod::kSavitzkyGolay) opt.butterworth_order = *o.order;
   if (o.decimate < 1)
@@ -71,21 +70,7 @@ void RunDerive(const DeriveCliOptions& o) {
   try {
     opt.Validate(dt_s * o.decimate);
     if (o.decimate > 1) {
-      Recording out;
-      out.source = rec.source;
-      out.metadata = rec.metadata;
-      for (size_t c = 0; c < rec.names.size(); ++c) {
-        const Eigen::VectorXd col = rec.data.col(static_cast<Eigen::Index>(c));
-        Eigen::VectorXd dec;
-        if (rec.names[c] == "t") {  // time is subsampled, never filtered
-          dec.resize((col.size() + o.decimate - 1) / o.decimate);
-          for (Eigen::Index i = 0; i < dec.size(); ++i) dec[i] = col[i * o.decimate];
-        } else {
-          dec = Decimate(col, dt_s, o.decimate);
-        }
-        out.SetColumn(rec.names[c], dec);
-      }
-      rec = std::move(out);
+      rec = DecimateRecording(rec, dt_s, o.decimate);
       dt_s *= o.decimate;
     }
     const Derivatives d = Differentiate(rec.column("x"), dt_s, opt);
@@ -136,6 +121,7 @@ void RunDerive(const DeriveCliOptions& o) {
 
 void AddDeriveCommand(CLI::App& app) {
   auto o = std::make_shared<DeriveCliOptions>();
+  o->method = ToString(o->derivative.method);
   CLI::App* cmd = app.add_subcommand(
       "derive",
       "Velocity v [m/s] and acceleration a [m/s^2] from the position x [m] of a recording: "
@@ -153,23 +139,27 @@ void AddDeriveCommand(CLI::App& app) {
                   "fit derivative")
       ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
       ->capture_default_str();
-  cmd->add_option("--cutoff", o->cutoff_hz,
+  cmd->add_option("--cutoff", o->derivative.cutoff_hz,
                   "butterworth: cut-off frequency [Hz], 0 < HZ < Nyquist of the (decimated) "
                   "rate")
       ->type_name("HZ")
       ->capture_default_str();
   cmd->add_option("--order", o->order,
-                  "butterworth: filter order [1, 20], default 4; savgol: polynomial order "
-                  "[>= 2, < window], default 3 [dimensionless]")
-      ->type_name("N");
-  cmd->add_option("--window", o->window,
+                  fmt::format("butterworth: filter order [1, {}]; savgol: polynomial order "
+                              "[>= 2, < window] [dimensionless]",
+                              kMaxButterworthOrder))
+      ->type_name("N")
+      ->default_str(fmt::format("{} (butterworth), {} (savgol)",
+                                o->derivative.butterworth_order, o->derivative.savgol_order));
+  cmd->add_option("--window", o->derivative.savgol_window,
                   "savgol: window length [samples], odd, >= 3 (at 1 kHz, 21 samples = 20 ms)")
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--decimate", o->decimate,
-                  "keep every K-th sample after a zero-phase order-8 Butterworth anti-alias "
-                  "low-pass at 0.8 x the new Nyquist frequency (all columns but t) "
-                  "[samples, >= 1]")
+                  fmt::format("keep every K-th sample after a zero-phase order-{} Butterworth "
+                              "anti-alias low-pass at {} x the new Nyquist frequency (all "
+                              "columns but t) [samples, >= 1]",
+                              kDecimateButterworthOrder, kDecimateCutoffFraction))
       ->type_name("K")
       ->capture_default_str();
   cmd->add_option("--resample", o->resample_hz,

@@ -25,9 +25,7 @@ struct DominanceCli {
   std::string model;
   std::vector<std::string> recordings;
   std::vector<std::string> candidates;
-  double min_speed = 1e-3;
-  double negligible = 0.1;
-  int threads = 0;
+  DominanceOptions options;  // the flags' defaults are the library's
   bool json = false;
   std::string output;
   MotionFlags motion;
@@ -93,40 +91,13 @@ nlohmann::ordered_json ResultJson(const DominanceResult& r) {
 
 void RunDominance(const DominanceCli& o) {
   const FrictionModel model = ReadModel(o.model);
-  DominanceOptions d;
-  d.min_speed_mps = o.min_speed;
-  d.negligible_ratio = o.negligible;
-  d.threads = o.threads;
+  DominanceOptions d = o.options;
   o.motion.ApplyTo(d.motion);
   for (const auto& c : o.candidates) d.candidates.push_back(ParseCandidate(c));
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
   if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
-  // Pooled ranking over all recordings: RMS over all moving samples, peak over all.
-  std::map<std::string, std::pair<double, double>> pooled;  // name -> (sum of squares, peak)
-  Eigen::Index moving = 0;
-  for (const auto& r : s.results) {
-    moving += r.moving_samples;
-    for (const auto& t : r.ranking) {
-      auto& p = pooled[t.name];
-      p.first += t.rms * t.rms * static_cast<double>(r.moving_samples);
-      p.second = std::max(p.second, t.peak);
-    }
-  }
-  std::vector<TermStats> ranking;
-  for (const auto& [name, p] : pooled) {
-    TermStats t;
-    t.name = name;
-    t.rms = std::sqrt(p.first / static_cast<double>(moving));
-    t.peak = p.second;
-    ranking.push_back(t);
-  }
-  std::sort(ranking.begin(), ranking.end(),
-            [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
-  for (auto& t : ranking) {
-    t.ratio_to_top = t.rms / ranking[0].rms;
-    t.negligible = &t != &ranking[0] && t.ratio_to_top <= o.negligible;
-  }
+  const std::vector<TermStats> ranking = PooledRanking(s, d.negligible_ratio);
   if (o.json) {
     nlohmann::ordered_json j;
     nlohmann::ordered_json rank = nlohmann::ordered_json::array();
@@ -138,8 +109,8 @@ void RunDominance(const DominanceCli& o) {
                       {"negligible", t.negligible}});
     j["ranking"] = rank;
     j["dominant"] = ranking[0].name;
-    j["negligible_ratio"] = o.negligible;
-    j["min_speed_mps"] = o.min_speed;
+    j["negligible_ratio"] = d.negligible_ratio;
+    j["min_speed_mps"] = d.min_speed_mps;
     nlohmann::ordered_json counts = nlohmann::ordered_json::object();
     for (const auto& [k, c] : s.dominant_counts) counts[k] = c;
     j["summary"] = {{"recordings", s.results.size()},
@@ -177,16 +148,20 @@ void AddDominanceCommand(CLI::App& app) {
   cmd->add_option("--candidate", o->candidates,
                   "further candidate variable NAME=COLUMN*GAIN: term GAIN*COLUMN [m/s^2]")
       ->type_name("NAME=COL*GAIN");
-  cmd->add_option("--min-speed", o->min_speed, "moving part: |v| >= this [m/s], default 1e-3");
-  cmd->add_option("--negligible", o->negligible,
-                  "a variable with rms <= this x the top's is negligible [dimensionless], "
-                  "default 0.1");
-  cmd->add_option("--threads", o->threads, "recordings analysed in parallel [count]");
+  cmd->add_option("--min-speed", o->options.min_speed_mps, "moving part: |v| >= this [m/s]")
+      ->capture_default_str();
+  cmd->add_option("--negligible", o->options.negligible_ratio,
+                  "a variable with rms <= this x the top's is negligible [dimensionless]")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->options.threads,
+                  "recordings analysed in parallel [count]; 0 = all cores")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
                 "recordings} (rms, peak in m/s^2)");
   AddOutputOption(cmd, o->output, "write the per-recording table as CSV");
-  o->motion.Add(cmd, "filter for v and x'' from x: central (default), butterworth, savgol");
+  o->motion.Add(cmd, "filter for v and x'' from x",
+                ToString(DominanceOptions{}.motion.derivative.method));
   cmd->callback([o] { RunDominance(*o); });
 }
 

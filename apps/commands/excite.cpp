@@ -21,9 +21,9 @@ struct ExciteOptions {
   std::string what;
   std::string output;
   bool force = false;
-  double rate_hz = 1000;
-  std::vector<double> amplitudes_v;
-  double on_s = 0.4, rest_s = 0.3, lead_s = 0.1;
+  double rate_hz = StageParameters{}.sample_rate_hz;
+  std::vector<double> amplitudes_v;  // empty: the procedure's (the paper's ten)
+  PulseProcedure pulses;             // on, rest, lead: the flags' defaults are the library's
   std::string set = "training";
   int cycles = 2;
   bool json = false;
@@ -79,11 +79,8 @@ void RunExcite(const ExciteOptions& o) {
   };
   Recording r;
   if (o.what == "pulses") {
-    PulseProcedure p;
+    PulseProcedure p = o.pulses;
     if (!o.amplitudes_v.empty()) p.amplitudes_v = o.amplitudes_v;
-    p.on_s = o.on_s;
-    p.rest_s = o.rest_s;
-    p.lead_s = o.lead_s;
     r = PulseExcitation(p, o.rate_hz);
   } else {
     TrackingProcedure t;
@@ -135,21 +132,28 @@ void AddExciteCommand(CLI::App& app) {
       ->type_name("FILE|DIR");
   cmd->add_flag("--force", o->force,
                 "replace a folder an earlier sysid excite wrote (one holding .sysid-output)");
-  cmd->add_option("--rate", o->rate_hz, "sample rate [Hz] (default 1000)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--rate", o->rate_hz, "sample rate [Hz]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--amplitudes", o->amplitudes_v,
                   "pulse amplitudes [V], in order (default: the paper's ten, alternating "
                   "direction)")
       ->delimiter(',');
-  cmd->add_option("--on", o->on_s, "pulse length [s] (default 0.4)")->check(CLI::PositiveNumber);
-  cmd->add_option("--rest", o->rest_s, "rest after each pulse [s] (default 0.3)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--lead", o->lead_s, "0 V before the first pulse [s] (default 0.1)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--set", o->set, "tracking grid: training or test (default training)")
-      ->check(CLI::IsMember({"training", "test"}));
-  cmd->add_option("--cycles", o->cycles, "reference cycles per waveform [1] (default 2)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--on", o->pulses.on_s, "pulse length [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--rest", o->pulses.rest_s, "rest after each pulse [s]")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--lead", o->pulses.lead_s, "0 V before the first pulse [s]")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--set", o->set, "tracking grid: training or test")
+      ->check(CLI::IsMember({"training", "test"}))
+      ->capture_default_str();
+  cmd->add_option("--cycles", o->cycles, "reference cycles per waveform [1]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print one JSON object: what, sample_rate_hz, files (path, waveform, samples, "
                 "duration_s, columns, units), total_samples; without -o nothing is written and "

@@ -23,7 +23,7 @@ struct GenerateOptions {
   std::string stage_path;
   std::uint64_t seed = 1;
   std::string out_dir = ".";
-  std::string derivative = "central";
+  std::string derivative = ToString(TrackingProcedure{}.derivative.method);
   bool json = false;
 };
 
@@ -114,15 +114,18 @@ void AddGenerateCommand(CLI::App& app) {
                   "the paper's feedforward does not help; docs/virtual_stage.md)")
       ->type_name("STAGE.json|PRESET");
   cmd->add_option("--seed", o->seed,
-                  "noise seed [integer]; the same seed gives byte-identical files (default 1)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+                  "noise seed [integer]; the same seed gives byte-identical files")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
   cmd->add_option("-o,--output", o->out_dir,
-                  "output folder, created if missing (default: the current folder)")
-      ->type_name("DIR");
+                  "output folder, created if missing")
+      ->type_name("DIR")
+      ->capture_default_str();
   cmd->add_option("--derivative", o->derivative,
-                  "how v [m/s] and a [m/s^2] come from x [m]: central, butterworth or savgol "
-                  "(default central, as the paper)")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+                  "how v [m/s] and a [m/s^2] come from x [m]: central (as the paper), "
+                  "butterworth or savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print one JSON object: stage, seed, files (path, rows, "
                 "duration_s, limits)");

@@ -27,22 +27,11 @@ struct IdentifyCli {
   std::string table;
   std::string output;
   bool json = false;
-  double a3 = 6.0;
   MotionFlags motion;  // derivative empty: the method's default
-  // pulse
-  double min_duration_s = 0.2;
-  double window_fraction = 0.5;
-  double settle_tolerance = 0.02;
-  double pulse_min_speed = 1e-4;
-  double max_speed = 0;  // 0: no limit
-  // trajectory
-  double tau_s = 0;
-  bool tune_delay = false;
-  double tau_min_s = 0, tau_max_s = 0.02;
-  int decimate = 1;
-  bool offset = false;
-  bool symmetric_viscous = false;
-  double traj_min_speed = 1e-3;
+  // The flags' defaults are the library's.
+  PulseIdentificationOptions pulse;
+  double max_speed = 0;  // [m/s] 0: no limit (the library's default, infinity)
+  TrajectoryOptions trajectory;
 };
 
 nlohmann::ordered_json FitJson(const LinearFit& f) {
@@ -100,24 +89,19 @@ void RunIdentify(const IdentifyCli& o) {
     if (!o.table.empty()) {
       if (!o.recordings.empty())
         throw OptionsError("--table: give either a pulse table or recordings, not both");
-      r = FitPulseTable(ReadPulseTable(o.table), {o.a3});
+      r = FitPulseTable(ReadPulseTable(o.table), o.pulse.fit);
     } else {
       if (o.recordings.empty())
         throw OptionsError("identify: give recordings (REC.csv...) or --table T.csv");
-      PulseIdentificationOptions po;
+      PulseIdentificationOptions po = o.pulse;
       po.motion = Motion(o, po.motion);
-      po.detection.min_duration_s = o.min_duration_s;
-      po.plateau.window_fraction = o.window_fraction;
-      po.plateau.settle_tolerance = o.settle_tolerance;
-      po.plateau.min_speed_mps = o.pulse_min_speed;
       if (o.max_speed > 0) po.plateau.max_speed_mps = o.max_speed;
-      po.fit.a3 = o.a3;
       r = IdentifyFromPulses(ReadAll(o), po);
     }
     j = ModelJson(r.model);
     nlohmann::ordered_json d;
     d["method"] = "pulse";
-    d["a3_given"] = o.a3;
+    d["a3_given"] = o.pulse.fit.a3;
     d.update(ParametersJson(r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance));
     d.update(FitJson(r.fit));
     nlohmann::ordered_json eq = nlohmann::ordered_json::array();
@@ -152,16 +136,8 @@ void RunIdentify(const IdentifyCli& o) {
   } else {
     if (o.recordings.empty()) throw OptionsError("identify --method trajectory: no recordings");
     if (!o.table.empty()) throw OptionsError("--table applies to --method pulse only");
-    TrajectoryOptions to;
+    TrajectoryOptions to = o.trajectory;
     to.motion = Motion(o, to.motion);
-    to.tau_s = o.tau_s;
-    to.tune_delay = o.tune_delay;
-    to.tau_min_s = o.tau_min_s;
-    to.tau_max_s = o.tau_max_s;
-    to.decimation = o.decimate;
-    to.offset = o.offset;
-    to.symmetric_viscous = o.symmetric_viscous;
-    to.min_speed_mps = o.traj_min_speed;
     const auto r = IdentifyFromTrajectory(ReadAll(o), to);
     j = ModelJson(r.model);
     nlohmann::ordered_json d;
@@ -201,46 +177,58 @@ void AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("recordings", o->recordings,
                   "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
       ->type_name("REC.csv");
-  cmd->add_option("--method", o->method, "pulse (default) or trajectory")
-      ->check(CLI::IsMember({"pulse", "trajectory"}));
-  cmd->add_option("--a3", o->a3, "actuator gain for --method pulse [m/(s^2 V)], default 6");
+  cmd->add_option("--method", o->method, "pulse or trajectory")
+      ->check(CLI::IsMember({"pulse", "trajectory"}))
+      ->capture_default_str();
+  cmd->add_option("--a3", o->pulse.fit.a3, "actuator gain for --method pulse [m/(s^2 V)]")
+      ->capture_default_str();
   cmd->add_option("--table", o->table,
                   "pulse table CSV with columns u [V] and v [m/s] instead of recordings")
       ->type_name("T.csv");
   cmd->add_flag("--json", o->json,
                 "print the model (a1p, a1n, a2p, a2n, a3, tau) plus a diagnostics object as JSON");
   AddOutputOption(cmd, o->output, "write the model file (same JSON as --json)");
-  o->motion.Add(cmd,
-                "velocity filter: central (pulse default), butterworth (trajectory default), "
-                "savgol");
-  cmd->add_option("--min-duration", o->min_duration_s, "pulse: shortest pulse [s], default 0.2")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--window-fraction", o->window_fraction,
-                  "pulse: plateau = this last fraction of each pulse [dimensionless], default "
-                  "0.5");
-  cmd->add_option("--settle-tolerance", o->settle_tolerance,
-                  "pulse: allowed drift across the plateau relative to |v| [dimensionless], "
-                  "default 0.02");
-  cmd->add_option("--pulse-min-speed", o->pulse_min_speed,
-                  "pulse: |v| below this is stuck [m/s], default 1e-4");
+  o->motion.Add(cmd, "velocity filter",
+                ToString(PulseIdentificationOptions{}.motion.derivative.method) + " (pulse), " +
+                    ToString(TrajectoryOptions{}.motion.derivative.method) + " (trajectory)");
+  auto& pulse = o->pulse;
+  cmd->add_option("--min-duration", pulse.detection.min_duration_s,
+                  "pulse: shortest pulse [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--window-fraction", pulse.plateau.window_fraction,
+                  "pulse: plateau = this last fraction of each pulse [dimensionless]")
+      ->capture_default_str();
+  cmd->add_option("--settle-tolerance", pulse.plateau.settle_tolerance,
+                  "pulse: allowed drift across the plateau relative to |v| [dimensionless]")
+      ->capture_default_str();
+  cmd->add_option("--pulse-min-speed", pulse.plateau.min_speed_mps,
+                  "pulse: |v| below this is stuck [m/s]")
+      ->capture_default_str();
   cmd->add_option("--max-speed", o->max_speed,
-                  "pulse: stage velocity limit [m/s]; pulses reaching it are excluded (default "
-                  "none)");
-  cmd->add_option("--tau", o->tau_s, "trajectory: delay of the viscous term [s], default 0");
-  cmd->add_flag("--tune-delay", o->tune_delay,
+                  "pulse: stage velocity limit [m/s]; pulses reaching it are excluded; 0 = no "
+                  "limit")
+      ->capture_default_str();
+  auto& traj = o->trajectory;
+  cmd->add_option("--tau", traj.tau_s, "trajectory: delay of the viscous term [s]")
+      ->capture_default_str();
+  cmd->add_flag("--tune-delay", traj.tune_delay,
                 "trajectory: choose tau in [--tau-min, --tau-max] minimising the residual");
-  cmd->add_option("--tau-min", o->tau_min_s, "trajectory: lower tau bound [s], default 0");
-  cmd->add_option("--tau-max", o->tau_max_s, "trajectory: upper tau bound [s], default 0.02");
-  cmd->add_option("--decimate", o->decimate,
-                  "trajectory: keep every n-th sample after anti-alias filtering [samples], "
-                  "default 1")
-      ->check(CLI::PositiveNumber);
-  cmd->add_flag("--offset", o->offset,
+  cmd->add_option("--tau-min", traj.tau_min_s, "trajectory: lower tau bound [s]")
+      ->capture_default_str();
+  cmd->add_option("--tau-max", traj.tau_max_s, "trajectory: upper tau bound [s]")
+      ->capture_default_str();
+  cmd->add_option("--decimate", traj.decimation,
+                  "trajectory: keep every n-th sample after anti-alias filtering [samples]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--offset", traj.offset,
                 "trajectory: add a constant offset c0 [m/s^2]; Coulomb becomes symmetric a2");
-  cmd->add_flag("--symmetric-viscous", o->symmetric_viscous,
+  cmd->add_flag("--symmetric-viscous", traj.symmetric_viscous,
                 "trajectory: one viscous coefficient a1 [1/s] for both directions");
-  cmd->add_option("--min-speed", o->traj_min_speed,
-                  "trajectory: samples with |v| below this are excluded [m/s], default 1e-3");
+  cmd->add_option("--min-speed", traj.min_speed_mps,
+                  "trajectory: samples with |v| below this are excluded [m/s]")
+      ->capture_default_str();
   cmd->callback([o] { RunIdentify(*o); });
 }
 

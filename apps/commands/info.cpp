@@ -8,6 +8,7 @@
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
+#include "sysid/motion.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -15,7 +16,7 @@ namespace {
 struct InfoOptions {
   std::string path;
   bool json = false;
-  double jitter_tolerance = 0.01;
+  double jitter_tolerance = MotionOptions{}.max_relative_jitter;
 };
 
 void RunInfo(const InfoOptions& o) {
@@ -89,8 +90,9 @@ void AddInfoCommand(CLI::App& app) {
                 "column_stats, metadata)");
   cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
                   "relative sampling jitter above which sampling is reported irregular "
-                  "[dimensionless, default 0.01]")
-      ->check(CLI::PositiveNumber);
+                  "[dimensionless]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([o] { RunInfo(*o); });
 }
 

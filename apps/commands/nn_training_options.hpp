@@ -20,8 +20,8 @@ struct NeuralCliOptions {
   std::string train_path, test_path, validation_path, model_path;
   std::string inputs = "v";
   std::string output = "u";
-  std::string trainer = "lm";
-  std::string init = "nguyen-widrow";
+  std::string trainer;  // set from `training` (AddNeuralOptions)
+  std::string init;     // set from `training` (AddNeuralOptions)
   std::vector<std::string> input_ranges;  ///< NAME=MIN:MAX
   std::string output_range;               ///< MIN:MAX
   bool json = false;
@@ -57,7 +57,17 @@ inline std::pair<double, double> ParseRangeSpec(const std::string& spec,
   }
 }
 
+// The flag names of the trainers and initialisations (library enum <-> CLI text).
+inline std::string TrainerFlag(NeuralTrainer t) {
+  return t == NeuralTrainer::kCeres ? "ceres" : "lm";
+}
+inline std::string InitFlag(NeuralInit i) {
+  return i == NeuralInit::kUniform ? "uniform" : "nguyen-widrow";
+}
+
 inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
+  o.trainer = TrainerFlag(o.training.trainer);
+  o.init = InitFlag(o.training.init);
   cmd->add_option("--train", o.train_path,
                   "training CSV with the input and output columns (t [s] optional)")
       ->required()
@@ -68,26 +78,34 @@ inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
                   "validation CSV for early stopping (6 consecutive rises, trainlm's rule)")
       ->type_name("FILE.csv");
   cmd->add_option("--inputs", o.inputs,
-                  "comma-separated input columns, e.g. v or v,a [SI units: v m/s, a m/s^2]; "
-                  "default v");
-  cmd->add_option("--output", o.output, "output (target) column [SI unit, u in V]; default u");
+                  "comma-separated input columns, e.g. v or v,a [SI units: v m/s, a m/s^2]")
+      ->capture_default_str();
+  cmd->add_option("--output", o.output, "output (target) column [SI unit, u in V]")
+      ->capture_default_str();
   cmd->add_option("--trainer", o.trainer,
                   "lm (the paper's LM with momentum, trainlm mu schedule) or ceres (Ceres LM "
-                  "reference); default lm")
-      ->check(CLI::IsMember({"lm", "ceres"}));
+                  "reference)")
+      ->check(CLI::IsMember({"lm", "ceres"}))
+      ->capture_default_str();
   cmd->add_option("--momentum", o.training.momentum,
-                  "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm; default 0");
+                  "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm")
+      ->capture_default_str();
   cmd->add_option("--seed", o.training.seed, "initialisation seed; restart r uses seed + r")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
   cmd->add_option("--restarts", o.training.restarts,
-                  "random initialisations, best kept (by validation MSE, else training MSE)");
-  cmd->add_option("--max-epochs", o.training.max_epochs, "epoch limit; default 1000");
+                  "random initialisations, best kept (by validation MSE, else training MSE)")
+      ->capture_default_str();
+  cmd->add_option("--max-epochs", o.training.max_epochs, "epoch limit")->capture_default_str();
   cmd->add_option("--goal-mse", o.training.goal_mse,
-                  "stop when training MSE <= this [output unit^2, V^2]; default 0");
+                  "stop when training MSE <= this [output unit^2, V^2]")
+      ->capture_default_str();
   cmd->add_option("--min-gradient", o.training.gradient_tolerance,
-                  "stop when ||2 J'e/N|| < this [normalised units]; default 1e-7");
-  cmd->add_option("--init", o.init, "nguyen-widrow (default) or uniform")
-      ->check(CLI::IsMember({"nguyen-widrow", "uniform"}));
+                  "stop when ||2 J'e/N|| < this [normalised units]")
+      ->capture_default_str();
+  cmd->add_option("--init", o.init, "nguyen-widrow or uniform")
+      ->check(CLI::IsMember({"nguyen-widrow", "uniform"}))
+      ->capture_default_str();
   cmd->add_flag("--solve-output-layer", o.training.solve_output_layer,
                 "lm only: after each trial step set the linear output layer to its least-squares "
                 "optimum (much faster convergence; off = the paper's rule exactly)");

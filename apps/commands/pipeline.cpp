@@ -13,6 +13,7 @@
 
 #include "cli/common.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/pi_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 
@@ -24,19 +25,10 @@ struct PipelineCliOptions {
   std::string input;
   std::string out_dir = "sysid-report";
   bool force = false;
-  std::string reference;
-  std::string hidden = "16:32:2";
-  double a3 = 6.0;
-  int max_epochs = PipelineOptions::DefaultTraining().max_epochs;
+  PipelineOptions options;  // the flags' defaults are the library's
+  std::string hidden;  // FIRST:LAST:STEP or a list; set from options.hidden_sizes
   std::string inputs;
-  int typical_epochs = 60;
-  int typical_stride = 2;
-  bool refine = false, typical = true, track = true, tune_delay = true, json = false;
-  bool facts = false;
-  double kp = PiOptions{}.kp_v_per_m;
-  double ki = PiOptions{}.ki_v_per_m_s;
-  std::uint64_t seed = 1;
-  int threads = 0;
+  bool json = false;
 };
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
@@ -45,23 +37,9 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   const fs::path& out = folder.path();
   const PipelineInputs inputs = fs::is_directory(o.input) ? PipelineInputs::FromDirectory(o.input)
                                                           : PipelineInputs::FromManifest(o.input);
-  PipelineOptions opt;
-  opt.a3 = o.a3;
-  opt.tune_delay = o.tune_delay;
-  opt.refine = o.refine;
+  PipelineOptions opt = o.options;
   opt.hidden_sizes = ParseHiddenSizes(o.hidden);
-  opt.training.max_epochs = o.max_epochs;
   if (!o.inputs.empty()) opt.nn_inputs = CLI::detail::split(o.inputs, ',');
-  opt.training.seed = o.seed;
-  opt.typical = o.typical;
-  opt.typical_max_epochs = o.typical_epochs;
-  opt.typical_stride = o.typical_stride;
-  opt.track = o.track;
-  opt.facts = o.facts;
-  opt.pi.kp_v_per_m = o.kp;
-  opt.pi.ki_v_per_m_s = o.ki;
-  opt.reference_path = o.reference;
-  opt.threads = o.threads;
   const PipelineResult r = RunPipeline(inputs, opt, [](const std::string& step) {
     Progress("pipeline: " + step + " ...");
     ProgressDone();
@@ -131,48 +109,49 @@ void AddPipelineCommand(CLI::App& app) {
       ->check(CLI::ExistingPath)
       ->type_name("DIR|MANIFEST");
   AddOutputOption(cmd, o->out_dir,
-                  "report folder: new, empty, or an earlier sysid report with --force "
-                  "(default sysid-report)")
-      ->type_name("DIR");
+                  "report folder: new, empty, or an earlier sysid report with --force")
+      ->type_name("DIR")
+      ->capture_default_str();
   cmd->add_flag("--force", o->force,
                 "replace an earlier sysid report folder (one holding .sysid-output)");
-  cmd->add_option("--a3", o->a3,
-                  "actuator gain for the pulse method [m/(s^2 V)] (default 6; "
-                  "a manifest's a3 wins)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--hidden", o->hidden,
-                  "hidden sizes to sweep: first:last:step or a list "
-                  "(default 16:32:2)");
+  PipelineOptions& p = o->options;
+  o->hidden = FormatHiddenSizes(p.hidden_sizes);
+  cmd->add_option("--a3", p.a3,
+                  "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--hidden", o->hidden, "hidden sizes to sweep: first:last:step or a list")
+      ->capture_default_str();
   cmd->add_option("--inputs", o->inputs,
                   "network inputs, comma separated (v, a); default: the dominant variable");
-  cmd->add_option("--max-epochs", o->max_epochs, "LM epoch limit per network (default 100)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
-  cmd->add_option("--typical-epochs", o->typical_epochs,
-                  "LM epoch limit of the typical 120-unit (v, a) network (default 60)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
-  cmd->add_option("--typical-stride", o->typical_stride,
-                  "train the typical network on every n-th training row (default 2)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_flag("!--no-typical", o->typical, "skip the typical (v, a) network");
-  cmd->add_flag("!--no-delay", o->tune_delay, "keep tau = 0 (no delay tuning)");
-  cmd->add_flag("--refine", o->refine, "refine all parameters by output error (Ceres)");
-  cmd->add_flag("!--no-track", o->track, "skip the PI tracking experiment");
-  cmd->add_flag("--facts", o->facts,
+  cmd->add_option("--max-epochs", p.training.max_epochs, "LM epoch limit per network")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
+  cmd->add_option("--typical-epochs", p.typical_max_epochs,
+                  fmt::format("LM epoch limit of the typical {}-unit (v, a) network",
+                              p.typical_hidden))
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
+  cmd->add_option("--typical-stride", p.typical_stride,
+                  "train the typical network on every n-th training row")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("!--no-typical", p.typical, "skip the typical (v, a) network");
+  cmd->add_flag("!--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");
+  cmd->add_flag("--refine", p.refine, "refine all parameters by output error (Ceres)");
+  cmd->add_flag("!--no-track", p.track, "skip the PI tracking experiment");
+  cmd->add_flag("--facts", p.facts,
                 "also check the paper's facts F1-F7 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");
-  cmd->add_option("--kp", o->kp,
-                  "PI proportional gain [V/m] (default the paper's 19000, stable on the "
-                  "bundled velocity-source stage; the actuator-delay preset needs 3000)");
-  cmd->add_option("--ki", o->ki,
-                  "PI integral gain [V/(m s)] (default the paper's 660000; actuator-delay "
-                  "preset: 104100)");
-  cmd->add_option("--seed", o->seed, "seed of the network initialisations")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
-  cmd->add_option("--threads", o->threads,
-                  "threads for every long step; 0 = all cores (default); results do not "
-                  "depend on it")
-      ->check(CLI::Range(0, 1024));
-  cmd->add_option("--reference", o->reference,
+  AddPiGainOptions(cmd, p.pi, "PI ");
+  cmd->add_option("--seed", p.training.seed, "seed of the network initialisations")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
+  cmd->add_option("--threads", p.threads,
+                  "threads for every long step; 0 = all cores; results do not depend on it")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--reference", p.reference_path,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--json", o->json, "print a JSON summary (model, dominant, MSEs, tracking)");

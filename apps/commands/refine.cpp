@@ -26,10 +26,7 @@ struct RefineCli {
   std::string output;
   bool fix_a3 = false;
   bool fix_tau = false;
-  double tau_max_s = 0.05;
-  int max_iterations = 50;
-  int threads = 0;
-  double min_duration_s = 0.2;
+  RefineOptions options;  // the flags' defaults are the library's
   MotionFlags motion;
 };
 
@@ -75,13 +72,9 @@ std::vector<std::string> FarFromPriorWarnings(const FrictionModel& prior,
 
 void RunRefine(const RefineCli& o) {
   const FrictionModel initial = ReadModel(o.model);
-  RefineOptions r;
+  RefineOptions r = o.options;
   r.refine_a3 = !o.fix_a3;
   r.refine_tau = !o.fix_tau;
-  r.tau_max_s = o.tau_max_s;
-  r.max_iterations = o.max_iterations;
-  r.threads = o.threads;
-  r.detection.min_duration_s = o.min_duration_s;
   o.motion.ApplyTo(r.motion);
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const RefineResult res = RefineOutputError(initial, recs, r);
@@ -133,13 +126,17 @@ void AddRefineCommand(CLI::App& app) {
   AddOutputOption(cmd, o->output, "write the refined model file (same JSON as --json)");
   cmd->add_flag("--fix-a3", o->fix_a3, "keep a3 at the starting value");
   cmd->add_flag("--fix-tau", o->fix_tau, "keep tau at the starting value");
-  cmd->add_option("--tau-max", o->tau_max_s, "upper bound of tau [s], default 0.05");
-  cmd->add_option("--max-iterations", o->max_iterations,
-                  "Levenberg-Marquardt iterations [count], default 50");
-  cmd->add_option("--threads", o->threads, "simulation threads [count], default all cores");
-  cmd->add_option("--min-duration", o->min_duration_s,
-                  "pulses (cut points) last at least this long [s], default 0.2");
-  o->motion.Add(cmd, "filter for velocity from x: central (default), butterworth, savgol");
+  RefineOptions& r = o->options;
+  cmd->add_option("--tau-max", r.tau_max_s, "upper bound of tau [s]")->capture_default_str();
+  cmd->add_option("--max-iterations", r.max_iterations,
+                  "Levenberg-Marquardt iterations [count]")
+      ->capture_default_str();
+  cmd->add_option("--threads", r.threads, "simulation threads [count]; 0 = all cores")
+      ->capture_default_str();
+  cmd->add_option("--min-duration", r.detection.min_duration_s,
+                  "pulses (cut points) last at least this long [s]")
+      ->capture_default_str();
+  o->motion.Add(cmd, "filter for velocity from x", ToString(r.motion.derivative.method));
   cmd->callback([o] { RunRefine(*o); });
 }
 

@@ -28,58 +28,30 @@ struct SimulateCliOptions {
   std::string input_path;
   std::string hold = "zoh";
   std::vector<double> pulses;
-  double pulse_on_s = 0.4, pulse_off_s = 0.6, pulse_start_s = 0.0;
-  int pulse_repeats = 5;
+  PulseTrainSpec pulse_train;  // on, off, repeats, start: the flags' defaults are the library's
   std::string waveform;
   double t_end_s = 0;  // 0: the input's natural length
-  double dt_s = 1e-3;
   std::string output, events_path;
   bool json = false;
   SimulationOptions sim;
-  std::string method = "adams";
+  std::string method;  // set from sim.method
 };
 
-struct InputChoice {
-  std::shared_ptr<const InputSignal> signal;
-  std::string description;
-  double natural_end_s = 0;
-};
-
-InputChoice ChooseInput(const SimulateCliOptions& o) {
+NamedWaveform ChooseInput(const SimulateCliOptions& o) {
   const int given = !o.input_path.empty() + !o.pulses.empty() + !o.waveform.empty();
   if (given != 1)
     throw OptionsError(
         "give exactly one input: --input U.csv, --pulses A[,A...] or --waveform "
         "NAME");
-  InputChoice c;
-  if (!o.input_path.empty()) {
-    auto table = ReadInputTable(o.input_path, ParseInputHold(o.hold));
-    ReadOptions ro;
-    ro.required_columns = {"t", "u"};
-    ro.any_of_columns = {};
-    const Recording rec = ReadRecording(o.input_path, ro);
-    c.natural_end_s = rec.column("t")[rec.rows() - 1];
-    c.signal = std::move(table);
-    c.description = o.input_path + " (" + o.hold + ")";
-  } else if (!o.pulses.empty()) {
-    PulseTrainSpec spec;
+  if (!o.input_path.empty()) return ReadInputWaveform(o.input_path, ParseInputHold(o.hold));
+  if (!o.pulses.empty()) {
+    PulseTrainSpec spec = o.pulse_train;
     spec.amplitudes_v = o.pulses;
-    spec.on_s = o.pulse_on_s;
-    spec.off_s = o.pulse_off_s;
-    spec.repeats = o.pulse_repeats;
-    spec.start_s = o.pulse_start_s;
-    c.signal = std::make_shared<PiecewiseConstantInput>(MakePulseTrain(spec));
-    c.natural_end_s = spec.duration_s();
-    c.description =
-        fmt::format("pulses {} V, {} s on, {} s off, {} repeats", fmt::join(o.pulses, "/"),
-                    o.pulse_on_s, o.pulse_off_s, o.pulse_repeats);
-  } else {
-    NamedWaveform w = MakeNamedWaveform(o.waveform);
-    c.signal = w.signal;
-    c.natural_end_s = w.duration_s;
-    c.description = w.name + ": " + w.description;
+    return PulseTrainWaveform(spec);
   }
-  return c;
+  NamedWaveform w = MakeNamedWaveform(o.waveform);
+  w.description = w.name + ": " + w.description;
+  return w;
 }
 
 std::string EventsCsv(const std::vector<SimulationEvent>& events) {
@@ -92,17 +64,16 @@ void RunSimulate(SimulateCliOptions o) {
   if (o.model_path.empty() == !o.paper_model)
     throw OptionsError("give exactly one model: --model M.json or --paper-model");
   const FrictionModel model = o.paper_model ? FrictionModel::Paper() : ReadModel(o.model_path);
-  const InputChoice input = ChooseInput(o);
+  const NamedWaveform input = ChooseInput(o);
   SimulationOptions sim = o.sim;
   sim.method = ParseIntegratorMethod(o.method);
   sim.t0_s = 0.0;
-  sim.t_end_s = o.t_end_s > 0 ? o.t_end_s : input.natural_end_s;
+  sim.t_end_s = o.t_end_s > 0 ? o.t_end_s : input.duration_s;
   if (!(sim.t_end_s > 0))
     throw OptionsError(
         fmt::format("--t-end = {}. Violated constraint: t_end > 0 (the input "
                     "ends at {} s; give --t-end)",
-                    sim.t_end_s, input.natural_end_s));
-  sim.dt_out_s = o.dt_s;
+                    sim.t_end_s, input.duration_s));
   const SimulationResult r = Simulate(model, *input.signal, sim);
   const SimulationSummary& s = r.summary;
   if (!s.IsSolutionUsable())
@@ -156,6 +127,7 @@ void RunSimulate(SimulateCliOptions o) {
 
 void AddSimulateCommand(CLI::App& app) {
   auto o = std::make_shared<SimulateCliOptions>();
+  o->method = ToString(o->sim.method);
   CLI::App* cmd = app.add_subcommand(
       "simulate",
       "Simulate the delayed friction model x'' = -a1 v(t-tau) - a2 sgn(v) + a3 u with "
@@ -171,21 +143,25 @@ void AddSimulateCommand(CLI::App& app) {
       cmd->add_option("--input", o->input_path, "input table CSV with columns t [s], u [V]")
           ->type_name("U.csv");
   cmd->add_option("--hold", o->hold,
-                  "how the table holds between rows: zoh (u_k on [t_k, t_k+1)) or linear "
-                  "[default zoh]")
-      ->check(CLI::IsMember({"zoh", "linear"}));
+                  "how the table holds between rows: zoh (u_k on [t_k, t_k+1)) or linear")
+      ->check(CLI::IsMember({"zoh", "linear"}))
+      ->capture_default_str();
   auto* pulses =
       cmd->add_option("--pulses", o->pulses, "pulse-train amplitudes [V], in order, e.g. 1.6,-2.3")
           ->delimiter(',')
           ->excludes(input);
-  cmd->add_option("--pulse-on", o->pulse_on_s, "pulse length [s] (default 0.4)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--pulse-off", o->pulse_off_s, "rest after each pulse [s] (default 0.6)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--pulse-repeats", o->pulse_repeats,
-                  "repeats of the amplitude list [count] (default 5)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--pulse-start", o->pulse_start_s, "time of the first pulse [s] (default 0)");
+  PulseTrainSpec& train = o->pulse_train;
+  cmd->add_option("--pulse-on", train.on_s, "pulse length [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--pulse-off", train.off_s, "rest after each pulse [s]")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--pulse-repeats", train.repeats, "repeats of the amplitude list [count]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--pulse-start", train.start_s, "time of the first pulse [s]")
+      ->capture_default_str();
   std::string names;
   for (const auto& n : NamedWaveformNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--waveform", o->waveform, "a named test waveform of the paper: " + names)
@@ -195,8 +171,9 @@ void AddSimulateCommand(CLI::App& app) {
                   "end time [s] (default: the input's end: last table row, end of the pulse "
                   "train or of the waveform)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--dt", o->dt_s, "output sample interval [s] (default 0.001)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--dt", o->sim.dt_out_s, "output sample interval [s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   AddOutputOption(cmd, o->output, "trajectory CSV t,u,x,v,a (default: stdout)");
   cmd->add_option("--events", o->events_path,
                   "event log CSV t [s], kind (stick, slip+, slip-, reverse, a1-switch)")
@@ -204,16 +181,19 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print a JSON summary (events, steps, rhs evaluations, wall time) instead of "
                 "the trajectory");
-  cmd->add_option("--method", o->method, "CVODE method: adams (nonstiff, default) or bdf")
-      ->check(CLI::IsMember({"adams", "bdf"}));
-  cmd->add_option("--rtol", o->sim.rtol, "relative tolerance [dimensionless] (default 1e-10)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--atol", o->sim.atol, "absolute tolerance [m, m/s] (default 1e-12)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--x0", o->sim.x0_m, "initial position [m] (default 0)");
-  cmd->add_option("--v0", o->sim.v0_mps, "initial velocity [m/s] (default 0)");
-  cmd->add_option("--history-v", o->sim.history_v_mps,
-                  "constant velocity before t = 0 [m/s] (default 0)");
+  cmd->add_option("--method", o->method, "CVODE method: adams (nonstiff) or bdf")
+      ->check(CLI::IsMember({"adams", "bdf"}))
+      ->capture_default_str();
+  cmd->add_option("--rtol", o->sim.rtol, "relative tolerance [dimensionless]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--atol", o->sim.atol, "absolute tolerance [m, m/s]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--x0", o->sim.x0_m, "initial position [m]")->capture_default_str();
+  cmd->add_option("--v0", o->sim.v0_mps, "initial velocity [m/s]")->capture_default_str();
+  cmd->add_option("--history-v", o->sim.history_v_mps, "constant velocity before t = 0 [m/s]")
+      ->capture_default_str();
   cmd->callback([o] { RunSimulate(*o); });
 }
 

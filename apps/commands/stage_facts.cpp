@@ -19,8 +19,7 @@ namespace {
 struct StageFactsCli {
   std::string stage_path;
   std::vector<std::string> facts;
-  std::uint64_t seed = 1;
-  int threads = 0;
+  FactsOptions options;  // seed, threads: the flags' defaults are the library's
   bool reduced = false;
   bool json = false;
   bool markdown = false;
@@ -29,11 +28,10 @@ struct StageFactsCli {
 void RunStageFactsCommand(const StageFactsCli& o) {
   const StageParameters stage =
       o.stage_path.empty() ? StageParameters::Default() : LoadStage(o.stage_path);
-  FactsOptions f;
-  if (o.reduced) f = FactsOptions::Reduced();
+  FactsOptions f = o.reduced ? FactsOptions::Reduced() : o.options;
   f.facts = o.facts;
-  f.seed = o.seed;
-  f.threads = o.threads;
+  f.seed = o.options.seed;
+  f.threads = o.options.threads;
   const StageFacts r =
       RunStageFacts(stage, f, [](const std::string& step) { Progress("stage facts: " + step); });
   ProgressDone();
@@ -88,12 +86,14 @@ void AddStageCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7"}))
       ->type_name("ID,...");
-  cmd->add_option("--seed", o->seed, "noise seed of every experiment [integer], default 1")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
-  cmd->add_option(
-         "--threads", o->threads,
-         "threads for delay tuning, default all (the networks train on one thread: repeatable)")
-      ->check(CLI::Range(0, 1024));
+  cmd->add_option("--seed", o->options.seed, "noise seed of every experiment [integer]")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->options.threads,
+                  "threads for delay tuning; 0 = all cores (the networks train on one thread: "
+                  "repeatable)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "
                 "the paper's experiment)");

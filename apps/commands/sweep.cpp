@@ -17,7 +17,7 @@ namespace {
 
 struct SweepCliOptions {
   NeuralCliOptions nn;
-  std::string hidden = "16:32:2";
+  std::string hidden;  // set from HiddenSweepOptions::hidden_sizes
   int threads = 0;
 };
 
@@ -107,10 +107,14 @@ void AddSweepCommand(CLI::App& app) {
       "and test MSE [output unit^2], as the paper's Table; picks H by min validation "
       "MSE, else min test MSE");
   AddNeuralOptions(cmd, o->nn);
-  cmd->add_option("--hidden", o->hidden,
-                  "hidden sizes FIRST:LAST:STEP or a list H1,H2,...; default 16:32:2");
-  cmd->add_option("--threads", o->threads, "worker threads; 0 = all cores (default)")
-      ->check(CLI::Range(0, 1024));
+  const HiddenSweepOptions defaults;
+  o->hidden = FormatHiddenSizes(defaults.hidden_sizes);
+  o->threads = defaults.threads;
+  cmd->add_option("--hidden", o->hidden, "hidden sizes FIRST:LAST:STEP or a list H1,H2,...")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "worker threads; 0 = all cores")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
       ->type_name("NN.json");
   cmd->callback([o] { RunSweep(*o); });

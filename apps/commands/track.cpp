@@ -13,6 +13,7 @@
 
 #include "cli/common.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/pi_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
@@ -29,38 +30,25 @@ struct TrackCliOptions {
   std::string plant = "virtual";
   std::string ff = "none";
   std::string model_path, nn_path, reference_path, out_dir;
-  double freq_hz = 0.5;
-  double amplitude_m = 0.01;
-  int cycles = 2;
-  double kp = PiOptions{}.kp_v_per_m;
-  double ki = PiOptions{}.ki_v_per_m_s;
-  double u_max = 10.0;
+  SmoothProfileOptions profile;  // the flags' defaults are the library's
+  PiOptions pi;
   std::uint64_t seed = 1;
   bool json = false;
   bool plots = true;
   bool force = false;
 };
 
-std::vector<std::string> SplitList(const std::string& s) {
-  std::vector<std::string> out;
+std::vector<FeedforwardScheme> ParseSchemes(const std::string& s) {
+  std::vector<FeedforwardScheme> out;
   std::stringstream ss(s);
   std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item != "none" && item != "analytic" && item != "nn")
-      throw OptionsError("--ff: '" + item + "' is not one of none, analytic, nn");
-    out.push_back(item);
+  try {
+    while (std::getline(ss, item, ',')) out.push_back(ParseFeedforwardScheme(item));
+  } catch (const OptionsError& e) {
+    throw OptionsError(std::string("--ff: ") + e.what());
   }
   if (out.empty()) throw OptionsError("--ff: expected none, analytic or nn");
   return out;
-}
-
-Eigen::VectorXd FeedforwardValues(const std::string& scheme, const PositionReference& ref,
-                                  double dt, const std::optional<FrictionModel>& model,
-                                  const std::optional<NeuralNetwork>& nn) {
-  // The analytic inverse uses the delayed reference velocity v_ref(t - tau), so the whole
-  // feedforward is computed over the reference first and played back sample by sample.
-  if (scheme == "analytic") return AnalyticInverse(*model, dt, ref.v_mps, ref.a_mps2);
-  return NetworkInverse(*nn, ref.v_mps, ref.a_mps2);
 }
 
 void RunTrack(const TrackCliOptions& o) {
@@ -74,98 +62,77 @@ void RunTrack(const TrackCliOptions& o) {
     folder.emplace(o.out_dir, o.force, inputs, "track");
   }
   const StageParameters stage = LoadStage(o.plant);
-  const std::vector<std::string> schemes = SplitList(o.ff);
+  const std::vector<FeedforwardScheme> schemes = ParseSchemes(o.ff);
   std::optional<FrictionModel> model;
   std::optional<NeuralNetwork> nn;
-  for (const auto& s : schemes) {
-    if (s == "analytic" && !model) {
+  for (const auto s : schemes) {
+    if (s == FeedforwardScheme::kAnalytic && !model) {
       if (o.model_path.empty()) throw OptionsError("--ff analytic needs --model M.json");
       model = ReadModel(o.model_path);
     }
-    if (s == "nn" && !nn) {
+    if (s == FeedforwardScheme::kNetwork && !nn) {
       if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
       nn = ReadNeuralNetwork(o.nn_path);
     }
   }
   PositionReference ref;
   if (!o.reference_path.empty()) {
-    ReadOptions ro;
-    ro.required_columns = {"t"};
-    ro.any_of_columns = {"x_ref", "x"};
-    const Recording r = ReadRecording(o.reference_path, ro);
-    ref = ReferenceFromPositions(r.column("t"), r.column(r.has("x_ref") ? "x_ref" : "x"));
-    ref.description = o.reference_path;
+    ref = ReadPositionReference(o.reference_path);
   } else {
-    SmoothProfileOptions p;
-    p.frequency_hz = o.freq_hz;
-    p.amplitude_m = o.amplitude_m;
-    p.cycles = o.cycles;
+    SmoothProfileOptions p = o.profile;
     p.sample_rate_hz = stage.sample_rate_hz;
     // The stroke must fit the stage's travel from where it starts.
-    const double end = stage.initial_position_m + o.amplitude_m;
+    const double end = stage.initial_position_m + p.amplitude_m;
     if (!(end >= stage.travel_min_m && end <= stage.travel_max_m))
       throw OptionsError(fmt::format(
           "--amplitude = {} m. Violated constraint: the stroke from the start position {} m "
           "stays within the stage's travel [{}, {}] m",
-          o.amplitude_m, stage.initial_position_m, stage.travel_min_m, stage.travel_max_m));
+          p.amplitude_m, stage.initial_position_m, stage.travel_min_m, stage.travel_max_m));
     ref = MakeSmoothProfile(p);
   }
-  PiOptions pi;
-  pi.kp_v_per_m = o.kp;
-  pi.ki_v_per_m_s = o.ki;
-  pi.u_max_v = o.u_max;
-  pi.sample_time_s = stage.sample_time_s();
-  pi.Validate();
-  const double dt = stage.sample_time_s();
-
-  std::vector<TrackingResult> results;
-  std::vector<std::string> notes;
-  for (size_t i = 0; i < schemes.size(); ++i) {
-    Progress(fmt::format("track: {} ({}/{})", schemes[i], i + 1, schemes.size()));
-    VirtualStage plant(stage, o.seed);  // every scheme sees the same plant and noise
-    Feedforward ff;
-    if (schemes[i] != "none")
-      ff = SampledFeedforward(FeedforwardValues(schemes[i], ref, dt, model, nn));
-    results.push_back(RunClosedLoop(plant, ref, pi, ff));
-    const StageStatus st = plant.status();
-    notes.push_back(st.Describe());
-  }
+  const std::vector<SchemeTracking> runs = TrackSchemes(
+      stage, o.seed, ref, o.pi, schemes, {model ? &*model : nullptr, nn ? &*nn : nullptr},
+      [&](FeedforwardScheme s, size_t i) {
+        Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1, schemes.size()));
+      });
   ProgressDone();
 
   nlohmann::ordered_json j;
   j["plant"] = StageParameters::IsPresetName(o.plant) ? stage.name : o.plant;
   j["reference"] = ref.description;
-  j["kp_v_per_m"] = o.kp;
-  j["ki_v_per_m_s"] = o.ki;
+  j["kp_v_per_m"] = o.pi.kp_v_per_m;
+  j["ki_v_per_m_s"] = o.pi.ki_v_per_m_s;
   j["schemes"] = nlohmann::ordered_json::array();
   Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
                "limits"});
-  for (size_t i = 0; i < schemes.size(); ++i) {
-    const auto& r = results[i];
-    j["schemes"].push_back({{"ff", schemes[i]},
+  for (const auto& run : runs) {
+    const auto& r = run.result;
+    const std::string scheme = ToString(run.scheme);
+    j["schemes"].push_back({{"ff", scheme},
                             {"max_error_m", r.max_error_m},
                             {"rms_error_m", r.rms_error_m},
                             {"rms_u_v", r.rms_u_v},
                             {"max_abs_u_v", r.max_abs_u_v},
                             {"total_variation_v", r.total_variation_v},
                             {"saturated_samples", r.saturated_samples},
-                            {"stage_limits", notes[i]}});
-    table.AddRow({schemes[i], Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
+                            {"stage_limits", run.stage_limits}});
+    table.AddRow({scheme, Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
                   Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
-                  notes[i]});
+                  run.stage_limits});
   }
-  if (schemes.size() == 1) {
-    j["max_error_m"] = results[0].max_error_m;
-    j["rms_error_m"] = results[0].rms_error_m;
+  if (runs.size() == 1) {
+    j["max_error_m"] = runs[0].result.max_error_m;
+    j["rms_error_m"] = runs[0].result.rms_error_m;
   }
   if (folder) {
     folder->Write([&](const fs::path& dir) {
       PlotSpec err{"tracking error", "t [s]", "e [mm]", {}, false, 900, 500};
       PlotSpec u{"control signal", "t [s]", "u [V]", {}, false, 900, 500};
-      for (size_t i = 0; i < schemes.size(); ++i) {
-        const auto& r = results[i];
+      for (const auto& run : runs) {
+        const auto& r = run.result;
+        const std::string scheme = ToString(run.scheme);
         Recording rec;
-        rec.metadata = {{"ff", schemes[i]},
+        rec.metadata = {{"ff", scheme},
                         {"units", "t [s], x_ref [m], x [m], e [m], u [V], u_ff [V]"}};
         rec.SetColumn("t", r.t_s);
         rec.SetColumn("x_ref", r.x_ref_m);
@@ -173,9 +140,9 @@ void RunTrack(const TrackCliOptions& o) {
         rec.SetColumn("e", r.e_m);
         rec.SetColumn("u", r.u_v);
         rec.SetColumn("u_ff", r.u_ff_v);
-        WriteRecording((dir / ("track_" + schemes[i] + ".csv")).string(), rec);
-        err.series.push_back({schemes[i], r.t_s, 1e3 * r.e_m, "lines"});
-        u.series.push_back({schemes[i], r.t_s, r.u_v, "lines"});
+        WriteRecording((dir / ("track_" + scheme + ".csv")).string(), rec);
+        err.series.push_back({scheme, r.t_s, 1e3 * r.e_m, "lines"});
+        u.series.push_back({scheme, r.t_s, r.u_v, "lines"});
       }
       if (o.plots) {
         for (const auto& [name, spec] :
@@ -203,7 +170,8 @@ void AddTrackCommand(CLI::App& app) {
                   "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
                   "calibrated velocity-source stage) or 'actuator-delay' (the former stage, on "
                   "which the paper's gains limit-cycle and feedforward does not help)");
-  cmd->add_option("--ff", o->ff, "feedforward scheme(s), comma separated: none, analytic, nn");
+  cmd->add_option("--ff", o->ff, "feedforward scheme(s), comma separated: none, analytic, nn")
+      ->capture_default_str();
   cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--nn", o->nn_path,
@@ -211,27 +179,28 @@ void AddTrackCommand(CLI::App& app) {
                   "(for --ff nn)")
       ->check(CLI::ExistingFile);
   auto* freq =
-      cmd->add_option("--freq", o->freq_hz, "frequency of the smooth back-and-forth profile [Hz]")
-          ->check(CLI::PositiveNumber);
+      cmd->add_option("--freq", o->profile.frequency_hz,
+                      "frequency of the smooth back-and-forth profile [Hz]")
+          ->check(CLI::PositiveNumber)
+          ->capture_default_str();
   cmd->add_option("--reference", o->reference_path,
                   "position reference CSV with t [s] and x_ref [m] (or x) columns")
       ->check(CLI::ExistingFile)
       ->excludes(freq);
-  cmd->add_option("--amplitude", o->amplitude_m, "stroke of the profile [m] (default 0.01)");
-  cmd->add_option("--cycles", o->cycles, "profile periods to run (default 2)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--kp", o->kp,
-                  "proportional gain [V/m] (default the paper's 19000, stable on the bundled "
-                  "virtual stage; the actuator-delay preset needs 3000, see docs/control.md)")
-      ->check(CLI::Range(0.0, 1e9));
-  cmd->add_option("--ki", o->ki,
-                  "integral gain [V/(m s)] (default the paper's 660000; actuator-delay preset: "
-                  "104100)")
-      ->check(CLI::Range(0.0, 1e12));
-  cmd->add_option("--u-max", o->u_max, "output saturation [V] (default 10)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--amplitude", o->profile.amplitude_m, "stroke of the profile [m]")
+      ->capture_default_str();
+  cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  const auto [kp, ki] = AddPiGainOptions(cmd, o->pi, "");
+  kp->check(CLI::Range(0.0, 1e9));
+  ki->check(CLI::Range(0.0, 1e12));
+  cmd->add_option("--u-max", o->pi.u_max_v, "output saturation [V]")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
+      ->capture_default_str();
   AddOutputOption(cmd, o->out_dir,
                   "new folder for track_<ff>.csv traces, plots and summary.json")
       ->type_name("DIR");

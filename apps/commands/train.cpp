@@ -125,12 +125,14 @@ void AddTrainCommand(CLI::App& app) {
                          "Train a neural inverse model (inputs -> H tanh units -> output) by "
                          "Levenberg-Marquardt; MSE in the output's unit squared (V^2)");
   AddNeuralOptions(cmd, o->nn);
-  cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H; default 24")
-      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_option("--threads", o->nn.training.threads,
-                  "threads for each epoch (lm trainer); 0 = all cores (default); results do "
-                  "not depend on it")
-      ->check(CLI::Range(0, 1024));
+                  "threads for each epoch (lm trainer); 0 = all cores; results do not depend "
+                  "on it")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_option("-o", o->nn.model_path, "network model file (JSON, written atomically)")
       ->type_name("NN.json");
   cmd->add_flag("--history", o->history, "with --json: include every epoch (mu, MSEs)");

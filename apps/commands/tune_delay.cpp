@@ -21,9 +21,7 @@ namespace {
 struct TuneDelayCli {
   std::string model;
   std::vector<std::string> recordings;
-  double tau_min_s = 0.0, tau_max_s = 0.02, x_tolerance_s = 1e-7;
-  int curve_points = 0;
-  int threads = 0;
+  DelayTuningOptions options;  // the flags' defaults are the library's
   bool json = false;
   std::string output;
   MotionFlags motion;
@@ -31,24 +29,19 @@ struct TuneDelayCli {
 
 void RunTuneDelay(const TuneDelayCli& o) {
   const FrictionModel model = ReadModel(o.model);
-  DelayTuningOptions d;
-  d.tau_min_s = o.tau_min_s;
-  d.tau_max_s = o.tau_max_s;
-  d.x_tolerance_s = o.x_tolerance_s;
-  d.curve_points = o.curve_points;
-  d.threads = o.threads;
+  DelayTuningOptions d = o.options;
   o.motion.ApplyTo(d.motion);
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DelayTuningResult r = TuneDelay(model, recs, d);
   // A delay at its search bound is suspicious (the optimum may lie outside, or the data may not
   // determine tau): said on stderr and recorded in --json.
   std::vector<std::string> warnings;
-  const double near = std::max(10 * o.x_tolerance_s, 1e-3 * (o.tau_max_s - o.tau_min_s));
-  if (r.tau_s - o.tau_min_s <= near || o.tau_max_s - r.tau_s <= near)
+  const double near = std::max(10 * d.x_tolerance_s, 1e-3 * (d.tau_max_s - d.tau_min_s));
+  if (r.tau_s - d.tau_min_s <= near || d.tau_max_s - r.tau_s <= near)
     warnings.push_back(fmt::format(
         "tau = {:.6g} s is at the search bound [{:.6g}, {:.6g}] s: the optimum may lie outside "
         "it, or the recordings do not determine tau; widen --min/--max or check the data",
-        r.tau_s, o.tau_min_s, o.tau_max_s));
+        r.tau_s, d.tau_min_s, d.tau_max_s));
   for (const auto& w : warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
   const std::string model_text = ModelToJson(r.model) + "\n";
   if (!o.output.empty()) WriteFileAtomically(o.output, model_text);
@@ -88,24 +81,28 @@ void AddTuneDelayCommand(CLI::App& app) {
                   "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
       ->required()
       ->type_name("REC.csv");
-  cmd->add_option("--min", o->tau_min_s, "lower bound of tau [s], default 0")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--max", o->tau_max_s, "upper bound of tau [s], default 0.02 (at most 1 s)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--xtol", o->x_tolerance_s,
-                  "stop when BOBYQA steps are below this [s], "
-                  "default 1e-7")
-      ->check(CLI::Range(1e-12, 1.0));
-  cmd->add_option("--curve", o->curve_points,
-                  "also evaluate the cost on this many evenly spaced tau values [count], "
-                  "default 0")
-      ->check(CLI::Range(0, 10000));
-  cmd->add_option("--threads", o->threads, "simulation threads [count], default all cores")
-      ->check(CLI::Range(0, 1024));
+  DelayTuningOptions& d = o->options;
+  const double tau_limit = DelayTuningOptions::kMaxTau_s;
+  cmd->add_option("--min", d.tau_min_s, "lower bound of tau [s]")
+      ->check(CLI::Range(0.0, tau_limit))
+      ->capture_default_str();
+  cmd->add_option("--max", d.tau_max_s, fmt::format("upper bound of tau [s], <= {}", tau_limit))
+      ->check(CLI::Range(0.0, tau_limit))
+      ->capture_default_str();
+  cmd->add_option("--xtol", d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
+      ->check(CLI::Range(1e-12, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--curve", d.curve_points,
+                  "also evaluate the cost on this many evenly spaced tau values [count]")
+      ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
+      ->capture_default_str();
+  cmd->add_option("--threads", d.threads, "simulation threads [count]; 0 = all cores")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");
   AddOutputOption(cmd, o->output, "write the model with tau filled in");
-  o->motion.Add(cmd, "filter for velocity from x: central (default), butterworth, savgol");
+  o->motion.Add(cmd, "filter for velocity from x", ToString(d.motion.derivative.method));
   cmd->callback([o] { RunTuneDelay(*o); });
 }
 

@@ -118,3 +118,38 @@ TEST_CASE("batch dominance keeps input order, counts winners and names bad input
   CHECK_THROWS_WITH(sysid::AnalyzeDominance(m, recs[0], bad),
                     Catch::Contains("DominanceOptions::negligible_ratio = 2. Violated"));
 }
+
+TEST_CASE("the pooled ranking weighs each recording by its moving samples", "[dominance]") {
+  // Two recordings whose per-recording rankings disagree; the pooled rms is the rms over all
+  // 400 moving samples: acceleration sqrt((100 * 3^2 + 300 * 1^2) / 400) = sqrt(3), velocity
+  // sqrt((100 * 1^2 + 300 * 2^2) / 400) = sqrt(3.25): velocity ranks first overall.
+  auto stats = [](const char* name, double rms, double peak) {
+    sysid::TermStats t;
+    t.name = name;
+    t.rms = rms;
+    t.peak = peak;
+    return t;
+  };
+  sysid::DominanceSummary s;
+  s.results.resize(2);
+  s.results[0].moving_samples = 100;
+  s.results[0].ranking = {stats("acceleration", 3, 5), stats("velocity", 1, 2)};
+  s.results[1].moving_samples = 300;
+  s.results[1].ranking = {stats("velocity", 2, 6), stats("acceleration", 1, 4)};
+  const auto pooled = sysid::PooledRanking(s, 0.1);
+  REQUIRE(pooled.size() == 2);
+  CHECK(pooled[0].name == "velocity");
+  CHECK(pooled[0].rms == Approx(std::sqrt(3.25)).epsilon(1e-14));
+  CHECK(pooled[0].peak == 6);
+  CHECK(pooled[0].ratio_to_top == 1);
+  CHECK_FALSE(pooled[0].negligible);
+  CHECK(pooled[1].name == "acceleration");
+  CHECK(pooled[1].rms == Approx(std::sqrt(3.0)).epsilon(1e-14));
+  CHECK(pooled[1].peak == 5);
+  CHECK(pooled[1].ratio_to_top == Approx(std::sqrt(3 / 3.25)).epsilon(1e-14));
+  CHECK_FALSE(pooled[1].negligible);
+  // With a looser threshold the second variable is negligible; the top never is.
+  const auto loose = sysid::PooledRanking(s, 0.97);
+  CHECK(loose[1].negligible);
+  CHECK_FALSE(loose[0].negligible);
+}

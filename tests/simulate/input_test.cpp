@@ -88,5 +88,27 @@ TEST_CASE("input tables from CSV", "[input]") {
   CHECK_THROWS_AS(ParseInputHold("cubic"), OptionsError);
 }
 
+TEST_CASE("input files and pulse trains as waveforms with their natural length", "[input]") {
+  test::TempDir dir;
+  const std::string path = dir / "u.csv";
+  test::WriteText(path, "t,u\n0,0\n0.5,1.2\n1.25,-1\n");
+  const NamedWaveform table = ReadInputWaveform(path, InputHold::kLinear);
+  CHECK(table.duration_s == 1.25);  // the last row's t
+  CHECK(table.description == path + " (linear)");
+  CHECK(table.signal->Value(0.25) == Approx(0.6));
+  CHECK(ReadInputWaveform(path, InputHold::kZeroOrder).description == path + " (zoh)");
+  PulseTrainSpec spec;
+  spec.amplitudes_v = {1.5, -2};
+  spec.on_s = 0.2;
+  spec.off_s = 0.3;
+  spec.repeats = 2;
+  const NamedWaveform pulses = PulseTrainWaveform(spec);
+  CHECK(pulses.duration_s == Approx(2 * 2 * (0.2 + 0.3)));
+  CHECK(pulses.signal->Value(0.1) == 1.5);
+  CHECK(pulses.signal->Value(0.6) == -2);
+  CHECK(pulses.signal->Value(0.3) == 0);
+  CHECK(pulses.description == "pulses 1.5/-2 V, 0.2 s on, 0.3 s off, 2 repeats");
+}
+
 }  // namespace
 }  // namespace sysid

@@ -11,12 +11,17 @@
 #define SYSID_CONTROL_HPP_
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace sysid {
 
 class VirtualStage;
+class NeuralNetwork;
+struct FrictionModel;
+struct StageParameters;
 
 enum class AntiWindup { kNone, kConditionalIntegration };
 
@@ -83,6 +88,9 @@ PositionReference MakeSmoothProfile(const SmoothProfileOptions& options = {});
 
 /// Reference from sampled positions (e.g. a CSV column): v and a by central differences.
 PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen::VectorXd& x_m);
+/// Reference from a CSV with columns t [s] and x_ref [m] (or x [m] when there is no x_ref), as
+/// ReferenceFromPositions; the description is the path. Throws InputError as ReadRecording.
+PositionReference ReadPositionReference(const std::string& path);
 
 /// Traces and metrics of a closed-loop run; row k is sample k.
 struct TrackingResult {
@@ -115,6 +123,41 @@ TrackingResult RunClosedLoop(VirtualStage& stage, const PositionReference& refer
 /// v_ref(t - tau)) plays back in step. Throws InternalError if called more often than it has
 /// values.
 Feedforward SampledFeedforward(Eigen::VectorXd u_ff_v);
+
+/// The feedforward schemes of the tracking experiment: PI alone, PI + the analytic inverse
+/// model, PI + the neural inverse model.
+enum class FeedforwardScheme { kNone, kAnalytic, kNetwork };
+std::string ToString(FeedforwardScheme scheme);  ///< "none", "analytic", "nn"
+/// Inverse of ToString. Throws OptionsError naming the accepted names.
+FeedforwardScheme ParseFeedforwardScheme(const std::string& name);
+
+/// The inverse models the schemes play; each is needed only by its scheme (not owned).
+struct InverseModels {
+  const FrictionModel* model = nullptr;    ///< for kAnalytic
+  const NeuralNetwork* network = nullptr;  ///< for kNetwork
+};
+
+/// The feedforward of `scheme` over `reference` sampled every `dt_s` [s]: empty for kNone,
+/// else the inverse model's voltages computed over the whole reference first (the analytic
+/// inverse uses the delayed velocity v_ref(t - tau)) and played back (SampledFeedforward).
+/// Throws OptionsError when the scheme's model is missing.
+Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
+                              double dt_s, const InverseModels& models);
+
+/// One scheme's closed-loop run.
+struct SchemeTracking {
+  FeedforwardScheme scheme = FeedforwardScheme::kNone;
+  TrackingResult result;
+  std::string stage_limits;  ///< StageStatus::Describe() of the run's stage
+};
+
+/// PI tracking of `reference` once per scheme, each on a fresh VirtualStage(stage, seed): every
+/// scheme sees the same plant and noise. pi.sample_time_s is taken from the stage. `on_scheme`
+/// (optional) is called before each run with the scheme and its 0-based index.
+std::vector<SchemeTracking> TrackSchemes(
+    const StageParameters& stage, std::uint64_t seed, const PositionReference& reference,
+    PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme = {});
 
 }  // namespace sysid
 

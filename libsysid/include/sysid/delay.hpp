@@ -42,17 +42,22 @@ struct SegmentOptions {
 
 struct DelayTuningOptions {
   double tau_min_s = 0.0;       ///< [s] lower bound of the search
-  double tau_max_s = 0.02;      ///< [s] upper bound; must exceed tau_min_s
+  double tau_max_s = 0.02;      ///< [s] upper bound; must exceed tau_min_s, at most kMaxTau_s
   double x_tolerance_s = 1e-7;  ///< [s] BOBYQA stops when steps are below this
   int coarse_evaluations = 12;  ///< DIRECT-L budget (coarse resolution (max-min)/budget)
   int max_evaluations = 40;     ///< total cost evaluations
-  int curve_points = 0;         ///< extra cost samples on a uniform tau grid (for plotting)
+  int curve_points = 0;  ///< extra cost samples on a uniform tau grid (plotting), <= kMaxCurvePoints
   MotionOptions motion;         ///< measured velocity: v column, or x with this filter
   SegmentOptions segments;
   double sim_rtol = 1e-6;  ///< CVODE relative tolerance of each simulation
   double sim_atol = 1e-9;  ///< CVODE absolute tolerance [m, m/s]
   int threads = 0;         ///< simulation threads (0: hardware concurrency)
   void Validate() const;   ///< throws OptionsError naming the field and the rule
+  /// [s] Largest delay searched: a viscous-term delay of more than a second is no actuator's,
+  /// and each simulation keeps tau of velocity history.
+  static constexpr double kMaxTau_s = 1.0;
+  /// Largest cost curve (each point is one simulation of every segment).
+  static constexpr int kMaxCurvePoints = 10000;
 };
 
 struct DelayTuningResult {

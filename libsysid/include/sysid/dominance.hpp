@@ -94,6 +94,13 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
                                        const std::vector<Recording>& recordings,
                                        const DominanceOptions& options = {});
 
+/// The variables ranked over all recordings pooled: a variable's rms is taken over every moving
+/// sample of every recording, sqrt(sum_r n_r rms_r^2 / sum_r n_r) (n_r = moving_samples), its
+/// peak is the largest peak; largest rms first, ratio_to_top set, and negligible when
+/// ratio_to_top <= negligible_ratio (never the top). ratio_bound and ratio_max stay 0 (they
+/// are pointwise, per recording). Empty for an empty summary.
+std::vector<TermStats> PooledRanking(const DominanceSummary& summary, double negligible_ratio);
+
 /// The batch as CSV: one row per (recording, ranked variable).
 std::string DominanceTableCsv(const DominanceSummary& summary);
 

@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sysid {
 
@@ -23,9 +24,17 @@ class InputError : public Error {
 };
 
 /// An option that violates its documented rule. The CLI exits with code 1 (usage).
+/// `field()` names the offending options field (e.g. "cutoff_hz") when the thrower knows it, so
+/// a caller can name its own spelling of it (a command-line flag) without parsing the message.
 class OptionsError : public Error {
  public:
   using Error::Error;
+  OptionsError(const std::string& message, std::string field)
+      : Error(message), field_(std::move(field)) {}
+  const std::string& field() const { return field_; }  ///< empty when not given
+
+ private:
+  std::string field_;
 };
 
 /// Numerical trouble that leaves no usable answer (singular system, unidentifiable

@@ -118,6 +118,13 @@ std::vector<std::string> NamedWaveformNames();
 /// Throws OptionsError listing the known names when `name` is unknown.
 NamedWaveform MakeNamedWaveform(const std::string& name);
 
+/// An input table file (columns t [s], u [V], as ReadInputTable) with its natural length, the
+/// last row's t; described as "PATH (zoh)" or "PATH (linear)".
+NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold);
+/// A pulse train with its natural length spec.duration_s(), described with its amplitudes and
+/// timing.
+NamedWaveform PulseTrainWaveform(const PulseTrainSpec& spec);
+
 }  // namespace sysid
 
 #endif  // SYSID_INPUT_HPP_

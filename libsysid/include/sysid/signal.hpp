@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "sysid/io.hpp"
+
 namespace sysid {
 
 enum class DerivativeMethod { kCentral, kButterworthCentral, kSavitzkyGolay };
@@ -81,6 +83,11 @@ Eigen::VectorXd SavitzkyGolay(const Eigen::VectorXd& y, double dt_s, int window,
 /// (ceil(n / factor) samples). factor = 1 returns y unchanged. Throws OptionsError for
 /// factor < 1, InputError when y is too short for the filter's padding.
 Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor);
+
+/// Every column of `recording` (sampled every dt_s [s]) through Decimate, except the time
+/// column t, which is subsampled (t[0], t[factor], ...) and never filtered; source and metadata
+/// are kept. Throws as Decimate.
+Recording DecimateRecording(const Recording& recording, double dt_s, int factor);
 
 /// What DelaySignal gives before the record starts (t_k - tau < t_0).
 enum class DelayStart {

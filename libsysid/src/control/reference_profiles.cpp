@@ -100,4 +100,15 @@ PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen
   return r;
 }
 
+PositionReference ReadPositionReference(const std::string& path) {
+  ReadOptions ro;
+  ro.required_columns = {"t"};
+  ro.any_of_columns = {"x_ref", "x"};
+  const Recording r = ReadRecording(path, ro);
+  PositionReference ref =
+      ReferenceFromPositions(r.column("t"), r.column(r.has("x_ref") ? "x_ref" : "x"));
+  ref.description = path;
+  return ref;
+}
+
 }  // namespace sysid

@@ -23,6 +23,7 @@ void DelayTuningOptions::Validate() const {
     rule("tau_min_s", tau_min_s, "tau_min_s >= 0 [s]");
   if (!(tau_max_s > tau_min_s) || !std::isfinite(tau_max_s))
     rule("tau_max_s", tau_max_s, "tau_max_s > tau_min_s [s]");
+  if (tau_max_s > kMaxTau_s) rule("tau_max_s", tau_max_s, fmt::format("tau_max_s <= {} [s]", kMaxTau_s).c_str());
   if (!(x_tolerance_s > 0)) rule("x_tolerance_s", x_tolerance_s, "x_tolerance_s > 0 [s]");
   if (coarse_evaluations < 3)
     rule("coarse_evaluations", coarse_evaluations, "coarse_evaluations >= 3");
@@ -30,6 +31,9 @@ void DelayTuningOptions::Validate() const {
     rule("max_evaluations", max_evaluations, "max_evaluations >= coarse_evaluations");
   if (curve_points < 0 || curve_points == 1)
     rule("curve_points", curve_points, "curve_points = 0 or >= 2");
+  if (curve_points > kMaxCurvePoints)
+    rule("curve_points", curve_points,
+         fmt::format("curve_points <= {}", kMaxCurvePoints).c_str());
   if (!(sim_rtol > 0 && sim_rtol < 1)) rule("sim_rtol", sim_rtol, "0 < sim_rtol < 1");
   if (!(sim_atol > 0)) rule("sim_atol", sim_atol, "sim_atol > 0");
   if (threads < 0) rule("threads", threads, "threads >= 0");

@@ -219,4 +219,32 @@ std::string DominanceResult::BriefReport() const {
   return s;
 }
 
+std::vector<TermStats> PooledRanking(const DominanceSummary& summary, double negligible_ratio) {
+  std::map<std::string, std::pair<double, double>> pooled;  // name -> (sum of squares, peak)
+  Eigen::Index moving = 0;
+  for (const auto& r : summary.results) {
+    moving += r.moving_samples;
+    for (const auto& t : r.ranking) {
+      auto& p = pooled[t.name];
+      p.first += t.rms * t.rms * static_cast<double>(r.moving_samples);
+      p.second = std::max(p.second, t.peak);
+    }
+  }
+  std::vector<TermStats> ranking;
+  for (const auto& [name, p] : pooled) {
+    TermStats t;
+    t.name = name;
+    t.rms = std::sqrt(p.first / static_cast<double>(moving));
+    t.peak = p.second;
+    ranking.push_back(t);
+  }
+  std::sort(ranking.begin(), ranking.end(),
+            [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
+  for (auto& t : ranking) {
+    t.ratio_to_top = t.rms / ranking[0].rms;
+    t.negligible = &t != &ranking[0] && t.ratio_to_top <= negligible_ratio;
+  }
+  return ranking;
+}
+
 }  // namespace sysid

@@ -159,25 +159,23 @@ class FactsRun {
       model = Delay().model;
       Networks();
     }
-    PiOptions pi = o_.pi;
-    pi.sample_time_s = stage_.sample_time_s();
+    std::vector<FeedforwardScheme> schemes;
+    if (!tracked_none_) schemes.push_back(FeedforwardScheme::kNone);
+    if (feedforward && !tracked_ff_)
+      schemes.insert(schemes.end(), {FeedforwardScheme::kAnalytic, FeedforwardScheme::kNetwork});
     for (double f : o_.track_frequencies_hz) {
       const SmoothProfileOptions p = Profile(f);
       const PositionReference ref = MakeSmoothProfile(p);
-      for (const std::string scheme : {"none", "analytic", "nn"}) {
-        if (scheme == "none" ? tracked_none_ : (!feedforward || tracked_ff_)) continue;
-        Step(fmt::format("PI tracking at {} Hz, feedforward {}", f, scheme));
-        Feedforward ff;
-        if (scheme == "analytic")
-          ff = SampledFeedforward(
-              AnalyticInverse(model, stage_.sample_time_s(), ref.v_mps, ref.a_mps2));
-        if (scheme == "nn")
-          ff = SampledFeedforward(NetworkInverse(*network_, ref.v_mps, ref.a_mps2));
-        VirtualStage plant(stage_, o_.seed);  // the same plant and noise for every scheme
-        const TrackingResult t = RunClosedLoop(plant, ref, pi, ff);
+      const auto runs = TrackSchemes(
+          stage_, o_.seed, ref, o_.pi, schemes, {&model, network_ ? &*network_ : nullptr},
+          [&](FeedforwardScheme s, std::size_t) {
+            Step(fmt::format("PI tracking at {} Hz, feedforward {}", f, ToString(s)));
+          });
+      for (const auto& run : runs) {
+        const TrackingResult& t = run.result;
         FactsTrackingRow row;
         row.frequency_hz = f;
-        row.scheme = scheme;
+        row.scheme = ToString(run.scheme);
         row.max_error_m = t.max_error_m;
         row.ripple_m = facts::RippleAmplitude(t.e_m, p);
         row.saturated_samples = t.saturated_samples;

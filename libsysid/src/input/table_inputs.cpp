@@ -94,15 +94,31 @@ std::unique_ptr<InputSignal> MakeTableInput(std::vector<double> t_s, std::vector
   return std::make_unique<PiecewiseConstantInput>(std::move(t_s), std::move(u_v));
 }
 
-std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold) {
+namespace {
+std::unique_ptr<InputSignal> ReadTable(const std::string& path, InputHold hold, double* end_s) {
   ReadOptions options;
   options.required_columns = {"t", "u"};
   options.any_of_columns = {};
   const Recording rec = ReadRecording(path, options);
   const auto t = rec.column("t");
   const auto u = rec.column("u");
-  return MakeTableInput(std::vector<double>(t.data(), t.data() + t.size()),
-                        std::vector<double>(u.data(), u.data() + u.size()), hold, path);
+  auto table = MakeTableInput(std::vector<double>(t.data(), t.data() + t.size()),
+                              std::vector<double>(u.data(), u.data() + u.size()), hold, path);
+  if (end_s != nullptr) *end_s = t[t.size() - 1];
+  return table;
+}
+}  // namespace
+
+std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold) {
+  return ReadTable(path, hold, nullptr);
+}
+
+NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold) {
+  NamedWaveform w;
+  w.name = path;
+  w.signal = ReadTable(path, hold, &w.duration_s);
+  w.description = path + (hold == InputHold::kLinear ? " (linear)" : " (zoh)");
+  return w;
 }
 
 }  // namespace sysid

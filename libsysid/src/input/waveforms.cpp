@@ -1,4 +1,7 @@
 // Smooth inputs, pulse trains and the paper's named test waveforms.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -128,6 +131,17 @@ NamedWaveform MakeNamedWaveform(const std::string& name) {
     for (const auto& n : NamedWaveformNames()) known += (known.empty() ? "" : ", ") + n;
     throw OptionsError("--waveform = '" + name + "'. Violated constraint: one of " + known);
   }
+  return w;
+}
+
+NamedWaveform PulseTrainWaveform(const PulseTrainSpec& spec) {
+  NamedWaveform w;
+  w.name = "pulses";
+  w.signal = std::make_shared<PiecewiseConstantInput>(MakePulseTrain(spec));
+  w.duration_s = spec.duration_s();
+  w.description = fmt::format("pulses {} V, {} s on, {} s off, {} repeats",
+                              fmt::join(spec.amplitudes_v, "/"), spec.on_s, spec.off_s,
+                              spec.repeats);
   return w;
 }
 

@@ -144,24 +144,17 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (options.track && !inputs.stage.empty()) {
     step("PI tracking with feedforward", [&] {
       const StageParameters stage = ReadStageParameters(inputs.stage);
-      PiOptions pi = options.pi;
-      pi.sample_time_s = stage.sample_time_s();
       for (double f : options.track_frequencies_hz) {
         SmoothProfileOptions p;
         p.frequency_hz = f;
         p.amplitude_m = options.track_amplitude_m;
         p.sample_rate_hz = stage.sample_rate_hz;
         const PositionReference ref = MakeSmoothProfile(p);
-        for (const char* scheme : {"none", "analytic", "nn"}) {
-          VirtualStage plant(stage, 1);  // same plant and noise for every scheme
-          Feedforward ff;
-          const std::string s = scheme;
-          if (s == "analytic")
-            ff = SampledFeedforward(
-                AnalyticInverse(r.model, stage.sample_time_s(), ref.v_mps, ref.a_mps2));
-          if (s == "nn") ff = SampledFeedforward(NetworkInverse(r.network, ref.v_mps, ref.a_mps2));
-          r.tracking.push_back({f, s, RunClosedLoop(plant, ref, pi, ff)});
-        }
+        const auto runs = TrackSchemes(stage, 1, ref, options.pi,
+                                       {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
+                                        FeedforwardScheme::kNetwork},
+                                       {&r.model, &r.network});
+        for (const auto& run : runs) r.tracking.push_back({f, ToString(run.scheme), run.result});
       }
     });
   } else if (options.track) {

@@ -12,32 +12,38 @@ namespace sysid::detail {
 void CheckSampleInterval(const char* where, double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s))
     throw OptionsError(
-        fmt::format("{}: dt_s = {} s. Violated constraint: dt_s > 0 and finite", where, dt_s));
+        fmt::format("{}: dt_s = {} s. Violated constraint: dt_s > 0 and finite", where, dt_s),
+        "dt_s");
 }
 
 void CheckCutoff(const char* where, const char* field, double cutoff_hz, double dt_s) {
   const double nyquist_hz = 0.5 / dt_s;
   if (!(cutoff_hz > 0) || !(cutoff_hz < nyquist_hz))
     throw OptionsError(fmt::format(
-        "{}: {} = {} Hz. Violated constraint: 0 < {} < Nyquist frequency 0.5/dt_s = {} Hz", where,
-        field, cutoff_hz, field, nyquist_hz));
+                           "{}: {} = {} Hz. Violated constraint: 0 < {} < Nyquist frequency "
+                           "0.5/dt_s = {} Hz",
+                           where, field, cutoff_hz, field, nyquist_hz),
+                       field);
 }
 
 void CheckButterworthOrder(const char* where, const char* field, int order) {
   if (order < 1 || order > kMaxButterworthOrder)
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: 1 <= {} <= {}", where, field,
-                                   order, field, kMaxButterworthOrder));
+                                   order, field, kMaxButterworthOrder),
+                       field);
 }
 
 void CheckSavitzkyGolay(const char* where, const char* window_field, int window,
                         const char* order_field, int order, int min_order) {
   if (window < 3 || window % 2 == 0)
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} odd and >= 3", where,
-                                   window_field, window, window_field));
+                                   window_field, window, window_field),
+                       window_field);
   if (order < min_order || order >= window)
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} < {} = {}", where,
                                    order_field, order, min_order, order_field, window_field,
-                                   window));
+                                   window),
+                       order_field);
 }
 
 void CheckLength(const char* where, Eigen::Index n, Eigen::Index min_n, const std::string& why) {

@@ -11,7 +11,8 @@ Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor) {
   detail::CheckSampleInterval("Decimate", dt_s);
   if (factor < 1)
     throw OptionsError("Decimate: factor = " + std::to_string(factor) +
-                       ". Violated constraint: factor >= 1");
+                       ". Violated constraint: factor >= 1",
+                       "factor");
   if (factor == 1) return y;
   const double cutoff_hz = kDecimateCutoffFraction * 0.5 / (factor * dt_s);
   const Eigen::VectorXd filtered =
@@ -19,6 +20,29 @@ Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor) {
   const Eigen::Index m = (y.size() + factor - 1) / factor;
   Eigen::VectorXd out(m);
   for (Eigen::Index i = 0; i < m; ++i) out[i] = filtered[i * factor];
+  return out;
+}
+
+Recording DecimateRecording(const Recording& recording, double dt_s, int factor) {
+  Recording out;
+  out.source = recording.source;
+  out.metadata = recording.metadata;
+  for (size_t c = 0; c < recording.names.size(); ++c) {
+    const Eigen::VectorXd column = recording.data.col(static_cast<Eigen::Index>(c));
+    Eigen::VectorXd kept;
+    if (recording.names[c] == "t") {  // time is subsampled, never filtered
+      detail::CheckSampleInterval("DecimateRecording", dt_s);
+      if (factor < 1)
+        throw OptionsError("DecimateRecording: factor = " + std::to_string(factor) +
+                               ". Violated constraint: factor >= 1",
+                           "factor");
+      kept.resize((column.size() + factor - 1) / factor);
+      for (Eigen::Index i = 0; i < kept.size(); ++i) kept[i] = column[i * factor];
+    } else {
+      kept = Decimate(column, dt_s, factor);
+    }
+    out.SetColumn(recording.names[c], kept);
+  }
   return out;
 }
 

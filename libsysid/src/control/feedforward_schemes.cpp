@@ -1,0 +1,69 @@
+// The tracking experiment's feedforward schemes, run on the virtual stage (one loop for
+// `sysid track`, the pipeline and the stage facts).
+#include "sysid/compare.hpp"
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+#include "sysid/model.hpp"
+#include "sysid/nn.hpp"
+#include "sysid/stage.hpp"
+
+namespace sysid {
+
+std::string ToString(FeedforwardScheme scheme) {
+  switch (scheme) {
+    case FeedforwardScheme::kNone:
+      return "none";
+    case FeedforwardScheme::kAnalytic:
+      return "analytic";
+    case FeedforwardScheme::kNetwork:
+      return "nn";
+  }
+  SYSID_CHECK(false, "unknown FeedforwardScheme value");
+}
+
+FeedforwardScheme ParseFeedforwardScheme(const std::string& name) {
+  for (auto s : {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
+                 FeedforwardScheme::kNetwork})
+    if (ToString(s) == name) return s;
+  throw OptionsError("'" + name + "' is not one of none, analytic, nn");
+}
+
+Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
+                              double dt_s, const InverseModels& models) {
+  switch (scheme) {
+    case FeedforwardScheme::kNone:
+      return {};
+    case FeedforwardScheme::kAnalytic:
+      if (models.model == nullptr)
+        throw OptionsError("SchemeFeedforward: the analytic scheme needs InverseModels::model");
+      return SampledFeedforward(
+          AnalyticInverse(*models.model, dt_s, reference.v_mps, reference.a_mps2));
+    case FeedforwardScheme::kNetwork:
+      if (models.network == nullptr)
+        throw OptionsError("SchemeFeedforward: the nn scheme needs InverseModels::network");
+      return SampledFeedforward(NetworkInverse(*models.network, reference.v_mps, reference.a_mps2));
+  }
+  SYSID_CHECK(false, "unknown FeedforwardScheme value");
+}
+
+std::vector<SchemeTracking> TrackSchemes(
+    const StageParameters& stage, std::uint64_t seed, const PositionReference& reference,
+    PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme) {
+  pi.sample_time_s = stage.sample_time_s();
+  pi.Validate();
+  std::vector<SchemeTracking> runs;
+  for (std::size_t i = 0; i < schemes.size(); ++i) {
+    if (on_scheme) on_scheme(schemes[i], i);
+    SchemeTracking run;
+    run.scheme = schemes[i];
+    const Feedforward ff = SchemeFeedforward(schemes[i], reference, stage.sample_time_s(), models);
+    VirtualStage plant(stage, seed);  // the same plant and noise for every scheme
+    run.result = RunClosedLoop(plant, reference, pi, ff);
+    run.stage_limits = plant.status().Describe();
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace sysid
