@@ -45,25 +45,7 @@ void RunRefine(const RefineCli& o) {
   o.motion.ApplyTo(r.motion);
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const RefineResult res = RefineOutputError(initial, recs, r);
-  const FrictionModel& m = res.model;
-  nlohmann::ordered_json j = {{"a1p", m.a1p}, {"a1n", m.a1n}, {"a2p", m.a2p},
-                              {"a2n", m.a2n}, {"a3", m.a3},   {"tau", m.tau_s}};
-  nlohmann::ordered_json se = nlohmann::ordered_json::object();
-  for (size_t i = 0; i < res.names.size(); ++i) {
-    const double v = res.std_error[static_cast<Eigen::Index>(i)];
-    se[res.names[i]] = std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr;
-  }
-  j["diagnostics"] = {{"method", "output-error"},
-                      {"std_error", se},
-                      {"initial_cost", res.initial_cost},
-                      {"final_cost", res.final_cost},
-                      {"rms_error_mps", res.rms_error_mps},
-                      {"iterations", res.iterations},
-                      {"simulations", res.simulations},
-                      {"termination", ToString(res.termination)},
-                      {"message", res.message},
-                      {"wall_time_s", res.wall_time_s}};
-  const std::string rendered = j.dump(2) + "\n";
+  const std::string rendered = ToJson(res);
   if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
   if (o.json)
     std::cout << rendered;
