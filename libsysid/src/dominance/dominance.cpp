@@ -143,6 +143,38 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   return r;
 }
 
+namespace {
+// RMS over all moving samples of all recordings, peak over all, largest RMS first.
+std::vector<TermStats> PooledRanking(const std::vector<DominanceResult>& results,
+                                     double negligible_ratio) {
+  std::map<std::string, std::pair<double, double>> pooled;  // name -> (sum of squares, peak)
+  Eigen::Index moving = 0;
+  for (const auto& r : results) {
+    moving += r.moving_samples;
+    for (const auto& t : r.ranking) {
+      auto& p = pooled[t.name];
+      p.first += t.rms * t.rms * static_cast<double>(r.moving_samples);
+      p.second = std::max(p.second, t.peak);
+    }
+  }
+  std::vector<TermStats> ranking;
+  for (const auto& [name, p] : pooled) {
+    TermStats t;
+    t.name = name;
+    t.rms = std::sqrt(p.first / static_cast<double>(moving));
+    t.peak = p.second;
+    ranking.push_back(t);
+  }
+  std::sort(ranking.begin(), ranking.end(),
+            [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
+  for (auto& t : ranking) {
+    t.ratio_to_top = t.rms / ranking[0].rms;
+    t.negligible = &t != &ranking[0] && t.ratio_to_top <= negligible_ratio;
+  }
+  return ranking;
+}
+}  // namespace
+
 DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
                                        const std::vector<Recording>& recordings,
                                        const DominanceOptions& options) {
@@ -187,6 +219,9 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
     const size_t h = margins.size() / 2;
     s.median_margin = margins.size() % 2 ? margins[h] : 0.5 * (margins[h - 1] + margins[h]);
   }
+  s.ranking = PooledRanking(s.results, options.negligible_ratio);
+  s.negligible_ratio = options.negligible_ratio;
+  s.min_speed_mps = options.min_speed_mps;
   return s;
 }
 
