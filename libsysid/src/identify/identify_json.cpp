@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "model/model_json.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/model.hpp"
 
@@ -95,7 +96,15 @@ PulseStatus PulseStatusFromJson(const JsonNode& node) {
       "travel-limit, too-few-samples)");
 }
 
-const std::vector<std::string> kModelKeys = {"a1p", "a1n", "a2p", "a2n", "a3", "tau", "units"};
+// The model (checked as a model file) and the "diagnostics" object of `method` with `keys`.
+JsonNode Diagnostics(const detail::JsonDocument& doc, const std::string& method,
+                     const std::vector<std::string>& keys, FrictionModel& model) {
+  model = detail::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
+  const JsonNode d = doc.Root().Get("diagnostics");
+  d.ExpectObject(keys);
+  if (d.Get("method").String() != method) d.Get("method").Expected("\"" + method + "\"");
+  return d;
+}
 
 }  // namespace
 
@@ -134,15 +143,12 @@ std::string ToJson(const PulseIdentificationResult& r, int indent) {
 PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view text,
                                                             const std::string& source_name) {
   PulseIdentificationResult r;
-  r.model = ParseModel(text, source_name);
   const detail::JsonDocument doc(text, source_name);
-  const JsonNode root = doc.Root();
-  root.ExpectObject(kModelKeys, {"diagnostics"});
-  const JsonNode d = root.Get("diagnostics");
-  d.ExpectObject({"method", "a3_given", "parameters", "covariance_order", "covariance", "rows",
-                  "rank", "dof", "condition_number", "rms_residual", "relative_error", "r_diagonal",
-                  "equations", "pulses"});
-  if (d.Get("method").String() != "pulse") d.Get("method").Expected("\"pulse\"");
+  const JsonNode d = Diagnostics(
+      doc, "pulse",
+      {"method", "a3_given", "parameters", "covariance_order", "covariance", "rows", "rank", "dof",
+       "condition_number", "rms_residual", "relative_error", "r_diagonal", "equations", "pulses"},
+      r.model);
   ReadParameters(d, r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance);
   ReadFitStatistics(d, r.fit);
   const JsonNode eq = d.Get("equations");
@@ -201,14 +207,12 @@ std::string ToJson(const TrajectoryIdentificationResult& r, int indent) {
 TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
     std::string_view text, const std::string& source_name) {
   TrajectoryIdentificationResult r;
-  r.model = ParseModel(text, source_name);
   const detail::JsonDocument doc(text, source_name);
-  const JsonNode root = doc.Root();
-  root.ExpectObject(kModelKeys, {"diagnostics"});
-  const JsonNode d = root.Get("diagnostics");
-  d.ExpectObject({"method", "derivative", "parameters", "covariance_order", "covariance",
-                  "offset_mps2", "samples_used", "linear_fit", "relative_error", "tau_curve"});
-  if (d.Get("method").String() != "trajectory") d.Get("method").Expected("\"trajectory\"");
+  const JsonNode d =
+      Diagnostics(doc, "trajectory",
+                  {"method", "derivative", "parameters", "covariance_order", "covariance",
+                   "offset_mps2", "samples_used", "linear_fit", "relative_error", "tau_curve"},
+                  r.model);
   try {
     r.derivative = ParseDerivativeMethod(d.Get("derivative").String());
   } catch (const std::exception&) {
