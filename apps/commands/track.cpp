@@ -142,14 +142,10 @@ void RunTrack(const TrackCliOptions& o) {
                "limits"});
   for (size_t i = 0; i < schemes.size(); ++i) {
     const auto& r = results[i];
-    j["schemes"].push_back({{"ff", schemes[i]},
-                            {"max_error_m", r.max_error_m},
-                            {"rms_error_m", r.rms_error_m},
-                            {"rms_u_v", r.rms_u_v},
-                            {"max_abs_u_v", r.max_abs_u_v},
-                            {"total_variation_v", r.total_variation_v},
-                            {"saturated_samples", r.saturated_samples},
-                            {"stage_limits", notes[i]}});
+    nlohmann::ordered_json scheme = {{"ff", schemes[i]}};
+    scheme.update(nlohmann::ordered_json::parse(ToJson(r)));
+    scheme["stage_limits"] = notes[i];
+    j["schemes"].push_back(scheme);
     table.AddRow({schemes[i], Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
                   Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
                   notes[i]});

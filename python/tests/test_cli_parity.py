@@ -197,6 +197,8 @@ def test_tracking_experiment_matches_cli_track(model_file, tmp_path):
         assert r.max_error_m == scheme["max_error_m"], scheme["ff"]
         assert r.rms_error_m == scheme["rms_error_m"] and r.rms_u_v == scheme["rms_u_v"]
         assert limits == scheme["stage_limits"]
+        for key, value in json.loads(r.to_json()).items():  # the CLI lists the library's JSON
+            assert scheme[key] == value, key
         assert "max |e|" in r.brief_report()
 
 
