@@ -88,11 +88,9 @@ std::string ToJson(const RefineResult& r, int indent) {
 
 RefineResult RefineResultFromJson(std::string_view text, const std::string& source_name) {
   RefineResult r;
-  r.model = ParseModel(text, source_name);
   const detail::JsonDocument doc(text, source_name);
-  const JsonNode root = doc.Root();
-  root.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau", "units"}, {"diagnostics"});
-  const JsonNode d = root.Get("diagnostics");
+  r.model = detail::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
+  const JsonNode d = doc.Root().Get("diagnostics");
   d.ExpectObject({"method", "std_error", "initial_cost", "final_cost", "rms_error_mps",
                   "iterations", "simulations", "termination", "message", "wall_time_s"});
   if (d.Get("method").String() != "output-error") d.Get("method").Expected("\"output-error\"");
