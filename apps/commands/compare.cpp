@@ -32,10 +32,6 @@ struct CompareCliOptions {
   int trim = 5;
 };
 
-nlohmann::ordered_json ErrorsJson(const PredictionErrors& e) {
-  return {{"rmse_v", e.rmse_v}, {"peak_error_v", e.peak_error_v}, {"nrmse", e.nrmse}, {"r2", e.r2}};
-}
-
 void RunCompare(const CompareCliOptions& o) {
   namespace fs = std::filesystem;
   // The output folder is checked before any work (cli/output_folder.hpp).
@@ -68,12 +64,7 @@ void RunCompare(const CompareCliOptions& o) {
   std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
   for (const auto& c : results) {
     const std::string name = fs::path(c.source).stem().string();
-    nlohmann::ordered_json r;
-    r["file"] = c.source;
-    r["samples"] = c.t_s.size();
-    r["analytic"] = ErrorsJson(c.analytic);
-    if (c.has_nn) r["nn"] = ErrorsJson(c.nn);
-    j["recordings"].push_back(r);
+    j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(c)));
     auto row = [&](const char* which, const PredictionErrors& e) {
       table.AddRow(
           {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse, 4), Num(e.r2, 4)});

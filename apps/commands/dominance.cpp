@@ -56,39 +56,6 @@ CandidateTerm ParseCandidate(const std::string& spec) {
   return c;
 }
 
-nlohmann::ordered_json StatsJson(const TermStats& s, bool ranking) {
-  nlohmann::ordered_json j;
-  j[ranking ? "variable" : "term"] = s.name;
-  j["rms"] = s.rms;
-  j["peak"] = s.peak;
-  j["ratio_to_top"] = s.ratio_to_top;
-  if (ranking) {
-    j["ratio_bound"] = s.ratio_bound;
-    j["ratio_max"] = s.ratio_max;
-    j["negligible"] = s.negligible;
-  }
-  return j;
-}
-
-nlohmann::ordered_json ResultJson(const DominanceResult& r) {
-  nlohmann::ordered_json j;
-  j["source"] = r.source;
-  nlohmann::ordered_json rank = nlohmann::ordered_json::array();
-  for (const auto& s : r.ranking) rank.push_back(StatsJson(s, true));
-  j["ranking"] = rank;
-  j["dominant"] = r.dominant;
-  j["margin"] = std::isfinite(r.margin) ? nlohmann::ordered_json(r.margin) : nullptr;
-  nlohmann::ordered_json terms = nlohmann::ordered_json::array();
-  for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
-  j["terms"] = terms;
-  j["peak_ratio"] = r.peak_ratio;
-  j["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
-  j["pointwise_ratio_max"] = r.pointwise_ratio_max;
-  j["samples"] = r.samples;
-  j["moving_samples"] = r.moving_samples;
-  return j;
-}
-
 void RunDominance(const DominanceCli& o) {
   const FrictionModel model = ReadModel(o.model);
   DominanceOptions d = o.options;
@@ -97,30 +64,8 @@ void RunDominance(const DominanceCli& o) {
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
   if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
-  const std::vector<TermStats> ranking = PooledRanking(s, d.negligible_ratio);
   if (o.json) {
-    nlohmann::ordered_json j;
-    nlohmann::ordered_json rank = nlohmann::ordered_json::array();
-    for (const auto& t : ranking)
-      rank.push_back({{"variable", t.name},
-                      {"rms", t.rms},
-                      {"peak", t.peak},
-                      {"ratio_to_top", t.ratio_to_top},
-                      {"negligible", t.negligible}});
-    j["ranking"] = rank;
-    j["dominant"] = ranking[0].name;
-    j["negligible_ratio"] = d.negligible_ratio;
-    j["min_speed_mps"] = d.min_speed_mps;
-    nlohmann::ordered_json counts = nlohmann::ordered_json::object();
-    for (const auto& [k, c] : s.dominant_counts) counts[k] = c;
-    j["summary"] = {{"recordings", s.results.size()},
-                    {"dominant_counts", counts},
-                    {"min_margin", s.min_margin},
-                    {"median_margin", s.median_margin}};
-    nlohmann::ordered_json per = nlohmann::ordered_json::array();
-    for (const auto& r : s.results) per.push_back(ResultJson(r));
-    j["recordings"] = per;
-    PrintJson(j);
+    std::cout << ToJson(s);
     return;
   }
   for (const auto& r : s.results) std::cout << r.BriefReport();

@@ -34,44 +34,6 @@ struct IdentifyCli {
   TrajectoryOptions trajectory;
 };
 
-nlohmann::ordered_json FitJson(const LinearFit& f) {
-  nlohmann::ordered_json j;
-  j["rows"] = f.rows;
-  j["rank"] = f.rank;
-  j["dof"] = f.dof;
-  j["condition_number"] = f.condition_number;
-  j["rms_residual"] = f.rms_residual;
-  j["relative_error"] = f.relative_error;
-  nlohmann::ordered_json rd = nlohmann::ordered_json::array();
-  for (const auto& [name, value] : f.r_diagonal)
-    rd.push_back({{"parameter", name}, {"abs_r", value}});
-  j["r_diagonal"] = rd;
-  return j;
-}
-
-nlohmann::ordered_json ParametersJson(const std::vector<std::string>& names,
-                                      const Eigen::VectorXd& est, const Eigen::VectorXd& se,
-                                      const Eigen::MatrixXd& cov) {
-  nlohmann::ordered_json p = nlohmann::ordered_json::object();
-  auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; };
-  for (size_t i = 0; i < names.size(); ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    p[names[i]] = {{"estimate", est[k]}, {"std_error", num(se[k])}};
-  }
-  nlohmann::ordered_json c = nlohmann::ordered_json::array();
-  for (Eigen::Index i = 0; i < cov.rows(); ++i) {
-    nlohmann::ordered_json row = nlohmann::ordered_json::array();
-    for (Eigen::Index j = 0; j < cov.cols(); ++j) row.push_back(num(cov(i, j)));
-    c.push_back(row);
-  }
-  return {{"parameters", p}, {"covariance_order", names}, {"covariance", c}};
-}
-
-// The model file's own text (ModelToJson: parameters and their units); diagnostics follow.
-nlohmann::ordered_json ModelJson(const FrictionModel& m) {
-  return nlohmann::ordered_json::parse(ModelToJson(m, -1));
-}
-
 MotionOptions Motion(const IdentifyCli& o, MotionOptions m) {
   o.motion.ApplyTo(m);
   return m;
@@ -82,8 +44,7 @@ std::vector<Recording> ReadAll(const IdentifyCli& o) {
 }
 
 void RunIdentify(const IdentifyCli& o) {
-  nlohmann::ordered_json j;
-  std::string text;
+  std::string rendered, text;
   if (o.method == "pulse") {
     PulseIdentificationResult r;
     if (!o.table.empty()) {
@@ -98,40 +59,13 @@ void RunIdentify(const IdentifyCli& o) {
       if (o.max_speed > 0) po.plateau.max_speed_mps = o.max_speed;
       r = IdentifyFromPulses(ReadAll(o), po);
     }
-    j = ModelJson(r.model);
-    nlohmann::ordered_json d;
-    d["method"] = "pulse";
-    d["a3_given"] = o.pulse.fit.a3;
-    d.update(ParametersJson(r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance));
-    d.update(FitJson(r.fit));
-    nlohmann::ordered_json eq = nlohmann::ordered_json::array();
-    for (size_t i = 0; i < r.points.size(); ++i)
-      eq.push_back({{"label", r.points[i].label},
-                    {"u_v", r.points[i].u_v},
-                    {"v_mps", r.points[i].v_mps},
-                    {"residual_mps2", r.fit.residuals[static_cast<Eigen::Index>(i)]}});
-    d["equations"] = eq;
-    nlohmann::ordered_json pulses = nlohmann::ordered_json::array();
+    rendered = ToJson(r);
     Table table(
         {"source", "t_start [s]", "duration [s]", "u [V]", "v [m/s]", "+- [m/s]", "status"});
-    for (const auto& e : r.pulses) {
-      pulses.push_back(
-          {{"source", e.pulse.source},
-           {"t_start_s", e.pulse.t_start_s},
-           {"duration_s", e.pulse.duration_s},
-           {"amplitude_v", e.pulse.amplitude_v},
-           {"v_mps", e.v_mps},
-           {"v_stderr_mps",
-            std::isfinite(e.v_stderr_mps) ? nlohmann::ordered_json(e.v_stderr_mps) : nullptr},
-           {"drift_mps", e.drift_mps},
-           {"status", ToString(e.status)},
-           {"reason", e.reason}});
+    for (const auto& e : r.pulses)
       table.AddRow({e.pulse.source, Num(e.pulse.t_start_s), Num(e.pulse.duration_s),
                     Num(e.pulse.amplitude_v), Num(e.v_mps), Num(e.v_stderr_mps, 2),
                     e.usable() ? "ok" : ToString(e.status) + ": " + e.reason});
-    }
-    if (!r.pulses.empty()) d["pulses"] = pulses;
-    j["diagnostics"] = d;
     text = r.BriefReport() + (r.pulses.empty() ? "" : "\n" + table.Render());
   } else {
     if (o.recordings.empty()) throw OptionsError("identify --method trajectory: no recordings");
@@ -139,27 +73,9 @@ void RunIdentify(const IdentifyCli& o) {
     TrajectoryOptions to = o.trajectory;
     to.motion = Motion(o, to.motion);
     const auto r = IdentifyFromTrajectory(ReadAll(o), to);
-    j = ModelJson(r.model);
-    nlohmann::ordered_json d;
-    d["method"] = "trajectory";
-    d["derivative"] = ToString(to.motion.derivative.method);
-    d.update(ParametersJson(r.names, r.estimate, r.std_error, r.covariance));
-    d["offset_mps2"] = r.offset_mps2;
-    d["samples_used"] = r.samples_used;
-    d["linear_fit"] = FitJson(r.fit);
-    d["linear_fit"]["theta_names"] = r.fit.names;
-    std::vector<double> theta(r.fit.theta.data(), r.fit.theta.data() + r.fit.theta.size());
-    d["linear_fit"]["theta"] = theta;
-    d["relative_error"] = r.relative_error;
-    if (!r.tau_curve.empty()) {
-      nlohmann::ordered_json c = nlohmann::ordered_json::array();
-      for (const auto& [t, f] : r.tau_curve) c.push_back({t, f});
-      d["tau_curve"] = c;
-    }
-    j["diagnostics"] = d;
+    rendered = ToJson(r);
     text = r.BriefReport();
   }
-  const std::string rendered = j.dump(2) + "\n";
   if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
   if (o.json)
     std::cout << rendered;

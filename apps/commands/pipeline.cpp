@@ -58,25 +58,7 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
 
   nlohmann::ordered_json j;
   j["report"] = (out / "report.md").string();
-  j["model"] = {{"a1p", r.model.a1p}, {"a1n", r.model.a1n}, {"a2p", r.model.a2p},
-                {"a2n", r.model.a2n}, {"a3", r.model.a3},   {"tau", r.model.tau_s}};
-  j["dominant"] = r.dominance.dominant;
-  j["nn_inputs"] = r.nn_inputs;
-  j["hidden"] = r.network.hidden_size();
-  j["nn_test_mse"] = r.network_test_mse;
-  if (r.typical) {
-    j["typical_train_mse"] = r.typical->train_mse;
-    j["typical_test_mse"] = r.typical_test_mse;
-  }
-  j["tracking"] = nlohmann::ordered_json::array();
-  for (const auto& t : r.tracking)
-    j["tracking"].push_back({{"frequency_hz", t.frequency_hz},
-                             {"ff", t.scheme},
-                             {"max_error_m", t.result.max_error_m},
-                             {"rms_error_m", t.result.rms_error_m}});
-  if (r.facts) j["facts_required_met"] = r.facts->RequiredMet();
-  j["steps"] = nlohmann::ordered_json::object();
-  for (const auto& [name, s] : r.step_seconds) j["steps"][name] = s;
+  j.update(nlohmann::ordered_json::parse(ToJson(r)));
   if (o.json) {
     std::cout << j.dump(2) << '\n';
     return;

@@ -30,46 +30,6 @@ struct RefineCli {
   MotionFlags motion;
 };
 
-// A refined parameter is "far from its prior" (the value in --model) when it moved by more
-// than kPriorRelativeShift of the prior AND by more than kPriorSigmaShift of its reported
-// standard error (or the error is unknown): a large move that the fit also calls significant,
-// which usually means the given value (a data-sheet a3, a tau at its search bound) and the
-// recordings disagree. A zero prior has no scale and is not tested.
-constexpr double kPriorRelativeShift = 0.5;  // [1]
-constexpr double kPriorSigmaShift = 3.0;      // [standard errors]
-
-double ParameterValue(const FrictionModel& m, const std::string& name) {
-  if (name == "a1p") return m.a1p;
-  if (name == "a1n") return m.a1n;
-  if (name == "a2p") return m.a2p;
-  if (name == "a2n") return m.a2n;
-  if (name == "a3") return m.a3;
-  return m.tau_s;
-}
-
-std::vector<std::string> FarFromPriorWarnings(const FrictionModel& prior,
-                                              const RefineResult& res) {
-  std::vector<std::string> warnings;
-  for (size_t i = 0; i < res.names.size(); ++i) {
-    const std::string& name = res.names[i];
-    const double p0 = ParameterValue(prior, name), p = ParameterValue(res.model, name);
-    const double se = res.std_error[static_cast<Eigen::Index>(i)];
-    const double shift = std::abs(p - p0);
-    if (p0 == 0 || shift <= kPriorRelativeShift * std::abs(p0)) continue;
-    if (std::isfinite(se) && shift <= kPriorSigmaShift * se) continue;
-    const std::string unit = name == "tau" ? " s" : "";
-    std::string w = fmt::format("{} moved from its given value {:.6g}{} to {:.6g}{} ({:+.0f} %", name,
-                                p0, unit, p, unit, 100 * (p - p0) / p0);
-    w += std::isfinite(se) ? fmt::format(", {:.0f} standard errors of {:.2g}{})", shift / se, se, unit)
-                           : std::string(", standard error unknown)");
-    w += ": the recordings disagree with the starting model";
-    if (name == "a3") w += "; check a3 against the data sheet, or keep it with --fix-a3";
-    else if (name == "tau") w += "; check the delay (tune-delay), or keep it with --fix-tau";
-    warnings.push_back(w);
-  }
-  return warnings;
-}
-
 void RunRefine(const RefineCli& o) {
   const FrictionModel initial = ReadModel(o.model);
   RefineOptions r = o.options;
@@ -78,30 +38,8 @@ void RunRefine(const RefineCli& o) {
   o.motion.ApplyTo(r.motion);
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const RefineResult res = RefineOutputError(initial, recs, r);
-  const FrictionModel& m = res.model;
-  nlohmann::ordered_json j = {{"a1p", m.a1p}, {"a1n", m.a1n}, {"a2p", m.a2p},
-                              {"a2n", m.a2n}, {"a3", m.a3},   {"tau", m.tau_s}};
-  nlohmann::ordered_json se = nlohmann::ordered_json::object();
-  for (size_t i = 0; i < res.names.size(); ++i) {
-    const double v = res.std_error[static_cast<Eigen::Index>(i)];
-    se[res.names[i]] = std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr;
-  }
-  j["diagnostics"] = {{"method", "output-error"},
-                      {"std_error", se},
-                      {"initial_cost", res.initial_cost},
-                      {"final_cost", res.final_cost},
-                      {"rms_error_mps", res.rms_error_mps},
-                      {"iterations", res.iterations},
-                      {"simulations", res.simulations},
-                      {"termination", ToString(res.termination)},
-                      {"message", res.message},
-                      {"wall_time_s", res.wall_time_s}};
-  // Warnings go to stderr and into the diagnostics (so `--json` and the -o file, which stay
-  // valid model files, both carry them).
-  const std::vector<std::string> warnings = FarFromPriorWarnings(initial, res);
-  for (const auto& w : warnings) std::cerr << "sysid refine: warning: " << w << '\n';
-  j["diagnostics"]["warnings"] = warnings;
-  const std::string rendered = j.dump(2) + "\n";
+  for (const auto& w : res.warnings) std::cerr << "sysid refine: warning: " << w << '\n';
+  const std::string rendered = ToJson(res);
   if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
   if (o.json)
     std::cout << rendered;

@@ -100,22 +100,12 @@ void RunSimulate(SimulateCliOptions o) {
     j["model"] = model_json;
     j["input"] = input.description;
     j["t_end_s"] = sim.t_end_s;
-    j["samples"] = r.trajectory.t_s.size();
+    const auto run = nlohmann::ordered_json::parse(ToJson(r, sim));
+    j["samples"] = run["samples"];
     j["output"] = o.output.empty() ? nullptr : nlohmann::ordered_json(o.output);
     j["events_file"] = o.events_path.empty() ? nullptr : nlohmann::ordered_json(o.events_path);
-    nlohmann::ordered_json ev = nlohmann::ordered_json::array();
-    for (const auto& e : r.events) ev.push_back({{"t_s", e.t_s}, {"kind", ToString(e.kind)}});
-    j["events"] = ev;
-    j["summary"] = {{"termination", ToString(s.termination)},
-                    {"method", ToString(sim.method)},
-                    {"rtol", sim.rtol},
-                    {"atol", sim.atol},
-                    {"steps", s.steps},
-                    {"rhs_evaluations", s.rhs_evaluations},
-                    {"root_evaluations", s.root_evaluations},
-                    {"events", s.events},
-                    {"reinitialisations", s.reinitialisations},
-                    {"wall_time_s", s.wall_time_s}};
+    j["events"] = run["events"];
+    j["summary"] = run["summary"];
     std::cout << j.dump(2) << '\n';
   } else if (o.output.empty()) {
     std::cout << FormatRecording(out);

@@ -21,10 +21,6 @@ struct SweepCliOptions {
   int threads = 0;
 };
 
-nlohmann::ordered_json NumberOrNull(double x) {
-  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
-}
-
 void RunSweep(SweepCliOptions& o) {
   HiddenSweepOptions so;
   so.hidden_sizes = ParseHiddenSizes(o.hidden);
@@ -55,28 +51,8 @@ void RunSweep(SweepCliOptions& o) {
   nlohmann::ordered_json j;
   j["inputs"] = names;
   j["output"] = o.nn.output;
-  j["trainer"] = ToString(o.nn.training.trainer);
-  j["momentum"] = o.nn.training.momentum;
-  j["seed"] = o.nn.training.seed;
-  j["rows"] = nlohmann::ordered_json::array();
-  for (const auto& row : r.rows)
-    j["rows"].push_back({{"hidden", row.hidden},
-                         {"epochs", row.epochs},
-                         {"train_mse", row.train_mse},
-                         {"validation_mse", NumberOrNull(row.validation_mse)},
-                         {"test_mse", NumberOrNull(row.test_mse)},
-                         {"stop_reason", ToString(row.stop)},
-                         {"wall_time_s", row.wall_time_s}});
-  j["chosen_hidden"] = best.hidden;
-  j["rule"] = r.rule;
-  j["wall_time_s"] = r.wall_time_s;
-  std::vector<std::string> warnings;
-  for (const auto& row : r.rows)
-    if (row.stop == TrainingStop::kMaxEpochs && o.nn.training.max_epochs > 0)
-      warnings.push_back(fmt::format("H = {} stopped at --max-epochs {}; it may be under-trained",
-                                     row.hidden, o.nn.training.max_epochs));
-  for (const auto& w : warnings) std::cerr << "sysid sweep: warning: " << w << '\n';
-  j["warnings"] = warnings;
+  j.update(nlohmann::ordered_json::parse(ToJson(r, so)));
+  for (const auto& w : r.warnings) std::cerr << "sysid sweep: warning: " << w << '\n';
   if (!o.nn.model_path.empty()) {
     nlohmann::ordered_json summary = j["rows"][r.chosen];
     summary.erase("wall_time_s");  // the model file is reproducible: same seed, same bytes

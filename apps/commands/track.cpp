@@ -108,14 +108,10 @@ void RunTrack(const TrackCliOptions& o) {
   for (const auto& run : runs) {
     const auto& r = run.result;
     const std::string scheme = ToString(run.scheme);
-    j["schemes"].push_back({{"ff", scheme},
-                            {"max_error_m", r.max_error_m},
-                            {"rms_error_m", r.rms_error_m},
-                            {"rms_u_v", r.rms_u_v},
-                            {"max_abs_u_v", r.max_abs_u_v},
-                            {"total_variation_v", r.total_variation_v},
-                            {"saturated_samples", r.saturated_samples},
-                            {"stage_limits", run.stage_limits}});
+    nlohmann::ordered_json entry = {{"ff", scheme}};
+    entry.update(nlohmann::ordered_json::parse(ToJson(r)));
+    entry["stage_limits"] = run.stage_limits;
+    j["schemes"].push_back(entry);
     table.AddRow({scheme, Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
                   Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
                   run.stage_limits});

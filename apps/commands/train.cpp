@@ -23,10 +23,6 @@ struct TrainCliOptions {
   bool history = false;
 };
 
-nlohmann::ordered_json NumberOrNull(double x) {
-  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
-}
-
 void RunTrain(TrainCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   const auto names = SplitComma(o.nn.inputs);
@@ -47,49 +43,19 @@ void RunTrain(TrainCliOptions& o) {
   const double test_mse =
       test ? MeanSquaredError(r.network, *test) : std::numeric_limits<double>::quiet_NaN();
 
+  // The library's report with the command's context: data, output unit, test MSE, files.
   nlohmann::ordered_json j;
   j["inputs"] = names;
   j["output"] = o.nn.output;
-  j["hidden"] = o.nn.training.hidden;
-  j["parameters"] = r.network.parameter_count();
-  j["trainer"] = ToString(o.nn.training.trainer);
-  j["momentum"] = o.nn.training.momentum;
-  j["solve_output_layer"] = o.nn.training.solve_output_layer;
-  j["seed"] = o.nn.training.seed;
-  j["restart"] = r.restart;
-  j["epochs"] = r.epochs;
-  j["train_mse"] = r.train_mse;
-  j["validation_mse"] = NumberOrNull(r.validation_mse);
-  j["test_mse"] = NumberOrNull(test_mse);
+  j.update(nlohmann::ordered_json::parse(ToJson(r, o.nn.training)));
+  j["test_mse"] = test ? nlohmann::ordered_json(test_mse) : nlohmann::ordered_json(nullptr);
   j["mse_unit"] =
       "(" + (DefaultUnit(o.nn.output).empty() ? std::string("unit") : DefaultUnit(o.nn.output)) +
       ")^2";
-  j["termination"] = ToString(r.termination);
-  j["stop_reason"] = ToString(r.stop);
-  j["message"] = r.message;
-  // A network that ran out of epochs may not be trained: said on stderr and in --json.
-  std::vector<std::string> warnings;
-  if (r.stop == TrainingStop::kMaxEpochs && o.nn.training.max_epochs > 0)
-    warnings.push_back(fmt::format(
-        "training stopped at --max-epochs {} before a convergence test was met; the network may "
-        "be under-trained (raise --max-epochs or check --goal-mse/--min-gradient)",
-        o.nn.training.max_epochs));
-  for (const auto& w : warnings) std::cerr << "sysid train: warning: " << w << '\n';
-  j["warnings"] = warnings;
-  j["wall_time_s"] = r.wall_time_s;
   j["train_file"] = o.nn.train_path;
   if (test) j["test_file"] = o.nn.test_path;
-  if (o.history) {
-    nlohmann::ordered_json h = nlohmann::ordered_json::array();
-    for (const auto& e : r.history)
-      h.push_back({{"restart", e.restart},
-                   {"epoch", e.epoch},
-                   {"mu", e.mu},
-                   {"train_mse", e.train_mse},
-                   {"validation_mse", NumberOrNull(e.validation_mse)},
-                   {"gradient_norm", e.gradient_norm}});
-    j["history"] = h;
-  }
+  if (!o.history) j.erase("history");
+  for (const auto& w : r.warnings) std::cerr << "sysid train: warning: " << w << '\n';
   if (!o.nn.model_path.empty()) {
     nlohmann::ordered_json summary = j;
     summary.erase("history");

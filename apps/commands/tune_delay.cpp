@@ -33,39 +33,9 @@ void RunTuneDelay(const TuneDelayCli& o) {
   o.motion.ApplyTo(d.motion);
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DelayTuningResult r = TuneDelay(model, recs, d);
-  // A delay at its search bound is suspicious (the optimum may lie outside, or the data may not
-  // determine tau): said on stderr and recorded in --json.
-  std::vector<std::string> warnings;
-  const double near = std::max(10 * d.x_tolerance_s, 1e-3 * (d.tau_max_s - d.tau_min_s));
-  if (r.tau_s - d.tau_min_s <= near || d.tau_max_s - r.tau_s <= near)
-    warnings.push_back(fmt::format(
-        "tau = {:.6g} s is at the search bound [{:.6g}, {:.6g}] s: the optimum may lie outside "
-        "it, or the recordings do not determine tau; widen --min/--max or check the data",
-        r.tau_s, d.tau_min_s, d.tau_max_s));
-  for (const auto& w : warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
-  const std::string model_text = ModelToJson(r.model) + "\n";
-  if (!o.output.empty()) WriteFileAtomically(o.output, model_text);
-  if (!o.json) {
-    std::cout << r.BriefReport();
-    return;
-  }
-  nlohmann::ordered_json j;
-  j["tau"] = r.tau_s;
-  j["cost"] = r.cost;
-  j["rms_error_mps"] = r.rms_error_mps;
-  j["evaluations"] = r.evaluations;
-  j["simulations"] = r.simulations;
-  j["segments"] = r.segments;
-  j["samples"] = r.samples;
-  j["termination"] = ToString(r.termination);
-  j["message"] = r.message;
-  j["wall_time_s"] = r.wall_time_s;
-  j["warnings"] = warnings;
-  nlohmann::ordered_json c = nlohmann::ordered_json::array();
-  for (const auto& [t, f] : r.curve) c.push_back({{"tau", t}, {"cost", f}});
-  j["curve"] = c;
-  j["model"] = nlohmann::ordered_json::parse(model_text);
-  PrintJson(j);
+  for (const auto& w : r.warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
+  if (!o.output.empty()) WriteFileAtomically(o.output, ModelToJson(r.model) + "\n");
+  std::cout << (o.json ? ToJson(r) : r.BriefReport());
 }
 
 void AddTuneDelayCommand(CLI::App& app) {

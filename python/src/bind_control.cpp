@@ -84,7 +84,9 @@ void BindControl(py::module_& m) {
       .def_readonly("max_abs_u_v", &TrackingResult::max_abs_u_v)
       .def_readonly("total_variation_v", &TrackingResult::total_variation_v)
       .def_readonly("saturated_samples", &TrackingResult::saturated_samples)
-      .def("brief_report", &TrackingResult::BriefReport);
+      .def("brief_report", &TrackingResult::BriefReport)
+      .def("to_json", py::overload_cast<const TrackingResult&, int>(&ToJson),
+           py::arg("indent") = 2, "the metrics as `sysid track --json` lists them");
   s.def("track_stage", &TrackStage, py::arg("parameters"), py::arg("reference"), py::arg("pi"),
         py::arg("u_ff_v"), py::arg("seed"));
 

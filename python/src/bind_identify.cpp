@@ -18,39 +18,9 @@
 namespace sysid::python {
 namespace {
 
-py::object FiniteOrNone(double x) { return std::isfinite(x) ? py::object(py::float_(x)) : py::none(); }
-
-py::dict StatsDict(const TermStats& s, bool ranking) {
-  py::dict d;
-  d[ranking ? "variable" : "term"] = s.name;
-  d["rms"] = s.rms;
-  d["peak"] = s.peak;
-  d["ratio_to_top"] = s.ratio_to_top;
-  if (ranking) {
-    d["ratio_bound"] = s.ratio_bound;
-    d["ratio_max"] = s.ratio_max;
-    d["negligible"] = s.negligible;
-  }
-  return d;
-}
-
-/// The CLI's per-recording JSON object (`sysid dominance --json`, "recordings" entries).
-py::dict DominanceDict(const DominanceResult& r) {
-  py::dict d;
-  d["source"] = r.source;
-  py::list ranking, terms;
-  for (const auto& s : r.ranking) ranking.append(StatsDict(s, true));
-  for (const auto& s : r.terms) terms.append(StatsDict(s, false));
-  d["ranking"] = ranking;
-  d["dominant"] = r.dominant;
-  d["margin"] = FiniteOrNone(r.margin);
-  d["terms"] = terms;
-  d["peak_ratio"] = r.peak_ratio;
-  d["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
-  d["pointwise_ratio_max"] = r.pointwise_ratio_max;
-  d["samples"] = r.samples;
-  d["moving_samples"] = r.moving_samples;
-  return d;
+/// The library's JSON text as Python objects (json.loads): the same keys and values as the CLI.
+py::object JsonObject(const std::string& text) {
+  return py::module_::import("json").attr("loads")(text);
 }
 
 /// One flat row per recording: source, dominant, margin, sample counts, the paper's ratios and
@@ -235,7 +205,11 @@ void BindIdentify(py::module_& m) {
                              [](const PulseIdentificationResult& r) {
                                return fmt::format("{} equations, rank {}", r.fit.rows, r.fit.rank);
                              })
-      .def("brief_report", &PulseIdentificationResult::BriefReport);
+      .def("brief_report", &PulseIdentificationResult::BriefReport)
+      .def("to_json", py::overload_cast<const PulseIdentificationResult&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid identify --json`'s text (a model file too)")
+      .def_static("from_json", &PulseIdentificationResultFromJson, py::arg("text"),
+                  py::arg("source") = "json");
   AddSolvedTermination(pulse_result);
   m.def("fit_pulse_table", &FitPulseTable, py::arg("points"),
         py::arg("options") = PulseFitOptions{});
@@ -258,7 +232,12 @@ void BindIdentify(py::module_& m) {
       .def("validate", &TrajectoryOptions::Validate);
   py::class_<TrajectoryIdentificationResult> trajectory_result(m,
                                                               "TrajectoryIdentificationResult");
-  trajectory_result.def_readonly("model", &TrajectoryIdentificationResult::model)
+  trajectory_result
+      .def("to_json", py::overload_cast<const TrajectoryIdentificationResult&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid identify --method trajectory --json`'s text")
+      .def_static("from_json", &TrajectoryIdentificationResultFromJson, py::arg("text"),
+                  py::arg("source") = "json")
+      .def_readonly("model", &TrajectoryIdentificationResult::model)
       .def_readonly("fit", &TrajectoryIdentificationResult::fit)
       .def_readonly("names", &TrajectoryIdentificationResult::names)
       .def_readonly("estimate", &TrajectoryIdentificationResult::estimate)
@@ -300,6 +279,11 @@ void BindIdentify(py::module_& m) {
       .def_readwrite("threads", &DelayTuningOptions::threads)
       .def("validate", &DelayTuningOptions::Validate);
   py::class_<DelayTuningResult>(m, "DelayTuningResult")
+      .def("to_json", py::overload_cast<const DelayTuningResult&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid tune-delay --json`'s text")
+      .def_static("from_json", &DelayTuningResultFromJson, py::arg("text"),
+                  py::arg("source") = "json")
+      .def_readonly("warnings", &DelayTuningResult::warnings)
       .def_property_readonly("termination",
                              [](const DelayTuningResult& r) { return ToString(r.termination); })
       .def_readonly("message", &DelayTuningResult::message)
@@ -330,6 +314,9 @@ void BindIdentify(py::module_& m) {
       .def_readwrite("sim_rtol", &RefineOptions::sim_rtol)
       .def("validate", &RefineOptions::Validate);
   py::class_<RefineResult>(m, "RefineResult")
+      .def("to_json", py::overload_cast<const RefineResult&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid refine --json`'s text (a model file too)")
+      .def_static("from_json", &RefineResultFromJson, py::arg("text"), py::arg("source") = "json")
       .def_readonly("initial", &RefineResult::initial)
       .def_readonly("model", &RefineResult::model)
       .def_readonly("names", &RefineResult::names)
@@ -342,6 +329,7 @@ void BindIdentify(py::module_& m) {
       .def_property_readonly("termination",
                              [](const RefineResult& r) { return ToString(r.termination); })
       .def_readonly("message", &RefineResult::message)
+      .def_readonly("warnings", &RefineResult::warnings)
       .def_readonly("wall_time_s", &RefineResult::wall_time_s)
       .def("brief_report", &RefineResult::BriefReport);
   m.def("refine_recordings", &RefineOutputError, py::arg("initial"), py::arg("recordings"),
@@ -392,11 +380,17 @@ void BindIdentify(py::module_& m) {
                                                   r.dominant, r.margin);
                              })
       .def("brief_report", &DominanceResult::BriefReport)
-      .def("to_dict", &DominanceDict, "The CLI's JSON object for this recording, as a dict.")
+      .def(
+          "to_dict", [](const DominanceResult& r) { return JsonObject(ToJson(r, -1)); },
+          "The CLI's JSON object for this recording (`dominance --json` \"recordings\" entry).")
+      .def("to_json", py::overload_cast<const DominanceResult&, int>(&ToJson),
+           py::arg("indent") = 2)
       .def("row", &DominanceRow, "One flat dict: source, dominant, margin, rms_<variable>, ...")
       .def("records", [](const DominanceResult& r) { return DominanceRecords({r}); },
            "One dict per ranked variable (the CSV table's rows).");
   py::class_<DominanceSummary>(m, "DominanceSummary")
+      .def("to_json", py::overload_cast<const DominanceSummary&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid dominance --json`'s text")
       .def_readonly("results", &DominanceSummary::results)
       .def_readonly("dominant_counts", &DominanceSummary::dominant_counts)
       .def_readonly("dominant", &DominanceSummary::dominant)

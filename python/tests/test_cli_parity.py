@@ -42,6 +42,9 @@ def test_identify_pulses(model_file):
     assert len(r.pulses) == 10 and all(p.usable for p in r.pulses)
     # The CLI's model file loads to the same model.
     assert sysid.Model.load(str(model_file)) == r.model
+    # The CLI prints the library's JSON, which reads back to the same text.
+    assert json.loads(r.to_json()) == j
+    assert sysid.PulseIdentificationResult.from_json(r.to_json()).to_json() == r.to_json()
 
 
 def test_identify_trajectory():
@@ -49,6 +52,7 @@ def test_identify_trajectory():
     r = sysid.identify_trajectory(VIRTUAL / "training.csv")
     assert_model_equals_json(r.model, j)
     assert r.relative_error == j["diagnostics"]["relative_error"]
+    assert json.loads(r.to_json()) == j
 
 
 def test_tune_delay(model_file):
@@ -79,6 +83,7 @@ def test_dominance_single_and_batch(model_file, tmp_path):
     summary = sysid.dominance(model, str(VIRTUAL / "waveform_*.csv"))
     assert [r.to_dict() for r in summary.results] == j["recordings"]
     assert summary.min_margin == j["summary"]["min_margin"]
+    assert json.loads(summary.to_json()) == j
     # The records are the CLI's CSV table (printed to 9 significant digits).
     cli_table = pandas.read_csv(table, comment="#")
     ours = pandas.DataFrame(summary.records())
@@ -192,6 +197,8 @@ def test_tracking_experiment_matches_cli_track(model_file, tmp_path):
         assert r.max_error_m == scheme["max_error_m"], scheme["ff"]
         assert r.rms_error_m == scheme["rms_error_m"] and r.rms_u_v == scheme["rms_u_v"]
         assert limits == scheme["stage_limits"]
+        for key, value in json.loads(r.to_json()).items():  # the CLI lists the library's JSON
+            assert scheme[key] == value, key
         assert "max |e|" in r.brief_report()
 
 

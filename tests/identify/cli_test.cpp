@@ -8,6 +8,7 @@
 #include "identify/simulated_recording.hpp"
 #include "identify/synthetic_motion.hpp"
 #include "support/test_support.hpp"
+#include "sysid/delay.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 
@@ -70,11 +71,13 @@ TEST_CASE("tune-delay and refine on a simulated pulse recording", "[identify][cl
   CHECK(j["cost"].get<double>() >= 0);
   CHECK(j["model"]["tau"] == j["tau"]);
   CHECK(sysid::ReadModel(dir / "tuned.json").tau_s == j["tau"].get<double>());
+  CHECK(sysid::ToJson(sysid::DelayTuningResultFromJson(r.out, "stdout")) == r.out);  // library text
   r = RunCli({"refine", "--model", dir / "tuned.json", "--fix-a3", "--json", dir / "rec.csv"});
   REQUIRE(r.exit_code == 0);
   const auto refined = sysid::ParseModel(r.out, "stdout");
   CHECK(refined.a1p == Approx(truth.a1p).epsilon(0.01));  // 1 %: the pulse acceptance bound
   CHECK(refined.tau_s == Approx(truth.tau_s).margin(1e-4));
+  CHECK(sysid::ToJson(sysid::RefineResultFromJson(r.out, "stdout")) == r.out);
 }
 
 TEST_CASE("dominance --json ranks variables and -o writes the table", "[dominance][cli]") {

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sysid/io.hpp"
@@ -70,6 +71,14 @@ struct InverseComparison {
 InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel& model,
                                        const NeuralNetwork* network,
                                        const CompareOptions& options = {});
+
+/// {"rmse_v", "peak_error_v", "nrmse", "r2"} (null where not finite), and back: InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text.
+std::string ToJson(const PredictionErrors& errors, int indent = 2);
+PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name);
+/// One recording as `sysid compare --json` lists it: file, samples, analytic errors and (with a
+/// network) nn errors. The traces are not included (AsRecording writes them).
+std::string ToJson(const InverseComparison& comparison, int indent = 2);
 
 }  // namespace sysid
 

@@ -104,6 +104,11 @@ struct TrackingResult {
   std::string BriefReport() const;
 };
 
+/// The run's metrics as JSON (max_error_m, rms_error_m, rms_u_v, max_abs_u_v,
+/// total_variation_v, saturated_samples); the traces are not included. `sysid track --json`
+/// lists one per feedforward scheme.
+std::string ToJson(const TrackingResult& result, int indent = 2);
+
 /// One sample of a plant: applies u [V] for one period and returns the next measured position
 /// [m].
 using PlantStep = std::function<double(double u_v)>;

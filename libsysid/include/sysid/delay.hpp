@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <limits>
 #include <vector>
@@ -74,6 +75,9 @@ struct DelayTuningResult {
   Eigen::Index samples = 0;  ///< velocity samples compared per evaluation
   /// (tau [s], cost [m^2/s^2]) of every evaluation and curve point, sorted by tau.
   std::vector<std::pair<double, double>> curve;
+  /// Doubts about the result in words: tau at a search bound (the optimum may lie outside the
+  /// interval, or the recordings do not determine tau).
+  std::vector<std::string> warnings;
   double wall_time_s = 0;
   std::string BriefReport() const;
 };
@@ -111,7 +115,12 @@ struct RefineResult {
   /// Ceres' CONVERGENCE, NO_CONVERGENCE (iterations) and FAILURE.
   Termination termination = Termination::kFailure;
   std::string message;  ///< Ceres' termination in words
-  double wall_time_s = 0;
+  /// Doubts about the result in words: a parameter far from its given value (moved by more
+  /// than 50 % of it and by more than 3 standard errors, or with the error unknown), which
+  /// usually means the starting model (a data-sheet a3, a tau at a bound) and the recordings
+  /// disagree.
+  std::vector<std::string> warnings;
+  double wall_time_s = 0;  ///< [s] not serialised (files stay identical run to run)
   std::string BriefReport() const;
 };
 
@@ -120,6 +129,23 @@ struct RefineResult {
 RefineResult RefineOutputError(const FrictionModel& initial,
                                const std::vector<Recording>& recordings,
                                const RefineOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// JSON (the text of `sysid tune-delay --json` and `sysid refine --json`)
+// ----------------------------------------------------------------------------------------------
+
+/// tau, cost, counts, termination, message, warnings, curve [{tau, cost}] and the tuned model
+/// (ModelToJson) under "model".
+std::string ToJson(const DelayTuningResult& result, int indent = 2);
+/// The refined model file's text (ModelToJson) with a "diagnostics" object: standard errors
+/// (null when singular), costs, counts, termination, message and warnings. Any model reader
+/// accepts it.
+std::string ToJson(const RefineResult& result, int indent = 2);
+/// Read ToJson's text back; InputError "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad
+/// text. RefineResult::initial is not written and stays default.
+DelayTuningResult DelayTuningResultFromJson(std::string_view text,
+                                            const std::string& source_name);
+RefineResult RefineResultFromJson(std::string_view text, const std::string& source_name);
 
 }  // namespace sysid
 

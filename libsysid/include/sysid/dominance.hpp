@@ -86,6 +86,11 @@ struct DominanceSummary {
   std::string dominant;   ///< the variable dominant in most recordings
   double min_margin = 0;  ///< smallest margin over the recordings
   double median_margin = 0;
+  /// Variables ranked over all recordings pooled: RMS over all moving samples, peak over all;
+  /// ratio_to_top and negligible as in one recording (ratio_bound, ratio_max are not pooled).
+  std::vector<TermStats> ranking;
+  double negligible_ratio = 0;  ///< the options the batch ran with (DominanceOptions)
+  double min_speed_mps = 0;     ///< [m/s]
 };
 
 /// Analyses many recordings in parallel threads (results in input order). The first error in
@@ -103,6 +108,13 @@ std::vector<TermStats> PooledRanking(const DominanceSummary& summary, double neg
 
 /// The batch as CSV: one row per (recording, ranked variable).
 std::string DominanceTableCsv(const DominanceSummary& summary);
+
+/// One recording's analysis as JSON: source, ranking, dominant, margin (null with a single
+/// candidate), terms, the ratios and sample counts (a `recordings` entry of `dominance --json`).
+std::string ToJson(const DominanceResult& result, int indent = 2);
+/// The batch as `sysid dominance --json` prints it: pooled ranking, dominant, the options,
+/// summary (counts, margins) and every recording's analysis.
+std::string ToJson(const DominanceSummary& summary, int indent = 2);
 
 }  // namespace sysid
 

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -200,6 +201,8 @@ struct TrajectoryIdentificationResult {
   double relative_error = 0;  ///< |u - u_fit| / |u| over the samples used
   /// Delay search (tune_delay only): evaluated (tau [s], residual sum of squares [V^2]).
   std::vector<std::pair<double, double>> tau_curve;
+  /// The velocity filter used (TrajectoryOptions::motion), recorded for the diagnostics.
+  DerivativeMethod derivative = DerivativeMethod::kButterworthCentral;
   std::string BriefReport() const;
 };
 
@@ -207,6 +210,26 @@ struct TrajectoryIdentificationResult {
 /// rank deficiency (naming the parameters) or too few moving samples.
 TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recording>& recordings,
                                                       const TrajectoryOptions& options = {});
+
+// ----------------------------------------------------------------------------------------------
+// JSON (the text `sysid identify --json` prints and -o writes)
+// ----------------------------------------------------------------------------------------------
+
+/// The model file's text (ModelToJson: parameters and units) followed by a "diagnostics"
+/// object: method, parameters with standard errors, covariance, the fit's statistics, every
+/// equation and every detected pulse with its status. Any model reader accepts this text. NaN
+/// (a standard error with no degrees of freedom) is written as null.
+std::string ToJson(const PulseIdentificationResult& result, int indent = 2);
+/// As above; diagnostics hold the physical parameters, the linear fit in u-space and the delay
+/// curve (tune_delay only).
+std::string ToJson(const TrajectoryIdentificationResult& result, int indent = 2);
+/// Read ToJson's text back. Throws InputError "SOURCE:LINE:COL: NAME: expected ..., found ...".
+/// Fields ToJson does not write (pulse rows, window sizes, the u-space covariance and
+/// residuals of the trajectory fit) keep their defaults.
+PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view text,
+                                                            const std::string& source_name);
+TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
+    std::string_view text, const std::string& source_name);
 
 }  // namespace sysid
 

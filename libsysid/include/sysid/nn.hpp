@@ -220,6 +220,8 @@ struct NeuralTrainingResult {
   double validation_mse = 0;         ///< [output unit^2], NaN without a validation set
   double wall_time_s = 0;            ///< [s]
   std::vector<EpochRecord> history;  ///< every epoch of every restart
+  /// Doubts in words: stopped by the epoch budget before a convergence test (under-trained?).
+  std::vector<std::string> warnings;
   std::string BriefReport() const;
 };
 
@@ -259,6 +261,7 @@ struct HiddenSweepResult {
   /// (the paper's choice), else "min training MSE".
   std::string rule;
   double wall_time_s = 0;  ///< [s]
+  std::vector<std::string> warnings;  ///< one per hidden size stopped by the epoch budget
 };
 
 /// Trains one network per hidden size, in parallel threads, and picks one by `rule`.
@@ -267,6 +270,16 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
 
 /// Parses "16:32:2" (first:last:step) or "16,20,24" into hidden sizes. Throws OptionsError.
 std::vector<int> ParseHiddenSizes(const std::string& spec);
+
+/// A training run as `sysid train --json` reports it: hidden, parameters, the trainer options
+/// (trainer, momentum, solve_output_layer, seed), restart, epochs, MSEs (null when absent),
+/// termination, stop_reason, message, warnings, wall_time_s and the epoch history.
+std::string ToJson(const NeuralTrainingResult& result, const NeuralTrainingOptions& options,
+                   int indent = 2);
+/// A sweep as `sysid sweep --json` reports it: trainer, momentum, seed, one row per hidden size
+/// (hidden, epochs, MSEs, stop_reason, wall_time_s), chosen_hidden, rule, wall_time_s, warnings.
+std::string ToJson(const HiddenSweepResult& result, const HiddenSweepOptions& options,
+                   int indent = 2);
 
 }  // namespace sysid
 

@@ -115,6 +115,12 @@ using PipelineProgress = std::function<void(const std::string& step)>;
 PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
                            const PipelineProgress& progress = {});
 
+/// The run's summary as `sysid pipeline --json` prints it (without the report's path): model
+/// (ModelToJson), dominant, nn_inputs, hidden, nn_test_mse, typical_train_mse /
+/// typical_test_mse (with a typical network), tracking [{frequency_hz, ff, max_error_m,
+/// rms_error_m}], facts_required_met (with facts) and steps {name: wall time [s]}.
+std::string ToJson(const PipelineResult& result, int indent = 2);
+
 // The pipeline's written report (report.md, plots) is WritePipelineReport in report.hpp.
 
 }  // namespace sysid

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sysid/input.hpp"
@@ -98,6 +99,18 @@ struct SimulationResult {
 /// invalid options or model.
 SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
                           const SimulationOptions& options);
+
+/// The options as JSON (every field; method as "adams"/"bdf").
+std::string ToJson(const SimulationOptions& options, int indent = 2);
+/// Reads options written by ToJson; absent keys keep their defaults, the result is validated.
+/// Throws InputError "SOURCE:LINE:COL: NAME: expected ..., found ...".
+SimulationOptions SimulationOptionsFromJson(std::string_view text,
+                                            const std::string& source_name);
+/// A run as `sysid simulate --json` reports it: samples, events [{t_s, kind}] and "summary"
+/// (termination, the integrator of `options`, counts, wall time; on a stop short of t_end also
+/// message, cvode_flag and failure_time_s).
+std::string ToJson(const SimulationResult& result, const SimulationOptions& options,
+                   int indent = 2);
 
 }  // namespace sysid
 

@@ -212,6 +212,18 @@ double JsonNode::Number(const NumberRule& rule) const {
   return json_->get<double>();
 }
 
+double JsonNode::NumberOrNaN(const NumberRule& rule) const {
+  if (json_->is_null()) return std::numeric_limits<double>::quiet_NaN();
+  if (!json_->is_number() || !rule.Accepts(json_->get<double>()))
+    Expected(rule.Describe() + " or null");
+  return json_->get<double>();
+}
+
+bool JsonNode::Boolean() const {
+  if (!json_->is_boolean()) Expected("true or false");
+  return json_->get<bool>();
+}
+
 long JsonNode::Integer(long lo, long hi) const {
   const std::string what =
       "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
@@ -412,6 +424,52 @@ void JsonDocument::FailValidation(const std::string& message, const std::string&
     at = next + 1;
   }
   throw InputError(Where(pointer) + ": " + name + ": expected " + rule + ", found " + value);
+}
+
+nlohmann::ordered_json NumberOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json VectorJson(const Eigen::VectorXd& v) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) j.push_back(NumberOrNull(v[i]));
+  return j;
+}
+
+nlohmann::ordered_json MatrixJson(const Eigen::MatrixXd& m) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) j.push_back(VectorJson(m.row(i).transpose()));
+  return j;
+}
+
+Eigen::VectorXd VectorFromJson(const JsonNode& node, size_t size) {
+  node.ExpectArray(size);
+  Eigen::VectorXd v(static_cast<Eigen::Index>(node.Size()));
+  for (size_t i = 0; i < node.Size(); ++i)
+    v[static_cast<Eigen::Index>(i)] = node.Element(i).NumberOrNaN();
+  return v;
+}
+
+Eigen::MatrixXd MatrixFromJson(const JsonNode& node, size_t rows, size_t cols) {
+  node.ExpectArray(rows);
+  if (rows == 0 && node.Size() != 0) node.Expected("an empty array");
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  for (size_t i = 0; i < rows; ++i)
+    m.row(static_cast<Eigen::Index>(i)) = VectorFromJson(node.Element(i), cols).transpose();
+  return m;
+}
+
+Termination TerminationFromJson(const JsonNode& node) {
+  const std::string s = node.String();
+  for (auto t : {Termination::kConverged, Termination::kBudgetExhausted, Termination::kFailure})
+    if (ToString(t) == s) return t;
+  node.Expected("a termination (" + ToString(Termination::kConverged) + ", " +
+                ToString(Termination::kBudgetExhausted) + " or " +
+                ToString(Termination::kFailure) + ")");
+}
+
+std::string DumpJson(const nlohmann::ordered_json& j, int indent) {
+  return j.dump(indent) + "\n";
 }
 
 }  // namespace sysid::detail

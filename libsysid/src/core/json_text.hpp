@@ -3,11 +3,14 @@
 #ifndef SYSID_SRC_CORE_JSON_TEXT_HPP_
 #define SYSID_SRC_CORE_JSON_TEXT_HPP_
 
+#include <Eigen/Core>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "sysid/termination.hpp"
 
 namespace sysid::detail {
 
@@ -74,6 +77,9 @@ class JsonNode {
   /// `non_empty`).
   void ExpectArray(size_t size = 0, bool non_empty = false) const;
   double Number(const NumberRule& rule = NumberRule::Finite()) const;
+  /// A number, or null read as NaN (results write a quantity that does not exist as null).
+  double NumberOrNaN(const NumberRule& rule = NumberRule::Finite()) const;
+  bool Boolean() const;
   long Integer(long lo, long hi) const;
   std::string String(bool non_empty = false) const;
   std::vector<double> Numbers(size_t size = 0, const NumberRule& rule = NumberRule::Finite()) const;
@@ -128,6 +134,22 @@ class JsonDocument {
   mutable std::vector<std::pair<std::string, Place>> places_;  // built on the first error
   mutable bool indexed_ = false;
 };
+
+/// `v`, or null when it is not finite (JSON has no NaN or infinity).
+nlohmann::ordered_json NumberOrNull(double v);
+/// A vector or matrix (rows of arrays) of numbers, NaN as null.
+nlohmann::ordered_json VectorJson(const Eigen::VectorXd& v);
+nlohmann::ordered_json MatrixJson(const Eigen::MatrixXd& m);
+/// The inverses: numbers or null (NaN); a matrix must be rows x cols.
+Eigen::VectorXd VectorFromJson(const JsonNode& node, size_t size = 0);
+Eigen::MatrixXd MatrixFromJson(const JsonNode& node, size_t rows, size_t cols);
+
+/// A Termination written by ToString ("converged", ...); anything else is a positioned error.
+Termination TerminationFromJson(const JsonNode& node);
+
+/// Text of a library result object: `j` dumped with `indent` and a final newline (the form of
+/// ModelToJson).
+std::string DumpJson(const nlohmann::ordered_json& j, int indent);
 
 }  // namespace sysid::detail
 

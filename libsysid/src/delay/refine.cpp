@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "delay/segments.hpp"
 #include "sysid/delay.hpp"
@@ -15,6 +17,51 @@
 #include "sysid/identify.hpp"
 
 namespace sysid {
+
+namespace {
+
+// A refined parameter is "far from its prior" (the starting model) when it moved by more than
+// kPriorRelativeShift of the prior AND by more than kPriorSigmaShift of its standard error (or
+// the error is unknown): a large move that the fit also calls significant. A zero prior has
+// no scale and is not tested.
+constexpr double kPriorRelativeShift = 0.5;  // [1]
+constexpr double kPriorSigmaShift = 3.0;     // [standard errors]
+
+double ParameterValue(const FrictionModel& m, const std::string& name) {
+  if (name == "a1p") return m.a1p;
+  if (name == "a1n") return m.a1n;
+  if (name == "a2p") return m.a2p;
+  if (name == "a2n") return m.a2n;
+  if (name == "a3") return m.a3;
+  return m.tau_s;
+}
+
+std::vector<std::string> FarFromPriorWarnings(const RefineResult& r) {
+  std::vector<std::string> warnings;
+  for (size_t i = 0; i < r.names.size(); ++i) {
+    const std::string& name = r.names[i];
+    const double p0 = ParameterValue(r.initial, name), p = ParameterValue(r.model, name);
+    const double se = r.std_error[static_cast<Eigen::Index>(i)];
+    const double shift = std::abs(p - p0);
+    if (p0 == 0 || shift <= kPriorRelativeShift * std::abs(p0)) continue;
+    if (std::isfinite(se) && shift <= kPriorSigmaShift * se) continue;
+    const std::string unit = name == "tau" ? " s" : "";
+    std::string w = fmt::format("{} moved from its given value {:.6g}{} to {:.6g}{} ({:+.0f} %",
+                                name, p0, unit, p, unit, 100 * (p - p0) / p0);
+    w += std::isfinite(se)
+             ? fmt::format(", {:.0f} standard errors of {:.2g}{})", shift / se, se, unit)
+             : std::string(", standard error unknown)");
+    w += ": the recordings disagree with the starting model";
+    if (name == "a3")
+      w += "; check a3 against the data sheet, or keep it with --fix-a3";
+    else if (name == "tau")
+      w += "; check the delay (tune-delay), or keep it with --fix-tau";
+    warnings.push_back(w);
+  }
+  return warnings;
+}
+
+}  // namespace
 
 void RefineOptions::Validate() const {
   motion.Validate();
@@ -193,6 +240,7 @@ RefineResult RefineOutputError(const FrictionModel& initial,
       r.std_error[i] = std::sqrt(cov(i, i)) * layout.scale[static_cast<size_t>(i)];
   }
   r.simulations = simulations.load();
+  r.warnings = FarFromPriorWarnings(r);
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -106,6 +106,15 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
   if (!first_failure.empty())
     result.message +=
         "; some simulations failed and were scored +inf (first: " + first_failure + ")";
+  // A delay at its search bound is suspicious: the optimum may lie outside, or the data may not
+  // determine tau.
+  const double near =
+      std::max(10 * options.x_tolerance_s, 1e-3 * (options.tau_max_s - options.tau_min_s));
+  if (result.tau_s - options.tau_min_s <= near || options.tau_max_s - result.tau_s <= near)
+    result.warnings.push_back(fmt::format(
+        "tau = {:.6g} s is at the search bound [{:.6g}, {:.6g}] s: the optimum may lie outside "
+        "it, or the recordings do not determine tau; widen --min/--max or check the data",
+        result.tau_s, options.tau_min_s, options.tau_max_s));
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -187,6 +187,9 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
     const size_t h = margins.size() / 2;
     s.median_margin = margins.size() % 2 ? margins[h] : 0.5 * (margins[h - 1] + margins[h]);
   }
+  s.ranking = PooledRanking(s, options.negligible_ratio);
+  s.negligible_ratio = options.negligible_ratio;
+  s.min_speed_mps = options.min_speed_mps;
   return s;
 }
 

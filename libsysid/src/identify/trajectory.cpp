@@ -139,6 +139,7 @@ TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recordin
   std::vector<MotionSignals> motions;
   for (const auto& rec : recordings) motions.push_back(ExtractMotion(rec, options.motion));
   TrajectoryIdentificationResult result;
+  result.derivative = options.motion.derivative.method;
   double tau = options.tau_s;
   if (options.tune_delay) {
     detail::ScalarSearchOptions so;

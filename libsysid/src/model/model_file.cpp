@@ -2,33 +2,39 @@
 #include <string>
 
 #include "core/json_text.hpp"
+#include "model/model_json.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 
 namespace sysid {
-FrictionModel ParseModel(std::string_view json_text, const std::string& source) {
-  const detail::JsonDocument doc(json_text, source);
-  const detail::JsonNode root = doc.Root();
-  // Reports and comments may ride along: "diagnostics", "units", "note", "model", "_anything".
-  root.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau"},
-                    {"diagnostics", "units", "note", "model"});
-  using Rule = detail::NumberRule;
+namespace detail {
+FrictionModel ModelFromJson(const JsonDocument& doc, const JsonNode& node,
+                            const std::vector<std::string>& allowed_extra) {
+  node.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau"}, allowed_extra);
+  using Rule = NumberRule;
   FrictionModel m;
-  m.a1p = root.Get("a1p").Number(Rule::NonNegative());
-  m.a1n = root.Get("a1n").Number(Rule::NonNegative());
-  m.a2p = root.Get("a2p").Number(Rule::NonNegative());
-  m.a2n = root.Get("a2n").Number(Rule::NonNegative());
-  m.a3 = root.Get("a3").Number(Rule::Positive());
+  m.a1p = node.Get("a1p").Number(Rule::NonNegative());
+  m.a1n = node.Get("a1n").Number(Rule::NonNegative());
+  m.a2p = node.Get("a2p").Number(Rule::NonNegative());
+  m.a2n = node.Get("a2n").Number(Rule::NonNegative());
+  m.a3 = node.Get("a3").Number(Rule::Positive());
   // tau [s] is optional (0: no delay); a delay of more than a second is no actuator's.
-  if (root.Has("tau")) m.tau_s = root.Get("tau").Number(Rule::Closed(0.0, 1.0));
+  if (node.Has("tau")) m.tau_s = node.Get("tau").Number(Rule::Closed(0.0, 1.0));
   try {
     m.Validate();
   } catch (const OptionsError& e) {
-    const std::string field = detail::JsonDocument::ValidationField(e.what());
-    doc.FailValidation(e.what(), field.empty() ? "" : "/" + field);
+    const std::string field = JsonDocument::ValidationField(e.what());
+    doc.FailValidation(e.what(), field.empty() ? "" : node.pointer() + "/" + field);
   }
   return m;
+}
+}  // namespace detail
+
+FrictionModel ParseModel(std::string_view json_text, const std::string& source) {
+  const detail::JsonDocument doc(json_text, source);
+  // Reports and comments may ride along: "diagnostics", "units", "note", "model", "_anything".
+  return detail::ModelFromJson(doc, doc.Root(), {"diagnostics", "units", "note", "model"});
 }
 
 FrictionModel ReadModel(const std::string& path) { return ParseModel(ReadFile(path), path); }

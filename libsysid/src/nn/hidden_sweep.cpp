@@ -142,6 +142,11 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
   for (size_t k = 1; k < count; ++k)
     if (score(result.rows[k]) < score(result.rows[result.chosen]))
       result.chosen = static_cast<int>(k);
+  for (const auto& row : result.rows)
+    if (row.stop == TrainingStop::kMaxEpochs && options.training.max_epochs > 0)
+      result.warnings.push_back("H = " + std::to_string(row.hidden) + " stopped at --max-epochs " +
+                                std::to_string(options.training.max_epochs) +
+                                "; it may be under-trained");
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

@@ -266,6 +266,12 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
     }
   }
   result.network = net;
+  // A network that ran out of epochs may not be trained.
+  if (result.stop == TrainingStop::kMaxEpochs && options.max_epochs > 0)
+    result.warnings.push_back(
+        "training stopped at --max-epochs " + std::to_string(options.max_epochs) +
+        " before a convergence test was met; the network may be under-trained (raise "
+        "--max-epochs or check --goal-mse/--min-gradient)");
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

@@ -1,0 +1,47 @@
+// JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "core/json_text.hpp"
+#include "sysid/compare.hpp"
+
+namespace sysid {
+namespace {
+using Json = nlohmann::ordered_json;
+
+Json ErrorsJson(const PredictionErrors& e) {
+  return {{"rmse_v", detail::NumberOrNull(e.rmse_v)},
+          {"peak_error_v", detail::NumberOrNull(e.peak_error_v)},
+          {"nrmse", detail::NumberOrNull(e.nrmse)},
+          {"r2", detail::NumberOrNull(e.r2)}};
+}
+}  // namespace
+
+std::string ToJson(const PredictionErrors& errors, int indent) {
+  return detail::DumpJson(ErrorsJson(errors), indent);
+}
+
+PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name) {
+  const detail::JsonDocument doc(text, source_name);
+  const detail::JsonNode root = doc.Root();
+  root.ExpectObject({"rmse_v", "peak_error_v", "nrmse", "r2"});
+  using Rule = detail::NumberRule;
+  PredictionErrors e;
+  e.rmse_v = root.Get("rmse_v").NumberOrNaN(Rule::NonNegative());
+  e.peak_error_v = root.Get("peak_error_v").NumberOrNaN(Rule::NonNegative());
+  e.nrmse = root.Get("nrmse").NumberOrNaN(Rule::NonNegative());
+  e.r2 = root.Get("r2").NumberOrNaN();
+  return e;
+}
+
+std::string ToJson(const InverseComparison& c, int indent) {
+  Json j;
+  j["file"] = c.source;
+  j["samples"] = c.t_s.size();
+  j["analytic"] = ErrorsJson(c.analytic);
+  if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
+  return detail::DumpJson(j, indent);
+}
+
+}  // namespace sysid

@@ -1,0 +1,79 @@
+// JSON of the dominant-variable analysis (docs/cli.md: dominance --json).
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/json_text.hpp"
+#include "sysid/dominance.hpp"
+
+namespace sysid {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// A ranked variable (with its ratio bounds) or a term of the inverse model.
+Json StatsJson(const TermStats& s, bool ranking) {
+  Json j;
+  j[ranking ? "variable" : "term"] = s.name;
+  j["rms"] = s.rms;
+  j["peak"] = s.peak;
+  j["ratio_to_top"] = s.ratio_to_top;
+  if (ranking) {
+    j["ratio_bound"] = s.ratio_bound;
+    j["ratio_max"] = s.ratio_max;
+    j["negligible"] = s.negligible;
+  }
+  return j;
+}
+
+Json ResultJson(const DominanceResult& r) {
+  Json j;
+  j["source"] = r.source;
+  Json rank = Json::array();
+  for (const auto& s : r.ranking) rank.push_back(StatsJson(s, true));
+  j["ranking"] = rank;
+  j["dominant"] = r.dominant;
+  j["margin"] = detail::NumberOrNull(r.margin);
+  Json terms = Json::array();
+  for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
+  j["terms"] = terms;
+  j["peak_ratio"] = r.peak_ratio;
+  j["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
+  j["pointwise_ratio_max"] = r.pointwise_ratio_max;
+  j["samples"] = r.samples;
+  j["moving_samples"] = r.moving_samples;
+  return j;
+}
+
+}  // namespace
+
+std::string ToJson(const DominanceResult& result, int indent) {
+  return detail::DumpJson(ResultJson(result), indent);
+}
+
+std::string ToJson(const DominanceSummary& s, int indent) {
+  Json j;
+  Json rank = Json::array();
+  // Pooled statistics have no pointwise ratios: only the RMS-based fields.
+  for (const auto& t : s.ranking)
+    rank.push_back({{"variable", t.name},
+                    {"rms", t.rms},
+                    {"peak", t.peak},
+                    {"ratio_to_top", t.ratio_to_top},
+                    {"negligible", t.negligible}});
+  j["ranking"] = rank;
+  j["dominant"] = s.ranking.empty() ? Json(nullptr) : Json(s.ranking[0].name);
+  j["negligible_ratio"] = s.negligible_ratio;
+  j["min_speed_mps"] = s.min_speed_mps;
+  Json counts = Json::object();
+  for (const auto& [k, c] : s.dominant_counts) counts[k] = c;
+  j["summary"] = {{"recordings", s.results.size()},
+                  {"dominant_counts", counts},
+                  {"min_margin", s.min_margin},
+                  {"median_margin", s.median_margin}};
+  Json per = Json::array();
+  for (const auto& r : s.results) per.push_back(ResultJson(r));
+  j["recordings"] = per;
+  return detail::DumpJson(j, indent);
+}
+
+}  // namespace sysid
