@@ -80,8 +80,14 @@ struct RailFriction {
   double coulomb_mps2 = 0.6;             ///< [m/s^2] Fc > 0, sliding level
   double static_mps2 = 1.0;              ///< [m/s^2] Fs >= Fc, breakaway level
   double stribeck_velocity_mps = 0.003;  ///< [m/s] vs > 0, width of the Stribeck dip
+  /// [s] T_m >= 0, frictional memory (Hess & Soom's frictional lag): while sliding, the
+  /// friction is g(s) of a lagged slip speed s, T_m s' = |v| - s (s = 0 at rest); 0 = no
+  /// memory, g(|v|). Steady sliding has s = |v|, so the steady law does not depend on T_m.
+  double memory_time_s = 0.0;
   /// [m/s^2] g(|v|) = Fc + (Fs - Fc) exp(-(v / vs)^2), the sliding friction magnitude.
   double Sliding(double speed_mps) const;
+  /// [m/s^2 / (m/s)] g'(s), the slope of Sliding at speed s >= 0.
+  double SlidingSlope(double speed_mps) const;
 };
 
 /// The velocity-source motor: force per unit mass p (v_f(u_d) - v).
@@ -176,6 +182,8 @@ struct StageState {
   double w_v = 0;    ///< [V] driver lag state (actuator delay: drive force / a3; velocity
                      ///  source: the lagged drive voltage u_d)
   bool stuck = false;  ///< velocity source: held by the rail's static friction (v = 0)
+  /// [m/s] velocity source: the rail's lagged slip speed s (rail.memory_time_s > 0), else |v|
+  double slip_memory_mps = 0;
 };
 
 /// Limits reached so far, and integrator work.

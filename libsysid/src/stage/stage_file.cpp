@@ -174,11 +174,13 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
       if (!vs) other_model(root.Get(key));
       Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
                {"static_mps2", &p.rail.static_mps2},
-               {"stribeck_velocity_mps", &p.rail.stribeck_velocity_mps}},
+               {"stribeck_velocity_mps", &p.rail.stribeck_velocity_mps},
+               {"memory_time_s", &p.rail.memory_time_s}},
               {},
               {},
               {}}
-          .Read(root.Get(key), complete);
+          // Files written before the rail had memory leave it out: 0, no memory.
+          .Read(root.Get(key), complete, {"memory_time_s"});
     } else if (key == "friction") {
       if (vs) other_model(root.Get(key));
       Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
@@ -282,6 +284,7 @@ std::string StageParametersToJson(const StageParameters& p) {
     rail["coulomb_mps2"] = p.rail.coulomb_mps2;
     rail["static_mps2"] = p.rail.static_mps2;
     rail["stribeck_velocity_mps"] = p.rail.stribeck_velocity_mps;
+    rail["memory_time_s"] = p.rail.memory_time_s;
     j["rail"] = rail;
   } else {
     OJ friction;

@@ -95,6 +95,11 @@ double RailFriction::Sliding(double speed_mps) const {
   return coulomb_mps2 + (static_mps2 - coulomb_mps2) * std::exp(-r * r);
 }
 
+double RailFriction::SlidingSlope(double speed_mps) const {
+  const double r = speed_mps / stribeck_velocity_mps;
+  return (static_mps2 - coulomb_mps2) * std::exp(-r * r) * (-2.0 * r) / stribeck_velocity_mps;
+}
+
 StageParameters StageParameters::ActuatorDelay() {
   StageParameters p;
   p.name = "virtual PLS8/HR-8 (actuator delay)";
@@ -221,6 +226,9 @@ void StageParameters::ValidateVelocitySource() const {
           "static_mps2 >= coulomb_mps2 (" + Fmt(rail.coulomb_mps2) + ")");
   Require(rail.stribeck_velocity_mps > 0, "rail.stribeck_velocity_mps",
           rail.stribeck_velocity_mps, "stribeck_velocity_mps > 0");
+  RequireFinite("rail.memory_time_s", rail.memory_time_s);
+  Require(rail.memory_time_s >= 0 && rail.memory_time_s <= 1.0, "rail.memory_time_s",
+          rail.memory_time_s, "0 <= memory_time_s <= 1");
   // Stick-slip is well posed only while the sliding force balance p (v_f - v) - g(v) falls
   // with v (one steady speed per voltage): p > max |g'| = (Fs - Fc) sqrt(2/e) / vs.
   {

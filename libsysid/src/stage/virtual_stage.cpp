@@ -7,6 +7,11 @@
 // when |p v_f| <= Fs, else reverses), while stuck it is |p v_f(u_d)| - Fs (breakaway). Each
 // switch restarts the integrator, so every integrated piece has a smooth right-hand side.
 //
+// With frictional memory (rail.memory_time_s = T_m > 0) the third state holds the lagged slip
+// speed s, T_m s' = |v| - s, and the sliding friction is g(s) instead of g(|v|): friction that
+// lags the velocity (Hess & Soom), a rate-dependent velocity-force loop. While sliding |v| is
+// d v, so the right-hand side stays smooth on every integrated piece.
+//
 // The DAC output is piecewise constant and the transport delay shifts its edges by a fraction
 // of a sample, so within each sample the driver input has at most one edge, at t_k + f Ts. The
 // integration is restarted (CVodeReInit) at every edge where the input changes: the right-hand
@@ -64,7 +69,7 @@ class VirtualStage::Impl {
     std::array<double, kStates> atol{};
     atol[kX] = p_.position_tolerance_m;
     atol[kV] = p_.position_tolerance_m / ts_;
-    atol[kZ] = 0.1 * p_.position_tolerance_m;
+    atol[kZ] = vs_ ? p_.position_tolerance_m / ts_ : 0.1 * p_.position_tolerance_m;
     atol[kW] = p_.position_tolerance_m / ts_;
     cv_->SetTolerances(p_.relative_tolerance, atol.data());
     cv_->SetJacobian(&Impl::Jacobian);
@@ -121,7 +126,9 @@ class VirtualStage::Impl {
 
   StageState State() const {
     const double* y = cv_->state();
-    return {y[kX], y[kV], y[kZ], y[kW], vs_ && (stuck_ || stop_ != 0)};
+    const bool memory = vs_ && p_.rail.memory_time_s > 0;
+    return {y[kX], y[kV], vs_ ? 0.0 : y[kZ], y[kW], vs_ && (stuck_ || stop_ != 0),
+            memory ? y[kZ] : (vs_ ? std::abs(y[kV]) : 0.0)};
   }
 
   StageStatus Status() const {
@@ -225,16 +232,19 @@ class VirtualStage::Impl {
     const double* y = N_VGetArrayPointer(yv);
     double* d = N_VGetArrayPointer(ydot);
     d[kW] = (s.drive_ - y[kW]) / s.p_.lag_time_constant_s;
+    const double tm = s.vs_ ? s.p_.rail.memory_time_s : 0.0;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) {
-      d[kX] = d[kV] = d[kZ] = 0;
+      d[kX] = d[kV] = 0;
+      d[kZ] = tm > 0 ? -y[kZ] / tm : 0.0;  // at rest the memory fades
       return 0;
     }
     const double v = y[kV];
     if (s.vs_) {
       const double p = s.p_.motor.pole_per_s;
+      const double slip = tm > 0 ? y[kZ] : std::abs(v);
       d[kX] = v;
-      d[kV] = p * (s.p_.NoLoadSpeed(y[kW]) - v) - s.direction_ * s.p_.rail.Sliding(std::abs(v));
-      d[kZ] = 0;
+      d[kV] = p * (s.p_.NoLoadSpeed(y[kW]) - v) - s.direction_ * s.p_.rail.Sliding(slip);
+      d[kZ] = tm > 0 ? (s.direction_ * v - y[kZ]) / tm : 0.0;
       return 0;
     }
     const FrictionBranch& b = s.Branch(v);
@@ -257,21 +267,27 @@ class VirtualStage::Impl {
     SUNMatZero(J);
     const double inv_t = 1.0 / s.p_.lag_time_constant_s;
     SM_ELEMENT_D(J, kW, kW) = -inv_t;
+    const double tm = s.vs_ ? s.p_.rail.memory_time_s : 0.0;
+    if (tm > 0) SM_ELEMENT_D(J, kZ, kZ) = -1.0 / tm;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) return 0;
     if (s.vs_) {
       const double v = y[kV], w = y[kW];
       const double p = s.p_.motor.pole_per_s;
       const RailFriction& r = s.p_.rail;
-      const double q = std::abs(v) / r.stribeck_velocity_mps;
-      // d/dv of d g(|v|) = d sgn(v) g'(|v|) (= g'(|v|) while v has the sliding direction).
-      const double g_prime =
-          (r.static_mps2 - r.coulomb_mps2) * std::exp(-q * q) * (-2.0 * q) / r.stribeck_velocity_mps;
-      const double dg = g_prime * (v * s.direction_ >= 0 ? 1.0 : -1.0);
       const double h = 1e-6;  // [V] v_f is piecewise linear: a difference is its slope
       const double slope = (s.p_.NoLoadSpeed(w + h) - s.p_.NoLoadSpeed(w - h)) / (2 * h);
       SM_ELEMENT_D(J, kX, kV) = 1.0;
-      SM_ELEMENT_D(J, kV, kV) = -p - dg;
       SM_ELEMENT_D(J, kV, kW) = p * slope;
+      if (tm > 0) {
+        // v' = p (v_f - v) - d g(s), T_m s' = d v - s.
+        SM_ELEMENT_D(J, kV, kV) = -p;
+        SM_ELEMENT_D(J, kV, kZ) = -s.direction_ * r.SlidingSlope(y[kZ]);
+        SM_ELEMENT_D(J, kZ, kV) = s.direction_ / tm;
+        return 0;
+      }
+      // d/dv of d g(|v|) = d sgn(v) g'(|v|) (= g'(|v|) while v has the sliding direction).
+      const double dg = r.SlidingSlope(std::abs(v)) * (v * s.direction_ >= 0 ? 1.0 : -1.0);
+      SM_ELEMENT_D(J, kV, kV) = -p - dg;
       return 0;
     }
     const double v = y[kV], z = y[kZ];
