@@ -77,13 +77,13 @@ StageModel ParseStageModel(const std::string& text);
 /// Rail friction of the velocity-source model (Karnopp stick-slip), per unit mass, both
 /// directions alike.
 struct RailFriction {
-  double coulomb_mps2 = 0.6;             ///< [m/s^2] Fc > 0, sliding level
-  double static_mps2 = 1.0;              ///< [m/s^2] Fs >= Fc, breakaway level
-  double stribeck_velocity_mps = 0.003;  ///< [m/s] vs > 0, width of the Stribeck dip
+  double coulomb_mps2 = 0.6;            ///< [m/s^2] Fc > 0, sliding level
+  double static_mps2 = 3.0;             ///< [m/s^2] Fs >= Fc, breakaway level
+  double stribeck_velocity_mps = 0.01;  ///< [m/s] vs > 0, width of the Stribeck dip
   /// [s] T_m >= 0, frictional memory (Hess & Soom's frictional lag): while sliding, the
   /// friction is g(s) of a lagged slip speed s, T_m s' = |v| - s (s = 0 at rest); 0 = no
   /// memory, g(|v|). Steady sliding has s = |v|, so the steady law does not depend on T_m.
-  double memory_time_s = 0.0;
+  double memory_time_s = 0.02;
   /// [m/s^2] g(|v|) = Fc + (Fs - Fc) exp(-(v / vs)^2), the sliding friction magnitude.
   double Sliding(double speed_mps) const;
   /// [m/s^2 / (m/s)] g'(s), the slope of Sliding at speed s >= 0.
