@@ -191,6 +191,41 @@ TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "
   REQUIRE(k_rest >= 0);
 }
 
+TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with the memory",
+          "[stage][plant]") {
+  // Open-loop triangle 0 -> +1.5 -> 0 -> -2.1 -> 0 V over a period T: the width of the loop at
+  // +1.25 V (falling minus rising branch velocity) [m/s]. docs/virtual_stage.md, "Rate
+  // dependence" (measured: 3.1 / 16.1 / 24.2 mm/s at 6 / 1.5 / 0.75 s; 9.9 mm/s at 1.5 s without
+  // memory).
+  auto width = [](double memory_time_s, double period_s) {
+    sysid::StageParameters p = sysid::StageParameters::Default();
+    p.rail.memory_time_s = memory_time_s;
+    p.position_noise_m = 0;
+    const int n = static_cast<int>(period_s * 1000);
+    const double q = period_s / 4;
+    Eigen::VectorXd u(n);
+    for (int k = 0; k < n; ++k) {
+      const double t = k / 1000.0;
+      u[k] = t < q ? 1.5 * t / q
+                   : t < 2 * q ? 1.5 * (2 * q - t) / q
+                               : t < 3 * q ? -2.1 * (t - 2 * q) / q : -2.1 * (4 * q - t) / q;
+    }
+    const sysid::StageRun r = sysid::RunOpenLoop(p, u, 1);
+    double v[2] = {0, 0};
+    int found = 0;
+    for (int k = 1; k < n && found < 2; ++k)
+      if ((u[k - 1] - 1.25) * (u[k] - 1.25) <= 0 && u[k - 1] != 1.25) v[found++] = r.v_true_mps[k];
+    REQUIRE(found == 2);
+    return v[1] - v[0];
+  };
+  const double slow = width(0.02, 6.0), mid = width(0.02, 1.5), fast = width(0.02, 0.75);
+  INFO("loop width at +1.25 V: " << slow << " / " << mid << " / " << fast << " m/s");
+  CHECK(slow > 0);
+  CHECK(mid > 3 * slow);
+  CHECK(fast > mid);
+  CHECK(mid > 1.4 * width(0.0, 1.5));
+}
+
 TEST_CASE("velocity source: speed map, steady velocities and breakaway against closed forms",
           "[stage][plant]") {
   const sysid::StageParameters p = sysid::StageParameters::Default();
