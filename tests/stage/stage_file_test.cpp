@@ -17,6 +17,26 @@ TEST_CASE("the bundled stage.json is the built-in calibrated stage", "[stage][fi
   CHECK(back.drive_map_out_v == file.drive_map_out_v);
 }
 
+TEST_CASE("the rail's memory: written, read back, 0 when a file predates it", "[stage][file]") {
+  const sysid::StageParameters p = sysid::StageParameters::Default();
+  REQUIRE(p.rail.memory_time_s > 0);
+  std::string text = sysid::StageParametersToJson(p);
+  CHECK(sysid::ParseStageParameters(text, "m.json").rail.memory_time_s == p.rail.memory_time_s);
+  // A complete file written before the key existed: no memory, everything else as written.
+  const auto key = text.find("\"memory_time_s\"");
+  REQUIRE(key != std::string::npos);
+  const auto comma = text.rfind(',', key);
+  text.erase(comma, text.find('\n', key) - comma);
+  const auto old = sysid::ParseStageParameters(text, "old.json");
+  CHECK(old.rail.memory_time_s == 0.0);
+  CHECK(old.rail.static_mps2 == p.rail.static_mps2);
+  // Out of range is a positioned error.
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters(
+          "{\"preset\": \"virtual\", \"rail\": {\"memory_time_s\": -0.01}}", "r.json"),
+      Catch::Contains("rail.memory_time_s") && Catch::Contains("0 <= memory_time_s <= 1"));
+}
+
 TEST_CASE("stage files name their model, presets load by name", "[stage][file]") {
   // The actuator-delay preset round-trips and keeps its model.
   const auto ad = sysid::StageParameters::ActuatorDelay();

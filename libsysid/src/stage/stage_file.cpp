@@ -131,6 +131,8 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
       preset ? *preset : vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
+  // A complete file written before the rail had memory leaves the key out: no memory.
+  if (complete) p.rail.memory_time_s = 0.0;
   const std::string model_name = ToString(model);
   auto other_model = [&](const detail::JsonNode& at) {
     const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);
@@ -179,7 +181,6 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {},
               {}}
-          // Files written before the rail had memory leave it out: 0, no memory.
           .Read(root.Get(key), complete, {"memory_time_s"});
     } else if (key == "friction") {
       if (vs) other_model(root.Get(key));
