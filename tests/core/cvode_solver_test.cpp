@@ -3,6 +3,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -45,6 +46,40 @@ TEST_CASE("CvodeSolver integrates y' = -2 y to its closed form, Adams and BDF", 
     CHECK(cv.Counters().steps > steps_before);
     CHECK(cv.Counters().rhs_evaluations >= cv.Counters().steps);
   }
+}
+
+TEST_CASE("CvodeSolver's Nordsieck array is the step's Taylor polynomial", "[core][cvode]") {
+  const double y0 = 3.0;
+  CvodeSolver cv(1, CvodeSolver::Method::kAdams, Decay, nullptr, 0.0, &y0, "test");
+  cv.SetTolerances(1e-12, 1e-14);
+  int highest = 0;
+  for (int step = 0; step < 60; ++step) {
+    double t = 0, tn = 0, h = 0;
+    int q = 0;
+    REQUIRE(cv.Advance(10.0, &t, CV_ONE_STEP) == CV_SUCCESS);
+    CVodeGetCurrentTime(cv.mem(), &tn);
+    CVodeGetLastStep(cv.mem(), &h);
+    CVodeGetLastOrder(cv.mem(), &q);
+    highest = std::max(highest, q);
+    const double* const* z = cv.Nordsieck(q);
+    REQUIRE(z != nullptr);
+    // z_0 is the state after a plain step; z_k = h^k / k! y^(k)(tn), which CVodeGetDky forms
+    // from the same vectors: k! z_k h^-k.
+    CHECK(z[0][0] == cv.state()[0]);
+    double factorial = 1, power = 1;
+    for (int k = 1; k <= q; ++k) {
+      factorial *= k;
+      power *= h;
+      const double dky = cv.Dky(tn, k)[0];
+      CHECK(factorial * z[k][0] / power == Approx(dky).epsilon(1e-14));
+    }
+    // Inside the step the polynomial is the solution, to the tolerance.
+    const double theta = -0.5, ts = tn + theta * h;
+    double poly = 0;
+    for (int k = q; k >= 0; --k) poly = poly * theta + z[k][0];
+    CHECK(poly == Approx(3.0 * std::exp(-2.0 * ts)).epsilon(1e-9));
+  }
+  CHECK(highest >= 4);  // the vectors were found again as the order climbed
 }
 
 TEST_CASE("CvodeSolver failures read as one sentence with the flag's name", "[core][cvode]") {

@@ -36,6 +36,28 @@ const char* Reason(int flag) {
   }
 }
 
+/// What one N_VLinearCombination call was asked to form (see CvodeSolver::Nordsieck).
+struct CombinationSeen {
+  int nvec = 0;
+  double c[16] = {};
+  N_Vector x[16] = {};
+};
+// Set only around the one CVodeGetDky call that CvodeSolver::Nordsieck makes on its own work
+// vector, in the calling thread: concurrent solvers never see each other's.
+thread_local CombinationSeen* combination_seen = nullptr;
+
+/// The serial linear combination, noting its operands while combination_seen is set.
+int WatchedLinearCombination(int nvec, double* c, N_Vector* x, N_Vector z) {
+  if (CombinationSeen* seen = combination_seen) {
+    seen->nvec = nvec;
+    for (int i = 0; i < nvec && i < 16; ++i) {
+      seen->c[i] = c[i];
+      seen->x[i] = x[i];
+    }
+  }
+  return N_VLinearCombination_Serial(nvec, c, x, z);
+}
+
 std::string Seconds(double t) {
   char text[32];
   std::snprintf(text, sizeof text, "%.9g", t);
@@ -144,6 +166,37 @@ const double* CvodeSolver::Dky(double t_s, int k) {
   if (!work_) Throw(CV_MEM_FAIL, "N_VClone");
   Check(CVodeGetDky(mem_, t_s, k, work_), "CVodeGetDky");
   return N_VGetArrayPointer(work_);
+}
+
+const double* const* CvodeSolver::Nordsieck(int q) {
+  if (q <= nordsieck_order_) return nordsieck_;
+  if (nordsieck_order_ == -2 || q >= kMaxNordsieck) return nullptr;
+  if (!work_) work_ = N_VClone(y_);
+  if (!work_) Throw(CV_MEM_FAIL, "N_VClone");
+  // N_VLinearCombination dispatches on its output vector: only work_ is watched.
+  work_->ops->nvlinearcombination = &WatchedLinearCombination;
+  double tn = 0;
+  Check(CVodeGetCurrentTime(mem_, &tn), "CVodeGetCurrentTime");
+  CombinationSeen seen;
+  combination_seen = &seen;
+  const int flag = CVodeGetDky(mem_, tn, 0, work_);
+  combination_seen = nullptr;
+  Check(flag, "CVodeGetDky");
+  // At theta = 0 the combination is z_q .. z_1 times 0 and z_0 times 1, giving z_0.
+  bool ok = seen.nvec == q + 1 && seen.c[q] == 1.0;
+  for (int i = 0; ok && i < q; ++i) ok = seen.c[i] == 0.0 && seen.x[i] != seen.x[q];
+  if (ok) {
+    const double* z0 = N_VGetArrayPointer(seen.x[q]);
+    const double* dky = N_VGetArrayPointer(work_);
+    for (sunindextype i = 0; ok && i < N_VGetLength(work_); ++i) ok = z0[i] == dky[i];
+  }
+  if (!ok) {
+    nordsieck_order_ = -2;
+    return nullptr;
+  }
+  for (int j = 0; j <= q; ++j) nordsieck_[j] = N_VGetArrayPointer(seen.x[q - j]);
+  nordsieck_order_ = q;
+  return nordsieck_;
 }
 
 CvodeCounters CvodeSolver::Counters() const {

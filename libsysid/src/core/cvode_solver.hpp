@@ -74,6 +74,15 @@ class CvodeSolver {
   /// The k-th derivative of the interpolating polynomial at t (inside the last step); points
   /// into a work vector that the next call overwrites.
   const double* Dky(double t_s, int k);
+  /// The Nordsieck array after a step of order q: data of z_0 .. z_q, z_j = h^j / j! y^(j)(t_n)
+  /// with h CVODE's current step (the last step's, until the next step starts), so the step's
+  /// polynomial is y(t_n + theta h) = sum_j z_j theta^j. Reading it costs nothing, against q
+  /// CVodeGetDky calls of up to q + 1 vectors each. CVODE has no getter for it (it lives in the
+  /// private cvode_impl.h): the vectors are found by watching the linear combination that
+  /// CVodeGetDky(t_n, 0) forms of them, once per order reached (CVODE allocates them once, so
+  /// their addresses hold for the solver's life). nullptr when that combination does not look
+  /// like z_q .. z_0 with coefficients 0 .. 0, 1 (another SUNDIALS): use Dky instead.
+  const double* const* Nordsieck(int q);
 
   /// CVODE's counters since construction.
   CvodeCounters Counters() const;
@@ -104,6 +113,9 @@ class CvodeSolver {
   N_Vector y_ = nullptr;
   N_Vector atol_ = nullptr;
   N_Vector work_ = nullptr;  // for Dky
+  static constexpr int kMaxNordsieck = 13;        // CVODE's L_MAX: orders up to 12
+  int nordsieck_order_ = -1;                      // z_0 .. z_order found; -2: not available
+  const double* nordsieck_[kMaxNordsieck] = {};  // data of z_j
   void* mem_ = nullptr;
   SUNMatrix matrix_ = nullptr;
   SUNLinearSolver linear_ = nullptr;
