@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <utility>
 
+#include "core/small_vector_ops.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid::detail {
@@ -77,6 +78,8 @@ CvodeSolver::CvodeSolver(int states, Method method, CVRhsFn rhs, void* user_data
     // Fused vector operations: one call per linear combination instead of one per term
     // (CVODE's Nordsieck updates and CVodeGetDky are linear combinations of up to 13 vectors).
     Check(N_VEnableFusedOps_Serial(y_, SUNTRUE), "N_VEnableFusedOps_Serial");
+    // CVODE's vectors are clones of y: 1 to 4 states get fixed-length operations.
+    UseSmallVectorOps(y_);
     double* y = state();
     for (int i = 0; i < states; ++i) y[i] = y0[i];
     mem_ = CVodeCreate(method == Method::kBdf ? CV_BDF : CV_ADAMS, ctx_);

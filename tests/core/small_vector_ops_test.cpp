@@ -1,0 +1,120 @@
+// The fixed-length vector operations (core/small_vector_ops.hpp) against SUNDIALS' own serial
+// operations, bit for bit: every special case of N_VLinearSum_Serial, in place and not.
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "core/small_vector_ops.hpp"
+
+namespace sysid {
+namespace {
+
+bool SameBits(N_Vector a, N_Vector b) {
+  return std::memcmp(NV_DATA_S(a), NV_DATA_S(b), sizeof(double) * NV_LENGTH_S(a)) == 0;
+}
+
+struct Vectors {
+  N_Vector ours[4], theirs[4];  // same numbers; ours with the small operations
+  Vectors(int n, SUNContext ctx, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    N_Vector tmpl = N_VNew_Serial(n, ctx);
+    REQUIRE(detail::UseSmallVectorOps(tmpl));
+    for (int k = 0; k < 4; ++k) {
+      ours[k] = N_VClone(tmpl);
+      theirs[k] = N_VNew_Serial(n, ctx);
+      for (int i = 0; i < n; ++i) NV_Ith_S(ours[k], i) = NV_Ith_S(theirs[k], i) = u(rng) / 7.0;
+    }
+    N_VDestroy(tmpl);
+  }
+  ~Vectors() {
+    for (int k = 0; k < 4; ++k) {
+      N_VDestroy(ours[k]);
+      N_VDestroy(theirs[k]);
+    }
+  }
+  bool Same(int k) const { return SameBits(ours[k], theirs[k]); }
+};
+
+TEST_CASE("small vector operations are bit-identical to SUNDIALS' serial ones", "[core][cvode]") {
+  SUNContext ctx = nullptr;
+  REQUIRE(SUNContext_Create(nullptr, &ctx) == 0);
+  std::mt19937 rng(7);
+  const double a = 0.3718, b = -1.9;
+  const std::vector<std::pair<double, double>> coefficients = {
+      {1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {a, a}, {a, -a}, {-a, a}, {1, b}, {b, 1},
+      {-1, b}, {b, -1}, {a, b}, {0, b}, {a, 0}, {0, 0}, {1, 0}, {0, -1}};
+  int cases = 0;
+  for (int n = 1; n <= 4; ++n) {
+    for (const auto& [ca, cb] : coefficients)
+      for (int alias = 0; alias < 3; ++alias) {  // z apart, z = x, z = y
+        Vectors v(n, ctx, rng);
+        const int z = alias == 0 ? 2 : alias == 1 ? 0 : 1;
+        N_VLinearSum(ca, v.ours[0], cb, v.ours[1], v.ours[z]);
+        N_VLinearSum_Serial(ca, v.theirs[0], cb, v.theirs[1], v.theirs[z]);
+        INFO("n = " << n << ", a = " << ca << ", b = " << cb << ", alias " << alias);
+        CHECK(v.Same(z));
+        ++cases;
+      }
+    for (double c : {1.0, -1.0, a, 0.0})
+      for (int alias = 0; alias < 2; ++alias) {
+        Vectors v(n, ctx, rng);
+        const int z = alias == 0 ? 1 : 0;
+        N_VScale(c, v.ours[0], v.ours[z]);
+        N_VScale_Serial(c, v.theirs[0], v.theirs[z]);
+        CHECK(v.Same(z));
+      }
+    {
+      Vectors v(n, ctx, rng);
+      const double ours = N_VWrmsNorm(v.ours[0], v.ours[1]);
+      const double theirs = N_VWrmsNorm_Serial(v.theirs[0], v.theirs[1]);
+      CHECK(std::memcmp(&ours, &theirs, sizeof ours) == 0);
+      N_VConst(0.0, v.ours[2]);
+      CHECK(N_VWrmsNorm(v.ours[2], v.ours[1]) == 0.0);
+    }
+    // Linear combinations of 1 to 3 vectors, with the two-vector special cases and z = X[0].
+    for (const auto& [ca, cb] : coefficients)
+      for (int nvec = 1; nvec <= 3; ++nvec)
+        for (int alias = 0; alias < 2; ++alias) {
+          Vectors v(n, ctx, rng);
+          double c[3] = {ca, cb, a};
+          const int z = alias == 0 ? 3 : 0;
+          N_Vector xo[3] = {v.ours[0], v.ours[1], v.ours[2]};
+          N_Vector xt[3] = {v.theirs[0], v.theirs[1], v.theirs[2]};
+          REQUIRE(N_VLinearCombination(nvec, c, xo, v.ours[z]) == 0);
+          REQUIRE(N_VLinearCombination_Serial(nvec, c, xt, v.theirs[z]) == 0);
+          INFO("n = " << n << ", nvec = " << nvec << ", c = " << ca << ", " << cb);
+          CHECK(v.Same(z));
+        }
+    // Z[i] = a[i] x + Y[i], apart and in place, one and two vectors.
+    for (int nvec = 1; nvec <= 2; ++nvec)
+      for (double c0 : {1.0, -1.0, a}) {
+        Vectors v(n, ctx, rng), w(n, ctx, rng);
+        double c[2] = {c0, b};
+        N_Vector yo[2] = {v.ours[1], v.ours[2]}, yt[2] = {v.theirs[1], v.theirs[2]};
+        N_Vector zo[2] = {v.ours[3], w.ours[0]}, zt[2] = {v.theirs[3], w.theirs[0]};
+        REQUIRE(N_VScaleAddMulti(nvec, c, v.ours[0], yo, zo) == 0);
+        REQUIRE(N_VScaleAddMulti_Serial(nvec, c, v.theirs[0], yt, zt) == 0);
+        CHECK(v.Same(3));
+        CHECK(w.Same(0));
+        REQUIRE(N_VScaleAddMulti(nvec, c, v.ours[0], yo, yo) == 0);
+        REQUIRE(N_VScaleAddMulti_Serial(nvec, c, v.theirs[0], yt, yt) == 0);
+        CHECK(v.Same(1));
+        CHECK(v.Same(2));
+      }
+  }
+  CHECK(cases == 4 * 17 * 3);
+  // Other lengths keep SUNDIALS' operations.
+  N_Vector big = N_VNew_Serial(5, ctx);
+  CHECK_FALSE(detail::UseSmallVectorOps(big));
+  CHECK(big->ops->nvlinearsum == &N_VLinearSum_Serial);
+  N_VDestroy(big);
+  SUNContext_Free(&ctx);
+}
+
+}  // namespace
+}  // namespace sysid
