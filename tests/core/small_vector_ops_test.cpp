@@ -76,6 +76,19 @@ TEST_CASE("small vector operations are bit-identical to SUNDIALS' serial ones", 
       N_VConst(0.0, v.ours[2]);
       CHECK(N_VWrmsNorm(v.ours[2], v.ours[1]) == 0.0);
     }
+    for (int alias = 0; alias < 2; ++alias) {  // the error weights' operations
+      Vectors v(n, ctx, rng);
+      const int z = alias == 0 ? 1 : 0;
+      N_VAbs(v.ours[0], v.ours[z]);
+      N_VAbs_Serial(v.theirs[0], v.theirs[z]);
+      CHECK(v.Same(z));
+      N_VAddConst(v.ours[z], 1e-12, v.ours[2]);
+      N_VAddConst_Serial(v.theirs[z], 1e-12, v.theirs[2]);
+      CHECK(v.Same(2));
+      N_VInv(v.ours[2], v.ours[3]);
+      N_VInv_Serial(v.theirs[2], v.theirs[3]);
+      CHECK(v.Same(3));
+    }
     // Linear combinations of 1 to 3 vectors, with the two-vector special cases and z = X[0].
     for (const auto& [ca, cb] : coefficients)
       for (int nvec = 1; nvec <= 3; ++nvec)

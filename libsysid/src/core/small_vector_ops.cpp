@@ -85,6 +85,28 @@ int ScaleAddMulti(int nvec, double* a, N_Vector x, N_Vector* Y, N_Vector* Z) {
   return 0;
 }
 
+// The error weights, once per step: 1 / (rtol |y| + atol).
+template <int N>
+void Abs(N_Vector x, N_Vector z) {
+  const double* xd = Data<N>(x);
+  double* zd = Data<N>(z);
+  for (int i = 0; i < N; ++i) zd[i] = std::fabs(xd[i]);
+}
+
+template <int N>
+void AddConst(N_Vector x, double b, N_Vector z) {
+  const double* xd = Data<N>(x);
+  double* zd = Data<N>(z);
+  for (int i = 0; i < N; ++i) zd[i] = xd[i] + b;
+}
+
+template <int N>
+void Inv(N_Vector x, N_Vector z) {
+  const double* xd = Data<N>(x);
+  double* zd = Data<N>(z);
+  for (int i = 0; i < N; ++i) zd[i] = 1.0 / xd[i];
+}
+
 template <int N>
 void Install(N_Vector v) {
   v->ops->nvlinearsum = &LinearSum<N>;
@@ -92,6 +114,9 @@ void Install(N_Vector v) {
   v->ops->nvwrmsnorm = &WrmsNorm<N>;
   v->ops->nvlinearcombination = &LinearCombination<N>;
   v->ops->nvscaleaddmulti = &ScaleAddMulti<N>;
+  v->ops->nvabs = &Abs<N>;
+  v->ops->nvaddconst = &AddConst<N>;
+  v->ops->nvinv = &Inv<N>;
 }
 
 }  // namespace
