@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <random>
@@ -27,6 +28,16 @@ double ThreadCpuSeconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// The first three fields of /proc/loadavg ("?" where there is none).
+std::string LoadAverage() {
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  if (!f) return "?";
+  double l1 = 0, l5 = 0, l15 = 0;
+  const int n = std::fscanf(f, "%lf %lf %lf", &l1, &l5, &l15);
+  std::fclose(f);
+  return n == 3 ? fmt::format("{:.2f} {:.2f} {:.2f}", l1, l5, l15) : "?";
 }
 
 double Median(std::vector<double> v) {
@@ -71,6 +82,7 @@ int main(int argc, char** argv) {
   base.breakpoint_order = breakpoint_order;
   base.output_times_s.assign(t_ref.data(), t_ref.data() + t_ref.size());
 
+  fmt::print("load average before: {}\n", LoadAverage());
   fmt::print(
       "10 s paper pulse train (+1.6/-2.3 V, tau = 3.5 ms), vs h=1e-6 RK4 reference on "
       "the 1 ms grid ({} points); median of {}\n",
@@ -138,26 +150,39 @@ int main(int argc, char** argv) {
   sysid::SimulationOptions bo;
   bo.t_end_s = 10.0;
   bo.dt_out_s = 1e-3;
+  // Per thread: wall time and the thread's own CPU time (on a shared machine a thread may wait
+  // for a core; simulations per CPU-second is the per-core rate, whatever the load).
+  struct BatchRun {
+    double wall_s, cpu_s;
+  };
   auto run_batch = [&](int n_threads) {
     std::atomic<int> next{0}, failures{0};
+    std::vector<double> cpu(static_cast<size_t>(n_threads), 0.0);
     const auto w0 = std::chrono::steady_clock::now();
     std::vector<std::thread> pool;
     for (int k = 0; k < n_threads; ++k)
-      pool.emplace_back([&] {
+      pool.emplace_back([&, k] {
+        const double c0 = ThreadCpuSeconds();
         for (int i; (i = next++) < batch;)
           if (!sysid::Simulate(models[static_cast<size_t>(i)], input, bo).summary.IsSolutionUsable())
             ++failures;
+        cpu[static_cast<size_t>(k)] = ThreadCpuSeconds() - c0;
       });
     for (auto& th : pool) th.join();
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+    BatchRun run{std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(), 0.0};
+    for (double c : cpu) run.cpu_s += c;
     fmt::print(
-        "batch of {} parameter sets (10 s each, default tolerances), {} thread(s): {:.3f} s, "
-        "{:.1f} simulations/s, {} failures\n",
-        batch, n_threads, wall, batch / wall, failures.load());
+        "batch of {} parameter sets (10 s each, default tolerances), {} thread(s): {:.3f} s wall, "
+        "{:.1f} simulations/s, {:.1f} per CPU-second, {} failures\n",
+        batch, n_threads, run.wall_s, batch / run.wall_s, batch / run.cpu_s, failures.load());
+    return run;
   };
-  run_batch(1);
-  if (threads > 1) run_batch(threads);
+  const BatchRun one = run_batch(1);
+  if (threads > 1) {
+    const BatchRun many = run_batch(threads);
+    fmt::print("batch speed-up on {} threads: {:.2f}x by wall time (load average now: {})\n",
+               threads, one.wall_s / many.wall_s, LoadAverage());
+  }
   fmt::print("{}sysid_seconds={:.6g}\n", machine_lines, default_seconds);
   return 0;
 }
