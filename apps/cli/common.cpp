@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "sysid/error.hpp"
+
 namespace sysid::cli {
 
 GlobalOptions& Globals() {
@@ -56,6 +58,19 @@ std::string Table::Render() const {
   emit(rule);
   for (const auto& r : rows_) emit(r);
   return out;
+}
+
+void RethrowWithFlag(const OptionsError& e, const std::map<std::string, std::string>& field_flags,
+                     const std::string& fallback) {
+  const auto flag = field_flags.find(e.field());
+  if (flag == field_flags.end() && fallback.empty()) throw e;
+  throw OptionsError((flag == field_flags.end() ? fallback : flag->second) + ": " + e.what(),
+                     e.field());
+}
+
+bool EndsWithCsv(const std::string& path) {
+  return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||
+                              path.compare(path.size() - 4, 4, ".CSV") == 0);
 }
 
 std::string Num(double value, int digits) { return fmt::format("{:.{}g}", value, digits); }

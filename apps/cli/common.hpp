@@ -9,8 +9,13 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
+
+namespace sysid {
+class OptionsError;
+}
 
 namespace sysid::cli {
 
@@ -49,6 +54,16 @@ std::string Num(double value, int digits = 6);
 /// Hidden sizes as ParseHiddenSizes reads them: FIRST:LAST:STEP when evenly spaced, else a
 /// comma-separated list (the shown default of --hidden).
 std::string FormatHiddenSizes(const std::vector<int>& sizes);
+
+/// Library option errors name their Options field (OptionsError::field()); the user typed
+/// flags. Rethrows `e` as "FLAG: message" with the flag `field_flags` maps its field to, or
+/// `fallback` when the field is not listed (e itself when fallback is empty).
+[[noreturn]] void RethrowWithFlag(const OptionsError& e,
+                                  const std::map<std::string, std::string>& field_flags,
+                                  const std::string& fallback = "");
+
+/// True when `path` ends in .csv or .CSV.
+bool EndsWithCsv(const std::string& path);
 
 /// Adds the standard "-o,--output FILE" option.
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what);

@@ -12,6 +12,16 @@ bool IsEmptyDir(const fs::path& p) { return fs::is_directory(p) && fs::is_empty(
 
 }  // namespace
 
+std::optional<OutputFolder> OptionalOutputFolder(const std::string& dir, bool force,
+                                                 const std::vector<std::string>& inputs,
+                                                 const std::string& command) {
+  if (dir.empty()) return std::nullopt;
+  std::vector<std::string> existing;
+  for (const auto& path : inputs)
+    if (!path.empty() && fs::exists(path)) existing.push_back(path);
+  return OutputFolder(dir, force, existing, command);
+}
+
 bool HasOutputMarker(const fs::path& p) {
   return fs::is_directory(p) && fs::exists(p / kOutputMarker);
 }

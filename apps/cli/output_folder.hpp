@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ class OutputFolder {
   std::filesystem::path out_;
   std::filesystem::path tmp_;
 };
+
+/// The OutputFolder of an optional "-o DIR": none when `dir` is empty. Entries of `inputs`
+/// that are empty or name no existing file or folder (e.g. a preset name) are skipped.
+std::optional<OutputFolder> OptionalOutputFolder(const std::string& dir, bool force,
+                                                 const std::vector<std::string>& inputs,
+                                                 const std::string& command);
 
 /// True when `p` is a folder holding the sysid marker.
 bool HasOutputMarker(const std::filesystem::path& p);

@@ -35,13 +35,9 @@ struct CompareCliOptions {
 void RunCompare(const CompareCliOptions& o) {
   namespace fs = std::filesystem;
   // The output folder is checked before any work (cli/output_folder.hpp).
-  std::optional<OutputFolder> folder;
-  if (!o.out_dir.empty()) {
-    std::vector<std::string> inputs = o.files;
-    inputs.push_back(o.model_path);
-    if (!o.nn_path.empty()) inputs.push_back(o.nn_path);
-    folder.emplace(o.out_dir, o.force, inputs, "compare");
-  }
+  std::vector<std::string> inputs = o.files;
+  inputs.insert(inputs.end(), {o.model_path, o.nn_path});
+  const auto folder = OptionalOutputFolder(o.out_dir, o.force, inputs, "compare");
   const FrictionModel model = ReadModel(o.model_path);
   std::optional<NeuralNetwork> nn;
   if (!o.nn_path.empty()) nn = ReadNeuralNetwork(o.nn_path);

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,7 +14,6 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/motion.hpp"
-#include "sysid/signal.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -32,17 +30,6 @@ struct DeriveCliOptions {
   bool json = false;
 };
 
-// Library option errors name the struct field (OptionsError::field()); the user typed flags.
-[[noreturn]] void RethrowWithFlag(const OptionsError& e) {
-  static const std::map<std::string, std::string> kFlags = {
-      {"cutoff_hz", "--cutoff"},     {"butterworth_order", "--order"},
-      {"savgol_order", "--order"},   {"savgol_window", "--window"},
-      {"factor", "--decimate"}};
-  const auto flag = kFlags.find(e.field());
-  throw OptionsError((flag == kFlags.end() ? "--method" : flag->second) + ": " + e.what(),
-                     e.field());
-}
-
 void RunDerive(const DeriveCliOptions& o) {
   DerivativeOptions opt = o.derivative;
   opt.method = ParseDerivativeMethod(o.method);
@@ -51,50 +38,33 @@ void RunDerive(const DeriveCliOptions& o) {
   if (o.decimate < 1)
     throw OptionsError(fmt::format("--decimate: K = {}. Violated constraint: K >= 1", o.decimate));
 
-  ReadOptions read;
-  read.required_columns = {"t", "u", "x"};
-  read.any_of_columns = {};
-  Recording rec = ReadRecording(o.path, read);
+  Recording rec = ReadRecording(o.path, ReadOptions{{"t", "u", "x"}, {}, true});
   if (rec.rows() < 2)
     throw InputError(fmt::format("{}: {} row; derive needs a sampled signal", o.path, rec.rows()));
   if (o.resample_hz) rec = Resample(rec, *o.resample_hz);
-  const SamplingReport sampling = AnalyzeSampling(rec.column("t"), o.jitter_tolerance);
-  if (sampling.irregular)
-    throw InputError(fmt::format(
-        "{}: irregular sampling: t[{}] - t[{}] (data rows, 0-based) deviates {:.3g} % from the "
-        "median interval {:.6g} s (tolerance {:.3g} %); resample with --resample HZ",
-        o.path, sampling.worst_index + 1, sampling.worst_index, 100 * sampling.max_relative_jitter,
-        sampling.nominal_dt_s, 100 * o.jitter_tolerance));
-  double dt_s = sampling.nominal_dt_s;
-
+  double dt_s = UniformSampleInterval(rec, o.jitter_tolerance);
   try {
-    opt.Validate(dt_s * o.decimate);
-    if (o.decimate > 1) {
-      rec = DecimateRecording(rec, dt_s, o.decimate);
-      dt_s *= o.decimate;
-    }
-    const Derivatives d = Differentiate(rec.column("x"), dt_s, opt);
-    rec.SetColumn("v", d.v_mps);
-    rec.SetColumn("a", d.a_mps2);
+    dt_s = AddDerivatives(rec, dt_s, opt, o.decimate);
   } catch (const OptionsError& e) {
-    RethrowWithFlag(e);
+    RethrowWithFlag(e,
+                    {{"cutoff_hz", "--cutoff"}, {"butterworth_order", "--order"},
+                     {"savgol_order", "--order"}, {"savgol_window", "--window"},
+                     {"factor", "--decimate"}},
+                    "--method");
   } catch (const InputError& e) {
     throw InputError(o.path + ": " + e.what());
   }
-
-  std::string settings = "method=" + ToString(opt.method);
-  if (opt.method == DerivativeMethod::kButterworthCentral)
-    settings += fmt::format(" cutoff_hz={} order={}", opt.cutoff_hz, opt.butterworth_order);
-  if (opt.method == DerivativeMethod::kSavitzkyGolay)
-    settings += fmt::format(" window={} order={}", opt.savgol_window, opt.savgol_order);
-  if (o.decimate > 1) settings += fmt::format(" decimate={}", o.decimate);
+  std::string settings = DescribeDerivative(opt, o.decimate);
   if (o.resample_hz) settings += fmt::format(" resample_hz={}", *o.resample_hz);
   rec.metadata.emplace_back("derive", settings);
 
   if (!o.output.empty()) WriteRecording(o.output, rec);
   if (o.json) {
-    const auto v = rec.column("v");
-    const auto a = rec.column("a");
+    auto stats = [&](const char* column) {
+      const Eigen::VectorXd s = rec.column(column);
+      const double rms = std::sqrt(s.squaredNorm() / static_cast<double>(s.size()));
+      return nlohmann::ordered_json{{"min", s.minCoeff()}, {"max", s.maxCoeff()}, {"rms", rms}};
+    };
     nlohmann::ordered_json j;
     j["file"] = o.path;
     if (!o.output.empty()) j["output"] = o.output;
@@ -104,12 +74,8 @@ void RunDerive(const DeriveCliOptions& o) {
     j["columns"] = rec.names;
     j["dt_s"] = dt_s;
     j["sample_rate_hz"] = 1.0 / dt_s;
-    j["v_mps"] = {{"min", v.minCoeff()},
-                  {"max", v.maxCoeff()},
-                  {"rms", std::sqrt(v.squaredNorm() / static_cast<double>(v.size()))}};
-    j["a_mps2"] = {{"min", a.minCoeff()},
-                   {"max", a.maxCoeff()},
-                   {"rms", std::sqrt(a.squaredNorm() / static_cast<double>(a.size()))}};
+    j["v_mps"] = stats("v");
+    j["a_mps2"] = stats("a");
     PrintJson(j);
   } else if (o.output.empty()) {
     std::cout << FormatRecording(rec);

@@ -29,35 +29,14 @@ struct ExciteOptions {
   bool json = false;
 };
 
-// SI unit of a column excite writes ("1" for the waveform index).
-std::string ColumnUnit(const std::string& name) {
-  if (name == "t") return "s";
-  if (name == "u") return "V";
-  if (name == "x_ref") return "m";
-  if (name == "v_ref") return "m/s";
-  if (name == "a_ref") return "m/s^2";
-  return "1";
-}
-
 // --json: one entry per signal written (or, without -o, the signal that would go to stdout).
 nlohmann::ordered_json Describe(const Recording& r, const std::string& path,
                                 const std::string& waveform) {
   nlohmann::ordered_json f;
   f["path"] = path.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(path);
   if (!waveform.empty()) f["waveform"] = waveform;
-  f["samples"] = r.rows();
-  const Eigen::Index t = r.index_of("t");
-  f["duration_s"] = r.rows() > 0 && t >= 0 ? r.data(r.rows() - 1, t) - r.data(0, t) : 0.0;
-  f["columns"] = r.names;
-  nlohmann::ordered_json units = nlohmann::ordered_json::object();
-  for (const auto& n : r.names) units[n] = ColumnUnit(n);
-  f["units"] = units;
+  f.update(nlohmann::ordered_json::parse(RecordingShapeToJson(r)));
   return f;
-}
-
-bool EndsWithCsv(const std::string& path) {
-  return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||
-                              path.compare(path.size() - 4, 4, ".CSV") == 0);
 }
 
 void RunExcite(const ExciteOptions& o) {

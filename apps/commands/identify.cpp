@@ -34,15 +34,6 @@ struct IdentifyCli {
   TrajectoryOptions trajectory;
 };
 
-MotionOptions Motion(const IdentifyCli& o, MotionOptions m) {
-  o.motion.ApplyTo(m);
-  return m;
-}
-
-std::vector<Recording> ReadAll(const IdentifyCli& o) {
-  return o.motion.ReadRecordings(o.recordings);
-}
-
 void RunIdentify(const IdentifyCli& o) {
   std::string rendered, text;
   if (o.method == "pulse") {
@@ -55,9 +46,9 @@ void RunIdentify(const IdentifyCli& o) {
       if (o.recordings.empty())
         throw OptionsError("identify: give recordings (REC.csv...) or --table T.csv");
       PulseIdentificationOptions po = o.pulse;
-      po.motion = Motion(o, po.motion);
+      o.motion.ApplyTo(po.motion);
       if (o.max_speed > 0) po.plateau.max_speed_mps = o.max_speed;
-      r = IdentifyFromPulses(ReadAll(o), po);
+      r = IdentifyFromPulses(o.motion.ReadRecordings(o.recordings), po);
     }
     rendered = ToJson(r);
     Table table(
@@ -71,8 +62,8 @@ void RunIdentify(const IdentifyCli& o) {
     if (o.recordings.empty()) throw OptionsError("identify --method trajectory: no recordings");
     if (!o.table.empty()) throw OptionsError("--table applies to --method pulse only");
     TrajectoryOptions to = o.trajectory;
-    to.motion = Motion(o, to.motion);
-    const auto r = IdentifyFromTrajectory(ReadAll(o), to);
+    o.motion.ApplyTo(to.motion);
+    const auto r = IdentifyFromTrajectory(o.motion.ReadRecordings(o.recordings), to);
     rendered = ToJson(r);
     text = r.BriefReport();
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/input_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
@@ -25,11 +26,7 @@ namespace {
 struct SimulateCliOptions {
   std::string model_path;
   bool paper_model = false;
-  std::string input_path;
-  std::string hold = "zoh";
-  std::vector<double> pulses;
-  PulseTrainSpec pulse_train;  // on, off, repeats, start: the flags' defaults are the library's
-  std::string waveform;
+  InputFlags input;
   double t_end_s = 0;  // 0: the input's natural length
   std::string output, events_path;
   bool json = false;
@@ -37,34 +34,11 @@ struct SimulateCliOptions {
   std::string method;  // set from sim.method
 };
 
-NamedWaveform ChooseInput(const SimulateCliOptions& o) {
-  const int given = !o.input_path.empty() + !o.pulses.empty() + !o.waveform.empty();
-  if (given != 1)
-    throw OptionsError(
-        "give exactly one input: --input U.csv, --pulses A[,A...] or --waveform "
-        "NAME");
-  if (!o.input_path.empty()) return ReadInputWaveform(o.input_path, ParseInputHold(o.hold));
-  if (!o.pulses.empty()) {
-    PulseTrainSpec spec = o.pulse_train;
-    spec.amplitudes_v = o.pulses;
-    return PulseTrainWaveform(spec);
-  }
-  NamedWaveform w = MakeNamedWaveform(o.waveform);
-  w.description = w.name + ": " + w.description;
-  return w;
-}
-
-std::string EventsCsv(const std::vector<SimulationEvent>& events) {
-  std::string text = "t,kind\n";
-  for (const auto& e : events) text += fmt::format("{:.17g},{}\n", e.t_s, ToString(e.kind));
-  return text;
-}
-
 void RunSimulate(SimulateCliOptions o) {
   if (o.model_path.empty() == !o.paper_model)
     throw OptionsError("give exactly one model: --model M.json or --paper-model");
   const FrictionModel model = o.paper_model ? FrictionModel::Paper() : ReadModel(o.model_path);
-  const NamedWaveform input = ChooseInput(o);
+  const NamedWaveform input = o.input.Choose();
   SimulationOptions sim = o.sim;
   sim.method = ParseIntegratorMethod(o.method);
   sim.t0_s = 0.0;
@@ -79,25 +53,15 @@ void RunSimulate(SimulateCliOptions o) {
   if (!s.IsSolutionUsable())
     throw NumericalError(fmt::format("simulation failed ({}): {}", s.cvode_flag, s.message));
 
-  Recording out;
+  Recording out = TrajectoryRecording(r, model, input.description, sim);
   out.source = o.output.empty() ? "stdout" : o.output;
-  const nlohmann::json model_json = nlohmann::json::parse(ModelToJson(model, -1));
-  out.metadata = {{"model", model_json.dump()},
-                  {"input", input.description},
-                  {"simulator", fmt::format("CVODE {} rtol {} atol {}", ToString(sim.method),
-                                            sim.rtol, sim.atol)}};
-  out.SetColumn("t", r.trajectory.t_s);
-  out.SetColumn("u", r.trajectory.u_v);
-  out.SetColumn("x", r.trajectory.x_m);
-  out.SetColumn("v", r.trajectory.v_mps);
-  out.SetColumn("a", r.trajectory.a_mps2);
   // Everything is computed before anything is written: no partial output on error.
-  if (!o.events_path.empty()) WriteFileAtomically(o.events_path, EventsCsv(r.events));
+  if (!o.events_path.empty()) WriteFileAtomically(o.events_path, EventsToCsv(r.events));
   if (!o.output.empty()) WriteRecording(o.output, out);
 
   if (o.json) {
     nlohmann::ordered_json j;
-    j["model"] = model_json;
+    j["model"] = nlohmann::json::parse(ModelToJson(model, -1));  // keys sorted, as the CSV
     j["input"] = input.description;
     j["t_end_s"] = sim.t_end_s;
     const auto run = nlohmann::ordered_json::parse(ToJson(r, sim));
@@ -129,34 +93,7 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_flag("--paper-model", o->paper_model,
                 "use the paper's identified model instead of --model")
       ->excludes(model);
-  auto* input =
-      cmd->add_option("--input", o->input_path, "input table CSV with columns t [s], u [V]")
-          ->type_name("U.csv");
-  cmd->add_option("--hold", o->hold,
-                  "how the table holds between rows: zoh (u_k on [t_k, t_k+1)) or linear")
-      ->check(CLI::IsMember({"zoh", "linear"}))
-      ->capture_default_str();
-  auto* pulses =
-      cmd->add_option("--pulses", o->pulses, "pulse-train amplitudes [V], in order, e.g. 1.6,-2.3")
-          ->delimiter(',')
-          ->excludes(input);
-  PulseTrainSpec& train = o->pulse_train;
-  cmd->add_option("--pulse-on", train.on_s, "pulse length [s]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--pulse-off", train.off_s, "rest after each pulse [s]")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--pulse-repeats", train.repeats, "repeats of the amplitude list [count]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  cmd->add_option("--pulse-start", train.start_s, "time of the first pulse [s]")
-      ->capture_default_str();
-  std::string names;
-  for (const auto& n : NamedWaveformNames()) names += (names.empty() ? "" : ", ") + n;
-  cmd->add_option("--waveform", o->waveform, "a named test waveform of the paper: " + names)
-      ->excludes(input)
-      ->excludes(pulses);
+  o->input.Add(cmd);
   cmd->add_option("--t-end", o->t_end_s,
                   "end time [s] (default: the input's end: last table row, end of the pulse "
                   "train or of the waveform)")

@@ -113,3 +113,20 @@ TEST_CASE("sysid info --json summarises a recording", "[io][cli]") {
   CHECK(j["sample_rate_hz"].get<double>() == Approx(1000.0));
   CHECK(j["metadata"]["stage"] == "virtual");
 }
+
+TEST_CASE("a recording's shape as JSON, with the SI unit of each column", "[io][json]") {
+  sysid::Recording r;
+  r.SetColumn("t", Eigen::Vector3d(0.5, 1.0, 1.5));
+  r.SetColumn("waveform", Eigen::Vector3d(0, 0, 1));
+  r.SetColumn("x_ref", Eigen::Vector3d(0, 1e-3, 2e-3));
+  r.SetColumn("a_ref", Eigen::Vector3d(0, 0, 0));
+  const auto j = nlohmann::json::parse(sysid::RecordingShapeToJson(r));
+  CHECK(j["samples"] == 3);
+  CHECK(j["duration_s"] == 1.0);
+  CHECK(j["columns"] == nlohmann::json({"t", "waveform", "x_ref", "a_ref"}));
+  CHECK(j["units"] == nlohmann::json({{"t", "s"}, {"waveform", "1"}, {"x_ref", "m"},
+                                      {"a_ref", "m/s^2"}}));
+  CHECK(sysid::ColumnUnit("u") == "V");
+  CHECK(sysid::ColumnUnit("v_ref") == "m/s");
+  CHECK(nlohmann::json::parse(sysid::RecordingShapeToJson(sysid::Recording{}))["duration_s"] == 0.0);
+}

@@ -31,3 +31,23 @@ TEST_CASE("plots are written as PNG when gnuplot is present", "[report]") {
   CHECK(std::distance(std::filesystem::directory_iterator(dir.path()),
                       std::filesystem::directory_iterator{}) == 1);  // no temp file left
 }
+
+TEST_CASE("tracking plots: error in mm and control signal, one series per scheme", "[report]") {
+  sysid::SchemeTracking none, nn;
+  nn.scheme = sysid::FeedforwardScheme::kNetwork;
+  for (auto* run : {&none, &nn}) {
+    run->result.t_s = Eigen::Vector2d(0, 0.001);
+    run->result.e_m = Eigen::Vector2d(1e-3, -2e-3);
+    run->result.u_v = Eigen::Vector2d(0.5, 1.5);
+  }
+  const auto plots = sysid::TrackingPlots({none, nn});
+  REQUIRE(plots.size() == 2);
+  CHECK(plots[0].first == "tracking_error.png");
+  CHECK(plots[0].second.y_label == "e [mm]");
+  REQUIRE(plots[0].second.series.size() == 2);
+  CHECK(plots[0].second.series[1].label == "nn");
+  CHECK(plots[0].second.series[1].y[1] == Approx(-2.0));  // mm
+  CHECK(plots[1].first == "control_signal.png");
+  CHECK(plots[1].second.series[0].label == "none");
+  CHECK(plots[1].second.series[0].y[1] == 1.5);
+}

@@ -20,6 +20,7 @@ namespace sysid {
 
 class VirtualStage;
 class NeuralNetwork;
+struct Recording;
 struct FrictionModel;
 struct StageParameters;
 
@@ -85,6 +86,11 @@ struct SmoothProfileOptions {
   void Validate() const;
 };
 PositionReference MakeSmoothProfile(const SmoothProfileOptions& options = {});
+/// The smooth profile for `stage`: sampled at the stage's rate (options.sample_rate_hz is
+/// replaced) and checked to stay inside the stage's travel: the stroke from
+/// initial_position_m must end within [travel_min_m, travel_max_m], else OptionsError with
+/// field "amplitude_m".
+PositionReference MakeStageProfile(const StageParameters& stage, SmoothProfileOptions options);
 
 /// Reference from sampled positions (e.g. a CSV column): v and a by central differences.
 PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen::VectorXd& x_m);
@@ -103,6 +109,10 @@ struct TrackingResult {
   long saturated_samples = 0;                           ///< samples where the PI output was clipped
   std::string BriefReport() const;
 };
+
+/// The traces of a run as a recording with columns t [s], x_ref [m], x [m], e [m], u [V],
+/// u_ff [V] and metadata ff = `scheme` and the units (`sysid track -o`'s track_<ff>.csv).
+Recording TrackingRecording(const TrackingResult& result, const std::string& scheme);
 
 /// The run's metrics as JSON (max_error_m, rms_error_m, rms_u_v, max_abs_u_v,
 /// total_variation_v, saturated_samples); the traces are not included. `sysid track --json`
@@ -135,6 +145,11 @@ enum class FeedforwardScheme { kNone, kAnalytic, kNetwork };
 std::string ToString(FeedforwardScheme scheme);  ///< "none", "analytic", "nn"
 /// Inverse of ToString. Throws OptionsError naming the accepted names.
 FeedforwardScheme ParseFeedforwardScheme(const std::string& name);
+/// A comma-separated list of scheme names ("none,analytic"), in order. Throws OptionsError
+/// (field "schemes") for an unknown name or an empty list.
+std::vector<FeedforwardScheme> ParseFeedforwardSchemes(const std::string& comma_list);
+/// True when `schemes` holds `scheme`.
+bool Uses(const std::vector<FeedforwardScheme>& schemes, FeedforwardScheme scheme);
 
 /// The inverse models the schemes play; each is needed only by its scheme (not owned).
 struct InverseModels {
@@ -155,6 +170,15 @@ struct SchemeTracking {
   TrackingResult result;
   std::string stage_limits;  ///< StageStatus::Describe() of the run's stage
 };
+/// {"ff", the result's metrics (ToJson(TrackingResult)), "stage_limits"}: one entry of
+/// `sysid track --json`'s "schemes".
+std::string ToJson(const SchemeTracking& run, int indent = 2);
+/// `sysid track --json` and its summary.json: {"plant", "reference" (its description),
+/// "kp_v_per_m", "ki_v_per_m_s", "schemes": [ToJson(run), ...]} plus, for a single run, its
+/// "max_error_m" and "rms_error_m".
+std::string TrackingSummaryToJson(const std::string& plant, const PositionReference& reference,
+                                  const PiOptions& pi, const std::vector<SchemeTracking>& runs,
+                                  int indent = 2);
 
 /// PI tracking of `reference` once per scheme, each on a fresh VirtualStage(stage, seed): every
 /// scheme sees the same plant and noise. pi.sample_time_s is taken from the stage. `on_scheme`

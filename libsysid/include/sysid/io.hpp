@@ -64,6 +64,14 @@ std::string FormatRecording(const Recording& recording);
 /// Writes `recording` to `path` atomically (temporary file in the same folder, then rename).
 void WriteRecording(const std::string& path, const Recording& recording);
 
+/// The SI unit of a standard column name: t "s"; u, u_ff "V"; x, x_ref, e "m"; v, v_ref "m/s";
+/// a, a_ref "m/s^2"; "1" for any other column (an index such as waveform, a count).
+std::string ColumnUnit(const std::string& column);
+/// A recording's shape as JSON: {"samples", "duration_s" (last t minus first t [s]; 0 without
+/// rows or a t column), "columns", "units" (ColumnUnit of each column)}. `sysid excite --json`
+/// lists one per file.
+std::string RecordingShapeToJson(const Recording& recording, int indent = 2);
+
 /// Writes `content` to `path` atomically: a reader sees the old file or the whole new one,
 /// never a partial one. Throws InputError when the folder is not writable.
 void WriteFileAtomically(const std::string& path, std::string_view content);

@@ -42,6 +42,24 @@ struct MotionSignals {
 /// InputError when the sampling is irregular or there are fewer than 3 samples.
 MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options = {});
 
+/// The nominal (median) sample interval [s] of the recording's t column, after checking the
+/// sampling is uniform: max |dt_k - dt| / dt <= max_relative_jitter, else InputError
+/// "SOURCE:LINE: irregular sampling: ..." naming the worst interval. Needs >= 2 samples.
+double UniformSampleInterval(const Recording& recording, double max_relative_jitter);
+
+/// Adds the columns v [m/s] and a [m/s^2] (replaced if present) to `recording`, from its x
+/// column [m] differentiated by `derivative`, after decimating every column by `decimate`
+/// (DecimateRecording; 1 keeps every sample). dt_s [s] is the recording's sample interval.
+/// Returns the new sample interval dt_s * decimate. Throws OptionsError naming the field
+/// (DerivativeOptions' fields, "factor" for decimate) and InputError when x is too short.
+/// `sysid derive` calls it.
+double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions& derivative,
+                      int decimate = 1);
+
+/// The settings of AddDerivatives as text: "method=central", "method=butterworth cutoff_hz=50
+/// order=4" or "method=savgol window=21 order=3", plus " decimate=K" when K > 1.
+std::string DescribeDerivative(const DerivativeOptions& derivative, int decimate = 1);
+
 }  // namespace sysid
 
 #endif  // SYSID_MOTION_HPP_

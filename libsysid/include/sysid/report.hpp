@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sysid/pipeline.hpp"
@@ -41,6 +42,11 @@ bool GnuplotAvailable();
 /// Renders `spec` to `path` (.png or .svg by extension) with gnuplot, atomically. Returns
 /// written = false and the reason when gnuplot is missing or fails; never throws for that.
 PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec);
+
+/// The plots of a tracking run per feedforward scheme, by file name: "tracking_error.png"
+/// (e [mm] against t [s]) and "control_signal.png" (u [V]), one series per scheme
+/// (`sysid track -o`).
+std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<SchemeTracking>& runs);
 
 /// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
 /// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).

@@ -20,6 +20,8 @@
 
 namespace sysid {
 
+struct Recording;
+
 enum class IntegratorMethod { kAdams, kBdf };
 /// "adams" / "bdf"; ParseIntegratorMethod throws OptionsError for anything else.
 std::string ToString(IntegratorMethod method);
@@ -111,6 +113,15 @@ SimulationOptions SimulationOptionsFromJson(std::string_view text,
 /// message, cvode_flag and failure_time_s).
 std::string ToJson(const SimulationResult& result, const SimulationOptions& options,
                    int indent = 2);
+
+/// The trajectory of a run as a recording: columns t [s], u [V], x [m], v [m/s], a [m/s^2];
+/// metadata model (the model's JSON), input (`input_description`) and simulator (CVODE method
+/// and tolerances of `options`). `sysid simulate` writes it.
+Recording TrajectoryRecording(const SimulationResult& result, const FrictionModel& model,
+                              const std::string& input_description,
+                              const SimulationOptions& options);
+/// The events as CSV: a header "t,kind", then one row per event (t [s] with 17 digits).
+std::string EventsToCsv(const std::vector<SimulationEvent>& events);
 
 }  // namespace sysid
 

@@ -4,6 +4,7 @@
 
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -69,6 +70,18 @@ TrackingResult RunClosedLoop(VirtualStage& stage, const PositionReference& refer
   pi.sample_time_s = stage.parameters().sample_time_s();
   return RunClosedLoop([&stage](double u) { return stage.Step(u); }, stage.measured_position_m(),
                        reference, pi, feedforward);
+}
+
+Recording TrackingRecording(const TrackingResult& r, const std::string& scheme) {
+  Recording rec;
+  rec.metadata = {{"ff", scheme}, {"units", "t [s], x_ref [m], x [m], e [m], u [V], u_ff [V]"}};
+  rec.SetColumn("t", r.t_s);
+  rec.SetColumn("x_ref", r.x_ref_m);
+  rec.SetColumn("x", r.x_m);
+  rec.SetColumn("e", r.e_m);
+  rec.SetColumn("u", r.u_v);
+  rec.SetColumn("u_ff", r.u_ff_v);
+  return rec;
 }
 
 }  // namespace sysid

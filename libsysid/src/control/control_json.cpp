@@ -18,4 +18,28 @@ std::string ToJson(const TrackingResult& r, int indent) {
   return detail::DumpJson(j, indent);
 }
 
+std::string ToJson(const SchemeTracking& run, int indent) {
+  nlohmann::ordered_json j = {{"ff", ToString(run.scheme)}};
+  j.update(nlohmann::ordered_json::parse(ToJson(run.result, -1)));
+  j["stage_limits"] = run.stage_limits;
+  return detail::DumpJson(j, indent);
+}
+
+std::string TrackingSummaryToJson(const std::string& plant, const PositionReference& reference,
+                                  const PiOptions& pi, const std::vector<SchemeTracking>& runs,
+                                  int indent) {
+  nlohmann::ordered_json j;
+  j["plant"] = plant;
+  j["reference"] = reference.description;
+  j["kp_v_per_m"] = pi.kp_v_per_m;
+  j["ki_v_per_m_s"] = pi.ki_v_per_m_s;
+  j["schemes"] = nlohmann::ordered_json::array();
+  for (const auto& run : runs) j["schemes"].push_back(nlohmann::ordered_json::parse(ToJson(run)));
+  if (runs.size() == 1) {
+    j["max_error_m"] = runs[0].result.max_error_m;
+    j["rms_error_m"] = runs[0].result.rms_error_m;
+  }
+  return detail::DumpJson(j, indent);
+}
+
 }  // namespace sysid

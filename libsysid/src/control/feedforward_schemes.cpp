@@ -1,5 +1,8 @@
 // The tracking experiment's feedforward schemes, run on the virtual stage (one loop for
 // `sysid track`, the pipeline and the stage facts).
+#include <algorithm>
+#include <sstream>
+
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
@@ -26,6 +29,23 @@ FeedforwardScheme ParseFeedforwardScheme(const std::string& name) {
                  FeedforwardScheme::kNetwork})
     if (ToString(s) == name) return s;
   throw OptionsError("'" + name + "' is not one of none, analytic, nn");
+}
+
+std::vector<FeedforwardScheme> ParseFeedforwardSchemes(const std::string& comma_list) {
+  std::vector<FeedforwardScheme> out;
+  std::stringstream ss(comma_list);
+  std::string item;
+  try {
+    while (std::getline(ss, item, ',')) out.push_back(ParseFeedforwardScheme(item));
+  } catch (const OptionsError& e) {
+    throw OptionsError(e.what(), "schemes");
+  }
+  if (out.empty()) throw OptionsError("expected none, analytic or nn", "schemes");
+  return out;
+}
+
+bool Uses(const std::vector<FeedforwardScheme>& schemes, FeedforwardScheme scheme) {
+  return std::find(schemes.begin(), schemes.end(), scheme) != schemes.end();
 }
 
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,

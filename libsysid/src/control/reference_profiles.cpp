@@ -1,10 +1,13 @@
 // Reference profiles for the tracking experiment.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <sstream>
 
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/stage.hpp"
 
 namespace sysid {
 
@@ -30,6 +33,20 @@ void SmoothProfileOptions::Validate() const {
     fail("frequency_hz", frequency_hz, "frequency_hz <= sample_rate_hz / 20 (20 samples a period)");
   if (!(cycles / frequency_hz * sample_rate_hz <= kMaxSignalSamples))
     fail("cycles", cycles, "cycles / frequency_hz * sample_rate_hz <= 2e7 samples (kMaxSignalSamples)");
+}
+
+PositionReference MakeStageProfile(const StageParameters& stage, SmoothProfileOptions options) {
+  options.sample_rate_hz = stage.sample_rate_hz;
+  // The stroke must fit the stage's travel from where it starts.
+  const double end = stage.initial_position_m + options.amplitude_m;
+  if (!(end >= stage.travel_min_m && end <= stage.travel_max_m))
+    throw OptionsError(
+        fmt::format("amplitude_m = {} m. Violated constraint: the stroke from the start position "
+                    "{} m stays within the stage's travel [{}, {}] m",
+                    options.amplitude_m, stage.initial_position_m, stage.travel_min_m,
+                    stage.travel_max_m),
+        "amplitude_m");
+  return MakeSmoothProfile(options);
 }
 
 PositionReference MakeSmoothProfile(const SmoothProfileOptions& o) {

@@ -22,6 +22,18 @@ void MotionOptions::Validate() const {
         "name");
 }
 
+double UniformSampleInterval(const Recording& recording, double max_relative_jitter) {
+  const Eigen::VectorXd t = recording.column("t");
+  const SamplingReport s = AnalyzeSampling(t, max_relative_jitter);
+  if (s.irregular)
+    throw InputError(fmt::format(
+        "{}:{}: irregular sampling: interval {:.6g} s deviates {:.3g} % from the nominal "
+        "{:.6g} s (allowed {:.3g} %); resample first (sysid::Resample, sysid derive --resample)",
+        recording.source, s.worst_index + 2, t[s.worst_index + 1] - t[s.worst_index],
+        100 * s.max_relative_jitter, s.nominal_dt_s, 100 * max_relative_jitter));
+  return s.nominal_dt_s;
+}
+
 MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options) {
   options.Validate();
   MotionSignals m;
@@ -31,14 +43,7 @@ MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& opt
                                  recording.source, recording.rows()));
   m.t_s = recording.column("t");
   m.u_v = recording.column("u");
-  const SamplingReport s = AnalyzeSampling(m.t_s, options.max_relative_jitter);
-  if (s.irregular)
-    throw InputError(fmt::format(
-        "{}:{}: irregular sampling: interval {:.6g} s deviates {:.3g} % from the nominal "
-        "{:.6g} s (allowed {:.3g} %); resample first (sysid::Resample)",
-        recording.source, s.worst_index + 2, m.t_s[s.worst_index + 1] - m.t_s[s.worst_index],
-        100 * s.max_relative_jitter, s.nominal_dt_s, 100 * options.max_relative_jitter));
-  m.dt_s = s.nominal_dt_s;
+  m.dt_s = UniformSampleInterval(recording, options.max_relative_jitter);
   const bool has_v = recording.has(options.velocity_column);
   const bool use_v = has_v && (options.prefer_velocity_column || !recording.has("x"));
   if (use_v) {
@@ -71,6 +76,33 @@ MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& opt
   m.a_mps2 = std::move(d.a_mps2);
   m.velocity_from = "x (" + ToString(options.derivative.method) + ")";
   return m;
+}
+
+double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions& derivative,
+                      int decimate) {
+  if (decimate < 1)
+    throw OptionsError(fmt::format("decimate = {}. Violated constraint: decimate >= 1", decimate),
+                       "factor");
+  derivative.Validate(dt_s * decimate);
+  if (decimate != 1) {
+    recording = DecimateRecording(recording, dt_s, decimate);
+    dt_s *= decimate;
+  }
+  const Derivatives d = Differentiate(recording.column("x"), dt_s, derivative);
+  recording.SetColumn("v", d.v_mps);
+  recording.SetColumn("a", d.a_mps2);
+  return dt_s;
+}
+
+std::string DescribeDerivative(const DerivativeOptions& derivative, int decimate) {
+  const DerivativeOptions& o = derivative;
+  std::string s = "method=" + ToString(o.method);
+  if (o.method == DerivativeMethod::kButterworthCentral)
+    s += fmt::format(" cutoff_hz={} order={}", o.cutoff_hz, o.butterworth_order);
+  if (o.method == DerivativeMethod::kSavitzkyGolay)
+    s += fmt::format(" window={} order={}", o.savgol_window, o.savgol_order);
+  if (decimate > 1) s += fmt::format(" decimate={}", decimate);
+  return s;
 }
 
 }  // namespace sysid

@@ -144,4 +144,15 @@ std::string MarkdownTable(const std::vector<std::string>& header,
   return out;
 }
 
+std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<SchemeTracking>& runs) {
+  PlotSpec err{"tracking error", "t [s]", "e [mm]", {}, false, 900, 500};
+  PlotSpec u{"control signal", "t [s]", "u [V]", {}, false, 900, 500};
+  for (const auto& run : runs) {
+    const std::string scheme = ToString(run.scheme);
+    err.series.push_back({scheme, run.result.t_s, 1e3 * run.result.e_m, "lines"});
+    u.series.push_back({scheme, run.result.t_s, run.result.u_v, "lines"});
+  }
+  return {{"tracking_error.png", err}, {"control_signal.png", u}};
+}
+
 }  // namespace sysid

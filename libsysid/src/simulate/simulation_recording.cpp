@@ -1,0 +1,37 @@
+// A run as files: the trajectory as a recording and the event log as CSV (`sysid simulate`).
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sysid/io.hpp"
+#include "sysid/model.hpp"
+#include "sysid/simulate.hpp"
+
+namespace sysid {
+
+Recording TrajectoryRecording(const SimulationResult& result, const FrictionModel& model,
+                              const std::string& input_description,
+                              const SimulationOptions& options) {
+  Recording out;
+  out.metadata = {{"model", nlohmann::json::parse(ModelToJson(model, -1)).dump()},
+                  {"input", input_description},
+                  {"simulator", fmt::format("CVODE {} rtol {} atol {}", ToString(options.method),
+                                            options.rtol, options.atol)}};
+  const Trajectory& tr = result.trajectory;
+  out.SetColumn("t", tr.t_s);
+  out.SetColumn("u", tr.u_v);
+  out.SetColumn("x", tr.x_m);
+  out.SetColumn("v", tr.v_mps);
+  out.SetColumn("a", tr.a_mps2);
+  return out;
+}
+
+std::string EventsToCsv(const std::vector<SimulationEvent>& events) {
+  std::string text = "t,kind\n";
+  for (const auto& e : events) text += fmt::format("{:.17g},{}\n", e.t_s, ToString(e.kind));
+  return text;
+}
+
+}  // namespace sysid
