@@ -93,3 +93,17 @@ TEST_CASE("tracking traces, scheme entries and the summary JSON", "[control][jso
   CHECK(two["schemes"].size() == 2);
   CHECK_FALSE(two.contains("max_error_m"));
 }
+
+TEST_CASE("tracking: FullReport adds every metric", "[control][report]") {
+  sysid::TrackingResult r;
+  r.t_s = Eigen::VectorXd::Zero(5);
+  r.max_error_m = 0.00125;
+  r.total_variation_v = 17.5;
+  r.saturated_samples = 3;
+  const std::string full = r.FullReport();
+  CHECK(full.rfind(r.BriefReport(), 0) == 0);
+  CHECK_THAT(full, Catch::Contains("samples 5"));
+  CHECK_THAT(full, Catch::Contains("max |e| 0.00125 m"));
+  CHECK_THAT(full, Catch::Contains("total variation of u 17.5 V"));
+  CHECK_THAT(full, Catch::Contains("saturated samples 3"));
+}

@@ -32,3 +32,16 @@ TEST_CASE("a run's trajectory as a recording, its events as CSV", "[simulate]") 
   CHECK(sysid::EventsToCsv(r.events) == "t,kind\n0.025000000000000001,slip+\n0.10000000000000001,stick\n");
   CHECK(sysid::EventsToCsv({}) == "t,kind\n");
 }
+
+TEST_CASE("simulation summary: FullReport adds the stop's details", "[simulate][report]") {
+  sysid::SimulationSummary s;
+  CHECK_THAT(s.FullReport(), Catch::Contains("usable: yes"));
+  s.termination = sysid::Termination::kBudgetExhausted;
+  s.cvode_flag = "CV_TOO_MUCH_WORK";
+  s.message = "max_steps reached";
+  s.failure_time_s = 0.75;
+  const std::string full = s.FullReport();
+  CHECK(full.rfind(s.BriefReport(), 0) == 0);
+  CHECK_THAT(full, Catch::Contains("usable: no"));
+  CHECK_THAT(full, Catch::Contains("stopped at t = 0.75 s: max_steps reached (CV_TOO_MUCH_WORK)"));
+}

@@ -108,6 +108,8 @@ struct TrackingResult {
   double total_variation_v = 0;                         ///< [V] sum |u_k - u_{k-1}| (chattering)
   long saturated_samples = 0;                           ///< samples where the PI output was clipped
   std::string BriefReport() const;
+  /// BriefReport plus every metric: max |u|, total variation, saturated samples, samples.
+  std::string FullReport() const;
 };
 
 /// The traces of a run as a recording with columns t [s], x_ref [m], x [m], e [m], u [V],

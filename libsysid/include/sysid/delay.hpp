@@ -80,6 +80,9 @@ struct DelayTuningResult {
   std::vector<std::string> warnings;
   double wall_time_s = 0;
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: the model, the search bounds' warnings and the cost
+  /// curve (tau [s], cost [m^2/s^2]).
+  std::string FullReport() const;
 };
 
 /// Tunes the delay of `model` on `recordings` (t, u and x or a velocity column).
@@ -122,6 +125,9 @@ struct RefineResult {
   std::vector<std::string> warnings;
   double wall_time_s = 0;  ///< [s] not serialised (files stay identical run to run)
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: the initial model, each parameter's change and
+  /// relative standard error, and the warnings.
+  std::string FullReport() const;
 };
 
 /// Refines all parameters by minimising sum (v_sim - v_meas)^2 over every sample of every

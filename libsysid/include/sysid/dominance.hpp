@@ -73,6 +73,9 @@ struct DominanceResult {
   double pointwise_ratio_quantile = 0;
   double pointwise_ratio_max = 0;  ///< max of the pointwise ratio |x''(t)| / |a1 v(t - tau)|
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: each term's and variable's rms, peak and ratios, the
+  /// pointwise ratio quantile and maximum.
+  std::string FullReport() const;
 };
 
 /// Analyses one recording. Throws InputError for a missing candidate column, NumericalError when

@@ -143,6 +143,9 @@ struct PulseIdentificationResult {
   std::vector<PulsePoint> points;     ///< the equations used, in row order
   std::vector<PulseEstimate> pulses;  ///< every detected pulse, excluded ones with reasons
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: the fit (rank, dof, condition number, R diagonal,
+  /// residuals) and every pulse with its status and reason.
+  std::string FullReport() const;
 };
 
 /// Least squares of the pulse equations. Throws NumericalError naming the parameters that
@@ -204,6 +207,9 @@ struct TrajectoryIdentificationResult {
   /// The velocity filter used (TrajectoryOptions::motion), recorded for the diagnostics.
   DerivativeMethod derivative = DerivativeMethod::kButterworthCentral;
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: estimates with standard errors, the fit (rank, dof,
+  /// condition number, R diagonal), the velocity filter and the delay curve.
+  std::string FullReport() const;
 };
 
 /// Identifies the model from any recordings with enough excitation. Throws NumericalError for

@@ -223,6 +223,9 @@ struct NeuralTrainingResult {
   /// Doubts in words: stopped by the epoch budget before a convergence test (under-trained?).
   std::vector<std::string> warnings;
   std::string BriefReport() const;
+  /// BriefReport plus every diagnostic: stopping rule, kept restart, MSEs, warnings and the
+  /// last epoch of every restart.
+  std::string FullReport() const;
 };
 
 /// Trains a network on `train` (optionally early-stopped on `validation`, may be null).

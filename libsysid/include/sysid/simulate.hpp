@@ -88,6 +88,8 @@ struct SimulationSummary {
   double wall_time_s = 0;
   /// One line: success, steps, rhs evaluations, events, reinitialisations, wall time.
   std::string BriefReport() const;
+  /// BriefReport plus the stop's details: message, CVODE flag and failure time.
+  std::string FullReport() const;
 };
 
 struct SimulationResult {

@@ -18,6 +18,16 @@ std::string TrackingResult::BriefReport() const {
   return s.str();
 }
 
+std::string TrackingResult::FullReport() const {
+  std::ostringstream s;
+  s.precision(6);
+  s << BriefReport() << "\n  samples " << t_s.size() << ", max |e| " << max_error_m
+    << " m, rms e " << rms_error_m << " m, rms u " << rms_u_v << " V, max |u| " << max_abs_u_v
+    << " V, total variation of u " << total_variation_v << " V, saturated samples "
+    << saturated_samples << "\n";
+  return s.str();
+}
+
 TrackingResult RunClosedLoop(const PlantStep& plant, double x0_measured_m,
                              const PositionReference& ref, const PiOptions& pi,
                              const Feedforward& feedforward) {

@@ -1,4 +1,4 @@
-// A run as files: the trajectory as a recording and the event log as CSV (`sysid simulate`).
+// A run as files and as a full report: the trajectory as a recording and the event log as CSV (`sysid simulate`).
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -26,6 +26,15 @@ Recording TrajectoryRecording(const SimulationResult& result, const FrictionMode
   out.SetColumn("v", tr.v_mps);
   out.SetColumn("a", tr.a_mps2);
   return out;
+}
+
+std::string SimulationSummary::FullReport() const {
+  std::string s = BriefReport() + "\n";
+  s += fmt::format("  termination: {}; usable: {}\n", ToString(termination),
+                   IsSolutionUsable() ? "yes" : "no");
+  if (!IsSolutionUsable())
+    s += fmt::format("  stopped at t = {:.9g} s: {} ({})\n", failure_time_s, message, cvode_flag);
+  return s;
 }
 
 std::string EventsToCsv(const std::vector<SimulationEvent>& events) {
