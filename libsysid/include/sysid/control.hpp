@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sysid {
@@ -120,6 +121,9 @@ Recording TrackingRecording(const TrackingResult& result, const std::string& sch
 /// total_variation_v, saturated_samples); the traces are not included. `sysid track --json`
 /// lists one per feedforward scheme.
 std::string ToJson(const TrackingResult& result, int indent = 2);
+/// Reads the metrics ToJson(TrackingResult) writes (the traces stay empty). Throws InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ..." for a missing key or a bad value.
+TrackingResult TrackingResultFromJson(std::string_view text, const std::string& source_name);
 
 /// One sample of a plant: applies u [V] for one period and returns the next measured position
 /// [m].

@@ -4,6 +4,7 @@
 
 #include "core/json_text.hpp"
 #include "sysid/control.hpp"
+#include "sysid/error.hpp"
 
 namespace sysid {
 
@@ -16,6 +17,22 @@ std::string ToJson(const TrackingResult& r, int indent) {
   j["total_variation_v"] = r.total_variation_v;
   j["saturated_samples"] = r.saturated_samples;
   return detail::DumpJson(j, indent);
+}
+
+TrackingResult TrackingResultFromJson(std::string_view text, const std::string& source_name) {
+  const detail::JsonDocument doc(text, source_name);
+  const detail::JsonNode root = doc.Root();
+  root.ExpectObject({"max_error_m", "rms_error_m", "rms_u_v", "max_abs_u_v", "total_variation_v",
+                     "saturated_samples"});
+  using Rule = detail::NumberRule;
+  TrackingResult r;
+  r.max_error_m = root.Get("max_error_m").Number(Rule::NonNegative());
+  r.rms_error_m = root.Get("rms_error_m").Number(Rule::NonNegative());
+  r.rms_u_v = root.Get("rms_u_v").Number(Rule::NonNegative());
+  r.max_abs_u_v = root.Get("max_abs_u_v").Number(Rule::NonNegative());
+  r.total_variation_v = root.Get("total_variation_v").Number(Rule::NonNegative());
+  r.saturated_samples = root.Get("saturated_samples").Integer(0, 1L << 40);
+  return r;
 }
 
 std::string ToJson(const SchemeTracking& run, int indent) {
