@@ -3,10 +3,13 @@
 // that recording's own statistics).
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "support/test_support.hpp"
 #include "sysid/dominance.hpp"
+#include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 
@@ -37,5 +40,40 @@ TEST_CASE("dominance JSON: the CLI prints the library's text; pooling", "[domina
     CHECK(twice.ranking[i].rms == Approx(one.ranking[i].rms).epsilon(1e-12));
     CHECK(twice.ranking[i].peak == one.ranking[i].peak);
     CHECK(twice.ranking[i].negligible == one.ranking[i].negligible);
+  }
+}
+
+TEST_CASE("one recording's dominance JSON round trip and positioned errors",
+          "[dominance][json]") {
+  sysid::DominanceResult r;
+  r.source = "rec.csv";
+  r.samples = 1000;
+  r.moving_samples = 640;
+  r.ranking = {{"v", 2.5, 4.25, 1.0, 1.0, 1.0, false}, {"a", 0.5, 1.5, 0.2, 0.375, 0.75, false}};
+  r.terms = {{"acceleration", 0.5, 1.5, 0.2, 0, 0, false}, {"viscous", 2.5, 4.25, 1.0, 0, 0, false}};
+  r.dominant = "v";
+  r.margin = 5.0;
+  r.peak_ratio = 0.35;
+  r.pointwise_ratio_quantile = 0.3;
+  r.pointwise_ratio_max = 0.9;
+  const std::string text = sysid::ToJson(r);
+  const sysid::DominanceResult back = sysid::DominanceResultFromJson(text, "dom.json");
+  CHECK(sysid::ToJson(back) == text);
+  CHECK(back.source == "rec.csv");
+  CHECK(back.moving_samples == 640);
+  REQUIRE(back.ranking.size() == 2);
+  CHECK(back.ranking[1].ratio_bound == 0.375);
+  CHECK(back.terms[1].name == "viscous");
+  CHECK(back.margin == 5.0);
+  r.margin = std::numeric_limits<double>::infinity();  // a single candidate: written as null
+  CHECK(std::isinf(sysid::DominanceResultFromJson(sysid::ToJson(r), "dom.json").margin));
+  auto j = nlohmann::json::parse(text);
+  j["moving_samples"] = 2000;  // more than the record's samples
+  try {
+    sysid::DominanceResultFromJson(j.dump(1), "bad.json");
+    FAIL("moving_samples > samples was read");
+  } catch (const sysid::InputError& e) {
+    CHECK_THAT(e.what(), Catch::StartsWith("bad.json:"));
+    CHECK_THAT(e.what(), Catch::Contains("moving_samples"));
   }
 }

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sysid/motion.hpp"
@@ -115,6 +116,10 @@ std::string DominanceTableCsv(const DominanceSummary& summary);
 /// One recording's analysis as JSON: source, ranking, dominant, margin (null with a single
 /// candidate), terms, the ratios and sample counts (a `recordings` entry of `dominance --json`).
 std::string ToJson(const DominanceResult& result, int indent = 2);
+/// Reads what ToJson(DominanceResult) writes (a null margin reads as infinity; the terms'
+/// pointwise ratios and negligible flags, not written, stay 0/false). Throws InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ...".
+DominanceResult DominanceResultFromJson(std::string_view text, const std::string& source_name);
 /// The batch as `sysid dominance --json` prints it: pooled ranking, dominant, the options,
 /// summary (counts, margins) and every recording's analysis.
 std::string ToJson(const DominanceSummary& summary, int indent = 2);

@@ -1,9 +1,12 @@
 // JSON of the dominant-variable analysis (docs/cli.md: dominance --json).
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/json_text.hpp"
 #include "sysid/dominance.hpp"
+#include "sysid/error.hpp"
 
 namespace sysid {
 namespace {
@@ -48,6 +51,52 @@ Json ResultJson(const DominanceResult& r) {
 
 std::string ToJson(const DominanceResult& result, int indent) {
   return detail::DumpJson(ResultJson(result), indent);
+}
+
+DominanceResult DominanceResultFromJson(std::string_view text, const std::string& source_name) {
+  const detail::JsonDocument doc(text, source_name);
+  const detail::JsonNode root = doc.Root();
+  root.ExpectObject({"source", "ranking", "dominant", "margin", "terms", "peak_ratio",
+                     "pointwise_ratio_quantile", "pointwise_ratio_max", "samples",
+                     "moving_samples"});
+  using Rule = detail::NumberRule;
+  auto stats = [&](const detail::JsonNode& list, bool ranking) {
+    list.ExpectArray();
+    std::vector<TermStats> out;
+    for (size_t i = 0; i < list.Size(); ++i) {
+      const detail::JsonNode e = list.Element(i);
+      if (ranking)
+        e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max",
+                        "negligible"});
+      else
+        e.ExpectObject({"term", "rms", "peak", "ratio_to_top"});
+      TermStats t;
+      t.name = e.Get(ranking ? "variable" : "term").String(true);
+      t.rms = e.Get("rms").Number(Rule::NonNegative());
+      t.peak = e.Get("peak").Number(Rule::NonNegative());
+      t.ratio_to_top = e.Get("ratio_to_top").Number(Rule::NonNegative());
+      if (ranking) {
+        t.ratio_bound = e.Get("ratio_bound").Number(Rule::NonNegative());
+        t.ratio_max = e.Get("ratio_max").Number(Rule::NonNegative());
+        t.negligible = e.Get("negligible").Boolean();
+      }
+      out.push_back(t);
+    }
+    return out;
+  };
+  DominanceResult r;
+  r.source = root.Get("source").String();
+  r.ranking = stats(root.Get("ranking"), true);
+  r.dominant = root.Get("dominant").String();
+  const double margin = root.Get("margin").NumberOrNaN(Rule::NonNegative());
+  r.margin = std::isnan(margin) ? std::numeric_limits<double>::infinity() : margin;
+  r.terms = stats(root.Get("terms"), false);
+  r.peak_ratio = root.Get("peak_ratio").Number(Rule::NonNegative());
+  r.pointwise_ratio_quantile = root.Get("pointwise_ratio_quantile").Number(Rule::NonNegative());
+  r.pointwise_ratio_max = root.Get("pointwise_ratio_max").Number(Rule::NonNegative());
+  r.samples = root.Get("samples").Integer(0, 1L << 40);
+  r.moving_samples = root.Get("moving_samples").Integer(0, r.samples);
+  return r;
 }
 
 std::string ToJson(const DominanceSummary& s, int indent) {
