@@ -99,12 +99,12 @@ void KernelTimes(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, in
   Eigen::VectorXd g, r, t = theta;
   double sse = 0;
   const std::vector<std::pair<const char*, std::function<void()>>> kernels = {
-      {"sum_squares", [&] { sse = sysid::nn::SumSquares(Z, y, H, theta); }},
-      {"normal_equations", [&] { sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse); }},
-      {"solve_output_layer", [&] { sse = sysid::nn::SolveOutputLayer(Z, y, H, &t, &A); }},
-      {"residuals", [&] { sysid::nn::Residuals(Z, y, H, theta, &r); }},
-      {"jacobian", [&] { sysid::nn::Jacobian(Z, y, H, theta, &J); }}};
-  nlohmann::ordered_json j{{"what", "kernel_times"}, {"isa", sysid::nn::KernelIsa()},
+      {"sum_squares", [&] { sse = sysid::internal::nn::SumSquares(Z, y, H, theta); }},
+      {"normal_equations", [&] { sysid::internal::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse); }},
+      {"solve_output_layer", [&] { sse = sysid::internal::nn::SolveOutputLayer(Z, y, H, &t, &A); }},
+      {"residuals", [&] { sysid::internal::nn::Residuals(Z, y, H, theta, &r); }},
+      {"jacobian", [&] { sysid::internal::nn::Jacobian(Z, y, H, theta, &J); }}};
+  nlohmann::ordered_json j{{"what", "kernel_times"}, {"isa", sysid::internal::nn::KernelIsa()},
                            {"N", Z.cols()},         {"H", H},
                            {"threads", 1},          {"repeats", repeats}};
   for (const auto& [name, f] : kernels) {
@@ -127,8 +127,8 @@ nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::Ve
   Eigen::MatrixXd J, JtJ(P, P), JtJg(P, P);
   Eigen::VectorXd g;
   double sse = 0;
-  const double t_forward = Median(repeats, [&] { sse = sysid::nn::SumSquares(Z, y, H, theta); });
-  const double t_jac = Median(repeats, [&] { sysid::nn::Jacobian(Z, y, H, theta, &J); });
+  const double t_forward = Median(repeats, [&] { sse = sysid::internal::nn::SumSquares(Z, y, H, theta); });
+  const double t_jac = Median(repeats, [&] { sysid::internal::nn::Jacobian(Z, y, H, theta, &J); });
   const double t_syrk = Median(repeats, [&] {
     JtJ.setZero();
     JtJ.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
@@ -144,17 +144,17 @@ nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::Ve
   });
   // The fused epoch as the trainer runs it: blocked J'J and J'r, one Cholesky, one forward.
   const double t_epoch = Median(repeats, [&] {
-    sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse);
+    sysid::internal::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse);
     A = JtJ;
     A.diagonal().array() += 1e-3;
     llt.compute(A);
     step = -llt.solve(g);
-    sse = sysid::nn::SumSquares(Z, y, H, theta + step);
+    sse = sysid::internal::nn::SumSquares(Z, y, H, theta + step);
   });
   nlohmann::ordered_json blocks;
   for (int b : {64, 128, 256, 512, 1024, 4096})
     blocks[std::to_string(b)] =
-        Median(repeats, [&] { sysid::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse, b); });
+        Median(repeats, [&] { sysid::internal::nn::NormalEquations(Z, y, H, theta, &JtJ, &g, &sse, b); });
   // Parts an epoch needs: forward for the residuals, Jacobian, J'J, Cholesky, trial forward.
   const double parts = 2 * t_forward + t_jac + t_syrk + t_chol;
   nlohmann::ordered_json j;
@@ -175,7 +175,7 @@ nlohmann::ordered_json EpochSplit(const sysid::NeuralDataset& d, const Eigen::Ve
   j["fused_blocked_epoch_s"] = t_epoch;
   j["epoch_over_parts"] = t_epoch / parts;
   j["blocked_normal_equations_s_by_block"] = blocks;
-  j["default_block"] = sysid::nn::DefaultBlock(P);
+  j["default_block"] = sysid::internal::nn::DefaultBlock(P);
   return j;
 }
 
@@ -224,12 +224,12 @@ void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, i
                   {"max_rel_diff", 0.0}});
   double t_best_1 = 0, t_best_all = 0;
   for (const Variant v : {Variant{"generic", 1}, Variant{"auto", 1}, Variant{"auto", all}}) {
-    if (!sysid::nn::SetKernelIsa(v.isa)) continue;
+    if (!sysid::internal::nn::SetKernelIsa(v.isa)) continue;
     auto normal = [&](Out* o) {
-      sysid::nn::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse, 0, v.threads);
+      sysid::internal::nn::NormalEquations(Z, y, H, theta, &o->JtJ, &o->g, &o->sse, 0, v.threads);
     };
     auto sumsq = [&](const Eigen::VectorXd& t) {
-      return sysid::nn::SumSquares(Z, y, H, t, v.threads);
+      return sysid::internal::nn::SumSquares(Z, y, H, t, v.threads);
     };
     Out out;
     const double t = Median(repeats, [&] { epoch(normal, sumsq, &out); });
@@ -238,7 +238,7 @@ void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, i
         std::max({(L - Lref).norm() / Lref.norm(), (out.g - ref.g).norm() / ref.g.norm(),
                   std::abs(out.sse - ref.sse) / ref.sse,
                   std::abs(sumsq(theta + ref.step) - ref.trial) / ref.trial});
-    rows.push_back({{"kernels", std::string(sysid::nn::KernelIsa())},
+    rows.push_back({{"kernels", std::string(sysid::internal::nn::KernelIsa())},
                     {"threads", v.threads},
                     {"epoch_s", t},
                     {"gflops", flops / t / 1e9},
@@ -246,7 +246,7 @@ void EpochTargets(const sysid::NeuralDataset& d, const Eigen::VectorXd& theta, i
                     {"step_rel_diff", (out.step - ref.step).norm() / ref.step.norm()}});
     if (std::string(v.isa) == "auto") (v.threads == 1 ? t_best_1 : t_best_all) = t;
   }
-  sysid::nn::SetKernelIsa("auto");
+  sysid::internal::nn::SetKernelIsa("auto");
   nlohmann::ordered_json j{{"what", "lm_epoch_targets"},
                            {"N", d.size()},
                            {"P", P},

@@ -13,7 +13,7 @@
 namespace sysid {
 namespace {
 
-using detail::CvodeSolver;
+using internal::CvodeSolver;
 
 // y' = -k y, k = 2 [1/s]: y(t) = y0 exp(-k t).
 int Decay(double, N_Vector y, N_Vector ydot, void*) {

@@ -23,7 +23,7 @@ struct Vectors {
   Vectors(int n, SUNContext ctx, std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-3.0, 3.0);
     N_Vector tmpl = N_VNew_Serial(n, ctx);
-    REQUIRE(detail::UseSmallVectorOps(tmpl));
+    REQUIRE(internal::UseSmallVectorOps(tmpl));
     for (int k = 0; k < 4; ++k) {
       ours[k] = N_VClone(tmpl);
       theirs[k] = N_VNew_Serial(n, ctx);
@@ -123,7 +123,7 @@ TEST_CASE("small vector operations are bit-identical to SUNDIALS' serial ones", 
   CHECK(cases == 4 * 17 * 3);
   // Other lengths keep SUNDIALS' operations.
   N_Vector big = N_VNew_Serial(5, ctx);
-  CHECK_FALSE(detail::UseSmallVectorOps(big));
+  CHECK_FALSE(internal::UseSmallVectorOps(big));
   CHECK(big->ops->nvlinearsum == &N_VLinearSum_Serial);
   N_VDestroy(big);
   SUNContext_Free(&ctx);

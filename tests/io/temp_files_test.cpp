@@ -24,7 +24,7 @@ TEST_CASE("SIGINT and SIGTERM remove registered temporary files", "[io][signals]
       std::signal(SIGTERM, SIG_DFL);
       std::ofstream(tmp) << "half";
       std::ofstream(kept) << "user";
-      const sysid::detail::TempFileGuard guard(tmp);
+      const sysid::internal::TempFileGuard guard(tmp);
       std::raise(sig);
       _exit(0);  // not reached: the default action ends the process
     }

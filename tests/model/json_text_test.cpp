@@ -5,9 +5,9 @@
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
 
-using sysid::detail::JsonDocument;
-using sysid::detail::NumberRule;
-using sysid::detail::Printable;
+using sysid::internal::JsonDocument;
+using sysid::internal::NumberRule;
+using sysid::internal::Printable;
 
 TEST_CASE("Printable escapes what a terminal would interpret, keeps text", "[json]") {
   CHECK(Printable("abc") == "abc");

@@ -25,7 +25,7 @@ Problem MakeProblem(int n, int H, int N, unsigned seed) {
   std::mt19937 gen(seed);
   std::uniform_real_distribution<double> U(-1, 1);
   Problem p{Eigen::MatrixXd(n, N), Eigen::VectorXd(N),
-            Eigen::VectorXd(sysid::nn::ParameterCount(n, H)), H};
+            Eigen::VectorXd(sysid::internal::nn::ParameterCount(n, H)), H};
   for (int k = 0; k < N; ++k) {
     for (int i = 0; i < n; ++i) p.Z(i, k) = U(gen);
     p.y[k] = U(gen);
@@ -42,10 +42,10 @@ TEST_CASE("the kernels read theta in the one parameter layout", "[nn][kernels]")
   // parts, w2' tanh(W1 z + b1) + b2 - y, by std::tanh.
   for (int n : {1, 2, 3}) {
     const Problem p = MakeProblem(n, 7, 40, 11u + static_cast<unsigned>(n));
-    const sysid::nn::ParameterLayout l{n, p.H};
+    const sysid::internal::nn::ParameterLayout l{n, p.H};
     REQUIRE(p.theta.size() == l.count());
     Eigen::VectorXd r;
-    sysid::nn::Residuals(p.Z, p.y, p.H, p.theta, &r);
+    sysid::internal::nn::Residuals(p.Z, p.y, p.H, p.theta, &r);
     for (Eigen::Index k = 0; k < p.Z.cols(); ++k) {
       double out = p.theta[l.b2()];
       for (int h = 0; h < p.H; ++h) {
@@ -56,8 +56,8 @@ TEST_CASE("the kernels read theta in the one parameter layout", "[nn][kernels]")
       CHECK(r[k] == Approx(out - p.y[k]).margin(1e-13));
     }
     // PackParameters and Weights are each other's inverse.
-    const sysid::nn::Weights w(p.theta, n, p.H);
-    CHECK(sysid::nn::PackParameters(w.W1, w.b1, w.w2, w.b2) == p.theta);
+    const sysid::internal::nn::Weights w(p.theta, n, p.H);
+    CHECK(sysid::internal::nn::PackParameters(w.W1, w.b1, w.w2, w.b2) == p.theta);
   }
 }
 
@@ -65,7 +65,7 @@ TEST_CASE("Jacobian matches central finite differences", "[nn][kernels]") {
   for (int n : {1, 2, 3}) {
     const Problem p = MakeProblem(n, 5, 37, 11u + static_cast<unsigned>(n));
     Eigen::MatrixXd J;
-    sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
+    sysid::internal::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
     const double h = 1e-6;
     Eigen::VectorXd rp, rm;
     double worst = 0;
@@ -73,8 +73,8 @@ TEST_CASE("Jacobian matches central finite differences", "[nn][kernels]") {
       Eigen::VectorXd tp = p.theta, tm = p.theta;
       tp[j] += h;
       tm[j] -= h;
-      sysid::nn::Residuals(p.Z, p.y, p.H, tp, &rp);
-      sysid::nn::Residuals(p.Z, p.y, p.H, tm, &rm);
+      sysid::internal::nn::Residuals(p.Z, p.y, p.H, tp, &rp);
+      sysid::internal::nn::Residuals(p.Z, p.y, p.H, tm, &rm);
       worst = std::max(worst, ((rp - rm) / (2 * h) - J.col(j)).cwiseAbs().maxCoeff());
     }
     // Central differences with h = 1e-6 on O(1) functions: truncation ~h^2, rounding ~1e-10.
@@ -85,15 +85,15 @@ TEST_CASE("Jacobian matches central finite differences", "[nn][kernels]") {
 TEST_CASE("blocked normal equations equal J'J and J'r of the whole Jacobian", "[nn][kernels]") {
   const Problem p = MakeProblem(2, 7, 1001, 5u);
   Eigen::MatrixXd J;
-  sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
+  sysid::internal::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
   Eigen::VectorXd r;
-  sysid::nn::Residuals(p.Z, p.y, p.H, p.theta, &r);
+  sysid::internal::nn::Residuals(p.Z, p.y, p.H, p.theta, &r);
   const Eigen::MatrixXd JtJ_ref = J.transpose() * J;
   for (int block : {1, 37, 256, 5000}) {
     Eigen::MatrixXd JtJ;
     Eigen::VectorXd g;
     double sse = 0;
-    sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ, &g, &sse, block);
+    sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ, &g, &sse, block);
     const Eigen::MatrixXd full = JtJ.selfadjointView<Eigen::Lower>();
     // Sums of ~1000 O(1) products in a different order: agreement to ~1e-12 relative.
     CHECK((full - JtJ_ref).cwiseAbs().maxCoeff() < 1e-10 * JtJ_ref.cwiseAbs().maxCoeff());
@@ -106,7 +106,7 @@ TEST_CASE("exp-based tanh agrees with std::tanh", "[nn][kernels]") {
   Eigen::ArrayXXd x(1, 2001);
   for (int k = 0; k < 2001; ++k) x(0, k) = -400.0 + 0.4 * k;
   Eigen::ArrayXXd t = x;
-  sysid::nn::TanhInPlace(t);
+  sysid::internal::nn::TanhInPlace(t);
   double worst = 0;
   for (int k = 0; k < 2001; ++k) worst = std::max(worst, std::abs(t(0, k) - std::tanh(x(0, k))));
   // 1 - 2/(e^2x + 1) loses at most a few ulps of 1 in absolute terms.
@@ -121,7 +121,7 @@ TEST_CASE("output-layer solve equals a QR least-squares fit", "[nn][kernels]") {
   p.theta.head(12) << 3.0, -2.0, 1.5, 4.0, -3.5, 2.5, -2.0, 1.0, 0.0, -1.0, 0.5, 2.0;
   Eigen::VectorXd theta = p.theta;
   Eigen::MatrixXd A;
-  const double sse = sysid::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta, &A);
+  const double sse = sysid::internal::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta, &A);
   // Reference: M = [tanh(W1 z + b1)' 1], solved by column-pivoting QR.
   Eigen::MatrixXd M(500, 7);
   for (int k = 0; k < 500; ++k) {
@@ -143,23 +143,23 @@ TEST_CASE("every instruction set's kernels agree with the generic ones to 1e-12"
     const Problem p = MakeProblem(n, 13, 2100, 40u + static_cast<unsigned>(n));
     auto run = [&](Eigen::MatrixXd* JtJ, Eigen::VectorXd* g, double* sse, Eigen::MatrixXd* J,
                    double* ss) {
-      sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, JtJ, g, sse);
-      sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, J);
-      *ss = sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta);
+      sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, p.theta, JtJ, g, sse);
+      sysid::internal::nn::Jacobian(p.Z, p.y, p.H, p.theta, J);
+      *ss = sysid::internal::nn::SumSquares(p.Z, p.y, p.H, p.theta);
     };
-    REQUIRE(sysid::nn::SetKernelIsa("generic"));
-    CHECK(std::string(sysid::nn::KernelIsa()) == "generic");
+    REQUIRE(sysid::internal::nn::SetKernelIsa("generic"));
+    CHECK(std::string(sysid::internal::nn::KernelIsa()) == "generic");
     Eigen::MatrixXd JtJ0, J0;
     Eigen::VectorXd g0;
     double sse0 = 0, ss0 = 0;
     run(&JtJ0, &g0, &sse0, &J0, &ss0);
-    const bool avx2 = sysid::nn::SetKernelIsa("avx2+fma");
+    const bool avx2 = sysid::internal::nn::SetKernelIsa("avx2+fma");
     if (!avx2) WARN("AVX2+FMA kernels not built or not supported by this CPU: generic only");
     Eigen::MatrixXd JtJ1, J1;
     Eigen::VectorXd g1;
     double sse1 = 0, ss1 = 0;
     run(&JtJ1, &g1, &sse1, &J1, &ss1);
-    REQUIRE(sysid::nn::SetKernelIsa("auto"));
+    REQUIRE(sysid::internal::nn::SetKernelIsa("auto"));
     const Eigen::MatrixXd L0 = JtJ0.triangularView<Eigen::Lower>();
     const Eigen::MatrixXd L1 = JtJ1.triangularView<Eigen::Lower>();
     CHECK((L1 - L0).norm() <= 1e-12 * L0.norm());
@@ -168,7 +168,7 @@ TEST_CASE("every instruction set's kernels agree with the generic ones to 1e-12"
     CHECK(std::abs(ss1 - ss0) <= 1e-12 * ss0);
     CHECK((J1 - J0).norm() <= 1e-12 * J0.norm());
   }
-  CHECK_FALSE(sysid::nn::SetKernelIsa("no-such-isa"));
+  CHECK_FALSE(sysid::internal::nn::SetKernelIsa("no-such-isa"));
 }
 
 TEST_CASE("normal equations and sums of squares are bit-identical for 1 and N threads",
@@ -178,27 +178,27 @@ TEST_CASE("normal equations and sums of squares are bit-identical for 1 and N th
   Eigen::MatrixXd JtJ1, JtJ2, JtJ3;
   Eigen::VectorXd g1, g2, g3;
   double sse1 = 0, sse2 = 0, sse3 = 0;
-  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ1, &g1, &sse1, 64, 1);
-  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ2, &g2, &sse2, 64, 2);
-  sysid::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ3, &g3, &sse3, 64, 3);
+  sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ1, &g1, &sse1, 64, 1);
+  sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ2, &g2, &sse2, 64, 2);
+  sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, p.theta, &JtJ3, &g3, &sse3, 64, 3);
   CHECK(JtJ1 == JtJ2);
   CHECK(JtJ1 == JtJ3);
   CHECK(g1 == g2);
   CHECK(g1 == g3);
   CHECK(sse1 == sse2);
   CHECK(sse1 == sse3);
-  CHECK(sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 1) ==
-        sysid::nn::SumSquares(p.Z, p.y, p.H, p.theta, 2));
+  CHECK(sysid::internal::nn::SumSquares(p.Z, p.y, p.H, p.theta, 1) ==
+        sysid::internal::nn::SumSquares(p.Z, p.y, p.H, p.theta, 2));
   Eigen::VectorXd theta1 = p.theta, theta2 = p.theta;
   Eigen::MatrixXd A1, A2;
-  const double out1 = sysid::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta1, &A1, 1);
-  const double out2 = sysid::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta2, &A2, 2);
+  const double out1 = sysid::internal::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta1, &A1, 1);
+  const double out2 = sysid::internal::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta2, &A2, 2);
   CHECK(out1 == out2);
   CHECK(theta1 == theta2);
   CHECK(A1 == A2);
   // And the chunked sums are the whole-Jacobian ones.
   Eigen::MatrixXd J;
-  sysid::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
+  sysid::internal::nn::Jacobian(p.Z, p.y, p.H, p.theta, &J);
   const Eigen::MatrixXd ref = J.transpose() * J;
   const Eigen::MatrixXd L = JtJ1.triangularView<Eigen::Lower>();
   const Eigen::MatrixXd Lref = ref.triangularView<Eigen::Lower>();
@@ -232,11 +232,11 @@ class OffsetBuffer {
 // Every output of every kernel of the active table for one problem, with all buffers placed
 // `offset` bytes past a 32-byte boundary.
 std::vector<std::vector<double>> RunKernelsAt(const Problem& prob, std::size_t offset) {
-  namespace isa = sysid::nn::isa;
+  namespace isa = sysid::internal::nn::isa;
   const isa::Table& k = isa::ActiveTable();
   const int n = static_cast<int>(prob.Z.rows()), H = prob.H;
   const long N = prob.Z.cols();
-  const auto P = static_cast<std::size_t>(sysid::nn::ParameterCount(n, H));
+  const auto P = static_cast<std::size_t>(sysid::internal::nn::ParameterCount(n, H));
   const auto uH = static_cast<std::size_t>(H), uN = static_cast<std::size_t>(N);
   OffsetBuffer Z(prob.Z.data(), prob.Z.size(), offset), y(prob.y.data(), uN, offset),
       theta(prob.theta.data(), P, offset);
@@ -274,7 +274,7 @@ TEST_CASE("every kernel's results are bit-identical wherever malloc puts the buf
   // aligned (glibc malloc), and where each lands depends on the heap's history (threads,
   // earlier work). Results must not depend on it, or training is not reproducible.
   for (const char* isa_name : {"generic", "avx2+fma"}) {
-    if (!sysid::nn::SetKernelIsa(isa_name)) {
+    if (!sysid::internal::nn::SetKernelIsa(isa_name)) {
       WARN(isa_name << " kernels not built or not supported by this CPU: skipped");
       continue;
     }
@@ -299,5 +299,5 @@ TEST_CASE("every kernel's results are bit-identical wherever malloc puts the buf
       }
     }
   }
-  REQUIRE(sysid::nn::SetKernelIsa("auto"));
+  REQUIRE(sysid::internal::nn::SetKernelIsa("auto"));
 }

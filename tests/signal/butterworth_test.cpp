@@ -16,7 +16,7 @@ namespace {
 // Coefficients of the product of the sections' numerators and denominators (highest power of
 // z^-1 last), to compare with a transfer-function design.
 std::pair<std::vector<double>, std::vector<double>> Polynomials(
-    const std::vector<detail::Biquad>& sections) {
+    const std::vector<internal::Biquad>& sections) {
   std::vector<double> b{1.0}, a{1.0};
   auto multiply = [](const std::vector<double>& p, std::vector<double> q) {
     while (!q.empty() && q.back() == 0.0) q.pop_back();
@@ -37,15 +37,15 @@ std::pair<std::vector<double>, std::vector<double>> Polynomials(
 TEST_CASE("Butterworth sections have the closed-form magnitude response", "[signal][butter]") {
   for (int order = 1; order <= 10; ++order) {
     for (double fc : {0.01, 0.05, 0.2, 0.45}) {
-      const auto sections = detail::DesignButterworthLowPass(order, fc);
+      const auto sections = internal::DesignButterworthLowPass(order, fc);
       CHECK(static_cast<int>(sections.size()) == (order + 1) / 2);
       for (double omega : {0.0, 0.3 * kPi * fc, 2 * kPi * fc, 1.7 * kPi * fc, 0.9 * kPi}) {
-        const double h2 = std::norm(detail::FrequencyResponse(sections, omega));
+        const double h2 = std::norm(internal::FrequencyResponse(sections, omega));
         // Same quantity through two formulas: relative rounding of a product of <= 10 factors.
         CHECK(h2 == Approx(ButterworthGain2(omega, fc, order)).epsilon(1e-9).margin(1e-300));
       }
       // Half power at the cut-off for every order (the Butterworth definition).
-      CHECK(std::norm(detail::FrequencyResponse(sections, 2 * kPi * fc)) ==
+      CHECK(std::norm(internal::FrequencyResponse(sections, 2 * kPi * fc)) ==
             Approx(0.5).epsilon(1e-10));
       for (const auto& s : sections) {  // stable: poles inside the unit circle
         const std::complex<double> disc = std::sqrt(std::complex<double>(s.a1 * s.a1 - 4 * s.a2));
@@ -77,7 +77,7 @@ TEST_CASE("Butterworth design matches scipy.signal.butter", "[signal][butter]") 
        {1.0, -1.9759016164414662, 2.0134730260003075, -1.1026179777777698, 0.3276183340001567,
         -0.04070948961666521}}};
   for (const auto& c : cases) {
-    const auto [b, a] = Polynomials(detail::DesignButterworthLowPass(c.order, c.wn / 2));
+    const auto [b, a] = Polynomials(internal::DesignButterworthLowPass(c.order, c.wn / 2));
     REQUIRE(b.size() == c.b.size());
     REQUIRE(a.size() == c.a.size());
     for (size_t i = 0; i < b.size(); ++i) {

@@ -73,9 +73,9 @@ TEST_CASE("Savitzky-Golay is exact on polynomials up to its order, ends included
 TEST_CASE("Savitzky-Golay interior weights equal the classical closed forms", "[signal][savgol]") {
   for (int m : {2, 5, 10, 25}) {
     for (int order : {2, 3}) {
-      const Eigen::MatrixXd w0 = detail::SavitzkyGolayWeights(2 * m + 1, order, 0);
-      const Eigen::MatrixXd w1 = detail::SavitzkyGolayWeights(2 * m + 1, order, 1);
-      const Eigen::MatrixXd w2 = detail::SavitzkyGolayWeights(2 * m + 1, order, 2);
+      const Eigen::MatrixXd w0 = internal::SavitzkyGolayWeights(2 * m + 1, order, 0);
+      const Eigen::MatrixXd w1 = internal::SavitzkyGolayWeights(2 * m + 1, order, 1);
+      const Eigen::MatrixXd w2 = internal::SavitzkyGolayWeights(2 * m + 1, order, 2);
       for (int s = -m; s <= m; ++s) {
         // QR solve versus rational closed form: rounding only.
         CHECK(w0(m, s + m) == Approx(SmoothWeight(m, s)).margin(1e-13));

@@ -358,7 +358,7 @@ TEST_CASE("the noise is seeded, standard-specified and close to N(0,1)", "[stage
   std::mt19937_64 e;
   e.discard(9999);
   CHECK(e() == 9981545732273789042ULL);
-  sysid::detail::PortableRandom a(5), b(5), c(6);
+  sysid::internal::PortableRandom a(5), b(5), c(6);
   double s1 = 0, s2 = 0, s4 = 0;
   bool differ = false, same_seed_same = true;
   const int n = 100000;

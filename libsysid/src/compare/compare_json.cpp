@@ -11,22 +11,22 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 Json ErrorsJson(const PredictionErrors& e) {
-  return {{"rmse_v", detail::NumberOrNull(e.rmse_v)},
-          {"peak_error_v", detail::NumberOrNull(e.peak_error_v)},
-          {"nrmse", detail::NumberOrNull(e.nrmse)},
-          {"r2", detail::NumberOrNull(e.r2)}};
+  return {{"rmse_v", internal::NumberOrNull(e.rmse_v)},
+          {"peak_error_v", internal::NumberOrNull(e.peak_error_v)},
+          {"nrmse", internal::NumberOrNull(e.nrmse)},
+          {"r2", internal::NumberOrNull(e.r2)}};
 }
 }  // namespace
 
 std::string ToJson(const PredictionErrors& errors, int indent) {
-  return detail::DumpJson(ErrorsJson(errors), indent);
+  return internal::DumpJson(ErrorsJson(errors), indent);
 }
 
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name) {
-  const detail::JsonDocument doc(text, source_name);
-  const detail::JsonNode root = doc.Root();
+  const internal::JsonDocument doc(text, source_name);
+  const internal::JsonNode root = doc.Root();
   root.ExpectObject({"rmse_v", "peak_error_v", "nrmse", "r2"});
-  using Rule = detail::NumberRule;
+  using Rule = internal::NumberRule;
   PredictionErrors e;
   e.rmse_v = root.Get("rmse_v").NumberOrNaN(Rule::NonNegative());
   e.peak_error_v = root.Get("peak_error_v").NumberOrNaN(Rule::NonNegative());
@@ -41,7 +41,7 @@ std::string ToJson(const InverseComparison& c, int indent) {
   j["samples"] = c.t_s.size();
   j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

@@ -16,15 +16,15 @@ std::string ToJson(const TrackingResult& r, int indent) {
   j["max_abs_u_v"] = r.max_abs_u_v;
   j["total_variation_v"] = r.total_variation_v;
   j["saturated_samples"] = r.saturated_samples;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 TrackingResult TrackingResultFromJson(std::string_view text, const std::string& source_name) {
-  const detail::JsonDocument doc(text, source_name);
-  const detail::JsonNode root = doc.Root();
+  const internal::JsonDocument doc(text, source_name);
+  const internal::JsonNode root = doc.Root();
   root.ExpectObject({"max_error_m", "rms_error_m", "rms_u_v", "max_abs_u_v", "total_variation_v",
                      "saturated_samples"});
-  using Rule = detail::NumberRule;
+  using Rule = internal::NumberRule;
   TrackingResult r;
   r.max_error_m = root.Get("max_error_m").Number(Rule::NonNegative());
   r.rms_error_m = root.Get("rms_error_m").Number(Rule::NonNegative());
@@ -39,7 +39,7 @@ std::string ToJson(const SchemeTracking& run, int indent) {
   nlohmann::ordered_json j = {{"ff", ToString(run.scheme)}};
   j.update(nlohmann::ordered_json::parse(ToJson(run.result, -1)));
   j["stage_limits"] = run.stage_limits;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 std::string TrackingSummaryToJson(const std::string& plant, const PositionReference& reference,
@@ -56,7 +56,7 @@ std::string TrackingSummaryToJson(const std::string& plant, const PositionRefere
     j["max_error_m"] = runs[0].result.max_error_m;
     j["rms_error_m"] = runs[0].result.rms_error_m;
   }
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

@@ -12,7 +12,7 @@
 #include "core/small_vector_ops.hpp"
 #include "sysid/error.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 namespace {
 
 /// What a flag means, in words a user can act on (CVODE's names are terse).
@@ -250,4 +250,4 @@ void CvodeSolver::HandleError(int code, const char* module, const char* function
   static_cast<CvodeSolver*>(self)->cvode_message_ = std::move(text);
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

@@ -17,7 +17,7 @@
 
 #include <string>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// CVODE's counters summed over re-initialisations (CVodeReInit zeroes CVODE's own).
 struct CvodeCounters {
@@ -122,6 +122,6 @@ class CvodeSolver {
   SUNNonlinearSolver fixed_point_ = nullptr;
 };
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_CORE_CVODE_SOLVER_HPP_

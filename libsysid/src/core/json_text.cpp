@@ -9,7 +9,7 @@
 
 #include "sysid/error.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 std::string TextPosition(std::string_view text, size_t pos) {
   long line = 1, col = 1;
@@ -472,4 +472,4 @@ std::string DumpJson(const nlohmann::ordered_json& j, int indent) {
   return j.dump(indent) + "\n";
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

@@ -12,7 +12,7 @@
 
 #include "sysid/termination.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// "LINE:COLUMN" (1-based) of byte offset `pos` in `text`.
 std::string TextPosition(std::string_view text, size_t pos);
@@ -151,6 +151,6 @@ Termination TerminationFromJson(const JsonNode& node);
 /// ModelToJson).
 std::string DumpJson(const nlohmann::ordered_json& j, int indent);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_CORE_JSON_TEXT_HPP_

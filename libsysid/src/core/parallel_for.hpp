@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Threads to use for a request of `requested` (0 or less: all hardware threads), at most
 /// `items` and at least 1.
@@ -56,6 +56,6 @@ void ParallelFor(long count, int threads, const F& f) {
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_CORE_PARALLEL_FOR_HPP_

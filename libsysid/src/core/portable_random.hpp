@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <random>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 class PortableRandom {
  public:
@@ -48,6 +48,6 @@ class PortableRandom {
   std::mt19937_64 engine_;
 };
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_CORE_PORTABLE_RANDOM_HPP_

@@ -6,7 +6,7 @@
 // file is compiled with -ffp-contract=off (libsysid/CMakeLists.txt), so -march=native does not
 // fuse them.
 
-namespace sysid::detail {
+namespace sysid::internal {
 namespace {
 
 template <int N>
@@ -132,4 +132,4 @@ bool UseSmallVectorOps(N_Vector v) {
   }
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

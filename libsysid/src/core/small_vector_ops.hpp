@@ -15,13 +15,13 @@
 
 #include <nvector/nvector_serial.h>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Installs the fixed-length operations on serial vector `v` when its length is 1 to 4
 /// (vectors cloned from it afterwards inherit them: call before CVodeInit). Returns false, and
 /// leaves `v` as it is, for other lengths.
 bool UseSmallVectorOps(N_Vector v);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_CORE_SMALL_VECTOR_OPS_HPP_

@@ -11,7 +11,7 @@
 
 namespace sysid {
 namespace {
-using detail::JsonNode;
+using internal::JsonNode;
 using Json = nlohmann::ordered_json;
 constexpr long kMaxCount = std::numeric_limits<long>::max();
 }  // namespace
@@ -33,16 +33,16 @@ std::string ToJson(const DelayTuningResult& r, int indent) {
   for (const auto& [t, f] : r.curve) c.push_back({{"tau", t}, {"cost", f}});
   j["curve"] = c;
   j["model"] = Json::parse(ModelToJson(r.model, -1));
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 DelayTuningResult DelayTuningResultFromJson(std::string_view text, const std::string& source_name) {
-  const detail::JsonDocument doc(text, source_name);
+  const internal::JsonDocument doc(text, source_name);
   const JsonNode root = doc.Root();
   root.ExpectObject({"tau", "cost", "rms_error_mps", "evaluations", "simulations", "segments",
                      "samples", "termination", "message", "wall_time_s", "warnings", "curve",
                      "model"});
-  using Rule = detail::NumberRule;
+  using Rule = internal::NumberRule;
   DelayTuningResult r;
   r.tau_s = root.Get("tau").Number(Rule::NonNegative());
   r.cost = root.Get("cost").Number(Rule::NonNegative());
@@ -51,7 +51,7 @@ DelayTuningResult DelayTuningResultFromJson(std::string_view text, const std::st
   r.simulations = root.Get("simulations").Integer(0, kMaxCount);
   r.segments = static_cast<int>(root.Get("segments").Integer(0, 1L << 30));
   r.samples = root.Get("samples").Integer(0, kMaxCount);
-  r.termination = detail::TerminationFromJson(root.Get("termination"));
+  r.termination = internal::TerminationFromJson(root.Get("termination"));
   r.message = root.Get("message").String();
   r.wall_time_s = root.Get("wall_time_s").Number(Rule::NonNegative());
   const JsonNode w = root.Get("warnings");
@@ -64,7 +64,7 @@ DelayTuningResult DelayTuningResultFromJson(std::string_view text, const std::st
     e.ExpectObject({"tau", "cost"});
     r.curve.emplace_back(e.Get("tau").Number(), e.Get("cost").NumberOrNaN());
   }
-  r.model = detail::ModelFromJson(doc, root.Get("model"), {"units"});
+  r.model = internal::ModelFromJson(doc, root.Get("model"), {"units"});
   return r;
 }
 
@@ -72,7 +72,7 @@ std::string ToJson(const RefineResult& r, int indent) {
   Json j = Json::parse(ModelToJson(r.model, -1));
   Json se = Json::object();
   for (size_t i = 0; i < r.names.size(); ++i)
-    se[r.names[i]] = detail::NumberOrNull(r.std_error[static_cast<Eigen::Index>(i)]);
+    se[r.names[i]] = internal::NumberOrNull(r.std_error[static_cast<Eigen::Index>(i)]);
   j["diagnostics"] = {{"method", "output-error"},
                       {"std_error", se},
                       {"initial_cost", r.initial_cost},
@@ -83,19 +83,19 @@ std::string ToJson(const RefineResult& r, int indent) {
                       {"termination", ToString(r.termination)},
                       {"message", r.message},
                       {"warnings", r.warnings}};
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 RefineResult RefineResultFromJson(std::string_view text, const std::string& source_name) {
   RefineResult r;
-  const detail::JsonDocument doc(text, source_name);
-  r.model = detail::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
+  const internal::JsonDocument doc(text, source_name);
+  r.model = internal::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
   const JsonNode d = doc.Root().Get("diagnostics");
   d.ExpectObject({"method", "std_error", "initial_cost", "final_cost", "rms_error_mps",
                   "iterations", "simulations", "termination", "message", "warnings",
                   "wall_time_s"});
   if (d.Get("method").String() != "output-error") d.Get("method").Expected("\"output-error\"");
-  using Rule = detail::NumberRule;
+  using Rule = internal::NumberRule;
   // std_error keeps the order written (the refined parameters' order): read the raw object.
   const JsonNode se = d.Get("std_error");
   se.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau"});
@@ -112,7 +112,7 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
   r.rms_error_mps = d.Get("rms_error_mps").Number(Rule::NonNegative());
   r.iterations = static_cast<int>(d.Get("iterations").Integer(0, 1L << 30));
   r.simulations = d.Get("simulations").Integer(0, kMaxCount);
-  r.termination = detail::TerminationFromJson(d.Get("termination"));
+  r.termination = internal::TerminationFromJson(d.Get("termination"));
   r.message = d.Get("message").String();
   // Files written before warnings existed have none; older ones carried wall_time_s.
   if (d.Has("warnings")) {

@@ -126,15 +126,15 @@ FrictionModel Apply(FrictionModel m, const Layout& l, const double* z) {
 struct VelocityError {
   const FrictionModel* base;
   const Layout* layout;
-  const std::vector<detail::SimSegment>* segments;
-  detail::SimulationSettings settings;
+  const std::vector<internal::SimSegment>* segments;
+  internal::SimulationSettings settings;
   std::atomic<long>* simulations;
   bool operator()(double const* const* z, double* residuals) const {
     const FrictionModel m = Apply(*base, *layout, z[0]);
     Eigen::VectorXd r;
     std::string failure;
     try {
-      if (!detail::SegmentResiduals(m, *segments, settings, &r, &failure, simulations))
+      if (!internal::SegmentResiduals(m, *segments, settings, &r, &failure, simulations))
         return false;  // Ceres shrinks the step
     } catch (const std::exception&) {
       return false;  // never let an exception cross Ceres' frames
@@ -157,14 +157,14 @@ RefineResult RefineOutputError(const FrictionModel& initial,
   for (const auto& r : recordings) motions.push_back(ExtractMotion(r, options.motion));
   SegmentOptions so;
   so.detection = options.detection;
-  const auto segments = detail::MakeSegments(motions, so, options.motion);
-  const Eigen::Index n = detail::SegmentSamples(segments);
+  const auto segments = internal::MakeSegments(motions, so, options.motion);
+  const Eigen::Index n = internal::SegmentSamples(segments);
   const Layout layout = MakeLayout(initial, options);
   const int np = static_cast<int>(layout.names.size());
   std::vector<double> z(static_cast<size_t>(np));
   {
     // At tau = 0 the cost is flat below the simulated-delay floor, so the search starts inside.
-    const double tau0 = options.refine_tau && initial.tau_s < 2 * detail::kMinSimulatedDelay_s
+    const double tau0 = options.refine_tau && initial.tau_s < 2 * internal::kMinSimulatedDelay_s
                             ? std::min(1e-3, 0.5 * options.tau_max_s)
                             : initial.tau_s;
     const double p[] = {initial.a1p, initial.a1n, initial.a2p, initial.a2n, initial.a3, tau0};

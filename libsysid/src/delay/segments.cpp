@@ -23,7 +23,7 @@ void SegmentOptions::Validate() const {
                     rest_speed_mps));
 }
 
-namespace detail {
+namespace internal {
 namespace {
 
 // Same input pattern, start state and sample times relative to the start (to 1e-9 s).
@@ -167,5 +167,5 @@ bool SegmentResiduals(const FrictionModel& model_in, const std::vector<SimSegmen
   return true;
 }
 
-}  // namespace detail
+}  // namespace internal
 }  // namespace sysid

@@ -12,7 +12,7 @@
 #include "sysid/identify.hpp"
 #include "sysid/model.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Delays below this are simulated as 0 [s]: the simulator's step is bounded by tau, so its
 /// cost grows as 1/tau, while 50 us is 1/20 of a 1 kHz sample and below any delay that
@@ -60,6 +60,6 @@ bool SegmentResiduals(const FrictionModel& model, const std::vector<SimSegment>&
                       const SimulationSettings& settings, Eigen::VectorXd* residuals,
                       std::string* failure, std::atomic<long>* counter);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_DELAY_SEGMENTS_HPP_

@@ -49,11 +49,11 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
   if (recordings.empty()) throw OptionsError("TuneDelay: no recordings given");
   std::vector<MotionSignals> motions;
   for (const auto& r : recordings) motions.push_back(ExtractMotion(r, options.motion));
-  const auto segments = detail::MakeSegments(motions, options.segments, options.motion);
+  const auto segments = internal::MakeSegments(motions, options.segments, options.motion);
   DelayTuningResult result;
   result.segments = static_cast<int>(segments.size());
-  result.samples = detail::SegmentSamples(segments);
-  const detail::SimulationSettings sim{options.sim_rtol, options.sim_atol, options.threads};
+  result.samples = internal::SegmentSamples(segments);
+  const internal::SimulationSettings sim{options.sim_rtol, options.sim_atol, options.threads};
   std::atomic<long> simulations{0};
   std::string first_failure;
   Eigen::VectorXd residuals;
@@ -62,7 +62,7 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
     FrictionModel m = model;
     m.tau_s = tau;
     std::string failure;
-    if (!detail::SegmentResiduals(m, segments, sim, &residuals, &failure, &simulations)) {
+    if (!internal::SegmentResiduals(m, segments, sim, &residuals, &failure, &simulations)) {
       if (first_failure.empty()) first_failure = fmt::format("tau = {:.6g} s: {}", tau, failure);
       // The rule `simulate` applies: a model that cannot be simulated is a numerical failure,
       // found at the first evaluation instead of after the whole budget.
@@ -74,13 +74,13 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
     ++successes;
     return residuals.squaredNorm();
   };
-  detail::ScalarSearchOptions so;
+  internal::ScalarSearchOptions so;
   so.lo = options.tau_min_s;
   so.hi = options.tau_max_s;
   so.coarse_evaluations = options.coarse_evaluations;
   so.max_evaluations = options.max_evaluations;
   so.x_tolerance = options.x_tolerance_s;
-  const auto search = detail::MinimizeScalar(cost, so);
+  const auto search = internal::MinimizeScalar(cost, so);
   result.tau_s = search.x;
   result.cost = search.f;
   result.evaluations = search.evaluations;

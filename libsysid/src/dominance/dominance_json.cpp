@@ -35,7 +35,7 @@ Json ResultJson(const DominanceResult& r) {
   for (const auto& s : r.ranking) rank.push_back(StatsJson(s, true));
   j["ranking"] = rank;
   j["dominant"] = r.dominant;
-  j["margin"] = detail::NumberOrNull(r.margin);
+  j["margin"] = internal::NumberOrNull(r.margin);
   Json terms = Json::array();
   for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
   j["terms"] = terms;
@@ -50,21 +50,21 @@ Json ResultJson(const DominanceResult& r) {
 }  // namespace
 
 std::string ToJson(const DominanceResult& result, int indent) {
-  return detail::DumpJson(ResultJson(result), indent);
+  return internal::DumpJson(ResultJson(result), indent);
 }
 
 DominanceResult DominanceResultFromJson(std::string_view text, const std::string& source_name) {
-  const detail::JsonDocument doc(text, source_name);
-  const detail::JsonNode root = doc.Root();
+  const internal::JsonDocument doc(text, source_name);
+  const internal::JsonNode root = doc.Root();
   root.ExpectObject({"source", "ranking", "dominant", "margin", "terms", "peak_ratio",
                      "pointwise_ratio_quantile", "pointwise_ratio_max", "samples",
                      "moving_samples"});
-  using Rule = detail::NumberRule;
-  auto stats = [&](const detail::JsonNode& list, bool ranking) {
+  using Rule = internal::NumberRule;
+  auto stats = [&](const internal::JsonNode& list, bool ranking) {
     list.ExpectArray();
     std::vector<TermStats> out;
     for (size_t i = 0; i < list.Size(); ++i) {
-      const detail::JsonNode e = list.Element(i);
+      const internal::JsonNode e = list.Element(i);
       if (ranking)
         e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max",
                         "negligible"});
@@ -122,7 +122,7 @@ std::string ToJson(const DominanceSummary& s, int indent) {
   Json per = Json::array();
   for (const auto& r : s.results) per.push_back(ResultJson(r));
   j["recordings"] = per;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

@@ -15,8 +15,8 @@
 namespace sysid {
 namespace {
 
-using detail::JsonNode;
-using detail::NumberOrNull;
+using internal::JsonNode;
+using internal::NumberOrNull;
 using Json = nlohmann::ordered_json;
 
 // The model's keys first (a valid model file), the diagnostics after them.
@@ -62,7 +62,7 @@ Json Parameters(const std::vector<std::string>& names, const Eigen::VectorXd& es
     const auto k = static_cast<Eigen::Index>(i);
     p[names[i]] = {{"estimate", est[k]}, {"std_error", NumberOrNull(se[k])}};
   }
-  return {{"parameters", p}, {"covariance_order", names}, {"covariance", detail::MatrixJson(cov)}};
+  return {{"parameters", p}, {"covariance_order", names}, {"covariance", internal::MatrixJson(cov)}};
 }
 
 void ReadParameters(const JsonNode& d, std::vector<std::string>& names, Eigen::VectorXd& est,
@@ -82,7 +82,7 @@ void ReadParameters(const JsonNode& d, std::vector<std::string>& names, Eigen::V
     est[k] = e.Get("estimate").Number();
     se[k] = e.Get("std_error").NumberOrNaN();
   }
-  cov = detail::MatrixFromJson(d.Get("covariance"), names.size(), names.size());
+  cov = internal::MatrixFromJson(d.Get("covariance"), names.size(), names.size());
 }
 
 PulseStatus PulseStatusFromJson(const JsonNode& node) {
@@ -97,9 +97,9 @@ PulseStatus PulseStatusFromJson(const JsonNode& node) {
 }
 
 // The model (checked as a model file) and the "diagnostics" object of `method` with `keys`.
-JsonNode Diagnostics(const detail::JsonDocument& doc, const std::string& method,
+JsonNode Diagnostics(const internal::JsonDocument& doc, const std::string& method,
                      const std::vector<std::string>& keys, FrictionModel& model) {
-  model = detail::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
+  model = internal::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
   const JsonNode d = doc.Root().Get("diagnostics");
   d.ExpectObject(keys);
   if (d.Get("method").String() != method) d.Get("method").Expected("\"" + method + "\"");
@@ -137,13 +137,13 @@ std::string ToJson(const PulseIdentificationResult& r, int indent) {
     d["pulses"] = pulses;
   }
   j["diagnostics"] = d;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view text,
                                                             const std::string& source_name) {
   PulseIdentificationResult r;
-  const detail::JsonDocument doc(text, source_name);
+  const internal::JsonDocument doc(text, source_name);
   const JsonNode d = Diagnostics(
       doc, "pulse",
       {"method", "a3_given", "parameters", "covariance_order", "covariance", "rows", "rank", "dof",
@@ -170,7 +170,7 @@ PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view tex
       PulseEstimate e;
       e.pulse.source = p.Get("source").String();
       e.pulse.t_start_s = p.Get("t_start_s").Number();
-      e.pulse.duration_s = p.Get("duration_s").Number(detail::NumberRule::NonNegative());
+      e.pulse.duration_s = p.Get("duration_s").Number(internal::NumberRule::NonNegative());
       e.pulse.amplitude_v = p.Get("amplitude_v").Number();
       e.v_mps = p.Get("v_mps").NumberOrNaN();
       e.v_stderr_mps = p.Get("v_stderr_mps").NumberOrNaN();
@@ -193,7 +193,7 @@ std::string ToJson(const TrajectoryIdentificationResult& r, int indent) {
   d["samples_used"] = r.samples_used;
   d["linear_fit"] = FitStatistics(r.fit);
   d["linear_fit"]["theta_names"] = r.fit.names;
-  d["linear_fit"]["theta"] = detail::VectorJson(r.fit.theta);
+  d["linear_fit"]["theta"] = internal::VectorJson(r.fit.theta);
   d["relative_error"] = r.relative_error;
   if (!r.tau_curve.empty()) {
     Json c = Json::array();
@@ -201,13 +201,13 @@ std::string ToJson(const TrajectoryIdentificationResult& r, int indent) {
     d["tau_curve"] = c;
   }
   j["diagnostics"] = d;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
     std::string_view text, const std::string& source_name) {
   TrajectoryIdentificationResult r;
-  const detail::JsonDocument doc(text, source_name);
+  const internal::JsonDocument doc(text, source_name);
   const JsonNode d =
       Diagnostics(doc, "trajectory",
                   {"method", "derivative", "parameters", "covariance_order", "covariance",
@@ -228,7 +228,7 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
   const JsonNode names = f.Get("theta_names");
   names.ExpectArray();
   for (size_t i = 0; i < names.Size(); ++i) r.fit.names.push_back(names.Element(i).String(true));
-  r.fit.theta = detail::VectorFromJson(f.Get("theta"), r.fit.names.size());
+  r.fit.theta = internal::VectorFromJson(f.Get("theta"), r.fit.names.size());
   r.relative_error = d.Get("relative_error").NumberOrNaN();
   if (d.Has("tau_curve")) {
     const JsonNode c = d.Get("tau_curve");

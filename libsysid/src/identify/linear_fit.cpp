@@ -8,7 +8,7 @@
 
 #include "sysid/error.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 // A column whose pivot falls below 1e-10 of the largest (after scaling every column to unit
 // norm) is numerically a combination of the others: beyond what 1 kHz data can separate.
@@ -76,4 +76,4 @@ LinearFitOutcome SolveLinearFit(const Eigen::MatrixXd& X, const Eigen::VectorXd&
   return out;
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

@@ -8,7 +8,7 @@
 
 #include "sysid/identify.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Solves y ~ X theta by column-pivoted Householder QR. When X is rank deficient the result has
 /// rank < cols and `unidentified` lists the parameters of the pivots beyond the rank (theta is
@@ -24,6 +24,6 @@ LinearFitOutcome SolveLinearFit(const Eigen::MatrixXd& X, const Eigen::VectorXd&
 /// X D with D = diag(1 / |X_j|). Used for the rank test only.
 double RelativeRankThreshold();
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_IDENTIFY_LINEAR_FIT_HPP_

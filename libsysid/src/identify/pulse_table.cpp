@@ -96,7 +96,7 @@ PulseIdentificationResult FitPulseTable(const std::vector<PulsePoint>& points,
       ++row;
     }
   }
-  auto outcome = detail::SolveLinearFit(X, y, {"a1p", "a2p", "a1n", "a2n"});
+  auto outcome = internal::SolveLinearFit(X, y, {"a1p", "a2p", "a1n", "a2n"});
   if (!outcome.unidentified.empty()) {
     std::string names;
     for (const auto& s : outcome.unidentified) names += (names.empty() ? "" : ", ") + s;

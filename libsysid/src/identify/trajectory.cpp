@@ -142,15 +142,15 @@ TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recordin
   result.derivative = options.motion.derivative.method;
   double tau = options.tau_s;
   if (options.tune_delay) {
-    detail::ScalarSearchOptions so;
+    internal::ScalarSearchOptions so;
     so.lo = options.tau_min_s;
     so.hi = options.tau_max_s;
     so.x_tolerance = 1e-3 * motions.front().dt_s;  // far below what the data can resolve
-    const auto search = detail::MinimizeScalar(
+    const auto search = internal::MinimizeScalar(
         [&](double t) {
           const Regression r = Build(motions, options, t);
           if (r.X.rows() <= r.X.cols()) return std::numeric_limits<double>::infinity();
-          auto out = detail::SolveLinearFit(r.X, r.y, ThetaNames(options));
+          auto out = internal::SolveLinearFit(r.X, r.y, ThetaNames(options));
           if (!out.unidentified.empty()) return std::numeric_limits<double>::infinity();
           return out.fit.residuals.squaredNorm();
         },
@@ -172,7 +172,7 @@ TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recordin
   if (reg.X.rows() <= reg.X.cols())
     throw NumericalError(fmt::format("only {} moving samples: not enough for {} parameters",
                                      reg.X.rows(), reg.X.cols()));
-  auto outcome = detail::SolveLinearFit(reg.X, reg.y, ThetaNames(options));
+  auto outcome = internal::SolveLinearFit(reg.X, reg.y, ThetaNames(options));
   if (!outcome.unidentified.empty()) {
     std::string names;
     for (auto s : outcome.unidentified) {

@@ -42,7 +42,7 @@ void WriteFileAtomically(const std::string& path, std::string_view content) {
   std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmpl.data());
   if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
-  const detail::TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
+  const internal::TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
   const char* p = content.data();
   size_t left = content.size();
   while (left > 0) {

@@ -26,7 +26,7 @@ std::string RecordingShapeToJson(const Recording& r, int indent) {
   nlohmann::ordered_json units = nlohmann::ordered_json::object();
   for (const auto& n : r.names) units[n] = ColumnUnit(n);
   j["units"] = units;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

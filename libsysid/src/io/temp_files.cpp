@@ -6,7 +6,7 @@
 #include <csignal>
 #include <cstring>
 
-namespace sysid::detail {
+namespace sysid::internal {
 namespace {
 
 constexpr int kSlots = 64;
@@ -56,4 +56,4 @@ TempFileGuard::~TempFileGuard() {
   if (slot_ >= 0) g_state[slot_].store(0);
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

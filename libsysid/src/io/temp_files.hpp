@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Registers `path` until the guard is destroyed. The signal handlers are installed at
 /// registration, only where the program left the default disposition (its own handlers win). Paths longer than 4095 bytes, or more than 64 at once, are simply not registered.
@@ -21,6 +21,6 @@ class TempFileGuard {
   int slot_ = -1;
 };
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_IO_TEMP_FILES_HPP_

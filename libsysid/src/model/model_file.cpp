@@ -8,7 +8,7 @@
 #include "sysid/model.hpp"
 
 namespace sysid {
-namespace detail {
+namespace internal {
 FrictionModel ModelFromJson(const JsonDocument& doc, const JsonNode& node,
                             const std::vector<std::string>& allowed_extra) {
   node.ExpectObject({"a1p", "a1n", "a2p", "a2n", "a3", "tau"}, allowed_extra);
@@ -29,12 +29,12 @@ FrictionModel ModelFromJson(const JsonDocument& doc, const JsonNode& node,
   }
   return m;
 }
-}  // namespace detail
+}  // namespace internal
 
 FrictionModel ParseModel(std::string_view json_text, const std::string& source) {
-  const detail::JsonDocument doc(json_text, source);
+  const internal::JsonDocument doc(json_text, source);
   // Reports and comments may ride along: "diagnostics", "units", "note", "model", "_anything".
-  return detail::ModelFromJson(doc, doc.Root(), {"diagnostics", "units", "note", "model"});
+  return internal::ModelFromJson(doc, doc.Root(), {"diagnostics", "units", "note", "model"});
 }
 
 FrictionModel ReadModel(const std::string& path) { return ParseModel(ReadFile(path), path); }

@@ -9,13 +9,13 @@
 #include "core/json_text.hpp"
 #include "sysid/model.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Reads a1p, a1n, a2p, a2n, a3 and optional tau from the object `node` of `doc` (other keys:
 /// `allowed_extra` or '_' comments) and validates the model; errors name SOURCE:LINE:COL.
 FrictionModel ModelFromJson(const JsonDocument& doc, const JsonNode& node,
                             const std::vector<std::string>& allowed_extra);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_MODEL_MODEL_JSON_HPP_

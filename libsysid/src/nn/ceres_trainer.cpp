@@ -14,7 +14,7 @@
 #include "nn/mlp_kernels.hpp"
 #include "nn/trainers.hpp"
 
-namespace sysid::nn {
+namespace sysid::internal::nn {
 namespace {
 
 class BlockCost final : public ceres::CostFunction {
@@ -194,4 +194,4 @@ TrainerRun RunCeres(const NormalizedData& train, const NormalizedData* validatio
   return run;
 }
 
-}  // namespace sysid::nn
+}  // namespace sysid::internal::nn

@@ -13,7 +13,7 @@
 #include "nn/mlp_kernels.hpp"
 #include "nn/trainers.hpp"
 
-namespace sysid::nn {
+namespace sysid::internal::nn {
 namespace {
 
 std::string Fmt(double x) {
@@ -181,4 +181,4 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   return run;
 }
 
-}  // namespace sysid::nn
+}  // namespace sysid::internal::nn

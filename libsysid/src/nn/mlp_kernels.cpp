@@ -11,7 +11,7 @@
 #include "core/parallel_for.hpp"
 #include "nn/mlp_kernels_isa.hpp"
 
-namespace sysid::nn {
+namespace sysid::internal::nn {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -133,7 +133,7 @@ double SumSquares(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& t
   const isa::Problem p = MakeProblem(Z, y, H, theta);
   const isa::Table& k = Kernels();
   double part[kChunks] = {};
-  detail::ParallelFor(ch.C, threads, [&](long c) {
+  internal::ParallelFor(ch.C, threads, [&](long c) {
     part[c] = k.sum_squares_chunk(p, ch.First(c), ch.Count(c), ch.B);
   });
   double sse = 0;
@@ -180,7 +180,7 @@ void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd
   std::vector<MatrixXd> JtJ_part(static_cast<std::size_t>(std::max<Index>(ch.C - 1, 0)));
   std::vector<VectorXd> g_part(JtJ_part.size());
   double sse_part[kChunks] = {};
-  detail::ParallelFor(ch.C, threads, [&](long c) {
+  internal::ParallelFor(ch.C, threads, [&](long c) {
     double* jtj = JtJ->data();
     double* gp = g->data();
     if (c > 0) {
@@ -210,7 +210,7 @@ double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* t
   A->resize(H, Z.cols());
   std::vector<MatrixXd> G(static_cast<std::size_t>(ch.C));
   std::vector<VectorXd> c(G.size());
-  detail::ParallelFor(ch.C, threads, [&](long i) {
+  internal::ParallelFor(ch.C, threads, [&](long i) {
     G[i].setZero(H + 1, H + 1);
     c[i].setZero(H + 1);
     k.output_normal_chunk(p, ch.First(i), ch.Count(i), ch.B, G[i].data(), c[i].data(),
@@ -231,7 +231,7 @@ double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* t
   (*theta)[ParameterLayout{n, H}.b2()] = sol[H];
   const isa::Problem solved = MakeProblem(Z, y, H, *theta);
   double part[kChunks] = {};
-  detail::ParallelFor(ch.C, threads, [&](long i) {
+  internal::ParallelFor(ch.C, threads, [&](long i) {
     part[i] = k.output_sse_chunk(solved, ch.First(i), ch.Count(i), A->data() + ch.First(i) * H);
   });
   double sse = 0;
@@ -239,4 +239,4 @@ double SolveOutputLayer(const MatrixXd& Z, const VectorXd& y, int H, VectorXd* t
   return sse;
 }
 
-}  // namespace sysid::nn
+}  // namespace sysid::internal::nn

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-namespace sysid::nn {
+namespace sysid::internal::nn {
 
 /// Where each part of theta = [W1 (H x n, row-major), b1, w2, b2] starts: the one definition of
 /// the network's parameter layout (the kernels in mlp_kernels_impl.inc, which may not include
@@ -94,6 +94,6 @@ const char* KernelIsa();
 /// lacks it. For tests and benchmarks; not thread-safe against running kernels.
 bool SetKernelIsa(const char* name);
 
-}  // namespace sysid::nn
+}  // namespace sysid::internal::nn
 
 #endif  // SYSID_SRC_NN_MLP_KERNELS_HPP_

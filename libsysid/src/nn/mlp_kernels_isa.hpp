@@ -6,7 +6,7 @@
 #ifndef SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_
 #define SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_
 
-namespace sysid::nn::isa {
+namespace sysid::internal::nn::isa {
 
 /// One network and data set in normalised units. Z is n x N column-major (one column per
 /// sample); theta = [W1 (H x n, row-major), b1, w2, b2].
@@ -48,12 +48,12 @@ namespace generic {
 extern const Table kTable;
 }
 
-/// The table in use (nn::SetKernelIsa chooses it); lets tests call the raw kernels.
+/// The table in use (internal::nn::SetKernelIsa chooses it); lets tests call the raw kernels.
 const Table& ActiveTable();
 namespace avx2 {
 extern const Table kTable;  // defined only when SYSID_HAVE_AVX2_KERNELS is set
 }
 
-}  // namespace sysid::nn::isa
+}  // namespace sysid::internal::nn::isa
 
 #endif  // SYSID_SRC_NN_MLP_KERNELS_ISA_HPP_

@@ -16,13 +16,13 @@ namespace {
 // cannot make the reader allocate gigabytes.
 constexpr long kMaxHidden = 100000;
 
-ScaledVariable ReadVariable(const detail::JsonNode& v) {
+ScaledVariable ReadVariable(const internal::JsonNode& v) {
   v.ExpectObject({"name", "unit", "min", "max"});
   ScaledVariable s;
   s.name = v.Get("name").String(/*non_empty=*/true);
   s.unit = v.Has("unit") ? v.Get("unit").String() : DefaultUnit(s.name);
   s.min = v.Get("min").Number();
-  const detail::JsonNode max = v.Get("max");
+  const internal::JsonNode max = v.Get("max");
   s.max = max.Number();
   if (!(s.min < s.max))
     max.Expected("a number > min (" + nlohmann::json(s.min).dump() + ")");
@@ -32,20 +32,20 @@ ScaledVariable ReadVariable(const detail::JsonNode& v) {
 }  // namespace
 
 NeuralNetwork ParseNeuralNetwork(std::string_view json_text, const std::string& source) {
-  const detail::JsonDocument doc(json_text, source);
-  const detail::JsonNode root = doc.Root();
+  const internal::JsonDocument doc(json_text, source);
+  const internal::JsonNode root = doc.Root();
   root.ExpectObject({"type", "inputs", "output", "hidden", "W1", "b1", "W2", "b2", "note",
                      "training"});
   if (root.Has("type") && root.Get("type").json() != "tanh-mlp")
     root.Get("type").Expected("\"tanh-mlp\" (one hidden tanh layer, linear output)");
-  const detail::JsonNode jin = root.Get("inputs");
+  const internal::JsonNode jin = root.Get("inputs");
   jin.ExpectArray(0, /*non_empty=*/true);
   std::vector<ScaledVariable> inputs;
   for (size_t i = 0; i < jin.Size(); ++i) inputs.push_back(ReadVariable(jin.Element(i)));
   const ScaledVariable output = ReadVariable(root.Get("output"));
   const int H = static_cast<int>(root.Get("hidden").Integer(1, kMaxHidden));
   const int n = static_cast<int>(inputs.size());
-  const detail::JsonNode jw1 = root.Get("W1");
+  const internal::JsonNode jw1 = root.Get("W1");
   jw1.ExpectArray(static_cast<size_t>(H));
   // Sizes are checked before the network is allocated.
   const auto b1 = root.Get("b1").Numbers(static_cast<size_t>(H));
@@ -55,13 +55,13 @@ NeuralNetwork ParseNeuralNetwork(std::string_view json_text, const std::string& 
   Eigen::MatrixXd W1(H, n);
   for (int h = 0; h < H; ++h) {
     // A single-input network may list W1 as plain numbers instead of 1-element rows.
-    const detail::JsonNode row = jw1.Element(static_cast<size_t>(h));
+    const internal::JsonNode row = jw1.Element(static_cast<size_t>(h));
     const std::vector<double> w = (n == 1 && row.json().is_number())
                                       ? std::vector<double>{row.Number()}
                                       : row.Numbers(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) W1(h, i) = w[i];
   }
-  net.set_parameters(nn::PackParameters(
+  net.set_parameters(internal::nn::PackParameters(
       W1, Eigen::Map<const Eigen::VectorXd>(b1.data(), H),
       Eigen::Map<const Eigen::VectorXd>(w2.data(), H), b2));
   if (root.Has("note")) net.note = root.Get("note").String();

@@ -52,7 +52,7 @@ std::vector<std::string> NeuralNetwork::input_names() const {
 }
 
 Eigen::VectorXd NeuralNetwork::parameters() const {
-  return nn::PackParameters(W1_, b1_, w2_, b2_);
+  return internal::nn::PackParameters(W1_, b1_, w2_, b2_);
 }
 
 void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
@@ -62,7 +62,7 @@ void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
                        " entries. Violated constraint: size = "
                        "H n + 2 H + 1 = " +
                        std::to_string(parameter_count()));
-  const nn::Weights w(theta, n, H);
+  const internal::nn::Weights w(theta, n, H);
   W1_ = w.W1;
   b1_ = w.b1;
   w2_ = w.w2;

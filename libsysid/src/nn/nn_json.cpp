@@ -7,7 +7,7 @@
 
 namespace sysid {
 namespace {
-using detail::NumberOrNull;
+using internal::NumberOrNull;
 using Json = nlohmann::ordered_json;
 }  // namespace
 
@@ -37,7 +37,7 @@ std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o
                  {"validation_mse", NumberOrNull(e.validation_mse)},
                  {"gradient_norm", e.gradient_norm}});
   j["history"] = h;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int indent) {
@@ -59,7 +59,7 @@ std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int 
   j["rule"] = r.rule;
   j["wall_time_s"] = r.wall_time_s;
   j["warnings"] = r.warnings;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

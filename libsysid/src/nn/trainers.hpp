@@ -10,7 +10,7 @@
 
 #include "sysid/nn.hpp"
 
-namespace sysid::nn {
+namespace sysid::internal::nn {
 
 struct NormalizedData {
   Eigen::MatrixXd Z;  ///< n x N
@@ -37,6 +37,6 @@ TrainerRun RunCeres(const NormalizedData& train, const NormalizedData* validatio
                     const Eigen::VectorXd& theta0, double mse_scale,
                     const NeuralTrainingOptions& options);
 
-}  // namespace sysid::nn
+}  // namespace sysid::internal::nn
 
 #endif  // SYSID_SRC_NN_TRAINERS_HPP_

@@ -17,7 +17,7 @@ namespace sysid {
 namespace {
 
 Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t seed) {
-  detail::PortableRandom rng(seed);
+  internal::PortableRandom rng(seed);
   Eigen::MatrixXd W1(H, n);
   Eigen::VectorXd b1(H), w2(H);
   double b2 = 0;
@@ -40,7 +40,7 @@ Eigen::VectorXd InitialParameters(NeuralInit init, int n, int H, std::uint64_t s
     for (int h = 0; h < H; ++h) b1[h] = 2.0 * rng.Symmetric();
     for (int h = 0; h < H; ++h) w2[h] = rng.Normal() / std::sqrt(static_cast<double>(H));
   }
-  return nn::PackParameters(W1, b1, w2, b2);
+  return internal::nn::PackParameters(W1, b1, w2, b2);
 }
 
 void CheckData(const NeuralDataset& d, const char* role, const NeuralDataset* reference) {
@@ -58,8 +58,8 @@ void CheckData(const NeuralDataset& d, const char* role, const NeuralDataset* re
     throw InputError(d.source + ": " + role + " set columns differ from the training set's");
 }
 
-nn::NormalizedData Normalize(const NeuralNetwork& net, const NeuralDataset& d) {
-  nn::NormalizedData out;
+internal::nn::NormalizedData Normalize(const NeuralNetwork& net, const NeuralDataset& d) {
+  internal::nn::NormalizedData out;
   out.Z.resize(net.input_count(), d.size());
   for (int i = 0; i < net.input_count(); ++i) {
     const auto& s = net.inputs()[i];
@@ -215,8 +215,8 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
       {train.output_name, DefaultUnit(train.output_name), out_range.first, out_range.second}, H);
   const double half = 0.5 * (out_range.second - out_range.first);
   const double mse_scale = half * half;
-  const nn::NormalizedData ztrain = Normalize(net, train);
-  nn::NormalizedData zval;
+  const internal::nn::NormalizedData ztrain = Normalize(net, train);
+  internal::nn::NormalizedData zval;
   if (validation) zval = Normalize(net, *validation);
   if (options.initial_parameters && options.initial_parameters->size() != net.parameter_count())
     throw OptionsError("NeuralTrainingOptions::initial_parameters has " +
@@ -240,11 +240,11 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
         with_restart.restart = r;
         options.on_epoch(with_restart);
       };
-    nn::TrainerRun run =
+    internal::nn::TrainerRun run =
         options.trainer == NeuralTrainer::kCeres
-            ? nn::RunCeres(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
+            ? internal::nn::RunCeres(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
                            run_options)
-            : nn::RunLevenbergMarquardt(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
+            : internal::nn::RunLevenbergMarquardt(ztrain, validation ? &zval : nullptr, H, theta0, mse_scale,
                                         run_options);
     for (auto& rec : run.history) {
       rec.restart = r;

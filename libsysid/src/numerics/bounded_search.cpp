@@ -9,7 +9,7 @@
 
 #include "sysid/error.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 namespace {
 
 struct Context {
@@ -102,4 +102,4 @@ ScalarSearchResult MinimizeScalar(const std::function<double(double)>& f,
   return r;
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 struct ScalarSearchOptions {
   double lo = 0;                ///< lower bound
@@ -33,6 +33,6 @@ struct ScalarSearchResult {
 ScalarSearchResult MinimizeScalar(const std::function<double(double)>& f,
                                   const ScalarSearchOptions& options);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_NUMERICS_BOUNDED_SEARCH_HPP_

@@ -59,7 +59,7 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
 
 PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
   const std::string text = ReadFile(path);
-  const nlohmann::json j = detail::ParseJsonText(text, path);
+  const nlohmann::json j = internal::ParseJsonText(text, path);
   if (!j.is_object()) throw InputError(path + ": expected a JSON object");
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const nlohmann::json& v, const char* key) {

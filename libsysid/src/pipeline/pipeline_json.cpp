@@ -15,10 +15,10 @@ std::string ToJson(const PipelineResult& r, int indent) {
   j["dominant"] = r.dominance.dominant;
   j["nn_inputs"] = r.nn_inputs;
   j["hidden"] = r.network.hidden_size();
-  j["nn_test_mse"] = detail::NumberOrNull(r.network_test_mse);
+  j["nn_test_mse"] = internal::NumberOrNull(r.network_test_mse);
   if (r.typical) {
-    j["typical_train_mse"] = detail::NumberOrNull(r.typical->train_mse);
-    j["typical_test_mse"] = detail::NumberOrNull(r.typical_test_mse);
+    j["typical_train_mse"] = internal::NumberOrNull(r.typical->train_mse);
+    j["typical_test_mse"] = internal::NumberOrNull(r.typical_test_mse);
   }
   j["tracking"] = Json::array();
   for (const auto& t : r.tracking)
@@ -29,7 +29,7 @@ std::string ToJson(const PipelineResult& r, int indent) {
   if (r.facts) j["facts_required_met"] = r.facts->RequiredMet();
   j["steps"] = Json::object();
   for (const auto& [name, s] : r.step_seconds) j["steps"][name] = s;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

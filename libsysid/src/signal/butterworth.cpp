@@ -13,7 +13,7 @@
 #include "sysid/signal.hpp"
 
 namespace sysid {
-namespace detail {
+namespace internal {
 
 std::vector<Biquad> DesignButterworthLowPass(int order, double normalized_cutoff) {
   SYSID_CHECK(order >= 1 && normalized_cutoff > 0 && normalized_cutoff < 0.5,
@@ -114,20 +114,20 @@ Eigen::VectorXd FiltFilt(const std::vector<Biquad>& sections, const Eigen::Vecto
   return ext.segment(pad, n);
 }
 
-}  // namespace detail
+}  // namespace internal
 
 Eigen::VectorXd ButterworthFiltFilt(const Eigen::VectorXd& y, double dt_s, double cutoff_hz,
                                     int order) {
   constexpr const char* kWhere = "ButterworthFiltFilt";
-  detail::CheckSampleInterval(kWhere, dt_s);
-  detail::CheckCutoff(kWhere, "cutoff_hz", cutoff_hz, dt_s);
-  detail::CheckButterworthOrder(kWhere, "order", order);
-  detail::CheckFinite(kWhere, y);
-  const auto sections = detail::DesignButterworthLowPass(order, cutoff_hz * dt_s);
-  detail::CheckLength(
-      kWhere, y.size(), detail::FiltFiltPadLength(sections) + 1,
+  internal::CheckSampleInterval(kWhere, dt_s);
+  internal::CheckCutoff(kWhere, "cutoff_hz", cutoff_hz, dt_s);
+  internal::CheckButterworthOrder(kWhere, "order", order);
+  internal::CheckFinite(kWhere, y);
+  const auto sections = internal::DesignButterworthLowPass(order, cutoff_hz * dt_s);
+  internal::CheckLength(
+      kWhere, y.size(), internal::FiltFiltPadLength(sections) + 1,
       "the order-" + std::to_string(order) + " forward-backward Butterworth (its end padding)");
-  return detail::FiltFilt(sections, y);
+  return internal::FiltFilt(sections, y);
 }
 
 }  // namespace sysid

@@ -6,9 +6,9 @@ namespace sysid {
 
 Eigen::VectorXd CentralDifference(const Eigen::VectorXd& y, double dt_s) {
   constexpr const char* kWhere = "CentralDifference";
-  detail::CheckSampleInterval(kWhere, dt_s);
-  detail::CheckLength(kWhere, y.size(), 3, "a second-order difference");
-  detail::CheckFinite(kWhere, y);
+  internal::CheckSampleInterval(kWhere, dt_s);
+  internal::CheckLength(kWhere, y.size(), 3, "a second-order difference");
+  internal::CheckFinite(kWhere, y);
   const Eigen::Index n = y.size();
   const double inv_2dt = 0.5 / dt_s;
   Eigen::VectorXd d(n);

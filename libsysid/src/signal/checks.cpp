@@ -7,7 +7,7 @@
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 void CheckSampleInterval(const char* where, double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s))
@@ -60,4 +60,4 @@ void CheckFinite(const char* where, const Eigen::VectorXd& y) {
           fmt::format("{}: sample {} (0-based) is {}; expected a finite number", where, k, y[k]));
 }
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal

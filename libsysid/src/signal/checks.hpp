@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// Throws OptionsError "`where`: dt_s = X. Violated constraint: dt_s > 0 and finite".
 void CheckSampleInterval(const char* where, double dt_s);
@@ -21,6 +21,6 @@ void CheckLength(const char* where, Eigen::Index n, Eigen::Index min_n, const st
 /// Throws InputError naming the first non-finite sample.
 void CheckFinite(const char* where, const Eigen::VectorXd& y);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_SIGNAL_CHECKS_HPP_

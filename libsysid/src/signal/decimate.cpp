@@ -8,7 +8,7 @@
 namespace sysid {
 
 Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor) {
-  detail::CheckSampleInterval("Decimate", dt_s);
+  internal::CheckSampleInterval("Decimate", dt_s);
   if (factor < 1)
     throw OptionsError("Decimate: factor = " + std::to_string(factor) +
                        ". Violated constraint: factor >= 1",
@@ -31,7 +31,7 @@ Recording DecimateRecording(const Recording& recording, double dt_s, int factor)
     const Eigen::VectorXd column = recording.data.col(static_cast<Eigen::Index>(c));
     Eigen::VectorXd kept;
     if (recording.names[c] == "t") {  // time is subsampled, never filtered
-      detail::CheckSampleInterval("DecimateRecording", dt_s);
+      internal::CheckSampleInterval("DecimateRecording", dt_s);
       if (factor < 1)
         throw OptionsError("DecimateRecording: factor = " + std::to_string(factor) +
                                ". Violated constraint: factor >= 1",

@@ -29,18 +29,18 @@ std::string ToString(DerivativeMethod method) {
 
 void DerivativeOptions::Validate(double dt_s) const {
   constexpr const char* kWhere = "DerivativeOptions";
-  detail::CheckSampleInterval(kWhere, dt_s);
+  internal::CheckSampleInterval(kWhere, dt_s);
   switch (method) {
     case DerivativeMethod::kCentral:
       break;
     case DerivativeMethod::kButterworthCentral:
-      detail::CheckCutoff("DerivativeOptions::cutoff_hz", "cutoff_hz", cutoff_hz, dt_s);
-      detail::CheckButterworthOrder("DerivativeOptions::butterworth_order", "butterworth_order",
+      internal::CheckCutoff("DerivativeOptions::cutoff_hz", "cutoff_hz", cutoff_hz, dt_s);
+      internal::CheckButterworthOrder("DerivativeOptions::butterworth_order", "butterworth_order",
                                     butterworth_order);
       break;
     case DerivativeMethod::kSavitzkyGolay:
       // Order >= 2: a straight-line fit has no acceleration.
-      detail::CheckSavitzkyGolay("DerivativeOptions", "savgol_window", savgol_window,
+      internal::CheckSavitzkyGolay("DerivativeOptions", "savgol_window", savgol_window,
                                  "savgol_order", savgol_order, 2);
       break;
   }

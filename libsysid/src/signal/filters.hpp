@@ -8,7 +8,7 @@
 #include <complex>
 #include <vector>
 
-namespace sysid::detail {
+namespace sysid::internal {
 
 /// One biquad H(z) = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) (a0 = 1).
 struct Biquad {
@@ -41,6 +41,6 @@ Eigen::VectorXd FiltFilt(const std::vector<Biquad>& sections, const Eigen::Vecto
 /// sample spacing (divide by dt^deriv).
 Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv);
 
-}  // namespace sysid::detail
+}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_SIGNAL_FILTERS_HPP_

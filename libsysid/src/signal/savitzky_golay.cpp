@@ -13,7 +13,7 @@
 #include "sysid/signal.hpp"
 
 namespace sysid {
-namespace detail {
+namespace internal {
 
 Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv) {
   SYSID_CHECK(window >= 3 && window % 2 == 1 && order >= 0 && order < window && deriv >= 0,
@@ -37,22 +37,22 @@ Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv) {
   return derivative * pinv;
 }
 
-}  // namespace detail
+}  // namespace internal
 
 Eigen::VectorXd SavitzkyGolay(const Eigen::VectorXd& y, double dt_s, int window, int order,
                               int deriv) {
   constexpr const char* kWhere = "SavitzkyGolay";
-  detail::CheckSampleInterval(kWhere, dt_s);
-  detail::CheckSavitzkyGolay(kWhere, "window", window, "order", order, 0);
+  internal::CheckSampleInterval(kWhere, dt_s);
+  internal::CheckSavitzkyGolay(kWhere, "window", window, "order", order, 0);
   if (deriv < 0 || deriv > 2 || deriv > order)
     throw OptionsError(
         "SavitzkyGolay: deriv = " + std::to_string(deriv) +
         ". Violated constraint: 0 <= deriv <= min(2, order = " + std::to_string(order) + ")");
-  detail::CheckLength(kWhere, y.size(), window,
+  internal::CheckLength(kWhere, y.size(), window,
                       "a Savitzky-Golay window of " + std::to_string(window));
-  detail::CheckFinite(kWhere, y);
+  internal::CheckFinite(kWhere, y);
   const Eigen::MatrixXd w =
-      detail::SavitzkyGolayWeights(window, order, deriv) / std::pow(dt_s, deriv);
+      internal::SavitzkyGolayWeights(window, order, deriv) / std::pow(dt_s, deriv);
   const Eigen::Index n = y.size();
   const int half = (window - 1) / 2;
   Eigen::VectorXd out(n);

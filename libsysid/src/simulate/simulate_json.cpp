@@ -10,7 +10,7 @@
 
 namespace sysid {
 namespace {
-using detail::JsonNode;
+using internal::JsonNode;
 using Json = nlohmann::ordered_json;
 }  // namespace
 
@@ -30,11 +30,11 @@ std::string ToJson(const SimulationOptions& o, int indent) {
   j["max_step_s"] = o.max_step_s;
   j["breakpoint_order"] = o.breakpoint_order;
   j["max_order"] = o.max_order;
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 SimulationOptions SimulationOptionsFromJson(std::string_view text, const std::string& source_name) {
-  const detail::JsonDocument doc(text, source_name);
+  const internal::JsonDocument doc(text, source_name);
   const JsonNode root = doc.Root();
   root.ExpectObject({"t0_s", "t_end_s", "dt_out_s", "output_times_s", "x0_m", "v0_mps",
                      "history_v_mps", "rtol", "atol", "method", "max_steps", "max_step_s",
@@ -71,7 +71,7 @@ SimulationOptions SimulationOptionsFromJson(std::string_view text, const std::st
   try {
     o.Validate();
   } catch (const OptionsError& e) {
-    const std::string field = detail::JsonDocument::ValidationField(e.what());
+    const std::string field = internal::JsonDocument::ValidationField(e.what());
     doc.FailValidation(e.what(), field.empty() ? "" : "/" + field);
   }
   return o;
@@ -99,7 +99,7 @@ std::string ToJson(const SimulationResult& r, const SimulationOptions& options, 
     j["summary"]["cvode_flag"] = s.cvode_flag;
     j["summary"]["failure_time_s"] = s.failure_time_s;
   }
-  return detail::DumpJson(j, indent);
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

@@ -32,7 +32,7 @@
 namespace sysid {
 namespace {
 
-using detail::CvodeSolver;
+using internal::CvodeSolver;
 using internal::kNumRoots;
 using internal::OutputSampler;
 using internal::SegmentModel;
@@ -338,7 +338,7 @@ class Simulator {
   /// Counters into the summary; after a failure only the samples reached are kept.
   void Finish() {
     SimulationSummary& s = result_.summary;
-    const detail::CvodeCounters c = cv_.Counters();
+    const internal::CvodeCounters c = cv_.Counters();
     s.steps = steps_;
     s.rhs_evaluations = c.rhs_evaluations;
     s.root_evaluations = c.root_evaluations;

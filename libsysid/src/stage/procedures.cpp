@@ -305,7 +305,7 @@ Recording RunTrackingSet(const StageParameters& stage, const std::vector<Velocit
   // Seeded Fisher-Yates (std::shuffle's use of the engine is implementation-defined).
   std::vector<size_t> order(grid.size());
   std::iota(order.begin(), order.end(), size_t{0});
-  detail::PortableRandom rng(DeriveSeed(seed, 0xC0FFEE));
+  internal::PortableRandom rng(DeriveSeed(seed, 0xC0FFEE));
   for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.Index(i)]);
 
   Eigen::Index rows = 0;

@@ -30,7 +30,7 @@ struct Section {
   std::vector<std::pair<const char*, std::vector<double>*>> arrays;
   std::vector<const char*> objects;
 
-  void Read(const detail::JsonNode& node, bool complete,
+  void Read(const internal::JsonNode& node, bool complete,
             const std::vector<std::string>& optional = {}) const {
     std::vector<std::string> known;
     for (const auto& n : numbers) known.push_back(n.first);
@@ -55,7 +55,7 @@ struct Section {
 
 // The JSON pointer of the StageParameters field a Validate() message names
 // ("forward.coulomb_mps2", "drive_map_in_v[3]", "sample_rate_hz"); empty when not in the file.
-std::string FieldPointer(const detail::JsonDocument& doc, const std::string& field) {
+std::string FieldPointer(const internal::JsonDocument& doc, const std::string& field) {
   std::string suffix = "/";
   for (char ch : field) {
     if (ch == '.' || ch == '[') suffix += '/';
@@ -83,7 +83,7 @@ namespace {
 // The model a file describes: its "model" key, else inferred from its sections (files written
 // before the key existed describe the actuator-delay stage and carry "friction" or the drive's
 // force-actuator keys), else the default velocity source.
-StageModel FileModel(const detail::JsonNode& root, const StageParameters* preset) {
+StageModel FileModel(const internal::JsonNode& root, const StageParameters* preset) {
   const nlohmann::json& j = root.json();
   if (preset) {
     if (root.Has("model") && root.Get("model").String() != ToString(preset->model))
@@ -93,7 +93,7 @@ StageModel FileModel(const detail::JsonNode& root, const StageParameters* preset
     return preset->model;
   }
   if (root.Has("model")) {
-    const detail::JsonNode m = root.Get("model");
+    const internal::JsonNode m = root.Get("model");
     const std::string name = m.String();
     try {
       return ParseStageModel(name);
@@ -111,8 +111,8 @@ StageModel FileModel(const detail::JsonNode& root, const StageParameters* preset
 }  // namespace
 
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
-  const detail::JsonDocument doc(json_text, source);
-  const detail::JsonNode root = doc.Root();
+  const internal::JsonDocument doc(json_text, source);
+  const internal::JsonNode root = doc.Root();
   root.ExpectObject(
       {"name", "preset", "model", "drive", "motor", "rail", "friction", "rig", "integrator"},
       {"units", "note"});
@@ -120,7 +120,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   // it the file must be complete (a missing section or key is an error, never a default).
   std::optional<StageParameters> preset;
   if (root.Has("preset")) {
-    const detail::JsonNode at = root.Get("preset");
+    const internal::JsonNode at = root.Get("preset");
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
       at.Expected("a preset name (virtual, velocity-source, actuator-delay)");
@@ -134,7 +134,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   // A complete file written before the rail had memory leaves the key out: no memory.
   if (complete) p.rail.memory_time_s = 0.0;
   const std::string model_name = ToString(model);
-  auto other_model = [&](const detail::JsonNode& at) {
+  auto other_model = [&](const internal::JsonNode& at) {
     const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);
     throw InputError(doc.Where(at.pointer()) + ": key '" + key + "' belongs to the " +
                      (vs ? "actuator-delay" : "velocity-source") + " model; this stage's model is " +
@@ -229,7 +229,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     p.Validate();
   } catch (const OptionsError& e) {
     doc.FailValidation(e.what(),
-                       FieldPointer(doc, detail::JsonDocument::ValidationField(e.what())));
+                       FieldPointer(doc, internal::JsonDocument::ValidationField(e.what())));
   }
   // A bound beyond the physics that keeps every procedure's work finite (1e12 Hz would ask for
   // terabytes); only a file can set it, so it is reported at its place.

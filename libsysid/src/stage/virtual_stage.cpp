@@ -62,7 +62,7 @@ class VirtualStage::Impl {
 
     vs_ = p_.model == StageModel::kVelocitySource;
     const std::array<double, kStates> y0{p_.initial_position_m, 0.0, 0.0, 0.0};
-    cv_.emplace(kStates, detail::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
+    cv_.emplace(kStates, internal::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
                 "virtual stage",
                 "try a larger integrator.relative_tolerance or a smaller "
                 "friction.bristle_stiffness_per_s2");
@@ -322,7 +322,7 @@ class VirtualStage::Impl {
   }
 
   StageParameters p_;
-  detail::PortableRandom noise_;
+  internal::PortableRandom noise_;
   double ts_ = 1e-3;
   long delay_samples_ = 0;
   double delay_fraction_ = 0;
@@ -338,7 +338,7 @@ class VirtualStage::Impl {
   int direction_ = 1;      // velocity source: sliding direction d while not stuck
   double reading_ = 0;
   StageStatus status_;
-  std::optional<detail::CvodeSolver> cv_;  // made once p_ is validated
+  std::optional<internal::CvodeSolver> cv_;  // made once p_ is validated
 };
 
 VirtualStage::VirtualStage(const StageParameters& parameters, std::uint64_t seed)
