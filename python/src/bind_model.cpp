@@ -22,17 +22,6 @@ std::shared_ptr<InputSignal> TableInput(std::vector<double> t_s, std::vector<dou
       MakeTableInput(std::move(t_s), std::move(u_v), ParseInputHold(hold), source));
 }
 
-Recording TrajectoryRecording(const Trajectory& tr, const std::string& source) {
-  Recording r;
-  r.source = source;
-  r.SetColumn("t", tr.t_s);
-  r.SetColumn("u", tr.u_v);
-  r.SetColumn("x", tr.x_m);
-  r.SetColumn("v", tr.v_mps);
-  r.SetColumn("a", tr.a_mps2);
-  return r;
-}
-
 }  // namespace
 
 void BindModel(py::module_& m) {

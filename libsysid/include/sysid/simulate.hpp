@@ -116,7 +116,10 @@ SimulationOptions SimulationOptionsFromJson(std::string_view text,
 std::string ToJson(const SimulationResult& result, const SimulationOptions& options,
                    int indent = 2);
 
-/// The trajectory of a run as a recording: columns t [s], u [V], x [m], v [m/s], a [m/s^2];
+/// A trajectory's columns t [s], u [V], x [m], v [m/s], a [m/s^2] as a recording named
+/// `source`, without metadata.
+Recording TrajectoryRecording(const Trajectory& trajectory, const std::string& source);
+/// The trajectory of a run as a recording: the columns above;
 /// metadata model (the model's JSON), input (`input_description`) and simulator (CVODE method
 /// and tolerances of `options`). `sysid simulate` writes it.
 Recording TrajectoryRecording(const SimulationResult& result, const FrictionModel& model,

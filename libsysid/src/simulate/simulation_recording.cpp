@@ -11,20 +11,25 @@
 
 namespace sysid {
 
+Recording TrajectoryRecording(const Trajectory& tr, const std::string& source) {
+  Recording r;
+  r.source = source;
+  r.SetColumn("t", tr.t_s);
+  r.SetColumn("u", tr.u_v);
+  r.SetColumn("x", tr.x_m);
+  r.SetColumn("v", tr.v_mps);
+  r.SetColumn("a", tr.a_mps2);
+  return r;
+}
+
 Recording TrajectoryRecording(const SimulationResult& result, const FrictionModel& model,
                               const std::string& input_description,
                               const SimulationOptions& options) {
-  Recording out;
+  Recording out = TrajectoryRecording(result.trajectory, std::string());
   out.metadata = {{"model", nlohmann::json::parse(ModelToJson(model, -1)).dump()},
                   {"input", input_description},
                   {"simulator", fmt::format("CVODE {} rtol {} atol {}", ToString(options.method),
                                             options.rtol, options.atol)}};
-  const Trajectory& tr = result.trajectory;
-  out.SetColumn("t", tr.t_s);
-  out.SetColumn("u", tr.u_v);
-  out.SetColumn("x", tr.x_m);
-  out.SetColumn("v", tr.v_mps);
-  out.SetColumn("a", tr.a_mps2);
   return out;
 }
 
