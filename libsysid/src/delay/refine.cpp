@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "delay/parameter_names.hpp"
 #include "delay/segments.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
@@ -27,20 +28,13 @@ namespace {
 constexpr double kPriorRelativeShift = 0.5;  // [1]
 constexpr double kPriorSigmaShift = 3.0;     // [standard errors]
 
-double ParameterValue(const FrictionModel& m, const std::string& name) {
-  if (name == "a1p") return m.a1p;
-  if (name == "a1n") return m.a1n;
-  if (name == "a2p") return m.a2p;
-  if (name == "a2n") return m.a2n;
-  if (name == "a3") return m.a3;
-  return m.tau_s;
-}
 
 std::vector<std::string> FarFromPriorWarnings(const RefineResult& r) {
   std::vector<std::string> warnings;
   for (size_t i = 0; i < r.names.size(); ++i) {
     const std::string& name = r.names[i];
-    const double p0 = ParameterValue(r.initial, name), p = ParameterValue(r.model, name);
+    const double p0 = internal::ParameterByName(r.initial, name);
+    const double p = internal::ParameterByName(r.model, name);
     const double se = r.std_error[static_cast<Eigen::Index>(i)];
     const double shift = std::abs(p - p0);
     if (p0 == 0 || shift <= kPriorRelativeShift * std::abs(p0)) continue;
@@ -106,19 +100,7 @@ FrictionModel Apply(FrictionModel m, const Layout& l, const double* z) {
   for (size_t i = 0; i < l.names.size(); ++i) {
     const bool positive = l.names[i] == "a3";  // a1 = 0 is pure Coulomb, a valid model
     const double p = std::max(positive ? 1e-9 * l.scale[i] : 0.0, z[i] * l.scale[i]);
-    const std::string& n = l.names[i];
-    if (n == "a1p")
-      m.a1p = p;
-    else if (n == "a1n")
-      m.a1n = p;
-    else if (n == "a2p")
-      m.a2p = p;
-    else if (n == "a2n")
-      m.a2n = p;
-    else if (n == "a3")
-      m.a3 = p;
-    else if (n == "tau")
-      m.tau_s = p;
+    internal::ParameterByName(m, l.names[i]) = p;
   }
   return m;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "delay/parameter_names.hpp"
 #include "sysid/delay.hpp"
 
 namespace sysid {
@@ -34,18 +35,8 @@ std::string RefineResult::FullReport() const {
   for (size_t k = 0; k < names.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
     const std::string& n = names[k];
-    const double before = n == "a1p"   ? initial.a1p
-                          : n == "a1n" ? initial.a1n
-                          : n == "a2p" ? initial.a2p
-                          : n == "a2n" ? initial.a2n
-                          : n == "a3"  ? initial.a3
-                                       : initial.tau_s;
-    const double after = n == "a1p"   ? model.a1p
-                         : n == "a1n" ? model.a1n
-                         : n == "a2p" ? model.a2p
-                         : n == "a2n" ? model.a2n
-                         : n == "a3"  ? model.a3
-                                      : model.tau_s;
+    const double before = internal::ParameterByName(initial, n);
+    const double after = internal::ParameterByName(model, n);
     const double rel = i < std_error.size() ? std_error[i] / std::abs(after) : NAN;
     s += fmt::format("    {:<4} {:.7g} -> {:.7g} ({:.2g})\n", n, before, after, rel);
   }
