@@ -92,4 +92,9 @@ CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string
       ->type_name("FILE");
 }
 
+CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose) {
+  return cmd->add_flag("-v,--verbose", verbose,
+                       "print the full report (every diagnostic) instead of the brief one");
+}
+
 }  // namespace sysid::cli

@@ -68,6 +68,10 @@ bool EndsWithCsv(const std::string& path);
 /// Adds the standard "-o,--output FILE" option.
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what);
 
+/// -v,--verbose: the table output becomes the result's FullReport() (every diagnostic) instead
+/// of its BriefReport(); --json is unaffected.
+CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose);
+
 }  // namespace sysid::cli
 
 #endif  // SYSID_APPS_CLI_COMMON_HPP_

@@ -27,6 +27,7 @@ struct DominanceCli {
   std::vector<std::string> candidates;
   DominanceOptions options;  // the flags' defaults are the library's
   bool json = false;
+  bool verbose = false;
   std::string output;
   MotionFlags motion;
 };
@@ -68,7 +69,7 @@ void RunDominance(const DominanceCli& o) {
     std::cout << ToJson(s);
     return;
   }
-  for (const auto& r : s.results) std::cout << r.BriefReport();
+  for (const auto& r : s.results) std::cout << (o.verbose ? r.FullReport() : r.BriefReport());
   if (s.results.size() > 1) {
     std::cout << fmt::format("\n{} recordings: dominant {} ", s.results.size(), s.dominant);
     for (const auto& [k, c] : s.dominant_counts) std::cout << fmt::format("[{}: {}] ", k, c);
@@ -101,6 +102,7 @@ void AddDominanceCommand(CLI::App& app) {
   cmd->add_option("--threads", o->options.threads,
                   "recordings analysed in parallel [count]; 0 = all cores")
       ->capture_default_str();
+  AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
                 "recordings} (rms, peak in m/s^2)");

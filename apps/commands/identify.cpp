@@ -27,6 +27,7 @@ struct IdentifyCli {
   std::string table;
   std::string output;
   bool json = false;
+  bool verbose = false;
   MotionFlags motion;  // derivative empty: the method's default
   // The flags' defaults are the library's.
   PulseIdentificationOptions pulse;
@@ -57,7 +58,7 @@ void RunIdentify(const IdentifyCli& o) {
       table.AddRow({e.pulse.source, Num(e.pulse.t_start_s), Num(e.pulse.duration_s),
                     Num(e.pulse.amplitude_v), Num(e.v_mps), Num(e.v_stderr_mps, 2),
                     e.usable() ? "ok" : ToString(e.status) + ": " + e.reason});
-    text = r.BriefReport() + (r.pulses.empty() ? "" : "\n" + table.Render());
+    text = o.verbose ? r.FullReport() : r.BriefReport() + (r.pulses.empty() ? "" : "\n" + table.Render());
   } else {
     if (o.recordings.empty()) throw OptionsError("identify --method trajectory: no recordings");
     if (!o.table.empty()) throw OptionsError("--table applies to --method pulse only");
@@ -65,7 +66,7 @@ void RunIdentify(const IdentifyCli& o) {
     o.motion.ApplyTo(to.motion);
     const auto r = IdentifyFromTrajectory(o.motion.ReadRecordings(o.recordings), to);
     rendered = ToJson(r);
-    text = r.BriefReport();
+    text = o.verbose ? r.FullReport() : r.BriefReport();
   }
   if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
   if (o.json)
@@ -92,6 +93,7 @@ void AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--table", o->table,
                   "pulse table CSV with columns u [V] and v [m/s] instead of recordings")
       ->type_name("T.csv");
+  AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print the model (a1p, a1n, a2p, a2n, a3, tau) plus a diagnostics object as JSON");
   AddOutputOption(cmd, o->output, "write the model file (same JSON as --json)");

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <string>
 
@@ -20,58 +21,28 @@ struct InfoOptions {
 };
 
 void RunInfo(const InfoOptions& o) {
-  const Recording rec = ReadRecording(o.path);
-  const auto t = rec.column("t");
-  nlohmann::ordered_json j;
-  j["file"] = o.path;
-  j["rows"] = rec.rows();
-  j["columns"] = rec.names;
-  j["duration_s"] = t[t.size() - 1] - t[0];
-  j["t_start_s"] = t[0];
-  if (rec.rows() >= 2) {
-    const SamplingReport s = AnalyzeSampling(t, o.jitter_tolerance);
-    j["sample_rate_hz"] = s.sample_rate_hz;
-    j["sampling"] = {
-        {"nominal_dt_s", s.nominal_dt_s},         {"max_jitter_s", s.max_jitter_s},
-        {"rms_jitter_s", s.rms_jitter_s},         {"max_relative_jitter", s.max_relative_jitter},
-        {"jitter_tolerance", o.jitter_tolerance}, {"irregular", s.irregular}};
-    if (s.irregular)
-      j["sampling"]["warning"] = fmt::format(
-          "irregular sampling: interval at row {} deviates {:.3g} % from the nominal {:.6g} s; "
-          "resample with 'sysid derive --resample HZ' or sysid::Resample",
-          s.worst_index + 2, 100 * s.max_relative_jitter, s.nominal_dt_s);
-  } else {
-    j["sample_rate_hz"] = nullptr;
-  }
-  nlohmann::ordered_json stats = nlohmann::ordered_json::object();
-  for (size_t c = 0; c < rec.names.size(); ++c) {
-    const auto col = rec.data.col(static_cast<Eigen::Index>(c));
-    stats[rec.names[c]] = {{"min", col.minCoeff()}, {"max", col.maxCoeff()}, {"mean", col.mean()}};
-  }
-  j["column_stats"] = stats;
-  nlohmann::ordered_json meta = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : rec.metadata) meta[k] = v;
-  j["metadata"] = meta;
+  const Recording rec = ReadRecording(o.path);  // its source is o.path
+  const std::string text = RecordingSummaryToJson(rec, o.jitter_tolerance);
   if (o.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << text;
     return;
   }
+  const auto j = nlohmann::json::parse(text);
   std::cout << fmt::format("file        {}\nrows        {}\nduration    {:.6g} s\n", o.path,
                            rec.rows(), j["duration_s"].get<double>());
-  if (rec.rows() >= 2) {
+  if (j.contains("sampling")) {
+    const auto& s = j["sampling"];
     std::cout << fmt::format("sample rate {:.6g} Hz (max jitter {:.3g} s, {:.3g} %)\n",
-                             j["sample_rate_hz"].get<double>(),
-                             j["sampling"]["max_jitter_s"].get<double>(),
-                             100 * j["sampling"]["max_relative_jitter"].get<double>());
-    if (j["sampling"].contains("warning"))
-      std::cout << "warning     " << j["sampling"]["warning"].get<std::string>() << '\n';
+                             j["sample_rate_hz"].get<double>(), s["max_jitter_s"].get<double>(),
+                             100 * s["max_relative_jitter"].get<double>());
+    if (s.contains("warning")) std::cout << "warning     " << s["warning"].get<std::string>() << '\n';
   }
   for (const auto& [k, v] : rec.metadata) std::cout << fmt::format("# {}: {}\n", k, v);
   Table table({"column", "min", "max", "mean"});
   for (const auto& name : rec.names) {
-    const auto& s = stats[name];
-    table.AddRow({name, Num(s["min"].get<double>()), Num(s["max"].get<double>()),
-                  Num(s["mean"].get<double>())});
+    const auto& c = j["column_stats"][name];
+    table.AddRow({name, Num(c["min"].get<double>()), Num(c["max"].get<double>()),
+                  Num(c["mean"].get<double>())});
   }
   std::cout << '\n' << table.Render();
 }

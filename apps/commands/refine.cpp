@@ -23,6 +23,7 @@ struct RefineCli {
   std::string model;
   std::vector<std::string> recordings;
   bool json = false;
+  bool verbose = false;
   std::string output;
   bool fix_a3 = false;
   bool fix_tau = false;
@@ -44,7 +45,7 @@ void RunRefine(const RefineCli& o) {
   if (o.json)
     std::cout << rendered;
   else
-    std::cout << res.BriefReport();
+    std::cout << (o.verbose ? res.FullReport() : res.BriefReport());
 }
 
 void AddRefineCommand(CLI::App& app) {
@@ -61,6 +62,7 @@ void AddRefineCommand(CLI::App& app) {
       ->required()
       ->type_name("REC.csv");
   cmd->add_flag("--json", o->json, "print the refined model plus diagnostics as JSON");
+  AddVerboseFlag(cmd, o->verbose);
   AddOutputOption(cmd, o->output, "write the refined model file (same JSON as --json)");
   cmd->add_flag("--fix-a3", o->fix_a3, "keep a3 at the starting value");
   cmd->add_flag("--fix-tau", o->fix_tau, "keep tau at the starting value");

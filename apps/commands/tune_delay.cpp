@@ -23,6 +23,7 @@ struct TuneDelayCli {
   std::vector<std::string> recordings;
   DelayTuningOptions options;  // the flags' defaults are the library's
   bool json = false;
+  bool verbose = false;
   std::string output;
   MotionFlags motion;
 };
@@ -35,7 +36,7 @@ void RunTuneDelay(const TuneDelayCli& o) {
   const DelayTuningResult r = TuneDelay(model, recs, d);
   for (const auto& w : r.warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
   if (!o.output.empty()) WriteFileAtomically(o.output, ModelToJson(r.model) + "\n");
-  std::cout << (o.json ? ToJson(r) : r.BriefReport());
+  std::cout << (o.json ? ToJson(r) : o.verbose ? r.FullReport() : r.BriefReport());
 }
 
 void AddTuneDelayCommand(CLI::App& app) {
@@ -69,6 +70,7 @@ void AddTuneDelayCommand(CLI::App& app) {
   cmd->add_option("--threads", d.threads, "simulation threads [count]; 0 = all cores")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
+  AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");
   AddOutputOption(cmd, o->output, "write the model with tau filled in");

@@ -130,3 +130,34 @@ TEST_CASE("a recording's shape as JSON, with the SI unit of each column", "[io][
   CHECK(sysid::ColumnUnit("v_ref") == "m/s");
   CHECK(nlohmann::json::parse(sysid::RecordingShapeToJson(sysid::Recording{}))["duration_s"] == 0.0);
 }
+
+TEST_CASE("a recording's summary as JSON: sampling, ranges and metadata", "[io][json]") {
+  sysid::Recording r;
+  r.source = "rec.csv";
+  // Intervals 1, 1, 1.5 ms: median 1 ms, worst at the third interval (row 4 of the file).
+  r.SetColumn("t", Eigen::Vector4d(0, 0.001, 0.002, 0.0035));
+  r.SetColumn("u", Eigen::Vector4d(0, 1, -1, 2));
+  r.metadata = {{"stage", "virtual"}};
+  const auto j = nlohmann::json::parse(sysid::RecordingSummaryToJson(r, 0.01));
+  CHECK(j["file"] == "rec.csv");
+  CHECK(j["rows"] == 4);
+  CHECK(j["duration_s"].get<double>() == Approx(0.0035));
+  CHECK(j["t_start_s"] == 0.0);
+  CHECK(j["sample_rate_hz"].get<double>() == Approx(1000.0));
+  CHECK(j["sampling"]["max_relative_jitter"].get<double>() == Approx(0.5));
+  CHECK(j["sampling"]["irregular"] == true);
+  CHECK_THAT(j["sampling"]["warning"].get<std::string>(), Catch::Contains("row 4"));
+  CHECK(j["column_stats"]["u"]["min"] == -1.0);
+  CHECK(j["column_stats"]["u"]["max"] == 2.0);
+  CHECK(j["column_stats"]["u"]["mean"].get<double>() == Approx(0.5));
+  CHECK(j["metadata"]["stage"] == "virtual");
+  // A tolerance above the jitter: regular, no warning; one row: no sampling at all.
+  const auto loose = nlohmann::json::parse(sysid::RecordingSummaryToJson(r, 0.6));
+  CHECK(loose["sampling"]["irregular"] == false);
+  CHECK_FALSE(loose["sampling"].contains("warning"));
+  sysid::Recording one;
+  one.SetColumn("t", Eigen::VectorXd::Constant(1, 2.0));
+  const auto single = nlohmann::json::parse(sysid::RecordingSummaryToJson(one, 0.01));
+  CHECK(single["sample_rate_hz"].is_null());
+  CHECK_FALSE(single.contains("sampling"));
+}

@@ -71,6 +71,12 @@ std::string ColumnUnit(const std::string& column);
 /// rows or a t column), "columns", "units" (ColumnUnit of each column)}. `sysid excite --json`
 /// lists one per file.
 std::string RecordingShapeToJson(const Recording& recording, int indent = 2);
+/// A recording's summary as `sysid info --json` prints it: {"file" (the recording's source),
+/// "rows", "columns", "duration_s" [s], "t_start_s" [s], "sample_rate_hz" [Hz] (null below 2
+/// rows), "sampling" (AnalyzeSampling's report with `jitter_tolerance` and, when irregular, a
+/// "warning"), "column_stats" {column: {min, max, mean}} in each column's unit, "metadata"}.
+std::string RecordingSummaryToJson(const Recording& recording, double jitter_tolerance,
+                                   int indent = 2);
 
 /// Writes `content` to `path` atomically: a reader sees the old file or the whole new one,
 /// never a partial one. Throws InputError when the folder is not writable.

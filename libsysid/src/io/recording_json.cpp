@@ -1,4 +1,7 @@
-// A recording's shape (samples, duration, columns and their units) as JSON.
+// A recording's shape (samples, duration, columns and their units) and its summary (sampling,
+// per-column ranges, metadata) as JSON.
+#include <fmt/format.h>
+
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,6 +29,42 @@ std::string RecordingShapeToJson(const Recording& r, int indent) {
   nlohmann::ordered_json units = nlohmann::ordered_json::object();
   for (const auto& n : r.names) units[n] = ColumnUnit(n);
   j["units"] = units;
+  return internal::DumpJson(j, indent);
+}
+
+std::string RecordingSummaryToJson(const Recording& r, double jitter_tolerance, int indent) {
+  nlohmann::ordered_json j;
+  j["file"] = r.source;
+  j["rows"] = r.rows();
+  j["columns"] = r.names;
+  const Eigen::Index tc = r.index_of("t");
+  const bool timed = tc >= 0 && r.rows() > 0;
+  j["duration_s"] = timed ? r.data(r.rows() - 1, tc) - r.data(0, tc) : 0.0;
+  j["t_start_s"] = timed ? nlohmann::ordered_json(r.data(0, tc)) : nullptr;
+  if (timed && r.rows() >= 2) {
+    const SamplingReport s = AnalyzeSampling(r.column("t"), jitter_tolerance);
+    j["sample_rate_hz"] = s.sample_rate_hz;
+    j["sampling"] = {
+        {"nominal_dt_s", s.nominal_dt_s},       {"max_jitter_s", s.max_jitter_s},
+        {"rms_jitter_s", s.rms_jitter_s},       {"max_relative_jitter", s.max_relative_jitter},
+        {"jitter_tolerance", jitter_tolerance}, {"irregular", s.irregular}};
+    if (s.irregular)
+      j["sampling"]["warning"] = fmt::format(
+          "irregular sampling: interval at row {} deviates {:.3g} % from the nominal {:.6g} s; "
+          "resample with 'sysid derive --resample HZ' or sysid::Resample",
+          s.worst_index + 2, 100 * s.max_relative_jitter, s.nominal_dt_s);
+  } else {
+    j["sample_rate_hz"] = nullptr;
+  }
+  nlohmann::ordered_json stats = nlohmann::ordered_json::object();
+  for (size_t c = 0; c < r.names.size() && r.rows() > 0; ++c) {
+    const auto col = r.data.col(static_cast<Eigen::Index>(c));
+    stats[r.names[c]] = {{"min", col.minCoeff()}, {"max", col.maxCoeff()}, {"mean", col.mean()}};
+  }
+  j["column_stats"] = stats;
+  nlohmann::ordered_json meta = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : r.metadata) meta[k] = v;
+  j["metadata"] = meta;
   return internal::DumpJson(j, indent);
 }
 
