@@ -123,6 +123,14 @@ DominanceResult DominanceResultFromJson(std::string_view text, const std::string
 /// The batch as `sysid dominance --json` prints it: pooled ranking, dominant, the options,
 /// summary (counts, margins) and every recording's analysis.
 std::string ToJson(const DominanceSummary& summary, int indent = 2);
+/// Reads what ToJson(DominanceSummary) writes: each recording as DominanceResultFromJson reads
+/// it, the pooled ranking (its ratio_bound and ratio_max stay 0), the options, the counts and
+/// margins (null reads as infinity). `dominant` is dominant_counts' first, as the batch sets it,
+/// and dominant_counts is ordered as the batch orders it (count descending, ties by name), so
+/// ToJson gives the text back. The written "dominant" (the pooled ranking's first) and
+/// summary.recordings (the number of recordings) are checked. Throws InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ...".
+DominanceSummary DominanceSummaryFromJson(std::string_view text, const std::string& source_name);
 
 }  // namespace sysid
 

@@ -279,6 +279,16 @@ std::vector<int> ParseHiddenSizes(const std::string& spec);
 /// termination, stop_reason, message, warnings, wall_time_s and the epoch history.
 std::string ToJson(const NeuralTrainingResult& result, const NeuralTrainingOptions& options,
                    int indent = 2);
+/// Reads what ToJson(NeuralTrainingResult, NeuralTrainingOptions) writes: every result field
+/// but `network`, which stays empty (the report carries the parameter count, not the weights:
+/// attach the network file's ReadNeuralNetwork). A null MSE reads as NaN. The options part is
+/// checked always (hidden, parameters = H n + 2 H + 1, trainer, momentum, solve_output_layer,
+/// seed) and stored in `*options` when given (its other fields keep their values). Throws
+/// InputError "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text, including a
+/// termination that is not TerminationOf(stop_reason).
+NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
+                                                  const std::string& source_name,
+                                                  NeuralTrainingOptions* options = nullptr);
 /// A sweep as `sysid sweep --json` reports it: trainer, momentum, seed, one row per hidden size
 /// (hidden, epochs, MSEs, stop_reason, wall_time_s), chosen_hidden, rule, wall_time_s, warnings.
 std::string ToJson(const HiddenSweepResult& result, const HiddenSweepOptions& options,

@@ -1,4 +1,5 @@
 // JSON of the dominant-variable analysis (docs/cli.md: dominance --json).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -47,6 +48,65 @@ Json ResultJson(const DominanceResult& r) {
   return j;
 }
 
+using internal::JsonNode;
+using Rule = internal::NumberRule;
+
+// What a TermStats entry carries: a recording's ranked variable (with its ratio bounds), a term
+// of the inverse model, or a variable of the pooled ranking (no pointwise ratios).
+enum class StatsKind { kRanking, kTerm, kPooled };
+
+std::vector<TermStats> StatsFromJson(const JsonNode& list, StatsKind kind) {
+  list.ExpectArray();
+  std::vector<TermStats> out;
+  for (size_t i = 0; i < list.Size(); ++i) {
+    const JsonNode e = list.Element(i);
+    if (kind == StatsKind::kRanking)
+      e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max",
+                      "negligible"});
+    else if (kind == StatsKind::kTerm)
+      e.ExpectObject({"term", "rms", "peak", "ratio_to_top"});
+    else
+      e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "negligible"});
+    TermStats t;
+    t.name = e.Get(kind == StatsKind::kTerm ? "term" : "variable").String(true);
+    t.rms = e.Get("rms").Number(Rule::NonNegative());
+    t.peak = e.Get("peak").Number(Rule::NonNegative());
+    t.ratio_to_top = e.Get("ratio_to_top").Number(Rule::NonNegative());
+    if (kind == StatsKind::kRanking) {
+      t.ratio_bound = e.Get("ratio_bound").Number(Rule::NonNegative());
+      t.ratio_max = e.Get("ratio_max").Number(Rule::NonNegative());
+    }
+    if (kind != StatsKind::kTerm) t.negligible = e.Get("negligible").Boolean();
+    out.push_back(t);
+  }
+  return out;
+}
+
+// A margin (or a margin statistic) written as null when infinite (a single candidate).
+double MarginFromJson(const JsonNode& node) {
+  const double m = node.NumberOrNaN(Rule::NonNegative());
+  return std::isnan(m) ? std::numeric_limits<double>::infinity() : m;
+}
+
+// One recording's object: the whole text of ToJson(DominanceResult), or a `recordings` entry.
+DominanceResult ResultFromJson(const JsonNode& root) {
+  root.ExpectObject({"source", "ranking", "dominant", "margin", "terms", "peak_ratio",
+                     "pointwise_ratio_quantile", "pointwise_ratio_max", "samples",
+                     "moving_samples"});
+  DominanceResult r;
+  r.source = root.Get("source").String();
+  r.ranking = StatsFromJson(root.Get("ranking"), StatsKind::kRanking);
+  r.dominant = root.Get("dominant").String();
+  r.margin = MarginFromJson(root.Get("margin"));
+  r.terms = StatsFromJson(root.Get("terms"), StatsKind::kTerm);
+  r.peak_ratio = root.Get("peak_ratio").Number(Rule::NonNegative());
+  r.pointwise_ratio_quantile = root.Get("pointwise_ratio_quantile").Number(Rule::NonNegative());
+  r.pointwise_ratio_max = root.Get("pointwise_ratio_max").Number(Rule::NonNegative());
+  r.samples = root.Get("samples").Integer(0, 1L << 40);
+  r.moving_samples = root.Get("moving_samples").Integer(0, r.samples);
+  return r;
+}
+
 }  // namespace
 
 std::string ToJson(const DominanceResult& result, int indent) {
@@ -55,48 +115,7 @@ std::string ToJson(const DominanceResult& result, int indent) {
 
 DominanceResult DominanceResultFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
-  const internal::JsonNode root = doc.Root();
-  root.ExpectObject({"source", "ranking", "dominant", "margin", "terms", "peak_ratio",
-                     "pointwise_ratio_quantile", "pointwise_ratio_max", "samples",
-                     "moving_samples"});
-  using Rule = internal::NumberRule;
-  auto stats = [&](const internal::JsonNode& list, bool ranking) {
-    list.ExpectArray();
-    std::vector<TermStats> out;
-    for (size_t i = 0; i < list.Size(); ++i) {
-      const internal::JsonNode e = list.Element(i);
-      if (ranking)
-        e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max",
-                        "negligible"});
-      else
-        e.ExpectObject({"term", "rms", "peak", "ratio_to_top"});
-      TermStats t;
-      t.name = e.Get(ranking ? "variable" : "term").String(true);
-      t.rms = e.Get("rms").Number(Rule::NonNegative());
-      t.peak = e.Get("peak").Number(Rule::NonNegative());
-      t.ratio_to_top = e.Get("ratio_to_top").Number(Rule::NonNegative());
-      if (ranking) {
-        t.ratio_bound = e.Get("ratio_bound").Number(Rule::NonNegative());
-        t.ratio_max = e.Get("ratio_max").Number(Rule::NonNegative());
-        t.negligible = e.Get("negligible").Boolean();
-      }
-      out.push_back(t);
-    }
-    return out;
-  };
-  DominanceResult r;
-  r.source = root.Get("source").String();
-  r.ranking = stats(root.Get("ranking"), true);
-  r.dominant = root.Get("dominant").String();
-  const double margin = root.Get("margin").NumberOrNaN(Rule::NonNegative());
-  r.margin = std::isnan(margin) ? std::numeric_limits<double>::infinity() : margin;
-  r.terms = stats(root.Get("terms"), false);
-  r.peak_ratio = root.Get("peak_ratio").Number(Rule::NonNegative());
-  r.pointwise_ratio_quantile = root.Get("pointwise_ratio_quantile").Number(Rule::NonNegative());
-  r.pointwise_ratio_max = root.Get("pointwise_ratio_max").Number(Rule::NonNegative());
-  r.samples = root.Get("samples").Integer(0, 1L << 40);
-  r.moving_samples = root.Get("moving_samples").Integer(0, r.samples);
-  return r;
+  return ResultFromJson(doc.Root());
 }
 
 std::string ToJson(const DominanceSummary& s, int indent) {
@@ -123,6 +142,42 @@ std::string ToJson(const DominanceSummary& s, int indent) {
   for (const auto& r : s.results) per.push_back(ResultJson(r));
   j["recordings"] = per;
   return internal::DumpJson(j, indent);
+}
+
+DominanceSummary DominanceSummaryFromJson(std::string_view text, const std::string& source_name) {
+  const internal::JsonDocument doc(text, source_name);
+  const JsonNode root = doc.Root();
+  root.ExpectObject({"ranking", "dominant", "negligible_ratio", "min_speed_mps", "summary",
+                     "recordings"});
+  DominanceSummary s;
+  s.ranking = StatsFromJson(root.Get("ranking"), StatsKind::kPooled);
+  // "dominant" is the pooled ranking's top (null when empty): derived, so only checked.
+  const JsonNode top = root.Get("dominant");
+  if (s.ranking.empty() ? !top.json().is_null() : top.String() != s.ranking[0].name)
+    top.Expected(s.ranking.empty() ? "null (the ranking is empty)"
+                                   : "\"" + s.ranking[0].name + "\" (the ranking's first)");
+  s.negligible_ratio = root.Get("negligible_ratio").Number(Rule{0.0, 1.0, true, true});
+  s.min_speed_mps = root.Get("min_speed_mps").Number(Rule::NonNegative());
+  const JsonNode per = root.Get("recordings");
+  per.ExpectArray();
+  for (size_t i = 0; i < per.Size(); ++i) s.results.push_back(ResultFromJson(per.Element(i)));
+  const JsonNode sum = root.Get("summary");
+  sum.ExpectObject({"recordings", "dominant_counts", "min_margin", "median_margin"});
+  const long n = static_cast<long>(s.results.size());
+  sum.Get("recordings").Integer(n, n);  // the length of "recordings"
+  const JsonNode counts = sum.Get("dominant_counts");
+  if (!counts.json().is_object()) counts.Expected("an object of variable: recordings");
+  // The reader's objects iterate keys in sorted order, as AnalyzeDominanceBatch's std::map
+  // does: the same stable sort by count, descending, gives the library's (and the text's) order.
+  for (const auto& item : counts.json().items())
+    s.dominant_counts.emplace_back(item.key(),
+                                   static_cast<int>(counts.Get(item.key()).Integer(1, n)));
+  std::stable_sort(s.dominant_counts.begin(), s.dominant_counts.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (!s.dominant_counts.empty()) s.dominant = s.dominant_counts[0].first;
+  s.min_margin = MarginFromJson(sum.Get("min_margin"));
+  s.median_margin = MarginFromJson(sum.Get("median_margin"));
+  return s;
 }
 
 }  // namespace sysid

@@ -1,14 +1,46 @@
 // JSON of the training and hidden-size sweep results (docs/cli.md: train, sweep).
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "core/json_text.hpp"
 #include "sysid/nn.hpp"
 
 namespace sysid {
 namespace {
+using internal::JsonNode;
 using internal::NumberOrNull;
 using Json = nlohmann::ordered_json;
+
+TrainingStop StopFromJson(const JsonNode& node) {
+  const std::string s = node.String();
+  constexpr TrainingStop kStops[] = {
+      TrainingStop::kMaxEpochs,          TrainingStop::kGoalReached, TrainingStop::kSmallGradient,
+      TrainingStop::kMuTooLarge,         TrainingStop::kValidationFailures,
+      TrainingStop::kConverged,          TrainingStop::kNumericalFailure};
+  std::string names;
+  for (auto stop : kStops) {
+    if (ToString(stop) == s) return stop;
+    names += (names.empty() ? "" : ", ") + ToString(stop);
+  }
+  node.Expected("a stopping rule (" + names + ")");
+}
+
+NeuralTrainer TrainerFromJson(const JsonNode& node) {
+  const std::string s = node.String();
+  for (auto t : {NeuralTrainer::kLevenbergMarquardt, NeuralTrainer::kCeres})
+    if (ToString(t) == s) return t;
+  node.Expected("a trainer (" + ToString(NeuralTrainer::kLevenbergMarquardt) + " or " +
+                ToString(NeuralTrainer::kCeres) + ")");
+}
+
+// The seed is a uint64 (JsonNode::Integer reads longs).
+std::uint64_t SeedFromJson(const JsonNode& node) {
+  if (!node.json().is_number_unsigned()) node.Expected("an integer in [0, 2^64 - 1]");
+  return node.json().get<std::uint64_t>();
+}
 }  // namespace
 
 std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o, int indent) {
@@ -38,6 +70,70 @@ std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o
                  {"gradient_norm", e.gradient_norm}});
   j["history"] = h;
   return internal::DumpJson(j, indent);
+}
+
+NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
+                                                  const std::string& source_name,
+                                                  NeuralTrainingOptions* options) {
+  const internal::JsonDocument doc(text, source_name);
+  const JsonNode root = doc.Root();
+  root.ExpectObject({"hidden", "parameters", "trainer", "momentum", "solve_output_layer", "seed",
+                     "restart", "epochs", "train_mse", "validation_mse", "termination",
+                     "stop_reason", "message", "warnings", "wall_time_s", "history"});
+  using Rule = internal::NumberRule;
+  constexpr long kMaxEpochs = std::numeric_limits<int>::max();
+  // The options part is read (and checked) always, stored only when asked for.
+  NeuralTrainingOptions o;
+  o.hidden = static_cast<int>(root.Get("hidden").Integer(1, 100000));
+  // The weights live in the network file; the report's P = H n + 2 H + 1 must still fit some
+  // n >= 1 inputs.
+  const long p = root.Get("parameters").Integer(1, std::numeric_limits<int>::max());
+  if (p < 3L * o.hidden + 1 || (p - 2L * o.hidden - 1) % o.hidden != 0)
+    root.Get("parameters")
+        .Expected("H n + 2 H + 1 parameters for hidden = " + std::to_string(o.hidden) +
+                  " and some n >= 1 inputs");
+  o.trainer = TrainerFromJson(root.Get("trainer"));
+  o.momentum = root.Get("momentum").Number(Rule{0.0, 1.0, false, true});
+  o.solve_output_layer = root.Get("solve_output_layer").Boolean();
+  o.seed = SeedFromJson(root.Get("seed"));
+  if (options) {
+    options->hidden = o.hidden;
+    options->trainer = o.trainer;
+    options->momentum = o.momentum;
+    options->solve_output_layer = o.solve_output_layer;
+    options->seed = o.seed;
+  }
+  NeuralTrainingResult r;
+  r.restart = static_cast<int>(root.Get("restart").Integer(0, kMaxEpochs));
+  r.epochs = static_cast<int>(root.Get("epochs").Integer(0, kMaxEpochs));
+  r.train_mse = root.Get("train_mse").Number(Rule::NonNegative());
+  r.validation_mse = root.Get("validation_mse").NumberOrNaN(Rule::NonNegative());
+  r.termination = internal::TerminationFromJson(root.Get("termination"));
+  r.stop = StopFromJson(root.Get("stop_reason"));
+  if (r.termination != TerminationOf(r.stop))
+    root.Get("termination")
+        .Expected("\"" + ToString(TerminationOf(r.stop)) + "\" (stop_reason \"" +
+                  ToString(r.stop) + "\")");
+  r.message = root.Get("message").String();
+  const JsonNode w = root.Get("warnings");
+  w.ExpectArray();
+  for (size_t i = 0; i < w.Size(); ++i) r.warnings.push_back(w.Element(i).String());
+  r.wall_time_s = root.Get("wall_time_s").Number(Rule::NonNegative());
+  const JsonNode h = root.Get("history");
+  h.ExpectArray();
+  for (size_t i = 0; i < h.Size(); ++i) {
+    const JsonNode e = h.Element(i);
+    e.ExpectObject({"restart", "epoch", "mu", "train_mse", "validation_mse", "gradient_norm"});
+    EpochRecord rec;
+    rec.restart = static_cast<int>(e.Get("restart").Integer(0, kMaxEpochs));
+    rec.epoch = static_cast<int>(e.Get("epoch").Integer(0, kMaxEpochs));
+    rec.mu = e.Get("mu").Number(Rule::NonNegative());
+    rec.train_mse = e.Get("train_mse").Number(Rule::NonNegative());
+    rec.validation_mse = e.Get("validation_mse").NumberOrNaN(Rule::NonNegative());
+    rec.gradient_norm = e.Get("gradient_norm").Number(Rule::NonNegative());
+    r.history.push_back(rec);
+  }
+  return r;
 }
 
 std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int indent) {
