@@ -4,9 +4,7 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,8 +1,6 @@
 // sysid refine --model M.json [--json] [-o MODEL.json] REC.csv...
 // Output-error refinement of all parameters (Ceres through the simulator).
-#include <fmt/format.h>
 
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
