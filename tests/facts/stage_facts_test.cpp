@@ -267,6 +267,16 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK(Value(*f7, "training_a_noise_rms_mps2") > 0);
   CHECK(Value(*f7, "training_a_noise_rms_mps2") < Value(*f7, "training_a_rms_mps2"));
   CHECK(Value(*f7, "training_max_abs_v_mps") > 0);
+  // The rest / moving split: the moving rows are a part of each set, so (1 - f) times their MSE
+  // cannot exceed the whole set's MSE when f is the set's rest fraction (training set).
+  const double rest = Value(*f7, "training_rest_fraction");
+  CHECK(rest > 0.0);  // the P-controlled stage sticks at every reversal
+  CHECK(rest < 1.0);
+  CHECK(Value(*f7, "training_u_variance_at_rest_v2") > 0);
+  CHECK((1 - rest) * Value(*f7, "dominant_train_moving_mse_v2") <= r.dominant_train_mse * (1 + 1e-12));
+  CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <= r.typical_train_mse * (1 + 1e-12));
+  CHECK(Value(*f7, "dominant_test_moving_mse_v2") >= 0);
+  CHECK(Value(*f7, "typical_test_moving_mse_v2") >= 0);
 }
 
 TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]") {

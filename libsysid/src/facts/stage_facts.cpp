@@ -22,6 +22,24 @@ namespace sysid {
 namespace {
 
 constexpr double kHalfPi = 1.5707963267948966;
+
+// F7 splits every MSE at this speed [m/s]: below it the stage is at rest (10 encoder counts per
+// millisecond), where u spans the dead zone and no function of (v, a) can follow it.
+constexpr double kRestSpeedMps = 1e-3;
+
+// The rows of `data` whose first input (v [m/s]) is at least kRestSpeedMps in magnitude.
+NeuralDataset MovingRows(const NeuralDataset& data) {
+  NeuralDataset out = data;
+  Eigen::Index n = 0;
+  for (Eigen::Index k = 0; k < data.size(); ++k) {
+    if (std::abs(data.inputs(k, 0)) < kRestSpeedMps) continue;
+    out.inputs.row(n) = data.inputs.row(k);
+    out.targets[n++] = data.targets[k];
+  }
+  out.inputs.conservativeResize(n, Eigen::NoChange);
+  out.targets.conservativeResize(n);
+  return out;
+}
 const std::vector<std::string> kIds{"F1", "F2", "F3", "F4", "F5", "F6", "F7"};
 
 std::string Mm(double m) { return fmt::format("{:.4g}", 1e3 * m); }
@@ -110,6 +128,8 @@ class FactsRun {
     network_ = TrainNeuralNetwork(train_v, nullptr, t).network;
     r_.dominant_train_mse = MeanSquaredError(*network_, train_v);
     r_.dominant_test_mse = MeanSquaredError(*network_, test_v);
+    moving_ = {{"dominant_train_moving_mse_v2", MeanSquaredError(*network_, MovingRows(train_v))},
+               {"dominant_test_moving_mse_v2", MeanSquaredError(*network_, MovingRows(test_v))}};
     if (!want_typical_) return;
     Step(fmt::format("typical network (v, a, {} units)", o_.typical_hidden));
     const NeuralDataset train_va = MakeNeuralDataset(training, {"v", "a"}, "u");
@@ -120,6 +140,10 @@ class FactsRun {
         TrainNeuralNetwork(SubsampleRows(train_va, o_.typical_stride), nullptr, t).network;
     r_.typical_train_mse = MeanSquaredError(typical, train_va);
     r_.typical_test_mse = MeanSquaredError(typical, test_va);
+    moving_.emplace_back("typical_train_moving_mse_v2",
+                         MeanSquaredError(typical, MovingRows(train_va)));
+    moving_.emplace_back("typical_test_moving_mse_v2",
+                         MeanSquaredError(typical, MovingRows(test_va)));
   }
 
   // F7's physical context: where the training and test sets lie in (v, a), and how noisy the
@@ -149,6 +173,20 @@ class FactsRun {
         std::sqrt(noise / static_cast<double>(std::max<Eigen::Index>(n - 2 * w, 1))));
     coverage_.emplace_back("training_a_rms_mps2",
                            std::sqrt(ta.squaredNorm() / static_cast<double>(n)));
+    // The rows at rest and the spread of u over them: at rest v and a are ~0 whatever u is in
+    // the dead zone, so these rows hold most of any network's MSE on this stage.
+    const Eigen::VectorXd tu = training.column("u");
+    double rest = 0, sum = 0, sum2 = 0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (std::abs(tv[k]) >= kRestSpeedMps) continue;
+      rest += 1;
+      sum += tu[k];
+      sum2 += tu[k] * tu[k];
+    }
+    const double mean = rest > 0 ? sum / rest : 0.0;
+    coverage_.emplace_back("training_rest_fraction", rest / static_cast<double>(n));
+    coverage_.emplace_back("training_u_variance_at_rest_v2",
+                           rest > 0 ? std::max(sum2 / rest - mean * mean, 0.0) : 0.0);
   }
 
   // PI tracking on the smooth profile at every frequency with the given schemes.
@@ -412,17 +450,32 @@ class FactsRun {
                 {"dominant_train_mse_v2", r_.dominant_train_mse},
                 {"dominant_test_mse_v2", r_.dominant_test_mse}};
     f.values.insert(f.values.end(), coverage_.begin(), coverage_.end());
+    f.values.insert(f.values.end(), moving_.begin(), moving_.end());
     auto cov = [&](const std::string& name) {
       for (const auto& [n, v] : coverage_)
         if (n == name) return v;
       return std::nan("");
     };
+    auto moving = [&](const std::string& name) {
+      for (const auto& [n, v] : moving_)
+        if (n == name) return v;
+      return std::nan("");
+    };
     f.note = fmt::format(
         "{}: {:.3g} % of the test rows lie outside the training set's (v, a) box (|v| <= {:.3g} "
-        "m/s, |a| <= {:.3g} m/s^2); acceleration noise RMS {:.3g} against RMS a {:.3g} m/s^2",
+        "m/s, |a| <= {:.3g} m/s^2); acceleration noise RMS {:.3g} against RMS a {:.3g} m/s^2; "
+        "{:.3g} % of the training rows are at rest (|v| < 1 mm/s) with u spread over the dead "
+        "zone (variance {:.3g} V^2) and carry {:.3g} % of the dominant network's training MSE; on "
+        "the moving rows the MSEs are typical {:.3g} / {:.3g}, dominant {:.3g} / {:.3g} V^2 "
+        "(train / test)",
         f.met ? "contrast" : "no contrast", 100 * cov("test_rows_outside_training_box_fraction"),
         cov("training_max_abs_v_mps"), cov("training_max_abs_a_mps2"),
-        cov("training_a_noise_rms_mps2"), cov("training_a_rms_mps2"));
+        cov("training_a_noise_rms_mps2"), cov("training_a_rms_mps2"),
+        100 * cov("training_rest_fraction"), cov("training_u_variance_at_rest_v2"),
+        100 * (1 - (1 - cov("training_rest_fraction")) * moving("dominant_train_moving_mse_v2") /
+                       r_.dominant_train_mse),
+        moving("typical_train_moving_mse_v2"), moving("typical_test_moving_mse_v2"),
+        moving("dominant_train_moving_mse_v2"), moving("dominant_test_moving_mse_v2"));
     r_.facts.push_back(f);
   }
 
@@ -434,6 +487,7 @@ class FactsRun {
   std::optional<PulseIdentificationResult> pulse_;
   std::optional<NeuralNetwork> network_;
   std::vector<std::pair<std::string, double>> coverage_;
+  std::vector<std::pair<std::string, double>> moving_;  // F7's MSEs on the moving rows [V^2]
   bool want_typical_ = false;
   bool tracked_none_ = false, tracked_ff_ = false;
 };
