@@ -1,4 +1,4 @@
-// sysid stage facts [--stage S.json] [--json] [--facts F1,F3] [--seed N] [--reduced]:
+// sysid stage facts [--stage S.json] [--json] [--facts F1,F3] [--seed N | --seeds A-B] [--reduced]:
 // runs the paper's experiments on a virtual stage and prints, for each of the paper's facts
 // F1-F7, the paper's value, the stage's, the tolerance and whether it is met
 // (libsysid: sysid/stage_facts.hpp).
@@ -11,6 +11,7 @@
 
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
+#include "sysid/error.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid::cli {
@@ -20,6 +21,7 @@ struct StageFactsCli {
   std::string stage_path;
   std::vector<std::string> facts;
   FactsOptions options;  // seed, threads: the flags' defaults are the library's
+  std::string seeds;     // --seeds: a sweep instead of one seed
   bool reduced = false;
   bool json = false;
   bool markdown = false;
@@ -32,6 +34,19 @@ void RunStageFactsCommand(const StageFactsCli& o) {
   f.facts = o.facts;
   f.seed = o.options.seed;
   f.threads = o.options.threads;
+  if (!o.seeds.empty()) {
+    std::vector<std::uint64_t> seeds;
+    try {
+      seeds = ParseFactsSeeds(o.seeds);
+    } catch (const OptionsError& e) {
+      RethrowWithFlag(e, {{"seeds", "--seeds"}});
+    }
+    const FactsSeedSweep sweep = RunStageFactsOverSeeds(
+        stage, seeds, f, [](const std::string& step) { Progress("stage facts: " + step); });
+    ProgressDone();
+    std::cout << (o.json ? sweep.ToJson() + "\n" : sweep.ToMarkdown());
+    return;
+  }
   const StageFacts r =
       RunStageFacts(stage, f, [](const std::string& step) { Progress("stage facts: " + step); });
   ProgressDone();
@@ -86,9 +101,15 @@ void AddStageCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7"}))
       ->type_name("ID,...");
-  cmd->add_option("--seed", o->options.seed, "noise seed of every experiment [integer]")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
-      ->capture_default_str();
+  auto* seed =
+      cmd->add_option("--seed", o->options.seed, "noise seed of every experiment [integer]")
+          ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
+          ->capture_default_str();
+  cmd->add_option("--seeds", o->seeds,
+                  "run the facts at each of these seeds (A-B or A,B,...; at most 1000) and "
+                  "print, per fact, the seeds at which it is met (Markdown, or --json)")
+      ->excludes(seed)
+      ->type_name("A-B|A,B,...");
   cmd->add_option("--threads", o->options.threads,
                   "threads for delay tuning; 0 = all cores (the networks train on one thread: "
                   "repeatable)")

@@ -27,6 +27,7 @@
 #ifndef SYSID_STAGE_FACTS_HPP_
 #define SYSID_STAGE_FACTS_HPP_
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -163,6 +164,39 @@ using FactsProgress = std::function<void(const std::string& step)>;
 /// for bad options or an unknown fact id, NumericalError when an experiment fails.
 StageFacts RunStageFacts(const StageParameters& stage, const FactsOptions& options = {},
                          const FactsProgress& progress = {});
+
+/// The facts at several seeds: how robust each verdict is to the noise realisation (which also
+/// changes the data the networks train on). On the default stage F5's NN row is the fragile
+/// one (docs/virtual_stage.md, "F5 over seeds").
+struct FactsSeedSweep {
+  std::string stage_name;
+  std::vector<std::uint64_t> seeds;
+  std::vector<StageFacts> runs;  ///< one per seed, in `seeds` order
+
+  /// The seeds at which fact `id` is met (in `seeds` order).
+  std::vector<std::uint64_t> MetAt(const std::string& id) const;
+  /// Every required fact met at every seed.
+  bool RequiredMetEverywhere() const;
+  /// {"stage", "seeds": [...], "facts": [{"id", "fact", "required", "met_count", "runs",
+  ///  "met_seeds": [...], "virtual": [one text per seed]}], "required_met_everywhere"}
+  std::string ToJson() const;
+  /// A Markdown table: id | fact | met at | not met at.
+  std::string ToMarkdown() const;
+};
+
+/// At most this many seeds per sweep (each seed runs every experiment: ~10 s).
+constexpr std::size_t kMaxFactsSeeds = 1000;
+
+/// Parses "A-B" (inclusive range) or "A,B,C" into seeds; throws OptionsError naming `text` when
+/// it is neither, when a range runs backwards, or when it holds more than kMaxFactsSeeds seeds
+/// (checked before anything is allocated).
+std::vector<std::uint64_t> ParseFactsSeeds(const std::string& text);
+
+/// RunStageFacts at each seed (options.seed is replaced). `progress` gets "seed S (k/n): step".
+FactsSeedSweep RunStageFactsOverSeeds(const StageParameters& stage,
+                                      const std::vector<std::uint64_t>& seeds,
+                                      const FactsOptions& options = {},
+                                      const FactsProgress& progress = {});
 
 }  // namespace sysid
 
