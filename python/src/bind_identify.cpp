@@ -411,14 +411,21 @@ void BindIdentify(py::module_& m) {
         for (const auto& r : s.results) out += r.BriefReport();
         return out;
       });
-  m.def("analyze_dominance", &AnalyzeDominance, py::arg("model"), py::arg("recording"),
+  m.def("analyze_dominance",
+        py::overload_cast<const FrictionModel&, const Recording&, const DominanceOptions&>(
+            &AnalyzeDominance), py::arg("model"), py::arg("recording"),
         py::arg("options") = DominanceOptions{}, ReleaseGil());
   m.def(
       "dominance_rows_files",
       [](const FrictionModel& model, const std::vector<std::string>& paths,
          const DominanceOptions& options) {
+        // One reader and one workspace for the chunk: after the first file, same-length
+        // recordings allocate nothing of their size (a Dask worker's glibc, with the nanny's
+        // MALLOC_TRIM_THRESHOLD_, would otherwise return and re-fault those pages per file).
+        RecordingReader reader;
+        DominanceWorkspace workspace;
         const auto entries = RunEntries(paths, [&](const std::string& path) {
-          return AnalyzeDominance(model, ReadRecording(path), options);
+          return AnalyzeDominance(model, reader.Read(path), options, &workspace);
         });
         return EntryRows(entries, paths);
       },
@@ -430,8 +437,9 @@ void BindIdentify(py::module_& m) {
          const DominanceOptions& options) {
         std::vector<std::string> sources;
         for (const Recording* r : recordings) sources.push_back(r->source);
+        DominanceWorkspace workspace;
         const auto entries = RunEntries(recordings, [&](const Recording* r) {
-          return AnalyzeDominance(model, *r, options);
+          return AnalyzeDominance(model, *r, options, &workspace);
         });
         return EntryRows(entries, sources);
       },

@@ -84,6 +84,27 @@ struct DominanceResult {
 DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
                                  const DominanceOptions& options = {});
 
+/// The buffers AnalyzeDominance works in, kept from one recording to the next by a caller that
+/// analyses many on one thread (a batch chunk): the motion signals, the delayed velocity, the
+/// moving samples' terms and the ratio scratch. After the first recording nothing of size
+/// O(samples) is allocated while the recordings keep one length. Results never depend on what
+/// the workspace held before. One workspace per thread.
+struct DominanceWorkspace {
+  MotionSignals motion;
+  Eigen::VectorXd delayed_v_mps;      ///< [m/s] v(t - tau)
+  std::vector<Eigen::Index> moving;   ///< indices with |v| >= min_speed_mps
+  Eigen::VectorXd acceleration;       ///< [m/s^2] the terms over the moving samples (a prefix)
+  Eigen::VectorXd viscous;            ///< [m/s^2]
+  Eigen::VectorXd coulomb;            ///< [m/s^2]
+  Eigen::VectorXd velocity;           ///< [m/s^2] viscous + coulomb
+  std::vector<Eigen::VectorXd> candidates;  ///< [m/s^2] one per DominanceOptions::candidates
+  std::vector<double> ratios;         ///< pointwise ratios for the quantile
+};
+
+/// AnalyzeDominance in `workspace`'s buffers: the same result, fewer allocations.
+DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
+                                 const DominanceOptions& options, DominanceWorkspace* workspace);
+
 struct DominanceSummary {
   std::vector<DominanceResult> results;                      ///< one per recording, input order
   std::vector<std::pair<std::string, int>> dominant_counts;  ///< variable -> recordings

@@ -58,6 +58,23 @@ Recording ReadRecording(const std::string& path, const ReadOptions& options = {}
 Recording ParseRecording(std::string_view text, const std::string& source,
                          const ReadOptions& options = {});
 
+/// Reads recordings one after another into the same buffers (the file's text, the parser's
+/// row-major values, the recording's matrix), so that a batch of files of one size allocates
+/// nothing per file after the first. Same checks, errors and values as ReadRecording. Not
+/// thread-safe: one reader per thread.
+class RecordingReader {
+ public:
+  explicit RecordingReader(ReadOptions options = {}) : options_(std::move(options)) {}
+  /// The recording at `path`, valid until the next Read. Throws InputError as ReadRecording.
+  const Recording& Read(const std::string& path);
+
+ private:
+  ReadOptions options_;
+  std::string text_;
+  std::vector<double> values_;
+  Recording recording_;
+};
+
 /// Renders a recording as CSV text: metadata lines, header, rows with 17 significant digits.
 std::string FormatRecording(const Recording& recording);
 
@@ -84,6 +101,8 @@ void WriteFileAtomically(const std::string& path, std::string_view content);
 
 /// Reads a whole file; throws InputError "FILE: cannot open: reason".
 std::string ReadFile(const std::string& path);
+/// ReadFile into `text`, reusing its storage.
+void ReadFile(const std::string& path, std::string* text);
 
 /// Sampling of a time column.
 struct SamplingReport {
@@ -99,6 +118,10 @@ struct SamplingReport {
 /// Analyses the sampling of `t` (strictly increasing, at least 2 samples). `tolerance` is the
 /// relative jitter above which the sampling is called irregular (default 1 %).
 SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance = 0.01);
+/// AnalyzeSampling with `scratch` (resized to t.size() - 1) for the interval median, so that a
+/// caller looping over recordings reuses one buffer. Same report.
+SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
+                               Eigen::VectorXd* scratch);
 
 /// Resamples every column onto the uniform grid t0, t0 + 1/rate, ... <= t_end by linear
 /// interpolation (the column "t" becomes the grid). Throws OptionsError for rate_hz <= 0.

@@ -41,6 +41,10 @@ struct MotionSignals {
 /// Velocity and acceleration of a recording (t, u and x or a velocity column). Throws
 /// InputError when the sampling is irregular or there are fewer than 3 samples.
 MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options = {});
+/// ExtractMotion into `out`, reusing its vectors' storage: with central differences (the
+/// default) nothing is allocated once the sizes match (a batch of recordings of one length).
+/// Same values and errors.
+void ExtractMotion(const Recording& recording, const MotionOptions& options, MotionSignals* out);
 
 /// The nominal (median) sample interval [s] of the recording's t column, after checking the
 /// sampling is uniform: max |dt_k - dt| / dt <= max_relative_jitter, else InputError

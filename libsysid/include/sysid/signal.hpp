@@ -64,6 +64,9 @@ Derivatives Differentiate(const Eigen::VectorXd& x_m, double dt_s,
 /// y'[k] = (y[k+1] - y[k-1]) / (2 dt), y'[0] = (-3 y[0] + 4 y[1] - y[2]) / (2 dt) and its mirror.
 /// Error <= dt^2/6 max|y'''| inside, <= dt^2 max|y'''| at the ends. Needs >= 3 samples.
 Eigen::VectorXd CentralDifference(const Eigen::VectorXd& y, double dt_s);
+/// CentralDifference into `out` (resized; its storage reused when the size matches). `out`
+/// must not be `y`.
+void CentralDifference(const Eigen::VectorXd& y, double dt_s, Eigen::VectorXd* out);
 
 /// Zero-phase Butterworth low-pass: the order-`order` filter run forward and backward with
 /// odd-reflection padding at the ends (as MATLAB's filtfilt), so the result has no phase lag.
@@ -100,6 +103,10 @@ enum class DelayStart {
 /// Throws OptionsError for dt_s <= 0 or tau_s < 0.
 Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
                             DelayStart start = DelayStart::kHoldFirst);
+/// DelaySignal into `out` (resized; its storage reused when the size matches). `out` must not
+/// be `y`.
+void DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s, DelayStart start,
+                 Eigen::VectorXd* out);
 
 }  // namespace sysid
 

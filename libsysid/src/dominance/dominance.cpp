@@ -47,25 +47,27 @@ void DominanceOptions::Validate() const {
 
 namespace {
 
-double Quantile(std::vector<double> values, double q) {
+using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
+
+// The q-quantile of `values`, which it reorders.
+double Quantile(std::vector<double>& values, double q) {
   if (values.empty()) return 0.0;
   const size_t k = static_cast<size_t>(std::ceil(q * static_cast<double>(values.size() - 1)));
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   return values[k];
 }
 
-// Pointwise |num| / |den| over samples where the denominator is non-zero.
-void RatioStats(const Eigen::VectorXd& num, const Eigen::VectorXd& den, double q, double* bound,
-                double* max) {
-  std::vector<double> r;
-  r.reserve(static_cast<size_t>(num.size()));
+// Pointwise |num| / |den| over samples where the denominator is non-zero; `r` is scratch.
+void RatioStats(const ConstVectorRef& num, const ConstVectorRef& den, double q,
+                std::vector<double>& r, double* bound, double* max) {
+  r.clear();
   for (Eigen::Index k = 0; k < num.size(); ++k)
     if (den[k] != 0) r.push_back(std::abs(num[k]) / std::abs(den[k]));
   *max = r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
-  *bound = Quantile(std::move(r), q);
+  *bound = Quantile(r, q);
 }
 
-TermStats Stats(const std::string& name, const Eigen::VectorXd& term) {
+TermStats Stats(const std::string& name, const ConstVectorRef& term) {
   TermStats s;
   s.name = name;
   s.rms = std::sqrt(term.squaredNorm() / static_cast<double>(term.size()));
@@ -73,15 +75,31 @@ TermStats Stats(const std::string& name, const Eigen::VectorXd& term) {
   return s;
 }
 
+// Makes `v` hold at least n values, keeping its storage when it already does: the terms live
+// in the first n (a prefix), so recordings with different moving-sample counts share storage.
+void Reserve(Eigen::VectorXd& v, Eigen::Index n) {
+  if (v.size() < n) v.resize(n);
+}
+
 }  // namespace
 
 DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
                                  const DominanceOptions& options) {
+  DominanceWorkspace workspace;
+  return AnalyzeDominance(model, recording, options, &workspace);
+}
+
+DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& recording,
+                                 const DominanceOptions& options, DominanceWorkspace* workspace) {
   options.Validate();
   model.Validate();
-  const MotionSignals m = ExtractMotion(recording, options.motion);
-  const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, model.tau_s, DelayStart::kNaN);
-  std::vector<Eigen::Index> rows;
+  DominanceWorkspace& w = *workspace;
+  ExtractMotion(recording, options.motion, &w.motion);
+  const MotionSignals& m = w.motion;
+  DelaySignal(m.v_mps, m.dt_s, model.tau_s, DelayStart::kNaN, &w.delayed_v_mps);
+  const Eigen::VectorXd& vd = w.delayed_v_mps;
+  std::vector<Eigen::Index>& rows = w.moving;
+  rows.clear();
   for (Eigen::Index k = 0; k < m.v_mps.size(); ++k)
     if (std::isfinite(vd[k]) && std::abs(m.v_mps[k]) >= options.min_speed_mps) rows.push_back(k);
   DominanceResult r;
@@ -94,7 +112,8 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
                     "everywhere): no sliding samples to compare terms on",
                     recording.source, options.min_speed_mps));
   const Eigen::Index n = r.moving_samples;
-  Eigen::VectorXd ta(n), tv(n), tc(n);
+  for (Eigen::VectorXd* v : {&w.acceleration, &w.viscous, &w.coulomb, &w.velocity}) Reserve(*v, n);
+  auto ta = w.acceleration.head(n), tv = w.viscous.head(n), tc = w.coulomb.head(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Index k = rows[static_cast<size_t>(i)];
     const double v = m.v_mps[k], d = vd[k];
@@ -102,20 +121,25 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
     tv[i] = (d > 0 ? model.a1p : model.a1n) * d;
     tc[i] = v > 0 ? model.a2p : -model.a2n;
   }
+  auto velocity = w.velocity.head(n);
+  velocity = tv + tc;
   r.terms = {Stats("acceleration", ta), Stats("viscous", tv), Stats("coulomb", tc)};
-  std::vector<std::pair<std::string, Eigen::VectorXd>> variables{{"acceleration", ta},
-                                                                 {"velocity", tv + tc}};
-  for (const auto& c : options.candidates) {
+  std::vector<std::pair<std::string, ConstVectorRef>> variables{{"acceleration", ta},
+                                                                {"velocity", velocity}};
+  if (w.candidates.size() < options.candidates.size()) w.candidates.resize(options.candidates.size());
+  for (size_t j = 0; j < options.candidates.size(); ++j) {
+    const auto& c = options.candidates[j];
     if (!recording.has(c.column))
       throw InputError(
           fmt::format("{}: candidate '{}' needs column '{}', which the recording "
                       "does not have",
                       recording.source, c.variable, c.column));
     const auto col = recording.column(c.column);
-    Eigen::VectorXd t(n);
+    Reserve(w.candidates[j], n);
+    auto t = w.candidates[j].head(n);
     for (Eigen::Index i = 0; i < n; ++i) t[i] = c.gain * col[rows[static_cast<size_t>(i)]];
     r.terms.push_back(Stats(c.variable, t));
-    variables.emplace_back(c.variable, std::move(t));
+    variables.emplace_back(c.variable, t);
   }
   std::vector<size_t> order(variables.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -123,12 +147,13 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   for (const auto& [name, t] : variables) stats.push_back(Stats(name, t));
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return stats[a].rms > stats[b].rms; });
-  const auto& top = variables[order[0]].second;
+  const ConstVectorRef& top = variables[order[0]].second;
   const double top_rms = stats[order[0]].rms;
   for (size_t i : order) {
     TermStats s = stats[i];
     s.ratio_to_top = top_rms > 0 ? s.rms / top_rms : 0.0;
-    RatioStats(variables[i].second, top, options.bound_quantile, &s.ratio_bound, &s.ratio_max);
+    RatioStats(variables[i].second, top, options.bound_quantile, w.ratios, &s.ratio_bound,
+               &s.ratio_max);
     s.negligible = i != order[0] && s.ratio_to_top <= options.negligible_ratio;
     r.ranking.push_back(s);
   }
@@ -136,7 +161,8 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   r.dominant = r.ranking[0].name;
   r.margin = r.ranking.size() > 1 && r.ranking[1].rms > 0 ? r.ranking[0].rms / r.ranking[1].rms
                                                           : std::numeric_limits<double>::infinity();
-  RatioStats(ta, tv, options.bound_quantile, &r.pointwise_ratio_quantile, &r.pointwise_ratio_max);
+  RatioStats(ta, tv, options.bound_quantile, w.ratios, &r.pointwise_ratio_quantile,
+             &r.pointwise_ratio_max);
   const double peak_v = tv.cwiseAbs().maxCoeff();
   r.peak_ratio =
       peak_v > 0 ? ta.cwiseAbs().maxCoeff() / peak_v : std::numeric_limits<double>::infinity();
@@ -154,9 +180,10 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
   std::vector<std::exception_ptr> errors(n);
   std::atomic<size_t> next{0};
   auto work = [&] {
+    DominanceWorkspace workspace;  // one per thread, reused over its recordings
     for (size_t i = next++; i < n; i = next++) {
       try {
-        s.results[i] = AnalyzeDominance(model, recordings[i], options);
+        s.results[i] = AnalyzeDominance(model, recordings[i], options, &workspace);
       } catch (...) {
         errors[i] = std::current_exception();
       }

@@ -33,17 +33,20 @@ class Parser {
   Parser(std::string_view text, const std::string& source, const ReadOptions& options)
       : text_(text), source_(source), options_(options) {}
 
-  Recording Run() {
+  // Parses into `rec` (its previous content replaced, its matrix storage reused when the size
+  // matches) with `values` as the row-major scratch. A fresh `values` is reserved from a count
+  // of the lines first; a reused one (RecordingReader) keeps its capacity and skips the count.
+  void Run(Recording& rec, std::vector<double>& values) {
     if (text_.size() >= 3 && std::memcmp(text_.data(), "\xEF\xBB\xBF", 3) == 0) {
       text_.remove_prefix(3);
       bom_ = true;
     }
-    Recording rec;
     rec.source = source_;
+    rec.names.clear();
+    rec.metadata.clear();
     ReadHeader(rec);
-    ReadRows(rec);
+    ReadRows(rec, values);
     CheckColumns(rec);
-    return rec;
   }
 
  private:
@@ -122,14 +125,16 @@ class Parser {
                        : "no header line: expected a line of column names (t,u,x,...)");
   }
 
-  void ReadRows(Recording& rec) {
+  void ReadRows(Recording& rec, std::vector<double>& values) {
     const size_t ncol = rec.names.size();
-    // Upper bound of the row count: the remaining newlines (+1 for a missing final one).
-    const size_t max_rows =
-        static_cast<size_t>(std::count(text_.begin() + static_cast<long>(pos_), text_.end(),
-                                       '\n')) + 1;
-    std::vector<double> values;  // row-major while parsing; transposed once at the end
-    values.reserve(max_rows * ncol);
+    values.clear();  // row-major while parsing; transposed once at the end
+    if (values.capacity() == 0) {
+      // Upper bound of the row count: the remaining newlines (+1 for a missing final one).
+      const size_t max_rows =
+          static_cast<size_t>(std::count(text_.begin() + static_cast<long>(pos_), text_.end(),
+                                         '\n')) + 1;
+      values.reserve(max_rows * ncol);
+    }
     const int t_index = options_.require_increasing_time ? rec.index_of("t") : -1;
     double t_prev = 0;
     long t_prev_line = 0;
@@ -253,11 +258,20 @@ class Parser {
 
 Recording ParseRecording(std::string_view text, const std::string& source,
                          const ReadOptions& options) {
-  return Parser(text, source, options).Run();
+  Recording rec;
+  std::vector<double> values;
+  Parser(text, source, options).Run(rec, values);
+  return rec;
 }
 
 Recording ReadRecording(const std::string& path, const ReadOptions& options) {
   return ParseRecording(ReadFile(path), path, options);
+}
+
+const Recording& RecordingReader::Read(const std::string& path) {
+  ReadFile(path, &text_);
+  Parser(text_, path, options_).Run(recording_, values_);
+  return recording_;
 }
 
 }  // namespace sysid

@@ -15,13 +15,20 @@
 namespace sysid {
 
 std::string ReadFile(const std::string& path) {
+  std::string text;
+  ReadFile(path, &text);
+  return text;
+}
+
+void ReadFile(const std::string& path, std::string* out) {
+  std::string& text = *out;
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path + ": cannot open: is a directory");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
-  std::string text;
-  // One allocation of the file's size, then one read: no regrowth for large recordings.
+  // One allocation of the file's size (none when `text` already holds as much), then one
+  // read: no regrowth for large recordings.
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec) text.resize(static_cast<size_t>(size));
   size_t got = ec ? 0 : std::fread(text.data(), 1, text.size(), f);
@@ -32,7 +39,6 @@ std::string ReadFile(const std::string& path) {
   const bool failed = std::ferror(f) != 0;
   std::fclose(f);
   if (failed) throw InputError(path + ": read error");
-  return text;
 }
 
 void WriteFileAtomically(const std::string& path, std::string_view content) {

@@ -8,20 +8,27 @@
 namespace sysid {
 
 SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance) {
+  Eigen::VectorXd scratch;
+  return AnalyzeSampling(t, tolerance, &scratch);
+}
+
+SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
+                               Eigen::VectorXd* scratch) {
   if (t.size() < 2) throw InputError("sampling: need at least 2 samples, found " +
                                      std::to_string(t.size()));
+  SYSID_CHECK(scratch != &t, "AnalyzeSampling: scratch must not be t");
   const Eigen::Index n = t.size() - 1;
-  std::vector<double> dt(static_cast<size_t>(n));
-  for (Eigen::Index k = 0; k < n; ++k) dt[static_cast<size_t>(k)] = t[k + 1] - t[k];
-  std::vector<double> sorted = dt;
+  Eigen::VectorXd& sorted = *scratch;
+  sorted.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) sorted[k] = t[k + 1] - t[k];
   // The median, not the mean: a few gaps (dropped samples) must not shift the nominal rate.
-  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  std::nth_element(sorted.data(), sorted.data() + n / 2, sorted.data() + n);
   SamplingReport r;
-  r.nominal_dt_s = sorted[static_cast<size_t>(n / 2)];
+  r.nominal_dt_s = sorted[n / 2];
   r.sample_rate_hz = 1.0 / r.nominal_dt_s;
   double sum2 = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const double d = std::abs(dt[static_cast<size_t>(k)] - r.nominal_dt_s);
+    const double d = std::abs((t[k + 1] - t[k]) - r.nominal_dt_s);
     sum2 += d * d;
     if (d > r.max_jitter_s) {
       r.max_jitter_s = d;

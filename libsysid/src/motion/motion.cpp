@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <utility>
 
 #include "sysid/error.hpp"
 #include "sysid/motion.hpp"
@@ -22,39 +23,62 @@ void MotionOptions::Validate() const {
         "name");
 }
 
-double UniformSampleInterval(const Recording& recording, double max_relative_jitter) {
-  const Eigen::VectorXd t = recording.column("t");
-  const SamplingReport s = AnalyzeSampling(t, max_relative_jitter);
+namespace {
+
+double CheckedSampleInterval(const std::string& source, const Eigen::VectorXd& t,
+                             double max_relative_jitter, Eigen::VectorXd* scratch) {
+  const SamplingReport s = AnalyzeSampling(t, max_relative_jitter, scratch);
   if (s.irregular)
     throw InputError(fmt::format(
         "{}:{}: irregular sampling: interval {:.6g} s deviates {:.3g} % from the nominal "
         "{:.6g} s (allowed {:.3g} %); resample first (sysid::Resample, sysid derive --resample)",
-        recording.source, s.worst_index + 2, t[s.worst_index + 1] - t[s.worst_index],
+        source, s.worst_index + 2, t[s.worst_index + 1] - t[s.worst_index],
         100 * s.max_relative_jitter, s.nominal_dt_s, 100 * max_relative_jitter));
   return s.nominal_dt_s;
 }
 
+}  // namespace
+
+double UniformSampleInterval(const Recording& recording, double max_relative_jitter) {
+  const Eigen::VectorXd t = recording.column("t");
+  Eigen::VectorXd scratch;
+  return CheckedSampleInterval(recording.source, t, max_relative_jitter, &scratch);
+}
+
 MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options) {
-  options.Validate();
   MotionSignals m;
+  ExtractMotion(recording, options, &m);
+  return m;
+}
+
+void ExtractMotion(const Recording& recording, const MotionOptions& options,
+                   MotionSignals* out) {
+  options.Validate();
+  MotionSignals& m = *out;
   m.source = recording.source;
   if (recording.rows() < 3)
     throw InputError(fmt::format("{}: {} samples: at least 3 are needed to differentiate",
                                  recording.source, recording.rows()));
   m.t_s = recording.column("t");
   m.u_v = recording.column("u");
-  m.dt_s = UniformSampleInterval(recording, options.max_relative_jitter);
+  // a_mps2 is computed last; until then its storage is the sampling check's scratch.
+  m.dt_s = CheckedSampleInterval(recording.source, m.t_s, options.max_relative_jitter,
+                                 &m.a_mps2);
   const bool has_v = recording.has(options.velocity_column);
   const bool use_v = has_v && (options.prefer_velocity_column || !recording.has("x"));
   if (use_v) {
     m.v_mps = recording.column(options.velocity_column);
-    if (recording.has("x")) m.x_m = recording.column("x");
+    if (recording.has("x")) {
+      m.x_m = recording.column("x");
+    } else {
+      m.x_m.resize(0);
+    }
     // The velocity is measured: the acceleration is its derivative with the chosen filter.
     const DerivativeOptions& d = options.derivative;
     d.Validate(m.dt_s);
     switch (d.method) {
       case DerivativeMethod::kCentral:
-        m.a_mps2 = CentralDifference(m.v_mps, m.dt_s);
+        CentralDifference(m.v_mps, m.dt_s, &m.a_mps2);
         break;
       case DerivativeMethod::kButterworthCentral:
         m.a_mps2 = CentralDifference(
@@ -65,17 +89,23 @@ MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& opt
         break;
     }
     m.velocity_from = "column " + options.velocity_column;
-    return m;
+    return;
   }
   if (!recording.has("x"))
     throw InputError(fmt::format("{}: no position column 'x' and no velocity column '{}'",
                                  recording.source, options.velocity_column));
   m.x_m = recording.column("x");
-  Derivatives d = Differentiate(m.x_m, m.dt_s, options.derivative);
-  m.v_mps = std::move(d.v_mps);
-  m.a_mps2 = std::move(d.a_mps2);
+  if (options.derivative.method == DerivativeMethod::kCentral) {
+    // Differentiate's central path (v = D x, a = D v) without its copy of x.
+    options.derivative.Validate(m.dt_s);
+    CentralDifference(m.x_m, m.dt_s, &m.v_mps);
+    CentralDifference(m.v_mps, m.dt_s, &m.a_mps2);
+  } else {
+    Derivatives d = Differentiate(m.x_m, m.dt_s, options.derivative);
+    m.v_mps = std::move(d.v_mps);
+    m.a_mps2 = std::move(d.a_mps2);
+  }
   m.velocity_from = "x (" + ToString(options.derivative.method) + ")";
-  return m;
 }
 
 double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions& derivative,

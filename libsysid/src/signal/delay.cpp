@@ -12,6 +12,14 @@ namespace sysid {
 
 Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
                             DelayStart start) {
+  Eigen::VectorXd out;
+  DelaySignal(y, dt_s, tau_s, start, &out);
+  return out;
+}
+
+void DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s, DelayStart start,
+                 Eigen::VectorXd* result) {
+  SYSID_CHECK(result != &y, "DelaySignal: out must not alias y");
   if (!(dt_s > 0) || !(tau_s >= 0) || !std::isfinite(tau_s))
     throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
                        std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
@@ -19,7 +27,8 @@ Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
   const auto whole = static_cast<Eigen::Index>(std::floor(shift));
   const double frac = shift - static_cast<double>(whole);
   const Eigen::Index n = y.size();
-  Eigen::VectorXd out(n);
+  Eigen::VectorXd& out = *result;
+  out.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     // y(t_k - tau) lies between samples k - whole - 1 and k - whole.
     const Eigen::Index hi = k - whole, lo = hi - 1;
@@ -31,7 +40,6 @@ Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
     const double y_lo = y[std::clamp<Eigen::Index>(lo, 0, n - 1)];
     out[k] = (1 - frac) * y_hi + frac * y_lo;
   }
-  return out;
 }
 
 }  // namespace sysid
