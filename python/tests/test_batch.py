@@ -28,6 +28,31 @@ def test_batch_dominance_matches_per_recording_and_threads(model):
     pandas.testing.assert_frame_equal(sysid.batch(recs, model=model, threads=2), serial)
 
 
+def test_one_chunk_call_reusing_buffers_equals_one_call_per_file(model, tmp_path):
+    """A chunk is one C++ call reusing one reader and one workspace over its files: every row
+    (all columns, exactly) is the one-file call's, across files of different lengths and a
+    failing file in between."""
+    files = sysid.expand_paths(WAVEFORMS)
+    short = sysid.read_recording(files[0])
+    cut = tmp_path / "short.csv"
+    cut.write_text("t,u,x\n" + "".join(f"{t!r},{u!r},{x!r}\n" for t, u, x in
+                   zip(short["t"][:700], short["u"][:700], short["x"][:700])))
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,u,x\n0,1,2\n0.001,1,oops\n")
+    chunk = [files[0], str(cut), str(bad), files[1], files[0], files[2]]
+    opts = sysid.DominanceOptions(threads=1)
+    rows = sysid._sysid.dominance_rows_files(model, chunk, opts)
+    for path, row in zip(chunk, rows):
+        if path == str(bad):
+            assert row["error_type"] == "DataError" and "bad.csv:3:" in row["error"]
+            continue
+        single = sysid._sysid.analyze_dominance(model, sysid.read_recording(path), opts).row()
+        assert repr(row) == repr(single)  # exact, not approximate
+    recs = [sysid.read_recording(p) for p in chunk if p != str(bad)]
+    in_memory = sysid._sysid.dominance_rows(model, recs, opts)
+    assert repr(in_memory) == repr([r for r in rows if "error" not in r])
+
+
 def test_batch_other_tasks_and_errors(model, tmp_path):
     ident = sysid.batch([VIRTUAL / "pulses.csv"], task="identify_pulses", threads=2)
     assert ident.loc[0, "a1p"] == sysid.identify_pulses(VIRTUAL / "pulses.csv").model.a1p
