@@ -2,7 +2,12 @@
 // recordings already in memory, one after another on one thread, best of R passes.
 //
 //   bench_dominance MODEL.json REC.csv... [--repeats R]
-// Prints one line "cpp_seconds_per_pass S recordings N" for bench/bench_python.py to read.
+// Prints one line "cpp_seconds_per_pass S recordings N" for bench/bench_python.py to read, then
+// the buffer-reuse ratios, one thread, passes alternated so that both see the same load:
+//  - in memory: AnalyzeDominance (fresh buffers per recording) vs one DominanceWorkspace;
+//  - from the files: ReadRecording + AnalyzeDominance per file (before) vs one RecordingReader
+//    and one DominanceWorkspace (what a sysid.batch chunk does), with and without glibc's
+//    MALLOC_TRIM_THRESHOLD_ as a Dask nanny sets it (run it with the variable set to see it).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -47,5 +52,40 @@ int main(int argc, char** argv) {
   }
   fmt::print("cpp_seconds_per_pass {:.9g} recordings {} (checksum {:.6g})\n", best, recs.size(),
              sink);
+
+  auto time = [](auto&& pass) {
+    const auto t0 = std::chrono::steady_clock::now();
+    pass();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  double fresh = 1e300, reused = 1e300, files_fresh = 1e300, files_reused = 1e300;
+  double sum_fresh = 0, sum_reused = 0;
+  for (int r = 0; r < repeats; ++r) {
+    fresh = std::min(fresh, time([&] {
+      for (const auto& rec : recs) sum_fresh += sysid::AnalyzeDominance(model, rec, options).margin;
+    }));
+    reused = std::min(reused, time([&] {
+      sysid::DominanceWorkspace workspace;
+      for (const auto& rec : recs)
+        sum_reused += sysid::AnalyzeDominance(model, rec, options, &workspace).margin;
+    }));
+    files_fresh = std::min(files_fresh, time([&] {
+      for (const auto& f : files)
+        sum_fresh += sysid::AnalyzeDominance(model, sysid::ReadRecording(f), options).margin;
+    }));
+    files_reused = std::min(files_reused, time([&] {
+      sysid::RecordingReader reader;
+      sysid::DominanceWorkspace workspace;
+      for (const auto& f : files)
+        sum_reused += sysid::AnalyzeDominance(model, reader.Read(f), options, &workspace).margin;
+    }));
+  }
+  const char* trim = std::getenv("MALLOC_TRIM_THRESHOLD_");
+  fmt::print("in memory: fresh buffers {:.6f} s, one workspace {:.6f} s: {:.3f}x\n", fresh, reused,
+             fresh / reused);
+  fmt::print("from files: ReadRecording per file {:.6f} s, one reader + workspace {:.6f} s: {:.3f}x"
+             " (MALLOC_TRIM_THRESHOLD_={}; same results: {})\n",
+             files_fresh, files_reused, files_fresh / files_reused, trim ? trim : "unset",
+             sum_fresh == sum_reused);
   return 0;
 }
