@@ -119,11 +119,16 @@ def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
     if client is not None:
         from distributed import as_completed
         futures = client.map(_run_chunk, chunks, fn=fn, kw=kw, pure=False)
-        index = {f.key: k for k, f in enumerate(futures)}
-        for future in as_completed(futures):
-            k = index[future.key]
-            results[k] = future.result()
-            report(k)
+        if not progress:
+            # One gather for all chunks (batched per worker), not a blocking round trip from
+            # this thread into the client's event loop per chunk.
+            results = client.gather(futures)
+        else:
+            index = {f.key: k for k, f in enumerate(futures)}
+            for future, result in as_completed(futures, with_results=True):
+                k = index[future.key]
+                results[k] = result
+                report(k)
     elif workers == 1:
         for k, c in enumerate(chunks):
             results[k] = _run_chunk(c, fn, kw)

@@ -89,10 +89,14 @@ def test_dask_local_cluster_of_two_processes_equals_serial(model):
                                   dashboard_address=":0") as cluster, \
             distributed.Client(cluster) as client:
         table = sysid.batch(WAVEFORMS, model=model, client=client)
+        # With progress the chunks are collected as they finish (as_completed), else in one
+        # gather: same table.
+        shown = sysid.batch(WAVEFORMS, model=model, client=client, chunksize=1, progress=True)
         grid = sysid.sweep_grid(str(VIRTUAL / "training.csv"), hidden_sizes=[2, 3], seeds=[1],
                                 max_epochs=4, client=client)
         assert len(client.scheduler_info()["workers"]) == 2
     pandas.testing.assert_frame_equal(table, sysid.batch(WAVEFORMS, model=model, threads=1))
+    pandas.testing.assert_frame_equal(shown, table)
     serial = sysid.sweep_grid(str(VIRTUAL / "training.csv"), hidden_sizes=[2, 3], seeds=[1],
                               max_epochs=4, threads=1)
     pandas.testing.assert_frame_equal(grid.drop(columns="wall_time_s"),
