@@ -118,8 +118,9 @@ struct SamplingReport {
 /// Analyses the sampling of `t` (strictly increasing, at least 2 samples). `tolerance` is the
 /// relative jitter above which the sampling is called irregular (default 1 %).
 SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance = 0.01);
-/// AnalyzeSampling with `scratch` (resized to t.size() - 1) for the interval median, so that a
-/// caller looping over recordings reuses one buffer. Same report.
+/// AnalyzeSampling with `scratch` for the interval median (its first t.size() - 1 values; grown
+/// when shorter, never shrunk), so that a caller looping over recordings reuses one buffer.
+/// Same report.
 SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
                                Eigen::VectorXd* scratch);
 

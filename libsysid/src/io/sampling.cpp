@@ -18,11 +18,13 @@ SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
                                      std::to_string(t.size()));
   SYSID_CHECK(scratch != &t, "AnalyzeSampling: scratch must not be t");
   const Eigen::Index n = t.size() - 1;
-  Eigen::VectorXd& sorted = *scratch;
-  sorted.resize(n);
+  // The first n values of the scratch; it only grows, so that a caller's buffer of the
+  // signal's length (ExtractMotion lends a_mps2) is not reallocated to n and back.
+  if (scratch->size() < n) scratch->resize(n);
+  double* sorted = scratch->data();
   for (Eigen::Index k = 0; k < n; ++k) sorted[k] = t[k + 1] - t[k];
   // The median, not the mean: a few gaps (dropped samples) must not shift the nominal rate.
-  std::nth_element(sorted.data(), sorted.data() + n / 2, sorted.data() + n);
+  std::nth_element(sorted, sorted + n / 2, sorted + n);
   SamplingReport r;
   r.nominal_dt_s = sorted[n / 2];
   r.sample_rate_hz = 1.0 / r.nominal_dt_s;
