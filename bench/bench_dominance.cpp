@@ -62,30 +62,36 @@ int main(int argc, char** argv) {
   double sum_fresh = 0, sum_reused = 0;
   for (int r = 0; r < repeats; ++r) {
     fresh = std::min(fresh, time([&] {
-      for (const auto& rec : recs) sum_fresh += sysid::AnalyzeDominance(model, rec, options).margin;
-    }));
+                       for (const auto& rec : recs)
+                         sum_fresh += sysid::AnalyzeDominance(model, rec, options).margin;
+                     }));
     reused = std::min(reused, time([&] {
-      sysid::DominanceWorkspace workspace;
-      for (const auto& rec : recs)
-        sum_reused += sysid::AnalyzeDominance(model, rec, options, &workspace).margin;
-    }));
-    files_fresh = std::min(files_fresh, time([&] {
-      for (const auto& f : files)
-        sum_fresh += sysid::AnalyzeDominance(model, sysid::ReadRecording(f), options).margin;
-    }));
-    files_reused = std::min(files_reused, time([&] {
-      sysid::RecordingReader reader;
-      sysid::DominanceWorkspace workspace;
-      for (const auto& f : files)
-        sum_reused += sysid::AnalyzeDominance(model, reader.Read(f), options, &workspace).margin;
-    }));
+                        sysid::DominanceWorkspace workspace;
+                        for (const auto& rec : recs)
+                          sum_reused +=
+                              sysid::AnalyzeDominance(model, rec, options, &workspace).margin;
+                      }));
+    files_fresh = std::min(
+        files_fresh, time([&] {
+          for (const auto& f : files)
+            sum_fresh += sysid::AnalyzeDominance(model, sysid::ReadRecording(f), options).margin;
+        }));
+    files_reused =
+        std::min(files_reused, time([&] {
+                   sysid::RecordingReader reader;
+                   sysid::DominanceWorkspace workspace;
+                   for (const auto& f : files)
+                     sum_reused +=
+                         sysid::AnalyzeDominance(model, reader.Read(f), options, &workspace).margin;
+                 }));
   }
   const char* trim = std::getenv("MALLOC_TRIM_THRESHOLD_");
   fmt::print("in memory: fresh buffers {:.6f} s, one workspace {:.6f} s: {:.3f}x\n", fresh, reused,
              fresh / reused);
-  fmt::print("from files: ReadRecording per file {:.6f} s, one reader + workspace {:.6f} s: {:.3f}x"
-             " (MALLOC_TRIM_THRESHOLD_={}; same results: {})\n",
-             files_fresh, files_reused, files_fresh / files_reused, trim ? trim : "unset",
-             sum_fresh == sum_reused);
+  fmt::print(
+      "from files: ReadRecording per file {:.6f} s, one reader + workspace {:.6f} s: {:.3f}x"
+      " (MALLOC_TRIM_THRESHOLD_={}; same results: {})\n",
+      files_fresh, files_reused, files_fresh / files_reused, trim ? trim : "unset",
+      sum_fresh == sum_reused);
   return 0;
 }

@@ -413,8 +413,9 @@ void BindIdentify(py::module_& m) {
       });
   m.def("analyze_dominance",
         py::overload_cast<const FrictionModel&, const Recording&, const DominanceOptions&>(
-            &AnalyzeDominance), py::arg("model"), py::arg("recording"),
-        py::arg("options") = DominanceOptions{}, ReleaseGil());
+            &AnalyzeDominance),
+        py::arg("model"), py::arg("recording"), py::arg("options") = DominanceOptions{},
+        ReleaseGil());
   m.def(
       "dominance_rows_files",
       [](const FrictionModel& model, const std::vector<std::string>& paths,

@@ -122,8 +122,8 @@ void BindIo(py::module_& m) {
       .def_readonly("max_relative_jitter", &SamplingReport::max_relative_jitter)
       .def_readonly("irregular", &SamplingReport::irregular)
       .def_readonly("worst_index", &SamplingReport::worst_index);
-  m.def("analyze_sampling",
-        py::overload_cast<const Eigen::VectorXd&, double>(&AnalyzeSampling), py::arg("t_s"), py::arg("tolerance") = 0.01);
+  m.def("analyze_sampling", py::overload_cast<const Eigen::VectorXd&, double>(&AnalyzeSampling),
+        py::arg("t_s"), py::arg("tolerance") = 0.01);
   m.def("resample", &Resample, py::arg("recording"), py::arg("rate_hz"), ReleaseGil());
 
   // ---- Signal conditioning ----
@@ -174,9 +174,8 @@ void BindIo(py::module_& m) {
       .def_readonly("v_mps", &MotionSignals::v_mps)
       .def_readonly("a_mps2", &MotionSignals::a_mps2)
       .def_readonly("velocity_from", &MotionSignals::velocity_from);
-  m.def("extract_motion",
-        py::overload_cast<const Recording&, const MotionOptions&>(&ExtractMotion), py::arg("recording"),
-        py::arg("options") = MotionOptions{}, ReleaseGil());
+  m.def("extract_motion", py::overload_cast<const Recording&, const MotionOptions&>(&ExtractMotion),
+        py::arg("recording"), py::arg("options") = MotionOptions{}, ReleaseGil());
 }
 
 }  // namespace sysid::python

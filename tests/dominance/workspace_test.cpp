@@ -17,7 +17,8 @@ using sysid::test::MakeModel;
 
 namespace {
 
-void CheckSameStats(const std::vector<sysid::TermStats>& a, const std::vector<sysid::TermStats>& b) {
+void CheckSameStats(const std::vector<sysid::TermStats>& a,
+                    const std::vector<sysid::TermStats>& b) {
   REQUIRE(a.size() == b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     INFO(a[i].name);

@@ -91,14 +91,14 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
 /// the workspace held before. One workspace per thread.
 struct DominanceWorkspace {
   MotionSignals motion;
-  Eigen::VectorXd delayed_v_mps;      ///< [m/s] v(t - tau)
-  std::vector<Eigen::Index> moving;   ///< indices with |v| >= min_speed_mps
-  Eigen::VectorXd acceleration;       ///< [m/s^2] the terms over the moving samples (a prefix)
-  Eigen::VectorXd viscous;            ///< [m/s^2]
-  Eigen::VectorXd coulomb;            ///< [m/s^2]
-  Eigen::VectorXd velocity;           ///< [m/s^2] viscous + coulomb
+  Eigen::VectorXd delayed_v_mps;     ///< [m/s] v(t - tau)
+  std::vector<Eigen::Index> moving;  ///< indices with |v| >= min_speed_mps
+  Eigen::VectorXd acceleration;      ///< [m/s^2] the terms over the moving samples (a prefix)
+  Eigen::VectorXd viscous;           ///< [m/s^2]
+  Eigen::VectorXd coulomb;           ///< [m/s^2]
+  Eigen::VectorXd velocity;          ///< [m/s^2] viscous + coulomb
   std::vector<Eigen::VectorXd> candidates;  ///< [m/s^2] one per DominanceOptions::candidates
-  std::vector<double> ratios;         ///< pointwise ratios for the quantile
+  std::vector<double> ratios;               ///< pointwise ratios for the quantile
 };
 
 /// AnalyzeDominance in `workspace`'s buffers: the same result, fewer allocations.

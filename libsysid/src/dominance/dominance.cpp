@@ -126,7 +126,8 @@ DominanceResult AnalyzeDominance(const FrictionModel& model, const Recording& re
   r.terms = {Stats("acceleration", ta), Stats("viscous", tv), Stats("coulomb", tc)};
   std::vector<std::pair<std::string, ConstVectorRef>> variables{{"acceleration", ta},
                                                                 {"velocity", velocity}};
-  if (w.candidates.size() < options.candidates.size()) w.candidates.resize(options.candidates.size());
+  if (w.candidates.size() < options.candidates.size())
+    w.candidates.resize(options.candidates.size());
   for (size_t j = 0; j < options.candidates.size(); ++j) {
     const auto& c = options.candidates[j];
     if (!recording.has(c.column))

@@ -1,11 +1,12 @@
 // Velocity and acceleration of a recording, from its position or a measured-velocity column.
+#include "sysid/motion.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
 #include <utility>
 
 #include "sysid/error.hpp"
-#include "sysid/motion.hpp"
 #include "sysid/io.hpp"
 #include "sysid/signal.hpp"
 
@@ -51,8 +52,7 @@ MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& opt
   return m;
 }
 
-void ExtractMotion(const Recording& recording, const MotionOptions& options,
-                   MotionSignals* out) {
+void ExtractMotion(const Recording& recording, const MotionOptions& options, MotionSignals* out) {
   options.Validate();
   MotionSignals& m = *out;
   m.source = recording.source;
@@ -62,8 +62,7 @@ void ExtractMotion(const Recording& recording, const MotionOptions& options,
   m.t_s = recording.column("t");
   m.u_v = recording.column("u");
   // a_mps2 is computed last; until then its storage is the sampling check's scratch.
-  m.dt_s = CheckedSampleInterval(recording.source, m.t_s, options.max_relative_jitter,
-                                 &m.a_mps2);
+  m.dt_s = CheckedSampleInterval(recording.source, m.t_s, options.max_relative_jitter, &m.a_mps2);
   const bool has_v = recording.has(options.velocity_column);
   const bool use_v = has_v && (options.prefer_velocity_column || !recording.has("x"));
   if (use_v) {
