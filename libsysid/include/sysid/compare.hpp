@@ -72,6 +72,12 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
                                        const NeuralNetwork* network,
                                        const CompareOptions& options = {});
 
+/// The options as JSON ({"derivative": {...}, "trim_samples"}) and the reader: every key
+/// optional, the result validated, InputError "SOURCE:LINE:COL: NAME: expected ..., found ..."
+/// otherwise (as MotionOptionsFromJson).
+std::string ToJson(const CompareOptions& options, int indent = 2);
+CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name);
+
 /// {"rmse_v", "peak_error_v", "nrmse", "r2"} (null where not finite), and back: InputError
 /// "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text.
 std::string ToJson(const PredictionErrors& errors, int indent = 2);

@@ -274,6 +274,17 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
 /// Parses "16:32:2" (first:last:step) or "16,20,24" into hidden sizes. Throws OptionsError.
 std::vector<int> ParseHiddenSizes(const std::string& spec);
 
+/// The options as JSON, every field but the callbacks (init "nguyen-widrow" or "uniform";
+/// ranges as [min, max]; an unset output_range or initial_parameters as null), and their
+/// readers: every key optional, the result validated, InputError "SOURCE:LINE:COL: NAME:
+/// expected ..., found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const NeuralTrainingOptions& options, int indent = 2);
+std::string ToJson(const HiddenSweepOptions& options, int indent = 2);
+NeuralTrainingOptions NeuralTrainingOptionsFromJson(std::string_view text,
+                                                    const std::string& source_name);
+HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
+                                              const std::string& source_name);
+
 /// A training run as `sysid train --json` reports it: hidden, parameters, the trainer options
 /// (trainer, momentum, solve_output_layer, seed), restart, epochs, MSEs (null when absent),
 /// termination, stop_reason, message, warnings, wall_time_s and the epoch history.

@@ -1,9 +1,11 @@
-// JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries).
+// JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries) and
+// its options.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
 #include "core/json_text.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/compare.hpp"
 
 namespace sysid {
@@ -42,6 +44,22 @@ std::string ToJson(const InverseComparison& c, int indent) {
   j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
   return internal::DumpJson(j, indent);
+}
+
+std::string ToJson(const CompareOptions& o, int indent) {
+  Json j;
+  j["derivative"] = internal::DerivativeOptionsJson(o.derivative);
+  j["trim_samples"] = o.trim_samples;
+  return internal::DumpJson(j, indent);
+}
+
+CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name) {
+  auto read = [](const internal::JsonNode& node, CompareOptions& o) {
+    node.ExpectObject({"derivative", "trim_samples"});
+    if (node.Has("derivative")) internal::ReadDerivativeOptions(node.Get("derivative"), o.derivative);
+    internal::ReadOptional(node, "trim_samples", o.trim_samples);
+  };
+  return internal::OptionsFromJson<CompareOptions>(text, source_name, read);
 }
 
 }  // namespace sysid

@@ -1,0 +1,20 @@
+// Private: NeuralTrainingOptions as a JSON object, for the options that hold one (the hidden
+// sweep, the pipeline).
+#ifndef SYSID_SRC_NN_NN_JSON_HPP_
+#define SYSID_SRC_NN_NN_JSON_HPP_
+
+#include <nlohmann/json.hpp>
+
+#include "core/json_text.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::internal {
+
+/// Every field but the on_epoch callback.
+nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& options);
+/// Reads the object's keys (each optional) over `options`; no Validate().
+void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& options);
+
+}  // namespace sysid::internal
+
+#endif  // SYSID_SRC_NN_NN_JSON_HPP_
