@@ -1,5 +1,5 @@
-// Private: NeuralTrainingOptions as a JSON object, for the options that hold one (the hidden
-// sweep, the pipeline).
+// Private: NeuralTrainingOptions and NeuralNetwork as JSON objects, for the options and
+// results that hold one (the hidden sweep, the pipeline).
 #ifndef SYSID_SRC_NN_NN_JSON_HPP_
 #define SYSID_SRC_NN_NN_JSON_HPP_
 
@@ -14,6 +14,10 @@ namespace sysid::internal {
 nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& options);
 /// Reads the object's keys (each optional) over `options`; no Validate().
 void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& options);
+
+/// A network file's object at `node` (the form NeuralNetworkToJson writes), checked as
+/// ParseNeuralNetwork checks a file; errors name the place in the enclosing document.
+NeuralNetwork NeuralNetworkFromJson(const JsonNode& node);
 
 }  // namespace sysid::internal
 
