@@ -85,6 +85,9 @@ PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::stri
 /// One recording as `sysid compare --json` lists it: file, samples, analytic errors and (with a
 /// network) nn errors. The traces are not included (AsRecording writes them).
 std::string ToJson(const InverseComparison& comparison, int indent = 2);
+/// The comparisons as CSV (`sysid compare -o`'s summary.csv): recording (the source's file
+/// stem), model ("analytic", "nn"), rmse_v, peak_error_v, nrmse, r2; one row per model.
+std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons);
 
 }  // namespace sysid
 

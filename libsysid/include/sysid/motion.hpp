@@ -71,6 +71,13 @@ double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions
 /// order=4" or "method=savgol window=21 order=3", plus " decimate=K" when K > 1.
 std::string DescribeDerivative(const DerivativeOptions& derivative, int decimate = 1);
 
+/// The summary `sysid derive --json` prints of a recording AddDerivatives has extended:
+/// {"method", "settings" (its "derive" metadata, else DescribeDerivative), "rows", "columns",
+/// "dt_s" [s], "sample_rate_hz" [Hz], "v_mps" and "a_mps2": {"min", "max", "rms"}}. Throws
+/// InputError when the recording has no rows or no v or a column.
+std::string DerivedRecordingToJson(const Recording& recording, double dt_s,
+                                   const DerivativeOptions& derivative, int indent = 2);
+
 }  // namespace sysid
 
 #endif  // SYSID_MOTION_HPP_

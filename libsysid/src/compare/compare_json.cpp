@@ -1,5 +1,8 @@
 // JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries) and
-// its options.
+// its options; the comparisons' CSV table (compare -o's summary.csv).
+#include <fmt/format.h>
+
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -60,6 +63,20 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
     internal::ReadOptional(node, "trim_samples", o.trim_samples);
   };
   return internal::OptionsFromJson<CompareOptions>(text, source_name, read);
+}
+
+std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {
+  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
+  for (const auto& c : comparisons) {
+    const std::string name = std::filesystem::path(c.source).stem().string();
+    auto row = [&](const char* which, const PredictionErrors& e) {
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
+                         e.peak_error_v, e.nrmse, e.r2);
+    };
+    row("analytic", c.analytic);
+    if (c.has_nn) row("nn", c.nn);
+  }
+  return csv;
 }
 
 }  // namespace sysid

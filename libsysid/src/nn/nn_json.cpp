@@ -1,4 +1,5 @@
 // JSON of the training and hidden-size sweep options and results (docs/cli.md: train, sweep).
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -275,6 +276,15 @@ HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
     internal::ReadOptional(node, "threads", o.threads);
   };
   return internal::OptionsFromJson<HiddenSweepOptions>(text, source_name, read);
+}
+
+std::string ToJson(const NetworkPrediction& p, int indent) {
+  Json j;
+  j["rows"] = p.rows;
+  j["column"] = p.column;
+  j["rows_outside_input_range"] = p.rows_outside_input_range;
+  if (!std::isnan(p.mse)) j["mse"] = p.mse;
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid
