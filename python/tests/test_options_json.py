@@ -22,6 +22,7 @@ import sysid
     (sysid.SweepOptions, {"hidden_sizes": [4, 9, 13], "threads": 5}),
     (sysid.stage.PiOptions, {"kp_v_per_m": 3000.0, "u_max_v": 8.0}),
     (sysid.stage.SmoothProfileOptions, {"frequency_hz": 2.0, "cycles": 3}),
+    (sysid.stage.PulseProcedure, {"amplitudes_v": [-1.0, 1.5], "on_s": 0.5}),
 ])
 def test_options_round_trip(cls, changes):
     options = cls(**changes)

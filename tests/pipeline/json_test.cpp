@@ -112,3 +112,62 @@ TEST_CASE("pipeline summary JSON: derived values are checked", "[pipeline][json]
   CHECK_THROWS_WITH(sysid::PipelineResultFromJson(old.dump(1), "p.json"),
                     Contains("unknown key 'dominant_variable'"));
 }
+
+TEST_CASE("pipeline options round-trip through JSON", "[pipeline][json]") {
+  sysid::PipelineOptions o;
+  o.a3 = 5.5;
+  o.tune_delay = false;
+  o.delay.tau_max_s = 0.012;
+  o.refine = true;
+  o.hidden_sizes = {8, 12};
+  o.training.max_epochs = 42;
+  o.nn_inputs = {"v", "a"};
+  o.typical = false;
+  o.typical_hidden = 30;
+  o.track_frequencies_hz = {0.25};
+  o.pi = sysid::PiOptions::ForActuatorDelayStage();
+  o.facts = true;
+  o.facts_options = sysid::FactsOptions::Reduced();
+  o.facts_options.facts = {"F1", "F3"};
+  o.facts_options.pulse.amplitudes_v = {-1.0, 1.0};
+  o.facts_options.seed = 9;
+  o.reference_path = "paper.json";
+  o.threads = 2;
+  const std::string text = sysid::ToJson(o);
+  const auto back = sysid::PipelineOptionsFromJson(text, "p.json");
+  CHECK(back.a3 == 5.5);
+  CHECK_FALSE(back.tune_delay);
+  CHECK(back.delay.tau_max_s == 0.012);
+  CHECK(back.hidden_sizes == o.hidden_sizes);
+  CHECK(back.training.max_epochs == 42);
+  CHECK(back.nn_inputs == o.nn_inputs);
+  CHECK(back.pi.kp_v_per_m == 3000);
+  CHECK(back.facts_options.facts == o.facts_options.facts);
+  CHECK(back.facts_options.pulse.amplitudes_v == o.facts_options.pulse.amplitudes_v);
+  CHECK(back.facts_options.training.hidden == o.facts_options.training.hidden);
+  CHECK(back.reference_path == "paper.json");
+  CHECK(sysid::ToJson(back) == text);
+  // The pipeline's own defaults (DefaultTraining: the output layer re-solved) for absent keys.
+  CHECK(sysid::PipelineOptionsFromJson("{}", "e.json").training.solve_output_layer);
+  CHECK(sysid::ToJson(sysid::FactsOptionsFromJson(sysid::ToJson(o.facts_options), "f.json")) ==
+        sysid::ToJson(o.facts_options));
+  CHECK(sysid::PulseProcedureFromJson(sysid::ToJson(o.facts_options.pulse), "pp.json").amplitudes_v ==
+        o.facts_options.pulse.amplitudes_v);
+}
+
+TEST_CASE("pipeline options JSON: bad input names the place", "[pipeline][json]") {
+  using Catch::Contains;
+  CHECK_THROWS_WITH(sysid::PipelineOptionsFromJson("{\"typical_stride\": 0}", "p.json"),
+                    Contains("p.json:1:1: PipelineOptions::typical_stride"));
+  CHECK_THROWS_WITH(
+      sysid::PipelineOptionsFromJson("{\"pi\": {\n \"u_max_v\": -1}}", "p.json"),
+      Contains("p.json:2:2: pi.u_max_v: expected u_max_v > 0, found -1"));
+  CHECK_THROWS_WITH(
+      sysid::PipelineOptionsFromJson("{\"facts_options\": {\"facts\": [\"F9\"]}}", "p.json"),
+      Contains("FactsOptions::facts contains 'F9'"));
+  CHECK_THROWS_WITH(
+      sysid::PipelineOptionsFromJson("{\"facts_options\": {\"pulse\": {\"on\": 1}}}", "p.json"),
+      Contains("unknown key 'on' in 'facts_options.pulse'"));
+  CHECK_THROWS_WITH(sysid::PulseProcedureFromJson("{\"amplitudes_v\": [12]}", "pp.json"),
+                    Contains("amplitudes_v"));
+}

@@ -83,6 +83,13 @@ struct PipelineOptions {
   static NeuralTrainingOptions DefaultTraining();
 };
 
+/// The options as JSON, every field (nested options as objects), and the reader: every key
+/// optional (absent: the defaults above, e.g. DefaultTraining()), the result validated (with
+/// facts_options.Validate()), InputError "SOURCE:LINE:COL: NAME: expected ..., found ..."
+/// otherwise.
+std::string ToJson(const PipelineOptions& options, int indent = 2);
+PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name);
+
 struct TrackingRow {
   double frequency_hz = 0;
   std::string scheme;  ///< "none", "analytic", "nn"

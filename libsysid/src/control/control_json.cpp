@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "control/control_json.hpp"
 #include "core/json_text.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
@@ -68,34 +69,42 @@ std::string AntiWindupName(AntiWindup a) {
 
 }  // namespace
 
-std::string ToJson(const PiOptions& o, int indent) {
+namespace internal {
+
+nlohmann::ordered_json PiOptionsJson(const PiOptions& o) {
   nlohmann::ordered_json j;
   j["kp_v_per_m"] = o.kp_v_per_m;
   j["ki_v_per_m_s"] = o.ki_v_per_m_s;
   j["sample_time_s"] = o.sample_time_s;
   j["u_max_v"] = o.u_max_v;
   j["anti_windup"] = AntiWindupName(o.anti_windup);
-  return internal::DumpJson(j, indent);
+  return j;
+}
+
+void ReadPiOptions(const JsonNode& node, PiOptions& o) {
+  node.ExpectObject({"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "u_max_v", "anti_windup"});
+  ReadOptional(node, "kp_v_per_m", o.kp_v_per_m);
+  ReadOptional(node, "ki_v_per_m_s", o.ki_v_per_m_s);
+  ReadOptional(node, "sample_time_s", o.sample_time_s);
+  ReadOptional(node, "u_max_v", o.u_max_v);
+  if (node.Has("anti_windup")) {
+    const JsonNode a = node.Get("anti_windup");
+    const std::string s = a.String();
+    if (s == AntiWindupName(AntiWindup::kNone)) o.anti_windup = AntiWindup::kNone;
+    else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
+      o.anti_windup = AntiWindup::kConditionalIntegration;
+    else a.Expected("\"none\" or \"conditional-integration\"");
+  }
+}
+
+}  // namespace internal
+
+std::string ToJson(const PiOptions& o, int indent) {
+  return internal::DumpJson(internal::PiOptionsJson(o), indent);
 }
 
 PiOptions PiOptionsFromJson(std::string_view text, const std::string& source_name) {
-  auto read = [](const internal::JsonNode& node, PiOptions& o) {
-    using internal::ReadOptional;
-    node.ExpectObject({"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "u_max_v", "anti_windup"});
-    ReadOptional(node, "kp_v_per_m", o.kp_v_per_m);
-    ReadOptional(node, "ki_v_per_m_s", o.ki_v_per_m_s);
-    ReadOptional(node, "sample_time_s", o.sample_time_s);
-    ReadOptional(node, "u_max_v", o.u_max_v);
-    if (node.Has("anti_windup")) {
-      const internal::JsonNode a = node.Get("anti_windup");
-      const std::string s = a.String();
-      if (s == AntiWindupName(AntiWindup::kNone)) o.anti_windup = AntiWindup::kNone;
-      else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
-        o.anti_windup = AntiWindup::kConditionalIntegration;
-      else a.Expected("\"none\" or \"conditional-integration\"");
-    }
-  };
-  return internal::OptionsFromJson<PiOptions>(text, source_name, read);
+  return internal::OptionsFromJson<PiOptions>(text, source_name, internal::ReadPiOptions);
 }
 
 std::string ToJson(const SmoothProfileOptions& o, int indent) {

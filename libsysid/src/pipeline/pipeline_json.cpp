@@ -1,12 +1,15 @@
 // JSON summary of a pipeline run (docs/cli.md: pipeline --json): the model, the dominant
 // variable, the chosen network, the networks' MSEs, every tracking run, the facts' verdicts and
-// the wall time per step; and its reader.
+// the wall time per step; and its reader. The pipeline's options.
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
+#include "control/control_json.hpp"
 #include "core/json_text.hpp"
+#include "delay/delay_json.hpp"
+#include "facts/facts_json.hpp"
 #include "model/model_json.hpp"
 #include "nn/nn_json.hpp"
 #include "sysid/pipeline.hpp"
@@ -119,6 +122,75 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
                                 s.Get("wall_time_s").Number(Rule::NonNegative()));
   }
   return r;
+}
+
+std::string ToJson(const PipelineOptions& o, int indent) {
+  Json j;
+  j["a3"] = o.a3;
+  j["tune_delay"] = o.tune_delay;
+  j["delay"] = internal::DelayTuningOptionsJson(o.delay);
+  j["refine"] = o.refine;
+  j["hidden_sizes"] = o.hidden_sizes;
+  j["training"] = internal::NeuralTrainingOptionsJson(o.training);
+  j["nn_inputs"] = o.nn_inputs;
+  j["typical"] = o.typical;
+  j["typical_hidden"] = o.typical_hidden;
+  j["typical_max_epochs"] = o.typical_max_epochs;
+  j["typical_stride"] = o.typical_stride;
+  j["track"] = o.track;
+  j["track_frequencies_hz"] = o.track_frequencies_hz;
+  j["track_amplitude_m"] = o.track_amplitude_m;
+  j["pi"] = internal::PiOptionsJson(o.pi);
+  j["facts"] = o.facts;
+  j["facts_options"] = internal::FactsOptionsJson(o.facts_options);
+  j["reference_path"] = o.reference_path;
+  j["threads"] = o.threads;
+  return internal::DumpJson(j, indent);
+}
+
+PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name) {
+  auto read = [](const JsonNode& node, PipelineOptions& o) {
+    using internal::ReadOptional;
+    node.ExpectObject({"a3", "tune_delay", "delay", "refine", "hidden_sizes", "training",
+                       "nn_inputs", "typical", "typical_hidden", "typical_max_epochs",
+                       "typical_stride", "track", "track_frequencies_hz", "track_amplitude_m",
+                       "pi", "facts", "facts_options", "reference_path", "threads"});
+    ReadOptional(node, "a3", o.a3);
+    ReadOptional(node, "tune_delay", o.tune_delay);
+    if (node.Has("delay")) internal::ReadDelayTuningOptions(node.Get("delay"), o.delay);
+    ReadOptional(node, "refine", o.refine);
+    ReadOptional(node, "hidden_sizes", o.hidden_sizes);
+    if (node.Has("training")) internal::ReadNeuralTrainingOptions(node.Get("training"), o.training);
+    if (node.Has("nn_inputs")) {
+      const JsonNode inputs = node.Get("nn_inputs");
+      inputs.ExpectArray();
+      o.nn_inputs.clear();
+      for (size_t i = 0; i < inputs.Size(); ++i)
+        o.nn_inputs.push_back(inputs.Element(i).String(true));
+    }
+    ReadOptional(node, "typical", o.typical);
+    ReadOptional(node, "typical_hidden", o.typical_hidden);
+    ReadOptional(node, "typical_max_epochs", o.typical_max_epochs);
+    ReadOptional(node, "typical_stride", o.typical_stride);
+    ReadOptional(node, "track", o.track);
+    ReadOptional(node, "track_frequencies_hz", o.track_frequencies_hz);
+    ReadOptional(node, "track_amplitude_m", o.track_amplitude_m);
+    if (node.Has("pi")) internal::ReadPiOptions(node.Get("pi"), o.pi);
+    ReadOptional(node, "facts", o.facts);
+    if (node.Has("facts_options"))
+      internal::ReadFactsOptions(node.Get("facts_options"), o.facts_options);
+    ReadOptional(node, "reference_path", o.reference_path);
+    ReadOptional(node, "threads", o.threads);
+  };
+  const internal::JsonDocument doc(text, source_name);
+  PipelineOptions o;
+  read(doc.Root(), o);
+  // The facts' options are checked as RunStageFacts checks them, with the pipeline's.
+  internal::ValidateOptions(doc, [&] {
+    o.Validate();
+    o.facts_options.Validate();
+  });
+  return o;
 }
 
 }  // namespace sysid
