@@ -30,14 +30,20 @@ tmp, baseline = sys.argv[1], sys.argv[2]
 def load(name):
     t0, t1 = map(float, open(os.path.join(tmp, name + ".wall")).read().split())
     return t1 - t0, json.load(open(os.path.join(tmp, name + ".json")))
+def step_times(summary):
+    # steps: [{"name", "wall_time_s"}] in run order; older builds wrote {name: seconds}.
+    steps = summary.get("steps", [])
+    if isinstance(steps, dict):
+        return steps
+    return {s["name"]: s["wall_time_s"] for s in steps}
 wall, ours = load("ours")
-steps = ours.get("steps", {})
+steps = step_times(ours)
 print("sysid pipeline datasets/virtual: %.2f s wall  (TARGET < 10 s: %s)" % (wall, "met" if wall < 10 else "not met"))
 for k, v in steps.items():
     print("  %-40s %7.2f s" % (k, v))
 if baseline:
     bwall, base = load("baseline")
-    bsteps = base.get("steps", {})
+    bsteps = step_times(base)
     print("baseline %s: %.2f s wall; ratio %.2fx" % (baseline, bwall, bwall / wall))
     key = next((k for k in steps if k.startswith("typical")), None)
     if key and key in bsteps:

@@ -57,15 +57,12 @@ void RunCompare(const CompareCliOptions& o) {
   if (nn) j["nn"] = o.nn_path;
   j["recordings"] = nlohmann::ordered_json::array();
   Table table({"recording", "model", "RMSE [V]", "peak [V]", "NRMSE", "R^2"});
-  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
   for (const auto& c : results) {
     const std::string name = fs::path(c.source).stem().string();
     j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(c)));
     auto row = [&](const char* which, const PredictionErrors& e) {
       table.AddRow(
           {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse, 4), Num(e.r2, 4)});
-      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
-                         e.peak_error_v, e.nrmse, e.r2);
     };
     row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
@@ -87,7 +84,7 @@ void RunCompare(const CompareCliOptions& o) {
         const auto p = WritePlot((dir / (stem + ".png")).string(), spec);
         if (!p.written) notes.push_back(p.message);
       }
-      WriteFileAtomically((dir / "summary.csv").string(), csv);
+      WriteFileAtomically((dir / "summary.csv").string(), ComparisonTableCsv(results));
       WriteFileAtomically((dir / "summary.json").string(), j.dump(2) + "\n");
     });
     for (const auto& n : notes) std::cerr << "sysid compare: " << n << '\n';

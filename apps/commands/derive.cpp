@@ -3,7 +3,6 @@
 // Velocity v [m/s] and acceleration a [m/s^2] from the position x [m] of a recording.
 #include <fmt/format.h>
 
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -60,22 +59,11 @@ void RunDerive(const DeriveCliOptions& o) {
 
   if (!o.output.empty()) WriteRecording(o.output, rec);
   if (o.json) {
-    auto stats = [&](const char* column) {
-      const Eigen::VectorXd s = rec.column(column);
-      const double rms = std::sqrt(s.squaredNorm() / static_cast<double>(s.size()));
-      return nlohmann::ordered_json{{"min", s.minCoeff()}, {"max", s.maxCoeff()}, {"rms", rms}};
-    };
+    // The library's summary with the command's files in front.
     nlohmann::ordered_json j;
     j["file"] = o.path;
     if (!o.output.empty()) j["output"] = o.output;
-    j["method"] = ToString(opt.method);
-    j["settings"] = settings;
-    j["rows"] = rec.rows();
-    j["columns"] = rec.names;
-    j["dt_s"] = dt_s;
-    j["sample_rate_hz"] = 1.0 / dt_s;
-    j["v_mps"] = stats("v");
-    j["a_mps2"] = stats("a");
+    j.update(nlohmann::ordered_json::parse(DerivedRecordingToJson(rec, dt_s, opt)));
     PrintJson(j);
   } else if (o.output.empty()) {
     std::cout << FormatRecording(rec);

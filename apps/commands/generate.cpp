@@ -82,10 +82,10 @@ void RunGenerate(const GenerateOptions& o) {
     const std::string path = (std::filesystem::path(o.out_dir) / name).string();
     WriteRecording(path, rec);
     const double duration = rec.rows() > 0 ? rec.data(rec.rows() - 1, 0) - rec.data(0, 0) : 0;
-    j["files"].push_back({{"path", path},
-                          {"rows", rec.rows()},
-                          {"duration_s", duration},
-                          {"limits", rec.meta("limits", "none")}});
+    // The written file's shape as the library states it (as `excite --json` lists files).
+    nlohmann::ordered_json f{{"path", path}, {"limits", rec.meta("limits", "none")}};
+    f.update(nlohmann::ordered_json::parse(RecordingShapeToJson(rec)));
+    j["files"].push_back(f);
     table.AddRow({path, std::to_string(rec.rows()), Num(duration, 5), rec.meta("limits")});
   }
   if (o.json)
@@ -127,8 +127,8 @@ void AddGenerateCommand(CLI::App& app) {
       ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
       ->capture_default_str();
   cmd->add_flag("--json", o->json,
-                "print one JSON object: stage, seed, files (path, rows, "
-                "duration_s, limits)");
+                "print one JSON object: stage, seed, files (path, limits, samples, "
+                "duration_s, columns, units)");
   cmd->callback([o] { RunGenerate(*o); });
 }
 

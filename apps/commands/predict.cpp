@@ -1,7 +1,7 @@
 // sysid predict --nn NN.json DATA.csv [-o OUT.csv] [--column NAME] [--json]
 #include <fmt/format.h>
 
-#include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -26,35 +26,19 @@ void RunPredict(const PredictOptions& o) {
   ro.required_columns = net.input_names();
   ro.any_of_columns = {};
   Recording rec = ReadRecording(o.data_path, ro);
-  Eigen::MatrixXd X(rec.rows(), net.input_count());
-  for (int i = 0; i < net.input_count(); ++i) X.col(i) = rec.column(net.inputs()[i].name);
-  const Eigen::VectorXd y = net.EvaluateBatch(X);
-  const std::string column = o.column.empty() ? net.output().name + "_nn" : o.column;
-  if (column == net.output().name || (rec.has(column) && o.column.empty()))
-    throw OptionsError("--column '" + column + "' would overwrite a column of " + o.data_path +
-                       "; choose another name with --column");
-  // Inputs outside the training range are extrapolation: say how many.
-  long outside = 0;
-  for (Eigen::Index k = 0; k < X.rows(); ++k)
-    for (int i = 0; i < net.input_count(); ++i)
-      if (X(k, i) < net.inputs()[i].min || X(k, i) > net.inputs()[i].max) {
-        ++outside;
-        break;
-      }
+  NetworkPrediction p;
+  try {
+    p = PredictColumn(net, rec, o.column);
+  } catch (const OptionsError& e) {
+    throw OptionsError("--column: " + std::string(e.what()) + " with --column", "--column");
+  }
+  rec.metadata.push_back({"predicted_by", o.nn_path});
+  if (!o.out_path.empty()) WriteRecording(o.out_path, rec);
+  // The library's summary with the command's files in front.
   nlohmann::ordered_json j;
   j["nn"] = o.nn_path;
   j["data"] = o.data_path;
-  j["rows"] = rec.rows();
-  j["column"] = column;
-  j["rows_outside_input_range"] = outside;
-  if (rec.has(net.output().name)) {
-    const double mse = (y - rec.column(net.output().name)).squaredNorm() /
-                       static_cast<double>(std::max<Eigen::Index>(rec.rows(), 1));
-    j["mse"] = mse;
-  }
-  rec.SetColumn(column, y);
-  rec.metadata.push_back({"predicted_by", o.nn_path});
-  if (!o.out_path.empty()) WriteRecording(o.out_path, rec);
+  j.update(nlohmann::ordered_json::parse(ToJson(p)));
   if (o.json) {
     PrintJson(j);
     return;
@@ -63,15 +47,14 @@ void RunPredict(const PredictOptions& o) {
     std::cout << FormatRecording(rec);
     return;
   }
-  std::cout << fmt::format("wrote {} ({} rows, column '{}')\n", o.out_path, rec.rows(), column);
-  if (j.contains("mse"))
-    std::cout << fmt::format("MSE against '{}': {:.6g}\n", net.output().name,
-                             j["mse"].get<double>());
-  if (outside > 0)
+  std::cout << fmt::format("wrote {} ({} rows, column '{}')\n", o.out_path, p.rows, p.column);
+  if (!std::isnan(p.mse))
+    std::cout << fmt::format("MSE against '{}': {:.6g}\n", net.output().name, p.mse);
+  if (p.rows_outside_input_range > 0)
     std::cout << fmt::format(
         "warning: {} rows have inputs outside the network's input range "
         "(extrapolation)\n",
-        outside);
+        p.rows_outside_input_range);
 }
 
 void AddPredictCommand(CLI::App& app) {

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace sysid::python {
@@ -44,6 +45,16 @@ void AddKeywordInit(py::class_<T, Extra...>& cls) {
   cls.def(py::init([](const py::kwargs& kwargs) { return FromKeywords<T>(kwargs); }));
   cls.def("__copy__", [](const T& self) { return T(self); });
   cls.def("__deepcopy__", [](const T& self, const py::dict&) { return T(self); });
+}
+
+/// to_json(indent=2) and the static from_json(text, source="json") of an options struct: the
+/// library's ToJson and `read` (XFromJson: every key optional, validated, positioned errors).
+template <typename T, typename... Extra>
+void AddOptionsJson(py::class_<T, Extra...>& cls,
+                    T (*read)(std::string_view, const std::string&)) {
+  cls.def("to_json", [](const T& self, int indent) { return ToJson(self, indent); },
+          py::arg("indent") = 2);
+  cls.def_static("from_json", read, py::arg("text"), py::arg("source") = "json");
 }
 
 /// A read-only NumPy view of a vector owned by `owner` (no copy).

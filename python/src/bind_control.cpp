@@ -8,6 +8,7 @@
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/pipeline.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid::python {
@@ -44,6 +45,7 @@ void BindControl(py::module_& m) {
       .value("conditional_integration", AntiWindup::kConditionalIntegration);
   py::class_<PiOptions> pi(s, "PiOptions", "Discrete PI position controller (paper's gains).");
   AddKeywordInit(pi);
+  AddOptionsJson(pi, &PiOptionsFromJson);
   pi.def_readwrite("kp_v_per_m", &PiOptions::kp_v_per_m)
       .def_readwrite("ki_v_per_m_s", &PiOptions::ki_v_per_m_s)
       .def_readwrite("sample_time_s", &PiOptions::sample_time_s)
@@ -54,6 +56,7 @@ void BindControl(py::module_& m) {
 
   py::class_<SmoothProfileOptions> profile(s, "SmoothProfileOptions");
   AddKeywordInit(profile);
+  AddOptionsJson(profile, &SmoothProfileOptionsFromJson);
   profile.def_readwrite("frequency_hz", &SmoothProfileOptions::frequency_hz)
       .def_readwrite("amplitude_m", &SmoothProfileOptions::amplitude_m)
       .def_readwrite("dwell_fraction", &SmoothProfileOptions::dwell_fraction)
@@ -86,7 +89,42 @@ void BindControl(py::module_& m) {
       .def_readonly("saturated_samples", &TrackingResult::saturated_samples)
       .def("brief_report", &TrackingResult::BriefReport)
       .def("to_json", py::overload_cast<const TrackingResult&, int>(&ToJson),
-           py::arg("indent") = 2, "the metrics as `sysid track --json` lists them");
+           py::arg("indent") = 2, "the metrics as `sysid track --json` lists them")
+      .def_static("from_json", &TrackingResultFromJson, py::arg("text"),
+                  py::arg("source") = "json", "the metrics back (the traces stay empty)");
+  py::class_<TrackingRow>(s, "TrackingRow")
+      .def_readonly("frequency_hz", &TrackingRow::frequency_hz)
+      .def_readonly("scheme", &TrackingRow::scheme)
+      .def_readonly("result", &TrackingRow::result);
+
+  // The pipeline's run summary (`sysid pipeline --json`), read back from its JSON.
+  py::class_<PipelineResult>(m, "PipelineResult",
+                             "A pipeline run's summary: see sysid::PipelineResultFromJson for "
+                             "what the JSON carries.")
+      .def_readonly("model", &PipelineResult::model)
+      .def_property_readonly("dominant",
+                             [](const PipelineResult& r) { return r.dominance.dominant; })
+      .def_readonly("nn_inputs", &PipelineResult::nn_inputs)
+      .def_readonly("network", &PipelineResult::network)
+      .def_readonly("network_test_mse", &PipelineResult::network_test_mse)
+      .def_property_readonly("typical_train_mse",
+                             [](const PipelineResult& r) -> std::optional<double> {
+                               if (!r.typical) return std::nullopt;
+                               return r.typical->train_mse;
+                             })
+      .def_readonly("typical_test_mse", &PipelineResult::typical_test_mse)
+      .def_readonly("tracking", &PipelineResult::tracking)
+      .def_property_readonly("facts_required_met",
+                             [](const PipelineResult& r) -> std::optional<bool> {
+                               if (!r.facts) return std::nullopt;
+                               return r.facts->RequiredMet();
+                             })
+      .def_readonly("step_seconds", &PipelineResult::step_seconds,
+                    "[(step, wall time [s])] in run order")
+      .def("to_json", py::overload_cast<const PipelineResult&, int>(&ToJson),
+           py::arg("indent") = 2)
+      .def_static("from_json", &PipelineResultFromJson, py::arg("text"),
+                  py::arg("source") = "json");
   s.def("track_stage", &TrackStage, py::arg("parameters"), py::arg("reference"), py::arg("pi"),
         py::arg("u_ff_v"), py::arg("seed"));
 

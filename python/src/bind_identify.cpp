@@ -127,12 +127,14 @@ void BindIdentify(py::module_& m) {
   // ---- Pulses ----
   py::class_<PulseDetectionOptions> detection(m, "PulseDetectionOptions");
   AddKeywordInit(detection);
+  AddOptionsJson(detection, &PulseDetectionOptionsFromJson);
   detection.def_readwrite("min_duration_s", &PulseDetectionOptions::min_duration_s)
       .def_readwrite("u_tolerance_v", &PulseDetectionOptions::u_tolerance_v)
       .def_readwrite("zero_tolerance_v", &PulseDetectionOptions::zero_tolerance_v)
       .def("validate", &PulseDetectionOptions::Validate);
   py::class_<PlateauOptions> plateau(m, "PlateauOptions");
   AddKeywordInit(plateau);
+  AddOptionsJson(plateau, &PlateauOptionsFromJson);
   plateau.def_readwrite("window_fraction", &PlateauOptions::window_fraction)
       .def_readwrite("settle_tolerance", &PlateauOptions::settle_tolerance)
       .def_readwrite("min_speed_mps", &PlateauOptions::min_speed_mps)
@@ -143,9 +145,11 @@ void BindIdentify(py::module_& m) {
       .def("validate", &PlateauOptions::Validate);
   py::class_<PulseFitOptions> fit_options(m, "PulseFitOptions");
   AddKeywordInit(fit_options);
+  AddOptionsJson(fit_options, &PulseFitOptionsFromJson);
   fit_options.def_readwrite("a3", &PulseFitOptions::a3).def("validate", &PulseFitOptions::Validate);
   py::class_<PulseIdentificationOptions> pulse_options(m, "PulseIdentificationOptions");
   AddKeywordInit(pulse_options);
+  AddOptionsJson(pulse_options, &PulseIdentificationOptionsFromJson);
   pulse_options.def_readwrite("motion", &PulseIdentificationOptions::motion)
       .def_readwrite("detection", &PulseIdentificationOptions::detection)
       .def_readwrite("plateau", &PulseIdentificationOptions::plateau)
@@ -219,6 +223,7 @@ void BindIdentify(py::module_& m) {
   // ---- Trajectory ----
   py::class_<TrajectoryOptions> trajectory_options(m, "TrajectoryOptions");
   AddKeywordInit(trajectory_options);
+  AddOptionsJson(trajectory_options, &TrajectoryOptionsFromJson);
   trajectory_options.def_readwrite("motion", &TrajectoryOptions::motion)
       .def_readwrite("tau_s", &TrajectoryOptions::tau_s)
       .def_readwrite("tune_delay", &TrajectoryOptions::tune_delay)
@@ -260,12 +265,14 @@ void BindIdentify(py::module_& m) {
   // ---- Delay tuning ----
   py::class_<SegmentOptions> segments(m, "SegmentOptions");
   AddKeywordInit(segments);
+  AddOptionsJson(segments, &SegmentOptionsFromJson);
   segments.def_readwrite("detection", &SegmentOptions::detection)
       .def_readwrite("rest_speed_mps", &SegmentOptions::rest_speed_mps)
       .def_readwrite("reuse_identical_segments", &SegmentOptions::reuse_identical_segments)
       .def("validate", &SegmentOptions::Validate);
   py::class_<DelayTuningOptions> delay_options(m, "DelayTuningOptions");
   AddKeywordInit(delay_options);
+  AddOptionsJson(delay_options, &DelayTuningOptionsFromJson);
   delay_options.def_readwrite("tau_min_s", &DelayTuningOptions::tau_min_s)
       .def_readwrite("tau_max_s", &DelayTuningOptions::tau_max_s)
       .def_readwrite("x_tolerance_s", &DelayTuningOptions::x_tolerance_s)
@@ -304,6 +311,7 @@ void BindIdentify(py::module_& m) {
   // ---- Refinement ----
   py::class_<RefineOptions> refine_options(m, "RefineOptions");
   AddKeywordInit(refine_options);
+  AddOptionsJson(refine_options, &RefineOptionsFromJson);
   refine_options.def_readwrite("motion", &RefineOptions::motion)
       .def_readwrite("detection", &RefineOptions::detection)
       .def_readwrite("refine_a3", &RefineOptions::refine_a3)
@@ -347,6 +355,7 @@ void BindIdentify(py::module_& m) {
       .def_readwrite("gain", &CandidateTerm::gain);
   py::class_<DominanceOptions> dominance_options(m, "DominanceOptions");
   AddKeywordInit(dominance_options);
+  AddOptionsJson(dominance_options, &DominanceOptionsFromJson);
   dominance_options.def_readwrite("motion", &DominanceOptions::motion)
       .def_readwrite("min_speed_mps", &DominanceOptions::min_speed_mps)
       .def_readwrite("negligible_ratio", &DominanceOptions::negligible_ratio)

@@ -159,6 +159,7 @@ void BindIo(py::module_& m) {
   py::class_<MotionOptions> motion(m, "MotionOptions",
                                    "How velocity and acceleration are obtained from a recording.");
   AddKeywordInit(motion);
+  AddOptionsJson(motion, &MotionOptionsFromJson);
   motion.def_readwrite("derivative", &MotionOptions::derivative)
       .def_readwrite("velocity_column", &MotionOptions::velocity_column)
       .def_readwrite("prefer_velocity_column", &MotionOptions::prefer_velocity_column)

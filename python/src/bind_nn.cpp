@@ -117,6 +117,7 @@ void BindNeural(py::module_& m) {
 
   py::class_<NeuralTrainingOptions> training(m, "TrainingOptions");
   AddKeywordInit(training);
+  AddOptionsJson(training, &NeuralTrainingOptionsFromJson);
   training.def_readwrite("hidden", &NeuralTrainingOptions::hidden)
       .def_readwrite("trainer", &NeuralTrainingOptions::trainer)
       .def_readwrite("init", &NeuralTrainingOptions::init)
@@ -165,6 +166,7 @@ void BindNeural(py::module_& m) {
 
   py::class_<HiddenSweepOptions> sweep(m, "SweepOptions");
   AddKeywordInit(sweep);
+  AddOptionsJson(sweep, &HiddenSweepOptionsFromJson);
   sweep.def_readwrite("hidden_sizes", &HiddenSweepOptions::hidden_sizes)
       .def_readwrite("training", &HiddenSweepOptions::training)
       .def_readwrite("threads", &HiddenSweepOptions::threads)

@@ -56,6 +56,7 @@ void BindStage(py::module_& m) {
 
   py::class_<PulseProcedure> pulse(s, "PulseProcedure");
   AddKeywordInit(pulse);
+  AddOptionsJson(pulse, &PulseProcedureFromJson);
   pulse.def_readwrite("amplitudes_v", &PulseProcedure::amplitudes_v)
       .def_readwrite("on_s", &PulseProcedure::on_s)
       .def_readwrite("rest_s", &PulseProcedure::rest_s)

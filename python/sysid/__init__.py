@@ -30,7 +30,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
     CandidateTerm, DominanceOptions, TermStats, DominanceResult, DominanceSummary,
     ScaledVariable, Network, NeuralDataset, make_dataset, read_dataset, mean_squared_error,
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
-    SweepResult, parse_hidden_sizes,
+    SweepResult, parse_hidden_sizes, PipelineResult,
     stage, analytic_inverse, network_inverse,
 )
 

@@ -98,6 +98,15 @@ TEST_CASE("sysid compare reports per-recording errors and writes its folder", "[
   CHECK(j["recordings"][0]["samples"] == n - 10);
   CHECK(j["recordings"][0]["analytic"]["rmse_v"].get<double>() > 0);
   CHECK(sysid::test::ReadText(dir / "out/summary.csv").find("run,analytic,") != std::string::npos);
+  {
+    // summary.csv is the library's table of the same comparison.
+    const auto c = sysid::CompareInverseModels(sysid::ReadRecording(dir / "run.csv"),
+                                               sysid::ReadModel(dir / "m.json"), nullptr);
+    CHECK(sysid::test::ReadText(dir / "out/summary.csv") == sysid::ComparisonTableCsv({c}));
+    const std::string csv = sysid::ComparisonTableCsv({c});
+    CHECK(csv.rfind("recording,model,rmse_v,peak_error_v,nrmse,r2\nrun,analytic,", 0) == 0);
+    CHECK(csv.find(",nn,") == std::string::npos);  // no network: no nn row
+  }
   // A bad recording: exit 2, nothing written.
   sysid::test::WriteText(dir / "bad.csv", "t,u,x\n0,1,0\n0.001,x,1\n");
   const auto bad = sysid::test::RunCli(

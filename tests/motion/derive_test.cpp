@@ -1,7 +1,9 @@
-// AddDerivatives / DescribeDerivative / UniformSampleInterval: what `sysid derive` calls.
+// AddDerivatives / DescribeDerivative / UniformSampleInterval / DerivedRecordingToJson: what
+// `sysid derive` calls.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -87,4 +89,29 @@ TEST_CASE("UniformSampleInterval returns the median interval or names the worst 
     CHECK_THAT(e.what(), Catch::Contains("irregular sampling"));
   }
   CHECK(sysid::UniformSampleInterval(r, 0.3) == Approx(0.002));
+}
+
+TEST_CASE("DerivedRecordingToJson summarises v and a of the extended recording", "[motion][json]") {
+  // x = c t^2 with c = 0.5: v = t (ramp 0..(n-1) dt), a = 1 everywhere (central differences
+  // and their one-sided ends are exact on a quadratic).
+  const int n = 101;
+  const double dt = 0.01;
+  sysid::Recording r = Quadratic(n, dt, 0.5);
+  r.metadata.emplace_back("derive", "method=central resample_hz=100");
+  sysid::AddDerivatives(r, dt, {});
+  const auto j = nlohmann::json::parse(sysid::DerivedRecordingToJson(r, dt, {}));
+  CHECK(j["method"] == "central");
+  CHECK(j["settings"] == "method=central resample_hz=100");  // the recording's own note
+  CHECK(j["rows"] == n);
+  CHECK(j["columns"].back() == "a");
+  CHECK(j["sample_rate_hz"].get<double>() == Approx(100));
+  CHECK(j["v_mps"]["min"].get<double>() == Approx(0).margin(1e-12));
+  CHECK(j["v_mps"]["max"].get<double>() == Approx(1.0));
+  // rms of the ramp 0..1 sampled at n points: sqrt(sum k^2 / n) / (n - 1).
+  CHECK(j["v_mps"]["rms"].get<double>() ==
+        Approx(std::sqrt((n - 1) * (2.0 * n - 1) / 6.0) / (n - 1)).epsilon(1e-12));
+  CHECK(j["a_mps2"]["min"].get<double>() == Approx(1.0));
+  CHECK(j["a_mps2"]["rms"].get<double>() == Approx(1.0));
+  sysid::Recording bare = Quadratic(5, dt, 1.0);
+  CHECK_THROWS_AS(sysid::DerivedRecordingToJson(bare, dt, {}), sysid::InputError);
 }

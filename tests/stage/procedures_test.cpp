@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "support/test_support.hpp"
@@ -83,6 +84,25 @@ TEST_CASE("sysid generate reproduces the bundled datasets byte for byte", "[stag
     ++compared;
   }
   CHECK(compared == 11);  // stage.json, pulses, training, test, triangle loop, six waveforms
+}
+
+TEST_CASE("generate --json lists each file with the library's shape of it", "[stage][cli]") {
+  sysid::test::TempDir dir;
+  const auto r = sysid::test::RunCli(
+      {"generate", "pulses", "--seed", "3", "--json", "-o", dir.path().string()});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["files"].size() == 1);
+  const auto& f = j["files"][0];
+  const sysid::Recording rec = sysid::ReadRecording(f["path"].get<std::string>());
+  const auto shape = nlohmann::json::parse(sysid::RecordingShapeToJson(rec));
+  for (const char* key : {"samples", "duration_s", "columns", "units"}) {
+    INFO(key);
+    CHECK(f[key] == shape[key]);
+  }
+  CHECK(f["samples"] == rec.rows());
+  CHECK(f["limits"] == rec.meta("limits", "none"));
 }
 
 TEST_CASE("generate and excite report bad input with the documented exit codes", "[stage][cli]") {

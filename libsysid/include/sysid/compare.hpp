@@ -72,6 +72,12 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
                                        const NeuralNetwork* network,
                                        const CompareOptions& options = {});
 
+/// The options as JSON ({"derivative": {...}, "trim_samples"}) and the reader: every key
+/// optional, the result validated, InputError "SOURCE:LINE:COL: NAME: expected ..., found ..."
+/// otherwise (as MotionOptionsFromJson).
+std::string ToJson(const CompareOptions& options, int indent = 2);
+CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name);
+
 /// {"rmse_v", "peak_error_v", "nrmse", "r2"} (null where not finite), and back: InputError
 /// "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text.
 std::string ToJson(const PredictionErrors& errors, int indent = 2);
@@ -79,6 +85,9 @@ PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::stri
 /// One recording as `sysid compare --json` lists it: file, samples, analytic errors and (with a
 /// network) nn errors. The traces are not included (AsRecording writes them).
 std::string ToJson(const InverseComparison& comparison, int indent = 2);
+/// The comparisons as CSV (`sysid compare -o`'s summary.csv): recording (the source's file
+/// stem), model ("analytic", "nn"), rmse_v, peak_error_v, nrmse, r2; one row per model.
+std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons);
 
 }  // namespace sysid
 

@@ -117,6 +117,15 @@ struct TrackingResult {
 /// u_ff [V] and metadata ff = `scheme` and the units (`sysid track -o`'s track_<ff>.csv).
 Recording TrackingRecording(const TrackingResult& result, const std::string& scheme);
 
+/// The options as JSON, every field (anti_windup "none" or "conditional-integration"), and
+/// their readers: every key optional, the result validated, InputError "SOURCE:LINE:COL: NAME:
+/// expected ..., found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const PiOptions& options, int indent = 2);
+std::string ToJson(const SmoothProfileOptions& options, int indent = 2);
+PiOptions PiOptionsFromJson(std::string_view text, const std::string& source_name);
+SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
+                                                  const std::string& source_name);
+
 /// The run's metrics as JSON (max_error_m, rms_error_m, rms_u_v, max_abs_u_v,
 /// total_variation_v, saturated_samples); the traces are not included. `sysid track --json`
 /// lists one per feedforward scheme.

@@ -147,6 +147,16 @@ std::string ToJson(const DelayTuningResult& result, int indent = 2);
 /// (null when singular), costs, counts, termination, message and warnings. Any model reader
 /// accepts it.
 std::string ToJson(const RefineResult& result, int indent = 2);
+/// The options as JSON, every field (nested options as objects), and their readers: every
+/// key optional, the result validated, InputError "SOURCE:LINE:COL: NAME: expected ...,
+/// found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const SegmentOptions& options, int indent = 2);
+std::string ToJson(const DelayTuningOptions& options, int indent = 2);
+std::string ToJson(const RefineOptions& options, int indent = 2);
+SegmentOptions SegmentOptionsFromJson(std::string_view text, const std::string& source_name);
+DelayTuningOptions DelayTuningOptionsFromJson(std::string_view text,
+                                              const std::string& source_name);
+RefineOptions RefineOptionsFromJson(std::string_view text, const std::string& source_name);
 /// Read ToJson's text back; InputError "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad
 /// text. RefineResult::initial is not written and stays default.
 DelayTuningResult DelayTuningResultFromJson(std::string_view text,

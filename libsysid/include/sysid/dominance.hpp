@@ -134,6 +134,12 @@ std::vector<TermStats> PooledRanking(const DominanceSummary& summary, double neg
 /// The batch as CSV: one row per (recording, ranked variable).
 std::string DominanceTableCsv(const DominanceSummary& summary);
 
+/// The options as JSON, every field (candidates as [{"variable", "column", "gain"}]), and
+/// the reader: every key optional (a candidate's gain too), the result validated, InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const DominanceOptions& options, int indent = 2);
+DominanceOptions DominanceOptionsFromJson(std::string_view text, const std::string& source_name);
+
 /// One recording's analysis as JSON: source, ranking, dominant, margin (null with a single
 /// candidate), terms, the ratios and sample counts (a `recordings` entry of `dominance --json`).
 std::string ToJson(const DominanceResult& result, int indent = 2);

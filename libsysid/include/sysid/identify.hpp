@@ -221,6 +221,22 @@ TrajectoryIdentificationResult IdentifyFromTrajectory(const std::vector<Recordin
 // JSON (the text `sysid identify --json` prints and -o writes)
 // ----------------------------------------------------------------------------------------------
 
+/// The options as JSON, every field (nested options as objects; PlateauOptions' infinite
+/// limits as null), and their readers: every key optional, the result validated, InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const PulseDetectionOptions& options, int indent = 2);
+std::string ToJson(const PlateauOptions& options, int indent = 2);
+std::string ToJson(const PulseFitOptions& options, int indent = 2);
+std::string ToJson(const PulseIdentificationOptions& options, int indent = 2);
+std::string ToJson(const TrajectoryOptions& options, int indent = 2);
+PulseDetectionOptions PulseDetectionOptionsFromJson(std::string_view text,
+                                                    const std::string& source_name);
+PlateauOptions PlateauOptionsFromJson(std::string_view text, const std::string& source_name);
+PulseFitOptions PulseFitOptionsFromJson(std::string_view text, const std::string& source_name);
+PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view text,
+                                                              const std::string& source_name);
+TrajectoryOptions TrajectoryOptionsFromJson(std::string_view text, const std::string& source_name);
+
 /// The model file's text (ModelToJson: parameters and units) followed by a "diagnostics"
 /// object: method, parameters with standard errors, covariance, the fit's statistics, every
 /// equation and every detected pulse with its status. Any model reader accepts this text. NaN

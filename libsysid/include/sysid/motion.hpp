@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 
 #include "sysid/io.hpp"
 #include "sysid/signal.hpp"
@@ -25,6 +26,16 @@ struct MotionOptions {
   double max_relative_jitter = 0.01;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
+
+/// The options as JSON: {"derivative": {"method", "cutoff_hz", "butterworth_order",
+/// "savgol_window", "savgol_order"}, "velocity_column", "prefer_velocity_column",
+/// "max_relative_jitter"}. Every options struct's ToJson writes all of its fields this way.
+std::string ToJson(const MotionOptions& options, int indent = 2);
+/// Reads that text back. Every key is optional (an absent one keeps its default), so a file
+/// names only what it changes; the result is validated. Throws InputError
+/// "SOURCE:LINE:COL: NAME: expected ..., found ..." for an unknown key, a wrong type or a
+/// violated rule. Every options struct's ...FromJson reads this way.
+MotionOptions MotionOptionsFromJson(std::string_view text, const std::string& source_name);
 
 /// Uniformly sampled signals of one recording, all of the same length.
 struct MotionSignals {
@@ -63,6 +74,13 @@ double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions
 /// The settings of AddDerivatives as text: "method=central", "method=butterworth cutoff_hz=50
 /// order=4" or "method=savgol window=21 order=3", plus " decimate=K" when K > 1.
 std::string DescribeDerivative(const DerivativeOptions& derivative, int decimate = 1);
+
+/// The summary `sysid derive --json` prints of a recording AddDerivatives has extended:
+/// {"method", "settings" (its "derive" metadata, else DescribeDerivative), "rows", "columns",
+/// "dt_s" [s], "sample_rate_hz" [Hz], "v_mps" and "a_mps2": {"min", "max", "rms"}}. Throws
+/// InputError when the recording has no rows or no v or a column.
+std::string DerivedRecordingToJson(const Recording& recording, double dt_s,
+                                   const DerivativeOptions& derivative, int indent = 2);
 
 }  // namespace sysid
 

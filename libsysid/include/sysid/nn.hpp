@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -273,6 +274,35 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
 
 /// Parses "16:32:2" (first:last:step) or "16,20,24" into hidden sizes. Throws OptionsError.
 std::vector<int> ParseHiddenSizes(const std::string& spec);
+
+/// A network evaluated on a recording (`sysid predict`).
+struct NetworkPrediction {
+  std::string column;                 ///< the column the prediction was stored in
+  Eigen::Index rows = 0;              ///< rows evaluated
+  long rows_outside_input_range = 0;  ///< rows with an input outside the network's range
+  /// [output unit^2] against the recording's output column; NaN when it has none.
+  double mse = std::numeric_limits<double>::quiet_NaN();
+};
+/// Evaluates `network` on `recording`'s input columns and stores the prediction as column
+/// `column` (empty: "<output>_nn"). Throws InputError for a missing input column, OptionsError
+/// (field "column") when the column would replace the output column, or, for the default
+/// name, any existing column.
+NetworkPrediction PredictColumn(const NeuralNetwork& network, Recording& recording,
+                                const std::string& column = "");
+/// {"rows", "column", "rows_outside_input_range", "mse" (only when the recording has the
+/// output column)}: the summary of `sysid predict --json`.
+std::string ToJson(const NetworkPrediction& prediction, int indent = 2);
+
+/// The options as JSON, every field but the callbacks (init "nguyen-widrow" or "uniform";
+/// ranges as [min, max]; an unset output_range or initial_parameters as null), and their
+/// readers: every key optional, the result validated, InputError "SOURCE:LINE:COL: NAME:
+/// expected ..., found ..." otherwise (as MotionOptionsFromJson).
+std::string ToJson(const NeuralTrainingOptions& options, int indent = 2);
+std::string ToJson(const HiddenSweepOptions& options, int indent = 2);
+NeuralTrainingOptions NeuralTrainingOptionsFromJson(std::string_view text,
+                                                    const std::string& source_name);
+HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
+                                              const std::string& source_name);
 
 /// A training run as `sysid train --json` reports it: hidden, parameters, the trainer options
 /// (trainer, momentum, solve_output_layer, seed), restart, epochs, MSEs (null when absent),

@@ -13,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,13 @@ struct PipelineOptions {
   static NeuralTrainingOptions DefaultTraining();
 };
 
+/// The options as JSON, every field (nested options as objects), and the reader: every key
+/// optional (absent: the defaults above, e.g. DefaultTraining()), the result validated (with
+/// facts_options.Validate()), InputError "SOURCE:LINE:COL: NAME: expected ..., found ..."
+/// otherwise.
+std::string ToJson(const PipelineOptions& options, int indent = 2);
+PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name);
+
 struct TrackingRow {
   double frequency_hz = 0;
   std::string scheme;  ///< "none", "analytic", "nn"
@@ -116,10 +124,20 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
                            const PipelineProgress& progress = {});
 
 /// The run's summary as `sysid pipeline --json` prints it (without the report's path): model
-/// (ModelToJson), dominant, nn_inputs, hidden, nn_test_mse, typical_train_mse /
-/// typical_test_mse (with a typical network), tracking [{frequency_hz, ff, max_error_m,
-/// rms_error_m}], facts_required_met (with facts) and steps {name: wall time [s]}.
+/// (ModelToJson), dominant, nn_inputs, hidden (the network's), network (NeuralNetworkToJson),
+/// nn_test_mse, typical_train_mse / typical_test_mse (with a typical network), tracking
+/// [{frequency_hz, ff, max_error_m, rms_error_m}], with facts: facts [{id, required, met}] and
+/// facts_required_met, and steps [{name, wall_time_s [s]}] in run order. NaN MSEs are null.
 std::string ToJson(const PipelineResult& result, int indent = 2);
+/// Reads that summary back (a "report" key, which the CLI adds, is allowed): ToJson of the
+/// result gives the text again. What the summary does not carry stays default: inputs,
+/// options, the pulse, delay and refinement results, the dominance analysis but its dominant
+/// variable, the sweep, the typical network (only its train_mse is set), comparisons, the
+/// tracking traces and metrics other than max/rms error, and the facts' texts and numbers
+/// (only id, required and met). The derived values are checked: hidden against the network,
+/// facts_required_met against the facts. Throws InputError "SOURCE:LINE:COL: NAME: expected
+/// ..., found ...".
+PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name);
 
 // The pipeline's written report (report.md, plots) is WritePipelineReport in report.hpp.
 

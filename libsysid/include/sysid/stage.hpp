@@ -256,6 +256,10 @@ struct PulseProcedure {
   /// [s] start time of pulse i.
   double PulseStart(std::size_t i) const;
 };
+/// The procedure as JSON ({"amplitudes_v", "on_s", "rest_s", "lead_s"}) and back: every key
+/// optional, validated, InputError "SOURCE:LINE:COL: NAME: expected ..., found ..." otherwise.
+std::string ToJson(const PulseProcedure& procedure, int indent = 2);
+PulseProcedure PulseProcedureFromJson(std::string_view text, const std::string& source_name);
 
 /// A velocity reference v(t) = sum_i (s_i sin w_i t + c_i cos w_i t) [m/s]; the position
 /// reference is its integral from x(0) = 0: x(t) = sum_i (s_i (1 - cos w_i t) + c_i sin w_i t)/w_i.

@@ -32,6 +32,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -91,6 +92,12 @@ struct FactsOptions {
   /// then not the paper's experiment; F1-F6 except F5's NN row are unchanged).
   static FactsOptions Reduced();
 };
+
+/// The options as JSON, every field (nested options as objects), and the reader: every key
+/// optional (absent: the defaults above, e.g. DefaultDelay()), the result validated,
+/// InputError "SOURCE:LINE:COL: NAME: expected ..., found ..." otherwise.
+std::string ToJson(const FactsOptions& options, int indent = 2);
+FactsOptions FactsOptionsFromJson(std::string_view text, const std::string& source_name);
 
 /// One fact: text for the table and JSON, and the numbers behind it.
 struct StageFact {

@@ -1,9 +1,14 @@
-// JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries).
+// JSON of the inverse-model comparison (docs/cli.md: compare --json "recordings" entries) and
+// its options; the comparisons' CSV table (compare -o's summary.csv).
+#include <fmt/format.h>
+
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
 #include "core/json_text.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/compare.hpp"
 
 namespace sysid {
@@ -42,6 +47,36 @@ std::string ToJson(const InverseComparison& c, int indent) {
   j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
   return internal::DumpJson(j, indent);
+}
+
+std::string ToJson(const CompareOptions& o, int indent) {
+  Json j;
+  j["derivative"] = internal::DerivativeOptionsJson(o.derivative);
+  j["trim_samples"] = o.trim_samples;
+  return internal::DumpJson(j, indent);
+}
+
+CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name) {
+  auto read = [](const internal::JsonNode& node, CompareOptions& o) {
+    node.ExpectObject({"derivative", "trim_samples"});
+    if (node.Has("derivative")) internal::ReadDerivativeOptions(node.Get("derivative"), o.derivative);
+    internal::ReadOptional(node, "trim_samples", o.trim_samples);
+  };
+  return internal::OptionsFromJson<CompareOptions>(text, source_name, read);
+}
+
+std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {
+  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
+  for (const auto& c : comparisons) {
+    const std::string name = std::filesystem::path(c.source).stem().string();
+    auto row = [&](const char* which, const PredictionErrors& e) {
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
+                         e.peak_error_v, e.nrmse, e.r2);
+    };
+    row("analytic", c.analytic);
+    if (c.has_nn) row("nn", c.nn);
+  }
+  return csv;
 }
 
 }  // namespace sysid

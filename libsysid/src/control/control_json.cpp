@@ -1,7 +1,9 @@
-// JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries).
+// JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries) and of the
+// controller and reference-profile options.
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "control/control_json.hpp"
 #include "core/json_text.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
@@ -57,6 +59,76 @@ std::string TrackingSummaryToJson(const std::string& plant, const PositionRefere
     j["rms_error_m"] = runs[0].result.rms_error_m;
   }
   return internal::DumpJson(j, indent);
+}
+
+namespace {
+
+std::string AntiWindupName(AntiWindup a) {
+  return a == AntiWindup::kNone ? "none" : "conditional-integration";
+}
+
+}  // namespace
+
+namespace internal {
+
+nlohmann::ordered_json PiOptionsJson(const PiOptions& o) {
+  nlohmann::ordered_json j;
+  j["kp_v_per_m"] = o.kp_v_per_m;
+  j["ki_v_per_m_s"] = o.ki_v_per_m_s;
+  j["sample_time_s"] = o.sample_time_s;
+  j["u_max_v"] = o.u_max_v;
+  j["anti_windup"] = AntiWindupName(o.anti_windup);
+  return j;
+}
+
+void ReadPiOptions(const JsonNode& node, PiOptions& o) {
+  node.ExpectObject({"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "u_max_v", "anti_windup"});
+  ReadOptional(node, "kp_v_per_m", o.kp_v_per_m);
+  ReadOptional(node, "ki_v_per_m_s", o.ki_v_per_m_s);
+  ReadOptional(node, "sample_time_s", o.sample_time_s);
+  ReadOptional(node, "u_max_v", o.u_max_v);
+  if (node.Has("anti_windup")) {
+    const JsonNode a = node.Get("anti_windup");
+    const std::string s = a.String();
+    if (s == AntiWindupName(AntiWindup::kNone)) o.anti_windup = AntiWindup::kNone;
+    else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
+      o.anti_windup = AntiWindup::kConditionalIntegration;
+    else a.Expected("\"none\" or \"conditional-integration\"");
+  }
+}
+
+}  // namespace internal
+
+std::string ToJson(const PiOptions& o, int indent) {
+  return internal::DumpJson(internal::PiOptionsJson(o), indent);
+}
+
+PiOptions PiOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<PiOptions>(text, source_name, internal::ReadPiOptions);
+}
+
+std::string ToJson(const SmoothProfileOptions& o, int indent) {
+  nlohmann::ordered_json j;
+  j["frequency_hz"] = o.frequency_hz;
+  j["amplitude_m"] = o.amplitude_m;
+  j["dwell_fraction"] = o.dwell_fraction;
+  j["cycles"] = o.cycles;
+  j["sample_rate_hz"] = o.sample_rate_hz;
+  return internal::DumpJson(j, indent);
+}
+
+SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
+                                                  const std::string& source_name) {
+  auto read = [](const internal::JsonNode& node, SmoothProfileOptions& o) {
+    using internal::ReadOptional;
+    node.ExpectObject({"frequency_hz", "amplitude_m", "dwell_fraction", "cycles", "sample_rate_hz"});
+    ReadOptional(node, "frequency_hz", o.frequency_hz);
+    ReadOptional(node, "amplitude_m", o.amplitude_m);
+    ReadOptional(node, "dwell_fraction", o.dwell_fraction);
+    ReadOptional(node, "cycles", o.cycles);
+    ReadOptional(node, "sample_rate_hz", o.sample_rate_hz);
+  };
+  return internal::OptionsFromJson<SmoothProfileOptions>(text, source_name, read);
 }
 
 }  // namespace sysid

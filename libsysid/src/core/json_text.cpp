@@ -468,6 +468,73 @@ Termination TerminationFromJson(const JsonNode& node) {
                 ToString(Termination::kFailure) + ")");
 }
 
+void ReadOptional(const JsonNode& object, const char* key, double& field) {
+  if (object.Has(key)) field = object.Get(key).Number();
+}
+
+void ReadOptional(const JsonNode& object, const char* key, int& field) {
+  if (object.Has(key))
+    field = static_cast<int>(object.Get(key).Integer(std::numeric_limits<int>::min(),
+                                                     std::numeric_limits<int>::max()));
+}
+
+void ReadOptional(const JsonNode& object, const char* key, bool& field) {
+  if (object.Has(key)) field = object.Get(key).Boolean();
+}
+
+void ReadOptional(const JsonNode& object, const char* key, std::string& field) {
+  if (object.Has(key)) field = object.Get(key).String();
+}
+
+void ReadOptional(const JsonNode& object, const char* key, std::uint64_t& field) {
+  if (object.Has(key)) field = Uint64FromJson(object.Get(key));
+}
+
+void ReadOptional(const JsonNode& object, const char* key, std::vector<double>& field) {
+  if (object.Has(key)) field = object.Get(key).Numbers();
+}
+
+void ReadOptional(const JsonNode& object, const char* key, std::vector<int>& field) {
+  if (!object.Has(key)) return;
+  const JsonNode a = object.Get(key);
+  a.ExpectArray();
+  field.clear();
+  for (size_t i = 0; i < a.Size(); ++i)
+    field.push_back(static_cast<int>(
+        a.Element(i).Integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max())));
+}
+
+std::uint64_t Uint64FromJson(const JsonNode& node) {
+  if (!node.json().is_number_unsigned()) node.Expected("an integer in [0, 2^64 - 1]");
+  return node.json().get<std::uint64_t>();
+}
+
+void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate) {
+  try {
+    validate();
+  } catch (const OptionsError& e) {
+    const std::string field = JsonDocument::ValidationField(e.what());
+    std::string pointer;
+    if (!field.empty()) {
+      // "candidates[1].gain" -> "/candidates/1/gain"
+      std::string tail;
+      for (char c : field) {
+        if (c == '.' || c == '[') tail += '/';
+        else if (c != ']') tail += c;
+      }
+      // The field, else the nearest written part of it ("output_range" of "output_range.max").
+      while (!tail.empty() && pointer.empty()) {
+        if (doc.Contains("/" + tail)) pointer = "/" + tail;
+        else pointer = doc.FindSuffix("/" + tail);
+        const size_t cut = tail.rfind('/');
+        tail = cut == std::string::npos ? "" : tail.substr(0, cut);
+      }
+    }
+    if (pointer.empty()) throw InputError(doc.source() + ":1:1: " + e.what());
+    doc.FailValidation(e.what(), pointer);
+  }
+}
+
 std::string DumpJson(const nlohmann::ordered_json& j, int indent) {
   return j.dump(indent) + "\n";
 }

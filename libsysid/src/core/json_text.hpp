@@ -4,6 +4,8 @@
 #define SYSID_SRC_CORE_JSON_TEXT_HPP_
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -146,6 +148,37 @@ Eigen::MatrixXd MatrixFromJson(const JsonNode& node, size_t rows, size_t cols);
 
 /// A Termination written by ToString ("converged", ...); anything else is a positioned error.
 Termination TerminationFromJson(const JsonNode& node);
+
+// ---- Options objects ----
+// An options object's keys are all optional: an absent key keeps the field's value (the
+// default), so a file names only what it changes. Values are checked for type here and for
+// their rules by the struct's Validate() (ValidateOptions).
+void ReadOptional(const JsonNode& object, const char* key, double& field);
+/// An int in [INT_MIN, INT_MAX]; the rule is Validate()'s.
+void ReadOptional(const JsonNode& object, const char* key, int& field);
+void ReadOptional(const JsonNode& object, const char* key, bool& field);
+void ReadOptional(const JsonNode& object, const char* key, std::string& field);
+void ReadOptional(const JsonNode& object, const char* key, std::uint64_t& field);
+void ReadOptional(const JsonNode& object, const char* key, std::vector<double>& field);
+void ReadOptional(const JsonNode& object, const char* key, std::vector<int>& field);
+/// A uint64 (a seed): JsonNode::Integer reads longs.
+std::uint64_t Uint64FromJson(const JsonNode& node);
+/// Runs `validate` (an options struct's Validate()); its OptionsError ("Type::field = value.
+/// Violated constraint: rule") becomes an InputError at the field's place in `doc`: the
+/// top-level key when written there, else the first nested key of that name, else the
+/// document's start with the message as it is.
+void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate);
+
+/// The reader of an options struct T from text: its defaults, overwritten by the document's
+/// keys through `read` (which checks keys and types), then T::Validate() (ValidateOptions).
+template <class T, class Read>
+T OptionsFromJson(std::string_view text, const std::string& source_name, Read read) {
+  const JsonDocument doc(text, source_name);
+  T options;
+  read(doc.Root(), options);
+  ValidateOptions(doc, [&] { options.Validate(); });
+  return options;
+}
 
 /// Text of a library result object: `j` dumped with `indent` and a final newline (the form of
 /// ModelToJson).

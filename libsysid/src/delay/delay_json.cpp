@@ -1,11 +1,14 @@
-// JSON of the delay-tuning and refinement results (docs/cli.md: tune-delay, refine).
+// JSON of the delay-tuning and refinement options and results (docs/cli.md: tune-delay, refine).
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
 #include "core/json_text.hpp"
+#include "delay/delay_json.hpp"
+#include "identify/identify_json.hpp"
 #include "model/model_json.hpp"
+#include "motion/motion_json.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/model.hpp"
 
@@ -122,6 +125,116 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
   }
   if (d.Has("wall_time_s")) r.wall_time_s = d.Get("wall_time_s").Number(Rule::NonNegative());
   return r;
+}
+
+// ---- Options ----
+
+namespace {
+
+using internal::ReadOptional;
+
+Json SegmentOptionsJson(const SegmentOptions& o) {
+  Json j;
+  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
+  j["rest_speed_mps"] = o.rest_speed_mps;
+  j["reuse_identical_segments"] = o.reuse_identical_segments;
+  return j;
+}
+
+void ReadSegmentOptions(const JsonNode& node, SegmentOptions& o) {
+  node.ExpectObject({"detection", "rest_speed_mps", "reuse_identical_segments"});
+  if (node.Has("detection"))
+    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
+  ReadOptional(node, "rest_speed_mps", o.rest_speed_mps);
+  ReadOptional(node, "reuse_identical_segments", o.reuse_identical_segments);
+}
+
+void ReadRefineOptions(const JsonNode& node, RefineOptions& o) {
+  node.ExpectObject({"motion", "detection", "refine_a3", "refine_tau", "tau_max_s",
+                     "max_iterations", "threads", "sim_rtol"});
+  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
+  if (node.Has("detection"))
+    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
+  ReadOptional(node, "refine_a3", o.refine_a3);
+  ReadOptional(node, "refine_tau", o.refine_tau);
+  ReadOptional(node, "tau_max_s", o.tau_max_s);
+  ReadOptional(node, "max_iterations", o.max_iterations);
+  ReadOptional(node, "threads", o.threads);
+  ReadOptional(node, "sim_rtol", o.sim_rtol);
+}
+
+}  // namespace
+
+namespace internal {
+
+nlohmann::ordered_json DelayTuningOptionsJson(const DelayTuningOptions& o) {
+  Json j;
+  j["tau_min_s"] = o.tau_min_s;
+  j["tau_max_s"] = o.tau_max_s;
+  j["x_tolerance_s"] = o.x_tolerance_s;
+  j["coarse_evaluations"] = o.coarse_evaluations;
+  j["max_evaluations"] = o.max_evaluations;
+  j["curve_points"] = o.curve_points;
+  j["motion"] = MotionOptionsJson(o.motion);
+  j["segments"] = SegmentOptionsJson(o.segments);
+  j["sim_rtol"] = o.sim_rtol;
+  j["sim_atol"] = o.sim_atol;
+  j["threads"] = o.threads;
+  return j;
+}
+
+void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& o) {
+  node.ExpectObject({"tau_min_s", "tau_max_s", "x_tolerance_s", "coarse_evaluations",
+                     "max_evaluations", "curve_points", "motion", "segments", "sim_rtol",
+                     "sim_atol", "threads"});
+  ReadOptional(node, "tau_min_s", o.tau_min_s);
+  ReadOptional(node, "tau_max_s", o.tau_max_s);
+  ReadOptional(node, "x_tolerance_s", o.x_tolerance_s);
+  ReadOptional(node, "coarse_evaluations", o.coarse_evaluations);
+  ReadOptional(node, "max_evaluations", o.max_evaluations);
+  ReadOptional(node, "curve_points", o.curve_points);
+  if (node.Has("motion")) ReadMotionOptions(node.Get("motion"), o.motion);
+  if (node.Has("segments")) ReadSegmentOptions(node.Get("segments"), o.segments);
+  ReadOptional(node, "sim_rtol", o.sim_rtol);
+  ReadOptional(node, "sim_atol", o.sim_atol);
+  ReadOptional(node, "threads", o.threads);
+}
+
+}  // namespace internal
+
+std::string ToJson(const SegmentOptions& o, int indent) {
+  return internal::DumpJson(SegmentOptionsJson(o), indent);
+}
+
+SegmentOptions SegmentOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<SegmentOptions>(text, source_name, ReadSegmentOptions);
+}
+
+std::string ToJson(const DelayTuningOptions& o, int indent) {
+  return internal::DumpJson(internal::DelayTuningOptionsJson(o), indent);
+}
+
+DelayTuningOptions DelayTuningOptionsFromJson(std::string_view text,
+                                              const std::string& source_name) {
+  return internal::OptionsFromJson<DelayTuningOptions>(text, source_name,
+                                                       internal::ReadDelayTuningOptions);
+}
+
+std::string ToJson(const RefineOptions& o, int indent) {
+  Json j;
+  j["motion"] = internal::MotionOptionsJson(o.motion);
+  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
+  j["refine_a3"] = o.refine_a3;
+  j["refine_tau"] = o.refine_tau;
+  j["tau_max_s"] = o.tau_max_s;
+  j["max_iterations"] = o.max_iterations;
+  j["threads"] = o.threads;
+  j["sim_rtol"] = o.sim_rtol;
+  return internal::DumpJson(j, indent);
+}
+
+RefineOptions RefineOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<RefineOptions>(text, source_name, ReadRefineOptions);
 }
 
 }  // namespace sysid

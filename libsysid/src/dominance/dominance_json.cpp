@@ -1,4 +1,4 @@
-// JSON of the dominant-variable analysis (docs/cli.md: dominance --json).
+// JSON of the dominant-variable analysis and its options (docs/cli.md: dominance --json).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/json_text.hpp"
+#include "motion/motion_json.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/error.hpp"
 
@@ -178,6 +179,47 @@ DominanceSummary DominanceSummaryFromJson(std::string_view text, const std::stri
   s.min_margin = MarginFromJson(sum.Get("min_margin"));
   s.median_margin = MarginFromJson(sum.Get("median_margin"));
   return s;
+}
+
+std::string ToJson(const DominanceOptions& o, int indent) {
+  Json j;
+  j["motion"] = internal::MotionOptionsJson(o.motion);
+  j["min_speed_mps"] = o.min_speed_mps;
+  j["negligible_ratio"] = o.negligible_ratio;
+  j["bound_quantile"] = o.bound_quantile;
+  j["candidates"] = Json::array();
+  for (const auto& c : o.candidates)
+    j["candidates"].push_back({{"variable", c.variable}, {"column", c.column}, {"gain", c.gain}});
+  j["threads"] = o.threads;
+  return internal::DumpJson(j, indent);
+}
+
+DominanceOptions DominanceOptionsFromJson(std::string_view text, const std::string& source_name) {
+  auto read = [](const internal::JsonNode& node, DominanceOptions& o) {
+    using internal::ReadOptional;
+    node.ExpectObject({"motion", "min_speed_mps", "negligible_ratio", "bound_quantile",
+                       "candidates", "threads"});
+    if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
+    ReadOptional(node, "min_speed_mps", o.min_speed_mps);
+    ReadOptional(node, "negligible_ratio", o.negligible_ratio);
+    ReadOptional(node, "bound_quantile", o.bound_quantile);
+    if (node.Has("candidates")) {
+      const internal::JsonNode list = node.Get("candidates");
+      list.ExpectArray();
+      o.candidates.clear();
+      for (size_t i = 0; i < list.Size(); ++i) {
+        const internal::JsonNode c = list.Element(i);
+        c.ExpectObject({"variable", "column", "gain"});
+        CandidateTerm term;
+        term.variable = c.Get("variable").String(true);
+        term.column = c.Get("column").String(true);
+        ReadOptional(c, "gain", term.gain);
+        o.candidates.push_back(term);
+      }
+    }
+    ReadOptional(node, "threads", o.threads);
+  };
+  return internal::OptionsFromJson<DominanceOptions>(text, source_name, read);
 }
 
 }  // namespace sysid

@@ -1,6 +1,7 @@
-// JSON of the identification results: the model file's text (ModelToJson) with a "diagnostics"
+// JSON of the identification options (every field; each key optional when read) and results: the model file's text (ModelToJson) with a "diagnostics"
 // object, the form `sysid identify --json` prints and `-o` writes (docs/cli.md). The readers
 // take that text back (any model file reader also accepts it: "diagnostics" rides along).
+#include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -8,7 +9,9 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "identify/identify_json.hpp"
 #include "model/model_json.hpp"
+#include "motion/motion_json.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/model.hpp"
 
@@ -239,6 +242,157 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
     }
   }
   return r;
+}
+
+// ---- Options ----
+
+namespace internal {
+
+nlohmann::ordered_json PulseDetectionOptionsJson(const PulseDetectionOptions& o) {
+  Json j;
+  j["min_duration_s"] = o.min_duration_s;
+  j["u_tolerance_v"] = o.u_tolerance_v;
+  j["zero_tolerance_v"] = o.zero_tolerance_v;
+  return j;
+}
+
+void ReadPulseDetectionOptions(const JsonNode& node, PulseDetectionOptions& o) {
+  node.ExpectObject({"min_duration_s", "u_tolerance_v", "zero_tolerance_v"});
+  ReadOptional(node, "min_duration_s", o.min_duration_s);
+  ReadOptional(node, "u_tolerance_v", o.u_tolerance_v);
+  ReadOptional(node, "zero_tolerance_v", o.zero_tolerance_v);
+}
+
+}  // namespace internal
+
+namespace {
+
+using internal::ReadOptional;
+
+// The limits' default "none" is an infinity, which JSON writes as null.
+void ReadLimit(const JsonNode& node, const char* key, double none, double& field) {
+  if (node.Has(key)) {
+    const JsonNode v = node.Get(key);
+    field = v.json().is_null() ? none : v.Number();
+  }
+}
+
+Json PlateauOptionsJson(const PlateauOptions& o) {
+  Json j;
+  j["window_fraction"] = o.window_fraction;
+  j["settle_tolerance"] = o.settle_tolerance;
+  j["min_speed_mps"] = o.min_speed_mps;
+  j["max_speed_mps"] = NumberOrNull(o.max_speed_mps);
+  j["travel_min_m"] = NumberOrNull(o.travel_min_m);
+  j["travel_max_m"] = NumberOrNull(o.travel_max_m);
+  j["min_window_samples"] = o.min_window_samples;
+  return j;
+}
+
+void ReadPlateauOptions(const JsonNode& node, PlateauOptions& o) {
+  node.ExpectObject({"window_fraction", "settle_tolerance", "min_speed_mps", "max_speed_mps",
+                     "travel_min_m", "travel_max_m", "min_window_samples"});
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  ReadOptional(node, "window_fraction", o.window_fraction);
+  ReadOptional(node, "settle_tolerance", o.settle_tolerance);
+  ReadOptional(node, "min_speed_mps", o.min_speed_mps);
+  ReadLimit(node, "max_speed_mps", kInf, o.max_speed_mps);
+  ReadLimit(node, "travel_min_m", -kInf, o.travel_min_m);
+  ReadLimit(node, "travel_max_m", kInf, o.travel_max_m);
+  ReadOptional(node, "min_window_samples", o.min_window_samples);
+}
+
+Json PulseFitOptionsJson(const PulseFitOptions& o) { return {{"a3", o.a3}}; }
+
+void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
+  node.ExpectObject({"a3"});
+  ReadOptional(node, "a3", o.a3);
+}
+
+void ReadPulseIdentificationOptions(const JsonNode& node, PulseIdentificationOptions& o) {
+  node.ExpectObject({"motion", "detection", "plateau", "fit"});
+  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
+  if (node.Has("detection"))
+    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
+  if (node.Has("plateau")) ReadPlateauOptions(node.Get("plateau"), o.plateau);
+  if (node.Has("fit")) ReadPulseFitOptions(node.Get("fit"), o.fit);
+}
+
+void ReadTrajectoryOptions(const JsonNode& node, TrajectoryOptions& o) {
+  node.ExpectObject({"motion", "tau_s", "tune_delay", "tau_min_s", "tau_max_s", "decimation",
+                     "min_speed_mps", "trim_samples", "offset", "symmetric_viscous"});
+  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
+  ReadOptional(node, "tau_s", o.tau_s);
+  ReadOptional(node, "tune_delay", o.tune_delay);
+  ReadOptional(node, "tau_min_s", o.tau_min_s);
+  ReadOptional(node, "tau_max_s", o.tau_max_s);
+  ReadOptional(node, "decimation", o.decimation);
+  ReadOptional(node, "min_speed_mps", o.min_speed_mps);
+  ReadOptional(node, "trim_samples", o.trim_samples);
+  ReadOptional(node, "offset", o.offset);
+  ReadOptional(node, "symmetric_viscous", o.symmetric_viscous);
+}
+
+}  // namespace
+
+std::string ToJson(const PulseDetectionOptions& o, int indent) {
+  return internal::DumpJson(internal::PulseDetectionOptionsJson(o), indent);
+}
+
+PulseDetectionOptions PulseDetectionOptionsFromJson(std::string_view text,
+                                                    const std::string& source_name) {
+  return internal::OptionsFromJson<PulseDetectionOptions>(text, source_name,
+                                                          internal::ReadPulseDetectionOptions);
+}
+
+std::string ToJson(const PlateauOptions& o, int indent) {
+  return internal::DumpJson(PlateauOptionsJson(o), indent);
+}
+
+PlateauOptions PlateauOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<PlateauOptions>(text, source_name, ReadPlateauOptions);
+}
+
+std::string ToJson(const PulseFitOptions& o, int indent) {
+  return internal::DumpJson(PulseFitOptionsJson(o), indent);
+}
+
+PulseFitOptions PulseFitOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<PulseFitOptions>(text, source_name, ReadPulseFitOptions);
+}
+
+std::string ToJson(const PulseIdentificationOptions& o, int indent) {
+  Json j;
+  j["motion"] = internal::MotionOptionsJson(o.motion);
+  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
+  j["plateau"] = PlateauOptionsJson(o.plateau);
+  j["fit"] = PulseFitOptionsJson(o.fit);
+  return internal::DumpJson(j, indent);
+}
+
+PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view text,
+                                                              const std::string& source_name) {
+  return internal::OptionsFromJson<PulseIdentificationOptions>(text, source_name,
+                                                               ReadPulseIdentificationOptions);
+}
+
+std::string ToJson(const TrajectoryOptions& o, int indent) {
+  Json j;
+  j["motion"] = internal::MotionOptionsJson(o.motion);
+  j["tau_s"] = o.tau_s;
+  j["tune_delay"] = o.tune_delay;
+  j["tau_min_s"] = o.tau_min_s;
+  j["tau_max_s"] = o.tau_max_s;
+  j["decimation"] = o.decimation;
+  j["min_speed_mps"] = o.min_speed_mps;
+  j["trim_samples"] = o.trim_samples;
+  j["offset"] = o.offset;
+  j["symmetric_viscous"] = o.symmetric_viscous;
+  return internal::DumpJson(j, indent);
+}
+
+TrajectoryOptions TrajectoryOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<TrajectoryOptions>(text, source_name, ReadTrajectoryOptions);
 }
 
 }  // namespace sysid

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "nn/nn_json.hpp"
 #include "nn/mlp_kernels.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -33,7 +34,10 @@ ScaledVariable ReadVariable(const internal::JsonNode& v) {
 
 NeuralNetwork ParseNeuralNetwork(std::string_view json_text, const std::string& source) {
   const internal::JsonDocument doc(json_text, source);
-  const internal::JsonNode root = doc.Root();
+  return internal::NeuralNetworkFromJson(doc.Root());
+}
+
+NeuralNetwork internal::NeuralNetworkFromJson(const JsonNode& root) {
   root.ExpectObject({"type", "inputs", "output", "hidden", "W1", "b1", "W2", "b2", "note",
                      "training"});
   if (root.Has("type") && root.Get("type").json() != "tanh-mlp")

@@ -1,4 +1,5 @@
-// JSON of the training and hidden-size sweep results (docs/cli.md: train, sweep).
+// JSON of the training and hidden-size sweep options and results (docs/cli.md: train, sweep).
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -6,6 +7,7 @@
 #include <string_view>
 
 #include "core/json_text.hpp"
+#include "nn/nn_json.hpp"
 #include "sysid/nn.hpp"
 
 namespace sysid {
@@ -36,11 +38,6 @@ NeuralTrainer TrainerFromJson(const JsonNode& node) {
                 ToString(NeuralTrainer::kCeres) + ")");
 }
 
-// The seed is a uint64 (JsonNode::Integer reads longs).
-std::uint64_t SeedFromJson(const JsonNode& node) {
-  if (!node.json().is_number_unsigned()) node.Expected("an integer in [0, 2^64 - 1]");
-  return node.json().get<std::uint64_t>();
-}
 }  // namespace
 
 std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o, int indent) {
@@ -95,7 +92,7 @@ NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
   o.trainer = TrainerFromJson(root.Get("trainer"));
   o.momentum = root.Get("momentum").Number(Rule{0.0, 1.0, false, true});
   o.solve_output_layer = root.Get("solve_output_layer").Boolean();
-  o.seed = SeedFromJson(root.Get("seed"));
+  o.seed = internal::Uint64FromJson(root.Get("seed"));
   if (options) {
     options->hidden = o.hidden;
     options->trainer = o.trainer;
@@ -155,6 +152,138 @@ std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int 
   j["rule"] = r.rule;
   j["wall_time_s"] = r.wall_time_s;
   j["warnings"] = r.warnings;
+  return internal::DumpJson(j, indent);
+}
+
+// ---- Options ----
+
+namespace {
+
+std::string InitName(NeuralInit init) {
+  return init == NeuralInit::kUniform ? "uniform" : "nguyen-widrow";
+}
+
+Json RangeJson(const std::pair<double, double>& r) { return Json::array({r.first, r.second}); }
+
+std::pair<double, double> RangeFromJson(const JsonNode& node) {
+  const std::vector<double> v = node.Numbers(2);
+  return {v[0], v[1]};
+}
+
+}  // namespace
+
+namespace internal {
+
+nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& o) {
+  Json j;
+  j["hidden"] = o.hidden;
+  j["trainer"] = ToString(o.trainer);
+  j["init"] = InitName(o.init);
+  j["momentum"] = o.momentum;
+  j["solve_output_layer"] = o.solve_output_layer;
+  j["mu_initial"] = o.mu_initial;
+  j["mu_decrease"] = o.mu_decrease;
+  j["mu_increase"] = o.mu_increase;
+  j["mu_max"] = o.mu_max;
+  j["gradient_tolerance"] = o.gradient_tolerance;
+  j["max_epochs"] = o.max_epochs;
+  j["max_validation_failures"] = o.max_validation_failures;
+  j["goal_mse"] = o.goal_mse;
+  j["seed"] = o.seed;
+  j["restarts"] = o.restarts;
+  j["input_ranges"] = Json::array();
+  for (const auto& r : o.input_ranges) j["input_ranges"].push_back(RangeJson(r));
+  j["output_range"] = o.output_range ? RangeJson(*o.output_range) : Json(nullptr);
+  j["initial_parameters"] =
+      o.initial_parameters ? VectorJson(*o.initial_parameters) : Json(nullptr);
+  j["ceres_block_size"] = o.ceres_block_size;
+  j["threads"] = o.threads;
+  return j;
+}
+
+void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& o) {
+  node.ExpectObject({"hidden", "trainer", "init", "momentum", "solve_output_layer", "mu_initial",
+                     "mu_decrease", "mu_increase", "mu_max", "gradient_tolerance", "max_epochs",
+                     "max_validation_failures", "goal_mse", "seed", "restarts", "input_ranges",
+                     "output_range", "initial_parameters", "ceres_block_size", "threads"});
+  ReadOptional(node, "hidden", o.hidden);
+  if (node.Has("trainer")) o.trainer = TrainerFromJson(node.Get("trainer"));
+  if (node.Has("init")) {
+    const JsonNode n = node.Get("init");
+    const std::string s = n.String();
+    if (s == InitName(NeuralInit::kNguyenWidrow)) o.init = NeuralInit::kNguyenWidrow;
+    else if (s == InitName(NeuralInit::kUniform)) o.init = NeuralInit::kUniform;
+    else n.Expected("\"nguyen-widrow\" or \"uniform\"");
+  }
+  ReadOptional(node, "momentum", o.momentum);
+  ReadOptional(node, "solve_output_layer", o.solve_output_layer);
+  ReadOptional(node, "mu_initial", o.mu_initial);
+  ReadOptional(node, "mu_decrease", o.mu_decrease);
+  ReadOptional(node, "mu_increase", o.mu_increase);
+  ReadOptional(node, "mu_max", o.mu_max);
+  ReadOptional(node, "gradient_tolerance", o.gradient_tolerance);
+  ReadOptional(node, "max_epochs", o.max_epochs);
+  ReadOptional(node, "max_validation_failures", o.max_validation_failures);
+  ReadOptional(node, "goal_mse", o.goal_mse);
+  ReadOptional(node, "seed", o.seed);
+  ReadOptional(node, "restarts", o.restarts);
+  if (node.Has("input_ranges")) {
+    const JsonNode list = node.Get("input_ranges");
+    list.ExpectArray();
+    o.input_ranges.clear();
+    for (size_t i = 0; i < list.Size(); ++i) o.input_ranges.push_back(RangeFromJson(list.Element(i)));
+  }
+  if (node.Has("output_range")) {
+    const JsonNode r = node.Get("output_range");
+    if (r.json().is_null()) o.output_range.reset();
+    else o.output_range = RangeFromJson(r);
+  }
+  if (node.Has("initial_parameters")) {
+    const JsonNode p = node.Get("initial_parameters");
+    if (p.json().is_null()) o.initial_parameters.reset();
+    else o.initial_parameters = VectorFromJson(p);
+  }
+  ReadOptional(node, "ceres_block_size", o.ceres_block_size);
+  ReadOptional(node, "threads", o.threads);
+}
+
+}  // namespace internal
+
+std::string ToJson(const NeuralTrainingOptions& o, int indent) {
+  return internal::DumpJson(internal::NeuralTrainingOptionsJson(o), indent);
+}
+
+NeuralTrainingOptions NeuralTrainingOptionsFromJson(std::string_view text,
+                                                    const std::string& source_name) {
+  return internal::OptionsFromJson<NeuralTrainingOptions>(text, source_name,
+                                                          internal::ReadNeuralTrainingOptions);
+}
+
+std::string ToJson(const HiddenSweepOptions& o, int indent) {
+  Json j;
+  j["hidden_sizes"] = o.hidden_sizes;
+  j["training"] = internal::NeuralTrainingOptionsJson(o.training);
+  j["threads"] = o.threads;
+  return internal::DumpJson(j, indent);
+}
+
+HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
+                                              const std::string& source_name) {
+  auto read = [](const JsonNode& node, HiddenSweepOptions& o) {
+    node.ExpectObject({"hidden_sizes", "training", "threads"});
+    internal::ReadOptional(node, "hidden_sizes", o.hidden_sizes);
+    if (node.Has("training")) internal::ReadNeuralTrainingOptions(node.Get("training"), o.training);
+    internal::ReadOptional(node, "threads", o.threads);
+  };
+  return internal::OptionsFromJson<HiddenSweepOptions>(text, source_name, read);
+}
+
+std::string ToJson(const NetworkPrediction& p, int indent) {
+  Json j;
+  j["rows"] = p.rows;
+  j["column"] = p.column;
+  j["rows_outside_input_range"] = p.rows_outside_input_range;
+  if (!std::isnan(p.mse)) j["mse"] = p.mse;
   return internal::DumpJson(j, indent);
 }
 

@@ -1,20 +1,33 @@
 // JSON summary of a pipeline run (docs/cli.md: pipeline --json): the model, the dominant
-// variable, the networks' MSEs, every tracking run and the wall time per step.
+// variable, the chosen network, the networks' MSEs, every tracking run, the facts' verdicts and
+// the wall time per step; and its reader. The pipeline's options.
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
+#include "control/control_json.hpp"
 #include "core/json_text.hpp"
+#include "delay/delay_json.hpp"
+#include "facts/facts_json.hpp"
+#include "model/model_json.hpp"
+#include "nn/nn_json.hpp"
 #include "sysid/pipeline.hpp"
 
 namespace sysid {
+namespace {
+using internal::JsonNode;
+using Json = nlohmann::ordered_json;
+using Rule = internal::NumberRule;
+}  // namespace
 
 std::string ToJson(const PipelineResult& r, int indent) {
-  using Json = nlohmann::ordered_json;
   Json j;
   j["model"] = Json::parse(ModelToJson(r.model, -1));
   j["dominant"] = r.dominance.dominant;
   j["nn_inputs"] = r.nn_inputs;
   j["hidden"] = r.network.hidden_size();
+  j["network"] = Json::parse(NeuralNetworkToJson(r.network, -1));
   j["nn_test_mse"] = internal::NumberOrNull(r.network_test_mse);
   if (r.typical) {
     j["typical_train_mse"] = internal::NumberOrNull(r.typical->train_mse);
@@ -26,10 +39,158 @@ std::string ToJson(const PipelineResult& r, int indent) {
                              {"ff", t.scheme},
                              {"max_error_m", t.result.max_error_m},
                              {"rms_error_m", t.result.rms_error_m}});
-  if (r.facts) j["facts_required_met"] = r.facts->RequiredMet();
-  j["steps"] = Json::object();
-  for (const auto& [name, s] : r.step_seconds) j["steps"][name] = s;
+  if (r.facts) {
+    j["facts"] = Json::array();
+    for (const auto& f : r.facts->facts)
+      j["facts"].push_back({{"id", f.id}, {"required", f.required}, {"met", f.met}});
+    j["facts_required_met"] = r.facts->RequiredMet();
+  }
+  // An array in run order (an object's keys would be re-sorted by readers that sort them).
+  j["steps"] = Json::array();
+  for (const auto& [name, s] : r.step_seconds)
+    j["steps"].push_back({{"name", name}, {"wall_time_s", s}});
   return internal::DumpJson(j, indent);
+}
+
+PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name) {
+  const internal::JsonDocument doc(text, source_name);
+  const JsonNode root = doc.Root();
+  // "report" is the path `sysid pipeline --json` adds in front of the library's summary.
+  root.ExpectObject({"model", "dominant", "nn_inputs", "hidden", "network", "nn_test_mse",
+                     "typical_train_mse", "typical_test_mse", "tracking", "facts",
+                     "facts_required_met", "steps"},
+                    {"report"});
+  PipelineResult r;
+  r.model = internal::ModelFromJson(doc, root.Get("model"), {"units"});
+  r.dominance.dominant = root.Get("dominant").String();
+  const JsonNode inputs = root.Get("nn_inputs");
+  inputs.ExpectArray();
+  for (size_t i = 0; i < inputs.Size(); ++i) r.nn_inputs.push_back(inputs.Element(i).String(true));
+  r.network = internal::NeuralNetworkFromJson(root.Get("network"));
+  // hidden is the network's, written for readers of the summary: checked, not stored.
+  const JsonNode hidden = root.Get("hidden");
+  if (hidden.Integer(0, std::numeric_limits<int>::max()) != r.network.hidden_size())
+    hidden.Expected(std::to_string(r.network.hidden_size()) + " (the network's hidden units)");
+  r.network_test_mse = root.Get("nn_test_mse").NumberOrNaN(Rule::NonNegative());
+  if (root.Has("typical_train_mse") != root.Has("typical_test_mse"))
+    root.Fail("typical_train_mse and typical_test_mse come together (a typical network)");
+  if (root.Has("typical_train_mse")) {
+    // The summary carries the typical network's MSEs, not the network.
+    r.typical.emplace();
+    r.typical->train_mse = root.Get("typical_train_mse").NumberOrNaN(Rule::NonNegative());
+    r.typical_test_mse = root.Get("typical_test_mse").NumberOrNaN(Rule::NonNegative());
+  }
+  const JsonNode tracking = root.Get("tracking");
+  tracking.ExpectArray();
+  for (size_t i = 0; i < tracking.Size(); ++i) {
+    const JsonNode t = tracking.Element(i);
+    t.ExpectObject({"frequency_hz", "ff", "max_error_m", "rms_error_m"});
+    TrackingRow row;
+    row.frequency_hz = t.Get("frequency_hz").Number(Rule::Positive());
+    row.scheme = t.Get("ff").String(true);
+    row.result.max_error_m = t.Get("max_error_m").Number(Rule::NonNegative());
+    row.result.rms_error_m = t.Get("rms_error_m").Number(Rule::NonNegative());
+    r.tracking.push_back(row);
+  }
+  if (root.Has("facts") != root.Has("facts_required_met"))
+    root.Fail("facts and facts_required_met come together (a run with facts)");
+  if (root.Has("facts")) {
+    // The verdicts only: facts.json (the report) holds each fact's numbers and notes.
+    const JsonNode facts = root.Get("facts");
+    facts.ExpectArray();
+    r.facts.emplace();
+    for (size_t i = 0; i < facts.Size(); ++i) {
+      const JsonNode f = facts.Element(i);
+      f.ExpectObject({"id", "required", "met"});
+      StageFact fact;
+      fact.id = f.Get("id").String(true);
+      fact.required = f.Get("required").Boolean();
+      fact.met = f.Get("met").Boolean();
+      r.facts->facts.push_back(fact);
+    }
+    const JsonNode met = root.Get("facts_required_met");
+    if (met.Boolean() != r.facts->RequiredMet())
+      met.Expected(std::string(r.facts->RequiredMet() ? "true" : "false") +
+                   " (every required fact's met)");
+  }
+  const JsonNode steps = root.Get("steps");
+  steps.ExpectArray();
+  for (size_t i = 0; i < steps.Size(); ++i) {
+    const JsonNode s = steps.Element(i);
+    s.ExpectObject({"name", "wall_time_s"});
+    r.step_seconds.emplace_back(s.Get("name").String(true),
+                                s.Get("wall_time_s").Number(Rule::NonNegative()));
+  }
+  return r;
+}
+
+std::string ToJson(const PipelineOptions& o, int indent) {
+  Json j;
+  j["a3"] = o.a3;
+  j["tune_delay"] = o.tune_delay;
+  j["delay"] = internal::DelayTuningOptionsJson(o.delay);
+  j["refine"] = o.refine;
+  j["hidden_sizes"] = o.hidden_sizes;
+  j["training"] = internal::NeuralTrainingOptionsJson(o.training);
+  j["nn_inputs"] = o.nn_inputs;
+  j["typical"] = o.typical;
+  j["typical_hidden"] = o.typical_hidden;
+  j["typical_max_epochs"] = o.typical_max_epochs;
+  j["typical_stride"] = o.typical_stride;
+  j["track"] = o.track;
+  j["track_frequencies_hz"] = o.track_frequencies_hz;
+  j["track_amplitude_m"] = o.track_amplitude_m;
+  j["pi"] = internal::PiOptionsJson(o.pi);
+  j["facts"] = o.facts;
+  j["facts_options"] = internal::FactsOptionsJson(o.facts_options);
+  j["reference_path"] = o.reference_path;
+  j["threads"] = o.threads;
+  return internal::DumpJson(j, indent);
+}
+
+PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name) {
+  auto read = [](const JsonNode& node, PipelineOptions& o) {
+    using internal::ReadOptional;
+    node.ExpectObject({"a3", "tune_delay", "delay", "refine", "hidden_sizes", "training",
+                       "nn_inputs", "typical", "typical_hidden", "typical_max_epochs",
+                       "typical_stride", "track", "track_frequencies_hz", "track_amplitude_m",
+                       "pi", "facts", "facts_options", "reference_path", "threads"});
+    ReadOptional(node, "a3", o.a3);
+    ReadOptional(node, "tune_delay", o.tune_delay);
+    if (node.Has("delay")) internal::ReadDelayTuningOptions(node.Get("delay"), o.delay);
+    ReadOptional(node, "refine", o.refine);
+    ReadOptional(node, "hidden_sizes", o.hidden_sizes);
+    if (node.Has("training")) internal::ReadNeuralTrainingOptions(node.Get("training"), o.training);
+    if (node.Has("nn_inputs")) {
+      const JsonNode inputs = node.Get("nn_inputs");
+      inputs.ExpectArray();
+      o.nn_inputs.clear();
+      for (size_t i = 0; i < inputs.Size(); ++i)
+        o.nn_inputs.push_back(inputs.Element(i).String(true));
+    }
+    ReadOptional(node, "typical", o.typical);
+    ReadOptional(node, "typical_hidden", o.typical_hidden);
+    ReadOptional(node, "typical_max_epochs", o.typical_max_epochs);
+    ReadOptional(node, "typical_stride", o.typical_stride);
+    ReadOptional(node, "track", o.track);
+    ReadOptional(node, "track_frequencies_hz", o.track_frequencies_hz);
+    ReadOptional(node, "track_amplitude_m", o.track_amplitude_m);
+    if (node.Has("pi")) internal::ReadPiOptions(node.Get("pi"), o.pi);
+    ReadOptional(node, "facts", o.facts);
+    if (node.Has("facts_options"))
+      internal::ReadFactsOptions(node.Get("facts_options"), o.facts_options);
+    ReadOptional(node, "reference_path", o.reference_path);
+    ReadOptional(node, "threads", o.threads);
+  };
+  const internal::JsonDocument doc(text, source_name);
+  PipelineOptions o;
+  read(doc.Root(), o);
+  // The facts' options are checked as RunStageFacts checks them, with the pipeline's.
+  internal::ValidateOptions(doc, [&] {
+    o.Validate();
+    o.facts_options.Validate();
+  });
+  return o;
 }
 
 }  // namespace sysid

@@ -1,0 +1,63 @@
+// JSON of the motion options and of a recording extended with derivatives.
+#include "motion/motion_json.hpp"
+
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "signal/signal_json.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+namespace internal {
+
+nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) {
+  nlohmann::ordered_json j;
+  j["derivative"] = DerivativeOptionsJson(o.derivative);
+  j["velocity_column"] = o.velocity_column;
+  j["prefer_velocity_column"] = o.prefer_velocity_column;
+  j["max_relative_jitter"] = o.max_relative_jitter;
+  return j;
+}
+
+void ReadMotionOptions(const JsonNode& node, MotionOptions& o) {
+  node.ExpectObject(
+      {"derivative", "velocity_column", "prefer_velocity_column", "max_relative_jitter"});
+  if (node.Has("derivative")) ReadDerivativeOptions(node.Get("derivative"), o.derivative);
+  ReadOptional(node, "velocity_column", o.velocity_column);
+  ReadOptional(node, "prefer_velocity_column", o.prefer_velocity_column);
+  ReadOptional(node, "max_relative_jitter", o.max_relative_jitter);
+}
+
+}  // namespace internal
+
+std::string ToJson(const MotionOptions& options, int indent) {
+  return internal::DumpJson(internal::MotionOptionsJson(options), indent);
+}
+
+MotionOptions MotionOptionsFromJson(std::string_view text, const std::string& source_name) {
+  return internal::OptionsFromJson<MotionOptions>(text, source_name, internal::ReadMotionOptions);
+}
+
+std::string DerivedRecordingToJson(const Recording& recording, double dt_s,
+                                   const DerivativeOptions& derivative, int indent) {
+  auto stats = [&](const char* column) {
+    if (!recording.has(column) || recording.rows() == 0)
+      throw InputError(recording.source + ": no " + column + " samples to summarise");
+    const Eigen::VectorXd s = recording.column(column);
+    const double rms = std::sqrt(s.squaredNorm() / static_cast<double>(s.size()));
+    return nlohmann::ordered_json{{"min", s.minCoeff()}, {"max", s.maxCoeff()}, {"rms", rms}};
+  };
+  nlohmann::ordered_json j;
+  j["method"] = ToString(derivative.method);
+  j["settings"] = recording.meta("derive", DescribeDerivative(derivative));
+  j["rows"] = recording.rows();
+  j["columns"] = recording.names;
+  j["dt_s"] = dt_s;
+  j["sample_rate_hz"] = 1.0 / dt_s;
+  j["v_mps"] = stats("v");
+  j["a_mps2"] = stats("a");
+  return internal::DumpJson(j, indent);
+}
+
+}  // namespace sysid

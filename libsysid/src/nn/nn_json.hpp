@@ -1,0 +1,24 @@
+// Private: NeuralTrainingOptions and NeuralNetwork as JSON objects, for the options and
+// results that hold one (the hidden sweep, the pipeline).
+#ifndef SYSID_SRC_NN_NN_JSON_HPP_
+#define SYSID_SRC_NN_NN_JSON_HPP_
+
+#include <nlohmann/json.hpp>
+
+#include "core/json_text.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::internal {
+
+/// Every field but the on_epoch callback.
+nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& options);
+/// Reads the object's keys (each optional) over `options`; no Validate().
+void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& options);
+
+/// A network file's object at `node` (the form NeuralNetworkToJson writes), checked as
+/// ParseNeuralNetwork checks a file; errors name the place in the enclosing document.
+NeuralNetwork NeuralNetworkFromJson(const JsonNode& node);
+
+}  // namespace sysid::internal
+
+#endif  // SYSID_SRC_NN_NN_JSON_HPP_
