@@ -168,6 +168,13 @@ TEST_CASE("pipeline options JSON: bad input names the place", "[pipeline][json]"
   CHECK_THROWS_WITH(
       sysid::PipelineOptionsFromJson("{\"facts_options\": {\"pulse\": {\"on\": 1}}}", "p.json"),
       Contains("unknown key 'on' in 'facts_options.pulse'"));
+  // A nested options' error is placed inside facts_options, not at the pipeline's own key of
+  // the same name (line 2 holds the valid top-level delay, line 3 the nested one).
+  CHECK_THROWS_WITH(sysid::PipelineOptionsFromJson("{\"delay\": {\"tau_min_s\": 0.001},\n"
+                                                   " \"facts_options\": {\"delay\": {\n"
+                                                   "  \"tau_min_s\": -1}}}",
+                                                   "p.json"),
+                    Contains("p.json:3:3: ") && Contains("tau_min_s"));
   CHECK_THROWS_WITH(sysid::PulseProcedureFromJson("{\"amplitudes_v\": [12]}", "pp.json"),
                     Contains("amplitudes_v"));
 }

@@ -375,10 +375,11 @@ std::string JsonDocument::Where(const std::string& pointer) const {
   }
 }
 
-std::string JsonDocument::FindSuffix(const std::string& suffix) const {
+std::string JsonDocument::FindSuffix(const std::string& suffix, const std::string& prefix) const {
   for (const auto& [p, place] : Places()) {
     (void)place;
-    if (p.size() >= suffix.size() && p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (p.size() >= suffix.size() + prefix.size() && p.compare(0, prefix.size(), prefix) == 0 &&
+        p.compare(p.size() - suffix.size(), suffix.size(), suffix) == 0)
       return p;
   }
   return "";
@@ -509,7 +510,8 @@ std::uint64_t Uint64FromJson(const JsonNode& node) {
   return node.json().get<std::uint64_t>();
 }
 
-void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate) {
+void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate,
+                     const std::string& base) {
   try {
     validate();
   } catch (const OptionsError& e) {
@@ -524,7 +526,10 @@ void ValidateOptions(const JsonDocument& doc, const std::function<void()>& valid
       }
       // The field, else the nearest written part of it ("output_range" of "output_range.max").
       while (!tail.empty() && pointer.empty()) {
-        if (doc.Contains("/" + tail)) pointer = "/" + tail;
+        if (!base.empty() && doc.Contains(base + "/" + tail)) pointer = base + "/" + tail;
+        else if (!base.empty() && !doc.FindSuffix("/" + tail, base + "/").empty())
+          pointer = doc.FindSuffix("/" + tail, base + "/");
+        else if (doc.Contains("/" + tail)) pointer = "/" + tail;
         else pointer = doc.FindSuffix("/" + tail);
         const size_t cut = tail.rfind('/');
         tail = cut == std::string::npos ? "" : tail.substr(0, cut);

@@ -112,8 +112,8 @@ class JsonDocument {
   /// True when the value at `pointer` is written in the text.
   bool Contains(const std::string& pointer) const;
   /// The pointer of a written value whose pointer ends with `suffix` ("/sample_rate_hz",
-  /// "/forward/coulomb_mps2"); empty when none.
-  std::string FindSuffix(const std::string& suffix) const;
+  /// "/forward/coulomb_mps2") and starts with `prefix`; empty when none.
+  std::string FindSuffix(const std::string& suffix, const std::string& prefix = "") const;
 
   /// Re-throws a Validate() error ("Type::field = value. Violated constraint: rule") as a
   /// positioned InputError "SOURCE:LINE:COL: NAME: expected rule, found value", where
@@ -166,8 +166,11 @@ std::uint64_t Uint64FromJson(const JsonNode& node);
 /// Runs `validate` (an options struct's Validate()); its OptionsError ("Type::field = value.
 /// Violated constraint: rule") becomes an InputError at the field's place in `doc`: the
 /// top-level key when written there, else the first nested key of that name, else the
-/// document's start with the message as it is.
-void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate);
+/// document's start with the message as it is. `base` (a JSON pointer such as
+/// "/facts_options") is where the validated struct sits when it is nested: its keys are looked
+/// up there first, so a key of the same name elsewhere does not take the error.
+void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate,
+                     const std::string& base = "");
 
 /// The reader of an options struct T from text: its defaults, overwritten by the document's
 /// keys through `read` (which checks keys and types), then T::Validate() (ValidateOptions).

@@ -185,11 +185,10 @@ PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string
   const internal::JsonDocument doc(text, source_name);
   PipelineOptions o;
   read(doc.Root(), o);
-  // The facts' options are checked as RunStageFacts checks them, with the pipeline's.
-  internal::ValidateOptions(doc, [&] {
-    o.Validate();
-    o.facts_options.Validate();
-  });
+  // The facts' options are checked as RunStageFacts checks them, after the pipeline's, and
+  // their errors are placed inside "facts_options" (which repeats keys such as delay.*).
+  internal::ValidateOptions(doc, [&] { o.Validate(); });
+  internal::ValidateOptions(doc, [&] { o.facts_options.Validate(); }, "/facts_options");
   return o;
 }
 
