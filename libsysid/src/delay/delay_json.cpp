@@ -131,36 +131,56 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
 
 namespace {
 
-using internal::ReadOptional;
 
-Json SegmentOptionsJson(const SegmentOptions& o) {
-  Json j;
-  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
-  j["rest_speed_mps"] = o.rest_speed_mps;
-  j["reuse_identical_segments"] = o.reuse_identical_segments;
-  return j;
+// One field table per options type (internal::FieldList): writer, allowed keys and reader.
+const internal::FieldList<SegmentOptions>& SegmentFields() {
+  static const internal::FieldList<SegmentOptions> fields =
+      internal::FieldList<SegmentOptions>()
+          .Nested("detection", &SegmentOptions::detection, internal::PulseDetectionOptionsJson,
+                  internal::ReadPulseDetectionOptions)
+          .Add("rest_speed_mps", &SegmentOptions::rest_speed_mps)
+          .Add("reuse_identical_segments", &SegmentOptions::reuse_identical_segments);
+  return fields;
 }
 
-void ReadSegmentOptions(const JsonNode& node, SegmentOptions& o) {
-  node.ExpectObject({"detection", "rest_speed_mps", "reuse_identical_segments"});
-  if (node.Has("detection"))
-    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
-  ReadOptional(node, "rest_speed_mps", o.rest_speed_mps);
-  ReadOptional(node, "reuse_identical_segments", o.reuse_identical_segments);
+Json SegmentOptionsJson(const SegmentOptions& o) { return SegmentFields().Write(o); }
+
+void ReadSegmentOptions(const JsonNode& node, SegmentOptions& o) { SegmentFields().Read(node, o); }
+
+const internal::FieldList<RefineOptions>& RefineFields() {
+  static const internal::FieldList<RefineOptions> fields =
+      internal::FieldList<RefineOptions>()
+          .Nested("motion", &RefineOptions::motion, internal::MotionOptionsJson,
+                  internal::ReadMotionOptions)
+          .Nested("detection", &RefineOptions::detection, internal::PulseDetectionOptionsJson,
+                  internal::ReadPulseDetectionOptions)
+          .Add("refine_a3", &RefineOptions::refine_a3)
+          .Add("refine_tau", &RefineOptions::refine_tau)
+          .Add("tau_max_s", &RefineOptions::tau_max_s)
+          .Add("max_iterations", &RefineOptions::max_iterations)
+          .Add("threads", &RefineOptions::threads)
+          .Add("sim_rtol", &RefineOptions::sim_rtol);
+  return fields;
 }
 
-void ReadRefineOptions(const JsonNode& node, RefineOptions& o) {
-  node.ExpectObject({"motion", "detection", "refine_a3", "refine_tau", "tau_max_s",
-                     "max_iterations", "threads", "sim_rtol"});
-  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
-  if (node.Has("detection"))
-    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
-  ReadOptional(node, "refine_a3", o.refine_a3);
-  ReadOptional(node, "refine_tau", o.refine_tau);
-  ReadOptional(node, "tau_max_s", o.tau_max_s);
-  ReadOptional(node, "max_iterations", o.max_iterations);
-  ReadOptional(node, "threads", o.threads);
-  ReadOptional(node, "sim_rtol", o.sim_rtol);
+void ReadRefineOptions(const JsonNode& node, RefineOptions& o) { RefineFields().Read(node, o); }
+
+const internal::FieldList<DelayTuningOptions>& DelayTuningFields() {
+  using O = DelayTuningOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Add("tau_min_s", &O::tau_min_s)
+          .Add("tau_max_s", &O::tau_max_s)
+          .Add("x_tolerance_s", &O::x_tolerance_s)
+          .Add("coarse_evaluations", &O::coarse_evaluations)
+          .Add("max_evaluations", &O::max_evaluations)
+          .Add("curve_points", &O::curve_points)
+          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
+          .Nested("segments", &O::segments, SegmentOptionsJson, ReadSegmentOptions)
+          .Add("sim_rtol", &O::sim_rtol)
+          .Add("sim_atol", &O::sim_atol)
+          .Add("threads", &O::threads);
+  return fields;
 }
 
 }  // namespace
@@ -168,36 +188,11 @@ void ReadRefineOptions(const JsonNode& node, RefineOptions& o) {
 namespace internal {
 
 nlohmann::ordered_json DelayTuningOptionsJson(const DelayTuningOptions& o) {
-  Json j;
-  j["tau_min_s"] = o.tau_min_s;
-  j["tau_max_s"] = o.tau_max_s;
-  j["x_tolerance_s"] = o.x_tolerance_s;
-  j["coarse_evaluations"] = o.coarse_evaluations;
-  j["max_evaluations"] = o.max_evaluations;
-  j["curve_points"] = o.curve_points;
-  j["motion"] = MotionOptionsJson(o.motion);
-  j["segments"] = SegmentOptionsJson(o.segments);
-  j["sim_rtol"] = o.sim_rtol;
-  j["sim_atol"] = o.sim_atol;
-  j["threads"] = o.threads;
-  return j;
+  return DelayTuningFields().Write(o);
 }
 
 void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& o) {
-  node.ExpectObject({"tau_min_s", "tau_max_s", "x_tolerance_s", "coarse_evaluations",
-                     "max_evaluations", "curve_points", "motion", "segments", "sim_rtol",
-                     "sim_atol", "threads"});
-  ReadOptional(node, "tau_min_s", o.tau_min_s);
-  ReadOptional(node, "tau_max_s", o.tau_max_s);
-  ReadOptional(node, "x_tolerance_s", o.x_tolerance_s);
-  ReadOptional(node, "coarse_evaluations", o.coarse_evaluations);
-  ReadOptional(node, "max_evaluations", o.max_evaluations);
-  ReadOptional(node, "curve_points", o.curve_points);
-  if (node.Has("motion")) ReadMotionOptions(node.Get("motion"), o.motion);
-  if (node.Has("segments")) ReadSegmentOptions(node.Get("segments"), o.segments);
-  ReadOptional(node, "sim_rtol", o.sim_rtol);
-  ReadOptional(node, "sim_atol", o.sim_atol);
-  ReadOptional(node, "threads", o.threads);
+  DelayTuningFields().Read(node, o);
 }
 
 }  // namespace internal
@@ -221,16 +216,7 @@ DelayTuningOptions DelayTuningOptionsFromJson(std::string_view text,
 }
 
 std::string ToJson(const RefineOptions& o, int indent) {
-  Json j;
-  j["motion"] = internal::MotionOptionsJson(o.motion);
-  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
-  j["refine_a3"] = o.refine_a3;
-  j["refine_tau"] = o.refine_tau;
-  j["tau_max_s"] = o.tau_max_s;
-  j["max_iterations"] = o.max_iterations;
-  j["threads"] = o.threads;
-  j["sim_rtol"] = o.sim_rtol;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(RefineFields().Write(o), indent);
 }
 
 RefineOptions RefineOptionsFromJson(std::string_view text, const std::string& source_name) {

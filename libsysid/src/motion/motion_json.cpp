@@ -11,23 +11,22 @@
 namespace sysid {
 namespace internal {
 
-nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) {
-  nlohmann::ordered_json j;
-  j["derivative"] = DerivativeOptionsJson(o.derivative);
-  j["velocity_column"] = o.velocity_column;
-  j["prefer_velocity_column"] = o.prefer_velocity_column;
-  j["max_relative_jitter"] = o.max_relative_jitter;
-  return j;
+namespace {
+const FieldList<MotionOptions>& MotionFields() {
+  static const FieldList<MotionOptions> fields =
+      FieldList<MotionOptions>()
+          .Nested("derivative", &MotionOptions::derivative, DerivativeOptionsJson,
+                  ReadDerivativeOptions)
+          .Add("velocity_column", &MotionOptions::velocity_column)
+          .Add("prefer_velocity_column", &MotionOptions::prefer_velocity_column)
+          .Add("max_relative_jitter", &MotionOptions::max_relative_jitter);
+  return fields;
 }
+}  // namespace
 
-void ReadMotionOptions(const JsonNode& node, MotionOptions& o) {
-  node.ExpectObject(
-      {"derivative", "velocity_column", "prefer_velocity_column", "max_relative_jitter"});
-  if (node.Has("derivative")) ReadDerivativeOptions(node.Get("derivative"), o.derivative);
-  ReadOptional(node, "velocity_column", o.velocity_column);
-  ReadOptional(node, "prefer_velocity_column", o.prefer_velocity_column);
-  ReadOptional(node, "max_relative_jitter", o.max_relative_jitter);
-}
+nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) { return MotionFields().Write(o); }
+
+void ReadMotionOptions(const JsonNode& node, MotionOptions& o) { MotionFields().Read(node, o); }
 
 }  // namespace internal
 
