@@ -49,20 +49,28 @@ std::string ToJson(const InverseComparison& c, int indent) {
   return internal::DumpJson(j, indent);
 }
 
+namespace {
+// The options' field table (internal::FieldList): writer, allowed keys and reader.
+const internal::FieldList<CompareOptions>& CompareFields() {
+  static const internal::FieldList<CompareOptions> fields =
+      internal::FieldList<CompareOptions>()
+          .Nested("derivative", &CompareOptions::derivative, internal::DerivativeOptionsJson,
+                  internal::ReadDerivativeOptions)
+          .Add("trim_samples", &CompareOptions::trim_samples);
+  return fields;
+}
+
+void ReadCompareOptions(const internal::JsonNode& node, CompareOptions& o) {
+  CompareFields().Read(node, o);
+}
+}  // namespace
+
 std::string ToJson(const CompareOptions& o, int indent) {
-  Json j;
-  j["derivative"] = internal::DerivativeOptionsJson(o.derivative);
-  j["trim_samples"] = o.trim_samples;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(CompareFields().Write(o), indent);
 }
 
 CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name) {
-  auto read = [](const internal::JsonNode& node, CompareOptions& o) {
-    node.ExpectObject({"derivative", "trim_samples"});
-    if (node.Has("derivative")) internal::ReadDerivativeOptions(node.Get("derivative"), o.derivative);
-    internal::ReadOptional(node, "trim_samples", o.trim_samples);
-  };
-  return internal::OptionsFromJson<CompareOptions>(text, source_name, read);
+  return internal::OptionsFromJson<CompareOptions>(text, source_name, ReadCompareOptions);
 }
 
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {

@@ -67,35 +67,50 @@ std::string AntiWindupName(AntiWindup a) {
   return a == AntiWindup::kNone ? "none" : "conditional-integration";
 }
 
+nlohmann::ordered_json AntiWindupJson(const AntiWindup& a) { return AntiWindupName(a); }
+
+void ReadAntiWindup(const internal::JsonNode& node, AntiWindup& a) {
+  const std::string s = node.String();
+  if (s == AntiWindupName(AntiWindup::kNone)) a = AntiWindup::kNone;
+  else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
+    a = AntiWindup::kConditionalIntegration;
+  else node.Expected("\"none\" or \"conditional-integration\"");
+}
+
+// One field table per options type (internal::FieldList): writer, allowed keys and reader.
+const internal::FieldList<PiOptions>& PiFields() {
+  static const internal::FieldList<PiOptions> fields =
+      internal::FieldList<PiOptions>()
+          .Add("kp_v_per_m", &PiOptions::kp_v_per_m)
+          .Add("ki_v_per_m_s", &PiOptions::ki_v_per_m_s)
+          .Add("sample_time_s", &PiOptions::sample_time_s)
+          .Add("u_max_v", &PiOptions::u_max_v)
+          .Nested("anti_windup", &PiOptions::anti_windup, AntiWindupJson, ReadAntiWindup);
+  return fields;
+}
+
+const internal::FieldList<SmoothProfileOptions>& SmoothProfileFields() {
+  using O = SmoothProfileOptions;
+  static const internal::FieldList<O> fields = internal::FieldList<O>()
+                                                   .Add("frequency_hz", &O::frequency_hz)
+                                                   .Add("amplitude_m", &O::amplitude_m)
+                                                   .Add("dwell_fraction", &O::dwell_fraction)
+                                                   .Add("cycles", &O::cycles)
+                                                   .Add("sample_rate_hz", &O::sample_rate_hz);
+  return fields;
+}
+
+void ReadSmoothProfileOptions(const internal::JsonNode& node, SmoothProfileOptions& o) {
+  SmoothProfileFields().Read(node, o);
+}
+
 }  // namespace
 
 namespace internal {
 
-nlohmann::ordered_json PiOptionsJson(const PiOptions& o) {
-  nlohmann::ordered_json j;
-  j["kp_v_per_m"] = o.kp_v_per_m;
-  j["ki_v_per_m_s"] = o.ki_v_per_m_s;
-  j["sample_time_s"] = o.sample_time_s;
-  j["u_max_v"] = o.u_max_v;
-  j["anti_windup"] = AntiWindupName(o.anti_windup);
-  return j;
-}
+nlohmann::ordered_json PiOptionsJson(const PiOptions& o) { return PiFields().Write(o); }
 
-void ReadPiOptions(const JsonNode& node, PiOptions& o) {
-  node.ExpectObject({"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "u_max_v", "anti_windup"});
-  ReadOptional(node, "kp_v_per_m", o.kp_v_per_m);
-  ReadOptional(node, "ki_v_per_m_s", o.ki_v_per_m_s);
-  ReadOptional(node, "sample_time_s", o.sample_time_s);
-  ReadOptional(node, "u_max_v", o.u_max_v);
-  if (node.Has("anti_windup")) {
-    const JsonNode a = node.Get("anti_windup");
-    const std::string s = a.String();
-    if (s == AntiWindupName(AntiWindup::kNone)) o.anti_windup = AntiWindup::kNone;
-    else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
-      o.anti_windup = AntiWindup::kConditionalIntegration;
-    else a.Expected("\"none\" or \"conditional-integration\"");
-  }
-}
+void ReadPiOptions(const JsonNode& node, PiOptions& o) { PiFields().Read(node, o); }
 
 }  // namespace internal
 
@@ -108,27 +123,13 @@ PiOptions PiOptionsFromJson(std::string_view text, const std::string& source_nam
 }
 
 std::string ToJson(const SmoothProfileOptions& o, int indent) {
-  nlohmann::ordered_json j;
-  j["frequency_hz"] = o.frequency_hz;
-  j["amplitude_m"] = o.amplitude_m;
-  j["dwell_fraction"] = o.dwell_fraction;
-  j["cycles"] = o.cycles;
-  j["sample_rate_hz"] = o.sample_rate_hz;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(SmoothProfileFields().Write(o), indent);
 }
 
 SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
                                                   const std::string& source_name) {
-  auto read = [](const internal::JsonNode& node, SmoothProfileOptions& o) {
-    using internal::ReadOptional;
-    node.ExpectObject({"frequency_hz", "amplitude_m", "dwell_fraction", "cycles", "sample_rate_hz"});
-    ReadOptional(node, "frequency_hz", o.frequency_hz);
-    ReadOptional(node, "amplitude_m", o.amplitude_m);
-    ReadOptional(node, "dwell_fraction", o.dwell_fraction);
-    ReadOptional(node, "cycles", o.cycles);
-    ReadOptional(node, "sample_rate_hz", o.sample_rate_hz);
-  };
-  return internal::OptionsFromJson<SmoothProfileOptions>(text, source_name, read);
+  return internal::OptionsFromJson<SmoothProfileOptions>(text, source_name,
+                                                         ReadSmoothProfileOptions);
 }
 
 }  // namespace sysid
