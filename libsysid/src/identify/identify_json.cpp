@@ -245,92 +245,107 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
 }
 
 // ---- Options ----
+// One field table per options type (internal::FieldList): writer, allowed keys and reader.
+
+namespace {
+
+const internal::FieldList<PulseDetectionOptions>& PulseDetectionFields() {
+  using O = PulseDetectionOptions;
+  static const internal::FieldList<O> fields = internal::FieldList<O>()
+                                                   .Add("min_duration_s", &O::min_duration_s)
+                                                   .Add("u_tolerance_v", &O::u_tolerance_v)
+                                                   .Add("zero_tolerance_v", &O::zero_tolerance_v);
+  return fields;
+}
+
+}  // namespace
 
 namespace internal {
 
 nlohmann::ordered_json PulseDetectionOptionsJson(const PulseDetectionOptions& o) {
-  Json j;
-  j["min_duration_s"] = o.min_duration_s;
-  j["u_tolerance_v"] = o.u_tolerance_v;
-  j["zero_tolerance_v"] = o.zero_tolerance_v;
-  return j;
+  return PulseDetectionFields().Write(o);
 }
 
 void ReadPulseDetectionOptions(const JsonNode& node, PulseDetectionOptions& o) {
-  node.ExpectObject({"min_duration_s", "u_tolerance_v", "zero_tolerance_v"});
-  ReadOptional(node, "min_duration_s", o.min_duration_s);
-  ReadOptional(node, "u_tolerance_v", o.u_tolerance_v);
-  ReadOptional(node, "zero_tolerance_v", o.zero_tolerance_v);
+  PulseDetectionFields().Read(node, o);
 }
 
 }  // namespace internal
 
 namespace {
 
-using internal::ReadOptional;
-
-// The limits' default "none" is an infinity, which JSON writes as null.
-void ReadLimit(const JsonNode& node, const char* key, double none, double& field) {
-  if (node.Has(key)) {
-    const JsonNode v = node.Get(key);
-    field = v.json().is_null() ? none : v.Number();
-  }
+// The limits' default "none" is an infinity, which JSON writes as null (and reads back).
+Json LimitJson(const double& v) { return internal::NumberOrNull(v); }
+void ReadUpperLimit(const JsonNode& node, double& field) {
+  field = node.json().is_null() ? std::numeric_limits<double>::infinity() : node.Number();
+}
+void ReadLowerLimit(const JsonNode& node, double& field) {
+  field = node.json().is_null() ? -std::numeric_limits<double>::infinity() : node.Number();
 }
 
-Json PlateauOptionsJson(const PlateauOptions& o) {
-  Json j;
-  j["window_fraction"] = o.window_fraction;
-  j["settle_tolerance"] = o.settle_tolerance;
-  j["min_speed_mps"] = o.min_speed_mps;
-  j["max_speed_mps"] = NumberOrNull(o.max_speed_mps);
-  j["travel_min_m"] = NumberOrNull(o.travel_min_m);
-  j["travel_max_m"] = NumberOrNull(o.travel_max_m);
-  j["min_window_samples"] = o.min_window_samples;
-  return j;
+const internal::FieldList<PlateauOptions>& PlateauFields() {
+  using O = PlateauOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Add("window_fraction", &O::window_fraction)
+          .Add("settle_tolerance", &O::settle_tolerance)
+          .Add("min_speed_mps", &O::min_speed_mps)
+          .Nested("max_speed_mps", &O::max_speed_mps, LimitJson, ReadUpperLimit)
+          .Nested("travel_min_m", &O::travel_min_m, LimitJson, ReadLowerLimit)
+          .Nested("travel_max_m", &O::travel_max_m, LimitJson, ReadUpperLimit)
+          .Add("min_window_samples", &O::min_window_samples);
+  return fields;
 }
 
-void ReadPlateauOptions(const JsonNode& node, PlateauOptions& o) {
-  node.ExpectObject({"window_fraction", "settle_tolerance", "min_speed_mps", "max_speed_mps",
-                     "travel_min_m", "travel_max_m", "min_window_samples"});
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  ReadOptional(node, "window_fraction", o.window_fraction);
-  ReadOptional(node, "settle_tolerance", o.settle_tolerance);
-  ReadOptional(node, "min_speed_mps", o.min_speed_mps);
-  ReadLimit(node, "max_speed_mps", kInf, o.max_speed_mps);
-  ReadLimit(node, "travel_min_m", -kInf, o.travel_min_m);
-  ReadLimit(node, "travel_max_m", kInf, o.travel_max_m);
-  ReadOptional(node, "min_window_samples", o.min_window_samples);
+Json PlateauOptionsJson(const PlateauOptions& o) { return PlateauFields().Write(o); }
+void ReadPlateauOptions(const JsonNode& node, PlateauOptions& o) { PlateauFields().Read(node, o); }
+
+const internal::FieldList<PulseFitOptions>& PulseFitFields() {
+  static const internal::FieldList<PulseFitOptions> fields =
+      internal::FieldList<PulseFitOptions>().Add("a3", &PulseFitOptions::a3);
+  return fields;
 }
 
-Json PulseFitOptionsJson(const PulseFitOptions& o) { return {{"a3", o.a3}}; }
-
+Json PulseFitOptionsJson(const PulseFitOptions& o) { return PulseFitFields().Write(o); }
 void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
-  node.ExpectObject({"a3"});
-  ReadOptional(node, "a3", o.a3);
+  PulseFitFields().Read(node, o);
+}
+
+const internal::FieldList<PulseIdentificationOptions>& PulseIdentificationFields() {
+  using O = PulseIdentificationOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
+          .Nested("detection", &O::detection, internal::PulseDetectionOptionsJson,
+                  internal::ReadPulseDetectionOptions)
+          .Nested("plateau", &O::plateau, PlateauOptionsJson, ReadPlateauOptions)
+          .Nested("fit", &O::fit, PulseFitOptionsJson, ReadPulseFitOptions);
+  return fields;
 }
 
 void ReadPulseIdentificationOptions(const JsonNode& node, PulseIdentificationOptions& o) {
-  node.ExpectObject({"motion", "detection", "plateau", "fit"});
-  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
-  if (node.Has("detection"))
-    internal::ReadPulseDetectionOptions(node.Get("detection"), o.detection);
-  if (node.Has("plateau")) ReadPlateauOptions(node.Get("plateau"), o.plateau);
-  if (node.Has("fit")) ReadPulseFitOptions(node.Get("fit"), o.fit);
+  PulseIdentificationFields().Read(node, o);
+}
+
+const internal::FieldList<TrajectoryOptions>& TrajectoryFields() {
+  using O = TrajectoryOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
+          .Add("tau_s", &O::tau_s)
+          .Add("tune_delay", &O::tune_delay)
+          .Add("tau_min_s", &O::tau_min_s)
+          .Add("tau_max_s", &O::tau_max_s)
+          .Add("decimation", &O::decimation)
+          .Add("min_speed_mps", &O::min_speed_mps)
+          .Add("trim_samples", &O::trim_samples)
+          .Add("offset", &O::offset)
+          .Add("symmetric_viscous", &O::symmetric_viscous);
+  return fields;
 }
 
 void ReadTrajectoryOptions(const JsonNode& node, TrajectoryOptions& o) {
-  node.ExpectObject({"motion", "tau_s", "tune_delay", "tau_min_s", "tau_max_s", "decimation",
-                     "min_speed_mps", "trim_samples", "offset", "symmetric_viscous"});
-  if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
-  ReadOptional(node, "tau_s", o.tau_s);
-  ReadOptional(node, "tune_delay", o.tune_delay);
-  ReadOptional(node, "tau_min_s", o.tau_min_s);
-  ReadOptional(node, "tau_max_s", o.tau_max_s);
-  ReadOptional(node, "decimation", o.decimation);
-  ReadOptional(node, "min_speed_mps", o.min_speed_mps);
-  ReadOptional(node, "trim_samples", o.trim_samples);
-  ReadOptional(node, "offset", o.offset);
-  ReadOptional(node, "symmetric_viscous", o.symmetric_viscous);
+  TrajectoryFields().Read(node, o);
 }
 
 }  // namespace
@@ -362,12 +377,7 @@ PulseFitOptions PulseFitOptionsFromJson(std::string_view text, const std::string
 }
 
 std::string ToJson(const PulseIdentificationOptions& o, int indent) {
-  Json j;
-  j["motion"] = internal::MotionOptionsJson(o.motion);
-  j["detection"] = internal::PulseDetectionOptionsJson(o.detection);
-  j["plateau"] = PlateauOptionsJson(o.plateau);
-  j["fit"] = PulseFitOptionsJson(o.fit);
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(PulseIdentificationFields().Write(o), indent);
 }
 
 PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view text,
@@ -377,18 +387,7 @@ PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view t
 }
 
 std::string ToJson(const TrajectoryOptions& o, int indent) {
-  Json j;
-  j["motion"] = internal::MotionOptionsJson(o.motion);
-  j["tau_s"] = o.tau_s;
-  j["tune_delay"] = o.tune_delay;
-  j["tau_min_s"] = o.tau_min_s;
-  j["tau_max_s"] = o.tau_max_s;
-  j["decimation"] = o.decimation;
-  j["min_speed_mps"] = o.min_speed_mps;
-  j["trim_samples"] = o.trim_samples;
-  j["offset"] = o.offset;
-  j["symmetric_viscous"] = o.symmetric_viscous;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(TrajectoryFields().Write(o), indent);
 }
 
 TrajectoryOptions TrajectoryOptionsFromJson(std::string_view text, const std::string& source_name) {
