@@ -3,8 +3,11 @@
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "core/json_text.hpp"
 #include "nn/nn_json.hpp"
@@ -156,11 +159,24 @@ std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int 
 }
 
 // ---- Options ----
+// One field table per options type (internal::FieldList): writer, allowed keys and reader. The
+// enums, ranges and optional members convert through the small functions below.
 
 namespace {
 
 std::string InitName(NeuralInit init) {
   return init == NeuralInit::kUniform ? "uniform" : "nguyen-widrow";
+}
+
+Json TrainerJson(const NeuralTrainer& t) { return ToString(t); }
+void ReadTrainer(const JsonNode& node, NeuralTrainer& t) { t = TrainerFromJson(node); }
+
+Json InitJson(const NeuralInit& init) { return InitName(init); }
+void ReadInit(const JsonNode& node, NeuralInit& init) {
+  const std::string s = node.String();
+  if (s == InitName(NeuralInit::kNguyenWidrow)) init = NeuralInit::kNguyenWidrow;
+  else if (s == InitName(NeuralInit::kUniform)) init = NeuralInit::kUniform;
+  else node.Expected("\"nguyen-widrow\" or \"uniform\"");
 }
 
 Json RangeJson(const std::pair<double, double>& r) { return Json::array({r.first, r.second}); }
@@ -170,81 +186,87 @@ std::pair<double, double> RangeFromJson(const JsonNode& node) {
   return {v[0], v[1]};
 }
 
+using Ranges = std::vector<std::pair<double, double>>;
+Json RangesJson(const Ranges& ranges) {
+  Json j = Json::array();
+  for (const auto& r : ranges) j.push_back(RangeJson(r));
+  return j;
+}
+void ReadRanges(const JsonNode& list, Ranges& ranges) {
+  list.ExpectArray();
+  ranges.clear();
+  for (size_t i = 0; i < list.Size(); ++i) ranges.push_back(RangeFromJson(list.Element(i)));
+}
+
+// Unset optionals are written as null and read back from null.
+Json OptionalRangeJson(const std::optional<std::pair<double, double>>& r) {
+  return r ? RangeJson(*r) : Json(nullptr);
+}
+void ReadOptionalRange(const JsonNode& node, std::optional<std::pair<double, double>>& r) {
+  if (node.json().is_null()) r.reset();
+  else r = RangeFromJson(node);
+}
+Json OptionalVectorJson(const std::optional<Eigen::VectorXd>& v) {
+  return v ? internal::VectorJson(*v) : Json(nullptr);
+}
+void ReadOptionalVector(const JsonNode& node, std::optional<Eigen::VectorXd>& v) {
+  if (node.json().is_null()) v.reset();
+  else v = internal::VectorFromJson(node);
+}
+
+const internal::FieldList<NeuralTrainingOptions>& NeuralTrainingFields() {
+  using O = NeuralTrainingOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Add("hidden", &O::hidden)
+          .Nested("trainer", &O::trainer, TrainerJson, ReadTrainer)
+          .Nested("init", &O::init, InitJson, ReadInit)
+          .Add("momentum", &O::momentum)
+          .Add("solve_output_layer", &O::solve_output_layer)
+          .Add("mu_initial", &O::mu_initial)
+          .Add("mu_decrease", &O::mu_decrease)
+          .Add("mu_increase", &O::mu_increase)
+          .Add("mu_max", &O::mu_max)
+          .Add("gradient_tolerance", &O::gradient_tolerance)
+          .Add("max_epochs", &O::max_epochs)
+          .Add("max_validation_failures", &O::max_validation_failures)
+          .Add("goal_mse", &O::goal_mse)
+          .Add("seed", &O::seed)
+          .Add("restarts", &O::restarts)
+          .Nested("input_ranges", &O::input_ranges, RangesJson, ReadRanges)
+          .Nested("output_range", &O::output_range, OptionalRangeJson, ReadOptionalRange)
+          .Nested("initial_parameters", &O::initial_parameters, OptionalVectorJson,
+                  ReadOptionalVector)
+          .Add("ceres_block_size", &O::ceres_block_size)
+          .Add("threads", &O::threads);
+  return fields;
+}
+
+const internal::FieldList<HiddenSweepOptions>& HiddenSweepFields() {
+  using O = HiddenSweepOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Add("hidden_sizes", &O::hidden_sizes)
+          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson,
+                  internal::ReadNeuralTrainingOptions)
+          .Add("threads", &O::threads);
+  return fields;
+}
+
+void ReadHiddenSweepOptions(const JsonNode& node, HiddenSweepOptions& o) {
+  HiddenSweepFields().Read(node, o);
+}
+
 }  // namespace
 
 namespace internal {
 
 nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& o) {
-  Json j;
-  j["hidden"] = o.hidden;
-  j["trainer"] = ToString(o.trainer);
-  j["init"] = InitName(o.init);
-  j["momentum"] = o.momentum;
-  j["solve_output_layer"] = o.solve_output_layer;
-  j["mu_initial"] = o.mu_initial;
-  j["mu_decrease"] = o.mu_decrease;
-  j["mu_increase"] = o.mu_increase;
-  j["mu_max"] = o.mu_max;
-  j["gradient_tolerance"] = o.gradient_tolerance;
-  j["max_epochs"] = o.max_epochs;
-  j["max_validation_failures"] = o.max_validation_failures;
-  j["goal_mse"] = o.goal_mse;
-  j["seed"] = o.seed;
-  j["restarts"] = o.restarts;
-  j["input_ranges"] = Json::array();
-  for (const auto& r : o.input_ranges) j["input_ranges"].push_back(RangeJson(r));
-  j["output_range"] = o.output_range ? RangeJson(*o.output_range) : Json(nullptr);
-  j["initial_parameters"] =
-      o.initial_parameters ? VectorJson(*o.initial_parameters) : Json(nullptr);
-  j["ceres_block_size"] = o.ceres_block_size;
-  j["threads"] = o.threads;
-  return j;
+  return NeuralTrainingFields().Write(o);
 }
 
 void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& o) {
-  node.ExpectObject({"hidden", "trainer", "init", "momentum", "solve_output_layer", "mu_initial",
-                     "mu_decrease", "mu_increase", "mu_max", "gradient_tolerance", "max_epochs",
-                     "max_validation_failures", "goal_mse", "seed", "restarts", "input_ranges",
-                     "output_range", "initial_parameters", "ceres_block_size", "threads"});
-  ReadOptional(node, "hidden", o.hidden);
-  if (node.Has("trainer")) o.trainer = TrainerFromJson(node.Get("trainer"));
-  if (node.Has("init")) {
-    const JsonNode n = node.Get("init");
-    const std::string s = n.String();
-    if (s == InitName(NeuralInit::kNguyenWidrow)) o.init = NeuralInit::kNguyenWidrow;
-    else if (s == InitName(NeuralInit::kUniform)) o.init = NeuralInit::kUniform;
-    else n.Expected("\"nguyen-widrow\" or \"uniform\"");
-  }
-  ReadOptional(node, "momentum", o.momentum);
-  ReadOptional(node, "solve_output_layer", o.solve_output_layer);
-  ReadOptional(node, "mu_initial", o.mu_initial);
-  ReadOptional(node, "mu_decrease", o.mu_decrease);
-  ReadOptional(node, "mu_increase", o.mu_increase);
-  ReadOptional(node, "mu_max", o.mu_max);
-  ReadOptional(node, "gradient_tolerance", o.gradient_tolerance);
-  ReadOptional(node, "max_epochs", o.max_epochs);
-  ReadOptional(node, "max_validation_failures", o.max_validation_failures);
-  ReadOptional(node, "goal_mse", o.goal_mse);
-  ReadOptional(node, "seed", o.seed);
-  ReadOptional(node, "restarts", o.restarts);
-  if (node.Has("input_ranges")) {
-    const JsonNode list = node.Get("input_ranges");
-    list.ExpectArray();
-    o.input_ranges.clear();
-    for (size_t i = 0; i < list.Size(); ++i) o.input_ranges.push_back(RangeFromJson(list.Element(i)));
-  }
-  if (node.Has("output_range")) {
-    const JsonNode r = node.Get("output_range");
-    if (r.json().is_null()) o.output_range.reset();
-    else o.output_range = RangeFromJson(r);
-  }
-  if (node.Has("initial_parameters")) {
-    const JsonNode p = node.Get("initial_parameters");
-    if (p.json().is_null()) o.initial_parameters.reset();
-    else o.initial_parameters = VectorFromJson(p);
-  }
-  ReadOptional(node, "ceres_block_size", o.ceres_block_size);
-  ReadOptional(node, "threads", o.threads);
+  NeuralTrainingFields().Read(node, o);
 }
 
 }  // namespace internal
@@ -260,22 +282,12 @@ NeuralTrainingOptions NeuralTrainingOptionsFromJson(std::string_view text,
 }
 
 std::string ToJson(const HiddenSweepOptions& o, int indent) {
-  Json j;
-  j["hidden_sizes"] = o.hidden_sizes;
-  j["training"] = internal::NeuralTrainingOptionsJson(o.training);
-  j["threads"] = o.threads;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(HiddenSweepFields().Write(o), indent);
 }
 
 HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
                                               const std::string& source_name) {
-  auto read = [](const JsonNode& node, HiddenSweepOptions& o) {
-    node.ExpectObject({"hidden_sizes", "training", "threads"});
-    internal::ReadOptional(node, "hidden_sizes", o.hidden_sizes);
-    if (node.Has("training")) internal::ReadNeuralTrainingOptions(node.Get("training"), o.training);
-    internal::ReadOptional(node, "threads", o.threads);
-  };
-  return internal::OptionsFromJson<HiddenSweepOptions>(text, source_name, read);
+  return internal::OptionsFromJson<HiddenSweepOptions>(text, source_name, ReadHiddenSweepOptions);
 }
 
 std::string ToJson(const NetworkPrediction& p, int indent) {
