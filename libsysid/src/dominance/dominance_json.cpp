@@ -181,45 +181,57 @@ DominanceSummary DominanceSummaryFromJson(std::string_view text, const std::stri
   return s;
 }
 
+namespace {
+
+using Candidates = std::vector<CandidateTerm>;
+
+Json CandidatesJson(const Candidates& candidates) {
+  Json j = Json::array();
+  for (const auto& c : candidates)
+    j.push_back({{"variable", c.variable}, {"column", c.column}, {"gain", c.gain}});
+  return j;
+}
+
+void ReadCandidates(const internal::JsonNode& list, Candidates& candidates) {
+  list.ExpectArray();
+  candidates.clear();
+  for (size_t i = 0; i < list.Size(); ++i) {
+    const internal::JsonNode c = list.Element(i);
+    c.ExpectObject({"variable", "column", "gain"});
+    CandidateTerm term;
+    term.variable = c.Get("variable").String(true);
+    term.column = c.Get("column").String(true);
+    internal::ReadOptional(c, "gain", term.gain);
+    candidates.push_back(term);
+  }
+}
+
+// The options' field table (internal::FieldList): writer, allowed keys and reader.
+const internal::FieldList<DominanceOptions>& DominanceFields() {
+  using O = DominanceOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
+          .Add("min_speed_mps", &O::min_speed_mps)
+          .Add("negligible_ratio", &O::negligible_ratio)
+          .Add("bound_quantile", &O::bound_quantile)
+          .Nested("candidates", &O::candidates, CandidatesJson, ReadCandidates)
+          .Add("threads", &O::threads);
+  return fields;
+}
+
+void ReadDominanceOptions(const internal::JsonNode& node, DominanceOptions& o) {
+  DominanceFields().Read(node, o);
+}
+
+}  // namespace
+
 std::string ToJson(const DominanceOptions& o, int indent) {
-  Json j;
-  j["motion"] = internal::MotionOptionsJson(o.motion);
-  j["min_speed_mps"] = o.min_speed_mps;
-  j["negligible_ratio"] = o.negligible_ratio;
-  j["bound_quantile"] = o.bound_quantile;
-  j["candidates"] = Json::array();
-  for (const auto& c : o.candidates)
-    j["candidates"].push_back({{"variable", c.variable}, {"column", c.column}, {"gain", c.gain}});
-  j["threads"] = o.threads;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(DominanceFields().Write(o), indent);
 }
 
 DominanceOptions DominanceOptionsFromJson(std::string_view text, const std::string& source_name) {
-  auto read = [](const internal::JsonNode& node, DominanceOptions& o) {
-    using internal::ReadOptional;
-    node.ExpectObject({"motion", "min_speed_mps", "negligible_ratio", "bound_quantile",
-                       "candidates", "threads"});
-    if (node.Has("motion")) internal::ReadMotionOptions(node.Get("motion"), o.motion);
-    ReadOptional(node, "min_speed_mps", o.min_speed_mps);
-    ReadOptional(node, "negligible_ratio", o.negligible_ratio);
-    ReadOptional(node, "bound_quantile", o.bound_quantile);
-    if (node.Has("candidates")) {
-      const internal::JsonNode list = node.Get("candidates");
-      list.ExpectArray();
-      o.candidates.clear();
-      for (size_t i = 0; i < list.Size(); ++i) {
-        const internal::JsonNode c = list.Element(i);
-        c.ExpectObject({"variable", "column", "gain"});
-        CandidateTerm term;
-        term.variable = c.Get("variable").String(true);
-        term.column = c.Get("column").String(true);
-        ReadOptional(c, "gain", term.gain);
-        o.candidates.push_back(term);
-      }
-    }
-    ReadOptional(node, "threads", o.threads);
-  };
-  return internal::OptionsFromJson<DominanceOptions>(text, source_name, read);
+  return internal::OptionsFromJson<DominanceOptions>(text, source_name, ReadDominanceOptions);
 }
 
 }  // namespace sysid
