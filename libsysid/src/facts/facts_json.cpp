@@ -3,6 +3,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "control/control_json.hpp"
 #include "delay/delay_json.hpp"
@@ -12,61 +13,49 @@
 namespace sysid {
 namespace internal {
 
-nlohmann::ordered_json FactsOptionsJson(const FactsOptions& o) {
-  nlohmann::ordered_json j;
-  j["facts"] = o.facts;
-  j["seed"] = o.seed;
-  j["threads"] = o.threads;
-  j["pulse"] = PulseProcedureJson(o.pulse);
-  j["delay"] = DelayTuningOptionsJson(o.delay);
-  j["pi"] = PiOptionsJson(o.pi);
-  j["track_frequencies_hz"] = o.track_frequencies_hz;
-  j["track_amplitude_m"] = o.track_amplitude_m;
-  j["track_cycles"] = o.track_cycles;
-  j["ripple_tolerance_m"] = o.ripple_tolerance_m;
-  j["training"] = NeuralTrainingOptionsJson(o.training);
-  j["typical_hidden"] = o.typical_hidden;
-  j["typical_max_epochs"] = o.typical_max_epochs;
-  j["typical_stride"] = o.typical_stride;
-  j["dominance_amplitude_v"] = o.dominance_amplitude_v;
-  j["dominance_omega_rad_s"] = o.dominance_omega_rad_s;
-  j["dominance_offset_v"] = o.dominance_offset_v;
-  j["dominance_duration_s"] = o.dominance_duration_s;
-  j["dominance_min_speed_mps"] = o.dominance_min_speed_mps;
-  return j;
+namespace {
+
+nlohmann::ordered_json IdsJson(const std::vector<std::string>& ids) { return ids; }
+
+// Fact ids are non-empty strings (the rule for known ids is Validate()'s).
+void ReadIds(const JsonNode& list, std::vector<std::string>& ids) {
+  list.ExpectArray();
+  ids.clear();
+  for (size_t i = 0; i < list.Size(); ++i) ids.push_back(list.Element(i).String(true));
 }
 
-void ReadFactsOptions(const JsonNode& node, FactsOptions& o) {
-  node.ExpectObject({"facts", "seed", "threads", "pulse", "delay", "pi", "track_frequencies_hz",
-                     "track_amplitude_m", "track_cycles", "ripple_tolerance_m", "training",
-                     "typical_hidden", "typical_max_epochs", "typical_stride",
-                     "dominance_amplitude_v", "dominance_omega_rad_s", "dominance_offset_v",
-                     "dominance_duration_s", "dominance_min_speed_mps"});
-  if (node.Has("facts")) {
-    const JsonNode ids = node.Get("facts");
-    ids.ExpectArray();
-    o.facts.clear();
-    for (size_t i = 0; i < ids.Size(); ++i) o.facts.push_back(ids.Element(i).String(true));
-  }
-  ReadOptional(node, "seed", o.seed);
-  ReadOptional(node, "threads", o.threads);
-  if (node.Has("pulse")) ReadPulseProcedure(node.Get("pulse"), o.pulse);
-  if (node.Has("delay")) ReadDelayTuningOptions(node.Get("delay"), o.delay);
-  if (node.Has("pi")) ReadPiOptions(node.Get("pi"), o.pi);
-  ReadOptional(node, "track_frequencies_hz", o.track_frequencies_hz);
-  ReadOptional(node, "track_amplitude_m", o.track_amplitude_m);
-  ReadOptional(node, "track_cycles", o.track_cycles);
-  ReadOptional(node, "ripple_tolerance_m", o.ripple_tolerance_m);
-  if (node.Has("training")) ReadNeuralTrainingOptions(node.Get("training"), o.training);
-  ReadOptional(node, "typical_hidden", o.typical_hidden);
-  ReadOptional(node, "typical_max_epochs", o.typical_max_epochs);
-  ReadOptional(node, "typical_stride", o.typical_stride);
-  ReadOptional(node, "dominance_amplitude_v", o.dominance_amplitude_v);
-  ReadOptional(node, "dominance_omega_rad_s", o.dominance_omega_rad_s);
-  ReadOptional(node, "dominance_offset_v", o.dominance_offset_v);
-  ReadOptional(node, "dominance_duration_s", o.dominance_duration_s);
-  ReadOptional(node, "dominance_min_speed_mps", o.dominance_min_speed_mps);
+// The options' field table (FieldList): writer, allowed keys and reader.
+const FieldList<FactsOptions>& FactsFields() {
+  using O = FactsOptions;
+  static const FieldList<O> fields =
+      FieldList<O>()
+          .Nested("facts", &O::facts, IdsJson, ReadIds)
+          .Add("seed", &O::seed)
+          .Add("threads", &O::threads)
+          .Nested("pulse", &O::pulse, PulseProcedureJson, ReadPulseProcedure)
+          .Nested("delay", &O::delay, DelayTuningOptionsJson, ReadDelayTuningOptions)
+          .Nested("pi", &O::pi, PiOptionsJson, ReadPiOptions)
+          .Add("track_frequencies_hz", &O::track_frequencies_hz)
+          .Add("track_amplitude_m", &O::track_amplitude_m)
+          .Add("track_cycles", &O::track_cycles)
+          .Add("ripple_tolerance_m", &O::ripple_tolerance_m)
+          .Nested("training", &O::training, NeuralTrainingOptionsJson, ReadNeuralTrainingOptions)
+          .Add("typical_hidden", &O::typical_hidden)
+          .Add("typical_max_epochs", &O::typical_max_epochs)
+          .Add("typical_stride", &O::typical_stride)
+          .Add("dominance_amplitude_v", &O::dominance_amplitude_v)
+          .Add("dominance_omega_rad_s", &O::dominance_omega_rad_s)
+          .Add("dominance_offset_v", &O::dominance_offset_v)
+          .Add("dominance_duration_s", &O::dominance_duration_s)
+          .Add("dominance_min_speed_mps", &O::dominance_min_speed_mps);
+  return fields;
 }
+
+}  // namespace
+
+nlohmann::ordered_json FactsOptionsJson(const FactsOptions& o) { return FactsFields().Write(o); }
+
+void ReadFactsOptions(const JsonNode& node, FactsOptions& o) { FactsFields().Read(node, o); }
 
 }  // namespace internal
 

@@ -7,21 +7,25 @@
 namespace sysid {
 namespace internal {
 
+namespace {
+// The procedure's field table (FieldList): writer, allowed keys and reader.
+const FieldList<PulseProcedure>& PulseProcedureFields() {
+  using P = PulseProcedure;
+  static const FieldList<P> fields = FieldList<P>()
+                                         .Add("amplitudes_v", &P::amplitudes_v)
+                                         .Add("on_s", &P::on_s)
+                                         .Add("rest_s", &P::rest_s)
+                                         .Add("lead_s", &P::lead_s);
+  return fields;
+}
+}  // namespace
+
 nlohmann::ordered_json PulseProcedureJson(const PulseProcedure& p) {
-  nlohmann::ordered_json j;
-  j["amplitudes_v"] = p.amplitudes_v;
-  j["on_s"] = p.on_s;
-  j["rest_s"] = p.rest_s;
-  j["lead_s"] = p.lead_s;
-  return j;
+  return PulseProcedureFields().Write(p);
 }
 
 void ReadPulseProcedure(const JsonNode& node, PulseProcedure& p) {
-  node.ExpectObject({"amplitudes_v", "on_s", "rest_s", "lead_s"});
-  ReadOptional(node, "amplitudes_v", p.amplitudes_v);
-  ReadOptional(node, "on_s", p.on_s);
-  ReadOptional(node, "rest_s", p.rest_s);
-  ReadOptional(node, "lead_s", p.lead_s);
+  PulseProcedureFields().Read(node, p);
 }
 
 }  // namespace internal
