@@ -505,6 +505,14 @@ void ReadOptional(const JsonNode& object, const char* key, std::vector<int>& fie
         a.Element(i).Integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max())));
 }
 
+nlohmann::ordered_json NamesJson(const std::vector<std::string>& names) { return names; }
+
+void ReadNames(const JsonNode& list, std::vector<std::string>& names) {
+  list.ExpectArray();
+  names.clear();
+  for (size_t i = 0; i < list.Size(); ++i) names.push_back(list.Element(i).String(true));
+}
+
 std::uint64_t Uint64FromJson(const JsonNode& node) {
   if (!node.json().is_number_unsigned()) node.Expected("an integer in [0, 2^64 - 1]");
   return node.json().get<std::uint64_t>();

@@ -162,6 +162,10 @@ void ReadOptional(const JsonNode& object, const char* key, std::string& field);
 void ReadOptional(const JsonNode& object, const char* key, std::uint64_t& field);
 void ReadOptional(const JsonNode& object, const char* key, std::vector<double>& field);
 void ReadOptional(const JsonNode& object, const char* key, std::vector<int>& field);
+/// A list of names (fact ids, network inputs): written as an array of strings, read as an array
+/// of non-empty strings that replaces the list (FieldList::Nested conversions).
+nlohmann::ordered_json NamesJson(const std::vector<std::string>& names);
+void ReadNames(const JsonNode& list, std::vector<std::string>& names);
 /// A uint64 (a seed): JsonNode::Integer reads longs.
 std::uint64_t Uint64FromJson(const JsonNode& node);
 /// Runs `validate` (an options struct's Validate()); its OptionsError ("Type::field = value.

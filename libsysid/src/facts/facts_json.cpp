@@ -15,21 +15,12 @@ namespace internal {
 
 namespace {
 
-nlohmann::ordered_json IdsJson(const std::vector<std::string>& ids) { return ids; }
-
-// Fact ids are non-empty strings (the rule for known ids is Validate()'s).
-void ReadIds(const JsonNode& list, std::vector<std::string>& ids) {
-  list.ExpectArray();
-  ids.clear();
-  for (size_t i = 0; i < list.Size(); ++i) ids.push_back(list.Element(i).String(true));
-}
-
 // The options' field table (FieldList): writer, allowed keys and reader.
 const FieldList<FactsOptions>& FactsFields() {
   using O = FactsOptions;
   static const FieldList<O> fields =
       FieldList<O>()
-          .Nested("facts", &O::facts, IdsJson, ReadIds)
+          .Nested("facts", &O::facts, NamesJson, ReadNames)
           .Add("seed", &O::seed)
           .Add("threads", &O::threads)
           .Nested("pulse", &O::pulse, PulseProcedureJson, ReadPulseProcedure)

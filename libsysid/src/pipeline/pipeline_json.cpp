@@ -124,67 +124,43 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
   return r;
 }
 
+namespace {
+// The options' field table (internal::FieldList): writer, allowed keys and reader.
+const internal::FieldList<PipelineOptions>& PipelineFields() {
+  using O = PipelineOptions;
+  static const internal::FieldList<O> fields =
+      internal::FieldList<O>()
+          .Add("a3", &O::a3)
+          .Add("tune_delay", &O::tune_delay)
+          .Nested("delay", &O::delay, internal::DelayTuningOptionsJson, internal::ReadDelayTuningOptions)
+          .Add("refine", &O::refine)
+          .Add("hidden_sizes", &O::hidden_sizes)
+          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson, internal::ReadNeuralTrainingOptions)
+          .Nested("nn_inputs", &O::nn_inputs, internal::NamesJson, internal::ReadNames)
+          .Add("typical", &O::typical)
+          .Add("typical_hidden", &O::typical_hidden)
+          .Add("typical_max_epochs", &O::typical_max_epochs)
+          .Add("typical_stride", &O::typical_stride)
+          .Add("track", &O::track)
+          .Add("track_frequencies_hz", &O::track_frequencies_hz)
+          .Add("track_amplitude_m", &O::track_amplitude_m)
+          .Nested("pi", &O::pi, internal::PiOptionsJson, internal::ReadPiOptions)
+          .Add("facts", &O::facts)
+          .Nested("facts_options", &O::facts_options, internal::FactsOptionsJson, internal::ReadFactsOptions)
+          .Add("reference_path", &O::reference_path)
+          .Add("threads", &O::threads);
+  return fields;
+}
+}  // namespace
+
 std::string ToJson(const PipelineOptions& o, int indent) {
-  Json j;
-  j["a3"] = o.a3;
-  j["tune_delay"] = o.tune_delay;
-  j["delay"] = internal::DelayTuningOptionsJson(o.delay);
-  j["refine"] = o.refine;
-  j["hidden_sizes"] = o.hidden_sizes;
-  j["training"] = internal::NeuralTrainingOptionsJson(o.training);
-  j["nn_inputs"] = o.nn_inputs;
-  j["typical"] = o.typical;
-  j["typical_hidden"] = o.typical_hidden;
-  j["typical_max_epochs"] = o.typical_max_epochs;
-  j["typical_stride"] = o.typical_stride;
-  j["track"] = o.track;
-  j["track_frequencies_hz"] = o.track_frequencies_hz;
-  j["track_amplitude_m"] = o.track_amplitude_m;
-  j["pi"] = internal::PiOptionsJson(o.pi);
-  j["facts"] = o.facts;
-  j["facts_options"] = internal::FactsOptionsJson(o.facts_options);
-  j["reference_path"] = o.reference_path;
-  j["threads"] = o.threads;
-  return internal::DumpJson(j, indent);
+  return internal::DumpJson(PipelineFields().Write(o), indent);
 }
 
 PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name) {
-  auto read = [](const JsonNode& node, PipelineOptions& o) {
-    using internal::ReadOptional;
-    node.ExpectObject({"a3", "tune_delay", "delay", "refine", "hidden_sizes", "training",
-                       "nn_inputs", "typical", "typical_hidden", "typical_max_epochs",
-                       "typical_stride", "track", "track_frequencies_hz", "track_amplitude_m",
-                       "pi", "facts", "facts_options", "reference_path", "threads"});
-    ReadOptional(node, "a3", o.a3);
-    ReadOptional(node, "tune_delay", o.tune_delay);
-    if (node.Has("delay")) internal::ReadDelayTuningOptions(node.Get("delay"), o.delay);
-    ReadOptional(node, "refine", o.refine);
-    ReadOptional(node, "hidden_sizes", o.hidden_sizes);
-    if (node.Has("training")) internal::ReadNeuralTrainingOptions(node.Get("training"), o.training);
-    if (node.Has("nn_inputs")) {
-      const JsonNode inputs = node.Get("nn_inputs");
-      inputs.ExpectArray();
-      o.nn_inputs.clear();
-      for (size_t i = 0; i < inputs.Size(); ++i)
-        o.nn_inputs.push_back(inputs.Element(i).String(true));
-    }
-    ReadOptional(node, "typical", o.typical);
-    ReadOptional(node, "typical_hidden", o.typical_hidden);
-    ReadOptional(node, "typical_max_epochs", o.typical_max_epochs);
-    ReadOptional(node, "typical_stride", o.typical_stride);
-    ReadOptional(node, "track", o.track);
-    ReadOptional(node, "track_frequencies_hz", o.track_frequencies_hz);
-    ReadOptional(node, "track_amplitude_m", o.track_amplitude_m);
-    if (node.Has("pi")) internal::ReadPiOptions(node.Get("pi"), o.pi);
-    ReadOptional(node, "facts", o.facts);
-    if (node.Has("facts_options"))
-      internal::ReadFactsOptions(node.Get("facts_options"), o.facts_options);
-    ReadOptional(node, "reference_path", o.reference_path);
-    ReadOptional(node, "threads", o.threads);
-  };
   const internal::JsonDocument doc(text, source_name);
   PipelineOptions o;
-  read(doc.Root(), o);
+  PipelineFields().Read(doc.Root(), o);
   // The facts' options are checked as RunStageFacts checks them, after the pipeline's, and
   // their errors are placed inside "facts_options" (which repeats keys such as delay.*).
   internal::ValidateOptions(doc, [&] { o.Validate(); });
