@@ -132,10 +132,12 @@ const internal::FieldList<PipelineOptions>& PipelineFields() {
       internal::FieldList<O>()
           .Add("a3", &O::a3)
           .Add("tune_delay", &O::tune_delay)
-          .Nested("delay", &O::delay, internal::DelayTuningOptionsJson, internal::ReadDelayTuningOptions)
+          .Nested("delay", &O::delay, internal::DelayTuningOptionsJson,
+                  internal::ReadDelayTuningOptions)
           .Add("refine", &O::refine)
           .Add("hidden_sizes", &O::hidden_sizes)
-          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson, internal::ReadNeuralTrainingOptions)
+          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson,
+                  internal::ReadNeuralTrainingOptions)
           .Nested("nn_inputs", &O::nn_inputs, internal::NamesJson, internal::ReadNames)
           .Add("typical", &O::typical)
           .Add("typical_hidden", &O::typical_hidden)
@@ -146,7 +148,8 @@ const internal::FieldList<PipelineOptions>& PipelineFields() {
           .Add("track_amplitude_m", &O::track_amplitude_m)
           .Nested("pi", &O::pi, internal::PiOptionsJson, internal::ReadPiOptions)
           .Add("facts", &O::facts)
-          .Nested("facts_options", &O::facts_options, internal::FactsOptionsJson, internal::ReadFactsOptions)
+          .Nested("facts_options", &O::facts_options, internal::FactsOptionsJson,
+                  internal::ReadFactsOptions)
           .Add("reference_path", &O::reference_path)
           .Add("threads", &O::threads);
   return fields;
