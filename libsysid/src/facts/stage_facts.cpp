@@ -451,13 +451,9 @@ class FactsRun {
                 {"dominant_test_mse_v2", r_.dominant_test_mse}};
     f.values.insert(f.values.end(), coverage_.begin(), coverage_.end());
     f.values.insert(f.values.end(), moving_.begin(), moving_.end());
+    // The note's numbers, looked up in the values just written (coverage and moving MSEs).
     auto cov = [&](const std::string& name) {
-      for (const auto& [n, v] : coverage_)
-        if (n == name) return v;
-      return std::nan("");
-    };
-    auto moving = [&](const std::string& name) {
-      for (const auto& [n, v] : moving_)
+      for (const auto& [n, v] : f.values)
         if (n == name) return v;
       return std::nan("");
     };
@@ -472,10 +468,10 @@ class FactsRun {
         cov("training_max_abs_v_mps"), cov("training_max_abs_a_mps2"),
         cov("training_a_noise_rms_mps2"), cov("training_a_rms_mps2"),
         100 * cov("training_rest_fraction"), cov("training_u_variance_at_rest_v2"),
-        100 * (1 - (1 - cov("training_rest_fraction")) * moving("dominant_train_moving_mse_v2") /
+        100 * (1 - (1 - cov("training_rest_fraction")) * cov("dominant_train_moving_mse_v2") /
                        r_.dominant_train_mse),
-        moving("typical_train_moving_mse_v2"), moving("typical_test_moving_mse_v2"),
-        moving("dominant_train_moving_mse_v2"), moving("dominant_test_moving_mse_v2"));
+        cov("typical_train_moving_mse_v2"), cov("typical_test_moving_mse_v2"),
+        cov("dominant_train_moving_mse_v2"), cov("dominant_test_moving_mse_v2"));
     r_.facts.push_back(f);
   }
 
