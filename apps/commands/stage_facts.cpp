@@ -1,4 +1,5 @@
-// sysid stage facts [--stage S.json] [--json] [--facts F1,F3] [--seed N | --seeds A-B] [--reduced]:
+// sysid stage facts [--stage S.json] [--json] [--facts F1,F3] [--seed N | --seeds A-B]
+// [--nn-inits K] [--reduced]:
 // runs the paper's experiments on a virtual stage and prints, for each of the paper's facts
 // F1-F7, the paper's value, the stage's, the tolerance and whether it is met
 // (libsysid: sysid/stage_facts.hpp).
@@ -34,6 +35,7 @@ void RunStageFactsCommand(const StageFactsCli& o) {
   f.facts = o.facts;
   f.seed = o.options.seed;
   f.threads = o.options.threads;
+  f.network_initializations = o.options.network_initializations;
   if (!o.seeds.empty()) {
     std::vector<std::uint64_t> seeds;
     try {
@@ -114,6 +116,12 @@ void AddStageCommand(CLI::App& app) {
                   "threads for delay tuning; 0 = all cores (the networks train on one thread: "
                   "repeatable)")
       ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--nn-inits", o->options.network_initializations,
+                  "F5: also train the dominant network from this many initial weights and "
+                  "report each one's tracking error and how many beat the analytic inverse "
+                  "(the verdict stays the first network's)")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "

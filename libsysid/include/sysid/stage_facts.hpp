@@ -77,6 +77,10 @@ struct FactsOptions {
   int typical_hidden = 120;
   int typical_max_epochs = 60;
   int typical_stride = 2;  ///< typical network trains on every n-th training row
+  /// F5: also track with dominant networks trained from this many initial weights (network k
+  /// from training.seed + k * training.restarts) and report each one's max |e| and how many
+  /// beat the analytic inverse; the verdict stays the first network's. 1 to 100.
+  int network_initializations = 1;
   /// F6's open-loop test: u = amplitude sin(omega t - pi/2) + offset for duration_s.
   double dominance_amplitude_v = 1.5;
   double dominance_omega_rad_s = 1.5707963267948966;  ///< pi/2
