@@ -11,18 +11,20 @@
 #define SYSID_CONTROL_HPP_
 
 #include <Eigen/Core>
+#include <complex>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "sysid/model.hpp"
+
 namespace sysid {
 
 class VirtualStage;
 class NeuralNetwork;
 struct Recording;
-struct FrictionModel;
 struct StageParameters;
 
 enum class AntiWindup { kNone, kConditionalIntegration };
@@ -41,6 +43,55 @@ struct PiOptions {
   /// The default velocity-source stage runs the paper's gains (the defaults above).
   static PiOptions ForActuatorDelayStage();
 };
+
+/// Gain and phase margins of a linear open loop L(j omega). NaN where the sweep found no
+/// crossing.
+struct LoopMargins {
+  double crossover_rad_s = 0;        ///< [rad/s] gain crossover: the last |L| = 1 going down
+  double phase_margin_deg = 0;       ///< [deg] 180 + arg L there, in (-180, 180]
+  double phase_crossover_rad_s = 0;  ///< [rad/s] the first arg L = -180 (mod 360) going down
+  double gain_margin = 0;            ///< 1 / |L| there (> 1: the loop has gain to spare)
+  /// A gain crossover with phase margin > 0, and gain margin > 1 or no phase crossover.
+  bool Stable() const;
+};
+
+/// The margins of `open_loop` (omega [rad/s] -> L(j omega)) between w_min and w_max [rad/s]
+/// (0 < w_min < w_max): a log-spaced sweep of `points` (>= 16, <= 10^7) samples, arg L
+/// unwrapped from w_min, brackets each crossing; bisection refines it to 1e-12 relative.
+LoopMargins ComputeLoopMargins(const std::function<std::complex<double>(double)>& open_loop,
+                               double w_min_rad_s, double w_max_rad_s, int points = 20000);
+
+/// The open loop of the discrete PI law above around steady motion of the rough model in one
+/// direction (+1: a1p, -1: a1n). In steady sliding the Coulomb term is constant, so the
+/// position responds to u as a3 / (s (s + a1 e^(-s tau))); the sample-and-hold adds half a
+/// sample of delay, the actuator `extra_delay_s` [s] more (e.g. a driver lag), and the PI law is
+/// exact at z = e^(j omega Ts):
+///   L(j omega) = (Kp + Ki Ts / (1 - e^(-j omega Ts))) a3 e^(-j omega (Ts/2 + extra_delay_s))
+///                / (j omega (j omega + a1 e^(-j omega tau)))
+/// A linear view: stick-slip, the dead zone and saturation are outside it.
+std::complex<double> RoughModelPiLoop(const FrictionModel& model, int direction,
+                                      const PiOptions& pi, double omega_rad_s,
+                                      double extra_delay_s = 0);
+
+/// ComputeLoopMargins of RoughModelPiLoop from 0.1 rad/s to the Nyquist frequency pi / Ts.
+LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const PiOptions& pi,
+                                double extra_delay_s = 0);
+
+/// The PI gains' margins on an identified rough model, both directions.
+struct PiMarginsReport {
+  FrictionModel model;
+  PiOptions pi;
+  double extra_delay_s = 0;  ///< [s] actuator delay beyond the sample-and-hold
+  LoopMargins forward, backward;  ///< a1p, a1n
+};
+/// RoughModelPiMargins in both directions.
+PiMarginsReport AnalyzePiMargins(const FrictionModel& model, const PiOptions& pi,
+                                 double extra_delay_s = 0);
+/// {"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "extra_delay_s", "tau_s", "a3_mps2_per_v",
+///  "directions": [{"direction": "forward" | "backward", "a1_per_s", "crossover_rad_s",
+///  "crossover_hz", "phase_margin_deg", "phase_crossover_rad_s", "gain_margin",
+///  "gain_margin_db", "stable"}]}; a crossing the sweep did not find is null.
+std::string ToJson(const PiMarginsReport& report, int indent = 2);
 
 /// The discrete PI law above, one sample at a time.
 class PiController {
