@@ -97,6 +97,14 @@ struct MotorParameters {
   double dead_zone_backward_v = 1.65;  ///< [V] dz_b >= 0: v_f = 0 for -dz_b <= u_d <= 0
   std::vector<double> speed_map_in_v;  ///< [V] knots, increasing, all outside [-dz_b, dz_f]
   std::vector<double> speed_map_out_mps;  ///< [m/s] v_f at the knots (sign of the knot)
+  /// [m/s^2] L >= 0: the fingertips' thrust saturates at the contact's friction limit,
+  /// T(y) = L tanh(y / L) of the linear droop y = p (v_f - v); 0: no limit (T(y) = y).
+  double thrust_limit_mps2 = 0;
+  /// T(y) and its slope dT/dy.
+  double Thrust(double y) const;
+  double ThrustSlope(double y) const;
+  /// The droop y at which T(y) = f (|f| < L when limited).
+  double DroopForThrust(double f) const;
 };
 
 /// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.

@@ -166,12 +166,13 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
       if (!vs) other_model(root.Get(key));
       Section{{{"pole_per_s", &p.motor.pole_per_s},
                {"dead_zone_forward_v", &p.motor.dead_zone_forward_v},
-               {"dead_zone_backward_v", &p.motor.dead_zone_backward_v}},
+               {"dead_zone_backward_v", &p.motor.dead_zone_backward_v},
+               {"thrust_limit_mps2", &p.motor.thrust_limit_mps2}},
               {},
               {{"speed_map_in_v", &p.motor.speed_map_in_v},
                {"speed_map_out_mps", &p.motor.speed_map_out_mps}},
               {}}
-          .Read(root.Get(key), complete);
+          .Read(root.Get(key), complete, {"thrust_limit_mps2"});
     } else if (key == "rail") {
       if (!vs) other_model(root.Get(key));
       Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
@@ -280,6 +281,7 @@ std::string StageParametersToJson(const StageParameters& p) {
     motor["dead_zone_backward_v"] = p.motor.dead_zone_backward_v;
     motor["speed_map_in_v"] = p.motor.speed_map_in_v;
     motor["speed_map_out_mps"] = p.motor.speed_map_out_mps;
+    if (p.motor.thrust_limit_mps2 > 0) motor["thrust_limit_mps2"] = p.motor.thrust_limit_mps2;
     j["motor"] = motor;
     OJ rail;
     rail["coulomb_mps2"] = p.rail.coulomb_mps2;

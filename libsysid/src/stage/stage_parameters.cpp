@@ -63,9 +63,24 @@ StageParameters StageParameters::Default() {
     const double u = row[0], v = row[1];
     p.motor.speed_map_in_v.push_back(u);
     p.motor.speed_map_out_mps.push_back(
-        v + (v > 0 ? 1.0 : -1.0) * p.rail.Sliding(std::abs(v)) / p.motor.pole_per_s);
+        v + (v > 0 ? 1.0 : -1.0) * p.motor.DroopForThrust(p.rail.Sliding(std::abs(v))) /
+                p.motor.pole_per_s);
   }
   return p;
+}
+
+double MotorParameters::Thrust(double y) const {
+  return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::tanh(y / thrust_limit_mps2) : y;
+}
+
+double MotorParameters::ThrustSlope(double y) const {
+  if (!(thrust_limit_mps2 > 0)) return 1.0;
+  const double t = std::tanh(y / thrust_limit_mps2);
+  return 1 - t * t;
+}
+
+double MotorParameters::DroopForThrust(double f) const {
+  return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::atanh(f / thrust_limit_mps2) : f;
 }
 
 bool StageParameters::IsPresetName(const std::string& name) {
@@ -186,6 +201,10 @@ void StageParameters::ValidateVelocitySource() const {
   RequireFinite("motor.dead_zone_forward_v", motor.dead_zone_forward_v);
   RequireFinite("motor.dead_zone_backward_v", motor.dead_zone_backward_v);
   Require(motor.pole_per_s > 0, "motor.pole_per_s", motor.pole_per_s, "pole_per_s > 0");
+  RequireFinite("motor.thrust_limit_mps2", motor.thrust_limit_mps2);
+  Require(motor.thrust_limit_mps2 == 0 || motor.thrust_limit_mps2 > rail.static_mps2,
+          "motor.thrust_limit_mps2", motor.thrust_limit_mps2,
+          "thrust_limit_mps2 = 0 (no limit) or > rail.static_mps2 (the stage can break away)");
   Require(motor.dead_zone_forward_v >= 0 && motor.dead_zone_forward_v < saturation_v,
           "motor.dead_zone_forward_v", motor.dead_zone_forward_v,
           "0 <= dead_zone_forward_v < saturation_v");
@@ -309,13 +328,13 @@ double StageParameters::SteadyVelocity(double u_v) const {
   if (model == StageModel::kVelocitySource) {
     const double vf = NoLoadSpeed(u);
     const double p = motor.pole_per_s;
-    if (std::abs(p * vf) <= rail.static_mps2) return 0.0;
+    if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
     // h(s) = p (|v_f| - s) - g(s) falls strictly with s (Validate: p > max |g'|); h(0) > 0 and
     // h(|v_f|) < 0, so one root in (0, |v_f|).
     double lo = 0, hi = std::abs(vf);
     for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
       const double mid = 0.5 * (lo + hi);
-      (p * (std::abs(vf) - mid) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
+      (motor.Thrust(p * (std::abs(vf) - mid)) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
     }
     return (vf > 0 ? 1.0 : -1.0) * 0.5 * (lo + hi);
   }

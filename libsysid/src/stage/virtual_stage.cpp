@@ -198,7 +198,8 @@ class VirtualStage::Impl {
   // Velocity source: |p v_f(u_d)| - Fs, > 0 when the fingertips' stall force beats the rail's
   // static friction.
   double Breakaway(double w) const {
-    return std::abs(p_.motor.pole_per_s * p_.NoLoadSpeed(w)) - p_.rail.static_mps2;
+    return std::abs(p_.motor.Thrust(p_.motor.pole_per_s * p_.NoLoadSpeed(w))) -
+           p_.rail.static_mps2;
   }
 
   void BreakAway() {
@@ -243,7 +244,8 @@ class VirtualStage::Impl {
       const double p = s.p_.motor.pole_per_s;
       const double slip = tm > 0 ? y[kZ] : std::abs(v);
       d[kX] = v;
-      d[kV] = p * (s.p_.NoLoadSpeed(y[kW]) - v) - s.direction_ * s.p_.rail.Sliding(slip);
+      d[kV] = s.p_.motor.Thrust(p * (s.p_.NoLoadSpeed(y[kW]) - v)) -
+              s.direction_ * s.p_.rail.Sliding(slip);
       d[kZ] = tm > 0 ? (s.direction_ * v - y[kZ]) / tm : 0.0;
       return 0;
     }
@@ -276,18 +278,20 @@ class VirtualStage::Impl {
       const RailFriction& r = s.p_.rail;
       const double h = 1e-6;  // [V] v_f is piecewise linear: a difference is its slope
       const double slope = (s.p_.NoLoadSpeed(w + h) - s.p_.NoLoadSpeed(w - h)) / (2 * h);
+      // v' = T(p (v_f - v)) - d g(.): the droop's slope scales both partial derivatives.
+      const double dt = s.p_.motor.ThrustSlope(p * (s.p_.NoLoadSpeed(w) - v));
       SM_ELEMENT_D(J, kX, kV) = 1.0;
-      SM_ELEMENT_D(J, kV, kW) = p * slope;
+      SM_ELEMENT_D(J, kV, kW) = dt * p * slope;
       if (tm > 0) {
-        // v' = p (v_f - v) - d g(s), T_m s' = d v - s.
-        SM_ELEMENT_D(J, kV, kV) = -p;
+        // v' = T(p (v_f - v)) - d g(s), T_m s' = d v - s.
+        SM_ELEMENT_D(J, kV, kV) = -dt * p;
         SM_ELEMENT_D(J, kV, kZ) = -s.direction_ * r.SlidingSlope(y[kZ]);
         SM_ELEMENT_D(J, kZ, kV) = s.direction_ / tm;
         return 0;
       }
       // d/dv of d g(|v|) = d sgn(v) g'(|v|) (= g'(|v|) while v has the sliding direction).
       const double dg = r.SlidingSlope(std::abs(v)) * (v * s.direction_ >= 0 ? 1.0 : -1.0);
-      SM_ELEMENT_D(J, kV, kV) = -p - dg;
+      SM_ELEMENT_D(J, kV, kV) = -dt * p - dg;
       return 0;
     }
     const double v = y[kV], z = y[kZ];
