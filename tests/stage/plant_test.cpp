@@ -49,14 +49,19 @@ struct Rk4Reference {
 // sliding; the Karnopp switches are checked after every step (a sign change of v ends the
 // slide: stick when |p v_f| <= Fs, else reverse; stuck, it breaks away once |p v_f| > Fs).
 // With frictional memory (T_m > 0) the friction is g(s), T_m s' = |v| - s (s fades at rest).
+// With a thrust limit L > 0 the droop y = p (v_f - v) pushes with L tanh(y / L).
 struct VelocitySourceReference {
   sysid::StageParameters p;
   double x = 0, v = 0, w = 0, s = 0;
   bool stuck = true;
   double d = 1;  // sliding direction
+  double Thrust(double y) const {
+    const double l = p.motor.thrust_limit_mps2;
+    return l > 0 ? l * std::tanh(y / l) : y;
+  }
   double Accel(double vv, double ww, double ss) const {
     const double slip = p.rail.memory_time_s > 0 ? ss : std::abs(vv);
-    return p.motor.pole_per_s * (p.NoLoadSpeed(ww) - vv) - d * p.rail.Sliding(slip);
+    return Thrust(p.motor.pole_per_s * (p.NoLoadSpeed(ww) - vv)) - d * p.rail.Sliding(slip);
   }
   double Memory(double vv, double ss) const {
     return p.rail.memory_time_s > 0 ? (std::abs(vv) - ss) / p.rail.memory_time_s : 0.0;
@@ -72,7 +77,7 @@ struct VelocitySourceReference {
                    m3 = Memory(0, s + h / 2 * m2), m4 = Memory(0, s + h * m3);
       s += h / 6 * (m1 + 2 * m2 + 2 * m3 + m4);
       const double vf = p.NoLoadSpeed(w);
-      if (std::abs(p.motor.pole_per_s * vf) > p.rail.static_mps2) {
+      if (std::abs(Thrust(p.motor.pole_per_s * vf)) > p.rail.static_mps2) {
         stuck = false;
         d = vf > 0 ? 1 : -1;
       }
@@ -92,7 +97,7 @@ struct VelocitySourceReference {
     if (v * d < 0) {  // came to rest within the step
       v = 0;
       const double vf = p.NoLoadSpeed(w);
-      if (std::abs(p.motor.pole_per_s * vf) <= p.rail.static_mps2)
+      if (std::abs(Thrust(p.motor.pole_per_s * vf)) <= p.rail.static_mps2)
         stuck = true;
       else
         d = vf > 0 ? 1 : -1;
@@ -158,6 +163,50 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
     CHECK(worst_x < 6e-8);  // [m]
     CHECK(worst_v < 5e-5);  // [m/s]
   }
+  SECTION("a stiff droop behind a thrust limit") {
+    p.motor.pole_per_s = 2000;
+    p.motor.thrust_limit_mps2 = 8;
+    p.rail = {0.6, 1.0, 0.005, 0.0};
+    const auto [worst_x, worst_v] = CompareWithReference(p);
+    INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s");
+    CHECK(worst_x < 6e-8);  // [m]
+    CHECK(worst_v < 5e-5);  // [m/s]
+  }
+}
+
+TEST_CASE("thrust limit: steady velocities, breakaway and the limit on acceleration",
+          "[stage][plant]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.motor.pole_per_s = 2000;
+  p.motor.thrust_limit_mps2 = 8;
+  p.rail = {0.6, 1.0, 0.005, 0.0};
+  p.position_noise_m = 0;
+  p.SetSpeedMapThrough(sysid::StageParameters::PaperPulseTable());
+  REQUIRE_NOTHROW(p.Validate());
+  // The speed map puts each held pulse on the paper's plateau: L tanh(p (v_f - v) / L) = g(v).
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
+    CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+  // Breakaway where L tanh(p v_f / L) = Fs: v_f = (L / p) atanh(Fs / L).
+  const double vf_break = 8.0 / 2000 * std::atanh(1.0 / 8);
+  double lo = p.motor.dead_zone_forward_v, hi = 1.3;  // v_f rises from 0 to the first knot
+  for (int i = 0; i < 100; ++i) (p.NoLoadSpeed(0.5 * (lo + hi)) < vf_break ? lo : hi) = 0.5 * (lo + hi);
+  CHECK(p.SteadyVelocity(lo - 1e-9) == 0.0);
+  CHECK(p.SteadyVelocity(hi + 1e-9) > 0.0);
+  // A 2 V step from rest: the stage accelerates at no more than L - Fc (the lag and the
+  // tanh only lower it), and the droop is saturated at the start (p v_f = 170 m/s^2 >> L).
+  sysid::VirtualStage stage(p, 1);
+  double v_prev = 0, max_accel = 0;
+  for (int k = 0; k < 30; ++k) {
+    stage.Step(2.0);
+    const double v = stage.state().v_mps;
+    max_accel = std::max(max_accel, (v - v_prev) / p.sample_time_s());
+    v_prev = v;
+  }
+  CHECK(max_accel <= 8 - 0.6 + 1e-9);
+  CHECK(max_accel > 0.9 * (8 - 0.6));
+  // Validate: a limit at or below the static friction could never break the stage away.
+  p.motor.thrust_limit_mps2 = 1.0;
+  CHECK_THROWS_WITH(p.Validate(), Catch::Contains("thrust_limit_mps2"));
 }
 
 TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "[stage][plant]") {

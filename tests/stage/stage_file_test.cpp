@@ -37,6 +37,20 @@ TEST_CASE("the rail's memory: written, read back, 0 when a file predates it", "[
       Catch::Contains("rail.memory_time_s") && Catch::Contains("0 <= memory_time_s <= 1"));
 }
 
+TEST_CASE("the thrust limit: written when set, read back, absent means none", "[stage][file]") {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  REQUIRE(p.motor.thrust_limit_mps2 == 0);
+  CHECK(sysid::StageParametersToJson(p).find("thrust_limit_mps2") == std::string::npos);
+  p.motor.pole_per_s = 2000;
+  p.motor.thrust_limit_mps2 = 8;
+  const std::string text = sysid::StageParametersToJson(p);
+  CHECK(sysid::ParseStageParameters(text, "t.json").motor.thrust_limit_mps2 == 8);
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters(
+          "{\"preset\": \"virtual\", \"motor\": {\"thrust_limit_mps2\": 2}}", "t.json"),
+      Catch::Contains("motor.thrust_limit_mps2") && Catch::Contains("> rail.static_mps2"));
+}
+
 TEST_CASE("stage files name their model, presets load by name", "[stage][file]") {
   // The actuator-delay preset round-trips and keeps its model.
   const auto ad = sysid::StageParameters::ActuatorDelay();

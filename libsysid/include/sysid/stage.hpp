@@ -50,6 +50,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "sysid/io.hpp"
@@ -165,6 +166,13 @@ struct StageParameters {
   /// and limits), found by bisection on the model's steady force balance; 0 when the drive
   /// does not break away (velocity source: |p v_f(u)| <= Fs; actuator delay: a3 M <= Fs).
   double SteadyVelocity(double u_v) const;
+  /// Velocity source: sets the speed map's knots so that a held voltage u_i settles at v_i for
+  /// each (u_i [V], v_i [m/s]) (steady law T(p (v_f - v)) = g(|v|), so
+  /// v_f(u_i) = v_i + sgn(v_i) T^-1(g(|v_i|)) / p), for the current pole, thrust limit and rail.
+  /// Default() calls it with the paper's pulse table.
+  void SetSpeedMapThrough(const std::vector<std::pair<double, double>>& steady_points);
+  /// The paper's pulse table: (amplitude [V], steady velocity [m/s]), ten pulses.
+  static std::vector<std::pair<double, double>> PaperPulseTable();
 
  private:
   void ValidateVelocitySource() const;

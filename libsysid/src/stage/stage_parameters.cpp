@@ -55,17 +55,33 @@ const double kPaperPulseTable[10][2] = {
     {-2.5, -0.07120}, {-2.3, -0.05562}, {-2.1, -0.04991}, {-2.0, -0.04622}, {-1.8, -0.03393},
     {1.3, 0.04465},   {1.5, 0.05742},   {1.6, 0.06222},   {1.7, 0.06863},   {2.0, 0.08519}};
 
+std::vector<std::pair<double, double>> StageParameters::PaperPulseTable() {
+  std::vector<std::pair<double, double>> table;
+  for (const auto& row : kPaperPulseTable) table.emplace_back(row[0], row[1]);
+  return table;
+}
+
+void StageParameters::SetSpeedMapThrough(
+    const std::vector<std::pair<double, double>>& steady_points) {
+  std::vector<std::pair<double, double>> knots;
+  for (const auto& [u, v] : steady_points)
+    knots.emplace_back(u, v + (v > 0 ? 1.0 : -1.0) *
+                                  motor.DroopForThrust(rail.Sliding(std::abs(v))) /
+                                  motor.pole_per_s);
+  std::sort(knots.begin(), knots.end());
+  motor.speed_map_in_v.clear();
+  motor.speed_map_out_mps.clear();
+  for (const auto& [u, vf] : knots) {
+    motor.speed_map_in_v.push_back(u);
+    motor.speed_map_out_mps.push_back(vf);
+  }
+}
+
 StageParameters StageParameters::Default() {
   StageParameters p;  // velocity source: the member defaults are the calibrated values
   // Speed map through the paper's ten pulse points: a held pulse settles where
   // p (v_f(u_i) - v) = g(v), so v_f(u_i) = v_i + sgn(v_i) g(|v_i|) / p gives exactly v_i.
-  for (const auto& row : kPaperPulseTable) {
-    const double u = row[0], v = row[1];
-    p.motor.speed_map_in_v.push_back(u);
-    p.motor.speed_map_out_mps.push_back(
-        v + (v > 0 ? 1.0 : -1.0) * p.motor.DroopForThrust(p.rail.Sliding(std::abs(v))) /
-                p.motor.pole_per_s);
-  }
+  p.SetSpeedMapThrough(PaperPulseTable());
   return p;
 }
 
