@@ -118,14 +118,13 @@ class FactsRun {
     const Recording test = RunTrackingSet(stage_, TestGrid(), tp, DeriveSeed(o_.seed, 2), "test");
     Coverage(training, test);
     train_v_ = MakeNeuralDataset(training, {"v"}, "u");
-    const NeuralDataset& train_v = train_v_;
     const NeuralDataset test_v = MakeNeuralDataset(test, {"v"}, "u");
     Step(fmt::format("dominant network (v, {} units)", o_.training.hidden));
     NeuralTrainingOptions t = DominantTraining(0);
-    network_ = TrainNeuralNetwork(train_v, nullptr, t).network;
-    r_.dominant_train_mse = MeanSquaredError(*network_, train_v);
+    network_ = TrainNeuralNetwork(train_v_, nullptr, t).network;
+    r_.dominant_train_mse = MeanSquaredError(*network_, train_v_);
     r_.dominant_test_mse = MeanSquaredError(*network_, test_v);
-    moving_ = {{"dominant_train_moving_mse_v2", MeanSquaredError(*network_, MovingRows(train_v))},
+    moving_ = {{"dominant_train_moving_mse_v2", MeanSquaredError(*network_, MovingRows(train_v_))},
                {"dominant_test_moving_mse_v2", MeanSquaredError(*network_, MovingRows(test_v))}};
     if (!want_typical_) return;
     Step(fmt::format("typical network (v, a, {} units)", o_.typical_hidden));
@@ -161,15 +160,18 @@ class FactsRun {
   // Returns, per frequency, every network's max |e| [m], the first being the NN row's.
   std::vector<std::vector<double>> NetworkSpread() {
     std::vector<std::vector<double>> errors;
-    for (double hz : o_.track_frequencies_hz) errors.push_back({Row(hz, "nn")->max_error_m});
+    std::vector<PositionReference> refs;
+    for (double hz : o_.track_frequencies_hz) {
+      errors.push_back({Row(hz, "nn")->max_error_m});
+      refs.push_back(MakeSmoothProfile(Profile(hz)));
+    }
     const FrictionModel model = Delay().model;
     for (int k = 1; k < o_.network_initializations; ++k) {
       Step(fmt::format("dominant network from initial weights {} of {}", k + 1,
                        o_.network_initializations));
       const NeuralNetwork net = TrainNeuralNetwork(train_v_, nullptr, DominantTraining(k)).network;
-      for (std::size_t i = 0; i < o_.track_frequencies_hz.size(); ++i) {
-        const PositionReference ref = MakeSmoothProfile(Profile(o_.track_frequencies_hz[i]));
-        const auto runs = TrackSchemes(stage_, o_.seed, ref, o_.pi,
+      for (std::size_t i = 0; i < refs.size(); ++i) {
+        const auto runs = TrackSchemes(stage_, o_.seed, refs[i], o_.pi,
                                        {FeedforwardScheme::kNetwork}, {&model, &net});
         errors[i].push_back(runs.front().result.max_error_m);
       }
