@@ -14,6 +14,7 @@
 #include <complex>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,10 +48,11 @@ struct PiOptions {
 /// Gain and phase margins of a linear open loop L(j omega). NaN where the sweep found no
 /// crossing.
 struct LoopMargins {
-  double crossover_rad_s = 0;        ///< [rad/s] gain crossover: the last |L| = 1 going down
-  double phase_margin_deg = 0;       ///< [deg] 180 + arg L there, in (-180, 180]
-  double phase_crossover_rad_s = 0;  ///< [rad/s] the first arg L = -180 (mod 360) going down
-  double gain_margin = 0;            ///< 1 / |L| there (> 1: the loop has gain to spare)
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double crossover_rad_s = kNone;        ///< [rad/s] gain crossover: the last |L| = 1 going down
+  double phase_margin_deg = kNone;       ///< [deg] 180 + arg L there, in (-180, 180]
+  double phase_crossover_rad_s = kNone;  ///< [rad/s] the first arg L = -180 (mod 360) going down
+  double gain_margin = kNone;            ///< 1 / |L| there (> 1: the loop has gain to spare)
   /// A gain crossover with phase margin > 0, and gain margin > 1 or no phase crossover.
   bool Stable() const;
 };

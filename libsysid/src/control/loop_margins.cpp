@@ -4,7 +4,6 @@
 #include <cmath>
 #include <complex>
 #include <functional>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <tuple>
@@ -19,7 +18,6 @@ namespace sysid {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The root of f between lo and hi (f(lo), f(hi) of opposite signs), by bisection in log omega.
 double Bisect(const std::function<double(double)>& f, double lo, double hi) {
@@ -58,7 +56,7 @@ LoopMargins ComputeLoopMargins(const std::function<std::complex<double>(double)>
   if (points < 16 || points > 10'000'000)
     throw OptionsError("ComputeLoopMargins: expected 16 <= points <= 10^7, found " +
                        std::to_string(points));
-  LoopMargins m{kNaN, kNaN, kNaN, kNaN};
+  LoopMargins m;  // NaN until a crossing is found
   const double step = std::pow(w_max_rad_s / w_min_rad_s, 1.0 / (points - 1));
   // arg L unwrapped along the sweep: phase(w) for w near a sample continues that sample's.
   auto phase_near = [&](double w, std::complex<double> ref, double ref_phase) {
