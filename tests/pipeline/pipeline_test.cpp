@@ -116,7 +116,8 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   for (const char* section :
        {"## 1. Pulse-test identification", "## 2. Delay of the viscous term",
         "## 3. Dominant variable", "## 4. Inverse neural network", "### Typical (v, a) network",
-        "## 5. Analytic vs NN inverse model", "## 6. PI position control", "## Run"})
+        "## 5. Analytic vs NN inverse model", "## 6. PI position control",
+        "### Loop margins of these gains on the identified model", "## Run"})
     CHECK(md.find(section) != std::string::npos);
   // Every model file it writes is a valid model file.
   CHECK_NOTHROW(sysid::ReadModel(out + "/model.json"));
@@ -161,4 +162,32 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
   const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "report/facts.json"));
   CHECK(j["facts"].size() == 3);
   CHECK(j["required_met"] == all);
+}
+
+TEST_CASE("the pipeline states the PI gains' loop margins, with or without a stage",
+          "[pipeline][control]") {
+  sysid::PipelineOptions o;
+  o.hidden_sizes = {4};
+  o.training.max_epochs = 3;
+  o.typical = false;
+  o.tune_delay = false;
+  o.threads = 2;
+  auto inputs = sysid::PipelineInputs::FromDirectory(SourcePath("datasets/virtual"));
+  inputs.stage.clear();  // a real rig's recordings: no stage file, no tracking
+  const sysid::PipelineResult r = sysid::RunPipeline(inputs, o);
+  CHECK(r.tracking.empty());
+  REQUIRE(r.margins.has_value());
+  sysid::PiOptions pi = o.pi;
+  pi.sample_time_s = 1e-3;  // the bundled recordings' 1 kHz
+  const auto expected = sysid::AnalyzePiMargins(r.model, pi);
+  CHECK(r.margins->pi.sample_time_s == Approx(1e-3).epsilon(1e-9));
+  CHECK(r.margins->forward.phase_margin_deg == Approx(expected.forward.phase_margin_deg));
+  CHECK(r.margins->backward.gain_margin == Approx(expected.backward.gain_margin));
+  TempDir dir;
+  sysid::WritePipelineReport(r, dir / "report");
+  const std::string md = sysid::test::ReadText(dir / "report/report.md");
+  CHECK(md.find("## 6. PI gains on the identified model") != std::string::npos);
+  CHECK(md.find("| forward |") != std::string::npos);
+  o.track = false;  // asked for no tracking: no margins either
+  CHECK_FALSE(sysid::RunPipeline(inputs, o).margins.has_value());
 }

@@ -112,6 +112,9 @@ struct PipelineResult {
   double typical_test_mse = 0;                 ///< [V^2]
   std::vector<InverseComparison> comparisons;  ///< test set, then waveforms
   std::vector<TrackingRow> tracking;
+  /// With options.track: options.pi's linear loop margins on `model` (AnalyzePiMargins), at
+  /// the stage's sample time, else at the pulse recordings' (the report's section 6).
+  std::optional<PiMarginsReport> margins;
   std::optional<StageFacts> facts;  ///< when options.facts and a stage file
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report

@@ -141,6 +141,16 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
       r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
   });
 
+  if (options.track) {
+    step("loop margins of the PI gains", [&] {
+      PiOptions pi = options.pi;
+      pi.sample_time_s = inputs.stage.empty()
+                             ? AnalyzeSampling(pulses.front().column("t")).nominal_dt_s
+                             : ReadStageParameters(inputs.stage).sample_time_s();
+      r.margins = AnalyzePiMargins(r.model, pi);
+    });
+  }
+
   if (options.track && !inputs.stage.empty()) {
     step("PI tracking with feedforward", [&] {
       const StageParameters stage = ReadStageParameters(inputs.stage);

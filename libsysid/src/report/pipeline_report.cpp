@@ -61,6 +61,7 @@ class ReportWriter {
     Neural();
     Comparison();
     Tracking();
+    Margins();
     Facts();
     Timing();
     WriteFileAtomically(Path("report.md"), md_);
@@ -394,6 +395,37 @@ class ReportWriter {
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
     md_ += "\n";
+  }
+
+  // The PI gains on the identified model: the linear loop around steady sliding.
+  void Margins() {
+    if (!r_.margins) return;
+    const PiMarginsReport& m = *r_.margins;
+    md_ += r_.tracking.empty() ? "\n## 6. PI gains on the identified model\n\n"
+                               : "\n### Loop margins of these gains on the identified model\n\n";
+    md_ += fmt::format(
+        "`sysid margins`: Kp = {} V/m, Ki = {} V/(m s) at {} Hz on a3 / (s (s + a1 "
+        "e^(-s tau))) (a3 = {}, tau = {} ms), the sample-and-hold as half a sample of delay; a "
+        "linear view of steady sliding (stick-slip, dead zone and saturation are outside "
+        "it).\n\n",
+        m.pi.kp_v_per_m, m.pi.ki_v_per_m_s, F(1 / m.pi.sample_time_s), F(m.model.a3),
+        F(1e3 * m.model.tau_s, 3));
+    auto num = [](double v, int digits) { return std::isnan(v) ? std::string("none") : F(v, digits); };
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& [name, a1, l] : {std::tuple<const char*, double, const LoopMargins&>{
+                                          "forward", m.model.a1p, m.forward},
+                                      {"backward", m.model.a1n, m.backward}})
+      rows.push_back({name, F(a1), num(l.crossover_rad_s, 4), num(l.phase_margin_deg, 3),
+                      num(l.gain_margin, 3), l.Stable() ? "yes" : "**no**"});
+    md_ += MarkdownTable({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
+                          "gain margin", "stable"},
+                         rows);
+    if (!m.forward.Stable() || !m.backward.Stable())
+      md_ += "\nThe linearised loop of this model is unstable with these gains. The delayed "
+             "viscous term fits the pulses' large-signal response rather than the stage's "
+             "small-signal one, so read this as a warning, not a verdict: look for ringing "
+             "while the stage slides (in the tracking runs, or on the rig); at rest friction "
+             "may hold it quiet.\n";
   }
 
   void Facts() {
