@@ -128,6 +128,14 @@ void BindControl(py::module_& m) {
   s.def("track_stage", &TrackStage, py::arg("parameters"), py::arg("reference"), py::arg("pi"),
         py::arg("u_ff_v"), py::arg("seed"));
 
+  m.def(
+      "pi_margins_json",
+      [](const FrictionModel& model, const PiOptions& pi, double extra_delay_s) {
+        return ToJson(AnalyzePiMargins(model, pi, extra_delay_s));
+      },
+      py::arg("model"), py::arg("pi"), py::arg("extra_delay_s") = 0.0,
+      "The PI loop's gain and phase margins on the model, per direction, as `sysid margins "
+      "--json` prints them.");
   m.def("analytic_inverse", &AnalyticInverse, py::arg("model"), py::arg("dt_s"), py::arg("v_mps"),
         py::arg("a_mps2"), "u [V] of the analytic inverse with v(t - tau) interpolated.");
   m.def(

@@ -333,6 +333,16 @@ DominanceSummary.message = property(
                  f"{self.min_margin:.3g}, median {self.median_margin:.3g}")
 
 
+def pi_margins(model, pi=None, extra_delay_s=0.0, **kwargs):
+    """The PI loop's linear gain and phase margins on a rough model, per direction, as a dict
+    (the JSON of ``sysid margins --json``). ``pi``: a ``sysid.stage.PiOptions`` (its
+    ``sample_time_s`` is the controller's period [s]) or keywords for one; ``extra_delay_s``
+    [s]: actuator delay beyond the sample-and-hold."""
+    import json as _json
+    opts = _options(stage.PiOptions, pi, kwargs)
+    return _json.loads(_sysid.pi_margins_json(_as_model(model), opts, float(extra_delay_s)))
+
+
 def _track(parameters=None, reference=None, feedforward="none", model=None, network=None,
            pi=None, seed=1, **profile):
     """The tracking experiment of ``sysid track``: PI position control of the virtual stage

@@ -223,3 +223,15 @@ def test_every_result_has_termination_message_and_report(model_file):
         assert isinstance(r.brief_report(), str) and r.brief_report()
     assert "6 recordings: dominant velocity" in summary.message
     assert "<- chosen" in sweep.brief_report()
+
+
+def test_pi_margins_match_cli_margins(tmp_path):
+    model = sysid.Model(a1p=104.0154, a1n=117.1441, a2p=3.1023, a2n=6.8216, a3=6, tau_s=0.0035)
+    path = tmp_path / "m.json"
+    model.save(str(path))
+    cli = cli_json("margins", "--model", path, "--kp", "3000", "--ki", "104100")
+    py = sysid.pi_margins(model, kp_v_per_m=3000, ki_v_per_m_s=104100)
+    assert py == cli
+    assert py["directions"][0]["stable"] and py["directions"][0]["phase_margin_deg"] > 20
+    # The paper's gains on the delayed model: unstable in both directions.
+    assert not any(d["stable"] for d in sysid.pi_margins(path)["directions"])
