@@ -85,7 +85,8 @@ void AddPipelineCommand(CLI::App& app) {
       "The whole workflow on a stage's recordings: identify -> tune delay -> [refine] -> "
       "dominance -> NN sweep (+ typical (v, a) network) -> compare -> PI tracking -> report. "
       "DIR holds pulses*.csv, training*.csv, test*.csv, waveform*.csv and optionally "
-      "stage.json (enables tracking), or a manifest.json naming them");
+      "loop*.csv (slow open-loop sweeps: the voltage-velocity loop) and stage.json (enables "
+      "tracking), or a manifest.json naming them");
   cmd->add_option("input", o->input, "folder of recordings, or a manifest JSON")
       ->required()
       ->check(CLI::ExistingPath)

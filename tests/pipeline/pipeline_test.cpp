@@ -117,7 +117,8 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
        {"## 1. Pulse-test identification", "## 2. Delay of the viscous term",
         "## 3. Dominant variable", "## 4. Inverse neural network", "### Typical (v, a) network",
         "## 5. Analytic vs NN inverse model", "## 6. PI position control",
-        "### Loop margins of these gains on the identified model", "## Run"})
+        "### Loop margins of these gains on the identified model",
+        "## 8. Voltage-velocity loop", "## Run"})
     CHECK(md.find(section) != std::string::npos);
   // Every model file it writes is a valid model file.
   CHECK_NOTHROW(sysid::ReadModel(out + "/model.json"));
@@ -125,6 +126,7 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   CHECK_NOTHROW(sysid::ReadNeuralNetwork(out + "/nn_typical.json"));
   CHECK(std::filesystem::exists(out + "/tracking.csv"));
   CHECK(std::filesystem::exists(out + "/sweep.csv"));
+  CHECK(std::filesystem::exists(out + "/loops.csv"));  // loop_triangle.csv: the loop's table
 }
 
 TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {
@@ -190,4 +192,28 @@ TEST_CASE("the pipeline states the PI gains' loop margins, with or without a sta
   CHECK(md.find("| forward |") != std::string::npos);
   o.track = false;  // asked for no tracking: no margins either
   CHECK_FALSE(sysid::RunPipeline(inputs, o).margins.has_value());
+}
+
+TEST_CASE("pipeline inputs from a manifest: lists, the loop sweeps, and bad keys",
+          "[pipeline]") {
+  TempDir dir;
+  const std::string v = SourcePath("datasets/virtual");
+  sysid::test::WriteText(dir / "manifest.json",
+                         "{\"pulses\": [\"" + v + "/pulses.csv\"], \"training\": \"" + v +
+                             "/training.csv\", \"test\": \"" + v + "/test.csv\", \"loops\": [\"" +
+                             v + "/loop_triangle.csv\"], \"a3\": 6}");
+  const auto in = sysid::PipelineInputs::FromDirectory(dir.path().string());
+  REQUIRE(in.loops.size() == 1);
+  CHECK(in.loops[0].find("loop_triangle.csv") != std::string::npos);
+  CHECK(in.waveforms.empty());
+  CHECK(in.stage.empty());
+  CHECK(in.a3 == 6.0);
+  // The naming convention finds the same sweep in the bundled folder.
+  CHECK(sysid::PipelineInputs::FromDirectory(v).loops.size() == 1);
+  sysid::test::WriteText(dir / "manifest.json", "{\"loop\": []}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("unknown key 'loop'") && Catch::Contains("loops"));
+  sysid::test::WriteText(dir / "manifest.json", "{\"loops\": \"loop.csv\"}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("key 'loops': expected a list"));
 }

@@ -27,6 +27,57 @@
 namespace sysid {
 
 // ----------------------------------------------------------------------------------------------
+// The voltage-velocity loop of a slow open-loop sweep (the paper's triangle test)
+// ----------------------------------------------------------------------------------------------
+
+struct VoltageLoopOptions {
+  /// [V] signed voltages at which to read the loop; empty: six per direction, evenly from just
+  /// past the start voltage (by 2 % of the peak) to 95 % of the recording's peak in that
+  /// direction (from 50 % of the peak when the stage never starts that way).
+  std::vector<double> levels_v;
+  int half_window = 10;               ///< v at a crossing: mean over +-half_window samples
+  double moving_speed_mps = 1e-3;     ///< [m/s] |v| above this is motion (start / stop)
+  void Validate() const;
+};
+
+/// The loop at one voltage: the mean velocity where |u| passes |level| going up (the stage
+/// accelerating) and going down, averaged over every such crossing.
+struct VoltageLoopLevel {
+  double level_v = 0;                                        ///< [V]
+  double v_rising_mps = std::numeric_limits<double>::quiet_NaN();   ///< [m/s] |u| increasing
+  double v_falling_mps = std::numeric_limits<double>::quiet_NaN();  ///< [m/s] |u| decreasing
+  int rising_crossings = 0, falling_crossings = 0;
+  /// [m/s] v_falling - v_rising in the level's direction (> 0: the stage is faster on the way
+  /// down, the loop of a lagging response); NaN without both branches.
+  double WidthMps() const;
+};
+
+struct VoltageLoop {
+  std::string source;
+  std::vector<VoltageLoopLevel> levels;
+  /// [V] mean u at which the stage starts to move forward / backward (|v| first exceeds
+  /// moving_speed_mps after rest, in the direction of u) and stops again (|v| falls back below
+  /// it); NaN when it never happens. start != stop is the loop's static width.
+  double start_forward_v = std::numeric_limits<double>::quiet_NaN();
+  double start_backward_v = std::numeric_limits<double>::quiet_NaN();
+  double stop_forward_v = std::numeric_limits<double>::quiet_NaN();
+  double stop_backward_v = std::numeric_limits<double>::quiet_NaN();
+  double peak_forward_v = 0, peak_backward_v = 0;  ///< [V] max u, min u
+  Eigen::VectorXd u_v, v_mps;  ///< [V], [m/s] the traces it was read from (not in the JSON)
+};
+
+/// Reads the voltage-velocity loop of a recording with t, u and x (or v) columns, e.g.
+/// `sysid generate triangle`'s loop_triangle.csv or the same test on a rig: u should sweep
+/// slowly through both directions. Throws InputError for a recording without u or without
+/// motion columns, OptionsError for bad options.
+VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOptions& options = {},
+                               const MotionOptions& motion = {});
+/// {"source", "peak_forward_v", "peak_backward_v", "start_forward_v", "start_backward_v",
+///  "stop_forward_v", "stop_backward_v", "levels": [{"level_v", "v_rising_mps",
+///  "v_falling_mps", "width_mps", "rising_crossings", "falling_crossings"}]}; NaN as null.
+std::string ToJson(const VoltageLoop& loop, int indent = 2);
+
+// ----------------------------------------------------------------------------------------------
 // Pulses and their steady-state velocities
 // ----------------------------------------------------------------------------------------------
 

@@ -31,16 +31,19 @@ namespace sysid {
 ///
 /// From a folder: `manifest.json` when present, e.g.
 ///   {"pulses": ["pulses.csv"], "training": "training.csv", "test": "test.csv",
-///    "waveforms": ["waveform_square.csv"], "stage": "stage.json", "a3": 6}
+///    "waveforms": ["waveform_square.csv"], "loops": ["loop_triangle.csv"], "stage": "stage.json",
+///    "a3": 6}
 /// (paths relative to the manifest), else the naming convention: pulses*.csv (pulse tests),
 /// training*.csv or train*.csv (tracking training set), test*.csv (tracking test set),
-/// waveform*.csv (test waveforms), stage.json (a virtual-stage file, enables tracking).
+/// waveform*.csv (test waveforms), loop*.csv (slow open-loop sweeps: the voltage-velocity
+/// loop, optional), stage.json (a virtual-stage file, enables tracking).
 struct PipelineInputs {
   std::string root;                    ///< the folder or manifest it came from
   std::vector<std::string> pulses;     ///< pulse-test recordings (t, u, x), at least one
   std::string training;                ///< tracking training set (t, u, x[, v, a])
   std::string test;                    ///< tracking test set
   std::vector<std::string> waveforms;  ///< test-waveform recordings
+  std::vector<std::string> loops;      ///< open-loop sweeps for the voltage-velocity loop
   std::string stage;                   ///< stage parameter file for tracking, may be empty
   std::optional<double> a3;            ///< [m/(s^2 V)] from the manifest, if given
 
@@ -111,6 +114,7 @@ struct PipelineResult {
   std::optional<NeuralTrainingResult> typical;
   double typical_test_mse = 0;                 ///< [V^2]
   std::vector<InverseComparison> comparisons;  ///< test set, then waveforms
+  std::vector<VoltageLoop> loops;  ///< AnalyzeVoltageLoop of each inputs.loops recording
   std::vector<TrackingRow> tracking;
   /// With options.track: options.pi's linear loop margins on `model` (AnalyzePiMargins), at
   /// the stage's sample time, else at the pulse recordings' (the report's section 6).

@@ -52,6 +52,8 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
       in.test = p.string();
     else if (StartsWith(name, "waveform"))
       in.waveforms.push_back(p.string());
+    else if (StartsWith(name, "loop"))
+      in.loops.push_back(p.string());
   }
   RequireComplete(in);
   return in;
@@ -69,10 +71,10 @@ PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
   PipelineInputs in;
   in.root = path;
   for (const auto& [key, v] : j.items()) {
-    if (key == "pulses" || key == "waveforms") {
+    if (key == "pulses" || key == "waveforms" || key == "loops") {
       if (!v.is_array()) throw InputError(path + ": key '" + key + "': expected a list");
-      for (const auto& f : v)
-        (key == "pulses" ? in.pulses : in.waveforms).push_back(resolve(f, key.c_str()));
+      auto& list = key == "pulses" ? in.pulses : (key == "waveforms" ? in.waveforms : in.loops);
+      for (const auto& f : v) list.push_back(resolve(f, key.c_str()));
     } else if (key == "training") {
       in.training = resolve(v, "training");
     } else if (key == "test") {
@@ -84,7 +86,7 @@ PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
       in.a3 = v.get<double>();
     } else if (key != "note" && key[0] != '_') {
       throw InputError(path + ": unknown key '" + key +
-                       "' (expected pulses, training, test, waveforms, stage, a3)");
+                       "' (expected pulses, training, test, waveforms, loops, stage, a3)");
     }
   }
   RequireComplete(in);

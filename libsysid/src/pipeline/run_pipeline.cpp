@@ -141,6 +141,12 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
       r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
   });
 
+  if (!inputs.loops.empty()) {
+    step("voltage-velocity loop", [&] {
+      for (const auto& path : inputs.loops) r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path)));
+    });
+  }
+
   if (options.track) {
     step("loop margins of the PI gains", [&] {
       PiOptions pi = options.pi;

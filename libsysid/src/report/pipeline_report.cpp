@@ -53,7 +53,11 @@ class ReportWriter {
            " pulse recording(s), training set `" +
            fs::path(r_.inputs.training).filename().string() + "`, test set `" +
            fs::path(r_.inputs.test).filename().string() + "`, " +
-           std::to_string(r_.inputs.waveforms.size()) + " test waveform(s).\n";
+           std::to_string(r_.inputs.waveforms.size()) + " test waveform(s)" +
+           (r_.inputs.loops.empty()
+                ? std::string()
+                : ", " + std::to_string(r_.inputs.loops.size()) + " voltage-loop sweep(s)") +
+           ".\n";
     if (ref_) md_ += "Reference numbers (" + ref_->label + ") are set beside ours.\n";
     Model();
     Delay();
@@ -63,6 +67,7 @@ class ReportWriter {
     Tracking();
     Margins();
     Facts();
+    Loops();
     Timing();
     WriteFileAtomically(Path("report.md"), md_);
     return notes_;
@@ -426,6 +431,44 @@ class ReportWriter {
              "small-signal one, so read this as a warning, not a verdict: look for ringing "
              "while the stage slides (in the tracking runs, or on the rig); at rest friction "
              "may hold it quiet.\n";
+  }
+
+  // The slow open-loop sweeps: the voltage-velocity loop (the paper's Fig. 3 test).
+  void Loops() {
+    if (r_.loops.empty()) return;
+    md_ += "\n## 8. Voltage-velocity loop (slow open-loop sweep)\n\n";
+    md_ += "The paper's triangle test (its Fig. 3: an asymmetric loop). Velocity where |u| "
+           "passes each level going up and going down (mean of ±10 samples; `sysid loop`); "
+           "width = how much faster the stage runs on the way down. A static inverse (the "
+           "analytic one, a network on v alone) follows one curve through the loop.\n";
+    std::string csv = "source,level_v,v_rising_mps,v_falling_mps,width_mps\n";
+    for (std::size_t i = 0; i < r_.loops.size(); ++i) {
+      const VoltageLoop& l = r_.loops[i];
+      const std::string name = fs::path(l.source).filename().string();
+      auto volts = [](double u) { return std::isnan(u) ? std::string("never") : F(u, 4) + " V"; };
+      md_ += fmt::format(
+          "\n`{}`: u from {} to {} V; starts forward at {}, backward at {}; stops forward at "
+          "{}, backward at {}.\n\n",
+          name, F(l.peak_backward_v, 4), F(l.peak_forward_v, 4), volts(l.start_forward_v),
+          volts(l.start_backward_v), volts(l.stop_forward_v), volts(l.stop_backward_v));
+      auto mm = [](double v) {
+        return std::isnan(v) ? std::string("-") : fmt::format("{:.2f}", 1e3 * v);
+      };
+      std::vector<std::vector<std::string>> rows;
+      for (const auto& lv : l.levels) {
+        rows.push_back({F(lv.level_v, 4), mm(lv.v_rising_mps), mm(lv.v_falling_mps),
+                        mm(lv.WidthMps())});
+        csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, lv.level_v, lv.v_rising_mps,
+                           lv.v_falling_mps, lv.WidthMps());
+      }
+      md_ += MarkdownTable({"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]",
+                            "width [mm/s]"},
+                           rows);
+      PlotSpec spec{"voltage-velocity loop: " + name, "u [V]", "v [mm/s]", {}, false, 900, 600};
+      spec.series.push_back({name, l.u_v, 1e3 * l.v_mps, "lines"});
+      Plot(fmt::format("loop_{}.png", i + 1), spec, "voltage-velocity loop " + name);
+    }
+    WriteFileAtomically(Path("loops.csv"), csv);
   }
 
   void Facts() {

@@ -1,0 +1,116 @@
+// The voltage-velocity loop against a synthetic loop with known branches (closed forms), and
+// `sysid loop` on the bundled triangle test.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_support.hpp"
+#include "sysid/error.hpp"
+#include "sysid/identify.hpp"
+
+namespace {
+
+// The branches of the synthetic loop [m/s]: forward the stage starts at 1.0 V on the way up and
+// stops at 0.9 V on the way down; backward at -1.5 V and -1.3 V (asymmetric, as the paper's).
+double Rising(double u) {
+  return u > 0 ? std::max(0.1 * (u - 1.0), 0.0) : std::min(0.08 * (u + 1.5), 0.0);
+}
+double Falling(double u) {
+  return u > 0 ? std::max(0.1 * (u - 0.9), 0.0) : std::min(0.08 * (u + 1.3), 0.0);
+}
+
+// A triangle 0 -> +1.5 -> 0 -> -2.0 -> 0 V in 1 mV steps at 1 kHz, with v on the branch of the
+// direction |u| moves in (t, u, v: the velocity column, no position).
+sysid::Recording SyntheticLoop() {
+  std::vector<double> u;
+  for (int i = 0; i <= 1500; ++i) u.push_back(1e-3 * i);
+  for (int i = 1499; i >= 0; --i) u.push_back(1e-3 * i);
+  for (int i = 1; i <= 2000; ++i) u.push_back(-1e-3 * i);
+  for (int i = 1999; i >= 0; --i) u.push_back(-1e-3 * i);
+  sysid::Recording rec;
+  rec.source = "synthetic";
+  rec.names = {"t", "u", "v"};
+  rec.data.resize(static_cast<Eigen::Index>(u.size()), 3);
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const bool rising = k == 0 || std::abs(u[k]) >= std::abs(u[k - 1]);
+    rec.data(static_cast<Eigen::Index>(k), 0) = 1e-3 * static_cast<double>(k);
+    rec.data(static_cast<Eigen::Index>(k), 1) = u[k];
+    rec.data(static_cast<Eigen::Index>(k), 2) = rising ? Rising(u[k]) : Falling(u[k]);
+  }
+  return rec;
+}
+
+}  // namespace
+
+TEST_CASE("voltage loop: the branches, starts and stops of a known loop", "[identify][loop]") {
+  sysid::VoltageLoopOptions o;
+  o.levels_v = {1.2, 1.4, -1.7, -1.9};
+  const sysid::VoltageLoop loop = sysid::AnalyzeVoltageLoop(SyntheticLoop(), o);
+  REQUIRE(loop.levels.size() == 4);
+  for (const auto& l : loop.levels) {
+    INFO("level " << l.level_v);
+    CHECK(l.rising_crossings == 1);
+    CHECK(l.falling_crossings == 1);
+    // Each branch is linear over the +-10-sample window, and every level is a sample: the
+    // window mean is the branch's value at the level.
+    CHECK(l.v_rising_mps == Approx(Rising(l.level_v)).margin(1e-12));
+    CHECK(l.v_falling_mps == Approx(Falling(l.level_v)).margin(1e-12));
+    CHECK(l.WidthMps() > 0);  // faster on the way down: the loop of a lagging stage
+  }
+  CHECK(loop.levels[0].WidthMps() == Approx(0.01).margin(1e-12));   // 0.1 m/(s V) x 0.1 V
+  CHECK(loop.levels[2].WidthMps() == Approx(0.016).margin(1e-12));  // 0.08 x 0.2 V
+  // |v| passes 1 mm/s at 1.01 V going up, 0.91 V going down; backward at -1.5125 / -1.3125 V.
+  CHECK(loop.start_forward_v == Approx(1.01).margin(1.5e-3));
+  CHECK(loop.stop_forward_v == Approx(0.91).margin(1.5e-3));
+  CHECK(loop.start_backward_v == Approx(-1.5125).margin(1.5e-3));
+  CHECK(loop.stop_backward_v == Approx(-1.3125).margin(1.5e-3));
+  CHECK(loop.peak_forward_v == 1.5);
+  CHECK(loop.peak_backward_v == -2.0);
+}
+
+TEST_CASE("voltage loop: default levels, and bad input", "[identify][loop]") {
+  const sysid::VoltageLoop loop = sysid::AnalyzeVoltageLoop(SyntheticLoop());
+  // Six per direction, from 2 % of the peak past the start voltage to 95 % of the peak.
+  REQUIRE(loop.levels.size() == 12);
+  CHECK(loop.levels.front().level_v == Approx(loop.start_forward_v + 0.03));
+  CHECK(loop.levels[5].level_v == Approx(1.425));
+  CHECK(loop.levels[6].level_v == Approx(loop.start_backward_v - 0.04));
+  CHECK(loop.levels.back().level_v == Approx(-1.9));
+  for (const auto& l : loop.levels) CHECK(std::abs(l.v_rising_mps) > 1e-3);  // all in motion
+  // A sweep that never starts the stage: from 50 % of the peak.
+  sysid::Recording still = SyntheticLoop();
+  still.data.col(2).setZero();
+  const auto rest = sysid::AnalyzeVoltageLoop(still);
+  CHECK(std::isnan(rest.start_forward_v));
+  CHECK(rest.levels.front().level_v == Approx(0.75));
+  sysid::VoltageLoopOptions o;
+  o.levels_v = {0.0};
+  CHECK_THROWS_AS(sysid::AnalyzeVoltageLoop(SyntheticLoop(), o), sysid::OptionsError);
+  o.levels_v = {};
+  o.moving_speed_mps = 0;
+  CHECK_THROWS_AS(sysid::AnalyzeVoltageLoop(SyntheticLoop(), o), sysid::OptionsError);
+  sysid::Recording no_u = SyntheticLoop();
+  no_u.names[1] = "w";
+  CHECK_THROWS_WITH(sysid::AnalyzeVoltageLoop(no_u), Catch::Contains("synthetic") &&
+                                                         Catch::Contains("u [V]"));
+}
+
+TEST_CASE("sysid loop on the bundled triangle test", "[identify][loop][cli]") {
+  const std::string file = sysid::test::SourcePath("datasets/virtual/loop_triangle.csv");
+  const auto r = sysid::test::RunCli({"loop", file, "--levels", "1.25,-1.75", "--json"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["levels"].size() == 2);
+  // The twin's asymmetric loop: it starts forward near its breakaway (1.182 V, plus the ramp
+  // through the driver lag) and backward near -1.692 V, and runs faster on the way down.
+  CHECK(j["start_forward_v"].get<double>() == Approx(1.19).margin(0.01));
+  CHECK(j["start_backward_v"].get<double>() == Approx(-1.70).margin(0.01));
+  for (const auto& l : j["levels"]) CHECK(l["width_mps"].get<double>() > 0);
+  CHECK(sysid::test::RunCli({"loop", file, "--levels", "0"}).exit_code == 1);
+  sysid::test::TempDir dir;
+  sysid::test::WriteText(dir / "bad.csv", "t,u,x\n0,0,0\n0.001,zero,0\n");
+  const auto bad = sysid::test::RunCli({"loop", dir / "bad.csv"});
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("bad.csv:3:"));
+}
