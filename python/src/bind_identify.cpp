@@ -220,6 +220,20 @@ void BindIdentify(py::module_& m) {
   m.def("identify_pulses_recordings", &IdentifyFromPulses, py::arg("recordings"),
         py::arg("options") = PulseIdentificationOptions{}, ReleaseGil());
 
+  // ---- The voltage-velocity loop (as `sysid loop --json`) ----
+  m.def(
+      "voltage_loop_json",
+      [](const Recording& recording, const std::vector<double>& levels_v, int half_window,
+         double moving_speed_mps, const MotionOptions& motion) {
+        VoltageLoopOptions o;
+        o.levels_v = levels_v;
+        o.half_window = half_window;
+        o.moving_speed_mps = moving_speed_mps;
+        return ToJson(AnalyzeVoltageLoop(recording, o, motion));
+      },
+      py::arg("recording"), py::arg("levels_v"), py::arg("half_window"),
+      py::arg("moving_speed_mps"), py::arg("motion"));
+
   // ---- Trajectory ----
   py::class_<TrajectoryOptions> trajectory_options(m, "TrajectoryOptions");
   AddKeywordInit(trajectory_options);

@@ -333,6 +333,20 @@ DominanceSummary.message = property(
                  f"{self.min_margin:.3g}, median {self.median_margin:.3g}")
 
 
+def voltage_loop(recording, levels_v=(), half_window=10, moving_speed_mps=1e-3, motion=None):
+    """The voltage-velocity loop of a slow open-loop sweep (the paper's triangle test), as a dict
+    (the JSON of ``sysid loop --json``): velocity [m/s] where |u| passes each level [V] going up
+    and going down, the loop's width, and the start / stop voltages. ``recording``: a
+    Recording or a path; ``levels_v`` empty: six per direction past the start voltage."""
+    import json as _json
+    rec = _as_recordings(recording)
+    if len(rec) != 1:
+        raise ValueError(f"voltage_loop: expected one recording, got {len(rec)}")
+    return _json.loads(_sysid.voltage_loop_json(
+        rec[0], [float(x) for x in levels_v], int(half_window), float(moving_speed_mps),
+        _options(MotionOptions, motion, {})))
+
+
 def pi_margins(model, pi=None, extra_delay_s=0.0, **kwargs):
     """The PI loop's linear gain and phase margins on a rough model, per direction, as a dict
     (the JSON of ``sysid margins --json``). ``pi``: a ``sysid.stage.PiOptions`` (its

@@ -235,3 +235,12 @@ def test_pi_margins_match_cli_margins(tmp_path):
     assert py["directions"][0]["stable"] and py["directions"][0]["phase_margin_deg"] > 20
     # The paper's gains on the delayed model: unstable in both directions.
     assert not any(d["stable"] for d in sysid.pi_margins(path)["directions"])
+
+
+def test_voltage_loop_matches_cli_loop():
+    path = VIRTUAL / "loop_triangle.csv"
+    cli = cli_json("loop", path, "--levels", "1.25,-1.75")
+    py = sysid.voltage_loop(path, levels_v=[1.25, -1.75])
+    assert py == cli
+    assert py["levels"][0]["width_mps"] > 0
+    assert sysid.voltage_loop(sysid.read_recording(path)) == cli_json("loop", path)
