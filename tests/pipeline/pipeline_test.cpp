@@ -20,6 +20,20 @@ using sysid::test::RunCli;
 using sysid::test::SourcePath;
 using sysid::test::TempDir;
 
+namespace {
+
+// A pipeline small enough for the suite: one 4-unit network, three epochs, no typical network.
+sysid::PipelineOptions SmallPipeline() {
+  sysid::PipelineOptions o;
+  o.hidden_sizes = {4};
+  o.training.max_epochs = 3;
+  o.typical = false;
+  o.threads = 2;
+  return o;
+}
+
+}  // namespace
+
 TEST_CASE("a sampled feedforward plays its values in order and refuses to run past them",
           "[pipeline][control]") {
   Eigen::VectorXd u(3);
@@ -139,12 +153,8 @@ TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[
 }
 
 TEST_CASE("the pipeline report carries the paper's facts table on request", "[pipeline][facts]") {
-  sysid::PipelineOptions o;
-  o.hidden_sizes = {4};
-  o.training.max_epochs = 3;
-  o.typical = false;
+  sysid::PipelineOptions o = SmallPipeline();
   o.track = false;
-  o.threads = 2;
   o.facts = true;
   o.facts_options = sysid::FactsOptions::Reduced();
   o.facts_options.facts = {"F1", "F2", "F3"};
@@ -168,12 +178,8 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
 
 TEST_CASE("the pipeline states the PI gains' loop margins, with or without a stage",
           "[pipeline][control]") {
-  sysid::PipelineOptions o;
-  o.hidden_sizes = {4};
-  o.training.max_epochs = 3;
-  o.typical = false;
+  sysid::PipelineOptions o = SmallPipeline();
   o.tune_delay = false;
-  o.threads = 2;
   auto inputs = sysid::PipelineInputs::FromDirectory(SourcePath("datasets/virtual"));
   inputs.stage.clear();  // a real rig's recordings: no stage file, no tracking
   const sysid::PipelineResult r = sysid::RunPipeline(inputs, o);
