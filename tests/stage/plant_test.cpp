@@ -207,6 +207,13 @@ TEST_CASE("thrust limit: steady velocities, breakaway and the limit on accelerat
   // Validate: a limit at or below the static friction could never break the stage away.
   p.motor.thrust_limit_mps2 = 1.0;
   CHECK_THROWS_WITH(p.Validate(), Catch::Contains("thrust_limit_mps2"));
+  // Near its limit the thrust barely grows with the droop: the Stribeck dip could then give two
+  // steady speeds. p = 100 beats max |g'| = 68.6 1/s alone, not with L = 1.2 (100 x 0.31).
+  p.motor.pole_per_s = 100;
+  p.motor.thrust_limit_mps2 = 0;
+  CHECK_NOTHROW(p.Validate());
+  p.motor.thrust_limit_mps2 = 1.2;
+  CHECK_THROWS_WITH(p.Validate(), Catch::Contains("single steady speed"));
 }
 
 TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "[stage][plant]") {

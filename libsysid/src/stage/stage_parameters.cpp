@@ -264,14 +264,20 @@ void StageParameters::ValidateVelocitySource() const {
   RequireFinite("rail.memory_time_s", rail.memory_time_s);
   Require(rail.memory_time_s >= 0 && rail.memory_time_s <= 1.0, "rail.memory_time_s",
           rail.memory_time_s, "0 <= memory_time_s <= 1");
-  // Stick-slip is well posed only while the sliding force balance p (v_f - v) - g(v) falls
-  // with v (one steady speed per voltage): p > max |g'| = (Fs - Fc) sqrt(2/e) / vs.
+  // Stick-slip is well posed only while the sliding force balance T(p (v_f - v)) - g(v) falls
+  // with v wherever it is zero (then it has one root: one steady speed per voltage). There the
+  // thrust equals g <= Fs, so its slope is p T' >= p (1 - (Fs/L)^2) (p without a limit), which
+  // must beat max |g'| = (Fs - Fc) sqrt(2/e) / vs.
   {
     const double slope = (rail.static_mps2 - rail.coulomb_mps2) * std::sqrt(2.0 / std::exp(1.0)) /
                          rail.stribeck_velocity_mps;
-    Require(motor.pole_per_s > slope, "motor.pole_per_s", motor.pole_per_s,
-            "pole_per_s > (Fs - Fc) sqrt(2/e) / vs = " + Fmt(slope) +
-                " (a single steady speed per voltage)");
+    const double l = motor.thrust_limit_mps2;
+    const double fall = l > rail.static_mps2
+                            ? 1 - (rail.static_mps2 / l) * (rail.static_mps2 / l)
+                            : 1.0;  // no limit (a limit <= Fs was refused above)
+    Require(motor.pole_per_s * fall > slope, "motor.pole_per_s", motor.pole_per_s,
+            "pole_per_s (1 - (Fs / thrust_limit)^2 with a thrust limit) > (Fs - Fc) sqrt(2/e) / "
+            "vs = " + Fmt(slope) + " (a single steady speed per voltage)");
   }
 }
 
@@ -345,8 +351,8 @@ double StageParameters::SteadyVelocity(double u_v) const {
     const double vf = NoLoadSpeed(u);
     const double p = motor.pole_per_s;
     if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
-    // h(s) = p (|v_f| - s) - g(s) falls strictly with s (Validate: p > max |g'|); h(0) > 0 and
-    // h(|v_f|) < 0, so one root in (0, |v_f|).
+    // h(s) = T(p (|v_f| - s)) - g(s) falls through zero wherever it is zero (Validate), h(0) > 0
+    // and h(|v_f|) < 0, so one root in (0, |v_f|).
     double lo = 0, hi = std::abs(vf);
     for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
       const double mid = 0.5 * (lo + hi);
