@@ -141,6 +141,11 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   CHECK(std::filesystem::exists(out + "/tracking.csv"));
   CHECK(std::filesystem::exists(out + "/sweep.csv"));
   CHECK(std::filesystem::exists(out + "/loops.csv"));  // loop_triangle.csv: the loop's table
+  const auto loop = nlohmann::json::parse(sysid::test::ReadText(out + "/loop_1.json"));
+  CHECK(loop["levels"].size() == 12);
+  const auto margins = nlohmann::json::parse(sysid::test::ReadText(out + "/margins.json"));
+  CHECK(margins["directions"].size() == 2);
+  CHECK(margins["kp_v_per_m"].get<double>() == 19000);
 }
 
 TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {

@@ -425,6 +425,7 @@ class ReportWriter {
     md_ += MarkdownTable({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
                           "gain margin", "stable"},
                          rows);
+    WriteFileAtomically(Path("margins.json"), ToJson(m) + "\n");
     if (!m.forward.Stable() || !m.backward.Stable())
       md_ += "\nThe linearised loop of this model is unstable with these gains. The delayed "
              "viscous term fits the pulses' large-signal response rather than the stage's "
@@ -467,6 +468,7 @@ class ReportWriter {
       PlotSpec spec{"voltage-velocity loop: " + name, "u [V]", "v [mm/s]", {}, false, 900, 600};
       spec.series.push_back({name, l.u_v, 1e3 * l.v_mps, "lines"});
       Plot(fmt::format("loop_{}.png", i + 1), spec, "voltage-velocity loop " + name);
+      WriteFileAtomically(Path(fmt::format("loop_{}.json", i + 1)), ToJson(l) + "\n");
     }
     WriteFileAtomically(Path("loops.csv"), csv);
   }
