@@ -3,8 +3,9 @@
 # markdown report that sets the paper's printed numbers beside ours:
 #   pulse LS table and parameters, delay fit (cost vs tau), velocity model-vs-measured plot,
 #   dominance terms and ratio bound, hidden-size sweep table, typical-vs-dominant networks,
-#   test-waveform comparison, tracking-error table at 0.5 and 1.0 Hz,
-#   plus the paper's own pulse table and 24-neuron network evaluated as printed.
+#   test-waveform comparison, tracking-error table at 0.5 and 1.0 Hz, the voltage-velocity loop
+#   under the paper's triangle, plus the paper's own pulse table, 24-neuron network and PI gains
+#   (their loop margins) evaluated as printed.
 #
 #   experiments/reproduce_paper.sh [OUT_DIR] [BUILD_DIR]     (default: out/paper, build)
 # Uses the bundled deterministic data set (datasets/virtual); add --fresh as a third argument to
@@ -51,6 +52,13 @@ fi
   echo '```'
   "$SYSID" compare --model experiments/paper_model.json --nn datasets/paper/nn24.json \
     --no-plots "$DATA"/waveform_*.csv
+  echo '```'
+  echo
+  echo "The paper's PI gains (Kp 19000 V/m, Ki 660000 V/(m s), 1 kHz) on the paper's own model:"
+  echo "the linear loop around steady sliding (\`sysid margins\`; docs/control.md):"
+  echo
+  echo '```'
+  "$SYSID" margins --model experiments/paper_model.json
   echo '```'
   echo
   echo "## The paper's facts on the virtual stage (\`sysid stage facts\`)"
