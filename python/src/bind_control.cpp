@@ -2,6 +2,7 @@
 // models as feedforward (sysid/compare.hpp): the tracking experiment of `sysid track`.
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <string>
 
 #include "bind_common.hpp"
@@ -114,6 +115,24 @@ void BindControl(py::module_& m) {
                              })
       .def_readonly("typical_test_mse", &PipelineResult::typical_test_mse)
       .def_readonly("tracking", &PipelineResult::tracking)
+      .def_property_readonly(
+          "margins",
+          [](const PipelineResult& r) -> std::optional<py::dict> {
+            if (!r.margins) return std::nullopt;
+            py::dict out;
+            for (const auto& [name, m] : {std::pair<const char*, const LoopMargins&>{
+                                              "forward", r.margins->forward},
+                                          {"backward", r.margins->backward}}) {
+              py::dict d;
+              d["crossover_rad_s"] = m.crossover_rad_s;
+              d["phase_margin_deg"] = m.phase_margin_deg;
+              d["gain_margin"] = m.gain_margin;
+              d["stable"] = m.Stable();
+              out[name] = d;
+            }
+            return out;
+          },
+          "the PI gains' margins on the final model per direction (None without tracking)")
       .def_property_readonly("facts_required_met",
                              [](const PipelineResult& r) -> std::optional<bool> {
                                if (!r.facts) return std::nullopt;

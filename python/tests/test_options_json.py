@@ -58,6 +58,10 @@ def test_pipeline_summary_round_trip():
         "typical_train_mse": 0.01, "typical_test_mse": 0.4,
         "tracking": [{"frequency_hz": 0.5, "ff": "nn", "max_error_m": 2e-6,
                       "rms_error_m": 1e-6}],
+        "margins": [{"direction": "forward", "crossover_rad_s": 330.0, "phase_margin_deg": 2.0,
+                     "gain_margin": 1.2, "stable": True},
+                    {"direction": "backward", "crossover_rad_s": 331.0,
+                     "phase_margin_deg": -3.0, "gain_margin": None, "stable": False}],
         "facts": [{"id": "F1", "required": True, "met": True},
                   {"id": "F7", "required": False, "met": False}],
         "facts_required_met": True,
@@ -70,6 +74,8 @@ def test_pipeline_summary_round_trip():
     assert r.typical_train_mse == 0.01 and r.typical_test_mse == 0.4
     assert r.tracking[0].scheme == "nn" and r.tracking[0].result.max_error_m == 2e-6
     assert r.facts_required_met is True
+    assert r.margins["forward"]["stable"] and not r.margins["backward"]["stable"]
+    assert r.margins["backward"]["phase_margin_deg"] == -3.0
     assert r.step_seconds == [("train", 2.0), ("identify", 0.5)]  # run order kept
     assert json.loads(r.to_json()) == summary
     assert sysid.PipelineResult.from_json(r.to_json()).to_json() == r.to_json()

@@ -62,6 +62,7 @@ TEST_CASE("pipeline summary JSON round-trips", "[pipeline][json]") {
   r.facts->facts[0].met = true;
   r.facts->facts[1].id = "F7";
   r.facts->facts[1].required = false;  // not met, but not required: required_met stays true
+  r.margins = sysid::AnalyzePiMargins(sysid::FrictionModel::Paper(), sysid::PiOptions{});
   const std::string text = sysid::ToJson(r);
   const sysid::PipelineResult back = sysid::PipelineResultFromJson(text, "p.json");
   CHECK(back.model.a1p == r.model.a1p);
@@ -74,6 +75,10 @@ TEST_CASE("pipeline summary JSON round-trips", "[pipeline][json]") {
   REQUIRE(back.facts);
   CHECK(back.facts->RequiredMet());
   CHECK(back.step_seconds == r.step_seconds);
+  REQUIRE(back.margins);
+  CHECK(back.margins->forward.phase_margin_deg == r.margins->forward.phase_margin_deg);
+  CHECK(back.margins->backward.gain_margin == r.margins->backward.gain_margin);
+  CHECK_FALSE(back.margins->forward.Stable());  // the paper's gains on its delayed model
   CHECK(sysid::ToJson(back) == text);
   // The CLI's output (the report path in front) reads too.
   auto cli = nlohmann::ordered_json::parse(text);
@@ -102,6 +107,17 @@ TEST_CASE("pipeline summary JSON: derived values are checked", "[pipeline][json]
   j.erase("facts");
   CHECK_THROWS_WITH(sysid::PipelineResultFromJson(j.dump(1), "p.json"),
                     Contains("facts and facts_required_met come together"));
+  // The margins' verdict is derived from the margins.
+  r.margins = sysid::AnalyzePiMargins(sysid::FrictionModel::Paper(), sysid::PiOptions{});
+  auto m = nlohmann::ordered_json::parse(sysid::ToJson(r));
+  REQUIRE(m["margins"][0]["stable"] == false);
+  m["margins"][0]["stable"] = true;
+  CHECK_THROWS_WITH(sysid::PipelineResultFromJson(m.dump(1), "p.json"),
+                    Contains("stable: expected false"));
+  m["margins"][0]["stable"] = false;
+  m["margins"][0]["direction"] = "backward";
+  CHECK_THROWS_WITH(sysid::PipelineResultFromJson(m.dump(1), "p.json"),
+                    Contains("direction: expected \"forward\""));
   // The old form (steps as an object) is rejected with the expected form named.
   auto old = nlohmann::ordered_json::parse(sysid::ToJson(Summary()));
   old["steps"] = {{"identify", 0.5}};

@@ -133,15 +133,18 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
 /// The run's summary as `sysid pipeline --json` prints it (without the report's path): model
 /// (ModelToJson), dominant, nn_inputs, hidden (the network's), network (NeuralNetworkToJson),
 /// nn_test_mse, typical_train_mse / typical_test_mse (with a typical network), tracking
-/// [{frequency_hz, ff, max_error_m, rms_error_m}], with facts: facts [{id, required, met}] and
-/// facts_required_met, and steps [{name, wall_time_s [s]}] in run order. NaN MSEs are null.
+/// [{frequency_hz, ff, max_error_m, rms_error_m}], with margins: margins [{direction (forward,
+/// backward), crossover_rad_s, phase_margin_deg, gain_margin, stable}], with facts: facts [{id,
+/// required, met}] and facts_required_met, and steps [{name, wall_time_s [s]}] in run order.
+/// NaN MSEs and crossings not found are null.
 std::string ToJson(const PipelineResult& result, int indent = 2);
 /// Reads that summary back (a "report" key, which the CLI adds, is allowed): ToJson of the
 /// result gives the text again. What the summary does not carry stays default: inputs,
 /// options, the pulse, delay and refinement results, the dominance analysis but its dominant
 /// variable, the sweep, the typical network (only its train_mse is set), comparisons, the
-/// tracking traces and metrics other than max/rms error, and the facts' texts and numbers
-/// (only id, required and met). The derived values are checked: hidden against the network,
+/// tracking traces and metrics other than max/rms error, the margins' model, gains and phase
+/// crossovers, and the facts' texts and numbers (only id, required and met). The derived values
+/// are checked: hidden against the network, each margin's stable against its margins,
 /// facts_required_met against the facts. Throws InputError "SOURCE:LINE:COL: NAME: expected
 /// ..., found ...".
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name);

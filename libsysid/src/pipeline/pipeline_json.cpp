@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
@@ -39,6 +40,18 @@ std::string ToJson(const PipelineResult& r, int indent) {
                              {"ff", t.scheme},
                              {"max_error_m", t.result.max_error_m},
                              {"rms_error_m", t.result.rms_error_m}});
+  if (r.margins) {
+    // The PI gains' verdict per direction: margins.json (the report) holds the whole analysis.
+    j["margins"] = Json::array();
+    for (const auto& [name, m] : {std::pair<const char*, const LoopMargins&>{"forward",
+                                                                          r.margins->forward},
+                                  {"backward", r.margins->backward}})
+      j["margins"].push_back({{"direction", name},
+                              {"crossover_rad_s", internal::NumberOrNull(m.crossover_rad_s)},
+                              {"phase_margin_deg", internal::NumberOrNull(m.phase_margin_deg)},
+                              {"gain_margin", internal::NumberOrNull(m.gain_margin)},
+                              {"stable", m.Stable()}});
+  }
   if (r.facts) {
     j["facts"] = Json::array();
     for (const auto& f : r.facts->facts)
@@ -57,7 +70,7 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
   const JsonNode root = doc.Root();
   // "report" is the path `sysid pipeline --json` adds in front of the library's summary.
   root.ExpectObject({"model", "dominant", "nn_inputs", "hidden", "network", "nn_test_mse",
-                     "typical_train_mse", "typical_test_mse", "tracking", "facts",
+                     "typical_train_mse", "typical_test_mse", "tracking", "margins", "facts",
                      "facts_required_met", "steps"},
                     {"report"});
   PipelineResult r;
@@ -91,6 +104,27 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
     row.result.max_error_m = t.Get("max_error_m").Number(Rule::NonNegative());
     row.result.rms_error_m = t.Get("rms_error_m").Number(Rule::NonNegative());
     r.tracking.push_back(row);
+  }
+  if (root.Has("margins")) {
+    // The verdicts only: the gains, the model's a1 and the phase crossovers are not carried.
+    const JsonNode margins = root.Get("margins");
+    margins.ExpectArray();
+    if (margins.Size() != 2) margins.Expected("two directions, forward then backward");
+    r.margins.emplace();
+    for (size_t i = 0; i < 2; ++i) {
+      const JsonNode m = margins.Element(i);
+      m.ExpectObject({"direction", "crossover_rad_s", "phase_margin_deg", "gain_margin", "stable"});
+      const char* name = i == 0 ? "forward" : "backward";
+      if (m.Get("direction").String() != name) m.Get("direction").Expected(std::string("\"") + name + "\"");
+      LoopMargins& l = i == 0 ? r.margins->forward : r.margins->backward;
+      l.crossover_rad_s = m.Get("crossover_rad_s").NumberOrNaN(Rule::Positive());
+      l.phase_margin_deg = m.Get("phase_margin_deg").NumberOrNaN();
+      l.gain_margin = m.Get("gain_margin").NumberOrNaN(Rule::Positive());
+      const JsonNode stable = m.Get("stable");
+      if (stable.Boolean() != l.Stable())
+        stable.Expected(std::string(l.Stable() ? "true" : "false") +
+                        " (phase margin > 0 and gain margin > 1 or none)");
+    }
   }
   if (root.Has("facts") != root.Has("facts_required_met"))
     root.Fail("facts and facts_required_met come together (a run with facts)");
