@@ -137,7 +137,8 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_option("--reference", p.reference_path,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);
-  cmd->add_flag("--json", o->json, "print a JSON summary (model, dominant, MSEs, tracking, the PI gains' margins, "
+  cmd->add_flag("--json", o->json,
+                "print a JSON summary (model, dominant, MSEs, tracking, the PI gains' margins, "
                 "facts' verdicts, steps)");
   cmd->callback([o] { RunPipelineCommand(*o); });
 }

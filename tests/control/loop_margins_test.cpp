@@ -55,8 +55,9 @@ TEST_CASE("loop margins of a delayed integrator: closed forms", "[control]") {
   // L = K e^(-j w d) / (j w): |L| = 1 at w = K, phase -90 - w d, -180 at w = pi / (2 d).
   const double k = 100, d = 1e-3;
   const auto m = sysid::ComputeLoopMargins(
-      [&](double w) { return k * std::exp(std::complex<double>(0, -w * d)) /
-                             std::complex<double>(0, w); },
+      [&](double w) {
+        return k * std::exp(std::complex<double>(0, -w * d)) / std::complex<double>(0, w);
+      },
       1, 1e5);
   CHECK(m.crossover_rad_s == Approx(k).epsilon(1e-9));
   CHECK(m.phase_margin_deg == Approx(90 - k * d * 180 / kPi).epsilon(1e-9));
@@ -64,8 +65,8 @@ TEST_CASE("loop margins of a delayed integrator: closed forms", "[control]") {
   CHECK(m.gain_margin == Approx(kPi / (2 * d * k)).epsilon(1e-9));
   CHECK(m.Stable());
   // No delay: the phase stays at -90 deg, so there is no phase crossover.
-  const auto free = sysid::ComputeLoopMargins(
-      [&](double w) { return k / std::complex<double>(0, w); }, 1, 1e5);
+  const auto free =
+      sysid::ComputeLoopMargins([&](double w) { return k / std::complex<double>(0, w); }, 1, 1e5);
   CHECK(free.phase_margin_deg == Approx(90).epsilon(1e-9));
   CHECK(std::isnan(free.gain_margin));
   CHECK(free.Stable());
@@ -79,8 +80,7 @@ TEST_CASE("the rough model's PI loop: the continuous limit's cubic", "[control]"
   sysid::PiOptions pi;  // the paper's gains
   pi.sample_time_s = 1e-7;
   for (int dir : {1, -1}) {
-    const double a1 = dir > 0 ? m.a1p : m.a1n, a3 = m.a3, kp = pi.kp_v_per_m,
-                 ki = pi.ki_v_per_m_s;
+    const double a1 = dir > 0 ? m.a1p : m.a1n, a3 = m.a3, kp = pi.kp_v_per_m, ki = pi.ki_v_per_m_s;
     auto cubic = [&](double w2) {
       return w2 * w2 * w2 + a1 * a1 * w2 * w2 - a3 * a3 * kp * kp * w2 - a3 * a3 * ki * ki;
     };

@@ -92,8 +92,8 @@ TEST_CASE("voltage loop: default levels, and bad input", "[identify][loop]") {
   CHECK_THROWS_AS(sysid::AnalyzeVoltageLoop(SyntheticLoop(), o), sysid::OptionsError);
   sysid::Recording no_u = SyntheticLoop();
   no_u.names[1] = "w";
-  CHECK_THROWS_WITH(sysid::AnalyzeVoltageLoop(no_u), Catch::Contains("synthetic") &&
-                                                         Catch::Contains("u [V]"));
+  CHECK_THROWS_WITH(sysid::AnalyzeVoltageLoop(no_u),
+                    Catch::Contains("synthetic") && Catch::Contains("u [V]"));
 }
 
 TEST_CASE("sysid loop on the bundled triangle test", "[identify][loop][cli]") {

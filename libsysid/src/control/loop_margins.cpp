@@ -9,7 +9,6 @@
 #include <tuple>
 
 #include "core/json_text.hpp"
-
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
@@ -75,8 +74,7 @@ LoopMargins ComputeLoopMargins(const std::function<std::complex<double>(double)>
     if (std::abs(l0) >= 1 && std::abs(l1) < 1) {  // the last such crossing wins
       m.crossover_rad_s =
           Bisect([&](double w) { return std::log(std::abs(open_loop(w))); }, w0, w1);
-      m.phase_margin_deg =
-          WrapDeg(180 + phase_near(m.crossover_rad_s, l0, phase0) * 180 / kPi);
+      m.phase_margin_deg = WrapDeg(180 + phase_near(m.crossover_rad_s, l0, phase0) * 180 / kPi);
     }
     // -180 deg (mod 360) crossed going down: the turn count of pi + phase drops.
     if (std::isnan(m.phase_crossover_rad_s) &&
@@ -101,8 +99,8 @@ std::complex<double> RoughModelPiLoop(const FrictionModel& model, int direction,
   const std::complex<double> s = 1i * omega_rad_s;
   const std::complex<double> pi_law =
       pi.kp_v_per_m + pi.ki_v_per_m_s * ts / (1.0 - std::exp(-s * ts));
-  const std::complex<double> plant =
-      model.a3 * std::exp(-s * (ts / 2 + extra_delay_s)) / (s * (s + a1 * std::exp(-s * model.tau_s)));
+  const std::complex<double> plant = model.a3 * std::exp(-s * (ts / 2 + extra_delay_s)) /
+                                     (s * (s + a1 * std::exp(-s * model.tau_s)));
   return pi_law * plant;
 }
 
@@ -134,9 +132,9 @@ std::string ToJson(const PiMarginsReport& r, int indent) {
   j["tau_s"] = r.model.tau_s;
   j["a3_mps2_per_v"] = r.model.a3;
   j["directions"] = nlohmann::ordered_json::array();
-  for (const auto& [name, a1, m] : {std::tuple<const char*, double, const LoopMargins&>{
-                                        "forward", r.model.a1p, r.forward},
-                                    {"backward", r.model.a1n, r.backward}}) {
+  for (const auto& [name, a1, m] :
+       {std::tuple<const char*, double, const LoopMargins&>{"forward", r.model.a1p, r.forward},
+        {"backward", r.model.a1n, r.backward}}) {
     nlohmann::ordered_json d;
     d["direction"] = name;
     d["a1_per_s"] = a1;

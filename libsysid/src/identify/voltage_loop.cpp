@@ -98,8 +98,7 @@ VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOpti
   std::vector<double> levels = options.levels_v;
   if (levels.empty()) {
     levels = DefaultLevels(loop.peak_forward_v, loop.start_forward_v);
-    for (double l : DefaultLevels(loop.peak_backward_v, loop.start_backward_v))
-      levels.push_back(l);
+    for (double l : DefaultLevels(loop.peak_backward_v, loop.start_backward_v)) levels.push_back(l);
   }
   for (double level : levels) {
     std::vector<double> up, down;

@@ -115,7 +115,8 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
       const JsonNode m = margins.Element(i);
       m.ExpectObject({"direction", "crossover_rad_s", "phase_margin_deg", "gain_margin", "stable"});
       const char* name = i == 0 ? "forward" : "backward";
-      if (m.Get("direction").String() != name) m.Get("direction").Expected(std::string("\"") + name + "\"");
+      if (m.Get("direction").String() != name)
+        m.Get("direction").Expected(std::string("\"") + name + "\"");
       LoopMargins& l = i == 0 ? r.margins->forward : r.margins->backward;
       l.crossover_rad_s = m.Get("crossover_rad_s").NumberOrNaN(Rule::Positive());
       l.phase_margin_deg = m.Get("phase_margin_deg").NumberOrNaN();

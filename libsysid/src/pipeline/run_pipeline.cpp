@@ -143,7 +143,8 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
 
   if (!inputs.loops.empty()) {
     step("voltage-velocity loop", [&] {
-      for (const auto& path : inputs.loops) r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path)));
+      for (const auto& path : inputs.loops)
+        r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path)));
     });
   }
 

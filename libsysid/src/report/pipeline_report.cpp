@@ -415,7 +415,9 @@ class ReportWriter {
         "it).\n\n",
         m.pi.kp_v_per_m, m.pi.ki_v_per_m_s, F(1 / m.pi.sample_time_s), F(m.model.a3),
         F(1e3 * m.model.tau_s, 3));
-    auto num = [](double v, int digits) { return std::isnan(v) ? std::string("none") : F(v, digits); };
+    auto num = [](double v, int digits) {
+      return std::isnan(v) ? std::string("none") : F(v, digits);
+    };
     std::vector<std::vector<std::string>> rows;
     for (const auto& [name, a1, l] : {std::tuple<const char*, double, const LoopMargins&>{
                                           "forward", m.model.a1p, m.forward},
