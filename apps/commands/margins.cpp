@@ -42,9 +42,7 @@ void RunMargins(const MarginsCli& o) {
   };
   Table table({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
                "phase crossover [rad/s]", "gain margin", "stable"});
-  for (const auto& [name, a1, m] :
-       {std::tuple<const char*, double, const LoopMargins&>{"forward", r.model.a1p, r.forward},
-        {"backward", r.model.a1n, r.backward}})
+  for (const auto& [name, a1, m] : r.Directions())
     table.AddRow({name, Num(a1), num(m.crossover_rad_s, "{:.1f}"),
                   num(m.phase_margin_deg, "{:.2f}"), num(m.phase_crossover_rad_s, "{:.1f}"),
                   num(m.gain_margin, "{:.3f}"), m.Stable() ? "yes" : "no"});

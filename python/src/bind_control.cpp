@@ -2,7 +2,6 @@
 // models as feedforward (sysid/compare.hpp): the tracking experiment of `sysid track`.
 #include <cstdint>
 #include <optional>
-#include <utility>
 #include <string>
 
 #include "bind_common.hpp"
@@ -120,9 +119,7 @@ void BindControl(py::module_& m) {
           [](const PipelineResult& r) -> std::optional<py::dict> {
             if (!r.margins) return std::nullopt;
             py::dict out;
-            for (const auto& [name, m] : {std::pair<const char*, const LoopMargins&>{
-                                              "forward", r.margins->forward},
-                                          {"backward", r.margins->backward}}) {
+            for (const auto& [name, a1, m] : r.margins->Directions()) {
               py::dict d;
               d["crossover_rad_s"] = m.crossover_rad_s;
               d["phase_margin_deg"] = m.phase_margin_deg;

@@ -11,6 +11,7 @@
 #define SYSID_CONTROL_HPP_
 
 #include <Eigen/Core>
+#include <array>
 #include <complex>
 #include <cstdint>
 #include <functional>
@@ -83,8 +84,17 @@ LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const
 struct PiMarginsReport {
   FrictionModel model;
   PiOptions pi;
-  double extra_delay_s = 0;  ///< [s] actuator delay beyond the sample-and-hold
+  double extra_delay_s = 0;       ///< [s] actuator delay beyond the sample-and-hold
   LoopMargins forward, backward;  ///< a1p, a1n
+  struct Direction {
+    const char* name;  ///< "forward", "backward"
+    double a1_per_s;   ///< [1/s] the model's a1p or a1n
+    const LoopMargins& margins;
+  };
+  /// Forward then backward, for writers that list both.
+  std::array<Direction, 2> Directions() const {
+    return {{{"forward", model.a1p, forward}, {"backward", model.a1n, backward}}};
+  }
 };
 /// RoughModelPiMargins in both directions.
 PiMarginsReport AnalyzePiMargins(const FrictionModel& model, const PiOptions& pi,

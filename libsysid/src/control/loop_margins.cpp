@@ -6,7 +6,6 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <tuple>
 
 #include "core/json_text.hpp"
 #include "sysid/control.hpp"
@@ -132,9 +131,7 @@ std::string ToJson(const PiMarginsReport& r, int indent) {
   j["tau_s"] = r.model.tau_s;
   j["a3_mps2_per_v"] = r.model.a3;
   j["directions"] = nlohmann::ordered_json::array();
-  for (const auto& [name, a1, m] :
-       {std::tuple<const char*, double, const LoopMargins&>{"forward", r.model.a1p, r.forward},
-        {"backward", r.model.a1n, r.backward}}) {
+  for (const auto& [name, a1, m] : r.Directions()) {
     nlohmann::ordered_json d;
     d["direction"] = name;
     d["a1_per_s"] = a1;

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
-#include <utility>
 
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
@@ -43,9 +42,7 @@ std::string ToJson(const PipelineResult& r, int indent) {
   if (r.margins) {
     // The PI gains' verdict per direction: margins.json (the report) holds the whole analysis.
     j["margins"] = Json::array();
-    for (const auto& [name, m] : {std::pair<const char*, const LoopMargins&>{"forward",
-                                                                          r.margins->forward},
-                                  {"backward", r.margins->backward}})
+    for (const auto& [name, a1, m] : r.margins->Directions())
       j["margins"].push_back({{"direction", name},
                               {"crossover_rad_s", internal::NumberOrNull(m.crossover_rad_s)},
                               {"phase_margin_deg", internal::NumberOrNull(m.phase_margin_deg)},

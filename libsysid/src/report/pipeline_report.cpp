@@ -419,9 +419,7 @@ class ReportWriter {
       return std::isnan(v) ? std::string("none") : F(v, digits);
     };
     std::vector<std::vector<std::string>> rows;
-    for (const auto& [name, a1, l] : {std::tuple<const char*, double, const LoopMargins&>{
-                                          "forward", m.model.a1p, m.forward},
-                                      {"backward", m.model.a1n, m.backward}})
+    for (const auto& [name, a1, l] : m.Directions())
       rows.push_back({name, F(a1), num(l.crossover_rad_s, 4), num(l.phase_margin_deg, 3),
                       num(l.gain_margin, 3), l.Stable() ? "yes" : "**no**"});
     md_ += MarkdownTable({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
