@@ -15,11 +15,16 @@ namespace sysid {
 // ---- The paper's printed numbers ------------------------------------------------------------
 
 const std::vector<std::pair<double, double>>& PaperFacts::PulseTable() {
-  // Section "Parameter Identification" (datasets/paper/pulse_table.csv), in the pulse order of
-  // PulseProcedure's default amplitudes.
-  static const std::vector<std::pair<double, double>> table{
-      {-1.8, -0.03393}, {1.3, 0.04465},   {-2.0, -0.04622}, {1.5, 0.05742},   {-2.1, -0.04991},
-      {1.6, 0.06222},   {-2.3, -0.05562}, {1.7, 0.06863},   {-2.5, -0.07120}, {2.0, 0.08519}};
+  // The stage's copy of the paper's table (datasets/paper/pulse_table.csv), in the pulse order
+  // of PulseProcedure's default amplitudes.
+  static const std::vector<std::pair<double, double>> table = [] {
+    const auto paper = StageParameters::PaperPulseTable();
+    std::vector<std::pair<double, double>> ordered;
+    for (double u : PulseProcedure{}.amplitudes_v)
+      for (const auto& row : paper)
+        if (row.first == u) ordered.push_back(row);
+    return ordered;
+  }();
   return table;
 }
 
