@@ -25,6 +25,7 @@ LAYERS = [
     ["motion"],
     ["model", "input"],
     ["simulate"],
+    ["hysteresis"],
     ["identify"],
     ["delay"],
     ["dominance"],

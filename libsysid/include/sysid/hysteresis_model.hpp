@@ -1,0 +1,57 @@
+// The common face of the hysteresis models (the paper's rivals, docs/hysteresis.md): each maps a
+// sampled input u (voltage [V] or force [N]) to an output y (displacement [m]) and, where the
+// model allows, back. Prandtl–Ishlinskii models live in sysid/hysteresis.hpp, Bouc–Wen models in
+// sysid/hysteresis_bouc_wen.hpp; both implement this interface so that the CLI
+// (`sysid hysteresis`), the comparison tables and Python treat them alike.
+#ifndef SYSID_HYSTERESIS_MODEL_HPP_
+#define SYSID_HYSTERESIS_MODEL_HPP_
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sysid {
+
+/// One fitted parameter with its unit and standard error (NaN when the fit gives none).
+struct HysteresisParameter {
+  std::string name;       ///< e.g. "w3", "alpha"
+  std::string unit;       ///< SI unit, "1" for a pure number
+  double value = 0;
+  double std_error = 0;   ///< NaN when unknown (not estimated, or the normal matrix is singular)
+};
+
+/// What a fit did, for every model alike (the Ceres-style summary).
+struct HysteresisFitSummary {
+  std::string kind;                 ///< the model's kind() string
+  int samples = 0;                  ///< training samples used
+  double fit_time_s = 0;            ///< [s] wall time of the fit
+  double training_rms = 0;          ///< RMS of y_model - y on the training samples, in y's unit
+  bool converged = true;
+  std::string message;              ///< why the fit stopped; warnings (ill-conditioning, bounds)
+};
+
+/// A hysteresis model y = H[u]. Implementations are immutable after construction (thread-safe
+/// to simulate from several threads).
+class HysteresisModel {
+ public:
+  virtual ~HysteresisModel() = default;
+  /// "pi", "gpi", "rdpi", "bouc-wen", "bouc-wen-piezo" or "nn-operators" (the CLI's --model).
+  virtual std::string kind() const = 0;
+  /// y [m] for the samples u, spaced dt_s [s] apart, from the model's initial state.
+  virtual Eigen::VectorXd Simulate(const Eigen::VectorXd& u, double dt_s) const = 0;
+  /// Whether Invert is available for this model (and these parameters).
+  virtual bool invertible() const = 0;
+  /// u such that Simulate(u) follows y_desired [m]; throws NumericalError with the reason when
+  /// the model cannot be inverted, InputError (naming the sample) when y_desired leaves the
+  /// model's range.
+  virtual Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const = 0;
+  /// Every parameter, in a fixed order, with its unit and standard error.
+  virtual std::vector<HysteresisParameter> parameters() const = 0;
+  /// The model file's JSON text ({"kind": ..., ...}); ReadHysteresisModel reads it back.
+  virtual std::string ToJson(int indent = 2) const = 0;
+};
+
+}  // namespace sysid
+
+#endif  // SYSID_HYSTERESIS_MODEL_HPP_
