@@ -40,6 +40,13 @@ class HysteresisModel {
   virtual std::string kind() const = 0;
   /// y [m] for the samples u, spaced dt_s [s] apart, from the model's initial state.
   virtual Eigen::VectorXd Simulate(const Eigen::VectorXd& u, double dt_s) const = 0;
+  /// y [m] over one period of a periodic input in its periodic steady state: `u_period` is one
+  /// period of u (the input is u_period repeated forever), the result the last simulated period
+  /// once two successive periods agree to `tolerance` [m] (max |Δy|). The default simulates
+  /// 2, 4, 8, ... periods from the initial state, up to `max_periods` (then NumericalError
+  /// saying how far the last two periods still differ); models with a cheaper way override it.
+  virtual Eigen::VectorXd SimulatePeriodic(const Eigen::VectorXd& u_period, double dt_s,
+                                           double tolerance = 1e-12, int max_periods = 256) const;
   /// Whether Invert is available for this model (and these parameters).
   virtual bool invertible() const = 0;
   /// u such that Simulate(u) follows y_desired [m]; throws NumericalError with the reason when
