@@ -1,0 +1,205 @@
+// sysid hysteresis fit|simulate|invert: the hysteresis models (Prandtl–Ishlinskii family,
+// Bouc–Wen, the operator-input network) fitted, simulated and inverted on recordings.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "cli/registry.hpp"
+#include "sysid/compare_hysteresis.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+
+namespace sysid::cli {
+namespace {
+
+struct HysteresisCli {
+  // fit
+  std::string kind;
+  std::vector<std::string> recordings;
+  HysteresisFitOptions options;
+  bool json = false;
+  std::string output;
+  // simulate / invert
+  std::string model_path;
+  std::string input;
+  bool periodic = false;
+  bool no_offset = false;
+};
+
+std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
+  ReadOptions ro;
+  ro.required_columns = {"t", "u", "x"};
+  ro.any_of_columns = {};
+  std::vector<Recording> recs;
+  for (const auto& p : paths) recs.push_back(ReadRecording(p, ro));
+  return recs;
+}
+
+void PrintSummary(const HysteresisFitSummary& s, const HysteresisModel& model) {
+  std::cout << fmt::format("{}: fitted on {} samples in {:.3g} s; training RMS {:.4g} m{}\n",
+                           s.kind, s.samples, s.fit_time_s, s.training_rms,
+                           s.converged ? "" : " (not converged)");
+  if (!s.message.empty()) std::cout << s.message << "\n";
+  const auto params = model.parameters();
+  if (params.size() > 60) {
+    std::cout << params.size() << " parameters (see the model file)\n";
+    return;
+  }
+  Table t({"parameter", "value", "std error", "unit"});
+  for (const auto& p : params)
+    t.AddRow({p.name, Num(p.value), std::isnan(p.std_error) ? "-" : Num(p.std_error, 3), p.unit});
+  std::cout << t.Render();
+}
+
+void RunFit(const HysteresisCli& o) {
+  HysteresisFitOptions options = o.options;
+  options.pi.offset = !o.no_offset;
+  try {
+    options.Validate(o.kind);
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"}});
+  }
+  const std::vector<Recording> recs = ReadAll(o.recordings);
+  HysteresisFitSummary s;
+  std::unique_ptr<HysteresisModel> model;
+  try {
+    model = FitHysteresis(o.kind, recs, options, &s);
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"}});
+  }
+  const std::string summary_json = HysteresisFitSummaryJson(s, *model, 2);
+  nlohmann::ordered_json file = nlohmann::ordered_json::parse(model->ToJson(2));
+  nlohmann::ordered_json fit = nlohmann::ordered_json::parse(summary_json);
+  fit.erase("parameters");  // the model file holds them already
+  fit["recordings"] = o.recordings;
+  file["fit"] = fit;
+  WriteFileAtomically(o.output, file.dump(2) + "\n");
+  if (o.json) {
+    std::cout << summary_json;
+    return;
+  }
+  PrintSummary(s, *model);
+  std::cout << "wrote " << o.output << "\n";
+}
+
+void RunSimulate(const HysteresisCli& o) {
+  const auto model = ReadHysteresisModel(o.model_path);
+  ReadOptions ro;
+  ro.required_columns = {"t", "u"};
+  ro.any_of_columns = {};
+  const Recording rec = ReadRecording(o.input, ro);
+  const double dt = RecordingStep(rec);
+  const Eigen::VectorXd u = rec.column("u");
+  const Eigen::VectorXd y = o.periodic ? model->SimulatePeriodic(u, dt) : model->Simulate(u, dt);
+  Recording out;
+  out.source = o.output;
+  out.names = {"t", "u", "x_model"};
+  out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"input", o.input},
+                  {"periodic", o.periodic ? "true" : "false"}};
+  out.data.resize(u.size(), 3);
+  out.data.col(0) = rec.column("t");
+  out.data.col(1) = u;
+  out.data.col(2) = y;
+  WriteRecording(o.output, out);
+  std::cout << fmt::format("{}: simulated {} samples -> {}\n", model->kind(), u.size(), o.output);
+}
+
+void RunInvert(const HysteresisCli& o) {
+  const auto model = ReadHysteresisModel(o.model_path);
+  ReadOptions ro;
+  ro.required_columns = {"t", "x"};
+  ro.any_of_columns = {};
+  const Recording ref = ReadRecording(o.input, ro);
+  const double dt = RecordingStep(ref);
+  if (!model->invertible()) {
+    try {
+      model->Invert(ref.column("x"), dt);
+    } catch (const NumericalError& e) {
+      throw InputError(o.model_path + ": " + e.what());
+    }
+    throw InputError(o.model_path + ": the " + model->kind() + " model is not invertible");
+  }
+  Eigen::VectorXd u;
+  try {
+    u = model->Invert(ref.column("x"), dt);
+  } catch (const InputError& e) {
+    throw InputError(o.input + ": " + e.what());
+  }
+  Recording out;
+  out.source = o.output;
+  out.names = {"t", "x", "u"};
+  out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"reference", o.input}};
+  out.data.resize(u.size(), 3);
+  out.data.col(0) = ref.column("t");
+  out.data.col(1) = ref.column("x");
+  out.data.col(2) = u;
+  WriteRecording(o.output, out);
+  std::cout << fmt::format("{}: inverted {} samples -> {}\n", model->kind(), u.size(), o.output);
+}
+
+void AddHysteresisCommand(CLI::App& app) {
+  CLI::App* h = app.add_subcommand(
+      "hysteresis",
+      "Hysteresis models of an actuator's input u [V] to displacement x [m]: Prandtl-Ishlinskii "
+      "(pi, asymmetric gpi, rate-dependent rdpi), Bouc-Wen and the operator-input network; fit, "
+      "simulate, invert (docs/hysteresis.md)");
+  h->require_subcommand(1);
+  auto o = std::make_shared<HysteresisCli>();
+
+  CLI::App* fit = h->add_subcommand("fit", "Fit a model to recordings (columns t [s], u [V], x [m])");
+  fit->add_option("--model", o->kind, "model kind")
+      ->required()
+      ->check(CLI::IsMember(HysteresisKinds()))
+      ->type_name("KIND");
+  fit->add_option("--operators", o->options.operators,
+                  fmt::format("play operators (PI family: 1..{0}; nn-operators: 0..{0}, 0 = the "
+                              "static network on u alone)", kMaxPlayOperators))
+      ->capture_default_str();
+  fit->add_flag("--no-offset", o->no_offset,
+                "PI family: no sensor-offset term c [m] (default: fitted)");
+  fit->add_option("--degree", o->options.pi.polynomial_degree,
+                  "gpi: degree of the input polynomial (2..5)")
+      ->capture_default_str();
+  fit->add_option("--hidden", o->options.network.hidden, "nn-operators: tanh units")
+      ->capture_default_str();
+  fit->add_option("--epochs", o->options.network.max_epochs, "nn-operators: LM epochs per network")
+      ->capture_default_str();
+  fit->add_option("--seed", o->options.network.seed, "nn-operators: initialisation seed")
+      ->capture_default_str();
+  fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
+      ->required()
+      ->type_name("REC.csv");
+  fit->add_flag("--json", o->json,
+                "print {kind, samples, fit_time_s, training_rms_m, converged, message, "
+                "parameters: [{name, unit, value, std_error}]}");
+  AddOutputOption(fit, o->output, "write the model file (JSON)")->required();
+  fit->callback([o] { RunFit(*o); });
+
+  CLI::App* sim = h->add_subcommand(
+      "simulate", "Drive a model with a recording's u from the model's initial state; write t, u, x_model");
+  sim->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  sim->add_option("recording", o->input, "CSV with t [s] and u [V]")->required()->type_name("REC.csv");
+  sim->add_flag("--periodic", o->periodic,
+                "u is one period of a periodic input: simulate to the periodic steady state and "
+                "write the last period");
+  AddOutputOption(sim, o->output, "write t, u, x_model (CSV)")->required();
+  sim->callback([o] { RunSimulate(*o); });
+
+  CLI::App* inv = h->add_subcommand(
+      "invert", "The input u [V] that makes the model follow a reference x [m]; write t, x, u");
+  inv->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  inv->add_option("reference", o->input, "CSV with t [s] and x [m]")->required()->type_name("REF.csv");
+  AddOutputOption(inv, o->output, "write t, x, u (CSV)")->required();
+  inv->callback([o] { RunInvert(*o); });
+}
+
+const bool kRegistered = RegisterCommand(55, &AddHysteresisCommand);
+
+}  // namespace
+}  // namespace sysid::cli

@@ -1,0 +1,99 @@
+// One door to every hysteresis model: fit by kind, read any model file.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/json_text.hpp"
+#include "sysid/compare_hysteresis.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+const std::vector<std::string>& HysteresisKinds() {
+  static const std::vector<std::string> kinds{"pi", "gpi", "rdpi", "bouc-wen", "bouc-wen-piezo",
+                                              "nn-operators"};
+  return kinds;
+}
+
+namespace {
+void RequireKind(const std::string& kind) {
+  for (const auto& k : HysteresisKinds())
+    if (k == kind) return;
+  throw OptionsError("hysteresis model kind '" + kind +
+                         "': expected pi, gpi, rdpi, bouc-wen, bouc-wen-piezo or nn-operators",
+                     "kind");
+}
+}  // namespace
+
+void HysteresisFitOptions::Validate(const std::string& kind) const {
+  RequireKind(kind);
+  const int lo = kind == "nn-operators" ? 0 : 1;
+  if (operators < lo || operators > kMaxPlayOperators)
+    throw OptionsError(fmt::format("HysteresisFitOptions::operators = {}. Violated constraint: "
+                                   "{} <= operators <= {} (kMaxPlayOperators) for {}",
+                                   operators, lo, kMaxPlayOperators, kind),
+                       "operators");
+}
+
+std::unique_ptr<HysteresisModel> FitHysteresis(const std::string& kind,
+                                               const std::vector<Recording>& recordings,
+                                               const HysteresisFitOptions& options,
+                                               HysteresisFitSummary* summary) {
+  options.Validate(kind);
+  if (kind == "pi" || kind == "gpi" || kind == "rdpi") {
+    PiFitOptions o = options.pi;
+    o.form = PiFormFromString(kind);
+    o.operators = options.operators;
+    return FitPrandtlIshlinskii(recordings, o, summary);
+  }
+  if (kind == "nn-operators") {
+    OperatorNetworkOptions o = options.network;
+    o.operators = options.operators;
+    return FitOperatorNetwork(recordings, o, summary);
+  }
+  // ---- Bouc–Wen: wired by the lead to FitBoucWen(form, recordings, options, summary*) ----
+  if (kind == "bouc-wen")
+    throw OptionsError("hysteresis model 'bouc-wen' is not built in this version", "kind");
+  if (kind == "bouc-wen-piezo")
+    throw OptionsError("hysteresis model 'bouc-wen-piezo' is not built in this version", "kind");
+  throw OptionsError("hysteresis model kind '" + kind + "' unknown", "kind");
+}
+
+std::unique_ptr<HysteresisModel> HysteresisModelFromJson(std::string_view text,
+                                                         const std::string& source) {
+  const internal::JsonDocument doc(text, source);
+  const internal::JsonNode root = doc.Root();
+  if (!root.json().is_object()) root.Expected("a JSON object {\"kind\": ...}");
+  const internal::JsonNode kind_node = root.Get("kind");
+  const std::string kind = kind_node.String(true);
+  if (kind == "pi" || kind == "gpi" || kind == "rdpi") return PrandtlIshlinskiiFromJson(text, source);
+  if (kind == "nn-operators") return OperatorNetworkFromJson(text, source);
+  // ---- Bouc–Wen: wired by the lead to BoucWenModelFromJson(text, source) ----
+  if (kind == "bouc-wen" || kind == "bouc-wen-piezo")
+    throw OptionsError("hysteresis model '" + kind + "' is not built in this version", "kind");
+  kind_node.Expected("one of pi, gpi, rdpi, bouc-wen, bouc-wen-piezo, nn-operators");
+}
+
+std::unique_ptr<HysteresisModel> ReadHysteresisModel(const std::string& path) {
+  return HysteresisModelFromJson(ReadFile(path), path);
+}
+
+std::string HysteresisFitSummaryJson(const HysteresisFitSummary& s, const HysteresisModel& model,
+                                     int indent) {
+  using internal::NumberOrNull;
+  nlohmann::ordered_json j;
+  j["kind"] = s.kind;
+  j["samples"] = s.samples;
+  j["fit_time_s"] = s.fit_time_s;
+  j["training_rms_m"] = NumberOrNull(s.training_rms);
+  j["converged"] = s.converged;
+  j["message"] = s.message;
+  nlohmann::ordered_json params = nlohmann::ordered_json::array();
+  for (const auto& p : model.parameters())
+    params.push_back({{"name", p.name}, {"unit", p.unit}, {"value", NumberOrNull(p.value)},
+                      {"std_error", NumberOrNull(p.std_error)}});
+  j["parameters"] = params;
+  return internal::DumpJson(j, indent);
+}
+
+}  // namespace sysid
