@@ -12,6 +12,7 @@
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
+#include "sysid/dominance_candidates.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
@@ -143,6 +144,35 @@ void RunInvert(const HysteresisCli& o) {
   std::cout << fmt::format("{}: inverted {} samples -> {}\n", model->kind(), u.size(), o.output);
 }
 
+void RunDominance(const HysteresisCli& o, const CandidateRankingOptions& options) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const auto& path : o.recordings) {
+    ReadOptions ro;
+    ro.required_columns = {"t", "u", "x"};
+    ro.any_of_columns = {};
+    const CandidateRanking r = RankCandidates(ReadRecording(path, ro), options);
+    if (!o.json) {
+      std::cout << r.BriefReport();
+      continue;
+    }
+    nlohmann::ordered_json j;
+    j["source"] = r.source;
+    j["dominant"] = r.dominant;
+    j["margin"] = r.margin;
+    j["r2"] = r.r2;
+    j["residual_rms_v"] = r.residual_rms_v;
+    for (const char* key : {"ranking", "terms"}) {
+      nlohmann::ordered_json list = nlohmann::ordered_json::array();
+      for (const auto& t : key[0] == 'r' ? r.ranking : r.terms)
+        list.push_back({{"name", t.name}, {"rms_v", t.rms}, {"peak_v", t.peak},
+                        {"ratio_to_top", t.ratio_to_top}, {"negligible", t.negligible}});
+      j[key] = list;
+    }
+    all.push_back(j);
+  }
+  if (o.json) std::cout << all.dump(2) << "\n";
+}
+
 void AddHysteresisCommand(CLI::App& app) {
   CLI::App* h = app.add_subcommand(
       "hysteresis",
@@ -164,7 +194,7 @@ void AddHysteresisCommand(CLI::App& app) {
   fit->add_flag("--no-offset", o->no_offset,
                 "PI family: no sensor-offset term c [m] (default: fitted)");
   fit->add_option("--degree", o->options.pi.polynomial_degree,
-                  "gpi: degree of the input polynomial (2..5)")
+                  "gpi: degree of the input polynomial a1 u + a3 u^3 (+ a5 u^5), odd powers fitted (3..5)")
       ->capture_default_str();
   fit->add_option("--hidden", o->options.network.hidden, "nn-operators: tanh units")
       ->capture_default_str();
@@ -197,6 +227,21 @@ void AddHysteresisCommand(CLI::App& app) {
   inv->add_option("reference", o->input, "CSV with t [s] and x [m]")->required()->type_name("REF.csv");
   AddOutputOption(inv, o->output, "write t, x, u (CSV)")->required();
   inv->callback([o] { RunInvert(*o); });
+
+  auto rank = std::make_shared<CandidateRankingOptions>();
+  CLI::App* dom = h->add_subcommand(
+      "dominance",
+      "Rank x, v and a (with play operators of x) by the RMS of their terms in a linear inverse "
+      "model u ~ c + th_x x + th_v v + th_a a + sum th_i F_ri[x] [V]: which variable carries "
+      "the input (a stack: x; the stage: v)");
+  dom->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
+      ->required()
+      ->type_name("REC.csv");
+  dom->add_option("--operators", rank->operators, "play operators on x")
+      ->check(CLI::Range(0, kMaxPlayOperators))
+      ->capture_default_str();
+  dom->add_flag("--json", o->json, "print [{source, dominant, margin, r2, residual_rms_v, ranking, terms}]");
+  dom->callback([o, rank] { RunDominance(*o, *rank); });
 }
 
 const bool kRegistered = RegisterCommand(55, &AddHysteresisCommand);

@@ -69,6 +69,7 @@ void BindIdentify(py::module_& m);
 void BindNeural(py::module_& m);
 void BindStage(py::module_& m);
 void BindControl(py::module_& m);  // after BindStage: adds to sysid.stage
+void BindHysteresis(py::module_& m);
 
 }  // namespace sysid::python
 

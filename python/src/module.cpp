@@ -60,6 +60,7 @@ PYBIND11_MODULE(_sysid, m) {
   BindNeural(m);
   BindStage(m);
   BindControl(m);
+  BindHysteresis(m);
 }
 
 }  // namespace sysid::python

@@ -9,14 +9,17 @@
 // The three forms share the operators and a fit by non-negative least squares:
 //   pi   (classical, Krasnosel'skii & Pokrovskii; Kuhnen 2003)
 //        y_k = p0 u_k + sum_i w_i F_ri[u]_k + c
-//   gpi  (asymmetric: a polynomial input function, after Gu, Zhu & Su, IEEE TIE 61(3) 2014)
-//        y_k = sum_{j=1..m} a_j u_k^j + sum_i w_i F_ri[u]_k + c
-//   rdpi (rate-dependent weights linear in the input rate, after Ang, Khosla & Riviere,
-//        IEEE/ASME T-Mech 12(2) 2007)
+//   gpi  (asymmetric: a polynomial input function, Gu, Zhu & Su, IEEE TIE 61(3) 2014)
+//        y_k = sum_{j=1..m} a_j u_k^j + sum_i w_i F_ri[u]_k + c; the fit holds the even
+//        powers at 0 and the odd ones >= 0 (their a_1 u + a_3 u^3), monotone by construction
+//   rdpi (rate-dependent weights linear in a rate, after Ang, Khosla & Riviere, IEEE/ASME
+//        T-Mech 12(2) 2007)
 //        y_k = (p0 + q0 rho_k) u_k + sum_i (w_i + q_i rho_k) F_ri[u]_k + c,
-//        rho_k = |u_{k-1} - u_{k-2}| / dt  [V/s]  (the previous step's rate, so that a step's
-//        weights are known before u_k and the inverse is a monotone scalar solve)
-// with p0, w_i, q_i >= 0 (the model stays monotone in u), c the sensor offset [m] (free sign).
+//        rho_k = |u_{k-1} - u_{k-2}| / dt  [V/s]  (the previous step's input rate, so that a
+//        step's weights are known before u_k and the inverse is a monotone scalar solve; the
+//        inverse feeds its own errors back through the rate with the gain
+//        sum q max|u| / (dt p0) and is refused when that reaches 1)
+// with p0 (a_1), w_i, q_i >= 0 (the model stays monotone in u), c the sensor offset [m] (free sign).
 // The classical model's inverse is again a PI model, in closed form (Kuhnen 2003, eqs. 8–10):
 //   r'_i = sum_{j<=i} w_j (r_i - r_j),   w'_0 = 1/w_0,
 //   w'_i = -w_i / ((w_0 + ... + w_i)(w_0 + ... + w_{i-1})),  (w_0 = p0, r_0 = 0)
@@ -69,8 +72,9 @@ struct PiParameters {
   std::vector<double> rate_weights;
   double offset_m = 0;              ///< c [m]
   double initial_input_v = 0;       ///< [V] the input before the first sample
-  /// z_i(-1) [V], one per threshold, each within r_i of initial_input_v; empty: all equal to
-  /// initial_input_v (the operators at rest at that input).
+  /// z_i(-1) [V], one per threshold, a state some input history reaches (|z_i - z_{i-1}| <=
+  /// r_i - r_{i-1}, z_{-1} = initial_input_v, r_{-1} = 0); empty: all equal to initial_input_v
+  /// (the operators at rest at that input).
   std::vector<double> initial_state;
   double input_min_v = 0;           ///< [V] the training input range (Invert's domain)
   double input_max_v = 0;           ///< [V] > input_min_v
@@ -87,7 +91,7 @@ struct PiFitOptions {
   /// R = (max u - min u) / 2 over the training recordings.
   std::vector<double> thresholds;
   bool offset = true;           ///< fit the sensor offset c [m]; false: c = 0
-  int polynomial_degree = 3;    ///< gpi: m, the degree of the input polynomial (2..5)
+  int polynomial_degree = 3;    ///< gpi: m, the input polynomial's degree (3..5; odd powers fitted)
   /// Warn when the inverse's gain spread (largest over smallest slope of the loading curves,
   /// an upper bound of the inverse's condition) exceeds this [dimensionless].
   double ill_conditioned_ratio = 1e6;

@@ -125,8 +125,8 @@ void PiFitOptions::Validate() const {
       fail(f, thresholds[i], fmt::format("{} > thresholds[{}] = {} (strictly increasing)", f, i - 1,
                                          thresholds[i - 1]));
   }
-  if (polynomial_degree < 2 || polynomial_degree > 5)
-    fail("polynomial_degree", polynomial_degree, "2 <= polynomial_degree <= 5");
+  if (polynomial_degree < 3 || polynomial_degree > 5)
+    fail("polynomial_degree", polynomial_degree, "3 <= polynomial_degree <= 5");
   if (!(ill_conditioned_ratio > 1)) fail("ill_conditioned_ratio", ill_conditioned_ratio, "> 1");
   if (!(range_margin >= 0 && range_margin <= 1)) fail("range_margin", range_margin, "in [0, 1]");
 }
@@ -178,8 +178,9 @@ std::unique_ptr<PrandtlIshlinskiiModel> FitPrandtlIshlinskii(
   Eigen::Index row = 0;
   for (size_t r = 0; r < recordings.size(); ++r) {
     const Eigen::VectorXd u = recordings[r].column("u");
+    const Eigen::VectorXd x = recordings[r].column("x");
     internal::FillTerms(p, u, steps[r], row, &A);
-    b.segment(row, u.size()) = recordings[r].column("x");
+    b.segment(row, u.size()) = x;
     row += u.size();
   }
   std::vector<bool> bounded(static_cast<size_t>(P)), fixed(static_cast<size_t>(P), false);
@@ -189,12 +190,14 @@ std::unique_ptr<PrandtlIshlinskiiModel> FitPrandtlIshlinskii(
     bounded[static_cast<size_t>(j)] = layout.bounded(j);
     scale[j] = A.col(j).norm();
     if (!(scale[j] > 0)) {  // e.g. a rate column of recordings that never move
-      fixed[static_cast<size_t>(j)] = true;
       scale[j] = 1;
+      fixed[static_cast<size_t>(j)] = true;
       notes.push_back(layout.name(j) + " fixed at 0 (its regressor is zero)");
     }
   }
   if (!options.offset) fixed[static_cast<size_t>(layout.offset())] = true;
+  for (int j = 0; j < P; ++j)
+    if (layout.held(j)) fixed[static_cast<size_t>(j)] = true;
   for (int j = 0; j < P; ++j)
     if (fixed[static_cast<size_t>(j)]) A.col(j).setZero();
   A.array().rowwise() /= scale.transpose().array();

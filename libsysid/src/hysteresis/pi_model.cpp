@@ -68,14 +68,20 @@ void PiParameters::Validate() const {
     if (initial_state.size() != n)
       Fail("initial_state", static_cast<double>(initial_state.size()),
            fmt::format("empty or one state per threshold ({})", n));
+    // States some input history reaches: |z_i - z_{i-1}| <= r_i - r_{i-1} (z_{-1} the
+    // initial input, r_{-1} = 0); 1e-12 relative for rounding.
     for (size_t i = 0; i < n; ++i) {
-      const double gap = std::abs(initial_state[i] - initial_input_v);
-      // A play state is reachable only within r_i of the input (1e-12 relative: rounding).
+      const double previous = i == 0 ? initial_input_v : initial_state[i - 1];
+      const double band = thresholds[i] - (i == 0 ? 0.0 : thresholds[i - 1]);
       if (!std::isfinite(initial_state[i]) ||
-          gap > thresholds[i] * (1 + 1e-12) + 1e-15 * std::abs(initial_input_v))
+          std::abs(initial_state[i] - previous) >
+              band + 1e-12 * (thresholds[i] + std::abs(previous)))
         Fail(fmt::format("initial_state[{}]", i), initial_state[i],
-             fmt::format("|initial_state[{}] - initial_input_v| <= thresholds[{}] = {}", i, i,
-                         thresholds[i]));
+             i == 0 ? fmt::format("|initial_state[0] - initial_input_v| <= thresholds[0] = {} "
+                                  "(a state some input history reaches)", thresholds[0])
+                    : fmt::format("|initial_state[{0}] - initial_state[{1}]| <= thresholds[{0}] "
+                                  "- thresholds[{1}] = {2} (a state some input history reaches)",
+                                  i, i - 1, band));
     }
   }
   if (!std::isfinite(input_min_v)) Fail("input_min_v", input_min_v, "a finite number");
@@ -146,6 +152,7 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Simulate(const Eigen::VectorXd& u, doubl
   Eigen::VectorXd y(u.size());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     const double uk = u[k];
+    // The input's rate over the previous step (sysid/hysteresis.hpp).
     const double rho = l.rate() && k >= 2 ? std::abs(u[k - 1] - u[k - 2]) / dt_s : 0.0;
     double sum = p_.offset_m + q0 * rho * uk, power = uk;
     for (int j = 0; j < l.m; ++j, power *= uk) sum += p_.polynomial[static_cast<size_t>(j)] * power;
@@ -258,7 +265,23 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Invert(const Eigen::VectorXd& y_desired,
   const internal::PiLayout l = internal::LayoutOf(p_);
   std::vector<double> z = internal::InitialState(p_);
   const double q0 = l.rate() ? p_.rate_weights[0] : 0.0;
+  if (l.rate()) {
+    // An error e in u_{k-1} moves the next step's rate by e/dt and its output by up to
+    // (q0 |u| + sum q_i |z_i|) e / dt, which u_k undoes at the slope p0: the inverse's errors
+    // grow by that gain per step. Refuse when it reaches 1 on the input range.
+    const double level = std::max(std::abs(lo), std::abs(hi));
+    double q_sum = q0;
+    for (size_t i = 1; i < p_.rate_weights.size(); ++i) q_sum += p_.rate_weights[i];
+    const double gain = q_sum * level / (dt_s * p_.polynomial[0]);
+    if (!(gain < 1))
+      throw NumericalError(fmt::format(
+          "rdpi model not invertible at dt = {:.6g} s: rate_weights: the inverse's error gain "
+          "(q_0 + ... + q_n) max|u| / (dt p0) = {:.3g} >= 1 (an error in one step's input "
+          "feeds the next step's rate and grows); sample slower or fit with smaller rate weights",
+          dt_s, gain));
+  }
   for (Eigen::Index k = 0; k < y_desired.size(); ++k) {
+    // The solved input's rate over the previous step (checked stable above).
     const double rho = l.rate() && k >= 2 ? std::abs(u[k - 1] - u[k - 2]) / dt_s : 0.0;
     // The step's output as a function of u_k: non-decreasing (every term is, given the states).
     auto output = [&](double uk) {

@@ -70,7 +70,7 @@ void FillTerms(const PiParameters& p, const Eigen::VectorXd& u, double dt_s, Eig
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     const Eigen::Index row = row0 + k;
     const double uk = u[k];
-    // The previous step's rate (docs/hysteresis.md): 0 for the first two samples.
+    // The input's rate over the previous step (docs/hysteresis.md): 0 for the first two samples.
     const double rho = k >= 2 ? std::abs(u[k - 1] - u[k - 2]) / dt_s : 0.0;
     double power = uk;
     for (int j = 0; j < l.m; ++j, power *= uk) T(row, j) = power;

@@ -1,0 +1,98 @@
+// Dominance over richer candidates: a linear inverse model in x, v, a and play operators of x,
+// its terms sized by RMS (sysid/dominance_candidates.hpp).
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "sysid/dominance_candidates.hpp"
+#include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
+
+namespace sysid {
+
+void CandidateRankingOptions::Validate() const {
+  motion.Validate();
+  if (operators < 0 || operators > kMaxPlayOperators)
+    throw OptionsError(fmt::format("CandidateRankingOptions::operators = {}. Violated constraint: "
+                                   "0 <= operators <= {} (kMaxPlayOperators)", operators,
+                                   kMaxPlayOperators), "operators");
+  if (!(negligible_ratio >= 0 && negligible_ratio < 1))
+    throw OptionsError(fmt::format("CandidateRankingOptions::negligible_ratio = {}. Violated "
+                                   "constraint: in [0, 1)", negligible_ratio), "negligible_ratio");
+}
+
+CandidateRanking RankCandidates(const Recording& recording, const CandidateRankingOptions& o) {
+  o.Validate();
+  if (!recording.has("x"))
+    throw InputError(recording.source + ": column 'x' [m] is required to rank x, v and a");
+  MotionOptions motion = o.motion;
+  motion.prefer_velocity_column = false;
+  const MotionSignals s = ExtractMotion(recording, motion);
+  const Eigen::Index n = s.u_v.size();
+  const int m = o.operators;
+  // Columns: x, F1..Fm, v, a (centred: the offset c takes the means).
+  Eigen::MatrixXd X(n, 3 + m);
+  std::vector<std::string> names{"x"};
+  X.col(0) = s.x_m;
+  if (m > 0) {
+    const std::vector<double> r = UniformThresholds(s.x_m.minCoeff(), s.x_m.maxCoeff(), m);
+    for (int i = 0; i < m; ++i) {
+      X.col(1 + i) = PlayOperator(s.x_m, r[static_cast<size_t>(i)], s.x_m[0]);
+      names.push_back(fmt::format("F{}[x]", i + 1));
+    }
+  }
+  X.col(1 + m) = s.v_mps;
+  X.col(2 + m) = s.a_mps2;
+  names.push_back("v");
+  names.push_back("a");
+  const Eigen::RowVectorXd mean = X.colwise().mean();
+  X.rowwise() -= mean;
+  const Eigen::VectorXd u = s.u_v.array() - s.u_v.mean();
+  // Unit-norm columns for the solve; a zero column (x constant) gets a zero coefficient.
+  Eigen::VectorXd scale = X.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j)
+    if (!(scale[j] > 0)) scale[j] = HUGE_VAL;
+  const Eigen::MatrixXd Xs = X * scale.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd theta = Xs.colPivHouseholderQr().solve(u).cwiseQuotient(scale);
+  CandidateRanking out;
+  out.source = recording.source;
+  const Eigen::VectorXd fit = X * theta;
+  out.residual_rms_v = std::sqrt((u - fit).squaredNorm() / static_cast<double>(n));
+  out.r2 = 1 - (u - fit).squaredNorm() / u.squaredNorm();
+  auto stats = [&](const std::string& name, const Eigen::VectorXd& term) {
+    TermStats t;
+    t.name = name;
+    t.rms = std::sqrt(term.squaredNorm() / static_cast<double>(n));
+    t.peak = term.cwiseAbs().maxCoeff();
+    return t;
+  };
+  for (int j = 0; j < 3 + m; ++j) out.terms.push_back(stats(names[static_cast<size_t>(j)], theta[j] * X.col(j)));
+  out.ranking.push_back(stats("x", X.leftCols(1 + m) * theta.head(1 + m)));
+  out.ranking.push_back(stats("v", theta[1 + m] * X.col(1 + m)));
+  out.ranking.push_back(stats("a", theta[2 + m] * X.col(2 + m)));
+  std::stable_sort(out.ranking.begin(), out.ranking.end(),
+                   [](const TermStats& a, const TermStats& b) { return a.rms > b.rms; });
+  const double top = out.ranking[0].rms;
+  for (auto* list : {&out.ranking, &out.terms})
+    for (auto& t : *list) {
+      t.ratio_to_top = top > 0 ? t.rms / top : 0;
+      t.negligible = t.ratio_to_top <= o.negligible_ratio;
+    }
+  out.ranking[0].negligible = false;
+  out.dominant = out.ranking[0].name;
+  out.margin = out.ranking[1].rms > 0 ? top / out.ranking[1].rms : HUGE_VAL;
+  return out;
+}
+
+std::string CandidateRanking::BriefReport() const {
+  std::string s = fmt::format("{}: dominant {} (margin {:.3g}); linear model R^2 {:.3f}, "
+                              "residual {:.3g} V\n", source, dominant, margin, r2, residual_rms_v);
+  for (const auto& t : ranking)
+    s += fmt::format("  {:<3} rms {:.4g} V  ratio {:.3g}{}\n", t.name, t.rms, t.ratio_to_top,
+                     t.negligible ? "  (negligible)" : "");
+  return s;
+}
+
+}  // namespace sysid

@@ -1,0 +1,75 @@
+"""Hysteresis models from Python (docs/hysteresis.md): Prandtl–Ishlinskii (pi, gpi, rdpi),
+Bouc–Wen and the operator-input network, fitted by kind, simulated and inverted.
+
+    import sysid.hysteresis as hy
+    fit = hy.fit("datasets/piezo_aye_ang/piezo.csv", model="pi", operators=20)
+    print(fit.fit_time_s, fit.parameters[0])
+    x_model = hy.simulate(fit.model, u, dt_s=0.005)
+    u_ff = hy.invert(fit.model, x_desired, dt_s=0.005)
+
+Units: u [V], x [m], dt_s [s]; parameters carry their SI unit and standard error (NaN when the
+fit gives none).
+"""
+
+from dataclasses import dataclass, field
+
+from . import _sysid
+
+
+@dataclass
+class HysteresisFit:
+    """What `fit` returns: the model, its parameters with standard errors, and the fit's
+    summary (samples, fit time [s], training RMS [m], converged, message)."""
+    model: object
+    summary: object
+    parameters: list = field(default_factory=list)
+
+    @property
+    def fit_time_s(self):
+        return self.summary.fit_time_s
+
+    @property
+    def training_rms_m(self):
+        return self.summary.training_rms
+
+    @property
+    def std_errors(self):
+        return {p.name: p.std_error for p in self.parameters}
+
+    def to_dict(self):
+        return {p.name: (p.value, p.std_error, p.unit) for p in self.parameters}
+
+
+def kinds():
+    """The model kinds `fit` accepts."""
+    return list(_sysid.hysteresis_kinds())
+
+
+def fit(recordings, model="pi", operators=10, offset=True, degree=3, hidden=10, epochs=300,
+        seed=1):
+    """Fits a hysteresis model of kind `model` to recordings (paths, globs, Recording objects;
+    columns t [s], u [V], x [m])."""
+    from . import _as_recordings
+    recs = _as_recordings(recordings)
+    m, s = _sysid.fit_hysteresis(model, recs, operators, offset, degree, hidden, epochs, seed)
+    return HysteresisFit(model=m, summary=s, parameters=list(m.parameters))
+
+
+def read(path):
+    """Reads a model file written by `sysid hysteresis fit` or `model.to_json()`."""
+    return _sysid.read_hysteresis_model(str(path))
+
+
+def simulate(model, u_v, dt_s, periodic=False):
+    """x [m] for the input samples u [V] spaced dt_s [s]; `periodic`: u is one period, the
+    result the periodic steady state's last period."""
+    if isinstance(model, str):
+        model = read(model)
+    return model.simulate_periodic(u_v, dt_s) if periodic else model.simulate(u_v, dt_s)
+
+
+def invert(model, x_m, dt_s):
+    """The input u [V] that makes the model follow x [m]."""
+    if isinstance(model, str):
+        model = read(model)
+    return model.invert(x_m, dt_s)

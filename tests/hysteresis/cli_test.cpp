@@ -1,0 +1,141 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.hpp"
+#include "sysid/hysteresis.hpp"
+#include "sysid/io.hpp"
+
+namespace {
+
+using sysid::test::RunCli;
+using sysid::test::TempDir;
+
+// A recording of a known PI model (t, u, x) at 200 Hz.
+sysid::Recording PiRecording(int n) {
+  sysid::PiParameters p;
+  p.thresholds = {0.5, 1.0, 1.5};
+  p.weights = {2e-6, 1e-6, 0.5e-6};
+  p.polynomial = {4e-6};
+  p.offset_m = -1e-4;
+  p.input_min_v = 0;
+  p.input_max_v = 3.6;
+  const sysid::PrandtlIshlinskiiModel m(p);
+  Eigen::VectorXd u(n);
+  for (int k = 0; k < n; ++k) u[k] = 1.8 + 1.7 * std::sin(2 * M_PI * k / 400.0) * (0.6 + 0.4 * std::cos(k / 900.0));
+  const Eigen::VectorXd x = m.Simulate(u, 5e-3);
+  sysid::Recording rec;
+  rec.names = {"t", "u", "x"};
+  rec.data.resize(n, 3);
+  for (int k = 0; k < n; ++k) rec.data.row(k) << k * 5e-3, u[k], x[k];
+  return rec;
+}
+
+}  // namespace
+
+TEST_CASE("sysid hysteresis fit, simulate and invert round-trip a PI recording", "[hysteresis]") {
+  TempDir dir;
+  const sysid::Recording rec = PiRecording(2000);
+  sysid::WriteRecording(dir / "rec.csv", rec);
+  auto fit = RunCli({"hysteresis", "fit", "--model", "pi", "--operators", "6", "--json",
+                     dir / "rec.csv", "-o", dir / "h.json"});
+  REQUIRE(fit.exit_code == 0);
+  const auto summary = nlohmann::json::parse(fit.out);
+  CHECK(summary["kind"] == "pi");
+  CHECK(summary["parameters"].size() == 8);  // p0, w1..w6, c
+  CHECK(summary["training_rms_m"].get<double>() < 1e-7);  // 6 uniform operators approximate 3
+  auto sim = RunCli({"hysteresis", "simulate", "--model", dir / "h.json", dir / "rec.csv", "-o",
+                     dir / "sim.csv"});
+  REQUIRE(sim.exit_code == 0);
+  const sysid::Recording s = sysid::ReadRecording(dir / "sim.csv", {{"t", "u", "x_model"}, {}});
+  CHECK(s.rows() == rec.rows());
+  // Invert the model's own output: the recording's u comes back (closed form, 1e-9 V: the CSV's
+  // 17 digits and the model's weights).
+  sysid::Recording ref;
+  ref.names = {"t", "x"};
+  ref.data.resize(rec.rows(), 2);
+  ref.data.col(0) = rec.column("t");
+  ref.data.col(1) = s.column("x_model");
+  sysid::WriteRecording(dir / "ref.csv", ref);
+  auto inv = RunCli({"hysteresis", "invert", "--model", dir / "h.json", dir / "ref.csv", "-o",
+                     dir / "u.csv"});
+  REQUIRE(inv.exit_code == 0);
+  const sysid::Recording back = sysid::ReadRecording(dir / "u.csv", {{"t", "x", "u"}, {}});
+  CHECK((back.column("u") - rec.column("u")).cwiseAbs().maxCoeff() < 1e-9);
+}
+
+TEST_CASE("sysid hysteresis refuses bad input naming the field, writing nothing",
+          "[hysteresis]") {
+  TempDir dir;
+  sysid::WriteRecording(dir / "rec.csv", PiRecording(600));
+  SECTION("operators above the bound: usage error") {
+    auto r = RunCli({"hysteresis", "fit", "--model", "pi", "--operators", "201", dir / "rec.csv",
+                     "-o", dir / "h.json"});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("--operators"));
+    CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+  }
+  SECTION("Bouc-Wen not built in this version") {
+    auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen", dir / "rec.csv", "-o", dir / "h.json"});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("not built"));
+    CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+  }
+  SECTION("model files with unsorted or negative thresholds, non-finite or missing values") {
+    REQUIRE(RunCli({"hysteresis", "fit", "--model", "pi", "--operators", "3", dir / "rec.csv",
+                    "-o", dir / "h.json"}).exit_code == 0);
+    const std::string good = sysid::test::ReadText(dir / "h.json");
+    auto j = nlohmann::json::parse(good);
+    struct Case {
+      std::string what;
+      std::function<void(nlohmann::json&)> edit;
+      std::string field;
+    };
+    const std::vector<Case> cases = {
+        {"unsorted", [](nlohmann::json& m) { std::swap(m["thresholds"][0], m["thresholds"][1]); }, "thresholds[1]"},
+        {"negative", [](nlohmann::json& m) { m["thresholds"][0] = -0.1; }, "thresholds[0]"},
+        {"null weight", [](nlohmann::json& m) { m["weights"][2] = nullptr; }, "weights[2]"},
+        {"too many", [](nlohmann::json& m) {
+           m["thresholds"] = nlohmann::json::array();
+           for (int i = 1; i <= 201; ++i) m["thresholds"].push_back(0.01 * i);
+         }, "thresholds"},
+    };
+    for (const auto& c : cases) {
+      INFO(c.what);
+      nlohmann::json bad = j;
+      c.edit(bad);
+      sysid::test::WriteText(dir / "bad.json", bad.dump(2));
+      auto r = RunCli({"hysteresis", "simulate", "--model", dir / "bad.json", dir / "rec.csv", "-o",
+                       dir / "out.csv"});
+      CHECK(r.exit_code == 2);
+      CHECK_THAT(r.err, Catch::Contains("bad.json:") && Catch::Contains(c.field));
+      CHECK_FALSE(std::filesystem::exists(dir / "out.csv"));
+    }
+    SECTION("a non-invertible model asked to invert, and a reference out of range") {
+      nlohmann::json flat = j;
+      flat["polynomial"][0] = 0.0;
+      sysid::test::WriteText(dir / "flat.json", flat.dump(2));
+      const sysid::Recording rec = PiRecording(2);
+      sysid::test::WriteText(dir / "ref.csv", "t,x\n0," + std::to_string(rec.data(0, 2)) + "\n0.005," +
+                                                  std::to_string(rec.data(1, 2)) + "\n0.01,1.0\n");
+      auto r = RunCli({"hysteresis", "invert", "--model", dir / "flat.json", dir / "ref.csv", "-o",
+                       dir / "u.csv"});
+      CHECK(r.exit_code == 2);
+      CHECK_THAT(r.err, Catch::Contains("p0"));
+      CHECK_FALSE(std::filesystem::exists(dir / "u.csv"));
+      r = RunCli({"hysteresis", "invert", "--model", dir / "h.json", dir / "ref.csv", "-o", dir / "u.csv"});
+      CHECK(r.exit_code == 2);
+      CHECK_THAT(r.err, Catch::Contains("ref.csv") && Catch::Contains("reference sample 2"));
+      CHECK_FALSE(std::filesystem::exists(dir / "u.csv"));
+    }
+  }
+  SECTION("a recording without x") {
+    sysid::test::WriteText(dir / "nox.csv", "t,u\n0,1\n0.005,2\n0.01,3\n");
+    auto r = RunCli({"hysteresis", "fit", "--model", "pi", dir / "nox.csv", "-o", dir / "h.json"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("nox.csv") && Catch::Contains("x"));
+    CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+  }
+}
