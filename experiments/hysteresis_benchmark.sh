@@ -58,12 +58,13 @@ print(len(s['parameters']), '%.3g' % s['fit_time_s'])" "$OUT/piezo_fit_$i.json")
   read -r fe fn ie in < <($SCORE score "$PIEZO" "$FRACTION" "$OUT/piezo_sim_$i.csv" "$OUT/piezo_inv_$i.csv")
   fn_pct=$(python3 -c "import sys; print('%.2f %%' % (100 * float(sys.argv[1])))" "$fn")
   in_pct=$(python3 -c "import sys; v = float(sys.argv[1]); print('-' if v != v else '%.2f %%' % (100 * v))" "$in")
-  [ "$ie" = "nan" ] && ie="- ($(head -c 120 "$OUT/piezo_inv_$i.err" | tr '\n' ' '))"
+  # Not invertible: say why, in the library's words up to the first colon-separated detail.
+  [ "$ie" = "nan" ] && ie="- ($(sed -e 's/^sysid: [a-z ]*: //' -e 's/ (an error.*//' "$OUT/piezo_inv_$i.err" | head -c 160))"
   echo "| $name | $params | $fit_time | $fe | $fn_pct | $ie | $in_pct |"
 done
 echo "| Bouc–Wen, piezo form | (filled once bouc-wen-piezo lands) | | | | | |"
 echo
-echo "Prototype (docs/hysteresis.md, /work/shared/notes): a straight line 20.9 %, PI 10 operators +"
+echo "Prototype (issue #25 notes, same split): a straight line 20.9 %, PI 10 operators +"
 echo "offset 3.0 %, PI 20 operators + offset 2.9 %, PI 20 + u, u², u³ + offset 2.6 % (forward NRMSE)."
 echo
 

@@ -11,7 +11,8 @@
 //        y_k = p0 u_k + sum_i w_i F_ri[u]_k + c
 //   gpi  (asymmetric: a polynomial input function, Gu, Zhu & Su, IEEE TIE 61(3) 2014)
 //        y_k = sum_{j=1..m} a_j u_k^j + sum_i w_i F_ri[u]_k + c; the fit holds the even
-//        powers at 0 and the odd ones >= 0 (their a_1 u + a_3 u^3), monotone by construction
+//        powers at 0 (their a_1 u + a_3 u^3), a_1 >= 0, a_3, a_5 free; dP/du > 0 on the
+//        input range is checked afterwards (else the model says it is not invertible)
 //   rdpi (rate-dependent weights linear in a rate, after Ang, Khosla & Riviere, IEEE/ASME
 //        T-Mech 12(2) 2007)
 //        y_k = (p0 + q0 rho_k) u_k + sum_i (w_i + q_i rho_k) F_ri[u]_k + c,

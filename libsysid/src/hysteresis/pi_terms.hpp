@@ -23,11 +23,10 @@ struct PiLayout {
   int w(int i) const { return m + (rate() ? 1 : 0) + i; }  ///< i = 0..n-1
   int q(int i) const { return m + 1 + n + i; }           ///< rdpi only
   int offset() const { return size() - 1; }
-  /// Whether parameter j is bounded below by 0: a_1 (p0), the odd powers' a_j of gpi, the q's
-  /// and w's; c is free.
-  bool bounded(int j) const { return j < m ? j % 2 == 0 : j < offset(); }
-  /// Whether the fit holds parameter j at 0: gpi's even powers (Gu et al.'s odd polynomial,
-  /// monotone by construction).
+  /// Whether parameter j is bounded below by 0: a_1 (p0), the q's and w's; gpi's a_3, a_5
+  /// and c are free (the fitted polynomial's monotonicity is checked afterwards).
+  bool bounded(int j) const { return j < m ? j == 0 : j < offset(); }
+  /// Whether the fit holds parameter j at 0: gpi's even powers (Gu et al.'s odd polynomial).
   bool held(int j) const { return form == PiForm::kPolynomial && j < m && j % 2 == 1; }
   std::string name(int j) const;
   std::string unit(int j) const;
