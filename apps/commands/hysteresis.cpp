@@ -66,6 +66,11 @@ void RunFit(const HysteresisCli& o) {
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"}});
   }
+  try {
+    options.pi.Validate();
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"polynomial_degree", "--degree"}}, "--thresholds");
+  }
   const std::vector<Recording> recs = ReadAll(o.recordings);
   HysteresisFitSummary s;
   std::unique_ptr<HysteresisModel> model;
@@ -191,6 +196,11 @@ void AddHysteresisCommand(CLI::App& app) {
                   fmt::format("play operators (PI family: 1..{0}; nn-operators: 0..{0}, 0 = the "
                               "static network on u alone)", kMaxPlayOperators))
       ->capture_default_str();
+  fit->add_option("--thresholds", o->options.pi.thresholds,
+                  "PI family: the play operators' thresholds r_1 < ... < r_n [V], > 0 (default: "
+                  "uniform over half the input range; --operators is then ignored)")
+      ->delimiter(',')
+      ->type_name("R1,R2,...");
   fit->add_flag("--no-offset", o->no_offset,
                 "PI family: no sensor-offset term c [m] (default: fitted)");
   fit->add_option("--degree", o->options.pi.polynomial_degree,

@@ -77,6 +77,20 @@ TEST_CASE("sysid hysteresis refuses bad input naming the field, writing nothing"
     CHECK_THAT(r.err, Catch::Contains("--operators"));
     CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
   }
+  SECTION("negative or unsorted thresholds on the command line: usage error") {
+    for (const std::string& list : {"0.5,0.2", "-0.1,0.5"}) {
+      auto r = RunCli({"hysteresis", "fit", "--model", "pi", "--thresholds", list, dir / "rec.csv",
+                       "-o", dir / "h.json"});
+      CHECK(r.exit_code == 1);
+      CHECK_THAT(r.err, Catch::Contains("--thresholds") && Catch::Contains("thresholds["));
+      CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+    }
+    auto ok = RunCli({"hysteresis", "fit", "--model", "pi", "--thresholds", "0.5,1,1.5", "--json",
+                      dir / "rec.csv", "-o", dir / "h.json"});
+    REQUIRE(ok.exit_code == 0);
+    // The recording's own thresholds: the fit is exact up to rounding (1e-12 of 1e-4 m).
+    CHECK(nlohmann::json::parse(ok.out)["training_rms_m"].get<double>() < 1e-15);
+  }
   SECTION("Bouc-Wen not built in this version") {
     auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen", dir / "rec.csv", "-o", dir / "h.json"});
     CHECK(r.exit_code == 1);
