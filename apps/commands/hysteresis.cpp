@@ -200,6 +200,7 @@ void AddHysteresisCommand(CLI::App& app) {
                   "PI family: the play operators' thresholds r_1 < ... < r_n [V], > 0 (default: "
                   "uniform over half the input range; --operators is then ignored)")
       ->delimiter(',')
+      ->allow_extra_args(false)  // one comma list: the recordings that follow stay positionals
       ->type_name("R1,R2,...");
   fit->add_flag("--no-offset", o->no_offset,
                 "PI family: no sensor-offset term c [m] (default: fitted)");

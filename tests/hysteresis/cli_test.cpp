@@ -78,7 +78,7 @@ TEST_CASE("sysid hysteresis refuses bad input naming the field, writing nothing"
     CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
   }
   SECTION("negative or unsorted thresholds on the command line: usage error") {
-    for (const std::string& list : {"0.5,0.2", "-0.1,0.5"}) {
+    for (const char* list : {"0.5,0.2", "-0.1,0.5"}) {
       auto r = RunCli({"hysteresis", "fit", "--model", "pi", "--thresholds", list, dir / "rec.csv",
                        "-o", dir / "h.json"});
       CHECK(r.exit_code == 1);
