@@ -226,6 +226,16 @@ TEST_CASE("an ill-conditioned inverse is detected and a non-invertible one refus
   CHECK_FALSE(none.invertible());
   CHECK_THAT(none.why_not_invertible(), Catch::Contains("p0"));
   CHECK_THROWS_AS(none.Invert(Eigen::VectorXd::Zero(3), 1.0), sysid::NumericalError);
+  // gpi: P(u) = u - 0.1 u^3 has dP/du = 1 - 0.3 u^2 < 0 beyond |u| = 1.83 V, inside [-10, 10].
+  sysid::PiParameters g = Classical({1.0}, {1.0}, 1.0);
+  g.form = sysid::PiForm::kPolynomial;
+  g.polynomial = {1.0, 0.0, -0.1};
+  const sysid::PrandtlIshlinskiiModel bent(g);
+  CHECK_FALSE(bent.invertible());
+  CHECK_THAT(bent.why_not_invertible(), Catch::Contains("polynomial") && Catch::Contains("dP/du"));
+  g.input_min_v = -1.5;  // on [-1.5, 1.5] V (+5 %) the slope stays >= 1 - 0.3 * 1.65^2 = 0.18
+  g.input_max_v = 1.5;
+  CHECK(sysid::PrandtlIshlinskiiModel(g).invertible());
   // A fit on data whose p0 is nearly zero says so in its message.
   const double dt = 5e-3;
   const Eigen::VectorXd u = Excitation(3000, dt, 1.0, 3.0);
