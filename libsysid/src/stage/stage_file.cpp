@@ -208,9 +208,6 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
             rig.Get(other).Fail(std::string("give rig.sample_rate_hz (it sets both rates) or "
                                             "rig.control_rate_hz and rig.record_rate_hz, not "
                                             "both; found sample_rate_hz and ") + other);
-      if (complete && !rig.Has("sample_rate_hz") && !rig.Has("control_rate_hz"))
-        rig.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
-                 kCompleteRule + ")");
       Section{{{"sample_rate_hz", &alias},
                {"control_rate_hz", &control},
                {"record_rate_hz", &record},
@@ -225,6 +222,9 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {},
               {}}
           .Read(rig, complete, {"sample_rate_hz", "control_rate_hz", "record_rate_hz"});
+      if (complete && !rig.Has("sample_rate_hz") && !rig.Has("control_rate_hz"))
+        rig.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
+                 kCompleteRule + ")");
       if (rig.Has("sample_rate_hz")) {
         p.sample_rate_hz = alias;
         p.record_rate_hz = 0;  // the control rate
