@@ -4,8 +4,10 @@
 // rate (plain sampling of every n-th control sample).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <string>
 
+#include "support/test_support.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
@@ -149,4 +151,22 @@ TEST_CASE("stage files: one rate, or the control and record rates apart", "[stag
   const sysid::StageParameters budget = ParseStageParameters(
       R"({"preset": "virtual", "integrator": {"max_steps_per_sample": 500}})", "g.json");
   CHECK(budget.max_steps_per_sample == 500);
+}
+
+TEST_CASE("sysid track: a stage beyond the work budget exits 3 with the sentence, no output",
+          "[stage][loop-rate][cli]") {
+  sysid::test::TempDir dir;
+  const std::string stage = dir / "s.json";
+  sysid::test::WriteText(stage, R"({"preset": "virtual", "integrator": {"max_steps_per_sample": 10}})");
+  const auto r = sysid::test::RunCli(
+      {"track", "--plant", stage, "--freq", "0.5", "-o", dir / "out"});
+  CHECK(r.exit_code == 3);
+  CHECK(r.err.find("exceeded integrator.max_steps_per_sample = 10") != std::string::npos);
+  CHECK(r.err.find("state: x = ") != std::string::npos);
+  CHECK(r.out.empty());
+  CHECK_FALSE(std::filesystem::exists(dir / "out"));
+  // The same stage at 10 kHz with the default budget: completes (exit 0).
+  sysid::test::WriteText(stage, R"({"preset": "virtual", "rig": {"sample_rate_hz": 10000}})");
+  const auto ok = sysid::test::RunCli({"track", "--plant", stage, "--freq", "0.5", "--json"});
+  CHECK(ok.exit_code == 0);
 }
