@@ -15,25 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.hpp"
 #include "sysid/control.hpp"
 #include "sysid/stage.hpp"
 
 namespace {
 
-double CpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+double CpuSeconds() { return sysid::bench::CpuSeconds(CLOCK_PROCESS_CPUTIME_ID); }
 
-std::string LoadAverage() {
-  std::FILE* f = std::fopen("/proc/loadavg", "r");
-  if (!f) return "?";
-  double l1 = 0, l5 = 0, l15 = 0;
-  const int n = std::fscanf(f, "%lf %lf %lf", &l1, &l5, &l15);
-  std::fclose(f);
-  return n == 3 ? fmt::format("{:.2f} {:.2f} {:.2f}", l1, l5, l15) : "?";
-}
+using sysid::bench::LoadAverage;
 
 struct Run {
   double simulated_s = 0, cpu_s = 0, steps_per_sample = 0, max_error_m = 0;
