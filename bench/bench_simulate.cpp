@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_clock.hpp"
 #include "sysid/input.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
@@ -24,21 +25,9 @@
 
 namespace {
 
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+double ThreadCpuSeconds() { return sysid::bench::CpuSeconds(); }
 
-/// The first three fields of /proc/loadavg ("?" where there is none).
-std::string LoadAverage() {
-  std::FILE* f = std::fopen("/proc/loadavg", "r");
-  if (!f) return "?";
-  double l1 = 0, l5 = 0, l15 = 0;
-  const int n = std::fscanf(f, "%lf %lf %lf", &l1, &l5, &l15);
-  std::fclose(f);
-  return n == 3 ? fmt::format("{:.2f} {:.2f} {:.2f}", l1, l5, l15) : "?";
-}
+using sysid::bench::LoadAverage;
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -30,6 +30,8 @@ void BindStage(py::module_& m) {
       .def_readwrite("position_noise_m", &StageParameters::position_noise_m)
       .def_readwrite("encoder_resolution_m", &StageParameters::encoder_resolution_m)
       .def_readwrite("sample_rate_hz", &StageParameters::sample_rate_hz)
+      .def_readwrite("record_rate_hz", &StageParameters::record_rate_hz)
+      .def_property_readonly("record_stride", &StageParameters::RecordStride)
       .def_property_readonly("sample_time_s", &StageParameters::sample_time_s)
       .def("validate", &StageParameters::Validate)
       .def("steady_velocity",

@@ -13,6 +13,7 @@
 
 #include "simulate/reference_integrator.hpp"
 #include "support/test_support.hpp"
+#include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/input.hpp"
 #include "sysid/stage.hpp"
@@ -193,7 +194,8 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   for (const auto& row : r.tracking) {
     CHECK(row.scheme == "none");
     no_limit_cycle =
-        no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m && row.saturated_samples == 0;
+        no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m && row.saturated_samples == 0 &&
+        row.motion_ripple_m <= o.motion_ripple_tolerance_m;
     CHECK((row.saturated_samples > 0) == (row.max_abs_u_v >= o.pi.u_max_v - 1e-12));
   }
   CHECK(r.Find("F4")->met == no_limit_cycle);
@@ -369,4 +371,94 @@ TEST_CASE("F5 over initial weights: each network's row is a separate run's NN ro
   CHECK(Value(f, "nn beats analytic at 1 Hz, networks") == (first < analytic) + (other < analytic));
   CHECK_THAT(f.virtual_value, Catch::Contains("NN beats analytic over initial weights: 1 Hz "));
   CHECK_THAT(f1.virtual_value, !Catch::Contains("initial weights"));
+}
+
+TEST_CASE("F4 in motion: RMS of e minus its 50 ms moving average, and the ringing frequency",
+          "[stage][facts]") {
+  sysid::SmoothProfileOptions p;
+  p.frequency_hz = 1.0;
+  p.cycles = 2;
+  p.sample_rate_hz = 1000;
+  const Eigen::Index n = 2001;
+  Eigen::VectorXd e(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / 1000;
+    // A slow tracking error (the moving average follows it) plus a 77 Hz ring of 5 um.
+    e[k] = 1e-4 * std::sin(M_PI * t) + 5e-6 * std::sin(2 * M_PI * 77 * t);
+  }
+  const facts::MotionRipple m = facts::MotionRippleOf(e, p, 0.05);
+  // After the first cycle (k >= 1000) with whole 51-sample windows (k <= 1975): 976 samples.
+  CHECK(m.samples == 976);
+  // RMS of the ring, 5 um / sqrt 2; the 51-sample average of a 77 Hz sine (3.9 periods) keeps
+  // at most 1/(pi 3.9) = 8 % of its amplitude, and the slow sine's curvature 0.1 %.
+  CHECK(m.rms_m == Approx(5e-6 / std::sqrt(2.0)).epsilon(0.08));
+  CHECK(m.ringing_hz == Approx(77).margin(1.1));  // the periodogram's bin is 1000/976 Hz wide
+  // A quiet error: a straight ramp is its own centred moving average.
+  const Eigen::VectorXd ramp = Eigen::VectorXd::LinSpaced(n, 0.0, 2e-4);
+  const facts::MotionRipple quiet = facts::MotionRippleOf(ramp, p, 0.05);
+  CHECK(quiet.samples == 976);
+  CHECK(quiet.rms_m < 1e-15);  // rounding of the sums only
+  CHECK_THROWS_AS(facts::MotionRippleOf(e, p, 0.0), sysid::OptionsError);
+}
+
+TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[stage][facts]") {
+  const StageParameters stage = StageParameters::Default();
+  const FactsOptions o = Only({"F4"});
+  const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
+  REQUIRE(r.tracking.size() == 2);
+  bool quiet = true;
+  for (const auto& row : r.tracking) {
+    // The same run (same stage, seed and profile) in the test, and the ripple from its error
+    // by a plain loop: each sample minus the mean of its 51-sample window, after cycle 1.
+    sysid::SmoothProfileOptions p;
+    p.frequency_hz = row.frequency_hz;
+    p.amplitude_m = o.track_amplitude_m;
+    p.cycles = o.track_cycles;
+    p.sample_rate_hz = stage.sample_rate_hz;
+    sysid::VirtualStage plant(stage, o.seed);
+    const sysid::TrackingResult t = sysid::RunClosedLoop(plant, sysid::MakeSmoothProfile(p), o.pi);
+    const Eigen::VectorXd& e = t.e_m;
+    const long first = std::lround(1000 / row.frequency_hz), half = 25;
+    double sum2 = 0;
+    std::vector<double> residual;
+    for (long k = first; k + half < e.size(); ++k) {
+      double mean = 0;
+      for (long j = k - half; j <= k + half; ++j) mean += e[j];
+      residual.push_back(e[k] - mean / (2 * half + 1));
+      sum2 += residual.back() * residual.back();
+    }
+    const auto m = static_cast<long>(residual.size());
+    const double rms = std::sqrt(sum2 / static_cast<double>(m));
+    // The ringing frequency by a plain DFT sum at each bin j (1000 j / m Hz) of the
+    // Hann-windowed residual (the fact uses an FFT library).
+    long peak = 1;
+    double peak_power = -1;
+    for (long j = 1; j <= m / 2; ++j) {
+      double re = 0, im = 0;
+      for (long k = 0; k < m; ++k) {
+        const double w = 0.5 - 0.5 * std::cos(2 * M_PI * static_cast<double>(k) / (m - 1));
+        const double phase = 2 * M_PI * static_cast<double>(j) * static_cast<double>(k) / m;
+        re += w * residual[k] * std::cos(phase);
+        im -= w * residual[k] * std::sin(phase);
+      }
+      if (re * re + im * im > peak_power) {
+        peak_power = re * re + im * im;
+        peak = j;
+      }
+    }
+    const double dft_hz = 1000.0 * static_cast<double>(peak) / static_cast<double>(m);
+    INFO(row.frequency_hz << " Hz: ripple in motion " << row.motion_ripple_m << " m at "
+                          << row.ringing_hz << " Hz; recomputed " << rms << " m at " << dft_hz
+                          << " Hz");
+    CHECK(row.motion_ripple_m == Approx(rms).epsilon(1e-9));  // sums in another order
+    CHECK(row.ringing_hz == Approx(dft_hz).margin(1e-9));     // the same bin
+    quiet = quiet && row.motion_ripple_m <= o.motion_ripple_tolerance_m;
+  }
+  const sysid::StageFact* f4 = r.Find("F4");
+  REQUIRE(f4 != nullptr);
+  if (!quiet) {
+    CHECK_FALSE(f4->met);
+    CHECK(f4->note.find("rings in motion") != std::string::npos);
+  }
+  CHECK(Value(*f4, "motion_ripple_m at 0.5 Hz") == r.tracking[0].motion_ripple_m);
 }

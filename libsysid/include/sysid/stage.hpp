@@ -130,7 +130,15 @@ struct StageParameters {
   FrictionBranch forward;                 ///< branch for v > 0
   FrictionBranch backward;                ///< branch for v < 0 (all values positive)
   // Rig.
-  double sample_rate_hz = 1000;        ///< [Hz] DAC/encoder rate, > 0
+  /// [Hz] control rate: the DAC hold, the encoder's reads and the controller's loop, > 0
+  /// (file: rig.control_rate_hz, or rig.sample_rate_hz, which sets both rates)
+  double sample_rate_hz = 1000;
+  /// [Hz] the rate of the recordings the procedures return (pulse test, tracking sets,
+  /// waveforms, triangle): every n-th control sample, n = sample_rate_hz / record_rate_hz an
+  /// integer (plain sampling, as a real-time logger's downsampling keeps every n-th value: no
+  /// anti-alias filter, whose delay would shift the delay fact). 0: the control rate.
+  /// File: rig.record_rate_hz.
+  double record_rate_hz = 0;
   int dac_bits = 16;                   ///< DAC resolution over +-dac_range_v, 1..32
   double dac_range_v = 10.0;           ///< [V] DAC output range +-dac_range_v
   double encoder_resolution_m = 1e-7;  ///< [m] q > 0
@@ -142,6 +150,12 @@ struct StageParameters {
   // Integrator (SUNDIALS CVODE, BDF).
   double relative_tolerance = 1e-7;     ///< CVODE rtol, in (0, 1e-2]
   double position_tolerance_m = 1e-10;  ///< [m] CVODE atol of x and z (v, w scaled by 1/Ts)
+  /// The integrator's work budget per control sample: CVODE steps plus stick-slip and end-stop
+  /// switches. A sample that needs more ends the run with NumericalError naming the time and
+  /// the state (a stage that cannot be integrated fails, it never hangs). >= 10.
+  /// File: integrator.max_steps_per_sample (written only when not the default).
+  int max_steps_per_sample = kDefaultMaxStepsPerSample;
+  static constexpr int kDefaultMaxStepsPerSample = 20000;
 
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
   /// Checks the rig, the driver and the parameters of `model` (the other model's are unused).
@@ -156,8 +170,12 @@ struct StageParameters {
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
   static bool IsPresetName(const std::string& name);
-  /// [s] 1 / sample_rate_hz.
+  /// [s] 1 / sample_rate_hz, the control period.
   double sample_time_s() const { return 1.0 / sample_rate_hz; }
+  /// [Hz] the recordings' rate: record_rate_hz, or sample_rate_hz when that is 0.
+  double RecordRateHz() const { return record_rate_hz > 0 ? record_rate_hz : sample_rate_hz; }
+  /// Control samples per recorded sample, sample_rate_hz / RecordRateHz() (>= 1).
+  long RecordStride() const;
   /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
   double DriveMap(double u_v) const;
   /// [m/s] no-load speed v_f(u) of the velocity-source motor (0 inside the dead zone).

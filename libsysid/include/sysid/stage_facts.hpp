@@ -6,7 +6,7 @@
 //   F3 delay              tune-delay on the pulse recording: tau in [2.5, 4.5] ms and
 //                         RMS dv(tau) <= 0.8 RMS dv(0)
 //   F4 paper gains        PI Kp = 19000 V/m, Ki = 660000 V/(m s) on the 0.5 and 1 Hz references:
-//                         no limit cycle (ripple and pinning defined below)
+//                         no limit cycle (ripple and pinning defined below) and quiet in motion
 //   F5 tracking table     max |e|: PI > PI + analytic > PI + NN at both frequencies, each within a
 //                         factor 3 of the paper's table
 //   F6 dominance          u = 1.5 sin(pi/2 t - pi/2) - 0.3 V open loop: the ratio of peaks
@@ -22,6 +22,11 @@
 //           FactsOptions::ripple_tolerance_m (default 1 um = 10 counts of a 0.1 um encoder).
 //   pinned  any sample, from the start, at which the PI output was clipped at +-u_max
 //           (TrackingResult::saturated_samples > 0).
+//   motion  ripple in motion: r_k = e_k - (centred moving average of e over
+//           FactsOptions::motion_ripple_window_s, 50 ms), over every sample after the first cycle
+//           whose window lies inside the run; RMS of r above
+//           FactsOptions::motion_ripple_tolerance_m (5 um) is ringing, and the frequency of the
+//           largest peak of r's Hann-windowed periodogram is reported as the ringing frequency.
 //
 // Every experiment is seeded; the same stage and options give the same numbers.
 #ifndef SYSID_STAGE_FACTS_HPP_
@@ -72,6 +77,8 @@ struct FactsOptions {
   double track_amplitude_m = 0.01;                     ///< [m] stroke, as the pipeline
   int track_cycles = 2;                                ///< >= 2 (ripple needs a second cycle)
   double ripple_tolerance_m = 1e-6;                    ///< [m] F4's ripple threshold
+  double motion_ripple_tolerance_m = 5e-6;  ///< [m] F4's RMS ripple in motion threshold
+  double motion_ripple_window_s = 0.05;     ///< [s] F4's moving average (in motion), > 0
   /// The dominant network (H = 24, the paper's choice) and the typical one, as the pipeline.
   NeuralTrainingOptions training = DefaultTraining();
   int typical_hidden = 120;
@@ -121,6 +128,8 @@ struct FactsTrackingRow {
   std::string scheme;      ///< "none", "analytic", "nn"
   double max_error_m = 0;  ///< [m]
   double ripple_m = 0;     ///< [m] F4's ripple amplitude (see above)
+  double motion_ripple_m = 0;  ///< [m] F4's RMS ripple in motion (see above)
+  double ringing_hz = 0;       ///< [Hz] the periodogram peak of that ripple
   long saturated_samples = 0;
   double max_abs_u_v = 0;  ///< [V]
 };
@@ -159,6 +168,17 @@ bool PulseModelMet(const FrictionModel& stage, const FrictionModel& paper);
 bool DelayMet(double tau_s, double rms_at_tau_mps, double rms_at_zero_mps);
 /// F4's ripple amplitude [m] of a PI run on a smooth profile made with `profile`.
 double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile);
+/// F4 in motion: the RMS of e minus its centred moving average over `window_s` [s] (an odd
+/// number of samples, 2 round(window_s rate / 2) + 1), over the samples after the first cycle
+/// whose window lies inside e [m], and the frequency [Hz] of the largest peak of that
+/// residual's Hann-windowed periodogram (0 when there are fewer than 4 samples).
+struct MotionRipple {
+  double rms_m = 0;      ///< [m]
+  double ringing_hz = 0;  ///< [Hz]
+  long samples = 0;      ///< samples the RMS is over
+};
+MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile,
+                            double window_s = 0.05);
 /// F5: none > analytic > nn, and each within a factor 3 of the paper's (both ways).
 bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,
                       double paper_analytic_m, double paper_nn_m);

@@ -30,6 +30,8 @@ const FieldList<FactsOptions>& FactsFields() {
           .Add("track_amplitude_m", &O::track_amplitude_m)
           .Add("track_cycles", &O::track_cycles)
           .Add("ripple_tolerance_m", &O::ripple_tolerance_m)
+          .Add("motion_ripple_tolerance_m", &O::motion_ripple_tolerance_m)
+          .Add("motion_ripple_window_s", &O::motion_ripple_window_s)
           .Nested("training", &O::training, NeuralTrainingOptionsJson, ReadNeuralTrainingOptions)
           .Add("typical_hidden", &O::typical_hidden)
           .Add("typical_max_epochs", &O::typical_max_epochs)

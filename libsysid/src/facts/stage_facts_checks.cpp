@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "sysid/error.hpp"
@@ -83,6 +85,50 @@ double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p
     }
   }
   return ripple;
+}
+
+MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p,
+                            double window_s) {
+  if (!(window_s > 0) || !std::isfinite(window_s))
+    throw OptionsError(fmt::format(
+        "MotionRippleOf: window_s = {:g}. Violated constraint: window_s > 0", window_s));
+  const Eigen::Index n = e_m.size();
+  const auto half = static_cast<Eigen::Index>(std::llround(0.5 * window_s * p.sample_rate_hz));
+  // After the first cycle, and only where the whole window lies inside the run.
+  const Eigen::Index first = std::max(
+      half, static_cast<Eigen::Index>(std::ceil(p.sample_rate_hz / p.frequency_hz - 1e-9)));
+  const Eigen::Index last = n - half;  // exclusive
+  MotionRipple out;
+  if (last - first < 1) return out;
+  // Centred moving sums from prefix sums (long double: e spans ~1e-4 m over ~1e5 samples).
+  std::vector<long double> prefix(static_cast<std::size_t>(n) + 1, 0.0L);
+  for (Eigen::Index k = 0; k < n; ++k)
+    prefix[static_cast<std::size_t>(k) + 1] = prefix[static_cast<std::size_t>(k)] + e_m[k];
+  const auto width = static_cast<long double>(2 * half + 1);
+  std::vector<double> residual(static_cast<std::size_t>(last - first));
+  double sum2 = 0;
+  for (Eigen::Index k = first; k < last; ++k) {
+    const long double mean = (prefix[static_cast<std::size_t>(k + half + 1)] -
+                              prefix[static_cast<std::size_t>(k - half)]) / width;
+    const double r = e_m[k] - static_cast<double>(mean);
+    residual[static_cast<std::size_t>(k - first)] = r;
+    sum2 += r * r;
+  }
+  out.samples = static_cast<long>(residual.size());
+  out.rms_m = std::sqrt(sum2 / static_cast<double>(residual.size()));
+  if (residual.size() < 4) return out;
+  // The ringing frequency: the largest bin of the Hann-windowed periodogram (DC left out).
+  const std::size_t m = residual.size();
+  for (std::size_t k = 0; k < m; ++k)
+    residual[k] *= 0.5 - 0.5 * std::cos(2 * 3.14159265358979323846 * static_cast<double>(k) / static_cast<double>(m - 1));
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> spectrum;
+  fft.fwd(spectrum, residual);
+  std::size_t peak = 1;
+  for (std::size_t k = 2; k <= m / 2; ++k)
+    if (std::norm(spectrum[k]) > std::norm(spectrum[peak])) peak = k;
+  out.ringing_hz = static_cast<double>(peak) * p.sample_rate_hz / static_cast<double>(m);
+  return out;
 }
 
 bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,

@@ -397,9 +397,35 @@ class ReportWriter {
                                                "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
                                                "analytic, NN).",
                                                1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
+      md_ += RingingSentence(f);
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
     md_ += "\n";
+  }
+
+  // One sentence when PI alone rings in motion at frequency f (F4 in motion, > 5 um): why the
+  // plots show a band.
+  std::string RingingSentence(double f) const {
+    for (const auto& t : r_.tracking) {
+      if (t.frequency_hz != f || t.scheme != "none" || t.result.t_s.size() < 2) continue;
+      SmoothProfileOptions p;
+      p.frequency_hz = f;
+      p.sample_rate_hz = 1.0 / (t.result.t_s[1] - t.result.t_s[0]);
+      p.cycles = static_cast<int>(std::lround(static_cast<double>(t.result.t_s.size() - 1) /
+                                              p.sample_rate_hz * f));
+      const FactsOptions limits;
+      const facts::MotionRipple m =
+          facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
+      if (m.rms_m <= limits.motion_ripple_tolerance_m) return {};
+      return fmt::format(
+          " PI alone rings while the stage moves (RMS of e minus its 50 ms moving average "
+          "{:.3g} um at {:.3g} Hz, above F4's 5 um), so every error plot carries a band at that "
+          "frequency: at this stage's {:g} Hz loop rate the paper's gains leave the loop almost "
+          "no phase margin in motion; a faster loop (rig.control_rate_hz) quiets it "
+          "(docs/virtual_stage.md, \"Loop rate\").",
+          1e6 * m.rms_m, m.ringing_hz, p.sample_rate_hz);
+    }
+    return {};
   }
 
   // The PI gains on the identified model: the linear loop around steady sliding.

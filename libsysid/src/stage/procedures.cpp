@@ -46,7 +46,19 @@ void AddCommonMetadata(Recording& r, const StageParameters& stage, const std::st
   r.metadata.emplace_back("stage", stage.name);
   r.metadata.emplace_back("procedure", procedure);
   r.metadata.emplace_back("seed", std::to_string(seed));
-  r.metadata.emplace_back("sample_rate_hz", Fmt(stage.sample_rate_hz));
+  // The recording's own rate; the loop's when it runs faster than the recording.
+  r.metadata.emplace_back("sample_rate_hz", Fmt(stage.RecordRateHz()));
+  if (stage.RecordStride() > 1)
+    r.metadata.emplace_back("control_rate_hz", Fmt(stage.sample_rate_hz));
+}
+
+// Every stride-th sample of y from 0 (plain sampling, as a real-time logger's downsampling).
+Eigen::VectorXd EveryNth(const Eigen::VectorXd& y, long stride) {
+  if (stride == 1) return y;
+  const Eigen::Index m = (y.size() + stride - 1) / stride;
+  Eigen::VectorXd out(m);
+  for (Eigen::Index k = 0; k < m; ++k) out[k] = y[k * stride];
+  return out;
 }
 
 Eigen::VectorXd Segment(const Eigen::VectorXd& y, long from, long to) {
@@ -119,14 +131,19 @@ Recording OpenLoopRecording(const StageParameters& stage, const Eigen::VectorXd&
                             std::uint64_t seed, const DerivativeOptions& derivative,
                             const std::string& source, const std::string& procedure,
                             std::string* limits) {
-  const double rate = stage.sample_rate_hz;
+  // The stage runs at the control rate; the recording keeps every stride-th sample.
+  const double rate = stage.RecordRateHz();
+  const long stride = stage.RecordStride();
   const StageRun run = RunOpenLoop(stage, u, seed);
-  const Derivatives d = Differentiate(run.x_m, 1.0 / rate, derivative);
+  const Eigen::VectorXd x = EveryNth(run.x_m, stride);
+  Eigen::VectorXd t(x.size());
+  for (Eigen::Index k = 0; k < t.size(); ++k) t[k] = static_cast<double>(k) / rate;
+  const Derivatives d = Differentiate(x, 1.0 / rate, derivative);
   Recording r;
   r.source = source;
   r.names = {"t", "u", "x", "v", "a"};
-  r.data.resize(run.t_s.size(), 5);
-  r.data << run.t_s, run.u_v, run.x_m, d.v_mps, d.a_mps2;
+  r.data.resize(x.size(), 5);
+  r.data << t, EveryNth(run.u_v, stride), x, d.v_mps, d.a_mps2;
   AddCommonMetadata(r, stage, procedure, seed);
   *limits = run.status.Describe();
   return r;
@@ -144,7 +161,7 @@ void FinishOpenLoopRecording(const DerivativeOptions& derivative, const std::str
 Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& procedure,
                        std::uint64_t seed, const DerivativeOptions& derivative) {
   stage.Validate();
-  derivative.Validate(1.0 / stage.sample_rate_hz);
+  derivative.Validate(1.0 / stage.RecordRateHz());
   std::string limits;
   Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
                                   derivative, "pulses", "pulse test", &limits);
@@ -193,7 +210,7 @@ Eigen::VectorXd TriangleProcedure::Voltage(double rate) const {
 Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure& procedure,
                           std::uint64_t seed, const DerivativeOptions& derivative) {
   stage.Validate();
-  derivative.Validate(1.0 / stage.sample_rate_hz);
+  derivative.Validate(1.0 / stage.RecordRateHz());
   std::string limits;
   Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
                                   derivative, "triangle",
@@ -215,7 +232,7 @@ void TrackingProcedure::Validate(const StageParameters& stage) const {
   if (kept_cycles < 1) Violated("TrackingProcedure::kept_cycles", kept_cycles, "kept_cycles >= 1");
   if (!(tail_s >= 0) || !std::isfinite(tail_s))
     Violated("TrackingProcedure::tail_s", tail_s, "tail_s >= 0");
-  derivative.Validate(1.0 / stage.sample_rate_hz);
+  derivative.Validate(1.0 / stage.RecordRateHz());
 }
 
 namespace {
@@ -239,10 +256,15 @@ struct Tracked {
 Tracked Track(const StageParameters& stage, const VelocityWaveform& w,
               const TrackingProcedure& procedure, std::uint64_t seed) {
   CheckWaveform(w, stage);
-  const double rate = stage.sample_rate_hz;
-  const long c0 = Samples(procedure.lead_cycles * w.period_s, rate);
-  const long c1 = Samples((procedure.lead_cycles + procedure.kept_cycles) * w.period_s, rate);
-  const long n = c1 + Samples(procedure.tail_s, rate);
+  // The P loop runs at the control rate; the recording keeps every stride-th sample (cut
+  // points and derivatives at the record rate).
+  const double record_rate = stage.RecordRateHz(), rate = stage.sample_rate_hz;
+  const long stride = stage.RecordStride();
+  const long c0 = Samples(procedure.lead_cycles * w.period_s, record_rate);
+  const long c1 =
+      Samples((procedure.lead_cycles + procedure.kept_cycles) * w.period_s, record_rate);
+  const long recorded = c1 + Samples(procedure.tail_s, record_rate);
+  const long n = Samples(static_cast<double>(recorded) / record_rate, rate);
   VirtualStage plant(stage, seed);
   Eigen::VectorXd x(n), u(n), x_ref(n), v_ref(n);
   for (long k = 0; k < n; ++k) {
@@ -256,16 +278,17 @@ Tracked Track(const StageParameters& stage, const VelocityWaveform& w,
   }
   // Derivatives over the whole run, then the cut: the filter sees real samples on both sides
   // of the cut, so the kept cycle has no end effects.
-  const Derivatives d = Differentiate(x, 1.0 / rate, procedure.derivative);
+  const Eigen::VectorXd xr = EveryNth(x, stride);
+  const Derivatives d = Differentiate(xr, 1.0 / record_rate, procedure.derivative);
   Tracked out;
   out.t.resize(c1 - c0);
-  for (long k = 0; k < c1 - c0; ++k) out.t[k] = static_cast<double>(k) / rate;
-  out.u = Segment(u, c0, c1);
-  out.x = Segment(x, c0, c1);
+  for (long k = 0; k < c1 - c0; ++k) out.t[k] = static_cast<double>(k) / record_rate;
+  out.u = Segment(EveryNth(u, stride), c0, c1);
+  out.x = Segment(xr, c0, c1);
   out.v = Segment(d.v_mps, c0, c1);
   out.a = Segment(d.a_mps2, c0, c1);
-  out.x_ref = Segment(x_ref, c0, c1);
-  out.v_ref = Segment(v_ref, c0, c1);
+  out.x_ref = Segment(EveryNth(x_ref, stride), c0, c1);
+  out.v_ref = Segment(EveryNth(v_ref, stride), c0, c1);
   out.status = plant.status();
   return out;
 }
@@ -320,7 +343,7 @@ Recording RunTrackingSet(const StageParameters& stage, const std::vector<Velocit
     const Tracked& r = runs[i];
     const Eigen::Index m = r.t.size();
     for (Eigen::Index k = 0; k < m; ++k)
-      rec.data(at + k, 0) = static_cast<double>(at + k) / stage.sample_rate_hz;
+      rec.data(at + k, 0) = static_cast<double>(at + k) / stage.RecordRateHz();
     rec.data.block(at, 1, m, 1) = r.u;
     rec.data.block(at, 2, m, 1) = r.x;
     rec.data.block(at, 3, m, 1) = r.v;

@@ -62,6 +62,8 @@ std::string FieldPointer(const internal::JsonDocument& doc, const std::string& f
     else if (ch != ']') suffix += ch;
   }
   std::string p = doc.FindSuffix(suffix);
+  // The control rate is written either as sample_rate_hz (both rates) or as control_rate_hz.
+  if (p.empty() && suffix == "/sample_rate_hz") p = doc.FindSuffix("/control_rate_hz");
   if (p.empty() && suffix.rfind("/drive_", 0) == 0) p = doc.FindSuffix("/" + suffix.substr(7));
   return p;
 }
@@ -196,7 +198,19 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
       if (root.Get(key).Has("backward"))
         BranchSection(p.backward).Read(root.Get(key).Get("backward"), complete);
     } else if (key == "rig") {
-      Section{{{"sample_rate_hz", &p.sample_rate_hz},
+      // The rates: sample_rate_hz sets the control and the record rate alike (files written
+      // before the two rates existed); control_rate_hz and record_rate_hz set them apart.
+      const internal::JsonNode rig = root.Get(key);
+      double alias = p.sample_rate_hz, control = p.sample_rate_hz, record = p.record_rate_hz;
+      if (rig.Has("sample_rate_hz"))
+        for (const char* other : {"control_rate_hz", "record_rate_hz"})
+          if (rig.Has(other))
+            rig.Get(other).Fail(std::string("give rig.sample_rate_hz (it sets both rates) or "
+                                            "rig.control_rate_hz and rig.record_rate_hz, not "
+                                            "both; found sample_rate_hz and ") + other);
+      Section{{{"sample_rate_hz", &alias},
+               {"control_rate_hz", &control},
+               {"record_rate_hz", &record},
                {"dac_range_v", &p.dac_range_v},
                {"encoder_resolution_m", &p.encoder_resolution_m},
                {"position_noise_m", &p.position_noise_m},
@@ -207,14 +221,24 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
               {{"dac_bits", &p.dac_bits}},
               {},
               {}}
-          .Read(root.Get(key), complete);
+          .Read(rig, complete, {"sample_rate_hz", "control_rate_hz", "record_rate_hz"});
+      if (complete && !rig.Has("sample_rate_hz") && !rig.Has("control_rate_hz"))
+        rig.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
+                 kCompleteRule + ")");
+      if (rig.Has("sample_rate_hz")) {
+        p.sample_rate_hz = alias;
+        p.record_rate_hz = 0;  // the control rate
+      } else {
+        p.sample_rate_hz = control;
+        p.record_rate_hz = record;
+      }
     } else if (key == "integrator") {
       Section{{{"relative_tolerance", &p.relative_tolerance},
                {"position_tolerance_m", &p.position_tolerance_m}},
-              {},
+              {{"max_steps_per_sample", &p.max_steps_per_sample}},
               {},
               {}}
-          .Read(root.Get(key), complete);
+          .Read(root.Get(key), complete, {"max_steps_per_sample"});
     }
   }
   if (complete) {
@@ -234,8 +258,11 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   }
   // A bound beyond the physics that keeps every procedure's work finite (1e12 Hz would ask for
   // terabytes); only a file can set it, so it is reported at its place.
-  if (p.sample_rate_hz > kMaxStageSampleRateHz)
-    root.Get("rig").Get("sample_rate_hz").Expected("a number in (0, 1e+06] (sample rate [Hz])");
+  if (p.sample_rate_hz > kMaxStageSampleRateHz) {
+    const internal::JsonNode rig = root.Get("rig");
+    rig.Get(rig.Has("sample_rate_hz") ? "sample_rate_hz" : "control_rate_hz")
+        .Expected("a number in (0, 1e+06] (sample rate [Hz])");
+  }
   return p;
 }
 
@@ -298,7 +325,13 @@ std::string StageParametersToJson(const StageParameters& p) {
     j["friction"] = friction;
   }
   OJ rig;
-  rig["sample_rate_hz"] = p.sample_rate_hz;
+  // One rate as before (sample_rate_hz sets both), or the two apart.
+  if (p.record_rate_hz > 0 && p.record_rate_hz != p.sample_rate_hz) {
+    rig["control_rate_hz"] = p.sample_rate_hz;
+    rig["record_rate_hz"] = p.record_rate_hz;
+  } else {
+    rig["sample_rate_hz"] = p.sample_rate_hz;
+  }
   rig["dac_bits"] = p.dac_bits;
   rig["dac_range_v"] = p.dac_range_v;
   rig["encoder_resolution_m"] = p.encoder_resolution_m;
@@ -311,6 +344,8 @@ std::string StageParametersToJson(const StageParameters& p) {
   OJ integ;
   integ["relative_tolerance"] = p.relative_tolerance;
   integ["position_tolerance_m"] = p.position_tolerance_m;
+  if (p.max_steps_per_sample != StageParameters::kDefaultMaxStepsPerSample)
+    integ["max_steps_per_sample"] = p.max_steps_per_sample;
   j["integrator"] = integ;
   return j.dump(2) + "\n";
 }

@@ -182,6 +182,19 @@ void StageParameters::Validate() const {
   Require(lag_time_constant_s > 0, "lag_time_constant_s", lag_time_constant_s,
           "lag_time_constant_s > 0");
   Require(sample_rate_hz > 0, "sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
+  RequireFinite("record_rate_hz", record_rate_hz);
+  Require(record_rate_hz >= 0 && record_rate_hz <= sample_rate_hz, "record_rate_hz",
+          record_rate_hz,
+          "0 <= record_rate_hz <= the control rate sample_rate_hz (" + Fmt(sample_rate_hz) +
+              "); 0: the control rate");
+  if (record_rate_hz > 0) {
+    const double n = sample_rate_hz / record_rate_hz;
+    Require(std::abs(n - std::round(n)) <= 1e-9 * n, "record_rate_hz", record_rate_hz,
+            "the control rate sample_rate_hz (" + Fmt(sample_rate_hz) +
+                ") is an integer multiple of record_rate_hz (recordings keep every n-th sample)");
+  }
+  Require(max_steps_per_sample >= 10 && max_steps_per_sample <= 100000000, "max_steps_per_sample",
+          static_cast<double>(max_steps_per_sample), "10 <= max_steps_per_sample <= 1e8");
   Require(dac_bits >= 1 && dac_bits <= 32, "dac_bits", dac_bits, "1 <= dac_bits <= 32");
   Require(dac_range_v > 0, "dac_range_v", dac_range_v, "dac_range_v > 0");
   Require(encoder_resolution_m > 0, "encoder_resolution_m", encoder_resolution_m,
@@ -378,6 +391,10 @@ double StageParameters::SteadyVelocity(double u_v) const {
     (SteadyFriction(b, mid) > drive ? hi : lo) = mid;
   }
   return sign * 0.5 * (lo + hi);
+}
+
+long StageParameters::RecordStride() const {
+  return std::max(1L, std::lround(sample_rate_hz / RecordRateHz()));
 }
 
 std::string StageStatus::Describe() const {

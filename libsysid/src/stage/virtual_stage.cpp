@@ -16,6 +16,10 @@
 // of a sample, so within each sample the driver input has at most one edge, at t_k + f Ts. The
 // integration is restarted (CVodeReInit) at every edge where the input changes: the right-hand
 // side is then smooth on each integrated piece, which keeps BDF at full order and accuracy.
+//
+// Work per sample is bounded (integrator.max_steps_per_sample: CVODE steps plus switches), so a
+// stage that cannot be integrated ends with NumericalError naming the time and the state
+// instead of running on.
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
@@ -73,7 +77,9 @@ class VirtualStage::Impl {
     atol[kW] = p_.position_tolerance_m / ts_;
     cv_->SetTolerances(p_.relative_tolerance, atol.data());
     cv_->SetJacobian(&Impl::Jacobian);
-    cv_->SetMaxNumSteps(100000);
+    // One CVode call never takes more than the whole sample's budget (CV_TOO_MUCH_WORK then
+    // reads as the budget's error, WorkExceeded).
+    cv_->SetMaxNumSteps(p_.max_steps_per_sample);
     EnableRoots(true);
     reading_ = Measure();
   }
@@ -103,6 +109,9 @@ class VirtualStage::Impl {
     history_[0] = u;
     const double t0 = static_cast<double>(k_) * ts_;
     const double t1 = static_cast<double>(k_ + 1) * ts_;
+    sample_start_steps_ = cv_->Counters().steps;
+    sample_switches_ = 0;
+    sample_u_ = u;
     const double now = history_[static_cast<size_t>(delay_samples_)];
     if (delay_fraction_ > 0) {
       // The delayed input is the older value until t_k + f Ts, then the newer one.
@@ -161,18 +170,34 @@ class VirtualStage::Impl {
     cv_->SetStopTime(t_end);
     while (t_ < t_end) {
       const int flag = cv_->Advance(t_end, &t_, CV_NORMAL);
+      if (flag == CV_TOO_MUCH_WORK) WorkExceeded();
       int which[3] = {0, 0, 0};
-      if (flag == CV_ROOT_RETURN) cv_->GetRootInfo(which);
+      if (flag == CV_ROOT_RETURN) {
+        cv_->GetRootInfo(which);
+        ++sample_switches_;
+        if (cv_->Counters().steps - sample_start_steps_ + sample_switches_ >
+            p_.max_steps_per_sample)
+          WorkExceeded();
+      }
       if (flag == CV_ROOT_RETURN && vs_ && which[0] == 0 && which[1] == 0) {
         // A stick-slip switch of the rail.
         if (stuck_) {
-          BreakAway();
+          // Only a rising crossing of the breakaway margin starts the stage; a falling one
+          // (it stuck with the margin just above 0, below) leaves it at rest.
+          if (which[2] > 0) BreakAway();
         } else {
           y[kV] = 0;
-          if (Breakaway(y[kW]) <= 0) {
+          const int pull = p_.NoLoadSpeed(y[kW]) > 0 ? 1 : -1;
+          if (Breakaway(y[kW]) <= 0 || pull == direction_) {
+            // At rest. A drive that pulls on in the sliding direction with |p v_f| > Fs >= g
+            // cannot bring the stage to rest (v' > 0 at v = 0): it reaches v = 0 only where the
+            // margin is within rounding of 0 and falling. Sliding on from there found the same
+            // root at the same instant again, forever (a hang: 10 kHz loop, 0.5 Hz profile,
+            // t = 1.1308 s, margin 7e-5 m/s^2); it sticks, and starts again when the margin
+            // rises through 0 or is positive at the next sample's start.
             stuck_ = true;
           } else {
-            direction_ = p_.NoLoadSpeed(y[kW]) > 0 ? 1 : -1;
+            direction_ = pull;
           }
           Restart();
         }
@@ -200,6 +225,31 @@ class VirtualStage::Impl {
   double Breakaway(double w) const {
     return std::abs(p_.motor.Thrust(p_.motor.pole_per_s * p_.NoLoadSpeed(w))) -
            p_.rail.static_mps2;
+  }
+
+  // The sample needed more than its work budget: the stage cannot be integrated here.
+  [[noreturn]] void WorkExceeded() const {
+    const double* y = cv_->state();
+    std::string state = "x = " + Num(y[kX]) + " m, v = " + Num(y[kV]) + " m/s, " +
+                        (vs_ ? "u_d" : "w") + " = " + Num(y[kW]) + " V";
+    if (vs_) {
+      state += ", " + std::string(stop_ != 0 ? "at an end stop"
+                                   : stuck_   ? "stuck"
+                                              : (direction_ > 0 ? "sliding forward"
+                                                                : "sliding backward"));
+      if (p_.rail.memory_time_s > 0) state += ", slip memory s = " + Num(y[kZ]) + " m/s";
+    } else {
+      state += ", bristle z = " + Num(y[kZ]) + " m";
+    }
+    throw NumericalError(
+        "virtual stage: the integrator's work in the sample from t = " + Num(time_s()) +
+        " s exceeded integrator.max_steps_per_sample = " +
+        std::to_string(p_.max_steps_per_sample) + " (" +
+        std::to_string(cv_->Counters().steps - sample_start_steps_) + " CVODE steps, " +
+        std::to_string(sample_switches_) + " switches; reached t = " + Num(t_) +
+        " s); state: " + state + ", DAC u = " + Num(sample_u_) +
+        " V; the stage cannot be integrated at this rate: check its parameters, or try a "
+        "larger integrator.relative_tolerance or integrator.position_tolerance_m");
   }
 
   void BreakAway() {
@@ -341,6 +391,9 @@ class VirtualStage::Impl {
   bool stuck_ = true;      // velocity source: held by the rail's static friction
   int direction_ = 1;      // velocity source: sliding direction d while not stuck
   double reading_ = 0;
+  long sample_start_steps_ = 0;  // CVODE steps before this sample
+  long sample_switches_ = 0;     // root returns in this sample
+  double sample_u_ = 0;          // [V] this sample's DAC output
   StageStatus status_;
   std::optional<internal::CvodeSolver> cv_;  // made once p_ is validated
 };

@@ -1,0 +1,33 @@
+// What the benchmarks share: CPU time of a clock and the machine's load average, which every
+// benchmark prints beside its ratios (the machine is shared; docs/benchmarks.md).
+#ifndef SYSID_BENCH_BENCH_CLOCK_HPP_
+#define SYSID_BENCH_BENCH_CLOCK_HPP_
+
+#include <fmt/format.h>
+#include <time.h>
+
+#include <cstdio>
+#include <string>
+
+namespace sysid::bench {
+
+/// [s] CPU time of `clock` (CLOCK_THREAD_CPUTIME_ID: this thread; CLOCK_PROCESS_CPUTIME_ID).
+inline double CpuSeconds(clockid_t clock = CLOCK_THREAD_CPUTIME_ID) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// The first three fields of /proc/loadavg ("?" where there is none).
+inline std::string LoadAverage() {
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  if (!f) return "?";
+  double l1 = 0, l5 = 0, l15 = 0;
+  const int n = std::fscanf(f, "%lf %lf %lf", &l1, &l5, &l15);
+  std::fclose(f);
+  return n == 3 ? fmt::format("{:.2f} {:.2f} {:.2f}", l1, l5, l15) : "?";
+}
+
+}  // namespace sysid::bench
+
+#endif  // SYSID_BENCH_BENCH_CLOCK_HPP_
