@@ -44,6 +44,7 @@ class Parser {
     rec.source = source_;
     rec.names.clear();
     rec.metadata.clear();
+    rec.row_lines.clear();
     ReadHeader(rec);
     ReadRows(rec, values);
     CheckColumns(rec);
@@ -146,6 +147,11 @@ class Parser {
         Fail(line_no_, 0, "empty line: expected " + std::to_string(ncol) + " numbers");
       }
       if (line.front() == '#') continue;
+      if (rec.row_lines.empty() || rec.row_lines.back().second +
+                                           static_cast<long>(static_cast<Eigen::Index>(rows) -
+                                                             rec.row_lines.back().first) !=
+                                       line_no_)
+        rec.row_lines.emplace_back(static_cast<Eigen::Index>(rows), line_no_);
       const char* p = line.data();
       const char* end = line.data() + line.size();
       for (size_t c = 0; c < ncol; ++c) {
@@ -176,6 +182,7 @@ class Parser {
     if (rows == 0)
       Fail(header_line_, 0, "header without rows: expected numeric rows after the header");
     rec.data.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(ncol));
+    rec.row_lines_rows = static_cast<Eigen::Index>(rows);
     for (size_t r = 0; r < rows; ++r)
       for (size_t c = 0; c < ncol; ++c)
         rec.data(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) =

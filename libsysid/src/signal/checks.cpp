@@ -39,6 +39,18 @@ void CheckSavitzkyGolay(const char* where, const char* window_field, int window,
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} odd and >= 3", where,
                                    window_field, window, window_field),
                        window_field);
+  if (window > kMaxSavitzkyGolayWindow)
+    throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} "
+                                   "(kMaxSavitzkyGolayWindow, 10 s at 1 kHz)",
+                                   where, window_field, window, window_field,
+                                   kMaxSavitzkyGolayWindow),
+                       window_field);
+  if (order > kMaxSavitzkyGolayOrder)
+    throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} "
+                                   "(kMaxSavitzkyGolayOrder)",
+                                   where, order_field, order, order_field,
+                                   kMaxSavitzkyGolayOrder),
+                       order_field);
   if (order < min_order || order >= window)
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} < {} = {}", where,
                                    order_field, order, min_order, order_field, window_field,

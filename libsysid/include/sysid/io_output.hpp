@@ -1,0 +1,46 @@
+// Output safety shared by every writer: staging folders that an interrupted run removes, and
+// the limits on what a reader loads into memory.
+#ifndef SYSID_IO_OUTPUT_HPP_
+#define SYSID_IO_OUTPUT_HPP_
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace sysid {
+
+/// The most bytes ReadFile loads from one file (4 GiB): a recording of kMaxSignalSamples rows
+/// in five columns is about 2 GB of text. A larger regular file is refused before anything is
+/// allocated; a pipe is refused when it passes this many bytes.
+inline constexpr std::uint64_t kMaxInputFileBytes = std::uint64_t{4} << 30;
+
+/// True when WriteFileAtomically(path, ...) writes through `path` instead of replacing a file:
+/// the program's own descriptors (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N), a
+/// FIFO, a character device, or a link to one of these.
+bool WritesThrough(const std::string& path);
+
+/// A new folder beside `target`, named ".NAME.tmp.PID.XXXXXX" (unique per run: the process id
+/// and mkdtemp's random suffix), that SIGINT, SIGTERM or SIGHUP removes with its content while
+/// this object lives. The destructor removes it too unless it was renamed away (published).
+/// Throws InputError when the folder cannot be created.
+class StagingFolder {
+ public:
+  explicit StagingFolder(const std::filesystem::path& target);
+  ~StagingFolder();
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  /// A token unique to this run ("PID.XXXXXX"), for markers that tell runs apart.
+  const std::string& run_id() const { return run_id_; }
+
+ private:
+  struct Guard;
+  std::filesystem::path path_;
+  std::string run_id_;
+  std::unique_ptr<Guard> guard_;
+};
+
+}  // namespace sysid
+
+#endif  // SYSID_IO_OUTPUT_HPP_
