@@ -39,12 +39,11 @@ bool CsvWrittenBySysid(std::string_view head) {
     std::string_view line = head.substr(pos, end - pos);
     pos = end + 1;
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (line.rfind("# ", 0) != 0) {
-      // The header line: sysid's own tables.
-      return line.rfind("file,candidate,", 0) == 0 ||      // dominance table
-             line.rfind("t_s,event,", 0) == 0 ||           // simulation events
-             line.rfind("amplitude_v,", 0) == 0;           // identify pulse table
-    }
+    if (line.rfind("# dominance of the inverse-model terms", 0) == 0) return true;
+    // The header line: sysid's own tables.
+    if (line.rfind("# ", 0) != 0)
+      return line.rfind("source,rank,variable,rms,peak,", 0) == 0 ||  // dominance table
+             line == "t,kind";                                         // simulation events
     const size_t colon = line.find(':');
     if (colon == std::string_view::npos) continue;
     const std::string_view key = line.substr(2, colon - 2);

@@ -15,9 +15,9 @@ namespace sysid::cli {
 
 /// True when the first 64 KB of the regular file `path` carry sysid's writing: a CSV whose
 /// leading '#' metadata holds a key only sysid writes (stage, procedure, derive, model,
-/// content, ff, waveform_name, resampled), a CSV table with the header sysid gives it (the
-/// dominance table, simulation events, a pulse table), or a JSON object with sysid's unit
-/// block ("units": {"a1p": "1/s", ...}), its network type ("tanh-mlp") or its stage note.
+/// content, ff, waveform_name, resampled), a CSV table with the comment or header sysid gives
+/// it (the dominance table, simulation events), or a JSON object with sysid's unit block
+/// ("units": {"a1p": "1/s", ...}), its network type ("tanh-mlp") or its stage note.
 bool WrittenBySysid(const std::filesystem::path& path);
 
 /// Checks "FLAG PATH" before any work (throws OptionsError, exit 1): nothing there, not a

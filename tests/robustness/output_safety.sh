@@ -35,8 +35,14 @@ echo "my events" > ev.csv
 expect 1 "--events ev.csv: exists and was not written by sysid" \
   simulate --paper-model --pulses 1 --events ev.csv -o s1.csv
 [ ! -e s1.csv ] || fail "simulate wrote -o although --events was refused"
-expect 0 "" identify --a3 6 "$v/pulses.csv" -o id.json
-expect 0 "" identify --a3 6 "$v/pulses.csv" -o id.json   # its own model file: replaced
+# Each writer's own files are replaced without --force (their marks are recognised).
+for i in 1 2; do
+  expect 0 "" identify --a3 6 "$v/pulses.csv" -o id.json
+  expect 0 "" dominance --model id.json -o dom.csv "$v/test.csv"
+  expect 0 "" simulate --model id.json --pulses 1 --events ev2.csv -o sim.csv
+  expect 0 "" derive "$v/test.csv" -o d.csv
+  expect 0 "" excite tracking --set test -o tr.csv
+done
 
 # -o onto a FIFO: written through (a reader gets the CSV), the FIFO stays a FIFO.
 mkfifo f
