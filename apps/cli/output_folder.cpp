@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/io_output.hpp"
 
 namespace sysid::cli {
@@ -105,8 +106,8 @@ OutputFolder::OutputFolder(const std::string& dir, bool force,
 
 void OutputFolder::Write(const std::function<void(const fs::path&)>& write) const {
   const StagingFolder staging(out_);  // removed on error, Ctrl-C, or left empty once renamed
-  std::ofstream(staging.path() / kOutputMarker)
-      << "written by sysid " << command_ << " (run " << staging.run_id() << ")\n";
+  WriteFileAtomically((staging.path() / kOutputMarker).string(),
+                      "written by sysid " + command_ + " (run " + staging.run_id() + ")\n");
   write(staging.path());
   const auto changed = [&] {
     return InputError("-o " + given_ +

@@ -27,6 +27,11 @@ expect 0 "" derive "$v/training.csv" --method savgol --window 10001 --order 5 -o
 expect 2 "/dev/zero: cannot open: is a character device, not a file" info /dev/zero
 truncate -s 5G big.csv 2>/dev/null && expect 2 "past the 4 GiB a file may have" info big.csv
 rm -f big.csv
+# A recording of more than 2e7 rows (kMaxSignalSamples) is refused while it is read: its values
+# would take 4 bytes for each 1 of a short row's text.
+awk 'BEGIN { print "t,u,x"; for (i = 0; i <= 20000000; i++) printf "%d,0,0\n", i }' > rows.csv
+expect 2 "rows.csv:20000002: more than 20000000 rows" info rows.csv
+rm -f rows.csv
 # tune-delay --curve: at most 1000 points.
 printf '{"a1p": 104.0154, "a1n": 117.1441, "a2p": 3.1023, "a2n": 6.8216, "a3": 6.0, "tau": 0}\n' \
   > model.json

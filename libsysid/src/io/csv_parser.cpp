@@ -126,6 +126,9 @@ class Parser {
                        : "no header line: expected a line of column names (t,u,x,...)");
   }
 
+  // The most rows of a recording, as of a generated signal: bounds the memory of the values.
+  static constexpr size_t kMaxRows = static_cast<size_t>(kMaxSignalSamples);
+
   void ReadRows(Recording& rec, std::vector<double>& values) {
     const size_t ncol = rec.names.size();
     values.clear();  // row-major while parsing; transposed once at the end
@@ -134,7 +137,8 @@ class Parser {
       const size_t max_rows =
           static_cast<size_t>(std::count(text_.begin() + static_cast<long>(pos_), text_.end(),
                                          '\n')) + 1;
-      values.reserve(max_rows * ncol);
+      // At most kMaxSignalSamples rows are ever kept (checked per row below).
+      values.reserve(std::min(max_rows, kMaxRows + 1) * ncol);
     }
     const int t_index = options_.require_increasing_time ? rec.index_of("t") : -1;
     double t_prev = 0;
@@ -147,6 +151,10 @@ class Parser {
         Fail(line_no_, 0, "empty line: expected " + std::to_string(ncol) + " numbers");
       }
       if (line.front() == '#') continue;
+      if (rows == kMaxRows)
+        Fail(line_no_, 0,
+             "more than " + std::to_string(kMaxRows) +
+                 " rows, past the most a recording may hold (sysid::kMaxSignalSamples)");
       if (rec.row_lines.empty() || rec.row_lines.back().second +
                                            static_cast<long>(static_cast<Eigen::Index>(rows) -
                                                              rec.row_lines.back().first) !=
