@@ -79,17 +79,16 @@ void CheckKeysAndEnd(std::string_view t, const std::string& source) {
     if (i >= n) return;  // nlohmann accepted the text: nothing is missing
     if (state == kValue) {
       const char c = t[i];
-      if (c == '{' || c == '[') {
+      if (c == '{' || c == '[') {  // an empty one closes at once in kKey / below
         stack.push_back({c == '{', {}});
         ++i;
-        ws();
-        if (i < n && (t[i] == '}' || t[i] == ']')) {
-          ++i;
-          stack.pop_back();
-          state = kAfter;
-        } else {
-          state = c == '{' ? kKey : kValue;
-        }
+        state = c == '{' ? kKey : kValue;
+        continue;
+      }
+      if (c == ']') {  // an empty array (the text was accepted: nothing else gets here)
+        ++i;
+        stack.pop_back();
+        state = kAfter;
         continue;
       }
       if (c == '"') {
@@ -101,6 +100,12 @@ void CheckKeysAndEnd(std::string_view t, const std::string& source) {
       }
       state = kAfter;
     } else if (state == kKey) {
+      if (t[i] == '}') {  // an empty object
+        ++i;
+        stack.pop_back();
+        state = kAfter;
+        continue;
+      }
       if (t[i] != '"') return;  // not reached on accepted text
       const size_t at = i;
       const bool escaped = skip_string();
