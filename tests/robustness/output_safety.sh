@@ -113,6 +113,17 @@ case "$a3:$hidden" in
   5*:2|6*:3) ;;
   *) fail "rep mixes two runs: model.json a3 = $a3, nn.json hidden = $hidden" ;;
 esac
+# Both replacing the folder an earlier run wrote (--force): still one run's files.
+concurrent rep pipeline D -o rep --force --a3 5 --hidden 2 --max-epochs 3 --no-typical \
+  --no-track --no-delay -- pipeline D -o rep --force --a3 6 --hidden 3 --max-epochs 3 \
+  --no-typical --no-track --no-delay
+a3=$(sed -n 's/.*"a3": *\([0-9.e+-]*\).*/\1/p' rep/model.json | head -1)
+hidden=$(sed -n 's/.*"hidden": *\([0-9]*\).*/\1/p' rep/nn.json | head -1)
+case "$a3:$hidden" in
+  5*:2|6*:3) ;;
+  *) fail "rep (replaced) mixes two runs: model.json a3 = $a3, nn.json hidden = $hidden" ;;
+esac
+ls -a | grep -q '\.old$' && fail "a moved-aside folder was left"
 concurrent T excite tracking --set training -o T -- excite tracking --set test -o T
 if ls T | grep -q training; then ls T | grep -q test && fail "T mixes the training and test sets"; fi
 

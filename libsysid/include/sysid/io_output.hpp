@@ -15,6 +15,13 @@ namespace sysid {
 /// allocated; a pipe is refused when it passes this many bytes.
 inline constexpr std::uint64_t kMaxInputFileBytes = std::uint64_t{4} << 30;
 
+// WriteFileAtomically (sysid/io.hpp) replaces nothing but a regular file: a FIFO or a character
+// device (/dev/null) is written through, /dev/stdout and /dev/fd/N write to the program's own
+// descriptor, a symbolic link is followed (the file it names is replaced, the link stays); a
+// dangling link, a link loop, a folder, a socket or a block device throws OptionsError.
+// ReadFile refuses a device or a socket, and more than kMaxInputFileBytes: a regular file from
+// its size before anything is read, a pipe when it passes the limit.
+
 /// True when WriteFileAtomically(path, ...) writes through `path` instead of replacing a file:
 /// the program's own descriptors (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N), a
 /// FIFO, a character device, or a link to one of these.
