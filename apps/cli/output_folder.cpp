@@ -128,8 +128,10 @@ void OutputFolder::Write(const std::function<void(const fs::path&)>& write) cons
   // Replace our earlier output: move it aside, check it is still the one we saw, then
   // publish; the old folder is removed last.
   const fs::path old = staging.path().string() + ".old";
-  if (::rename(out_.c_str(), old.c_str()) != 0)
+  if (::rename(out_.c_str(), old.c_str()) != 0) {
+    if (errno == ENOENT) throw changed();  // another run moved it aside first
     throw InputError("-o " + given_ + ": cannot replace: " + std::strerror(errno));
+  }
   struct stat st {};
   const bool same = ::lstat(old.c_str(), &st) == 0 && st.st_ino == initial_.ino &&
                     st.st_dev == initial_.dev && ReadMarker(old) == initial_.marker;
