@@ -1,6 +1,7 @@
 // sysid: identification and inverse models of friction-dominated actuators.
 // Subcommands live in commands/, one file each; see cli/common.hpp for the conventions.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -21,6 +22,9 @@ int CheckStdout(int code) {
   std::cout.flush();
   const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout;
   if (!failed || code != sysid::cli::kSuccess) return code;
+  // The failing write may lie behind later calls that reset errno: one more byte (a newline,
+  // on an output already cut short) tells the reason.
+  if (errno == 0 && ::write(STDOUT_FILENO, "\n", 1) == 1) errno = 0;
   std::cerr << "sysid: error: cannot write to standard output"
             << (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
   return sysid::cli::kBadInput;

@@ -79,7 +79,8 @@ expect 1 "exists and is a folder" excite pulses -o adir
 # Write errors on standard output: exit 2 with the reason, not 0.
 "$sysid" derive "$v/pulses.csv" > /dev/full 2>err.txt; rc=$?
 [ "$rc" -eq 2 ] || fail "derive > /dev/full exited $rc, expected 2"
-grep -q "cannot write to standard output" err.txt || fail "derive > /dev/full: no reason given"
+grep -q "cannot write to standard output: No space left on device" err.txt ||
+  fail "derive > /dev/full: no reason given"
 "$sysid" excite pulses > /dev/full 2>err.txt; rc=$?
 [ "$rc" -eq 2 ] || fail "excite pulses > /dev/full exited $rc, expected 2"
 
