@@ -28,7 +28,7 @@ inline constexpr std::uint64_t kMaxInputFileBytes = std::uint64_t{4} << 30;
 bool WritesThrough(const std::string& path);
 
 /// A new folder beside `target`, named ".NAME.tmp.PID.XXXXXX" (unique per run: the process id
-/// and mkdtemp's random suffix), that SIGINT, SIGTERM or SIGHUP removes with its content while
+/// and a random suffix), that SIGINT, SIGTERM or SIGHUP removes with its content while
 /// this object lives. The destructor removes it too unless it was renamed away (published).
 /// Throws InputError when the folder cannot be created.
 class StagingFolder {
