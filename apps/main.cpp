@@ -1,13 +1,36 @@
 // sysid: identification and inverse models of friction-dominated actuators.
 // Subcommands live in commands/, one file each; see cli/common.hpp for the conventions.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 
 #include "cli/common.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
+
+namespace {
+
+// A result that did not reach standard output (a full disk, `> /dev/full`, a closed pipe) is a
+// failed run: exit 2 with the reason instead of 0.
+int CheckStdout(int code) {
+  errno = 0;
+  std::cout.flush();
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout;
+  if (!failed || code != sysid::cli::kSuccess) return code;
+  // The failing write may lie behind later calls that reset errno: one more byte (a newline,
+  // on an output already cut short) tells the reason.
+  if (errno == 0 && ::write(STDOUT_FILENO, "\n", 1) == 1) errno = 0;
+  std::cerr << "sysid: error: cannot write to standard output"
+            << (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()) << '\n';
+  return sysid::cli::kBadInput;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace sysid::cli;
@@ -26,7 +49,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? kSuccess : kUsage;
+    return CheckStdout(code == 0 ? kSuccess : kUsage);
   } catch (const sysid::OptionsError& e) {
     std::cerr << "sysid: error: " << e.what() << '\n';
     return kUsage;
@@ -40,5 +63,5 @@ int main(int argc, char** argv) {
     std::cerr << "sysid: internal error: " << e.what() << '\n';
     return 4;
   }
-  return kSuccess;
+  return CheckStdout(kSuccess);
 }

@@ -9,10 +9,12 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/motion.hpp"
+#include "sysid/signal.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -40,7 +42,13 @@ void RunDerive(const DeriveCliOptions& o) {
   Recording rec = ReadRecording(o.path, ReadOptions{{"t", "u", "x"}, {}, true});
   if (rec.rows() < 2)
     throw InputError(fmt::format("{}: {} row; derive needs a sampled signal", o.path, rec.rows()));
-  if (o.resample_hz) rec = Resample(rec, *o.resample_hz);
+  if (o.resample_hz) {
+    try {
+      rec = Resample(rec, *o.resample_hz);
+    } catch (const OptionsError& e) {
+      RethrowWithFlag(e, {{"rate_hz", "--resample"}});
+    }
+  }
   double dt_s = UniformSampleInterval(rec, o.jitter_tolerance);
   try {
     dt_s = AddDerivatives(rec, dt_s, opt, o.decimate);
@@ -87,6 +95,7 @@ void AddDeriveCommand(CLI::App& app) {
   AddOutputOption(cmd, o->output,
                   "write the recording with v [m/s] and a [m/s^2] added (replaced if present) "
                   "to FILE; without -o the CSV goes to stdout");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   cmd->add_option("--method", o->method,
                   "central: (x[k+1]-x[k-1])/(2 dt), as the paper; butterworth: zero-phase "
                   "Butterworth low-pass of x then central differences; savgol: Savitzky-Golay "
@@ -100,13 +109,15 @@ void AddDeriveCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--order", o->order,
                   fmt::format("butterworth: filter order [1, {}]; savgol: polynomial order "
-                              "[>= 2, < window] [dimensionless]",
-                              kMaxButterworthOrder))
+                              "[2, min({}, window - 1)] [dimensionless]",
+                              kMaxButterworthOrder, kMaxSavitzkyGolayOrder))
       ->type_name("N")
       ->default_str(fmt::format("{} (butterworth), {} (savgol)",
                                 o->derivative.butterworth_order, o->derivative.savgol_order));
   cmd->add_option("--window", o->derivative.savgol_window,
-                  "savgol: window length [samples], odd, >= 3 (at 1 kHz, 21 samples = 20 ms)")
+                  fmt::format("savgol: window length [samples], odd, in [3, {}] (at 1 kHz, 21 "
+                              "samples = 20 ms)",
+                              kMaxSavitzkyGolayWindow))
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--decimate", o->decimate,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -105,6 +106,7 @@ void AddDominanceCommand(CLI::App& app) {
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
                 "recordings} (rms, peak in m/s^2)");
   AddOutputOption(cmd, o->output, "write the per-recording table as CSV");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   o->motion.Add(cmd, "filter for v and x'' from x",
                 ToString(DominanceOptions{}.motion.derivative.method));
   cmd->callback([o] { RunDominance(*o); });

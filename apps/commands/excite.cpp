@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -45,6 +46,7 @@ void RunExcite(const ExciteOptions& o) {
   const bool per_waveform = o.what != "pulses" && !o.output.empty() && !EndsWithCsv(o.output);
   std::optional<OutputFolder> folder;
   if (per_waveform) folder.emplace(o.output, o.force, std::vector<std::string>{}, "excite");
+  if (!per_waveform) CheckOutputFile(o.output, o.force);
   nlohmann::ordered_json summary;
   summary["what"] = o.what;
   if (o.what == "tracking") summary["set"] = o.set;
@@ -110,7 +112,8 @@ void AddExciteCommand(CLI::App& app) {
                   "without .csv is a new folder with one waveform_<name>.csv per waveform")
       ->type_name("FILE|DIR");
   cmd->add_flag("--force", o->force,
-                "replace a folder an earlier sysid excite wrote (one holding .sysid-output)");
+                "replace a folder an earlier sysid excite wrote (one holding .sysid-output), "
+                "or an existing -o FILE that sysid did not write");
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

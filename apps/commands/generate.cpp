@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -25,7 +26,46 @@ struct GenerateOptions {
   std::string out_dir = ".";
   std::string derivative = ToString(TrackingProcedure{}.derivative.method);
   bool json = false;
+  bool force = false;
 };
+
+// True when `path` holds what generate writes, told by its metadata: a recording whose first
+// line is "# stage: " and whose metadata names the "# procedure: ", or a stage file carrying
+// the writer's note. Only the first 64 KB are read.
+bool WrittenByGenerate(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64 * 1024, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (path.filename() == "stage.json")
+    return head.find("\"note\": \"Virtual piezo stage for libsysid") != std::string::npos;
+  if (head.rfind("# stage: ", 0) != 0) return false;
+  // The metadata block: the leading lines that start with '#'.
+  size_t pos = 0;
+  while (pos < head.size() && head[pos] == '#') {
+    if (head.compare(pos, 13, "# procedure: ") == 0) return true;
+    const auto end = head.find('\n', pos);
+    if (end == std::string::npos) break;
+    pos = end + 1;
+  }
+  return false;
+}
+
+// Refuses (exit 1) before any work when a file generate would replace in `dir` is not one it
+// wrote: a user's own recording kept in the folder is never clobbered without --force.
+void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::string>& names) {
+  if (o.force) return;
+  for (const auto& name : names) {
+    const std::filesystem::path path = std::filesystem::path(o.out_dir) / name;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec) || WrittenByGenerate(path)) continue;
+    throw OptionsError(fmt::format(
+        "-o {}: {} exists and was not written by sysid generate (no '# stage:' and "
+        "'# procedure:' metadata{}); refusing to replace it: choose another folder, move the "
+        "file, or pass --force",
+        o.out_dir, path.string(), name == "stage.json" ? ", no stage note" : ""));
+  }
+}
 
 void RunGenerate(const GenerateOptions& o) {
   const StageParameters stage =
@@ -34,6 +74,14 @@ void RunGenerate(const GenerateOptions& o) {
   tracking.derivative.method = ParseDerivativeMethod(o.derivative);
   tracking.Validate(stage);
   const bool all = o.what == "all";
+  std::vector<std::string> names;
+  if (all) names.push_back("stage.json");
+  if (all || o.what == "pulses") names.push_back("pulses.csv");
+  if (all || o.what == "tracking") names.insert(names.end(), {"training.csv", "test.csv"});
+  if (all || o.what == "triangle") names.push_back("loop_triangle.csv");
+  if (all || o.what == "waveforms")
+    for (const auto& w : PaperTestWaveforms()) names.push_back("waveform_" + w.name + ".csv");
+  CheckGenerateTargets(o, names);
   // Everything is computed before anything is written: an error leaves no partial dataset.
   std::vector<std::pair<std::string, Recording>> files;
   if (all || o.what == "pulses") {
@@ -118,9 +166,13 @@ void AddGenerateCommand(CLI::App& app) {
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
       ->capture_default_str();
   cmd->add_option("-o,--output", o->out_dir,
-                  "output folder, created if missing")
+                  "output folder, created if missing; files of the same names are replaced only "
+                  "when generate wrote them (their '#' metadata says so) or with --force")
       ->type_name("DIR")
       ->capture_default_str();
+  cmd->add_flag("--force", o->force,
+                "replace files of the same names in the folder that generate did not write "
+                "(a user's own pulses.csv)");
   cmd->add_option("--derivative", o->derivative,
                   "how v [m/s] and a [m/s^2] come from x [m]: central (as the paper), "
                   "butterworth or savgol")

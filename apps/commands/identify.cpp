@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -97,6 +98,7 @@ void AddIdentifyCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print the model (a1p, a1n, a2p, a2n, a3, tau) plus a diagnostics object as JSON");
   AddOutputOption(cmd, o->output, "write the model file (same JSON as --json)");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   o->motion.Add(cmd, "velocity filter",
                 ToString(PulseIdentificationOptions{}.motion.derivative.method) + " (pulse), " +
                     ToString(TrajectoryOptions{}.motion.derivative.method) + " (trajectory)");

@@ -35,8 +35,10 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   // Check the output folder before any work (cli/output_folder.hpp).
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
   const fs::path& out = folder.path();
-  const PipelineInputs inputs = fs::is_directory(o.input) ? PipelineInputs::FromDirectory(o.input)
-                                                          : PipelineInputs::FromManifest(o.input);
+  std::error_code ec;  // a link loop is no folder: the manifest reader names it (exit 2)
+  const PipelineInputs inputs = fs::is_directory(o.input, ec)
+                                    ? PipelineInputs::FromDirectory(o.input)
+                                    : PipelineInputs::FromManifest(o.input);
   PipelineOptions opt = o.options;
   opt.hidden_sizes = ParseHiddenSizes(o.hidden);
   if (!o.inputs.empty()) opt.nn_inputs = CLI::detail::split(o.inputs, ',');

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -74,6 +75,7 @@ void AddPredictCommand(CLI::App& app) {
                   "output CSV: the input file's columns plus the prediction (atomic); "
                   "default: CSV to stdout")
       ->type_name("OUT.csv");
+  GuardOutputFiles(cmd, {{&o->out_path, "-o"}});
   cmd->add_option("--column", o->column, "name of the prediction column; default <output>_nn");
   cmd->add_flag("--json", o->json, "print a JSON summary (rows, mse, column) to stdout");
   cmd->callback([o] { RunPredict(*o); });

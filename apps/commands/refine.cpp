@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -62,6 +63,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json, "print the refined model plus diagnostics as JSON");
   AddVerboseFlag(cmd, o->verbose);
   AddOutputOption(cmd, o->output, "write the refined model file (same JSON as --json)");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   cmd->add_flag("--fix-a3", o->fix_a3, "keep a3 at the starting value");
   cmd->add_flag("--fix-tau", o->fix_tau, "keep tau at the starting value");
   RefineOptions& r = o->options;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/input_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -102,6 +103,7 @@ void AddSimulateCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddOutputOption(cmd, o->output, "trajectory CSV t,u,x,v,a (default: stdout)");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}, {&o->events_path, "--events"}});
   cmd->add_option("--events", o->events_path,
                   "event log CSV t [s], kind (stick, slip+, slip-, reverse, a1-switch)")
       ->type_name("E.csv");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "commands/nn_training_options.hpp"
 #include "sysid/nn.hpp"
@@ -93,6 +94,7 @@ void AddSweepCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
       ->type_name("NN.json");
+  GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});
   cmd->callback([o] { RunSweep(*o); });
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "commands/nn_training_options.hpp"
 #include "sysid/io.hpp"
@@ -101,6 +102,7 @@ void AddTrainCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("-o", o->nn.model_path, "network model file (JSON, written atomically)")
       ->type_name("NN.json");
+  GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});
   cmd->add_flag("--history", o->history, "with --json: include every epoch (mu, MSEs)");
   cmd->callback([o] { RunTrain(*o); });
 }

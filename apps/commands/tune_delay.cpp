@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/delay.hpp"
@@ -64,7 +65,11 @@ void AddTuneDelayCommand(CLI::App& app) {
       ->check(CLI::Range(1e-12, 1.0))
       ->capture_default_str();
   cmd->add_option("--curve", d.curve_points,
-                  "also evaluate the cost on this many evenly spaced tau values [count]")
+                  fmt::format("also evaluate the cost on this many evenly spaced tau values "
+                              "[count], <= {}; each costs one simulation of the recordings "
+                              "(about 10 ms for the bundled pulse test: the maximum takes "
+                              "about 15 s)",
+                              DelayTuningOptions::kMaxCurvePoints))
       ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
       ->capture_default_str();
   cmd->add_option("--threads", d.threads, "simulation threads [count]; 0 = all cores")
@@ -74,6 +79,7 @@ void AddTuneDelayCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");
   AddOutputOption(cmd, o->output, "write the model with tau filled in");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   o->motion.Add(cmd, "filter for velocity from x", ToString(d.motion.derivative.method));
   cmd->callback([o] { RunTuneDelay(*o); });
 }

@@ -36,3 +36,33 @@ TEST_CASE("SIGINT and SIGTERM remove registered temporary files", "[io][signals]
     CHECK(std::filesystem::exists(kept));  // only registered files are removed
   }
 }
+
+TEST_CASE("SIGHUP removes a registered staging folder with its content, not what links name",
+          "[io][signals]") {
+  // Issue #29: an interrupted `excite tracking -o T` left its staging folder.
+  sysid::test::TempDir dir;
+  const std::filesystem::path staging = dir.path() / ".T.tmp.1.abcdef";
+  const std::filesystem::path outside = dir.path() / "user.csv";
+  std::ofstream(outside) << "user data";
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    std::signal(SIGHUP, SIG_DFL);
+    std::filesystem::create_directories(staging / "plots" / "deeper");
+    std::ofstream(staging / "a.csv") << "half";
+    std::ofstream(staging / "plots" / "deeper" / "b.svg") << "<svg/>";
+    std::filesystem::create_symlink(outside, staging / "link.csv");
+    std::filesystem::create_directory_symlink(dir.path(), staging / "dirlink");
+    const sysid::internal::TempFileGuard guard(staging.string(),
+                                               sysid::internal::TempKind::kFolder);
+    std::raise(SIGHUP);
+    _exit(0);
+  }
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  CHECK(WIFSIGNALED(status));
+  CHECK_FALSE(std::filesystem::exists(staging));
+  // Links inside were removed, never followed.
+  CHECK(std::filesystem::exists(outside));
+  CHECK(std::filesystem::exists(dir.path()));
+}

@@ -30,8 +30,13 @@ TEST_CASE("number rules describe themselves as the messages print them", "[json]
   CHECK_FALSE(NumberRule::Closed(0, 1).Accepts(1.5));
 }
 
-TEST_CASE("values are found by pointer: nested, in arrays, last of duplicate keys", "[json]") {
-  const std::string text = "{\n  \"a\": {\"b\": [1,\n    2, \"x\"]},\n  \"c\": 1, \"c\": -2\n}";
+TEST_CASE("values are found by pointer: nested, in arrays; a duplicate key is refused",
+          "[json]") {
+  // Issue #29: nlohmann kept the last of duplicate keys silently; the reader names both.
+  const std::string dup = "{\n  \"a\": {\"b\": [1,\n    2, \"x\"]},\n  \"c\": 1, \"c\": -2\n}";
+  CHECK_THROWS_WITH(JsonDocument(dup, "f.json"),
+                    Catch::StartsWith("f.json:4:11: duplicate key 'c' (first at 4:3)"));
+  const std::string text = "{\n  \"a\": {\"b\": [1,\n    2, \"x\"]},\n  \"d\": 1, \"c\": -2\n}";
   const JsonDocument doc(text, "f.json");
   const auto root = doc.Root();
   CHECK_THROWS_WITH(root.Get("a").Get("b").Element(2).Number(),

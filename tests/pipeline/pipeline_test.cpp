@@ -232,5 +232,23 @@ TEST_CASE("pipeline inputs from a manifest: lists, the loop sweeps, and bad keys
                     Catch::Contains("unknown key 'loop'") && Catch::Contains("loops"));
   sysid::test::WriteText(dir / "manifest.json", "{\"loops\": \"loop.csv\"}");
   CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
-                    Catch::Contains("key 'loops': expected a list"));
+                    Catch::Contains("manifest.json:1:2: loops: expected an array"));
+  // Every bad value is positioned (issue #29: a bad a3 used to exit 1 with no position).
+  sysid::test::WriteText(dir / "manifest.json", "{\"pulses\": [\"p.csv\"],\n \"a3\": -5}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("manifest.json:2:2: a3: expected a number > 0, found -5"));
+  sysid::test::WriteText(dir / "manifest.json", "{\"pulses\": [\"p.csv\", 7]}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("manifest.json:1:22: pulses[1]: expected"));
+  sysid::test::WriteText(dir / "manifest.json", "{\"test\": \"a.csv\",\n \"test\": \"b.csv\"}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("manifest.json:2:2: duplicate key 'test' (first at 1:2)"));
+}
+
+TEST_CASE("a symbolic link loop in a pipeline folder is an error naming it", "[pipeline]") {
+  TempDir dir;
+  std::filesystem::create_symlink("pulses_loop.csv", dir / "pulses_loop.csv");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("pulses_loop.csv: cannot read:") &&
+                        Catch::Contains("symbolic link loop"));
 }

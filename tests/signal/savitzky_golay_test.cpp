@@ -169,3 +169,43 @@ TEST_CASE("Savitzky-Golay options are checked", "[signal][savgol]") {
   CHECK_THROWS_WITH(o.Validate(1e-3), Catch::Contains("savgol_order = 1. Violated constraint: "
                                                       "2 <= savgol_order < savgol_window = 21"));
 }
+
+TEST_CASE("Savitzky-Golay with a wide window: exact on its polynomials, weights as closed forms",
+          "[signal][savgol]") {
+  // Issue #29: the weights were a window x window matrix (6.3 GB at 20001); the filter now keeps
+  // the window x (order + 1) factorisation. Checked at the widest window allowed against the
+  // same independent references as above: polynomial exactness and the closed-form weights.
+  const int window = kMaxSavitzkyGolayWindow, m = (window - 1) / 2, order = 3;
+  const double dt = 1e-3;
+  const Eigen::Index n = window + 2000;
+  const double t_mid = 0.5 * dt * static_cast<double>(n);
+  auto poly = [&](double t, int d) {  // (t - t_mid)^3 - 2 (t - t_mid)^2 + 0.5 and derivatives
+    const double s = t - t_mid;
+    if (d == 0) return s * s * s - 2 * s * s + 0.5;
+    if (d == 1) return 3 * s * s - 4 * s;
+    return 6 * s - 4;
+  };
+  const auto y = Sample([&](double t) { return poly(t, 0); }, n, dt);
+  for (int d = 0; d <= 2; ++d) {
+    const Eigen::VectorXd out = SavitzkyGolay(y, dt, window, order, d);
+    const auto ref = Sample([&](double t) { return poly(t, d); }, n, dt);
+    INFO("deriv " << d);
+    // Exact in exact arithmetic; rounding of the ~1e4-term dot products of O(1) values, and for
+    // d = 2 the division by dt^2 = 1e-6 of weights of size ~1/m^3: 1e-6 is far above both.
+    CHECK(MaxError(out, ref, 0, n) < 1e-6);
+  }
+  const internal::SavitzkyGolayFit fit(window, order, 1);
+  const Eigen::VectorXd w1 = fit.Weights(m);
+  for (int s : {-m, -m / 3, -1, 0, 7, m}) {
+    // Relative to the largest weight (~1.5/m^2): the QR solve's rounding on a 10001-row basis.
+    CHECK(w1[s + m] == Approx(SlopeWeight(m, s, order)).margin(1e-12));
+  }
+}
+
+TEST_CASE("Savitzky-Golay window and order limits are named", "[signal][savgol]") {
+  const Eigen::VectorXd y = Eigen::VectorXd::LinSpaced(30000, 0, 1);
+  CHECK_THROWS_WITH(SavitzkyGolay(y, 1e-3, kMaxSavitzkyGolayWindow + 2, 3, 1),
+                    Catch::Contains("window <= 10001"));
+  CHECK_THROWS_WITH(SavitzkyGolay(y, 1e-3, 101, kMaxSavitzkyGolayOrder + 1, 1),
+                    Catch::Contains("order <= 20"));
+}

@@ -28,11 +28,21 @@ struct Recording {
   std::vector<std::string> names;      ///< column names in file order
   Eigen::MatrixXd data;                ///< rows x columns, SI units
   std::vector<std::pair<std::string, std::string>> metadata;  ///< "# key: value" lines, in order
+  /// Where the rows came from in the file: (first row, its 1-based file line) of each run of
+  /// consecutive data lines (one entry unless comment lines sit between rows); empty when not
+  /// read from a file. See line_of().
+  std::vector<std::pair<Eigen::Index, long>> row_lines;
+  Eigen::Index row_lines_rows = 0;  ///< rows when row_lines was filled (a guard for copies)
 
   Eigen::Index rows() const { return data.rows(); }
   /// Index of the named column, or -1.
   int index_of(std::string_view name) const;
   bool has(std::string_view name) const { return index_of(name) >= 0; }
+  /// The file line of data row `row` (0-based), or 0 when unknown (not read from a file, or the
+  /// rows were changed since).
+  long line_of(Eigen::Index row) const;
+  /// "SOURCE:LINE" of data row `row`, or "SOURCE: row N" (1-based) when its line is unknown.
+  std::string where(Eigen::Index row) const;
   /// The named column; throws InputError naming the source and the missing column.
   Eigen::MatrixXd::ConstColXpr column(std::string_view name) const;
   /// Value of a metadata key, or `fallback` when absent.

@@ -21,6 +21,12 @@ enum class DerivativeMethod { kCentral, kButterworthCentral, kSavitzkyGolay };
 
 /// Highest Butterworth order accepted (the cascade of sections stays well conditioned).
 constexpr int kMaxButterworthOrder = 20;
+/// Widest Savitzky–Golay window [samples] (10 s at 1 kHz): the filter costs window
+/// multiply-adds a sample, so this bounds the work at 10^4 per sample.
+constexpr int kMaxSavitzkyGolayWindow = 10001;
+/// Highest Savitzky–Golay polynomial order (a monomial basis on [-1, 1] beyond it is
+/// ill-conditioned, and the fit's memory is window x (order + 1)).
+constexpr int kMaxSavitzkyGolayOrder = 20;
 /// Order of the Butterworth anti-alias low-pass of Decimate (run forward and backward, so the
 /// attenuation in dB is twice that of one pass).
 constexpr int kDecimateButterworthOrder = 8;

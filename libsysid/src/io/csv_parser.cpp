@@ -44,6 +44,7 @@ class Parser {
     rec.source = source_;
     rec.names.clear();
     rec.metadata.clear();
+    rec.row_lines.clear();
     ReadHeader(rec);
     ReadRows(rec, values);
     CheckColumns(rec);
@@ -125,6 +126,9 @@ class Parser {
                        : "no header line: expected a line of column names (t,u,x,...)");
   }
 
+  // The most rows of a recording, as of a generated signal: bounds the memory of the values.
+  static constexpr size_t kMaxRows = static_cast<size_t>(kMaxSignalSamples);
+
   void ReadRows(Recording& rec, std::vector<double>& values) {
     const size_t ncol = rec.names.size();
     values.clear();  // row-major while parsing; transposed once at the end
@@ -133,7 +137,8 @@ class Parser {
       const size_t max_rows =
           static_cast<size_t>(std::count(text_.begin() + static_cast<long>(pos_), text_.end(),
                                          '\n')) + 1;
-      values.reserve(max_rows * ncol);
+      // At most kMaxSignalSamples rows are ever kept (checked per row below).
+      values.reserve(std::min(max_rows, kMaxRows + 1) * ncol);
     }
     const int t_index = options_.require_increasing_time ? rec.index_of("t") : -1;
     double t_prev = 0;
@@ -146,6 +151,15 @@ class Parser {
         Fail(line_no_, 0, "empty line: expected " + std::to_string(ncol) + " numbers");
       }
       if (line.front() == '#') continue;
+      if (rows == kMaxRows)
+        Fail(line_no_, 0,
+             "more than " + std::to_string(kMaxRows) +
+                 " rows, past the most a recording may hold (sysid::kMaxSignalSamples)");
+      if (rec.row_lines.empty() || rec.row_lines.back().second +
+                                           static_cast<long>(static_cast<Eigen::Index>(rows) -
+                                                             rec.row_lines.back().first) !=
+                                       line_no_)
+        rec.row_lines.emplace_back(static_cast<Eigen::Index>(rows), line_no_);
       const char* p = line.data();
       const char* end = line.data() + line.size();
       for (size_t c = 0; c < ncol; ++c) {
@@ -176,6 +190,7 @@ class Parser {
     if (rows == 0)
       Fail(header_line_, 0, "header without rows: expected numeric rows after the header");
     rec.data.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(ncol));
+    rec.row_lines_rows = static_cast<Eigen::Index>(rows);
     for (size_t r = 0; r < rows; ++r)
       for (size_t c = 0; c < ncol; ++c)
         rec.data(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) =

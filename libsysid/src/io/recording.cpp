@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <charconv>
 #include <string>
 
@@ -21,6 +22,23 @@ Eigen::MatrixXd::ConstColXpr Recording::column(std::string_view name) const {
                      ")");
   }
   return data.col(i);
+}
+
+long Recording::line_of(Eigen::Index row) const {
+  if (row_lines.empty() || row_lines_rows != data.rows() || row < 0 || row >= data.rows())
+    return 0;
+  // The last run starting at or before `row`.
+  auto it = std::upper_bound(row_lines.begin(), row_lines.end(), row,
+                             [](Eigen::Index r, const auto& run) { return r < run.first; });
+  if (it == row_lines.begin()) return 0;
+  --it;
+  return it->second + static_cast<long>(row - it->first);
+}
+
+std::string Recording::where(Eigen::Index row) const {
+  const long line = line_of(row);
+  return line > 0 ? source + ":" + std::to_string(line)
+                  : source + ": row " + std::to_string(row + 1);
 }
 
 std::string Recording::meta(std::string_view key, std::string fallback) const {

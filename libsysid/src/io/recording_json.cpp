@@ -50,9 +50,9 @@ std::string RecordingSummaryToJson(const Recording& r, double jitter_tolerance, 
         {"jitter_tolerance", jitter_tolerance}, {"irregular", s.irregular}};
     if (s.irregular)
       j["sampling"]["warning"] = fmt::format(
-          "irregular sampling: interval at row {} deviates {:.3g} % from the nominal {:.6g} s; "
-          "resample with 'sysid derive --resample HZ' or sysid::Resample",
-          s.worst_index + 2, 100 * s.max_relative_jitter, s.nominal_dt_s);
+          "irregular sampling: interval ending at {} deviates {:.3g} % from the nominal "
+          "{:.6g} s; resample with 'sysid derive --resample HZ' or sysid::Resample",
+          r.where(s.worst_index + 1), 100 * s.max_relative_jitter, s.nominal_dt_s);
   } else {
     j["sample_rate_hz"] = nullptr;
   }

@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -51,7 +53,15 @@ Recording Resample(const Recording& recording, double rate_hz) {
   if (t.size() < 2) throw InputError(recording.source + ": resampling needs at least 2 rows");
   const double t0 = t[0], t1 = t[t.size() - 1], dt = 1.0 / rate_hz;
   // k * dt rather than accumulated sums: no drift over long records.
-  const auto n = static_cast<Eigen::Index>(std::floor((t1 - t0) / dt * (1 + 1e-12))) + 1;
+  // The grid's size is bounded before allocation: rate x duration (a long gap counts).
+  const double samples = std::floor((t1 - t0) / dt * (1 + 1e-12)) + 1;
+  if (!(samples <= kMaxSignalSamples))
+    throw OptionsError(fmt::format("Resample: rate_hz = {:.6g} over the {:.6g} s of {} gives "
+                                   "{:.6g} samples. Violated constraint: rate_hz x duration <= "
+                                   "kMaxSignalSamples = 2e7; lower the rate",
+                                   rate_hz, t1 - t0, recording.source, samples),
+                       "rate_hz");
+  const auto n = static_cast<Eigen::Index>(samples);
   Recording out;
   out.source = recording.source;
   out.names = recording.names;

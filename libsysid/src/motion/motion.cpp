@@ -26,14 +26,15 @@ void MotionOptions::Validate() const {
 
 namespace {
 
-double CheckedSampleInterval(const std::string& source, const Eigen::VectorXd& t,
+// `t` is `recording`'s time column; the error names the file line of the interval's end.
+double CheckedSampleInterval(const Recording& recording, const Eigen::VectorXd& t,
                              double max_relative_jitter, Eigen::VectorXd* scratch) {
   const SamplingReport s = AnalyzeSampling(t, max_relative_jitter, scratch);
   if (s.irregular)
     throw InputError(fmt::format(
-        "{}:{}: irregular sampling: interval {:.6g} s deviates {:.3g} % from the nominal "
+        "{}: irregular sampling: interval {:.6g} s deviates {:.3g} % from the nominal "
         "{:.6g} s (allowed {:.3g} %); resample first (sysid::Resample, sysid derive --resample)",
-        source, s.worst_index + 2, t[s.worst_index + 1] - t[s.worst_index],
+        recording.where(s.worst_index + 1), t[s.worst_index + 1] - t[s.worst_index],
         100 * s.max_relative_jitter, s.nominal_dt_s, 100 * max_relative_jitter));
   return s.nominal_dt_s;
 }
@@ -43,7 +44,7 @@ double CheckedSampleInterval(const std::string& source, const Eigen::VectorXd& t
 double UniformSampleInterval(const Recording& recording, double max_relative_jitter) {
   const Eigen::VectorXd t = recording.column("t");
   Eigen::VectorXd scratch;
-  return CheckedSampleInterval(recording.source, t, max_relative_jitter, &scratch);
+  return CheckedSampleInterval(recording, t, max_relative_jitter, &scratch);
 }
 
 MotionSignals ExtractMotion(const Recording& recording, const MotionOptions& options) {
@@ -62,7 +63,7 @@ void ExtractMotion(const Recording& recording, const MotionOptions& options, Mot
   m.t_s = recording.column("t");
   m.u_v = recording.column("u");
   // a_mps2 is computed last; until then its storage is the sampling check's scratch.
-  m.dt_s = CheckedSampleInterval(recording.source, m.t_s, options.max_relative_jitter, &m.a_mps2);
+  m.dt_s = CheckedSampleInterval(recording, m.t_s, options.max_relative_jitter, &m.a_mps2);
   const bool has_v = recording.has(options.velocity_column);
   const bool use_v = has_v && (options.prefer_velocity_column || !recording.has("x"));
   if (use_v) {

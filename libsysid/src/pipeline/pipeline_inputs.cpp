@@ -32,13 +32,28 @@ void RequireComplete(const PipelineInputs& in) {
 PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir + ": not a folder");
-  if (fs::exists(fs::path(dir) / "manifest.json"))
-    return FromManifest((fs::path(dir) / "manifest.json").string());
+  const fs::path manifest = fs::path(dir) / "manifest.json";
+  if (fs::exists(manifest, ec)) return FromManifest(manifest.string());
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    throw InputError(manifest.string() + ": " + ec.message());
   PipelineInputs in;
   in.root = dir;
   std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file()) files.push_back(e.path());
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    const bool used = p.extension() == ".csv" || p.filename() == "stage.json";
+    std::error_code entry_ec;
+    const bool regular = it->is_regular_file(entry_ec);
+    // A link loop or a dangling link among the files the pipeline would read is an error
+    // naming it; among other files it is ignored like any non-file.
+    if (entry_ec && used)
+      throw InputError(p.string() + ": cannot read: " + entry_ec.message() +
+                       (entry_ec == std::errc::too_many_symbolic_link_levels
+                            ? " (a symbolic link loop)"
+                            : ""));
+    if (regular) files.push_back(p);
+  }
+  if (ec) throw InputError(dir + ": cannot list the folder: " + ec.message());
   std::sort(files.begin(), files.end());  // deterministic order
   for (const auto& p : files) {
     const std::string name = p.filename().string();
@@ -61,34 +76,30 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
 
 PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
   const std::string text = ReadFile(path);
-  const nlohmann::json j = internal::ParseJsonText(text, path);
-  if (!j.is_object()) throw InputError(path + ": expected a JSON object");
+  // Every complaint names FILE:LINE:COL of the key (internal::JsonDocument), exit 2.
+  const internal::JsonDocument doc(text, path);
+  const internal::JsonNode root = doc.Root();
+  root.ExpectObject({"pulses", "training", "test", "waveforms", "loops", "stage", "a3"},
+                    {"note"});
   const fs::path base = fs::path(path).parent_path();
-  auto resolve = [&](const nlohmann::json& v, const char* key) {
-    if (!v.is_string()) throw InputError(path + ": key '" + key + "': expected a file name");
-    return (base / v.get<std::string>()).string();
+  auto resolve = [&](const internal::JsonNode& v) {
+    return (base / v.String(/*non_empty=*/true)).string();
   };
   PipelineInputs in;
   in.root = path;
-  for (const auto& [key, v] : j.items()) {
-    if (key == "pulses" || key == "waveforms" || key == "loops") {
-      if (!v.is_array()) throw InputError(path + ": key '" + key + "': expected a list");
-      auto& list = key == "pulses" ? in.pulses : (key == "waveforms" ? in.waveforms : in.loops);
-      for (const auto& f : v) list.push_back(resolve(f, key.c_str()));
-    } else if (key == "training") {
-      in.training = resolve(v, "training");
-    } else if (key == "test") {
-      in.test = resolve(v, "test");
-    } else if (key == "stage") {
-      in.stage = resolve(v, "stage");
-    } else if (key == "a3") {
-      if (!v.is_number()) throw InputError(path + ": key 'a3': expected a number [m/(s^2 V)]");
-      in.a3 = v.get<double>();
-    } else if (key != "note" && key[0] != '_') {
-      throw InputError(path + ": unknown key '" + key +
-                       "' (expected pulses, training, test, waveforms, loops, stage, a3)");
-    }
+  for (const char* key : {"pulses", "waveforms", "loops"}) {
+    if (!root.Has(key)) continue;
+    const internal::JsonNode list = root.Get(key);
+    list.ExpectArray();
+    auto& out = std::string(key) == "pulses" ? in.pulses
+                : std::string(key) == "waveforms" ? in.waveforms
+                                                  : in.loops;
+    for (size_t i = 0; i < list.Size(); ++i) out.push_back(resolve(list.Element(i)));
   }
+  if (root.Has("training")) in.training = resolve(root.Get("training"));
+  if (root.Has("test")) in.test = resolve(root.Get("test"));
+  if (root.Has("stage")) in.stage = resolve(root.Get("stage"));
+  if (root.Has("a3")) in.a3 = root.Get("a3").Number(internal::NumberRule::Positive());
   RequireComplete(in);
   return in;
 }

@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/pipeline.hpp"
@@ -32,11 +33,7 @@ struct Reference {
 std::optional<Reference> LoadReference(const std::string& path) {
   if (path.empty()) return std::nullopt;
   Reference ref;
-  try {
-    ref.j = nlohmann::json::parse(ReadFile(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": invalid reference JSON: " + e.what());
-  }
+  ref.j = internal::ParseJsonText(ReadFile(path), path);  // positioned errors, duplicate keys
   ref.label = ref.j.value("label", std::string("reference"));
   return ref;
 }

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "signal/checks.hpp"
 #include "sysid/error.hpp"
@@ -39,6 +40,15 @@ void CheckSavitzkyGolay(const char* where, const char* window_field, int window,
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} odd and >= 3", where,
                                    window_field, window, window_field),
                        window_field);
+  // The limits that bound the filter's work and memory (sysid/signal.hpp).
+  for (const auto& [field, value, limit, name] :
+       {std::tuple{window_field, window, kMaxSavitzkyGolayWindow,
+                   "kMaxSavitzkyGolayWindow, 10 s at 1 kHz"},
+        std::tuple{order_field, order, kMaxSavitzkyGolayOrder, "kMaxSavitzkyGolayOrder"}})
+    if (value > limit)
+      throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} ({})", where,
+                                     field, value, field, limit, name),
+                         field);
   if (order < min_order || order >= window)
     throw OptionsError(fmt::format("{}: {} = {}. Violated constraint: {} <= {} < {} = {}", where,
                                    order_field, order, min_order, order_field, window_field,

@@ -5,6 +5,7 @@
 #define SYSID_SRC_SIGNAL_FILTERS_HPP_
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <complex>
 #include <vector>
 
@@ -39,7 +40,26 @@ Eigen::VectorXd FiltFilt(const std::vector<Biquad>& sections, const Eigen::Vecto
 /// sum_i w_i y[i] over one window is the `deriv`-th derivative, at offset r - (window-1)/2
 /// samples from the window centre, of the least-squares polynomial of degree `order`, for unit
 /// sample spacing (divide by dt^deriv).
+/// Builds the full window x window matrix: for tests and small windows only.
 Eigen::MatrixXd SavitzkyGolayWeights(int window, int order, int deriv);
+
+/// The least-squares polynomial fit of one Savitzky–Golay window in O(window x order) memory:
+/// the QR factorisation of the window x (order + 1) Vandermonde matrix on x = (i - half)/half.
+class SavitzkyGolayFit {
+ public:
+  SavitzkyGolayFit(int window, int order, int deriv);
+  /// Row `row` of SavitzkyGolayWeights (window values), without forming the matrix.
+  Eigen::VectorXd Weights(int row) const;
+  /// The `deriv`-th derivative of the fit to `samples` (one window) at rows first..first+count-1
+  /// (unit sample spacing).
+  Eigen::VectorXd Evaluate(const Eigen::VectorXd& samples, int first, int count) const;
+
+ private:
+  int half_;
+  Eigen::MatrixXd basis_;       ///< x_i^j
+  Eigen::MatrixXd derivative_;  ///< d^deriv/ds^deriv of x_i^j, s in samples
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
+};
 
 }  // namespace sysid::internal
 
