@@ -1,12 +1,25 @@
 // The input of the CVODE simulations between its samples: held, linear or band-limited.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <unsupported/Eigen/FFT>
 
 #include "hysteresis/bouc_wen_internal.hpp"
+#include "sysid/error.hpp"
 
 namespace sysid::internal {
+
+void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what) {
+  if (!(dt_s > 0) || !std::isfinite(dt_s))
+    throw OptionsError(fmt::format("{}: the sample time dt_s = {} must be > 0", kind, dt_s),
+                       "dt_s");
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]))
+      throw InputError(
+          fmt::format("{}: {}[{}]: expected a finite number, found {}", kind, what, i, v[i]));
+}
 
 SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how)
     : u_(u), dt_(dt_s), how_(how) {

@@ -32,6 +32,10 @@ class SampledInput {
   double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
 };
 
+/// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
+/// at the first non-finite sample; `kind` starts the message ("bouc-wen").
+void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);
+
 /// The Bouc–Wen z' (mechanical form) at velocity v and restoring force z, and its partial
 /// derivatives in v and z (for Newton).
 struct BoucWenRate {

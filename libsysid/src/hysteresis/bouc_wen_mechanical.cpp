@@ -32,14 +32,6 @@ int MechanicalRhs(double t, N_Vector x, N_Vector dx, void* data) {
   return std::isfinite(d[1]) && std::isfinite(d[2]) ? 0 : 1;  // > 0: CVODE retries smaller
 }
 
-void CheckSamples(const Eigen::VectorXd& u, double dt_s, const char* kind) {
-  if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError(fmt::format("{}: the sample time dt_s = {} must be > 0", kind, dt_s),
-                       "dt_s");
-  for (Eigen::Index i = 0; i < u.size(); ++i)
-    if (!std::isfinite(u[i]))
-      throw InputError(fmt::format("{}: u[{}]: expected a finite number, found {}", kind, i, u[i]));
-}
 
 // Fine samples the FIR cascade reads past a coarse sample: 15 per stage at that stage's rate.
 Eigen::Index FirLookahead(const std::vector<int>& factors) {
@@ -67,7 +59,7 @@ MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
 }
 
 Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
-  CheckSamples(u, dt_s, "bouc-wen");
+  internal::CheckSamples(u, dt_s, "bouc-wen", "u");
   const Eigen::Index n = u.size();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
   if (n == 0) return y;
@@ -118,7 +110,7 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
                                                     double tolerance, int max_periods) const {
   if (options_.integrator != BoucWenIntegrator::kBenchmarkChain)
     return HysteresisModel::SimulatePeriodic(u_period, dt_s, tolerance, max_periods);
-  CheckSamples(u_period, dt_s, "bouc-wen");
+  internal::CheckSamples(u_period, dt_s, "bouc-wen", "u");
   if (!(tolerance >= 0) || max_periods < 3)
     throw OptionsError("SimulatePeriodic: tolerance >= 0 and max_periods >= 3 are required",
                        "tolerance");

@@ -66,15 +66,6 @@ int PiezoRhs(double t, N_Vector x, N_Vector dx, void* data) {
   return 0;
 }
 
-void CheckPiezoSamples(const Eigen::VectorXd& v, double dt_s, const char* what) {
-  if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError(fmt::format("bouc-wen-piezo: the sample time dt_s = {} must be > 0", dt_s),
-                       "dt_s");
-  for (Eigen::Index i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v[i]))
-      throw InputError(
-          fmt::format("bouc-wen-piezo: {}[{}]: expected a finite number, found {}", what, i, v[i]));
-}
 
 }  // namespace
 
@@ -92,7 +83,7 @@ PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulat
 
 Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
   if (options_.input == InputInterpolation::kBandLimited) return SimulateCvode(u, dt_s);
-  CheckPiezoSamples(u, dt_s, "u");
+  internal::CheckSamples(u, dt_s, "bouc-wen-piezo", "u");
   const Eigen::Index n = u.size();
   Eigen::VectorXd y(n);
   double h = 0;
@@ -104,7 +95,7 @@ Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) co
 }
 
 Eigen::VectorXd PiezoBoucWen::SimulateCvode(const Eigen::VectorXd& u, double dt_s) const {
-  CheckPiezoSamples(u, dt_s, "u");
+  internal::CheckSamples(u, dt_s, "bouc-wen-piezo", "u");
   const Eigen::Index n = u.size();
   Eigen::VectorXd y(n);
   if (n == 0) return y;
@@ -142,7 +133,7 @@ bool PiezoBoucWen::invertible() const {
 }
 
 Eigen::VectorXd PiezoBoucWen::Invert(const Eigen::VectorXd& y_desired, double dt_s) const {
-  CheckPiezoSamples(y_desired, dt_s, "y_desired");
+  internal::CheckSamples(y_desired, dt_s, "bouc-wen-piezo", "y_desired");
   if (!invertible())
     throw NumericalError(fmt::format(
         "bouc-wen-piezo: not invertible with d = {:.6g} m/V, alpha = {:.6g}, beta = {:.6g} 1/V, "
