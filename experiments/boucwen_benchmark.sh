@@ -31,6 +31,7 @@ echo "$RESULT" | awk '
   /^fit_message / { sub(/^fit_message /, ""); msg = $0 }
   /^parameter / {
     for (i = 2; i <= NF; ++i) { split($i, kv, "="); p[kv[1]] = kv[2] }
+    p["unit"] = substr($0, index($0, "unit=") + 5)
     params = params sprintf("| %s | %s | %s | %s |\n", p["name"], p["value"], p["std_error"], p["unit"])
   }
   /^score / {
@@ -46,8 +47,8 @@ echo "$RESULT" | awk '
     printf "| **Bouc–Wen grey box (this toolkit), fitted, benchmark chain** | 6 | **%s** | `experiments/boucwen_benchmark.sh` |\n", score["fitted-chain"]
     printf "| same fitted parameters, simulated by CVODE (band-limited input) | 6 | %s | integrator check |\n", score["fitted-cvode-band-limited"]
     printf "| true parameters, benchmark chain (noise-free limit) | - | %s | generator re-run |\n", score["true-chain"]
-    printf "| true parameters, CVODE, band-limited input, no FIR decimation | - | %s | the chain'"'"'s own FIR error |\n", score["true-cvode-band-limited"]
-    printf "| true parameters, CVODE, linear input | - | %s | interpolation error |\n", score["true-cvode-linear"]
+    printf "| true parameters, CVODE (exact ODE), band-limited input | - | %s | what the benchmark'"'"'s own discretisation (Newmark, FIR decimation) adds |\n", score["true-cvode-band-limited"]
+    printf "| true parameters, CVODE, input linear between samples | - | %s | the cost of a non-band-limited input model |\n", score["true-cvode-linear"]
     printf "| state-space network, improved initialisation | black box | 7.5e-6 | M. Schoukens, ECC 2021 |\n"
     printf "| PNLSS | black box | 1.34e-5 | Esfahani et al., MSSP 2018 |\n"
     printf "| PNLSS, decoupled polynomials | black box | 1.87e-5 | Esfahani et al., IFAC-PapersOnLine 2017 |\n"

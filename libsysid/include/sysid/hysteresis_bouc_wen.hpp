@@ -155,7 +155,7 @@ struct BoucWenFitOptions {
   bool fit_beta = false;  ///< only allowed with fit_nu (else beta is unidentifiable)
   int starts = 4;  ///< starting points: the initial values and starts-1 perturbed, in [1, 64]
   double start_spread = 0.3;  ///< [1] perturbation of the extra starts, factor exp(+-spread)
-  int start_iterations = 8;   ///< Ceres iterations per extra start before the best continues
+  int start_iterations = 3;   ///< Ceres iterations per start before the best continues
   int max_iterations = 100;   ///< Ceres iterations of the final fit, in [1, 10000]
   std::uint64_t seed = 1;     ///< for the perturbed starts
   int threads = 0;            ///< simulations in parallel for the Jacobian (0: all cores)
