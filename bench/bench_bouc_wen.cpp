@@ -1,0 +1,159 @@
+// The Bouc–Wen benchmark (Noël & Schoukens 2016) scored by its protocol, and the Bouc–Wen
+// simulators' throughput. experiments/boucwen_benchmark.sh and bench/run_bouc_wen.sh run it.
+//
+//   bench_bouc_wen score TRAIN.csv TEST.csv [--threads T] [--starts S] [-o MODEL.json]
+//     Fits the mechanical form on TRAIN (t, u, x) only, simulated by the benchmark chain;
+//     simulates TEST's input alone in its periodic steady state; prints key=value lines:
+//     "fit ..." (parameters, standard errors, fit time, training rms), "score model=... e_rms=..."
+//     for the fitted model (chain, and CVODE with band-limited input) and the true system.
+//   bench_bouc_wen throughput REC.csv [--repeats R]
+//     Samples per second of Simulate on REC's u (true parameters): the chain, CVODE with linear
+//     and band-limited input, and the piezo form. Prints "throughput method=... samples_per_s=...".
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/io.hpp"
+
+namespace {
+
+using sysid::BoucWenIntegrator;
+using sysid::InputInterpolation;
+
+double Rms(const Eigen::VectorXd& e) {
+  return std::sqrt(e.squaredNorm() / static_cast<double>(e.size()));
+}
+
+// `tolerance` [m]: periods agree to it in steady state (the chain is exact to rounding, CVODE
+// to its rtol of ~1e-13 m here).
+void Score(const char* name, const sysid::HysteresisModel& m, const Eigen::VectorXd& u,
+           const Eigen::VectorXd& y, double dt, double tolerance) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Eigen::VectorXd ym = m.SimulatePeriodic(u, dt, tolerance, 64);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  fmt::print("score model={} e_rms={:.4e} max_error={:.4e} simulate_s={:.3f}\n", name, Rms(ym - y),
+             (ym - y).cwiseAbs().maxCoeff(), s);
+}
+
+int ScoreCommand(const std::vector<std::string>& args) {
+  std::string train, test, out;
+  sysid::BoucWenFitOptions o;
+  o.simulation.integrator = BoucWenIntegrator::kBenchmarkChain;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--threads" && i + 1 < args.size()) {
+      o.threads = std::atoi(args[++i].c_str());
+    } else if (args[i] == "--starts" && i + 1 < args.size()) {
+      o.starts = std::atoi(args[++i].c_str());
+    } else if (args[i] == "-o" && i + 1 < args.size()) {
+      out = args[++i];
+    } else if (train.empty()) {
+      train = args[i];
+    } else {
+      test = args[i];
+    }
+  }
+  if (train.empty() || test.empty()) {
+    fmt::print(stderr,
+               "usage: bench_bouc_wen score TRAIN.csv TEST.csv [--threads T] [--starts S] [-o "
+               "MODEL.json]\n");
+    return 1;
+  }
+  const sysid::Recording tr = sysid::ReadRecording(train);
+  const sysid::Recording te = sysid::ReadRecording(test);
+  const double dt = te.column("t")[1] - te.column("t")[0];
+  sysid::HysteresisFitSummary summary;
+  const std::clock_t cpu0 = std::clock();
+  const auto model = sysid::FitBoucWen(sysid::BoucWenForm::kMechanical, {tr}, o, &summary);
+  const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  fmt::print("fit samples={} fit_time_s={:.2f} cpu_s={:.2f} training_rms={:.4e} converged={}\n",
+             summary.samples, summary.fit_time_s, cpu_s, summary.training_rms, summary.converged);
+  fmt::print("fit_message {}\n", summary.message);
+  for (const auto& p : model->parameters())
+    fmt::print("parameter name={} value={:.8g} std_error={:.3g} unit={}\n", p.name, p.value,
+               p.std_error, p.unit);
+  if (!out.empty()) sysid::WriteFileAtomically(out, model->ToJson());
+  const Eigen::VectorXd u = te.column("u"), y = te.column("x");
+  Score("fitted-chain", *model, u, y, dt, 1e-13);
+  const auto& fitted = dynamic_cast<const sysid::MechanicalBoucWen&>(*model);
+  sysid::BoucWenSimulationOptions cv;
+  cv.input = InputInterpolation::kBandLimited;
+  cv.rtol = 1e-10;
+  Score("fitted-cvode-band-limited", sysid::MechanicalBoucWen(fitted.values(), cv), u, y, dt,
+        1e-10);
+  sysid::BoucWenSimulationOptions chain;
+  chain.integrator = BoucWenIntegrator::kBenchmarkChain;
+  Score("true-chain", sysid::MechanicalBoucWen({}, chain), u, y, dt, 1e-13);
+  Score("true-cvode-band-limited", sysid::MechanicalBoucWen({}, cv), u, y, dt, 1e-10);
+  cv.input = InputInterpolation::kLinear;
+  Score("true-cvode-linear", sysid::MechanicalBoucWen({}, cv), u, y, dt, 1e-10);
+  return 0;
+}
+
+int ThroughputCommand(const std::vector<std::string>& args) {
+  std::string path;
+  int repeats = 3;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--repeats" && i + 1 < args.size())
+      repeats = std::max(1, std::atoi(args[++i].c_str()));
+    else
+      path = args[i];
+  }
+  if (path.empty()) {
+    fmt::print(stderr, "usage: bench_bouc_wen throughput REC.csv [--repeats R]\n");
+    return 1;
+  }
+  const sysid::Recording rec = sysid::ReadRecording(path);
+  const Eigen::VectorXd u = rec.column("u");
+  const double dt = rec.column("t")[1] - rec.column("t")[0];
+  auto time = [&](const char* name, const sysid::HysteresisModel& m, const Eigen::VectorXd& in) {
+    double best = 1e300, sink = 0;
+    for (int r = 0; r < repeats; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      sink += m.Simulate(in, dt)[in.size() - 1];
+      best = std::min(best,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    fmt::print("throughput method={} samples={} seconds={:.4f} samples_per_s={:.4g} y_end={:.6e}\n",
+               name, in.size(), best, static_cast<double>(in.size()) / best, sink / repeats);
+  };
+  sysid::BoucWenSimulationOptions o;
+  o.integrator = BoucWenIntegrator::kBenchmarkChain;
+  time("chain-newmark-x20", sysid::MechanicalBoucWen({}, o), u);
+  o = {};
+  o.rtol = 1e-6;
+  o.input = InputInterpolation::kLinear;
+  time("cvode-linear-rtol1e-6", sysid::MechanicalBoucWen({}, o), u);
+  o.input = InputInterpolation::kHold;
+  time("cvode-hold-rtol1e-6", sysid::MechanicalBoucWen({}, o), u);
+  sysid::PiezoBoucWenParameters pz;
+  pz.d_m_per_v = 2e-7;
+  pz.alpha = 0.3;
+  pz.beta_per_v = 0.04;
+  pz.gamma_per_v = 0.015;
+  time("piezo-closed-form", sysid::PiezoBoucWen(pz), u);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + std::min(argc, 2), argv + argc);
+  const std::string command = argc > 1 ? argv[1] : "";
+  try {
+    if (command == "score") return ScoreCommand(args);
+    if (command == "throughput") return ThroughputCommand(args);
+  } catch (const sysid::Error& e) {
+    fmt::print(stderr, "bench_bouc_wen: {}\n", e.what());
+    return 2;
+  }
+  fmt::print(stderr, "usage: bench_bouc_wen score|throughput ...\n");
+  return 1;
+}

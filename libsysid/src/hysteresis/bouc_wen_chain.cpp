@@ -1,0 +1,159 @@
+// The Bouc–Wen benchmark's generator (Noël & Schoukens 2016, BoucWen_ExampleIntegration.m):
+// band-limited upsampling, Newmark average acceleration with the trapezoidal rule on z, and
+// MATLAB's decimate(..., 'fir').
+#include <fmt/format.h>
+
+#include <cmath>
+#include <complex>
+#include <unsupported/Eigen/FFT>
+#include <vector>
+
+#include "hysteresis/bouc_wen_internal.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+namespace internal {
+
+std::vector<int> PrimeFactors(int r) {
+  std::vector<int> f;
+  for (int p = 2; p * p <= r; ++p)
+    while (r % p == 0) {
+      f.push_back(p);
+      r /= p;
+    }
+  if (r > 1) f.push_back(r);
+  return f;
+}
+
+BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v, double z) {
+  const double av = std::abs(v), az = std::abs(z);
+  const double sv = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
+  const double sz = z > 0 ? 1.0 : z < 0 ? -1.0 : 0.0;
+  if (p.nu == 1) {
+    // |z|^0 z = z: the common case without pow.
+    return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * z + p.delta * v * az),
+            p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * z + p.delta * az),
+            -p.beta_per_m * (p.gamma * av + p.delta * v * sz)};
+  }
+  const double pow1 = std::pow(az, p.nu - 1);  // |z|^(nu-1), nu >= 1
+  const double pownu = pow1 * az;
+  return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * pow1 * z + p.delta * v * pownu),
+          p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * pow1 * z + p.delta * pownu),
+          -p.beta_per_m * p.nu * pow1 * (p.gamma * av + p.delta * v * sz)};
+}
+
+void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen::Index n, double h,
+                    NewmarkState* s, double* y_out) {
+  if (n < 1) return;
+  Eigen::Index k0 = 0;
+  if (!s->started) {
+    s->a = (u[0] - p.c_n_s_per_m * s->v - p.k_n_per_m * s->y - s->z) / p.m_kg;
+    s->started = true;
+    y_out[0] = s->y;
+    k0 = 1;
+  }
+  const double m = p.m_kg, c = p.c_n_s_per_m, k = p.k_n_per_m;
+  for (Eigen::Index i = k0; i < n; ++i) {
+    const double y0 = s->y, v0 = s->v, a0 = s->a, z0 = s->z;
+    const double f0 = MechanicalRate(p, v0, z0).f;
+    // Unknowns (y1, z1); v1 = 2 (y1 - y0) / h - v0, a1 = 4 (y1 - y0 - h v0) / h^2 - a0.
+    double y1 = y0 + h * v0 + 0.5 * h * h * a0;  // constant-acceleration predictor
+    double z1 = z0 + h * f0;
+    double v1 = 0, a1 = 0;
+    for (int it = 0; it < 50; ++it) {
+      v1 = 2 * (y1 - y0) / h - v0;
+      a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
+      const BoucWenRate r = MechanicalRate(p, v1, z1);
+      const double r1 = m * a1 + c * v1 + k * y1 + z1 - u[i];
+      const double r2 = z1 - z0 - 0.5 * h * (f0 + r.f);
+      // d/dy1: a1' = 4/h^2, v1' = 2/h.
+      const double j11 = 4 * m / (h * h) + 2 * c / h + k, j12 = 1;
+      const double j21 = -0.5 * h * r.df_dv * 2 / h, j22 = 1 - 0.5 * h * r.df_dz;
+      const double det = j11 * j22 - j12 * j21;
+      const double dy = (r1 * j22 - j12 * r2) / det;
+      const double dz = (j11 * r2 - j21 * r1) / det;
+      y1 -= dy;
+      z1 -= dz;
+      // Converged to rounding: the correction is a few ulps of the step's own scale.
+      if (std::abs(dy) <= 1e-15 * (std::abs(y1) + h * std::abs(v1)) &&
+          std::abs(dz) <= 1e-15 * (std::abs(z1) + h * std::abs(r.f)))
+        break;
+    }
+    v1 = 2 * (y1 - y0) / h - v0;
+    a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
+    if (!std::isfinite(y1) || !std::isfinite(z1))
+      throw NumericalError(fmt::format(
+          "bouc-wen: the Newmark step {} diverged (y = {}, z = {}): check the parameters", i, y1,
+          z1));
+    s->y = y1;
+    s->v = v1;
+    s->a = a1;
+    s->z = z1;
+    y_out[i] = y1;
+  }
+}
+
+}  // namespace internal
+
+Eigen::VectorXd UpsampleBandLimited(const Eigen::VectorXd& u, int factor) {
+  const Eigen::Index n = u.size();
+  if (factor < 1) throw OptionsError("UpsampleBandLimited: factor >= 1 is required", "factor");
+  if (n < 1 || factor == 1) return u;
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> in(static_cast<size_t>(n)), spectrum;
+  for (Eigen::Index i = 0; i < n; ++i) in[static_cast<size_t>(i)] = u[i];
+  fft.fwd(spectrum, in);
+  const size_t nn = static_cast<size_t>(n), nf = nn * static_cast<size_t>(factor);
+  std::vector<std::complex<double>> wide(nf, 0.0), out;
+  const size_t half = (nn - 1) / 2;  // lines 1..half on each side
+  wide[0] = spectrum[0];
+  for (size_t j = 1; j <= half; ++j) {
+    wide[j] = spectrum[j];
+    wide[nf - j] = spectrum[nn - j];
+  }
+  if (nn % 2 == 0) {  // the Nyquist line belongs to both sides of the wider spectrum
+    wide[nn / 2] = 0.5 * spectrum[nn / 2];
+    wide[nf - nn / 2] = 0.5 * spectrum[nn / 2];
+  }
+  fft.inv(out, wide);  // Eigen scales by 1/nf
+  Eigen::VectorXd y(static_cast<Eigen::Index>(nf));
+  for (size_t i = 0; i < nf; ++i) y[static_cast<Eigen::Index>(i)] = out[i].real() * factor;
+  return y;
+}
+
+Eigen::VectorXd DecimateFir(const Eigen::VectorXd& x, int r) {
+  if (r < 1) throw OptionsError("DecimateFir: r >= 1 is required", "r");
+  if (r == 1) return x;
+  constexpr int kOrder = 30;  // MATLAB's default nfilt for 'fir'
+  constexpr int kDelay = kOrder / 2;
+  // fir1(30, 1/r): the ideal low-pass (cut-off 1/r of Nyquist) under a Hamming window, scaled
+  // to unit gain at DC.
+  double b[kOrder + 1];
+  double sum = 0;
+  const double wc = 1.0 / r;
+  for (int k = 0; k <= kOrder; ++k) {
+    const double m = k - kDelay;
+    const double ideal = m == 0 ? wc : std::sin(M_PI * wc * m) / (M_PI * m);
+    const double window = 0.54 - 0.46 * std::cos(2 * M_PI * k / kOrder);
+    b[k] = ideal * window;
+    sum += b[k];
+  }
+  for (double& v : b) v /= sum;
+  const Eigen::Index n = x.size();
+  const Eigen::Index nout = (n + r - 1) / r;
+  Eigen::VectorXd y(nout);
+  for (Eigen::Index j = 0; j < nout; ++j) {
+    // filter(b, 1, x) delayed by kDelay, evaluated at sample i = j r: sum_k b_k x[i + kDelay - k]
+    const Eigen::Index i = j * r;
+    double acc = 0;
+    for (int k = 0; k <= kOrder; ++k) {
+      const Eigen::Index idx = i + kDelay - k;
+      if (idx >= 0 && idx < n) acc += b[k] * x[idx];
+    }
+    y[j] = acc;
+  }
+  return y;
+}
+
+}  // namespace sysid

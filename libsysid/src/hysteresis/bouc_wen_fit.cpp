@@ -1,0 +1,446 @@
+// Output-error fit of the Bouc–Wen models (Ceres, central differences through the simulator,
+// the Jacobian's columns simulated in parallel).
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unsupported/Eigen/FFT>
+
+#include "core/parallel_for.hpp"
+#include "core/portable_random.hpp"
+#include "sysid/error.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/io.hpp"
+#include "sysid/motion.hpp"
+
+namespace sysid {
+
+void BoucWenFitOptions::Validate() const {
+  simulation.Validate();
+  if (mechanical_initial_given) mechanical_initial.Validate();
+  if (piezo_initial_given) piezo_initial.Validate();
+  auto rule = [](const char* field, double value, const char* what) {
+    throw OptionsError(
+        fmt::format("BoucWenFitOptions::{} = {}. Violated constraint: {}", field, value, what),
+        field);
+  };
+  if (fit_beta && !fit_nu)
+    rule("fit_beta", 1,
+         "fit_beta needs fit_nu (with nu fixed, beta only appears in beta*gamma "
+         "and beta*delta)");
+  if (starts < 1 || starts > 64) rule("starts", starts, "1 <= starts <= 64");
+  if (!(start_spread >= 0 && start_spread <= 3))
+    rule("start_spread", start_spread, "0 <= start_spread <= 3");
+  if (start_iterations < 1 || start_iterations > 10000)
+    rule("start_iterations", start_iterations, "1 <= start_iterations <= 10000");
+  if (max_iterations < 1 || max_iterations > 10000)
+    rule("max_iterations", max_iterations, "1 <= max_iterations <= 10000");
+  if (threads < 0) rule("threads", threads, "threads >= 0");
+}
+
+namespace {
+
+struct Series {
+  Eigen::VectorXd u, x;
+  double dt_s;
+};
+
+// The parameters as one vector: mechanical m, c, k, alpha, beta, gamma, delta, nu; piezo d,
+// alpha, beta, gamma, offset.
+struct Layout {
+  BoucWenForm form;
+  Eigen::VectorXd all;        // every parameter, fixed ones at their value
+  std::vector<int> free;      // indices into all
+  std::vector<double> scale;  // free parameter i = scale[i] * x[i]
+  std::vector<double> lower;  // bounds on x (scaled), -inf when none
+  std::vector<double> upper;
+  BoucWenSimulationOptions sim;
+
+  Eigen::VectorXd Full(const double* x) const {
+    Eigen::VectorXd p = all;
+    for (size_t i = 0; i < free.size(); ++i) p[free[i]] = scale[i] * x[i];
+    return p;
+  }
+  std::unique_ptr<HysteresisModel> Model(const Eigen::VectorXd& p,
+                                         std::vector<double> errors = {}) const {
+    if (form == BoucWenForm::kMechanical) {
+      MechanicalBoucWenParameters m;
+      m.m_kg = p[0];
+      m.c_n_s_per_m = p[1];
+      m.k_n_per_m = p[2];
+      m.alpha_n_per_m = p[3];
+      m.beta_per_m = p[4];
+      m.gamma = p[5];
+      m.delta = p[6];
+      m.nu = p[7];
+      return std::make_unique<MechanicalBoucWen>(m, sim, std::move(errors));
+    }
+    PiezoBoucWenParameters z;
+    z.d_m_per_v = p[0];
+    z.alpha = p[1];
+    z.beta_per_v = p[2];
+    z.gamma_per_v = p[3];
+    z.offset_m = p[4];
+    return std::make_unique<PiezoBoucWen>(z, sim, std::move(errors));
+  }
+};
+
+// y_model - x over every recording, stacked; false when the simulation fails.
+bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x, double* r) {
+  try {
+    const auto model = l.Model(l.Full(x));
+    Eigen::Index at = 0;
+    for (const auto& s : data) {
+      const Eigen::VectorXd y = model->Simulate(s.u, s.dt_s);
+      Eigen::Map<Eigen::VectorXd>(r + at, s.x.size()) = y - s.x;
+      at += s.x.size();
+    }
+    for (Eigen::Index i = 0; i < at; ++i)
+      if (!std::isfinite(r[i])) return false;
+    return true;
+  } catch (const Error&) {
+    return false;  // an invalid trial model or a failed simulation: Ceres shrinks the step
+  }
+}
+
+class OutputError : public ceres::CostFunction {
+ public:
+  OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
+              long* simulations)
+      : l_(l), data_(data), threads_(threads), simulations_(simulations) {
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(l->free.size()));
+    set_num_residuals(static_cast<int>(n));
+  }
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    const int np = static_cast<int>(l_->free.size());
+    const Eigen::Index n = num_residuals();
+    if (jacobians == nullptr || jacobians[0] == nullptr) {
+      ++*simulations_;
+      return Residuals(*l_, *data_, x[0], residuals);
+    }
+    // Residuals and 2 np perturbed simulations, in parallel.
+    std::vector<Eigen::VectorXd> r(static_cast<size_t>(2 * np + 1), Eigen::VectorXd(n));
+    std::vector<char> ok(r.size(), 0);
+    std::vector<double> step(static_cast<size_t>(np));
+    for (int i = 0; i < np; ++i)
+      // The simulations are exact to rounding (Newmark, closed form) or to rtol (CVODE): a step
+      // of 1e-6 of the parameter's scale keeps the difference error near 1e-10 relative.
+      step[static_cast<size_t>(i)] = 1e-6 * std::max(std::abs(x[0][i]), 1e-3);
+    internal::ParallelFor(static_cast<long>(r.size()), threads_, [&](long j) {
+      std::vector<double> xj(x[0], x[0] + np);
+      if (j > 0) {
+        const int i = static_cast<int>((j - 1) / 2);
+        xj[static_cast<size_t>(i)] += (j % 2 == 1 ? 1 : -1) * step[static_cast<size_t>(i)];
+      }
+      ok[static_cast<size_t>(j)] =
+          Residuals(*l_, *data_, xj.data(), r[static_cast<size_t>(j)].data());
+    });
+    *simulations_ += static_cast<long>(r.size());
+    if (!ok[0]) return false;
+    Eigen::Map<Eigen::VectorXd>(residuals, n) = r[0];
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+        jacobians[0], n, np);
+    for (int i = 0; i < np; ++i) {
+      const auto& rp = r[static_cast<size_t>(2 * i + 1)];
+      const auto& rm = r[static_cast<size_t>(2 * i + 2)];
+      const double hi = step[static_cast<size_t>(i)];
+      const bool okp = ok[static_cast<size_t>(2 * i + 1)], okm = ok[static_cast<size_t>(2 * i + 2)];
+      if (okp && okm)
+        J.col(i) = (rp - rm) / (2 * hi);
+      else if (okp)
+        J.col(i) = (rp - r[0]) / hi;  // at a bound: one-sided
+      else if (okm)
+        J.col(i) = (r[0] - rm) / hi;
+      else
+        return false;
+    }
+    return true;
+  }
+
+ private:
+  const Layout* l_;
+  const std::vector<Series>* data_;
+  int threads_;
+  long* simulations_;
+};
+
+// The best linear approximation m s^2 + c s + K of U / Y by least squares over the lines where
+// u has power (the excited lines), as the mechanical form's starting point.
+void LinearStart(const std::vector<Series>& data, double* m, double* c, double* k) {
+  Eigen::MatrixXd A(0, 3);
+  Eigen::VectorXd b(0);
+  std::vector<Eigen::RowVector3d> rows;
+  std::vector<double> rhs;
+  for (const auto& s : data) {
+    const Eigen::Index n = s.u.size();
+    if (n < 8) continue;
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> ui(static_cast<size_t>(n)), xi(static_cast<size_t>(n)), U, X;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      ui[static_cast<size_t>(i)] = s.u[i];
+      xi[static_cast<size_t>(i)] = s.x[i];
+    }
+    fft.fwd(U, ui);
+    fft.fwd(X, xi);
+    double umax = 0;
+    for (Eigen::Index j = 1; j < n / 2; ++j)
+      umax = std::max(umax, std::abs(U[static_cast<size_t>(j)]));
+    for (Eigen::Index j = 1; j < n / 2; ++j) {
+      const auto Uj = U[static_cast<size_t>(j)], Xj = X[static_cast<size_t>(j)];
+      if (std::abs(Uj) < 0.1 * umax) continue;  // not an excited line
+      const double w = 2 * M_PI * static_cast<double>(j) / (static_cast<double>(n) * s.dt_s);
+      // U = (-m w^2 + i c w + K) X, weighted by 1/|X| so each line counts alike.
+      const double wt = 1 / std::max(std::abs(Xj), 1e-300);
+      const std::complex<double> cm = -w * w * Xj * wt, cc = std::complex<double>(0, w) * Xj * wt,
+                                 ck = Xj * wt, cu = Uj * wt;
+      rows.emplace_back(cm.real(), cc.real(), ck.real());
+      rhs.push_back(cu.real());
+      rows.emplace_back(cm.imag(), cc.imag(), ck.imag());
+      rhs.push_back(cu.imag());
+    }
+  }
+  A.resize(static_cast<Eigen::Index>(rows.size()), 3);
+  b.resize(static_cast<Eigen::Index>(rhs.size()));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    A.row(static_cast<Eigen::Index>(i)) = rows[i];
+    b[static_cast<Eigen::Index>(i)] = rhs[i];
+  }
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  if (A.rows() >= 3) p = A.colPivHouseholderQr().solve(b);
+  *m = p[0] > 0 && std::isfinite(p[0]) ? p[0] : 1.0;
+  *c = p[1] > 0 && std::isfinite(p[1]) ? p[1] : 0.0;
+  *k = p[2] > 0 && std::isfinite(p[2]) ? p[2] : 1.0;
+}
+
+Layout MakeLayout(BoucWenForm form, const std::vector<Series>& data, const BoucWenFitOptions& o) {
+  Layout l;
+  l.form = form;
+  l.sim = o.simulation;
+  const double inf = std::numeric_limits<double>::infinity();
+  double xrms = 0, urms = 0;
+  Eigen::Index count = 0;
+  for (const auto& s : data) {
+    xrms += (s.x.array() - s.x.mean()).square().sum();
+    urms += (s.u.array() - s.u.mean()).square().sum();
+    count += s.x.size();
+  }
+  xrms = std::sqrt(xrms / static_cast<double>(count));
+  urms = std::sqrt(urms / static_cast<double>(count));
+  auto add = [&](int index, double typical, double lower, double upper) {
+    const double s = std::max(std::abs(l.all[index]), typical);
+    l.free.push_back(index);
+    l.scale.push_back(s);
+    l.lower.push_back(lower / s);
+    l.upper.push_back(upper / s);
+  };
+  if (form == BoucWenForm::kMechanical) {
+    MechanicalBoucWenParameters p = o.mechanical_initial;
+    if (!o.mechanical_initial_given) {
+      // From the best linear approximation: K = k + (the hysteresis' stiffness), split in two;
+      // beta from the amplitude (beta |z| ~ 1 at the typical force), the loop shape neutral.
+      double m = 1, c = 0, K = 1;
+      LinearStart(data, &m, &c, &K);
+      p.m_kg = m;
+      p.c_n_s_per_m = 0.1 * c;
+      p.k_n_per_m = 0.5 * K;
+      p.alpha_n_per_m = 0.5 * K;
+      p.beta_per_m = 1 / std::max(xrms, 1e-300);
+      p.gamma = 0.5 * K * xrms / std::max(urms, 1e-300);
+      p.delta = -0.5 * K * xrms / std::max(urms, 1e-300);
+      p.nu = 1;
+    }
+    l.all.resize(8);
+    l.all << p.m_kg, p.c_n_s_per_m, p.k_n_per_m, p.alpha_n_per_m, p.beta_per_m, p.gamma, p.delta,
+        p.nu;
+    const double K = p.k_n_per_m + p.alpha_n_per_m;
+    add(0, 1e-9, 1e-9 * std::max(p.m_kg, 1e-9), inf);  // m > 0
+    add(1, 1e-3 * std::sqrt(K * p.m_kg), 0, inf);      // c >= 0
+    add(2, 1e-3 * K, 0, inf);                          // k >= 0
+    add(3, 1e-3 * K, 1e-9 * K, inf);                   // alpha > 0
+    if (o.fit_beta) add(4, 1e-9, 1e-9 * p.beta_per_m, inf);
+    add(5, 0.1, -inf, inf);
+    add(6, 0.1, -inf, inf);
+    if (o.fit_nu) add(7, 1, 1, 10);
+  } else {
+    PiezoBoucWenParameters p = o.piezo_initial;
+    if (!o.piezo_initial_given) {
+      // The straight line x = d u + offset by least squares; a mild loop to start from.
+      double mu = 0, mx = 0, sux = 0, suu = 0;
+      for (const auto& s : data) {
+        mu += s.u.sum();
+        mx += s.x.sum();
+      }
+      mu /= static_cast<double>(count);
+      mx /= static_cast<double>(count);
+      for (const auto& s : data) {
+        sux += ((s.u.array() - mu) * (s.x.array() - mx)).sum();
+        suu += (s.u.array() - mu).square().sum();
+      }
+      p.d_m_per_v = suu > 0 && sux > 0 ? sux / suu : 1e-6;
+      p.offset_m = mx - p.d_m_per_v * mu;
+      p.alpha = 0.2;
+      p.beta_per_v = 1 / std::max(urms, 1e-300);
+      p.gamma_per_v = 0.2 / std::max(urms, 1e-300);
+    }
+    l.all.resize(5);
+    l.all << p.d_m_per_v, p.alpha, p.beta_per_v, p.gamma_per_v, p.offset_m;
+    add(0, 1e-300, 1e-9 * p.d_m_per_v, inf);
+    add(1, 0.01, -inf, inf);
+    add(2, 1e-3 / std::max(urms, 1e-300), -inf, inf);
+    add(3, 1e-3 / std::max(urms, 1e-300), -inf, inf);
+    add(4, std::max(xrms, 1e-300), -inf, inf);
+  }
+  return l;
+}
+
+struct Solved {
+  std::vector<double> x;
+  ceres::Solver::Summary summary;
+};
+
+Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
+             std::vector<double> x, int iterations, int threads, long* simulations,
+             ceres::Problem** keep = nullptr) {
+  Solved s;
+  s.x = std::move(x);
+  auto* problem = new ceres::Problem;
+  problem->AddResidualBlock(new OutputError(&l, &data, n, threads, simulations), nullptr,
+                            s.x.data());
+  for (size_t i = 0; i < l.free.size(); ++i) {
+    if (std::isfinite(l.lower[i]))
+      problem->SetParameterLowerBound(s.x.data(), static_cast<int>(i), l.lower[i]);
+    if (std::isfinite(l.upper[i]))
+      problem->SetParameterUpperBound(s.x.data(), static_cast<int>(i), l.upper[i]);
+  }
+  ceres::Solver::Options so;
+  so.max_num_iterations = iterations;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.function_tolerance = 1e-12;
+  so.parameter_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.logging_type = ceres::SILENT;
+  ceres::Solve(so, problem, &s.summary);
+  if (keep != nullptr)
+    *keep = problem;
+  else
+    delete problem;
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
+                                            const std::vector<Recording>& recordings,
+                                            const BoucWenFitOptions& options,
+                                            HysteresisFitSummary* summary) {
+  const auto start = std::chrono::steady_clock::now();
+  options.Validate();
+  if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
+  if (form == BoucWenForm::kPiezo &&
+      options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain)
+    throw OptionsError(
+        "BoucWenFitOptions::simulation.integrator = benchmark-chain. Violated constraint: the "
+        "chain is the mechanical form's",
+        "simulation.integrator");
+  std::vector<Series> data;
+  Eigen::Index n = 0;
+  for (const auto& r : recordings) {
+    if (r.rows() < 3)
+      throw InputError(fmt::format("{}: {} samples: a fit needs at least 3", r.source, r.rows()));
+    Series s{r.column("u"), r.column("x"), UniformSampleInterval(r, 1e-3)};
+    for (Eigen::Index i = 0; i < s.u.size(); ++i)
+      if (!std::isfinite(s.u[i]) || !std::isfinite(s.x[i]))
+        throw InputError(fmt::format("{}:{}: column '{}': expected a finite number", r.source,
+                                     i + 2, std::isfinite(s.u[i]) ? "x" : "u"));
+    n += s.u.size();
+    data.push_back(std::move(s));
+  }
+  const Layout layout = MakeLayout(form, data, options);
+  const int np = static_cast<int>(layout.free.size());
+  if (n <= np)
+    throw InputError(fmt::format("FitBoucWen: {} samples for {} free parameters", n, np));
+  long simulations = 0;
+  // Starting points: the initial values, then perturbed copies; each gets a few iterations and
+  // the cheapest continues.
+  std::vector<double> best(static_cast<size_t>(np), 1.0);
+  for (int i = 0; i < np; ++i)
+    best[static_cast<size_t>(i)] =
+        layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
+  if (options.starts > 1) {
+    internal::PortableRandom random(options.seed);
+    double best_cost = std::numeric_limits<double>::infinity();
+    const std::vector<double> x0 = best;
+    for (int k = 0; k < options.starts; ++k) {
+      std::vector<double> x = x0;
+      if (k > 0)
+        for (int i = 0; i < np; ++i) {
+          auto& v = x[static_cast<size_t>(i)];
+          v *= std::exp(options.start_spread * random.Normal());
+          v = std::clamp(v, layout.lower[static_cast<size_t>(i)],
+                         layout.upper[static_cast<size_t>(i)]);
+        }
+      const Solved s =
+          Solve(layout, data, n, x, options.start_iterations, options.threads, &simulations);
+      if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
+        best_cost = s.summary.final_cost;
+        best = s.x;
+      }
+    }
+  }
+  ceres::Problem* problem = nullptr;
+  Solved s =
+      Solve(layout, data, n, best, options.max_iterations, options.threads, &simulations, &problem);
+  std::unique_ptr<ceres::Problem> owner(problem);
+  if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
+    throw NumericalError("bouc-wen fit failed: " + s.summary.message);
+  // Standard errors from s^2 (J^T J)^-1 at the optimum, in physical units (as refine).
+  const Eigen::VectorXd p = layout.Full(s.x.data());
+  std::vector<double> errors(static_cast<size_t>(p.size()),
+                             std::numeric_limits<double>::quiet_NaN());
+  {
+    std::vector<double> r(static_cast<size_t>(n));
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(n, np);
+    double* jac[] = {J.data()};
+    const double* xs[] = {s.x.data()};
+    OutputError cost(&layout, &data, n, options.threads, &simulations);
+    if (cost.Evaluate(xs, r.data(), jac)) {
+      const Eigen::MatrixXd JtJ = J.transpose() * J;
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+      if (lu.isInvertible()) {
+        const double s2 = 2 * s.summary.final_cost / static_cast<double>(n - np);
+        const Eigen::MatrixXd cov = s2 * lu.inverse();
+        for (int i = 0; i < np; ++i)
+          errors[static_cast<size_t>(layout.free[static_cast<size_t>(i)])] =
+              std::sqrt(cov(i, i)) * layout.scale[static_cast<size_t>(i)];
+      }
+    }
+  }
+  auto model = layout.Model(p, errors);
+  if (summary != nullptr) {
+    summary->kind = model->kind();
+    summary->samples = static_cast<int>(n);
+    summary->training_rms = std::sqrt(2 * s.summary.final_cost / static_cast<double>(n));
+    summary->converged = s.summary.termination_type == ceres::CONVERGENCE;
+    std::string fixed;
+    if (form == BoucWenForm::kMechanical) {
+      if (!options.fit_nu) fixed += fmt::format("nu fixed at {:g}", layout.all[7]);
+      if (!options.fit_beta)
+        fixed += fmt::format(
+            "{}beta fixed at {:g} 1/m (with nu fixed, only beta*gamma and "
+            "beta*delta are identifiable)",
+            fixed.empty() ? "" : "; ", layout.all[4]);
+    }
+    summary->message = fmt::format("{} ({} Ceres iterations, {} simulations, {} starts){}{}",
+                                   s.summary.message, s.summary.iterations.size(), simulations,
+                                   options.starts, fixed.empty() ? "" : "; ", fixed);
+    summary->fit_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return model;
+}
+
+}  // namespace sysid

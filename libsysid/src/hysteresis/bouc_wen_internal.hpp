@@ -1,0 +1,65 @@
+// Private: the pieces of the Bouc–Wen models shared by the simulators, the fit and the tests.
+#ifndef SYSID_SRC_HYSTERESIS_BOUC_WEN_INTERNAL_HPP_
+#define SYSID_SRC_HYSTERESIS_BOUC_WEN_INTERNAL_HPP_
+
+#include <Eigen/Core>
+#include <complex>
+#include <vector>
+
+#include "sysid/hysteresis_bouc_wen.hpp"
+
+namespace sysid::internal {
+
+/// u(t) and u'(t) between the samples u_k = u(k dt), t in [0, n dt], as InputInterpolation says.
+/// Band-limited: the trigonometric interpolant of the n samples as one period (lines with
+/// negligible amplitude, below 1e-15 of the largest, are dropped).
+class SampledInput {
+ public:
+  SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how);
+  /// u [input unit] and its time derivative at t [s], inside the sample interval
+  /// [t_k, t_k+1] (held and linear inputs use interval k's formula even at its ends, so a
+  /// solver stopping at t_k+1 sees no jump).
+  void Evaluate(double t_s, Eigen::Index k, double* u, double* du) const;
+  InputInterpolation how() const { return how_; }
+
+ private:
+  Eigen::VectorXd u_;
+  double dt_;
+  InputInterpolation how_;
+  double mean_ = 0;
+  std::vector<int> lines_;                   // harmonic numbers kept
+  std::vector<std::complex<double>> coeff_;  // u(t) = mean + sum 2 Re(c_j e^(i w l_j t))
+  double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
+};
+
+/// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
+/// at the first non-finite sample; `kind` starts the message ("bouc-wen").
+void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);
+
+/// The Bouc–Wen z' (mechanical form) at velocity v and restoring force z, and its partial
+/// derivatives in v and z (for Newton).
+struct BoucWenRate {
+  double f, df_dv, df_dz;
+};
+BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v, double z);
+
+/// Newmark average acceleration (gamma = 1/2, beta = 1/4) on y with the trapezoidal rule on z,
+/// the implicit step solved by Newton on (y, z), at step h_s over the samples u (already at the
+/// integration rate), from the state (y, v, z); the state is updated. Returns y at every sample
+/// (the first: the initial y).
+struct NewmarkState {
+  double y = 0, v = 0, a = 0, z = 0;
+  bool started = false;  // a is set from the equation of motion at the first sample
+};
+void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen::Index n,
+                    double h_s, NewmarkState* state, double* y_out);
+
+/// The prime factors of r, ascending (MATLAB's factor()).
+std::vector<int> PrimeFactors(int r);
+
+/// The piezo form's exact step: h after u moves in a straight line from u0 to u1, from h0.
+double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h0);
+
+}  // namespace sysid::internal
+
+#endif  // SYSID_SRC_HYSTERESIS_BOUC_WEN_INTERNAL_HPP_

@@ -1,0 +1,206 @@
+// Bouc–Wen model files and the options' rules.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/json_text.hpp"
+#include "sysid/error.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
+
+namespace sysid {
+
+namespace {
+
+[[noreturn]] void Violated(const char* type, const char* field, double value, const char* rule) {
+  throw OptionsError(fmt::format("{}::{} = {}. Violated constraint: {}", type, field, value, rule),
+                     field);
+}
+
+const char* ToString(BoucWenIntegrator i) {
+  return i == BoucWenIntegrator::kCvode ? "cvode" : "benchmark-chain";
+}
+const char* ToString(InputInterpolation i) {
+  switch (i) {
+    case InputInterpolation::kHold:
+      return "hold";
+    case InputInterpolation::kLinear:
+      return "linear";
+    case InputInterpolation::kBandLimited:
+      return "band-limited";
+  }
+  return "?";
+}
+
+nlohmann::ordered_json SimulationJson(const BoucWenSimulationOptions& o) {
+  nlohmann::ordered_json j;
+  j["integrator"] = ToString(o.integrator);
+  j["input"] = ToString(o.input);
+  j["rtol"] = o.rtol;
+  j["upsampling"] = o.upsampling;
+  return j;
+}
+
+nlohmann::ordered_json ModelJson(const char* kind, const std::vector<HysteresisParameter>& ps,
+                                 const BoucWenSimulationOptions& o, const char* note) {
+  nlohmann::ordered_json j, values, errors, units;
+  j["kind"] = kind;
+  bool any_error = false;
+  for (const auto& p : ps) {
+    values[p.name] = p.value;
+    errors[p.name] = internal::NumberOrNull(p.std_error);
+    units[p.name] = p.unit;
+    any_error = any_error || std::isfinite(p.std_error);
+  }
+  j["parameters"] = values;
+  if (any_error) j["std_errors"] = errors;
+  j["units"] = units;
+  j["simulation"] = SimulationJson(o);
+  j["note"] = note;
+  return j;
+}
+
+BoucWenSimulationOptions SimulationFromJson(const internal::JsonDocument& doc,
+                                            const internal::JsonNode& node) {
+  BoucWenSimulationOptions o;
+  node.ExpectObject({"integrator", "input", "rtol", "upsampling"});
+  if (node.Has("integrator")) {
+    const auto n = node.Get("integrator");
+    const std::string s = n.String();
+    if (s == "cvode")
+      o.integrator = BoucWenIntegrator::kCvode;
+    else if (s == "benchmark-chain")
+      o.integrator = BoucWenIntegrator::kBenchmarkChain;
+    else
+      n.Expected("\"cvode\" or \"benchmark-chain\"");
+  }
+  if (node.Has("input")) {
+    const auto n = node.Get("input");
+    const std::string s = n.String();
+    if (s == "hold")
+      o.input = InputInterpolation::kHold;
+    else if (s == "linear")
+      o.input = InputInterpolation::kLinear;
+    else if (s == "band-limited")
+      o.input = InputInterpolation::kBandLimited;
+    else
+      n.Expected("\"hold\", \"linear\" or \"band-limited\"");
+  }
+  if (node.Has("rtol")) o.rtol = node.Get("rtol").Number(internal::NumberRule::Positive());
+  if (node.Has("upsampling"))
+    o.upsampling = static_cast<int>(node.Get("upsampling").Integer(1, 1000));
+  internal::ValidateOptions(
+      doc, [&] { o.Validate(); }, node.pointer());
+  return o;
+}
+
+// The standard errors, in parameters() order; empty when the file has none.
+std::vector<double> ErrorsFromJson(const internal::JsonNode& root,
+                                   const std::vector<std::string>& names) {
+  if (!root.Has("std_errors")) return {};
+  const auto node = root.Get("std_errors");
+  node.ExpectObject(names);
+  std::vector<double> e(names.size(), NAN);
+  for (size_t i = 0; i < names.size(); ++i)
+    if (node.Has(names[i]))
+      e[i] = node.Get(names[i]).NumberOrNaN(internal::NumberRule::NonNegative());
+  return e;
+}
+
+}  // namespace
+
+void BoucWenSimulationOptions::Validate() const {
+  if (!(rtol > 0 && rtol <= 1e-2))
+    Violated("BoucWenSimulationOptions", "rtol", rtol, "0 < rtol <= 1e-2");
+  if (upsampling < 1 || upsampling > 1000)
+    Violated("BoucWenSimulationOptions", "upsampling", upsampling, "1 <= upsampling <= 1000");
+}
+
+void MechanicalBoucWenParameters::Validate() const {
+  const char* t = "MechanicalBoucWenParameters";
+  auto finite = [](double v) { return std::isfinite(v); };
+  if (!(m_kg > 0) || !finite(m_kg)) Violated(t, "m_kg", m_kg, "m_kg > 0");
+  if (!(c_n_s_per_m >= 0) || !finite(c_n_s_per_m))
+    Violated(t, "c_n_s_per_m", c_n_s_per_m, "c_n_s_per_m >= 0");
+  if (!(k_n_per_m >= 0) || !finite(k_n_per_m))
+    Violated(t, "k_n_per_m", k_n_per_m, "k_n_per_m >= 0");
+  if (!(alpha_n_per_m > 0) || !finite(alpha_n_per_m))
+    Violated(t, "alpha_n_per_m", alpha_n_per_m, "alpha_n_per_m > 0");
+  if (!(beta_per_m > 0) || !finite(beta_per_m))
+    Violated(t, "beta_per_m", beta_per_m, "beta_per_m > 0");
+  if (!finite(gamma)) Violated(t, "gamma", gamma, "a finite gamma");
+  if (!finite(delta)) Violated(t, "delta", delta, "a finite delta");
+  if (!(nu >= 1 && nu <= 10)) Violated(t, "nu", nu, "1 <= nu <= 10");
+}
+
+void PiezoBoucWenParameters::Validate() const {
+  const char* t = "PiezoBoucWenParameters";
+  if (!(d_m_per_v > 0) || !std::isfinite(d_m_per_v))
+    Violated(t, "d_m_per_v", d_m_per_v, "d_m_per_v > 0");
+  if (!std::isfinite(alpha)) Violated(t, "alpha", alpha, "a finite alpha");
+  if (!std::isfinite(beta_per_v)) Violated(t, "beta_per_v", beta_per_v, "a finite beta_per_v");
+  if (!std::isfinite(gamma_per_v)) Violated(t, "gamma_per_v", gamma_per_v, "a finite gamma_per_v");
+  if (!std::isfinite(offset_m)) Violated(t, "offset_m", offset_m, "a finite offset_m");
+}
+
+std::string MechanicalBoucWen::ToJson(int indent) const {
+  return ModelJson("bouc-wen", parameters(), options_,
+                   "m y'' + c y' + k y + z = u, z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + "
+                   "delta y' |z|^nu); u [N], y [m], z [N]")
+             .dump(indent) +
+         "\n";
+}
+
+std::string PiezoBoucWen::ToJson(int indent) const {
+  return ModelJson("bouc-wen-piezo", parameters(), options_,
+                   "y = d u - h + offset, h' = alpha d u' - beta |u'| h - gamma u' |h|; u [V], "
+                   "y [m], h [m]")
+             .dump(indent) +
+         "\n";
+}
+
+std::unique_ptr<HysteresisModel> BoucWenModelFromJson(const std::string& text,
+                                                      const std::string& source) {
+  const internal::JsonDocument doc(text, source);
+  const auto root = doc.Root();
+  root.ExpectObject({"kind", "parameters", "std_errors", "units", "simulation"}, {"note", "fit"});
+  const auto kind_node = root.Get("kind");
+  const std::string kind = kind_node.String();
+  if (kind != "bouc-wen" && kind != "bouc-wen-piezo")
+    kind_node.Expected("\"bouc-wen\" or \"bouc-wen-piezo\"");
+  BoucWenSimulationOptions sim;
+  if (root.Has("simulation")) sim = SimulationFromJson(doc, root.Get("simulation"));
+  const auto ps = root.Get("parameters");
+  using Rule = internal::NumberRule;
+  // The number rules below are the parameters' Validate() rules, so a bad value is reported
+  // at its place in the file.
+  if (kind == "bouc-wen") {
+    const std::vector<std::string> names = {"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"};
+    ps.ExpectObject(names);
+    MechanicalBoucWenParameters p;
+    p.m_kg = ps.Get("m").Number(Rule::Positive());
+    p.c_n_s_per_m = ps.Get("c").Number(Rule::NonNegative());
+    p.k_n_per_m = ps.Get("k").Number(Rule::NonNegative());
+    p.alpha_n_per_m = ps.Get("alpha").Number(Rule::Positive());
+    p.beta_per_m = ps.Get("beta").Number(Rule::Positive());
+    p.gamma = ps.Get("gamma").Number();
+    p.delta = ps.Get("delta").Number();
+    p.nu = ps.Has("nu") ? ps.Get("nu").Number(Rule::Closed(1, 10)) : 1.0;
+    return std::make_unique<MechanicalBoucWen>(p, sim, ErrorsFromJson(root, names));
+  }
+  const std::vector<std::string> names = {"d", "alpha", "beta", "gamma", "offset"};
+  ps.ExpectObject(names);
+  PiezoBoucWenParameters p;
+  p.d_m_per_v = ps.Get("d").Number(Rule::Positive());
+  p.alpha = ps.Get("alpha").Number();
+  p.beta_per_v = ps.Get("beta").Number();
+  p.gamma_per_v = ps.Get("gamma").Number();
+  p.offset_m = ps.Has("offset") ? ps.Get("offset").Number() : 0.0;
+  if (sim.integrator == BoucWenIntegrator::kBenchmarkChain && root.Has("simulation"))
+    root.Get("simulation")
+        .Get("integrator")
+        .Expected("\"cvode\" (the chain is the mechanical form's)");
+  return std::make_unique<PiezoBoucWen>(p, sim, ErrorsFromJson(root, names));
+}
+
+}  // namespace sysid

@@ -1,0 +1,204 @@
+// The piezo Bouc–Wen model: an exact step for straight input segments, CVODE for band-limited
+// inputs, and the per-sample inverse.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/cvode_solver.hpp"
+#include "hysteresis/bouc_wen_internal.hpp"
+#include "sysid/error.hpp"
+
+namespace sysid {
+
+namespace internal {
+
+// Along a straight segment of u with direction s = sign(u1 - u0) and progress w = |u - u0|,
+// dh/dw = A - B h with A = s alpha d and B = beta + s sign(h) gamma: exponential in w while h
+// keeps its sign, and h crosses zero at most once (after that it moves with A's sign).
+double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h) {
+  const double s = u1 > u0 ? 1.0 : u1 < u0 ? -1.0 : 0.0;
+  if (s == 0) return h;
+  const double a = s * p.alpha * p.d_m_per_v;
+  double w = std::abs(u1 - u0);
+  for (int piece = 0; piece < 3 && w > 0; ++piece) {
+    const double sigma = h > 0 ? 1.0 : h < 0 ? -1.0 : a > 0 ? 1.0 : a < 0 ? -1.0 : 0.0;
+    if (sigma == 0) return 0;  // h = 0 and no drive
+    const double b = p.beta_per_v + s * sigma * p.gamma_per_v;
+    // g(w) = (1 - exp(-b w)) / b, w where b w is negligible.
+    auto g = [b](double x) { return std::abs(b * x) < 1e-300 ? x : -std::expm1(-b * x) / b; };
+    const double end = h + (a - b * h) * g(w);
+    const double end_sign = end > 0 ? 1.0 : end < 0 ? -1.0 : 0.0;
+    if (h == 0 || end_sign == sigma || end_sign == 0) return end;
+    // h reaches 0 at w*: h + (a - b h) g(w*) = 0.
+    double wstar;
+    if (std::abs(b) < 1e-300) {
+      wstar = -h / a;
+    } else {
+      const double ratio = a / (a - b * h);  // exp(-b w*)
+      wstar = -std::log(ratio) / b;
+    }
+    wstar = std::clamp(wstar, 0.0, w);
+    w -= wstar;
+    h = 0;
+  }
+  return h;
+}
+
+}  // namespace internal
+
+namespace {
+
+struct PiezoOde {
+  const PiezoBoucWenParameters* p;
+  const internal::SampledInput* input;
+  Eigen::Index interval = 0;
+};
+
+int PiezoRhs(double t, N_Vector x, N_Vector dx, void* data) {
+  const auto* ode = static_cast<const PiezoOde*>(data);
+  const double h = N_VGetArrayPointer(x)[0];
+  double u = 0, du = 0;
+  ode->input->Evaluate(t, ode->interval, &u, &du);
+  const auto& p = *ode->p;
+  N_VGetArrayPointer(dx)[0] = p.alpha * p.d_m_per_v * du - p.beta_per_v * std::abs(du) * h -
+                              p.gamma_per_v * du * std::abs(h);
+  return 0;
+}
+
+
+}  // namespace
+
+PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulationOptions& options,
+                           std::vector<double> std_errors)
+    : p_(p), options_(options), std_errors_(std::move(std_errors)) {
+  p_.Validate();
+  options_.Validate();
+  if (options_.integrator == BoucWenIntegrator::kBenchmarkChain)
+    throw OptionsError(
+        "BoucWenSimulationOptions::integrator = benchmark-chain. Violated constraint: the chain "
+        "is the mechanical form's (use cvode for bouc-wen-piezo)",
+        "integrator");
+}
+
+Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
+  if (options_.input == InputInterpolation::kBandLimited) return SimulateCvode(u, dt_s);
+  internal::CheckSamples(u, dt_s, "bouc-wen-piezo", "u");
+  const Eigen::Index n = u.size();
+  Eigen::VectorXd y(n);
+  double h = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (k > 0) h = internal::PiezoStep(p_, u[k - 1], u[k], h);
+    y[k] = p_.d_m_per_v * u[k] - h + p_.offset_m;
+  }
+  return y;
+}
+
+Eigen::VectorXd PiezoBoucWen::SimulateCvode(const Eigen::VectorXd& u, double dt_s) const {
+  internal::CheckSamples(u, dt_s, "bouc-wen-piezo", "u");
+  const Eigen::Index n = u.size();
+  Eigen::VectorXd y(n);
+  if (n == 0) return y;
+  // A held input moves along the same straight segment as a linear one, only instantly: the
+  // rate-independent model cannot tell them apart.
+  const InputInterpolation how =
+      options_.input == InputInterpolation::kHold ? InputInterpolation::kLinear : options_.input;
+  const internal::SampledInput input(u, dt_s, how);
+  PiezoOde ode{&p_, &input, 0};
+  const double h0 = 0;
+  internal::CvodeSolver solver(1, internal::CvodeSolver::Method::kAdams, PiezoRhs, &ode, 0, &h0,
+                               "bouc-wen-piezo simulation", "check the parameters");
+  const double hs = p_.d_m_per_v * std::max(u.cwiseAbs().maxCoeff(), 1e-300);
+  const double atol = 1e-3 * options_.rtol * hs;
+  solver.SetTolerances(options_.rtol, &atol);
+  solver.SetMaxNumSteps(1000000);
+  double t = 0;
+  y[0] = p_.d_m_per_v * u[0] + p_.offset_m;
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const double t_next = static_cast<double>(k + 1) * dt_s;
+    ode.interval = k;
+    if (how != InputInterpolation::kBandLimited) solver.SetStopTime(t_next);
+    solver.Check(solver.Advance(t_next, &t, CV_NORMAL), "CVode");
+    y[k + 1] = p_.d_m_per_v * u[k + 1] - solver.state()[0] + p_.offset_m;
+    // u' jumps at every sample of a linear input, and with it h': restart there.
+    if (how != InputInterpolation::kBandLimited) solver.ReInit(t_next);
+  }
+  return y;
+}
+
+bool PiezoBoucWen::invertible() const {
+  const double d = p_.d_m_per_v, a = p_.alpha, b = p_.beta_per_v, g = p_.gamma_per_v;
+  if (!(d > 0) || !(b + g > 0)) return false;
+  return d * (1 - a) - std::max(b - g, 0.0) * std::abs(a) * d / (b + g) > 0;
+}
+
+Eigen::VectorXd PiezoBoucWen::Invert(const Eigen::VectorXd& y_desired, double dt_s) const {
+  internal::CheckSamples(y_desired, dt_s, "bouc-wen-piezo", "y_desired");
+  if (!invertible())
+    throw NumericalError(fmt::format(
+        "bouc-wen-piezo: not invertible with d = {:.6g} m/V, alpha = {:.6g}, beta = {:.6g} 1/V, "
+        "gamma = {:.6g} 1/V: y is not monotone in u (needs d > 0, beta + gamma > 0 and "
+        "(1 - alpha)(beta + gamma) > |alpha| max(beta - gamma, 0))",
+        p_.d_m_per_v, p_.alpha, p_.beta_per_v, p_.gamma_per_v));
+  const Eigen::Index n = y_desired.size();
+  Eigen::VectorXd u(n);
+  if (n == 0) return u;
+  const double d = p_.d_m_per_v;
+  u[0] = (y_desired[0] - p_.offset_m) / d;  // h = 0 at the start
+  double h = 0;
+  for (Eigen::Index k = 1; k < n; ++k) {
+    const double target = y_desired[k];
+    auto g = [&](double v) {
+      return d * v - internal::PiezoStep(p_, u[k - 1], v, h) + p_.offset_m - target;
+    };
+    // y rises with u: bracket the root by doubling the step from u[k-1].
+    const double g0 = g(u[k - 1]);
+    double lo = u[k - 1], hi = u[k - 1];
+    const double dir = g0 < 0 ? 1.0 : -1.0;
+    double step = std::max(std::abs(g0) / (d * std::max(1 - p_.alpha, 1e-3)), 1e-300);
+    double far = u[k - 1];
+    int expansions = 0;
+    for (; expansions < 200; ++expansions) {
+      far = u[k - 1] + dir * step;
+      if ((g(far) < 0) != (g0 < 0) || g(far) == 0) break;
+      step *= 2;
+    }
+    if (expansions == 200)
+      throw InputError(fmt::format(
+          "bouc-wen-piezo: y_desired[{}] = {:.6g} m is out of the model's reach", k, target));
+    lo = std::min(u[k - 1], far);
+    hi = std::max(u[k - 1], far);
+    // Bisection on the monotone g to the last bit: the inverse is then exact to rounding.
+    double glo = g(lo);
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      const double gm = g(mid);
+      if (gm == 0) {
+        lo = hi = mid;
+        break;
+      }
+      if ((gm < 0) == (glo < 0)) {
+        lo = mid;
+        glo = gm;
+      } else {
+        hi = mid;
+      }
+    }
+    u[k] = std::abs(g(lo)) <= std::abs(g(hi)) ? lo : hi;
+    h = internal::PiezoStep(p_, u[k - 1], u[k], h);
+  }
+  return u;
+}
+
+std::vector<HysteresisParameter> PiezoBoucWen::parameters() const {
+  std::vector<HysteresisParameter> v = {{"d", "m/V", p_.d_m_per_v, NAN},
+                                        {"alpha", "1", p_.alpha, NAN},
+                                        {"beta", "1/V", p_.beta_per_v, NAN},
+                                        {"gamma", "1/V", p_.gamma_per_v, NAN},
+                                        {"offset", "m", p_.offset_m, NAN}};
+  for (size_t i = 0; i < v.size() && i < std_errors_.size(); ++i) v[i].std_error = std_errors_[i];
+  return v;
+}
+
+}  // namespace sysid

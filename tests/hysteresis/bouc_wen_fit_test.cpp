@@ -1,0 +1,171 @@
+// Bouc–Wen fits recover the parameters that simulated noisy data (within 3 standard errors), and
+// model files round-trip and name their bad values.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "core/portable_random.hpp"
+#include "sysid/error.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/io.hpp"
+
+namespace sysid {
+namespace {
+
+Recording MakeRecording(const Eigen::VectorXd& u, const Eigen::VectorXd& x, double dt) {
+  Recording r;
+  r.source = "simulated";
+  r.names = {"t", "u", "x"};
+  r.data.resize(u.size(), 3);
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    r.data.row(i) << static_cast<double>(i) * dt, u[i], x[i];
+  return r;
+}
+
+Eigen::VectorXd Noise(Eigen::Index n, double sigma, std::uint64_t seed) {
+  internal::PortableRandom random(seed);
+  Eigen::VectorXd e(n);
+  for (Eigen::Index i = 0; i < n; ++i) e[i] = sigma * random.Normal();
+  return e;
+}
+
+Eigen::VectorXd Multisine(Eigen::Index n, double dt, int first, int last, double amplitude) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+  const double w0 = 2 * M_PI / (static_cast<double>(n) * dt);
+  for (int l = first; l <= last; ++l)
+    for (Eigen::Index i = 0; i < n; ++i)
+      u[i] += amplitude * std::cos(w0 * l * static_cast<double>(i) * dt + 2.39996 * l * l);
+  return u;
+}
+
+void CheckWithin3Sigma(const HysteresisModel& fitted, const std::vector<double>& truth) {
+  const auto ps = fitted.parameters();
+  for (size_t i = 0; i < truth.size(); ++i) {
+    INFO(ps[i].name << " = " << ps[i].value << " +- " << ps[i].std_error << ", true " << truth[i]);
+    if (!std::isfinite(ps[i].std_error)) {  // fixed: kept at its (true) value
+      CHECK(ps[i].value == truth[i]);
+      continue;
+    }
+    CHECK(ps[i].std_error > 0);
+    CHECK(std::abs(ps[i].value - truth[i]) <= 3 * ps[i].std_error);  // the acceptance rule
+  }
+}
+
+TEST_CASE("bouc-wen: the mechanical fit recovers the benchmark's system from noisy data",
+          "[hysteresis][bouc-wen][fit]") {
+  // The benchmark's system, a short multisine (2 periods of 1024 samples at 750 Hz), the chain at
+  // 4x upsampling (fast), the benchmark's noise level.
+  const MechanicalBoucWenParameters truth;
+  BoucWenSimulationOptions sim;
+  sim.integrator = BoucWenIntegrator::kBenchmarkChain;
+  sim.upsampling = 4;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0).replicate(2, 1);
+  const Eigen::VectorXd y = MechanicalBoucWen(truth, sim).Simulate(u, dt);
+  const Eigen::VectorXd x = y + Noise(y.size(), 7.4e-6, 42);
+  BoucWenFitOptions o;
+  o.simulation = sim;
+  o.mechanical_initial = truth;  // beta (fixed) stays true; the rest starts 25 % off
+  o.mechanical_initial.m_kg *= 1.25;
+  o.mechanical_initial.c_n_s_per_m *= 0.75;
+  o.mechanical_initial.k_n_per_m *= 0.75;
+  o.mechanical_initial.alpha_n_per_m *= 1.25;
+  o.mechanical_initial.gamma *= 0.75;
+  o.mechanical_initial.delta *= 1.25;
+  o.mechanical_initial_given = true;
+  o.starts = 2;
+  HysteresisFitSummary summary;
+  const auto model = FitBoucWen(BoucWenForm::kMechanical, {MakeRecording(u, x, dt)}, o, &summary);
+  INFO(summary.message);
+  CHECK(model->kind() == "bouc-wen");
+  CHECK(summary.samples == 2048);
+  // The training residual is the noise (7.4e-6 m), within its sampling spread (2048 samples).
+  CHECK(summary.training_rms == Approx(7.4e-6).epsilon(0.05));
+  CheckWithin3Sigma(*model, {truth.m_kg, truth.c_n_s_per_m, truth.k_n_per_m, truth.alpha_n_per_m,
+                             truth.beta_per_m, truth.gamma, truth.delta, truth.nu});
+  CHECK(summary.message.find("beta fixed") != std::string::npos);
+}
+
+TEST_CASE("bouc-wen-piezo: the fit recovers d, alpha, beta, gamma and the offset",
+          "[hysteresis][bouc-wen][fit]") {
+  PiezoBoucWenParameters truth;
+  truth.d_m_per_v = 2e-7;
+  truth.alpha = 0.3;
+  truth.beta_per_v = 0.04;
+  truth.gamma_per_v = 0.015;
+  truth.offset_m = 3e-6;
+  const double dt = 1e-3;
+  // Decaying loops of several amplitudes (a sine sweep down in amplitude), 0..60 V.
+  Eigen::VectorXd u(3000);
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    const double t = static_cast<double>(i) * dt;
+    u[i] = 30 + 30 * std::exp(-t / 2) * std::sin(2 * M_PI * 2 * t);
+  }
+  const Eigen::VectorXd y = PiezoBoucWen(truth).Simulate(u, dt);
+  const Eigen::VectorXd x = y + Noise(y.size(), 2e-8, 7);  // 20 nm: a capacitive sensor's noise
+  BoucWenFitOptions o;  // the automatic start: the straight line and a mild loop
+  HysteresisFitSummary summary;
+  const auto model = FitBoucWen(BoucWenForm::kPiezo, {MakeRecording(u, x, dt)}, o, &summary);
+  INFO(summary.message);
+  CHECK(model->kind() == "bouc-wen-piezo");
+  CHECK(summary.training_rms == Approx(2e-8).epsilon(0.05));  // the noise, 3000 samples
+  CheckWithin3Sigma(
+      *model, {truth.d_m_per_v, truth.alpha, truth.beta_per_v, truth.gamma_per_v, truth.offset_m});
+}
+
+TEST_CASE("bouc-wen: fit options are checked", "[hysteresis][bouc-wen][fit]") {
+  BoucWenFitOptions o;
+  o.fit_beta = true;
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("fit_beta"));
+  o = {};
+  o.starts = 0;
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("starts"));
+  CHECK_THROWS_AS(FitBoucWen(BoucWenForm::kPiezo, {}, BoucWenFitOptions{}), OptionsError);
+}
+
+TEST_CASE("bouc-wen: model files round-trip", "[hysteresis][bouc-wen][json]") {
+  MechanicalBoucWenParameters p;
+  p.gamma = 0.81234567890123;
+  BoucWenSimulationOptions sim;
+  sim.integrator = BoucWenIntegrator::kBenchmarkChain;
+  const MechanicalBoucWen m(p, sim, {0.1, 0.2, 0.3, 0.4, NAN, 0.5, 0.6, NAN});
+  const auto back = BoucWenModelFromJson(m.ToJson(), "m.json");
+  CHECK(back->ToJson() == m.ToJson());
+  const auto& mb = dynamic_cast<const MechanicalBoucWen&>(*back);
+  CHECK(mb.values().gamma == p.gamma);  // 17 significant digits: exact
+  CHECK(mb.options().integrator == BoucWenIntegrator::kBenchmarkChain);
+  CHECK(std::isnan(back->parameters()[4].std_error));
+  CHECK(back->parameters()[5].std_error == 0.5);
+
+  PiezoBoucWenParameters q;
+  q.offset_m = -2e-6;
+  const PiezoBoucWen z(q);
+  const auto zb = BoucWenModelFromJson(z.ToJson(), "z.json");
+  CHECK(zb->kind() == "bouc-wen-piezo");
+  CHECK(zb->ToJson() == z.ToJson());
+}
+
+TEST_CASE("bouc-wen: bad model files say where", "[hysteresis][bouc-wen][json]") {
+  const std::string good = R"({
+  "kind": "bouc-wen",
+  "parameters": {"m": 2, "c": 10, "k": 5e4, "alpha": 5e4, "beta": 1e3, "gamma": 0.8,
+                 "delta": -1.1, "nu": 1}
+})";
+  CHECK(BoucWenModelFromJson(good, "h.json")->kind() == "bouc-wen");
+  auto bad = [&](const std::string& from, const std::string& to) {
+    std::string t = good;
+    t.replace(t.find(from), from.size(), to);
+    return t;
+  };
+  CHECK_THROWS_WITH(BoucWenModelFromJson(bad("\"m\": 2", "\"m\": -2"), "h.json"),
+                    Catch::Contains("h.json:3:") && Catch::Contains("m") && Catch::Contains("> 0"));
+  CHECK_THROWS_WITH(BoucWenModelFromJson(bad("\"nu\": 1", "\"nu\": 0.5"), "h.json"),
+                    Catch::Contains("h.json:4:") && Catch::Contains("nu"));
+  CHECK_THROWS_WITH(BoucWenModelFromJson(bad("bouc-wen\"", "bouc\""), "h.json"),
+                    Catch::Contains("h.json:2:") && Catch::Contains("kind"));
+  CHECK_THROWS_WITH(BoucWenModelFromJson(bad("\"gamma\"", "\"gama\""), "h.json"),
+                    Catch::Contains("gama"));
+  CHECK_THROWS_AS(BoucWenModelFromJson(bad("\"k\": 5e4", "\"k\": 5e999"), "h.json"), InputError);
+}
+
+}  // namespace
+}  // namespace sysid
