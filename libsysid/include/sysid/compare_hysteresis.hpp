@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/hysteresis_model.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn_operators.hpp"
@@ -26,13 +27,13 @@ struct HysteresisFitOptions {
   int operators = 10;
   PiFitOptions pi;                  ///< pi, gpi, rdpi (its form and operators are set by kind)
   OperatorNetworkOptions network;   ///< nn-operators (its operators are set from `operators`)
+  BoucWenFitOptions bouc_wen;       ///< bouc-wen, bouc-wen-piezo (operators unused)
   /// Throws OptionsError naming the field ("operators") and the rule.
   void Validate(const std::string& kind) const;
 };
 
 /// Fits a model of `kind` to recordings (columns t [s], u [V], x [m]). Throws OptionsError for
-/// an unknown kind or bad options, InputError for unusable recordings. The two Bouc–Wen kinds
-/// throw OptionsError "... not built in this version" until wired.
+/// an unknown kind or bad options, InputError for unusable recordings.
 std::unique_ptr<HysteresisModel> FitHysteresis(const std::string& kind,
                                                const std::vector<Recording>& recordings,
                                                const HysteresisFitOptions& options = {},

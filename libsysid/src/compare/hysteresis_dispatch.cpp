@@ -51,11 +51,10 @@ std::unique_ptr<HysteresisModel> FitHysteresis(const std::string& kind,
     o.operators = options.operators;
     return FitOperatorNetwork(recordings, o, summary);
   }
-  // ---- Bouc–Wen: wired by the lead to FitBoucWen(form, recordings, options, summary*) ----
   if (kind == "bouc-wen")
-    throw OptionsError("hysteresis model 'bouc-wen' is not built in this version", "kind");
+    return FitBoucWen(BoucWenForm::kMechanical, recordings, options.bouc_wen, summary);
   if (kind == "bouc-wen-piezo")
-    throw OptionsError("hysteresis model 'bouc-wen-piezo' is not built in this version", "kind");
+    return FitBoucWen(BoucWenForm::kPiezo, recordings, options.bouc_wen, summary);
   throw OptionsError("hysteresis model kind '" + kind + "' unknown", "kind");
 }
 
@@ -68,9 +67,8 @@ std::unique_ptr<HysteresisModel> HysteresisModelFromJson(std::string_view text,
   const std::string kind = kind_node.String(true);
   if (kind == "pi" || kind == "gpi" || kind == "rdpi") return PrandtlIshlinskiiFromJson(text, source);
   if (kind == "nn-operators") return OperatorNetworkFromJson(text, source);
-  // ---- Bouc–Wen: wired by the lead to BoucWenModelFromJson(text, source) ----
   if (kind == "bouc-wen" || kind == "bouc-wen-piezo")
-    throw OptionsError("hysteresis model '" + kind + "' is not built in this version", "kind");
+    return BoucWenModelFromJson(std::string(text), source);
   kind_node.Expected("one of pi, gpi, rdpi, bouc-wen, bouc-wen-piezo, nn-operators");
 }
 
