@@ -15,7 +15,7 @@
 # Environment: SYSID_JOBS (build and test jobs, default: number of cores); SYSID_MUTANT_DIR
 # (parent of the scratch folder, default $TMPDIR or /tmp); SYSID_MUTANT_CMAKE_ARGS (extra
 # configure arguments; the default configuration is the README's Release build without Python
-# and benchmarks). The user's tree and build folders are never written: everything happens in
+# and benchmarks, with SYSID_WERROR as in the user's build/ so that ccache finds its objects). The user's tree and build folders are never written: everything happens in
 # the scratch copy (tracked and untracked, non-ignored files, so uncommitted work is included).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -107,9 +107,13 @@ TARGETS=$(cut -f6 "$SELECTED" | tr ',' '\n' | sort -u | tr '\n' ' ')
 REGEX_ALL=$(cut -f7 "$SELECTED" | sort -u | paste -sd'|')
 start_all=$(date +%s)
 echo "mutants.sh: $COUNT mutants ($SUBSET), scratch $SCRATCH; building $TARGETS" >&2
+# Warnings as errors as in the user's build/ (read, never written), so its objects are hits.
+WERROR=OFF
+if grep -q '^SYSID_WERROR:BOOL=ON' "$ROOT/build/CMakeCache.txt" 2>/dev/null; then WERROR=ON; fi
 # shellcheck disable=SC2086
 cmake -S "$SRC" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSYSID_PYTHON=OFF \
-  -DSYSID_BUILD_BENCH=OFF ${SYSID_MUTANT_CMAKE_ARGS:-} >"$LOGS/configure.log" 2>&1 ||
+  -DSYSID_BUILD_BENCH=OFF -DSYSID_WERROR=$WERROR ${SYSID_MUTANT_CMAKE_ARGS:-} \
+  >"$LOGS/configure.log" 2>&1 ||
   { cat "$LOGS/configure.log" >&2; echo "mutants.sh: configure failed" >&2; exit 2; }
 build() {  # build the given targets, log to $1
   local log="$1"; shift
