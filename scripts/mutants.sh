@@ -39,7 +39,13 @@ case "$SUBSET" in ci|all) ;; *) echo "mutants.sh: --subset must be ci or all, go
 [ -f "$LIST" ] || { echo "mutants.sh: no mutant list $LIST" >&2; exit 1; }
 JOBS="${SYSID_JOBS:-$(nproc)}"
 
-SCRATCH="$(mktemp -d "${SYSID_MUTANT_DIR:-${TMPDIR:-/tmp}}/sysid-mutants.XXXXXX")"
+# One scratch folder per clone, at a fixed path: the tests' objects carry the source path
+# (SYSID_SOURCE_DIR), so only a repeated path lets ccache find them on the next run.
+SCRATCH="${SYSID_MUTANT_DIR:-${TMPDIR:-/tmp}}/sysid-mutants-$(printf '%s' "$ROOT" | md5sum | cut -c1-8)"
+if ! mkdir "$SCRATCH" 2>/dev/null; then
+  echo "mutants.sh: $SCRATCH exists: another run of this clone, or a kept one (remove it)" >&2
+  exit 1
+fi
 cleanup() { if [ "$KEEP" = 1 ]; then echo "scratch kept: $SCRATCH" >&2; else rm -rf "$SCRATCH"; fi; }
 trap cleanup EXIT
 SRC="$SCRATCH/src"
@@ -125,7 +131,7 @@ build() {  # build the given targets, log to $1
 build "$LOGS/baseline-build.log" $TARGETS ||
   { tail -40 "$LOGS/baseline-build.log" >&2; echo "mutants.sh: the unmutated tree does not build" >&2; exit 2; }
 # The unmutated tree must pass every test named, or a "kill" would mean nothing.
-if ! ctest --test-dir "$BUILD" -R "$REGEX_ALL" -j "$JOBS" >"$LOGS/baseline-tests.log" 2>&1; then
+if ! ctest --test-dir "$BUILD" -R "$REGEX_ALL" -j "$JOBS" --no-tests=error >"$LOGS/baseline-tests.log" 2>&1; then
   tail -30 "$LOGS/baseline-tests.log" >&2
   echo "mutants.sh: the unmutated tree fails the listed tests" >&2
   exit 2
@@ -155,7 +161,7 @@ PY
     status="does not build"
   else
     rm -f "$BUILD/Testing/Temporary/LastTestsFailed.log"
-    if ctest --test-dir "$BUILD" -R "$regex" -j "$JOBS" --stop-on-failure \
+    if ctest --test-dir "$BUILD" -R "$regex" -j "$JOBS" --stop-on-failure --no-tests=error \
         >"$LOGS/$id-tests.log" 2>&1; then
       status=SURVIVED
     else

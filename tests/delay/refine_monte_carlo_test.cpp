@@ -10,8 +10,10 @@
 #include "sysid/input.hpp"
 #include "sysid/simulate.hpp"
 
+// About 100 refinements of ~50 simulations each (20 s on one core): hidden from the default
+// run ("[.slow]") and registered in CTest with the label "slow" (tests/CMakeLists.txt).
 TEST_CASE("refinement: standard errors match the Monte-Carlo spread over noise seeds",
-          "[delay][refine][uncertainty]") {
+          "[delay][refine][uncertainty][.slow]") {
   // Short pulses (never settled: the transient carries a1, a3 and tau) on a stage with
   // direction-dependent friction; the recorded velocity is the simulated one plus white
   // N(0, sigma^2) noise, the output-error model's own noise assumption.
