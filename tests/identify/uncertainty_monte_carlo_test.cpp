@@ -104,23 +104,35 @@ Eigen::VectorXd Physical(const Eigen::VectorXd& theta) {
 
 }  // namespace
 
-TEST_CASE("trajectory least squares: delta-method standard errors match a finite-difference "
-          "Jacobian and the Monte-Carlo spread over 400 seeds",
+namespace {
+
+// A paper-like stage moved by two sines; 0.1 V voltage noise, far above the filter's
+// deterministic misfit (x is exact, unquantised and the same at every seed: only the noise in u
+// differs between runs, as ordinary least squares assumes). 4 s at 1 kHz.
+struct TrajectoryCase {
+  sysid::FrictionModel truth = Model(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
+  std::vector<sysid::test::Sine> motion{{0.01, 0.8, 0.0}, {0.002, 4.3, 1.0}};
+  double sigma_u = 0.1;   // [V]
+  double duration = 4.0;  // [s]
+  sysid::TrajectoryOptions Options() const {
+    sysid::TrajectoryOptions o;
+    o.tau_s = truth.tau_s;
+    return o;
+  }
+  sysid::Recording Recording(unsigned seed) const {
+    return sysid::test::ClosedFormRecording(truth, motion, duration, 1000.0, 0.0, sigma_u, seed);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("trajectory least squares: the delta method against a finite-difference Jacobian",
           "[identify][trajectory][uncertainty]") {
-  const auto truth = Model(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
-  const std::vector<sysid::test::Sine> motion{{0.01, 0.8, 0.0}, {0.002, 4.3, 1.0}};
-  sysid::TrajectoryOptions o;
-  o.tau_s = truth.tau_s;
-  // 0.1 V voltage noise: far above the filter's deterministic misfit (x is exact, unquantised,
-  // and the same at every seed: only the noise in u differs between runs, as OLS assumes).
-  const double sigma_u = 0.1;  // [V]
-  const double duration = 4.0;  // [s] at 1 kHz
+  const TrajectoryCase c;
   {
     // The delta method against a central-difference Jacobian of the map: step 1e-6 relative,
     // truncation error ~1e-12 and rounding ~1e-10 relative, so agreement to 1e-7.
-    const auto rec = sysid::test::ClosedFormRecording(truth, motion, duration, 1000.0, 0.0,
-                                                      sigma_u, 1);
-    const auto r = sysid::IdentifyFromTrajectory({rec}, o);
+    const auto r = sysid::IdentifyFromTrajectory({c.Recording(1)}, c.Options());
     REQUIRE(r.names == std::vector<std::string>{"a3", "a1p", "a1n", "a2p", "a2n"});
     const Eigen::VectorXd& theta = r.fit.theta;
     const Eigen::Index p = theta.size();
@@ -143,11 +155,17 @@ TEST_CASE("trajectory least squares: delta-method standard errors match a finite
               Approx(cov(i, j)).epsilon(1e-7).margin(1e-7 * std::sqrt(cov(i, i) * cov(j, j))));
     }
   }
+}
+
+TEST_CASE("trajectory least squares: delta-method standard errors match the Monte-Carlo spread "
+          "over 400 seeds",
+          "[identify][trajectory][uncertainty]") {
+  const TrajectoryCase c;
+  const sysid::FrictionModel& truth = c.truth;
   Spread s(5);
   for (int seed = 0; seed < kSeeds; ++seed) {
-    const auto rec = sysid::test::ClosedFormRecording(truth, motion, duration, 1000.0, 0.0,
-                                                      sigma_u, 1000u + static_cast<unsigned>(seed));
-    const auto r = sysid::IdentifyFromTrajectory({rec}, o);
+    const auto r = sysid::IdentifyFromTrajectory(
+        {c.Recording(1000u + static_cast<unsigned>(seed))}, c.Options());
     s.Add(r.estimate, r.std_error);
   }
   const double truth_values[] = {truth.a3, truth.a1p, truth.a1n, truth.a2p, truth.a2n};
