@@ -15,8 +15,9 @@
 # Environment: SYSID_JOBS (build and test jobs, default: number of cores); SYSID_MUTANT_DIR
 # (parent of the scratch folder, default $TMPDIR or /tmp); SYSID_MUTANT_CMAKE_ARGS (extra
 # configure arguments; the default configuration is the README's Release build without Python
-# and benchmarks, with SYSID_WERROR as in the user's build/ so that ccache finds its objects). The user's tree and build folders are never written: everything happens in
-# the scratch copy (tracked and untracked, non-ignored files, so uncommitted work is included).
+# and benchmarks, with SYSID_WERROR as in the user's build/ so that ccache finds its
+# objects). The user's tree and build folders are never written: everything happens in the
+# scratch copy (tracked and untracked, non-ignored files, so uncommitted work is included).
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 LIST="$ROOT/scripts/mutants.txt"
@@ -31,7 +32,7 @@ while (($#)); do
     --list) LIST="${2:?--list needs a file}"; shift 2 ;;
     --keep) KEEP=1; shift ;;
     --markdown) MARKDOWN=1; shift ;;
-    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "mutants.sh: unknown argument '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
