@@ -182,7 +182,7 @@ total=$(( $(date +%s) - start_all ))
 if [ "$MARKDOWN" = 1 ]; then
   echo "| mutant | subset | file | result | killed by | s |"
   echo "|---|---|---|---|---|---|"
-  awk -F'\t' '{printf "| %s | %s | `%s` | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6}' "$RESULTS"
+  awk -F'\t' '{gsub(/\|/, "\\|", $5); printf "| %s | %s | `%s` | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6}' "$RESULTS"
 else
   awk -F'\t' 'BEGIN {printf "%-28s %-4s %-10s %5s  %s\n", "mutant", "set", "result", "s", "killed by"}
               {printf "%-28s %-4s %-10s %5s  %s\n", $1, $2, $4, $6, $5}' "$RESULTS"
