@@ -19,6 +19,9 @@
 # objects). The user's tree and build folders are never written: everything happens in the
 # scratch copy (tracked and untracked, non-ignored files, so uncommitted work is included).
 set -euo pipefail
+# The whole script is one block: bash reads it completely before running, so editing this file
+# during a run cannot change the running one.
+{
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 LIST="$ROOT/scripts/mutants.txt"
 SUBSET=all
@@ -193,3 +196,5 @@ if [ "$failed" != 0 ]; then
   echo "mutants.sh: FAILED: a mutant survived or did not build (logs: --keep)" >&2
   exit 1
 fi
+exit 0
+}
