@@ -15,8 +15,10 @@ TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile; feedforwa
   sysid::VirtualStage plain(p, 7);
   const auto pi_only = sysid::RunClosedLoop(plain, ref, sysid::PiOptions::ForActuatorDelayStage());
   INFO("PI alone: " << pi_only.BriefReport());
-  // Stable and tracking: errors well below the 10 mm stroke (measured 0.23 mm; paper ~0.1 mm).
-  CHECK(pi_only.max_error_m < 1e-3);
+  // Stable and tracking. Regression bound, not a reference: the run is seeded and deterministic
+  // (measured 0.227 mm); 0.25 mm leaves 10 % for rounding differences between platforms, so a
+  // loop that tracks 10 % worse fails (a limit cycle or a wrong gain gives millimetres).
+  CHECK(pi_only.max_error_m < 0.25e-3);
   CHECK(pi_only.saturated_samples == 0);
   // The stage's own steady-state inverse (bisection on SteadyVelocity) as a feedforward.
   auto inverse = [&p](double v, double) {
@@ -45,8 +47,10 @@ TEST_CASE("the paper's gains track the 0.5 Hz profile on the default stage, feed
   sysid::VirtualStage plain(p, 7);
   const auto pi_only = sysid::RunClosedLoop(plain, ref);  // Kp 19000 V/m, Ki 660000 V/(m s)
   INFO("PI alone: " << pi_only.BriefReport());
-  // Stable: no clipping, errors of the paper's order (paper 0.107 mm; measured 0.090 mm).
-  CHECK(pi_only.max_error_m < 0.2e-3);
+  // Stable: no clipping, and no worse than the paper's own PI-alone error at 0.5 Hz, 0.10651 mm
+  // (its tracking table, PaperFacts::TrackingMaxErrorM; the stage is the paper's stage's twin;
+  // measured 0.091 mm).
+  CHECK(pi_only.max_error_m < 0.10651e-3);
   CHECK(pi_only.saturated_samples == 0);
   CHECK(pi_only.max_abs_u_v < 5.0);
   // The stage's own steady-state inverse as a feedforward (bisection on SteadyVelocity).

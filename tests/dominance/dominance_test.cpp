@@ -153,3 +153,33 @@ TEST_CASE("the pooled ranking weighs each recording by its moving samples", "[do
   CHECK(loose[1].negligible);
   CHECK_FALSE(loose[0].negligible);
 }
+
+TEST_CASE("the viscous term takes a1p forward and a1n backward (closed form)", "[dominance]") {
+  // x = A sin(w t) + c t, tau = 0, a1p != a1n: v = A w cos(w t) + c is faster forward (A w + c)
+  // than backward (A w - c), so the viscous term's peak is max(a1p (A w + c), a1n (A w - c)) and
+  // a swapped pair gives another. Its RMS is summed here over the exact v at the samples; the
+  // Coulomb term's is sqrt(f a2p^2 + (1 - f) a2n^2), f = acos(-c / (A w)) / pi forward.
+  const double a1p = 40.0, a1n = 70.0, a2p = 1.0, a2n = 3.0, A = 0.01, f = 0.5;
+  const double w = 2 * M_PI * f, c = 0.3 * A * w;
+  const auto m = MakeModel(a1p, a1n, a2p, a2n, 6.0, 0.0);
+  sysid::DominanceOptions o;
+  o.min_speed_mps = 1e-9;
+  auto rec = ClosedFormRecording(m, {{A, f, 0.0}}, 10.0 / f, 10000.0, 0, 0, 1);
+  const Eigen::Index x_col = 2;  // t, u, x (u is not used by the dominance analysis)
+  double sum2 = 0;
+  for (Eigen::Index k = 0; k < rec.rows(); ++k) {
+    const double t = rec.data(k, 0);
+    rec.data(k, x_col) += c * t;
+    const double v = A * w * std::cos(w * t) + c;
+    sum2 += std::pow((v > 0 ? a1p : a1n) * v, 2);
+  }
+  const auto r = sysid::AnalyzeDominance(m, rec, o);
+  INFO(r.BriefReport());
+  const double forward = std::acos(-c / (A * w)) / M_PI;
+  // 0.5 %: differentiation error and the one-sided end samples, as above.
+  CHECK(r.terms[1].peak == Approx(std::max(a1p * (A * w + c), a1n * (A * w - c))).epsilon(0.005));
+  CHECK(r.terms[1].rms ==
+        Approx(std::sqrt(sum2 / static_cast<double>(rec.rows()))).epsilon(0.005));
+  CHECK(r.terms[2].rms ==
+        Approx(std::sqrt(forward * a2p * a2p + (1 - forward) * a2n * a2n)).epsilon(0.005));
+}

@@ -236,6 +236,9 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   CHECK(r.dominance_pointwise_q99 > 0);
 }
 
+// Consistency of the verdicts with the facts' own predicates and of F7's context values; the
+// independent recomputation from the raw traces and networks is in
+// tracking_networks_recomputed_test.cpp.
 TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   const sysid::StageFacts r = sysid::RunStageFacts(StageParameters::Default(), Only({"F5", "F7"}));
   REQUIRE(r.facts.size() == 2);

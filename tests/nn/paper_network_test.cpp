@@ -37,11 +37,14 @@ TEST_CASE("the paper's 24-neuron network loads and matches the analytic inverse"
     if (std::abs(v) >= 0.01) worst_sliding = std::max(worst_sliding, std::abs(d));
   }
   const double rms = std::sqrt(sum2 / count);
-  // The inferred scaling leaves 0.133 V RMS (the network models the real stage, which the
-  // rough analytic model does not match exactly); 0.15 V bounds it with margin.
-  CHECK(rms < 0.15);
-  // Away from the Coulomb step (|v| >= 0.01 m/s) the two agree within 0.30 V (bound 0.35 V).
-  CHECK(worst_sliding < 0.35);
+  // The inferred scaling leaves 0.1331 V RMS (the network models the real stage, which the
+  // rough analytic model does not match exactly). Regression bound, not a reference: the value
+  // depends only on the printed weights and the scaling, so 0.14 V (+5 %) fails for any change
+  // of either (a wrong scaling gives > 1 V, below).
+  CHECK(rms < 0.14);
+  // Away from the Coulomb step (|v| >= 0.01 m/s) the two agree within 0.296 V (bound 0.31 V,
+  // +5 % as above).
+  CHECK(worst_sliding < 0.31);
   // The Coulomb step itself: +0.517 V just above 0 and -1.137 V just below, within 0.1 V.
   CHECK(net.Evaluate(Eigen::VectorXd::Constant(1, 1e-3)) == Approx(0.534).margin(0.1));
   CHECK(net.Evaluate(Eigen::VectorXd::Constant(1, -1e-3)) == Approx(-1.156).margin(0.1));

@@ -202,3 +202,33 @@ TEST_CASE("hidden-size sweep: parallel equals sequential, picks min test MSE", "
   CHECK_THROWS_WITH(sysid::ParseHiddenSizes("16:x"), Contains("'x' is not an integer"));
   CHECK_THROWS_AS(sysid::ParseHiddenSizes("32:16:2"), sysid::OptionsError);
 }
+
+TEST_CASE("LM follows trainlm's mu schedule: times mu_dec per accepted step, mu_inc per failed "
+          "trial",
+          "[nn][train]") {
+  // MATLAB trainlm: an accepted step multiplies mu by mu_dec, each rejected trial before it by
+  // mu_inc. So mu_k / mu_(k-1) = mu_dec mu_inc^j with j >= 0 rejected trials in epoch k. Factors
+  // with no common power (0.3 and 7) make any other update rule visible in the ratios.
+  const auto train = MakeSet(400, 9u, kSigma, &Smooth);
+  sysid::NeuralTrainingOptions o;
+  o.hidden = 8;
+  o.max_epochs = 40;
+  o.seed = 2;
+  o.mu_decrease = 0.3;
+  o.mu_increase = 7.0;
+  const auto r = sysid::TrainNeuralNetwork(train, nullptr, o);
+  INFO(r.BriefReport());
+  REQUIRE(r.history.size() >= 10);
+  int immediate = 0;
+  double previous = o.mu_initial;
+  for (const auto& e : r.history) {
+    if (e.epoch == 1) previous = o.mu_initial;  // each restart starts again from mu_initial
+    const double j = std::log(e.mu / previous / o.mu_decrease) / std::log(o.mu_increase);
+    INFO("epoch " << e.epoch << ": mu " << previous << " -> " << e.mu << ", j = " << j);
+    CHECK(j > -1e-9);                                // never more than one decrease per epoch
+    CHECK(std::abs(j - std::round(j)) < 1e-9);       // whole numbers of failed trials
+    immediate += std::abs(j) < 1e-9;
+    previous = e.mu;
+  }
+  CHECK(immediate > 0);  // most epochs of a smooth fit accept their first trial
+}

@@ -92,9 +92,14 @@ TEST_CASE("sysid track runs every feedforward scheme on the virtual stage", "[pi
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["schemes"].size() == 3);
-  for (const auto& s : j["schemes"]) {
-    CHECK(s["max_error_m"].get<double>() > 0);
-    CHECK(s["max_error_m"].get<double>() < 2e-3);  // stable gains: well under the 10 mm stroke
+  // No worse than the paper's own tracking table at 1 Hz (PI alone 0.17156 mm, PI + analytic
+  // 0.10579 mm; the stage is the paper's stage's twin; measured 0.117 and 0.070 mm). The zero
+  // network is PI alone.
+  const double paper_mm[] = {0.17156, 0.10579, 0.17156};
+  for (int i = 0; i < 3; ++i) {
+    INFO(j["schemes"][i]);
+    CHECK(j["schemes"][i]["max_error_m"].get<double>() > 0);
+    CHECK(j["schemes"][i]["max_error_m"].get<double>() < 1e-3 * paper_mm[i]);
   }
   // A zero network adds exactly nothing: same plant, same noise, same controller as PI alone.
   CHECK(j["schemes"][2]["max_error_m"] == j["schemes"][0]["max_error_m"]);
@@ -123,9 +128,11 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   CHECK(j["dominant"] == "velocity");
   CHECK(j["nn_inputs"] == nlohmann::json::array({"v"}));
   CHECK(j["tracking"].size() == 6);  // 2 frequencies x 3 schemes
-  // The identified model is close to the stage's calibration (the paper's values, 10 %).
-  CHECK(j["model"]["a1p"].get<double>() == Approx(104.0154).epsilon(0.1));
-  CHECK(j["model"]["a2n"].get<double>() == Approx(6.8216).epsilon(0.1));
+  // The stage is calibrated to the paper's pulse table (docs/virtual_stage.md), so the pulse
+  // least squares returns the paper's coefficients up to the plateaus' noise: 1 % (measured
+  // 0.02 % on a1p, 0.04 % on a2n; F2 allows 5 %).
+  CHECK(j["model"]["a1p"].get<double>() == Approx(104.0154).epsilon(0.01));
+  CHECK(j["model"]["a2n"].get<double>() == Approx(6.8216).epsilon(0.01));
   const std::string md = sysid::test::ReadText(out + "/report.md");
   for (const char* section :
        {"## 1. Pulse-test identification", "## 2. Delay of the viscous term",

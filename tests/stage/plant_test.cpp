@@ -218,11 +218,19 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
     return v[1] - v[0];
   };
   const double slow = width(0.02, 6.0), mid = width(0.02, 1.5), fast = width(0.02, 0.75);
-  INFO("loop width at +1.25 V: " << slow << " / " << mid << " / " << fast << " m/s");
+  const double none = width(0.0, 1.5), half = width(0.01, 1.5);
+  INFO("loop width at +1.25 V: " << slow << " / " << mid << " / " << fast << " m/s; at 1.5 s "
+                                 << none << " (no memory), " << half << " (T_m = 10 ms)");
   CHECK(slow > 0);
-  CHECK(mid > 3 * slow);
+  // A first-order lag (the memory T_m, the drive's lag) shifts the two branches by
+  // +-T_m |dv/dt|: the width is proportional to the sweep rate at slow rates, so 4x the rate
+  // gives at least 4x the width (measured 5.2x: the Stribeck slope steepens it further).
+  CHECK(mid > 4 * slow);
   CHECK(fast > mid);
-  CHECK(mid > 1.4 * width(0.0, 1.5));
+  // The width grows with the memory time at a fixed rate (the lag T_m |dv/dt| grows with T_m):
+  // measured 9.9 / 14.8 / 16.1 mm/s at T_m = 0, 10, 20 ms.
+  CHECK(half > none);
+  CHECK(mid > half);
 }
 
 TEST_CASE("velocity source: speed map, steady velocities and breakaway against closed forms",
