@@ -45,6 +45,6 @@ def test_errors_are_the_library_errors():
     rec, *_ = _pi_recording(300)
     with pytest.raises(sysid.OptionsError, match="operators"):
         hy.fit([rec], model="pi", operators=201)
-    with pytest.raises(sysid.OptionsError, match="not built"):
-        hy.fit([rec], model="bouc-wen")
+    with pytest.raises(sysid.OptionsError, match="preisach"):
+        hy.fit([rec], model="preisach")
     assert "nn-operators" in hy.kinds()
