@@ -205,9 +205,26 @@ RefineResult RefineOutputError(const FrictionModel& initial,
     throw NumericalError("output-error refinement failed: " + summary.message);
   // Standard errors from s^2 (J^T J)^-1 at the optimum, in physical units.
   r.std_error = Eigen::VectorXd::Constant(np, std::numeric_limits<double>::quiet_NaN());
+  // The Jacobian for the covariance is taken from simulations 1000x tighter than the fit's
+  // (at most 1e-10): at the fit's rtol the central differences carry the integrator's noise,
+  // which inflates J^T J and made the standard errors ~15 % too small against a Monte-Carlo
+  // spread (tests/delay/refine_monte_carlo_test.cpp); at 1e-10 they agree within its error.
+  const double covariance_rtol = std::min(options.sim_rtol * 1e-3, 1e-10);
+  auto* tight = new ceres::DynamicNumericDiffCostFunction<VelocityError, ceres::CENTRAL>(
+      new VelocityError{&initial,
+                        &layout,
+                        &segments,
+                        {covariance_rtol, covariance_rtol * 1e-3, options.threads},
+                        &simulations},
+      ceres::TAKE_OWNERSHIP, nd);
+  tight->AddParameterBlock(np);
+  tight->SetNumResiduals(static_cast<int>(n));
+  ceres::Problem covariance_problem;
+  covariance_problem.AddResidualBlock(tight, nullptr, z.data());
   ceres::CRSMatrix crs;
   double final_cost = 0;
-  problem.Evaluate(ceres::Problem::EvaluateOptions(), &final_cost, nullptr, nullptr, &crs);
+  covariance_problem.Evaluate(ceres::Problem::EvaluateOptions(), &final_cost, nullptr, nullptr,
+                              &crs);
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int row = 0; row < crs.num_rows; ++row)
     for (int k = crs.rows[static_cast<size_t>(row)]; k < crs.rows[static_cast<size_t>(row) + 1];
