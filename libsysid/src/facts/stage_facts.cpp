@@ -82,6 +82,7 @@ class FactsRun {
       pulse_rec_ = RunPulseTest(stage_, o_.pulse, o_.seed);
       PulseIdentificationOptions po;
       po.fit.a3 = PaperFacts::PulseModel().a3;
+      po.fit.a3_given = true;  // the facts are the paper's experiments: its a3 on purpose
       pulse_ = IdentifyFromPulses({pulse_rec_}, po);
       r_.pulse_model = pulse_->model;
       r_.plateaus.clear();

@@ -9,17 +9,14 @@
 #include <string_view>
 #include <vector>
 
+#include "io/units.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
 namespace sysid {
 namespace {
 
-std::string_view Trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
+using internal::Trim;
 
 // Shows a cell in an error message: quoted, shortened if long.
 std::string Quote(std::string_view s) {
@@ -47,6 +44,7 @@ class Parser {
     ReadHeader(rec);
     ReadRows(rec, values);
     CheckColumns(rec);
+    internal::ApplyUnitsMetadata(rec);
   }
 
  private:
