@@ -80,6 +80,8 @@ TEST_CASE("sysid identify --a3 6 pulses_mm.csv warns about the unit (issue 29)",
   const auto r = RunCli({"identify", "--a3", "6", mm});
   CHECK(r.err.find("sysid: warning: " + mm + ": x moves at up to") != std::string::npos);
   CHECK(r.err.find("if x is in mm, declare it with a '# units: x=mm' line") != std::string::npos);
+  CHECK(r.err.find("if v is in mm/s, declare it with a '# units: v=mm/s' line") !=
+        std::string::npos);
   const auto info = RunCli({"info", mm});
   CHECK(info.exit_code == 0);
   CHECK(info.err.find("'# units: x=mm'") != std::string::npos);

@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "support/test_support.hpp"
@@ -52,54 +51,35 @@ TEST_CASE("TrainingMseStillFalling: the last tenth (at least 5 epochs) fell by m
 }
 
 TEST_CASE("a budget stop on a plateau gives no warning; one while falling does", "[nn]") {
-  // u = 3 v + noise: a 2-unit network reaches the noise floor (about the noise variance) within
-  // a few epochs of LM with the output layer re-solved, then only nibbles at it.
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.05);
-  sysid::NeuralDataset data;
-  data.input_names = {"v"};
-  data.output_name = "u";
-  data.source = "synthetic";
-  const int n = 400;
-  data.inputs.resize(n, 1);
-  data.targets.resize(n);
-  for (int k = 0; k < n; ++k) {
-    const double v = -0.1 + 0.2 * k / (n - 1);
-    data.inputs(k, 0) = v;
-    data.targets[k] = 3 * v + noise(rng);
-  }
+  // The bundled training set with a 2-unit network: by epoch 200 the training MSE has settled
+  // (it moves by about 1e-5 over the last 20 epochs, measured) yet no convergence test fires,
+  // so training stops at max epochs on a plateau -- the paper sweep's case in issue 29.
+  const auto data = sysid::ReadNeuralDataset(
+      sysid::test::SourcePath("datasets/virtual/training.csv"), {"v"}, "u");
   sysid::NeuralTrainingOptions o;
   o.hidden = 2;
-  o.solve_output_layer = true;
-  o.gradient_tolerance = 0;  // no convergence test may end it: only the budget
-  o.mu_max = 1e300;
-  o.max_epochs = 80;
+  o.max_epochs = 200;
   const auto plateau = sysid::TrainNeuralNetwork(data, nullptr, o);
   REQUIRE(plateau.stop == sysid::TrainingStop::kMaxEpochs);
   CHECK_FALSE(plateau.still_falling);
   CHECK(plateau.warnings.empty());
-  CHECK(plateau.train_mse < 2 * 0.05 * 0.05);  // at the noise floor: the plateau is real
 
-  o.solve_output_layer = false;
-  o.max_epochs = 2;
+  o.max_epochs = 3;  // the tutorial's short setting: still falling steeply
   const auto early = sysid::TrainNeuralNetwork(data, nullptr, o);
   REQUIRE(early.stop == sysid::TrainingStop::kMaxEpochs);
   CHECK(early.still_falling);
   REQUIRE(early.warnings.size() == 1);
   CHECK(early.warnings[0].find("still falling") != std::string::npos);
 
-  // The sweep repeats the rule per hidden size.
+  // The sweep applies the rule per hidden size.
   sysid::HiddenSweepOptions so;
   so.hidden_sizes = {2};
   so.training = o;
-  so.training.solve_output_layer = true;
-  so.training.max_epochs = 80;
-  const auto flat = sysid::SweepHiddenSize(data, nullptr, nullptr, so);
-  CHECK(flat.warnings.empty());
-  so.training.solve_output_layer = false;
-  so.training.max_epochs = 2;
+  so.training.max_epochs = 200;
+  CHECK(sysid::SweepHiddenSize(data, nullptr, nullptr, so).warnings.empty());
+  so.training.max_epochs = 3;
   const auto falling = sysid::SweepHiddenSize(data, nullptr, nullptr, so);
   REQUIRE(falling.warnings.size() == 1);
-  CHECK(falling.warnings[0].find("H = 2 stopped at --max-epochs 2 while its training MSE") !=
+  CHECK(falling.warnings[0].find("H = 2 stopped at --max-epochs 3 while its training MSE") !=
         std::string::npos);
 }

@@ -104,13 +104,14 @@ std::vector<std::string> UnitSanityWarnings(const Recording& r) {
       if (value * factor <= limit) return unit;
     return "";
   };
-  auto advice = [&](const std::string& column, const std::string& unit) {
+  // `unit` a length unit ("mm"), `per` "" for x and "/s" for v.
+  auto advice = [&](const std::string& column, const std::string& unit, const char* per) {
     return unit.empty()
                ? std::string("check the column's unit")
                : fmt::format(
-                     "if {} is in {}, declare it with a '# units: {}={}' line (the reader then "
-                     "converts it) or scale it to metres",
-                     column, unit, column, unit);
+                     "if {} is in {}{}, declare it with a '# units: {}={}{}' line (the reader "
+                     "then converts it) or scale it to m{}",
+                     column, unit, per, column, unit, per, per);
   };
   const auto t = r.column("t");
   if (r.has("x")) {
@@ -119,21 +120,23 @@ std::vector<std::string> UnitSanityWarnings(const Recording& r) {
     if (range > kMaxPlausibleTravel_m)
       warnings.push_back(fmt::format(
           "{}: x spans {:.4g} m, more than the {} m a stage travels: {}", r.source, range,
-          kMaxPlausibleTravel_m, advice("x", likely(range, kMaxPlausibleTravel_m))));
+          kMaxPlausibleTravel_m, advice("x", likely(range, kMaxPlausibleTravel_m), "")));
     double speed = 0;
     for (Eigen::Index k = 0; k + 1 < r.rows(); ++k)
       if (t[k + 1] > t[k]) speed = std::max(speed, std::abs(x[k + 1] - x[k]) / (t[k + 1] - t[k]));
     if (speed > kMaxPlausibleSpeed_mps)
       warnings.push_back(fmt::format(
           "{}: x moves at up to {:.4g} m/s, more than the {} m/s a stage reaches: {}", r.source,
-          speed, kMaxPlausibleSpeed_mps, advice("x", likely(speed, kMaxPlausibleSpeed_mps))));
+          speed, kMaxPlausibleSpeed_mps,
+          advice("x", likely(speed, kMaxPlausibleSpeed_mps), "")));
   }
   if (r.has("v")) {
     const double speed = r.column("v").cwiseAbs().maxCoeff();
     if (speed > kMaxPlausibleSpeed_mps)
       warnings.push_back(fmt::format(
           "{}: |v| reaches {:.4g} m/s, more than the {} m/s a stage reaches: {}", r.source,
-          speed, kMaxPlausibleSpeed_mps, advice("v", likely(speed, kMaxPlausibleSpeed_mps))));
+          speed, kMaxPlausibleSpeed_mps,
+          advice("v", likely(speed, kMaxPlausibleSpeed_mps), "/s")));
   }
   return warnings;
 }
