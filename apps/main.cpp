@@ -16,15 +16,22 @@ namespace {
 /// `sysid --json identify ...` as `sysid identify --json ...`: --json and --threads N belong to
 /// the subcommands (each says what its JSON holds and what its threads do), but a user types
 /// them on either side of the subcommand's name. Moves those found before the first subcommand
-/// name to just after it; everything else keeps its place.
+/// name to just after the subcommand (after `stage facts`, both names); everything else keeps
+/// its place.
+const CLI::App* FindSubcommand(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* sub : app.get_subcommands({}))
+    if (sub->check_name(name)) return sub;
+  return nullptr;
+}
+
 std::vector<char*> MoveGlobalOptionsAfterSubcommand(const CLI::App& app, int argc, char** argv) {
   std::vector<char*> before, moved, out{argv[0]};
   int i = 1;
+  const CLI::App* command = nullptr;
   for (; i < argc; ++i) {
     const std::string arg = argv[i];
-    bool is_subcommand = false;
-    for (const CLI::App* sub : app.get_subcommands({})) is_subcommand |= sub->check_name(arg);
-    if (is_subcommand) break;
+    command = FindSubcommand(app, arg);
+    if (command) break;
     if (arg == "--json" || arg.rfind("--threads=", 0) == 0) {
       moved.push_back(argv[i]);
     } else if (arg == "--threads" && i + 1 < argc) {
@@ -37,6 +44,8 @@ std::vector<char*> MoveGlobalOptionsAfterSubcommand(const CLI::App& app, int arg
   if (i == argc) return std::vector<char*>(argv, argv + argc);  // no subcommand: CLI11 says so
   out.insert(out.end(), before.begin(), before.end());
   out.push_back(argv[i]);
+  while (i + 1 < argc && (command = FindSubcommand(*command, argv[i + 1])) != nullptr)
+    out.push_back(argv[++i]);  // a nested subcommand: `stage facts`
   out.insert(out.end(), moved.begin(), moved.end());
   out.insert(out.end(), argv + i + 1, argv + argc);
   return out;

@@ -2,6 +2,7 @@
 // subcommand's name, with the same output either way.
 #include <catch2/catch.hpp>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "support/test_support.hpp"
@@ -28,6 +29,12 @@ TEST_CASE("--json and --threads before the subcommand act as after it", "[cli]")
   CHECK(d_before.out == d_after.out);
   const auto d_equals = RunCli({"--threads=1", "dominance", "--model", dir / "m.json", pulses});
   CHECK(d_equals.exit_code == 0);
+}
+
+TEST_CASE("--json before a nested subcommand lands after both names", "[cli]") {
+  const auto r = RunCli({"--json", "stage", "facts", "--facts", "F1"});
+  REQUIRE(r.exit_code == 0);
+  CHECK_NOTHROW(nlohmann::json::parse(r.out));  // the JSON form, not the table
 }
 
 TEST_CASE("--progress after the subcommand is accepted (it was 'not expected')", "[cli]") {

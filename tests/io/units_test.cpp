@@ -43,7 +43,7 @@ TEST_CASE("the reader converts columns declared in mm or um to SI", "[io]") {
   }
   CHECK_THROWS_AS(sysid::ParseRecording(csv("x=inch"), "in.csv"), sysid::InputError);
   CHECK_THROWS_WITH(sysid::ParseRecording(csv("x=inch"), "in.csv"),
-                    Catch::Matchers::Contains("in.csv: '# units:' metadata: column 'x' in "
+                    Catch::Matchers::Contains("in.csv:1:1: '# units:' metadata: column 'x' in "
                                               "'inch': expected one of"));
   // Columns the model does not read keep their remarks (a reader is not a unit library).
   CHECK_NOTHROW(sysid::ParseRecording(csv("x [m], f_pulse = applied force [N]"), "f.csv"));

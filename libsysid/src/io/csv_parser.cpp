@@ -44,7 +44,7 @@ class Parser {
     ReadHeader(rec);
     ReadRows(rec, values);
     CheckColumns(rec);
-    internal::ApplyUnitsMetadata(rec);
+    internal::ApplyUnitsMetadata(rec, units_line_);
   }
 
  private:
@@ -93,7 +93,10 @@ class Parser {
       const std::string_view t = Trim(line);
       if (t.empty()) continue;
       if (t.front() == '#') {
+        const size_t kept = rec.metadata.size();
         KeepMetadata(t, rec);
+        if (rec.metadata.size() > kept && rec.metadata.back().first == "units")
+          units_line_ = line_no_;  // ApplyUnitsMetadata's errors point at it
         continue;
       }
       header_line_ = line_no_;
@@ -249,6 +252,7 @@ class Parser {
   size_t pos_ = 0;
   long line_no_ = 0;
   long header_line_ = 0;
+  long units_line_ = 0;
   bool bom_ = false;
 };
 

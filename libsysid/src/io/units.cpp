@@ -46,7 +46,7 @@ const std::map<std::string, ColumnUnits, std::less<>>& KnownColumns() {
 
 namespace internal {
 
-void ApplyUnitsMetadata(Recording& recording) {
+void ApplyUnitsMetadata(Recording& recording, long line_no) {
   auto line = std::find_if(recording.metadata.begin(), recording.metadata.end(),
                            [](const auto& kv) { return kv.first == "units"; });
   if (line == recording.metadata.end()) return;
@@ -76,9 +76,11 @@ void ApplyUnitsMetadata(Recording& recording) {
     if (factor == known->second.factor.end()) {
       std::string accepted;
       for (const auto& [u, f] : known->second.factor) accepted += (accepted.empty() ? "" : ", ") + u;
-      throw InputError(fmt::format(
-          "{}: '# units:' metadata: column '{}' in '{}': expected one of {}", recording.source,
-          name, unit, accepted));
+      const std::string where =
+          line_no > 0 ? fmt::format("{}:{}:1", recording.source, line_no) : recording.source;
+      throw InputError(
+          fmt::format("{}: '# units:' metadata: column '{}' in '{}': expected one of {}", where,
+                      name, unit, accepted));
     }
     if (factor->second != 1.0) {
       recording.data.col(recording.index_of(name)) *= factor->second;

@@ -18,9 +18,10 @@ inline std::string_view Trim(std::string_view s) {
 /// Converts the columns t, u, x, v, a (and x_ref) that a '# units:' line declares in a scaled
 /// unit to SI, and rewrites that line to say SI. Entries read "x=mm" or "x [mm]", separated by
 /// commas; lengths m, mm, um (µm), nm; times s, ms, us; velocities and accelerations as
-/// LENGTH/s and LENGTH/s^2; voltages V, mV. Throws InputError naming the source and the entry
-/// for a unit it does not know on one of those columns; entries for other columns are kept.
-void ApplyUnitsMetadata(Recording& recording);
+/// LENGTH/s and LENGTH/s^2; voltages V, mV. Throws InputError "SOURCE:LINE:1: ..." (`line`:
+/// the units line's, 0 when unknown: "SOURCE: ...") naming the entry for a unit it does not
+/// know on one of those columns; entries for other columns are kept.
+void ApplyUnitsMetadata(Recording& recording, long line = 0);
 
 }  // namespace sysid::internal
 
