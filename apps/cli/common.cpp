@@ -34,6 +34,20 @@ void ProgressDone() {
   progress_open = false;
 }
 
+namespace {
+std::vector<std::string>& Notes() {
+  static std::vector<std::string> notes;
+  return notes;
+}
+}  // namespace
+
+void NoteOnSuccess(const std::string& line) { Notes().push_back(line); }
+
+void PrintNotes() {
+  for (const auto& n : Notes()) std::cerr << n << '\n';
+  Notes().clear();
+}
+
 void PrintJson(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
 
 std::string Table::Render() const {
@@ -90,6 +104,23 @@ std::string FormatHiddenSizes(const std::vector<int>& sizes) {
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what) {
   return cmd->add_option("-o,--output", path, what + " (written atomically)")
       ->type_name("FILE");
+}
+
+CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI::Option* current,
+                                double& target, const CLI::Validator& check) {
+  const std::string current_name = current->get_name();
+  CLI::Option* alias = cmd->add_option_function<double>(
+      old_flag,
+      [&target, old_flag, current_name](const double& value) {
+        std::cerr << "sysid: note: " << old_flag << " is deprecated; use " << current_name
+                  << " (the old spelling is kept for one release)\n";
+        target = value;
+      },
+      "deprecated spelling of " + current_name);
+  alias->check(check);
+  alias->group("");  // hidden from --help
+  alias->excludes(current);
+  return alias;
 }
 
 CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose) {

@@ -34,6 +34,12 @@ void Progress(const std::string& message);
 /// Ends a progress line (newline) if anything was written.
 void ProgressDone();
 
+/// Queues a line for stderr when the command succeeds (main prints the queue after it returns):
+/// remarks such as where v and a came from, which would only clutter an error.
+void NoteOnSuccess(const std::string& line);
+/// Prints and clears the queued notes (main, after a successful command).
+void PrintNotes();
+
 /// Prints `j` to stdout (indented, newline-terminated).
 void PrintJson(const nlohmann::json& j);
 
@@ -67,6 +73,13 @@ bool EndsWithCsv(const std::string& path);
 
 /// Adds the standard "-o,--output FILE" option.
 CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string& what);
+
+/// A hidden, deprecated spelling `old_flag` of the option `current` (one name per quantity
+/// across commands): it sets `target` as `current` does, checked by `check` (give the same
+/// check as `current`), and prints "sysid: note: OLD is deprecated; use NEW" on stderr. The
+/// two exclude each other.
+CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI::Option* current,
+                                double& target, const CLI::Validator& check);
 
 /// -v,--verbose: the table output becomes the result's FullReport() (every diagnostic) instead
 /// of its BriefReport(); --json is unaffected.

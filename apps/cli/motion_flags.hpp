@@ -4,6 +4,7 @@
 #define SYSID_APPS_CLI_MOTION_FLAGS_HPP_
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,18 +13,31 @@
 
 namespace sysid::cli {
 
+/// "sysid: v, a: columns v, a (give --derivative to derive them from x)" and the like: the
+/// line every command prints (stdout for compare's table, stderr elsewhere; no newline) naming
+/// where v and a came from, `from` being MotionSource's words.
+std::string MotionSourceNote(const std::string& from);
+
 struct MotionFlags {
-  std::string derivative;  ///< empty: keep the algorithm's default filter
+  /// empty: the recording's v, a columns when present, else x with the algorithm's default
+  /// filter; given: v, a from x with this filter (MotionOptions::prefer_velocity_column off).
+  std::string derivative;
   double cutoff_hz = MotionOptions{}.derivative.cutoff_hz;            ///< [Hz] Butterworth cut-off
   std::string velocity_column = MotionOptions{}.velocity_column;  ///< used when a recording has no x
 
   /// Adds the three flags; `derivative_help` says what the filter is for, `default_filter`
   /// names the filter the algorithm's options choose (shown as the default).
   void Add(CLI::App* cmd, const std::string& derivative_help, const std::string& default_filter);
-  /// Sets the filter, cut-off and velocity column of `motion`.
+  /// Sets the filter, cut-off, velocity column and the column rule of `motion`, and keeps a
+  /// copy for ReadRecordings' note.
   void ApplyTo(MotionOptions& motion) const;
-  /// Reads recordings with t, u and x or the velocity column. Throws InputError.
+  /// Reads recordings with t, u and x or the velocity column. Throws InputError. Prints on
+  /// stderr the unit warnings (UnitSanityWarnings) and, after ApplyTo, queues where v and a
+  /// will come from (MotionSourceNote, once per distinct source; NoteOnSuccess).
   std::vector<Recording> ReadRecordings(const std::vector<std::string>& paths) const;
+
+ private:
+  mutable std::optional<MotionOptions> applied_;
 };
 
 }  // namespace sysid::cli

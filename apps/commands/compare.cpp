@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/motion_flags.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
@@ -26,11 +28,23 @@ struct CompareCliOptions {
   std::vector<std::string> files;
   std::string out_dir;
   bool force = false;
-  std::string derivative = "central";
+  std::string derivative;  // empty: the recordings' v, a columns (else central from x)
   bool json = false;
   bool plots = true;
   int trim = 5;
 };
+
+/// "v, a: columns v, a (give --derivative to derive them from x)" once per distinct source.
+std::string MotionSourcesNote(const std::vector<InverseComparison>& results) {
+  std::vector<std::string> seen;
+  std::string out;
+  for (const auto& c : results) {
+    if (std::find(seen.begin(), seen.end(), c.motion_from) != seen.end()) continue;
+    seen.push_back(c.motion_from);
+    out += MotionSourceNote(c.motion_from) + "\n";
+  }
+  return out;
+}
 
 void RunCompare(const CompareCliOptions& o) {
   namespace fs = std::filesystem;
@@ -42,7 +56,8 @@ void RunCompare(const CompareCliOptions& o) {
   std::optional<NeuralNetwork> nn;
   if (!o.nn_path.empty()) nn = ReadNeuralNetwork(o.nn_path);
   CompareOptions co;
-  co.derivative.method = ParseDerivativeMethod(o.derivative);
+  co.derivative.method = ParseDerivativeMethod(o.derivative.empty() ? "central" : o.derivative);
+  co.use_recorded_columns = o.derivative.empty();  // the one rule (MotionOptions)
   co.trim_samples = o.trim;
   // Everything is computed before anything is written: a bad file leaves no partial output.
   std::vector<InverseComparison> results;
@@ -92,7 +107,7 @@ void RunCompare(const CompareCliOptions& o) {
   if (o.json) {
     std::cout << j.dump(2) << '\n';
   } else {
-    std::cout << table.Render();
+    std::cout << table.Render() << MotionSourcesNote(results);
   }
 }
 
@@ -114,9 +129,10 @@ void AddCompareCommand(CLI::App& app) {
       ->required()
       ->type_name("DATA.csv");
   cmd->add_option("--derivative", o->derivative,
-                  "filter for v, a when the file has no v, a columns: central | butterworth | "
-                  "savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}));
+                  "derive v, a from x with this filter even when the file has v, a columns "
+                  "(without it: the columns, else central): central | butterworth | savgol")
+      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+      ->default_str("central");
   cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
       ->check(CLI::NonNegativeNumber);
   AddOutputOption(cmd, o->out_dir,

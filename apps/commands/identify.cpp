@@ -52,6 +52,9 @@ void RunIdentify(const IdentifyCli& o) {
       if (o.max_speed > 0) po.plateau.max_speed_mps = o.max_speed;
       r = IdentifyFromPulses(o.motion.ReadRecordings(o.recordings), po);
     }
+    if (!r.a3_given)
+      std::cerr << "sysid identify: warning: " << DescribeA3(r.model.a3, false)
+                << "; a1 and a2 scale with it\n";
     rendered = ToJson(r);
     Table table(
         {"source", "t_start [s]", "duration [s]", "u [V]", "v [m/s]", "+- [m/s]", "status"});
@@ -89,8 +92,12 @@ void AddIdentifyCommand(CLI::App& app) {
   cmd->add_option("--method", o->method, "pulse or trajectory")
       ->check(CLI::IsMember({"pulse", "trajectory"}))
       ->capture_default_str();
-  cmd->add_option("--a3", o->pulse.fit.a3, "actuator gain for --method pulse [m/(s^2 V)]")
-      ->capture_default_str();
+  CLI::Option* a3 =
+      cmd->add_option("--a3", o->pulse.fit.a3,
+                      "actuator gain for --method pulse [m/(s^2 V)]; the default is the "
+                      "paper's HR-8 data-sheet value, not your stage's")
+          ->capture_default_str();
+  a3->each([o](const std::string&) { o->pulse.fit.a3_given = true; });
   cmd->add_option("--table", o->table,
                   "pulse table CSV with columns u [V] and v [m/s] instead of recordings")
       ->type_name("T.csv");

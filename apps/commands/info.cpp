@@ -22,6 +22,7 @@ struct InfoOptions {
 
 void RunInfo(const InfoOptions& o) {
   const Recording rec = ReadRecording(o.path);  // its source is o.path
+  for (const auto& w : UnitSanityWarnings(rec)) std::cerr << "sysid info: warning: " << w << '\n';
   const std::string text = RecordingSummaryToJson(rec, o.jitter_tolerance);
   if (o.json) {
     std::cout << text;

@@ -58,6 +58,9 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
     std::cerr << "sysid pipeline: wall time:" << times << '\n';
   }
 
+  if (!r.pulse.a3_given)
+    std::cerr << "sysid pipeline: warning: " << DescribeA3(r.pulse.model.a3, false)
+              << "; a1 and a2 scale with it (the report repeats this)\n";
   nlohmann::ordered_json j;
   j["report"] = (out / "report.md").string();
   j.update(nlohmann::ordered_json::parse(ToJson(r)));
@@ -102,9 +105,11 @@ void AddPipelineCommand(CLI::App& app) {
   PipelineOptions& p = o->options;
   o->hidden = FormatHiddenSizes(p.hidden_sizes);
   cmd->add_option("--a3", p.a3,
-                  "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins)")
+                  "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins); the "
+                  "default is the paper's HR-8 data-sheet value, not your stage's")
       ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([&p](const std::string&) { p.a3_given = true; });
   cmd->add_option("--hidden", o->hidden, "hidden sizes to sweep: first:last:step or a list")
       ->capture_default_str();
   cmd->add_option("--inputs", o->inputs,

@@ -1,4 +1,4 @@
-// sysid tune-delay --model M.json [--min S] [--max S] [--json] [-o MODEL.json] REC.csv...
+// sysid tune-delay --model M.json [--tau-min S] [--tau-max S] [--json] [-o MODEL.json] REC.csv...
 // The delay tau of the viscous term minimising the simulated-vs-measured velocity error.
 #include <fmt/format.h>
 
@@ -55,12 +55,18 @@ void AddTuneDelayCommand(CLI::App& app) {
       ->type_name("REC.csv");
   DelayTuningOptions& d = o->options;
   const double tau_limit = DelayTuningOptions::kMaxTau_s;
-  cmd->add_option("--min", d.tau_min_s, "lower bound of tau [s]")
-      ->check(CLI::Range(0.0, tau_limit))
-      ->capture_default_str();
-  cmd->add_option("--max", d.tau_max_s, fmt::format("upper bound of tau [s], <= {}", tau_limit))
-      ->check(CLI::Range(0.0, tau_limit))
-      ->capture_default_str();
+  const CLI::Range tau_range(0.0, tau_limit);
+  CLI::Option* tau_min = cmd->add_option("--tau-min", d.tau_min_s, "lower bound of tau [s]")
+                             ->check(tau_range)
+                             ->capture_default_str();
+  CLI::Option* tau_max =
+      cmd->add_option("--tau-max", d.tau_max_s,
+                      fmt::format("upper bound of tau [s], <= {}", tau_limit))
+          ->check(tau_range)
+          ->capture_default_str();
+  // The names identify and refine use; the first spellings stay for one release.
+  AddDeprecatedAlias(cmd, "--min", tau_min, d.tau_min_s, tau_range);
+  AddDeprecatedAlias(cmd, "--max", tau_max, d.tau_max_s, tau_range);
   cmd->add_option("--xtol", d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
       ->check(CLI::Range(1e-12, 1.0))
       ->capture_default_str();

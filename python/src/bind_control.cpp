@@ -72,7 +72,14 @@ void BindControl(py::module_& m) {
       .def_readonly("description", &PositionReference::description);
   s.def("smooth_profile", &MakeSmoothProfile, py::arg("options") = SmoothProfileOptions{},
         "The minimum-jerk back-and-forth profile of the tracking experiment.");
-  s.def("reference_from_positions", &ReferenceFromPositions, py::arg("t_s"), py::arg("x_m"));
+  s.def(
+      "reference_from_positions",
+      [](const py::object& t_s, const py::object& x_m) {
+        const Eigen::VectorXd t = RealVector(t_s, "t_s"), x = RealVector(x_m, "x_m");
+        CheckSameLength("reference_from_positions", "t_s", t.size(), "x_m", x.size());
+        return ReferenceFromPositions(t, x);
+      },
+      py::arg("t_s"), py::arg("x_m"));
 
   py::class_<TrackingResult>(s, "TrackingResult")
       .def_readonly("t_s", &TrackingResult::t_s)
@@ -141,8 +148,16 @@ void BindControl(py::module_& m) {
            py::arg("indent") = 2)
       .def_static("from_json", &PipelineResultFromJson, py::arg("text"),
                   py::arg("source") = "json");
-  s.def("track_stage", &TrackStage, py::arg("parameters"), py::arg("reference"), py::arg("pi"),
-        py::arg("u_ff_v"), py::arg("seed"));
+  s.def(
+      "track_stage",
+      [](const StageParameters& stage, const PositionReference& reference, const PiOptions& pi,
+         const py::object& u_ff_v, std::uint64_t seed) {
+        std::optional<Eigen::VectorXd> u_ff;
+        if (!u_ff_v.is_none()) u_ff = RealVector(u_ff_v, "u_ff_v");
+        return TrackStage(stage, reference, pi, u_ff, seed);
+      },
+      py::arg("parameters"), py::arg("reference"), py::arg("pi"), py::arg("u_ff_v"),
+      py::arg("seed"));
 
   m.def(
       "pi_margins_json",
@@ -152,12 +167,20 @@ void BindControl(py::module_& m) {
       py::arg("model"), py::arg("pi"), py::arg("extra_delay_s") = 0.0,
       "The PI loop's gain and phase margins on the model, per direction, as `sysid margins "
       "--json` prints them.");
-  m.def("analytic_inverse", &AnalyticInverse, py::arg("model"), py::arg("dt_s"), py::arg("v_mps"),
-        py::arg("a_mps2"), "u [V] of the analytic inverse with v(t - tau) interpolated.");
+  // The library checks that v and a are equally long (InputError naming v_mps and a_mps2).
+  m.def(
+      "analytic_inverse",
+      [](const FrictionModel& model, double dt_s, const py::object& v_mps,
+         const py::object& a_mps2) {
+        return AnalyticInverse(model, dt_s, RealVector(v_mps, "v_mps"),
+                               RealVector(a_mps2, "a_mps2"));
+      },
+      py::arg("model"), py::arg("dt_s"), py::arg("v_mps"), py::arg("a_mps2"),
+      "u [V] of the analytic inverse with v(t - tau) interpolated.");
   m.def(
       "network_inverse",
-      [](const NeuralNetwork& n, const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
-        return NetworkInverse(n, v, a);
+      [](const NeuralNetwork& n, const py::object& v_mps, const py::object& a_mps2) {
+        return NetworkInverse(n, RealVector(v_mps, "v_mps"), RealVector(a_mps2, "a_mps2"));
       },
       py::arg("network"), py::arg("v_mps"), py::arg("a_mps2"),
       "u [V] of a network on v [m/s] (and a [m/s^2]).");

@@ -146,7 +146,16 @@ void BindIdentify(py::module_& m) {
   py::class_<PulseFitOptions> fit_options(m, "PulseFitOptions");
   AddKeywordInit(fit_options);
   AddOptionsJson(fit_options, &PulseFitOptionsFromJson);
-  fit_options.def_readwrite("a3", &PulseFitOptions::a3).def("validate", &PulseFitOptions::Validate);
+  // Setting a3 gives it (a3_given); the default is the paper's HR-8 value, which reports say.
+  fit_options
+      .def_property(
+          "a3", [](const PulseFitOptions& o) { return o.a3; },
+          [](PulseFitOptions& o, double a3) {
+            o.a3 = a3;
+            o.a3_given = true;
+          })
+      .def_readwrite("a3_given", &PulseFitOptions::a3_given)
+      .def("validate", &PulseFitOptions::Validate);
   py::class_<PulseIdentificationOptions> pulse_options(m, "PulseIdentificationOptions");
   AddKeywordInit(pulse_options);
   AddOptionsJson(pulse_options, &PulseIdentificationOptionsFromJson);
@@ -202,6 +211,7 @@ void BindIdentify(py::module_& m) {
 
   py::class_<PulseIdentificationResult> pulse_result(m, "PulseIdentificationResult");
   pulse_result.def_readonly("model", &PulseIdentificationResult::model)
+      .def_readonly("a3_given", &PulseIdentificationResult::a3_given)
       .def_readonly("fit", &PulseIdentificationResult::fit)
       .def_readonly("points", &PulseIdentificationResult::points)
       .def_readonly("pulses", &PulseIdentificationResult::pulses)
@@ -223,10 +233,11 @@ void BindIdentify(py::module_& m) {
   // ---- The voltage-velocity loop (as `sysid loop --json`) ----
   m.def(
       "voltage_loop_json",
-      [](const Recording& recording, const std::vector<double>& levels_v, int half_window,
+      [](const Recording& recording, const py::object& levels_v, int half_window,
          double moving_speed_mps, const MotionOptions& motion) {
         VoltageLoopOptions o;
-        o.levels_v = levels_v;
+        const Eigen::VectorXd levels = RealVector(levels_v, "levels_v", /*allow_empty=*/true);
+        o.levels_v.assign(levels.begin(), levels.end());
         o.half_window = half_window;
         o.moving_speed_mps = moving_speed_mps;
         return ToJson(AnalyzeVoltageLoop(recording, o, motion));

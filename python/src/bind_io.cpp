@@ -24,13 +24,16 @@ Recording RecordingFromArrays(const py::dict& columns, const std::string& source
   r.source = source;
   r.metadata = metadata;
   Eigen::Index rows = -1;
+  std::string first;
   for (const auto& item : columns) {
     const std::string name = py::str(item.first);
-    const auto values = py::cast<Eigen::VectorXd>(
-        py::array_t<double, py::array::forcecast>::ensure(item.second).attr("ravel")());
-    if (rows >= 0 && values.size() != rows)
-      throw InputError(fmt::format("{}: column '{}' has {} values, the others {}", source, name,
-                                   values.size(), rows));
+    const Eigen::VectorXd values =
+        RealVector(item.second, fmt::format("{}: column '{}'", source, name));
+    if (rows >= 0)
+      CheckSameLength(source, fmt::format("column '{}'", name), values.size(),
+                      fmt::format("column '{}'", first), rows);
+    else
+      first = name;
     rows = values.size();
     r.SetColumn(name, values);
   }
@@ -91,8 +94,18 @@ void BindIo(py::module_& m) {
                                        {static_cast<py::ssize_t>(sizeof(double))}, p, self);
           },
           "The named column as a NumPy view [SI unit of the column]; DataError if absent.")
-      .def("set_column", &Recording::SetColumn, py::arg("name"), py::arg("values"),
-           "Appends or replaces a column.")
+      .def(
+          "set_column",
+          [](Recording& r, const std::string& name, const py::object& values) {
+            const Eigen::VectorXd v = RealVector(values, "set_column: values", true);
+            if (!r.names.empty())
+              CheckSameLength((r.source.empty() ? "recording" : r.source) + ": set_column",
+                              "values", v.size(), "the recording", r.rows());
+            r.SetColumn(name, v);
+          },
+          py::arg("name"), py::arg("values"),
+          "Appends or replaces a column (as long as the others). Views from rec[name] taken "
+          "before appending a column no longer track the recording.")
       .def("meta", &Recording::meta, py::arg("key"), py::arg("fallback") = "")
       .def("to_csv", &FormatRecording, "CSV text: metadata lines, header, 17 significant digits")
       .def("save", [](const Recording& r, const std::string& path) { WriteRecording(path, r); },
@@ -111,6 +124,9 @@ void BindIo(py::module_& m) {
         ReleaseGil(),
         "Reads and validates a recording CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
         "...' for any bad cell).");
+  m.def("unit_warnings", &UnitSanityWarnings, py::arg("recording"),
+        "Warnings when x spans more than 10 m or moves faster than 5 m/s (likely mm or um): "
+        "each names the likely unit and the fix ('# units: x=mm').");
   m.def("parse_recording", &ParseRecording, py::arg("text"), py::arg("source"),
         py::arg("options") = ReadOptions{}, ReleaseGil());
 
@@ -122,8 +138,12 @@ void BindIo(py::module_& m) {
       .def_readonly("max_relative_jitter", &SamplingReport::max_relative_jitter)
       .def_readonly("irregular", &SamplingReport::irregular)
       .def_readonly("worst_index", &SamplingReport::worst_index);
-  m.def("analyze_sampling", py::overload_cast<const Eigen::VectorXd&, double>(&AnalyzeSampling),
-        py::arg("t_s"), py::arg("tolerance") = 0.01);
+  m.def(
+      "analyze_sampling",
+      [](const py::object& t_s, double tolerance) {
+        return AnalyzeSampling(RealVector(t_s, "t_s"), tolerance);
+      },
+      py::arg("t_s"), py::arg("tolerance") = 0.01);
   m.def("resample", &Resample, py::arg("recording"), py::arg("rate_hz"), ReleaseGil());
 
   // ---- Signal conditioning ----
@@ -149,8 +169,14 @@ void BindIo(py::module_& m) {
       .def_readonly("x_m", &Derivatives::x_m)
       .def_readonly("v_mps", &Derivatives::v_mps)
       .def_readonly("a_mps2", &Derivatives::a_mps2);
-  m.def("differentiate", &Differentiate, py::arg("x_m"), py::arg("dt_s"),
-        py::arg("options") = DerivativeOptions{}, ReleaseGil(),
+  m.def(
+      "differentiate",
+      [](const py::object& x_m, double dt_s, const DerivativeOptions& options) {
+        const Eigen::VectorXd x = RealVector(x_m, "x_m");
+        py::gil_scoped_release release;
+        return Differentiate(x, dt_s, options);
+      },
+      py::arg("x_m"), py::arg("dt_s"), py::arg("options") = DerivativeOptions{},
         "Velocity [m/s] and acceleration [m/s^2] of a uniformly sampled position [m].");
   m.def("derive", &DeriveRecording, py::arg("recording"), py::arg("options") = DerivativeOptions{},
         py::arg("max_relative_jitter") = 0.01, ReleaseGil(),

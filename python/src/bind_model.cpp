@@ -16,10 +16,13 @@
 namespace sysid::python {
 namespace {
 
-std::shared_ptr<InputSignal> TableInput(std::vector<double> t_s, std::vector<double> u_v,
+std::shared_ptr<InputSignal> TableInput(const py::object& t_s, const py::object& u_v,
                                         const std::string& hold, const std::string& source) {
-  return std::shared_ptr<InputSignal>(
-      MakeTableInput(std::move(t_s), std::move(u_v), ParseInputHold(hold), source));
+  const Eigen::VectorXd t = RealVector(t_s, "t_s"), u = RealVector(u_v, "u_v");
+  CheckSameLength("table_input", "t_s", t.size(), "u_v", u.size());
+  return std::shared_ptr<InputSignal>(MakeTableInput(std::vector<double>(t.begin(), t.end()),
+                                                     std::vector<double>(u.begin(), u.end()),
+                                                     ParseInputHold(hold), source));
 }
 
 }  // namespace
@@ -40,16 +43,27 @@ void BindModel(py::module_& m) {
       .def_static("paper", &FrictionModel::Paper, "The paper's identified model.")
       .def("steady_velocity",
            [](const FrictionModel& f, const py::object& u) {
-             return py::vectorize([&f](double x) { return f.SteadyVelocity(x); })(u);
+             return RealElementwise(u, "u_v", [&f](double x) { return f.SteadyVelocity(x); });
            },
            py::arg("u_v"),
            "Steady sliding velocity [m/s] under constant voltage(s) u_v [V].")
       .def("inverse_voltage",
            [](const FrictionModel& f, const py::object& a, const py::object& vd,
               const py::object& v) {
+             const auto a_ = RealArray(a, "a_mps2"), vd_ = RealArray(vd, "v_delayed_mps"),
+                        v_ = RealArray(v, "v_mps");
+             try {  // NumPy's broadcasting rule, with the library's error when it fails
+               (void)py::module_::import("numpy").attr("broadcast")(a_, vd_, v_);
+             } catch (const py::error_already_set&) {
+               throw InputError(
+                   "inverse_voltage: a_mps2, v_delayed_mps and v_mps of shapes " +
+                   std::string(py::str(a_.attr("shape"))) + ", " +
+                   std::string(py::str(vd_.attr("shape"))) + ", " +
+                   std::string(py::str(v_.attr("shape"))) + " do not broadcast together");
+             }
              return py::vectorize([&f](double x, double y, double z) {
                return f.InverseVoltage(x, y, z);
-             })(a, vd, v);
+             })(a_, vd_, v_);
            },
            py::arg("a_mps2"),
            py::arg("v_delayed_mps"), py::arg("v_mps"), "The analytic inverse u [V].")
@@ -68,7 +82,7 @@ void BindModel(py::module_& m) {
                                                         "An input voltage u(t) [V].")
       .def("value",
            [](const InputSignal& s, const py::object& t) {
-             return py::vectorize([&s](double x) { return s.Value(x); })(t);
+             return RealElementwise(t, "t_s", [&s](double x) { return s.Value(x); });
            },
            py::arg("t_s"))
       .def("edges", &InputSignal::Edges, py::arg("t0_s"), py::arg("t1_s"));

@@ -30,20 +30,23 @@ Eigen::VectorXd Predict(const NeuralNetwork& net, const py::object& data) {
       py::hasattr(data, "columns")) {
     const int n = net.input_count();
     for (int i = 0; i < n; ++i) {
-      const auto column = py::cast<Eigen::VectorXd>(py::array_t<double, py::array::forcecast>::ensure(
-          data[py::str(net.inputs()[static_cast<size_t>(i)].name)]));
+      const std::string& name = net.inputs()[static_cast<size_t>(i)].name;
+      py::object values;
+      try {
+        values = data[py::str(name)];
+      } catch (const py::error_already_set&) {  // KeyError, or the Recording's DataError
+        throw InputError("predict: inputs: no column '" + name + "' (the network's input " +
+                         std::to_string(i + 1) + " of " + std::to_string(n) + ")");
+      }
+      const Eigen::VectorXd column = RealVector(values, "predict: inputs['" + name + "']");
       if (i == 0) X.resize(column.size(), n);
-      if (column.size() != X.rows())
-        throw InputError("predict: input columns of different lengths");
+      CheckSameLength("predict", "inputs['" + name + "']", column.size(),
+                      "inputs['" + net.inputs()[0].name + "']", X.rows());
       X.col(i) = column;
     }
   } else {
-    X = py::cast<Eigen::MatrixXd>(py::array_t<double, py::array::forcecast>::ensure(data));
-    if (X.cols() != net.input_count() && X.rows() == 1 && net.input_count() == 1) X.transposeInPlace();
+    X = RealMatrix(data, "predict: inputs", net.input_count());
   }
-  if (X.cols() != net.input_count())
-    throw InputError("predict: " + std::to_string(X.cols()) + " input columns, the network has " +
-                     std::to_string(net.input_count()));
   py::gil_scoped_release release;
   return net.EvaluateBatch(X);
 }
@@ -75,7 +78,13 @@ void BindNeural(py::module_& m) {
       .def_property_readonly("b1", &NeuralNetwork::b1)
       .def_property_readonly("w2", &NeuralNetwork::w2)
       .def_property_readonly("b2", &NeuralNetwork::b2)
-      .def_property("parameters", &NeuralNetwork::parameters, &NeuralNetwork::set_parameters)
+      .def_property("parameters", &NeuralNetwork::parameters,
+                    [](NeuralNetwork& n, const py::object& theta) {
+                      const Eigen::VectorXd t = RealVector(theta, "parameters", true);
+                      CheckSameLength("Network.parameters", "the new vector", t.size(),
+                                      "parameter_count", n.parameter_count());
+                      n.set_parameters(t);
+                    })
       .def_readwrite("note", &NeuralNetwork::note)
       .def("validate", &NeuralNetwork::Validate)
       .def("predict", &Predict, py::arg("inputs"),
@@ -160,6 +169,7 @@ void BindNeural(py::module_& m) {
       .def_readonly("validation_mse", &NeuralTrainingResult::validation_mse)
       .def_readonly("wall_time_s", &NeuralTrainingResult::wall_time_s)
       .def_readonly("history", &NeuralTrainingResult::history)
+      .def_readonly("still_falling", &NeuralTrainingResult::still_falling)
       .def("brief_report", &NeuralTrainingResult::BriefReport);
   m.def("train_dataset", &TrainNeuralNetwork, py::arg("train"), py::arg("validation"),
         py::arg("options"), ReleaseGil());
@@ -181,6 +191,7 @@ void BindNeural(py::module_& m) {
           "termination", [](const HiddenSweepRow& r) { return ToString(TerminationOf(r.stop)); })
       .def_property_readonly("stop_reason",
                              [](const HiddenSweepRow& r) { return ToString(r.stop); })
+      .def_readonly("still_falling", &HiddenSweepRow::still_falling)
       .def_readonly("wall_time_s", &HiddenSweepRow::wall_time_s);
   py::class_<HiddenSweepResult>(m, "SweepResult")
       .def_readonly("rows", &HiddenSweepResult::rows)

@@ -36,7 +36,7 @@ void BindStage(py::module_& m) {
       .def("validate", &StageParameters::Validate)
       .def("steady_velocity",
            [](const StageParameters& p, const py::object& u) {
-             return py::vectorize([&p](double x) { return p.SteadyVelocity(x); })(u);
+             return RealElementwise(u, "u_v", [&p](double x) { return p.SteadyVelocity(x); });
            },
            py::arg("u_v"));
 
@@ -52,8 +52,14 @@ void BindStage(py::module_& m) {
       .def_readonly("x_true_m", &StageRun::x_true_m)
       .def_readonly("v_true_mps", &StageRun::v_true_mps)
       .def_readonly("status", &StageRun::status);
-  s.def("run_open_loop", &RunOpenLoop, py::arg("parameters"), py::arg("u_v"),
-        py::arg("seed") = 1, ReleaseGil(),
+  s.def(
+      "run_open_loop",
+      [](const StageParameters& parameters, const py::object& u_v, std::uint64_t seed) {
+        const Eigen::VectorXd u = RealVector(u_v, "u_v");
+        py::gil_scoped_release release;
+        return RunOpenLoop(parameters, u, seed);
+      },
+      py::arg("parameters"), py::arg("u_v"), py::arg("seed") = 1,
         "Drives a fresh stage with one command [V] per sample.");
 
   py::class_<PulseProcedure> pulse(s, "PulseProcedure");
@@ -75,12 +81,12 @@ void BindStage(py::module_& m) {
       .def_readwrite("period_s", &VelocityWaveform::period_s)
       .def("velocity",
            [](const VelocityWaveform& w, const py::object& t) {
-             return py::vectorize([&w](double x) { return w.Velocity(x); })(t);
+             return RealElementwise(t, "t_s", [&w](double x) { return w.Velocity(x); });
            },
            py::arg("t_s"))
       .def("position",
            [](const VelocityWaveform& w, const py::object& t) {
-             return py::vectorize([&w](double x) { return w.Position(x); })(t);
+             return RealElementwise(t, "t_s", [&w](double x) { return w.Position(x); });
            },
            py::arg("t_s"))
       .def_static("sine", &VelocityWaveform::Sine, py::arg("amplitude_m"),

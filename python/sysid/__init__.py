@@ -14,6 +14,7 @@ ones). Units are SI everywhere: t [s], u [V], x [m], v [m/s], a [m/s^2].
 import copy as _copy
 import glob as _glob
 import os as _os
+import warnings as _warnings
 
 from . import _sysid
 from ._sysid import (  # noqa: F401  (re-exported)
@@ -31,7 +32,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
     ScaledVariable, Network, NeuralDataset, make_dataset, read_dataset, mean_squared_error,
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
     SweepResult, parse_hidden_sizes, PipelineResult,
-    stage, analytic_inverse, network_inverse,
+    stage, analytic_inverse, network_inverse, unit_warnings,
 )
 
 __version__ = "0.1.0"
@@ -160,32 +161,59 @@ def expand_paths(paths):
     return out
 
 
+class UnitWarning(UserWarning):
+    """A recording's speeds or travel are implausible in SI units (x in mm read as metres)."""
+
+
+def _checked_units(rec):
+    for message in unit_warnings(rec):
+        _warnings.warn(message, UnitWarning, stacklevel=3)
+    return rec
+
+
 def read_recording(path, options=None, **kwargs):
-    """Reads a recording CSV with the strict reader (DataError 'FILE:LINE:COLUMN: ...')."""
-    return _sysid.read_recording(_os.fspath(path), _options(ReadOptions, options, kwargs))
+    """Reads a recording CSV with the strict reader (DataError 'FILE:LINE:COLUMN: ...');
+    a UnitWarning when its speeds or travel look like mm or um read as metres."""
+    return _checked_units(
+        _sysid.read_recording(_os.fspath(path), _options(ReadOptions, options, kwargs)))
 
 
 def read_recordings(paths, options=None, **kwargs):
     """Reads every file of a path, glob or list of them, in sorted order per pattern."""
     opts = _options(ReadOptions, options, kwargs)
-    return [_sysid.read_recording(p, opts) for p in expand_paths(paths)]
+    return [_checked_units(_sysid.read_recording(p, opts)) for p in expand_paths(paths)]
 
 
 def recording(source="arrays", metadata=(), options=None, **columns):
-    """A recording from 1-D arrays, checked by the reader's rules:
-    ``sysid.recording(t=t, u=u, x=x)``."""
-    return Recording.from_arrays(columns, source, _options(ReadOptions, options, {}),
-                                 list(metadata))
+    """A recording from 1-D arrays of real numbers, checked by the reader's rules:
+    ``sysid.recording(t=t, u=u, x=x)``. A ``("units", "x=mm")`` metadata entry converts as
+    in a file. DataError for another dtype, unequal lengths or an empty array."""
+    return _checked_units(Recording.from_arrays(columns, source,
+                                                _options(ReadOptions, options, {}),
+                                                list(metadata)))
 
 
-def _as_recordings(recordings):
+def _as_recordings(recordings, name="recordings"):
+    """Recording(s), path(s) or glob(s) -> a non-empty list of Recording (DataError when
+    empty, TypeError for anything else)."""
+    out = _flatten_recordings(recordings, name)
+    if not out:
+        raise DataError(f"{name}: no recordings; expected a Recording, a path, a glob or a "
+                        f"non-empty list of them")
+    return out
+
+
+def _flatten_recordings(recordings, name):
     if isinstance(recordings, Recording):
         return [recordings]
     if isinstance(recordings, (str, _os.PathLike)):
         return read_recordings(recordings)
+    if not isinstance(recordings, (list, tuple)):
+        raise TypeError(f"{name}: expected a Recording, a path, a glob or a list of them, got "
+                        f"{type(recordings).__name__}")
     out = []
     for r in recordings:
-        out.extend(_as_recordings(r))
+        out.extend(_flatten_recordings(r, name))
     return out
 
 
@@ -203,9 +231,9 @@ def _as_model(model):
 def derive(recording, options=None, max_relative_jitter=0.01, **kwargs):
     """The recording with v [m/s] and a [m/s^2] derived from x by the chosen filter
     (method='central' | 'butterworth' | 'savgol'), as ``sysid derive``."""
-    rec = _as_recordings(recording)
+    rec = _as_recordings(recording, "recording")
     if len(rec) != 1:
-        raise TypeError("derive: one recording")
+        raise TypeError(f"derive: expected one recording, got {len(rec)}")
     return _sysid.derive(rec[0], _options(DerivativeOptions, options, kwargs),
                          max_relative_jitter)
 
@@ -223,7 +251,10 @@ def simulate(model, input, options=None, **kwargs):
             kwargs["t_end_s"] = duration
         input = signal
     elif isinstance(input, tuple):
-        input = table_input(list(map(float, input[0])), list(map(float, input[1])))
+        if len(input) != 2:
+            raise TypeError(f"simulate: input: expected a (t_s, u_v) pair, got a tuple of "
+                            f"{len(input)}")
+        input = table_input(input[0], input[1])
     return _sysid.simulate_input(model, input, _options(SimulationOptions, options, kwargs))
 
 
@@ -339,11 +370,11 @@ def voltage_loop(recording, levels_v=(), half_window=10, moving_speed_mps=1e-3, 
     and going down, the loop's width, and the start / stop voltages. ``recording``: a
     Recording or a path; ``levels_v`` empty: six per direction past the start voltage."""
     import json as _json
-    rec = _as_recordings(recording)
+    rec = _as_recordings(recording, "recording")
     if len(rec) != 1:
-        raise ValueError(f"voltage_loop: expected one recording, got {len(rec)}")
+        raise TypeError(f"voltage_loop: expected one recording, got {len(rec)}")
     return _json.loads(_sysid.voltage_loop_json(
-        rec[0], [float(x) for x in levels_v], int(half_window), float(moving_speed_mps),
+        rec[0], levels_v, int(half_window), float(moving_speed_mps),
         _options(MotionOptions, motion, {})))
 
 

@@ -96,7 +96,8 @@ TEST_CASE("help defaults are the Options structs' defaults", "[cli]") {
   }
   {
     const std::string h = Help({"tune-delay"});
-    CHECK(same(ShownNumber(h, "--max"), sysid::DelayTuningOptions{}.tau_max_s));
+    CHECK(same(ShownNumber(h, "--tau-max"), sysid::DelayTuningOptions{}.tau_max_s));
+    CHECK(same(ShownNumber(h, "--tau-min"), sysid::DelayTuningOptions{}.tau_min_s));
     CHECK(same(ShownNumber(h, "--xtol"), sysid::DelayTuningOptions{}.x_tolerance_s));
   }
   {

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
 
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
@@ -45,6 +47,35 @@ TEST_CASE("analytic inverse matches the closed form on a sinusoid", "[compare]")
     ++checked;
   }
   CHECK(checked > n - 20);
+}
+
+TEST_CASE("the inverses refuse v and a of different lengths (issue 29)", "[compare]") {
+  // Before: lengths 10 / 5 gave 0.857 V where 1.857 V is right (a read past its end), and
+  // 2e6 / 1 crashed. Each sample needs its own v and a, so a mismatch is the caller's data error.
+  const auto m = sysid::FrictionModel::Paper();
+  const sysid::NeuralNetwork net({{"v", "m/s", -0.1, 0.1}, {"a", "m/s^2", -1, 1}},
+                                 {"u", "V", 0.0, 1.0}, 4);
+  for (const auto& [nv, na] : {std::pair<int, int>{10, 5}, {2000000, 1}, {0, 3}}) {
+    const Eigen::VectorXd v = Eigen::VectorXd::Constant(nv, 0.01);
+    const Eigen::VectorXd a = Eigen::VectorXd::Zero(na);
+    const std::string lengths = "v_mps has " + std::to_string(nv) + " values, a_mps2 has " +
+                                std::to_string(na);
+    CHECK_THROWS_AS(sysid::AnalyticInverse(m, 1e-3, v, a), sysid::InputError);
+    CHECK_THROWS_WITH(sysid::AnalyticInverse(m, 1e-3, v, a),
+                      Catch::Matchers::Contains("AnalyticInverse: " + lengths));
+    CHECK_THROWS_AS(sysid::NetworkInverse(net, v, a), sysid::InputError);
+    CHECK_THROWS_WITH(sysid::NetworkInverse(net, v, a),
+                      Catch::Matchers::Contains("NetworkInverse: " + lengths));
+  }
+  const Eigen::VectorXd v = Eigen::VectorXd::Constant(10, 0.01), a = Eigen::VectorXd::Zero(10);
+  for (const double dt : {0.0, -1e-3, std::nan("")}) {
+    CHECK_THROWS_AS(sysid::AnalyticInverse(m, dt, v, a), sysid::OptionsError);
+    CHECK_THROWS_WITH(sysid::AnalyticInverse(m, dt, v, a),
+                      Catch::Matchers::Contains("Violated constraint: 0 < dt_s"));
+  }
+  // Equal lengths still work, and a steady slide needs u = (a1 v + a2) / a3 (a = 0, v const).
+  const Eigen::VectorXd u = sysid::AnalyticInverse(m, 1e-3, v, a);
+  CHECK(u[9] == Approx((m.a1p * 0.01 + m.a2p) / m.a3).epsilon(1e-12));  // closed form
 }
 
 TEST_CASE("comparison on data made by the analytic inverse scores it near zero", "[compare]") {

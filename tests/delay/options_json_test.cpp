@@ -39,7 +39,7 @@ TEST_CASE("delay tuning options round-trip through JSON", "[delay][json]") {
 
 TEST_CASE("refine options round-trip through JSON", "[delay][json]") {
   sysid::RefineOptions o;
-  o.motion.prefer_velocity_column = true;
+  o.motion.prefer_velocity_column = false;  // not the default (true)
   o.detection.zero_tolerance_v = 0.01;
   o.refine_a3 = false;
   o.refine_tau = false;
@@ -49,7 +49,7 @@ TEST_CASE("refine options round-trip through JSON", "[delay][json]") {
   o.sim_rtol = 1e-6;
   const std::string text = sysid::ToJson(o);
   const auto back = sysid::RefineOptionsFromJson(text, "r.json");
-  CHECK(back.motion.prefer_velocity_column);
+  CHECK_FALSE(back.motion.prefer_velocity_column);
   CHECK(back.detection.zero_tolerance_v == 0.01);
   CHECK_FALSE(back.refine_a3);
   CHECK_FALSE(back.refine_tau);

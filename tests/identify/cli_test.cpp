@@ -62,7 +62,7 @@ TEST_CASE("tune-delay and refine on a simulated pulse recording", "[identify][cl
   auto start = truth;
   start.tau_s = 0;
   sysid::WriteModel(dir / "start.json", start);
-  auto r = RunCli({"tune-delay", "--model", dir / "start.json", "--max", "0.01", "--json", "-o",
+  auto r = RunCli({"tune-delay", "--model", dir / "start.json", "--tau-max", "0.01", "--json", "-o",
                    dir / "tuned.json", dir / "rec.csv"});
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);

@@ -14,7 +14,7 @@ TEST_CASE("motion options round-trip through JSON", "[motion][json]") {
   o.derivative.savgol_window = 31;
   o.derivative.savgol_order = 4;
   o.velocity_column = "v_meas";
-  o.prefer_velocity_column = true;
+  o.prefer_velocity_column = false;  // not the default (true)
   o.max_relative_jitter = 0.05;
   const std::string text = sysid::ToJson(o);
   const auto back = sysid::MotionOptionsFromJson(text, "m.json");
@@ -24,7 +24,7 @@ TEST_CASE("motion options round-trip through JSON", "[motion][json]") {
   CHECK(back.derivative.savgol_window == 31);
   CHECK(back.derivative.savgol_order == 4);
   CHECK(back.velocity_column == "v_meas");
-  CHECK(back.prefer_velocity_column);
+  CHECK_FALSE(back.prefer_velocity_column);
   CHECK(back.max_relative_jitter == 0.05);
   CHECK(sysid::ToJson(back) == text);
   // Absent keys keep their defaults: an empty object is the default options.

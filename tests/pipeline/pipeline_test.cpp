@@ -147,6 +147,12 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   CHECK(ring != std::string::npos);
   CHECK(md.find("PI alone rings while the stage moves", ring + 1) != std::string::npos);
   CHECK(md.find("at this stage's 1000 Hz loop rate") != std::string::npos);
+  // No --a3 and no manifest a3: the report and stderr say a3 is the paper's (issue 29).
+  const std::string a3_note =
+      "a3 = 6 (default: the paper's HR-8 data sheet; give --a3 for your stage)";
+  CHECK(md.find("**Warning:** " + a3_note) != std::string::npos);
+  CHECK(md.find("- warning: " + a3_note) != std::string::npos);
+  CHECK(r.err.find("warning: " + a3_note) != std::string::npos);
   // Every model file it writes is a valid model file.
   CHECK_NOTHROW(sysid::ReadModel(out + "/model.json"));
   CHECK_NOTHROW(sysid::ReadNeuralNetwork(out + "/nn.json"));

@@ -63,14 +63,28 @@ sed 's/"hidden": 24/"hidden": 100000000/' "$src/datasets/paper/nn24.json" > n.js
 # tune-delay warns when tau ends at its search bound (the bundled pulses' tau is about 4 ms, so a
 # 1 ms upper bound holds it at the bound), and says nothing when it does not.
 "$sysid" identify --a3 6 "$v/pulses.csv" -o model.json >/dev/null 2>&1 || fail "identify"
-"$sysid" tune-delay --model model.json "$v/pulses.csv" --max 0.001 --json >out.json 2>err.txt ||
+"$sysid" tune-delay --model model.json "$v/pulses.csv" --tau-max 0.001 --json >out.json 2>err.txt ||
   fail "tune-delay"
 grep -q "warning: tau = .* is at the search bound" err.txt || fail "no warning at the bound"
 grep -q 'is at the search bound' out.json || fail "warning not in --json"
 "$sysid" tune-delay --model model.json "$v/pulses.csv" >/dev/null 2>err.txt || fail "tune-delay"
 grep -q "warning" err.txt && fail "warning without a reason"
+"$sysid" tune-delay --model model.json "$v/pulses.csv" --tau-max 5 >/dev/null 2>err.txt
+[ $? -eq 1 ] || fail "tune-delay --tau-max 5 accepted"
+# The old spelling --max (issue 29: one name per quantity) still works, with a note on stderr,
+# and keeps the range check.
 "$sysid" tune-delay --model model.json "$v/pulses.csv" --max 5 >/dev/null 2>err.txt
 [ $? -eq 1 ] || fail "tune-delay --max 5 accepted"
+"$sysid" tune-delay --model model.json "$v/pulses.csv" --max 0.001 --json >old.json 2>err.txt ||
+  fail "tune-delay --max"
+grep -q "note: --max is deprecated; use --tau-max" err.txt || fail "no deprecation note for --max"
+python3 - <<'PY' || fail "--max and --tau-max differ"
+import json
+old, new = json.load(open("old.json")), json.load(open("out.json"))
+for j in (old, new):
+    j.pop("wall_time_s")  # the only field that may differ between two runs
+assert old == new, (old, new)
+PY
 # identify refuses a gain that would write a model every other command rejects.
 "$sysid" identify --a3 -6 "$v/pulses.csv" -o neg.json >/dev/null 2>err.txt; rc=$?
 [ "$rc" -eq 1 ] && grep -q "a3 > 0" err.txt && [ ! -e neg.json ] || fail "identify --a3 -6: exit $rc"

@@ -31,20 +31,23 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
                                          const Eigen::VectorXd& predicted);
 
 /// The analytic inverse over uniformly sampled signals: v(t - tau) by linear interpolation of
-/// v (v before the first sample taken as v[0]). Returns u [V] for each sample.
+/// v (v before the first sample taken as v[0]). Returns u [V] for each sample. Throws
+/// InputError when v_mps and a_mps2 differ in length, OptionsError unless 0 < dt_s < inf.
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2);
 
 /// The network's voltage [V] per sample. Inputs are taken by name: "v" from v_mps [m/s], "a" from
 /// a_mps2 [m/s^2], any other name from the column of `recording` (when given). Throws InputError
-/// for an input it cannot supply.
+/// for an input it cannot supply and when v_mps and a_mps2 differ in length.
 Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::VectorXd& v_mps,
                                const Eigen::VectorXd& a_mps2, const Recording* recording = nullptr);
 
 struct CompareOptions {
-  /// Used when the recording has no v and a columns; recorded v, a are used as they are (they
-  /// were made with the filter the user chose when the data set was built).
+  /// Used when v and a come from x (no v column, or use_recorded_columns = false).
   DerivativeOptions derivative;
+  /// The rule of every command (MotionOptions::prefer_velocity_column): the recording's v and
+  /// a columns as they are when present; false (the CLI's --derivative): from x.
+  bool use_recorded_columns = true;
   /// Samples dropped at each end before scoring (derivative start-up) [samples].
   int trim_samples = 5;
   void Validate() const;
@@ -58,6 +61,7 @@ struct InverseComparison {
   Eigen::VectorXd u_nn_v;        ///< [V]; empty without a network
   Eigen::VectorXd v_mps;         ///< [m/s] velocity used
   Eigen::VectorXd a_mps2;        ///< [m/s^2] acceleration used
+  std::string motion_from;       ///< MotionSource: "columns v, a", "x (central)", ...
   PredictionErrors analytic;
   PredictionErrors nn;  ///< meaningful when has_nn
   bool has_nn = false;
@@ -82,8 +86,9 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
 /// "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text.
 std::string ToJson(const PredictionErrors& errors, int indent = 2);
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name);
-/// One recording as `sysid compare --json` lists it: file, samples, analytic errors and (with a
-/// network) nn errors. The traces are not included (AsRecording writes them).
+/// One recording as `sysid compare --json` lists it: file, samples, v_a_from (MotionSource),
+/// analytic errors and (with a network) nn errors. The traces are not included (AsRecording
+/// writes them).
 std::string ToJson(const InverseComparison& comparison, int indent = 2);
 /// The comparisons as CSV (`sysid compare -o`'s summary.csv): recording (the source's file
 /// stem), model ("analytic", "nn"), rmse_v, peak_error_v, nrmse, r2; one row per model.

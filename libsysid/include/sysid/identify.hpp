@@ -185,11 +185,20 @@ std::vector<PulsePoint> ReadPulseTable(const std::string& path);
 
 struct PulseFitOptions {
   double a3 = 6.0;  ///< [m/(s^2 V)] actuator gain (steady states cannot separate it)
+  /// Whether a3 is the user's (CLI --a3, Python's a3=, an options file's "a3") or the default,
+  /// the paper's HR-8 data-sheet value, which another stage does not share: a1 and a2 scale with
+  /// a3, so the report says which it is.
+  bool a3_given = false;
   void Validate() const;
 };
 
+/// How every report names the pulse fit's a3 [m/(s^2 V)]: "a3 = 5 (given)" or "a3 = 6 (default:
+/// the paper's HR-8 data sheet; give --a3 for your stage)".
+std::string DescribeA3(double a3, bool given);
+
 struct PulseIdentificationResult {
   FrictionModel model;                ///< a1p, a1n, a2p, a2n identified; a3 given; tau_s = 0
+  bool a3_given = false;              ///< PulseFitOptions::a3_given of the fit
   LinearFit fit;                      ///< theta = [a1p, a2p, a1n, a2n]; residuals in [m/s^2]
   std::vector<PulsePoint> points;     ///< the equations used, in row order
   std::vector<PulseEstimate> pulses;  ///< every detected pulse, excluded ones with reasons

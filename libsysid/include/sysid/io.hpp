@@ -61,7 +61,19 @@ struct ReadOptions {
   bool require_increasing_time = true;
 };
 
+/// Speeds and travel beyond these are implausible for a positioning stage: a recording that
+/// exceeds them most likely has x in mm or µm (UnitSanityWarnings says so).
+inline constexpr double kMaxPlausibleSpeed_mps = 5.0;  ///< [m/s] |v|, or |dx/dt| between samples
+inline constexpr double kMaxPlausibleTravel_m = 10.0;  ///< [m] max x - min x
+
+/// Warnings (empty when none) when x spans more than kMaxPlausibleTravel_m, or x or the v column
+/// moves faster than kMaxPlausibleSpeed_mps: each names the source, the value, the likely unit
+/// and the fix (a '# units: x=mm' line, which the reader honours, or scaling to metres).
+std::vector<std::string> UnitSanityWarnings(const Recording& recording);
+
 /// Reads and validates a recording. Throws InputError ("FILE:LINE:COLUMN: ...").
+/// A '# units:' line declaring x=mm, x=um (or "x [mm]"; likewise t, u, v, a, x_ref) makes the
+/// reader convert those columns to SI and say so in the line.
 Recording ReadRecording(const std::string& path, const ReadOptions& options = {});
 
 /// Parses recording text already in memory; `source` names it in error messages.

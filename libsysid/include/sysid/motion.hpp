@@ -18,10 +18,15 @@ namespace sysid {
 struct MotionOptions {
   /// Filter used to differentiate the position x (default: central differences, as the paper).
   DerivativeOptions derivative;
-  /// Name of a measured-velocity column [m/s]; used when the recording has no x column, or
-  /// always when prefer_velocity_column is set. Acceleration is then its derivative.
+  /// Name of a measured-velocity column [m/s].
   std::string velocity_column = "v";
-  bool prefer_velocity_column = false;
+  /// The one rule for a recording's own velocity and acceleration columns, in every command
+  /// and in Python (issue 29). true (the default): a recording's velocity_column [m/s] and its
+  /// column a [m/s^2] are used as they are when present (they were made with the filter chosen
+  /// when the data set was built, e.g. by `sysid derive`); with v but no a, a is v's derivative
+  /// by `derivative`. false (the CLI's --derivative): v and a come from x by `derivative`
+  /// whenever x is present. Without x the velocity column is used either way.
+  bool prefer_velocity_column = true;
   /// Sampling must be uniform: max |dt_k - dt| / dt must not exceed this [dimensionless].
   double max_relative_jitter = 0.01;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
@@ -46,8 +51,13 @@ struct MotionSignals {
   Eigen::VectorXd x_m;        ///< [m] position (empty when the recording has only velocity)
   Eigen::VectorXd v_mps;      ///< [m/s] velocity
   Eigen::VectorXd a_mps2;     ///< [m/s^2] acceleration
-  std::string velocity_from;  ///< "x (central)", "column v_meas", ... (for reports)
+  std::string velocity_from;  ///< MotionSource: "x (central)", "columns v, a", ... (reports)
 };
+
+/// Where ExtractMotion takes v and a from under `options`, in words: "columns v, a",
+/// "column v (a: central)" or "x (butterworth)". Throws InputError when there is neither x nor
+/// the velocity column.
+std::string MotionSource(const Recording& recording, const MotionOptions& options);
 
 /// Velocity and acceleration of a recording (t, u and x or a velocity column). Throws
 /// InputError when the sampling is irregular or there are fewer than 3 samples.

@@ -210,6 +210,14 @@ struct NeuralTrainingOptions {
 };
 
 
+/// The under-trained test: whether the training MSE of restart `restart` in `history` was still
+/// falling at its last epoch, i.e. fell by more than kStillFallingFraction of its value over
+/// the last max(kStillFallingMinEpochs, epochs / 10) epochs (all of them when fewer). A run
+/// with fewer than two epochs counts as still falling (nothing shows it settled).
+inline constexpr double kStillFallingFraction = 0.01;
+inline constexpr int kStillFallingMinEpochs = 5;
+bool TrainingMseStillFalling(const std::vector<EpochRecord>& history, int restart);
+
 struct NeuralTrainingResult {
   NeuralNetwork network;  ///< best weights (lowest validation MSE, else training MSE)
   Termination termination = Termination::kBudgetExhausted;  ///< TerminationOf(stop)
@@ -221,7 +229,11 @@ struct NeuralTrainingResult {
   double validation_mse = 0;         ///< [output unit^2], NaN without a validation set
   double wall_time_s = 0;            ///< [s]
   std::vector<EpochRecord> history;  ///< every epoch of every restart
-  /// Doubts in words: stopped by the epoch budget before a convergence test (under-trained?).
+  /// TrainingMseStillFalling of the kept restart: the training MSE was still going down when
+  /// training stopped.
+  bool still_falling = false;
+  /// Doubts in words: stopped by the epoch budget while the training MSE was still falling
+  /// (under-trained). A budget stop on a plateau is not a doubt and gives no warning.
   std::vector<std::string> warnings;
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: stopping rule, kept restart, MSEs, warnings and the
@@ -254,6 +266,7 @@ struct HiddenSweepRow {
   double validation_mse = 0;  ///< [output unit^2], NaN without a validation set
   double test_mse = 0;        ///< [output unit^2], NaN without a test set
   TrainingStop stop = TrainingStop::kMaxEpochs;
+  bool still_falling = false;  ///< NeuralTrainingResult::still_falling of this network
   double wall_time_s = 0;  ///< [s]
 };
 
@@ -265,7 +278,7 @@ struct HiddenSweepResult {
   /// (the paper's choice), else "min training MSE".
   std::string rule;
   double wall_time_s = 0;  ///< [s]
-  std::vector<std::string> warnings;  ///< one per hidden size stopped by the epoch budget
+  std::vector<std::string> warnings;  ///< one per hidden size stopped by the budget while falling
 };
 
 /// Trains one network per hidden size, in parallel threads, and picks one by `rule`.

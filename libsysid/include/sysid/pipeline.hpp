@@ -54,6 +54,7 @@ struct PipelineInputs {
 
 struct PipelineOptions {
   double a3 = 6.0;  ///< [m/(s^2 V)] actuator gain (manifest a3 wins)
+  bool a3_given = false;  ///< a3 is the user's (else the paper's: the report warns)
   bool tune_delay = true;
   DelayTuningOptions delay;  ///< tau search (curve_points set for the report)
   bool refine = false;       ///< output-error refinement after the delay

@@ -44,6 +44,7 @@ std::string ToJson(const InverseComparison& c, int indent) {
   Json j;
   j["file"] = c.source;
   j["samples"] = c.t_s.size();
+  j["v_a_from"] = c.motion_from;
   j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
   return internal::DumpJson(j, indent);
@@ -56,6 +57,7 @@ const internal::FieldList<CompareOptions>& CompareFields() {
       internal::FieldList<CompareOptions>()
           .Nested("derivative", &CompareOptions::derivative, internal::DerivativeOptionsJson,
                   internal::ReadDerivativeOptions)
+          .Add("use_recorded_columns", &CompareOptions::use_recorded_columns)
           .Add("trim_samples", &CompareOptions::trim_samples);
   return fields;
 }

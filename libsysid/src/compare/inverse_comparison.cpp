@@ -23,8 +23,25 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
   return r;
 }
 
+namespace {
+
+/// The inverses pair v[k] with a[k]: a length mismatch is the caller's data error.
+void CheckSameLength(const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2,
+                     const char* who) {
+  if (v_mps.size() != a_mps2.size())
+    throw InputError(std::string(who) + ": v_mps has " + std::to_string(v_mps.size()) +
+                     " values, a_mps2 has " + std::to_string(a_mps2.size()) +
+                     "; the two must be equally long (one value per sample)");
+}
+
+}  // namespace
+
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2) {
+  CheckSameLength(v_mps, a_mps2, "AnalyticInverse");
+  if (!(dt_s > 0) || !std::isfinite(dt_s))
+    throw OptionsError("AnalyticInverse: dt_s = " + std::to_string(dt_s) +
+                       ". Violated constraint: 0 < dt_s < infinity");
   const Eigen::VectorXd v_delayed = DelaySignal(v_mps, dt_s, model.tau_s);
   Eigen::VectorXd u(v_mps.size());
   for (Eigen::Index k = 0; k < u.size(); ++k)
@@ -34,7 +51,7 @@ Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
 
 Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::VectorXd& v_mps,
                                const Eigen::VectorXd& a_mps2, const Recording* recording) {
-  SYSID_CHECK(v_mps.size() == a_mps2.size(), "v and a differ in length");
+  CheckSameLength(v_mps, a_mps2, "NetworkInverse");
   Eigen::MatrixXd X(v_mps.size(), network.input_count());
   for (int i = 0; i < network.input_count(); ++i) {
     const std::string& name = network.inputs()[static_cast<size_t>(i)].name;
@@ -80,30 +97,14 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
   model.Validate();
   InverseComparison c;
   c.source = recording.source;
-  double dt = 0;
-  Eigen::VectorXd t, u, v, a;
-  if (recording.has("v") && recording.has("a")) {
-    t = recording.column("t");
-    u = recording.column("u");
-    v = recording.column("v");
-    a = recording.column("a");
-    if (t.size() < 2) throw InputError(recording.source + ": need at least 2 rows");
-    const SamplingReport s = AnalyzeSampling(t);
-    if (s.irregular)
-      throw InputError(recording.source + ": irregular sampling (max jitter " +
-                       std::to_string(100 * s.max_relative_jitter) +
-                       " %); resample it first (sysid::Resample)");
-    dt = s.nominal_dt_s;
-  } else {
-    MotionOptions mo;
-    mo.derivative = options.derivative;
-    const MotionSignals m = ExtractMotion(recording, mo);
-    t = m.t_s;
-    u = m.u_v;
-    v = m.v_mps;
-    a = m.a_mps2;
-    dt = m.dt_s;
-  }
+  MotionOptions mo;
+  mo.derivative = options.derivative;
+  mo.prefer_velocity_column = options.use_recorded_columns;
+  MotionSignals motion = ExtractMotion(recording, mo);
+  c.motion_from = motion.velocity_from;
+  const double dt = motion.dt_s;
+  const Eigen::VectorXd t = std::move(motion.t_s), u = std::move(motion.u_v),
+                        v = std::move(motion.v_mps), a = std::move(motion.a_mps2);
   const Eigen::Index n = t.size(), trim = options.trim_samples;
   if (n - 2 * trim < 2)
     throw InputError(recording.source + ": " + std::to_string(n) +

@@ -113,7 +113,8 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
   if (result.tau_s - options.tau_min_s <= near || options.tau_max_s - result.tau_s <= near)
     result.warnings.push_back(fmt::format(
         "tau = {:.6g} s is at the search bound [{:.6g}, {:.6g}] s: the optimum may lie outside "
-        "it, or the recordings do not determine tau; widen --min/--max or check the data",
+        "it, or the recordings do not determine tau; widen --tau-min/--tau-max "
+        "(tau_min_s/tau_max_s) or check the data",
         result.tau_s, options.tau_min_s, options.tau_max_s));
   result.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

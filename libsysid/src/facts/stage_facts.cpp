@@ -82,6 +82,7 @@ class FactsRun {
       pulse_rec_ = RunPulseTest(stage_, o_.pulse, o_.seed);
       PulseIdentificationOptions po;
       po.fit.a3 = PaperFacts::PulseModel().a3;
+      po.fit.a3_given = true;  // the facts are the paper's experiments: its a3 on purpose
       pulse_ = IdentifyFromPulses({pulse_rec_}, po);
       r_.pulse_model = pulse_->model;
       r_.plateaus.clear();
@@ -97,6 +98,10 @@ class FactsRun {
       Step("delay tuning on the pulse recording");
       DelayTuningOptions d = o_.delay;
       d.threads = o_.threads;
+      // The paper's procedure (and F3's reference): velocity from the encoder's x, and the
+      // simulated x through the same filter, not the recording's v column against the
+      // simulated true velocity.
+      d.motion.prefer_velocity_column = false;
       r_.delay = TuneDelay(model, {pulse_rec_}, d);
       if (!IsSolutionUsable(r_.delay->termination))
         throw NumericalError("stage facts: delay tuning failed: " + r_.delay->message);

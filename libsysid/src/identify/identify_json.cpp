@@ -309,6 +309,7 @@ const internal::FieldList<PulseFitOptions>& PulseFitFields() {
 Json PulseFitOptionsJson(const PulseFitOptions& o) { return PulseFitFields().Write(o); }
 void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
   PulseFitFields().Read(node, o);
+  if (node.Has("a3")) o.a3_given = true;  // a file that names a3 gives it
 }
 
 const internal::FieldList<PulseIdentificationOptions>& PulseIdentificationFields() {

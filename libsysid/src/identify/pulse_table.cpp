@@ -110,8 +110,15 @@ PulseIdentificationResult FitPulseTable(const std::vector<PulsePoint>& points,
   r.model.a1n = r.fit.theta[2];
   r.model.a2n = r.fit.theta[3];
   r.model.a3 = options.a3;
+  r.a3_given = options.a3_given;
   r.model.tau_s = 0;
   return r;
+}
+
+std::string DescribeA3(double a3, bool given) {
+  return fmt::format("a3 = {:.6g} ({})", a3,
+                     given ? "given"
+                           : "default: the paper's HR-8 data sheet; give --a3 for your stage");
 }
 
 std::string PulseIdentificationResult::BriefReport() const {
@@ -120,7 +127,7 @@ std::string PulseIdentificationResult::BriefReport() const {
   for (size_t i = 0; i < fit.names.size(); ++i)
     s += fmt::format("  {:<4} = {:.7g} +- {:.2g}\n", fit.names[i], fit.theta[Eigen::Index(i)],
                      fit.std_error[Eigen::Index(i)]);
-  s += fmt::format("  a3   = {:.6g} (given)\n  rms residual {:.4g} m/s^2\n", model.a3,
+  s += fmt::format("  {}\n  rms residual {:.4g} m/s^2\n", DescribeA3(model.a3, a3_given),
                    fit.rms_residual);
   return s;
 }

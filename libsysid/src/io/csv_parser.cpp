@@ -9,17 +9,14 @@
 #include <string_view>
 #include <vector>
 
+#include "io/units.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
 namespace sysid {
 namespace {
 
-std::string_view Trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
+using internal::Trim;
 
 // Shows a cell in an error message: quoted, shortened if long.
 std::string Quote(std::string_view s) {
@@ -48,6 +45,7 @@ class Parser {
     ReadHeader(rec);
     ReadRows(rec, values);
     CheckColumns(rec);
+    internal::ApplyUnitsMetadata(rec, units_line_);
   }
 
  private:
@@ -96,7 +94,10 @@ class Parser {
       const std::string_view t = Trim(line);
       if (t.empty()) continue;
       if (t.front() == '#') {
+        const size_t kept = rec.metadata.size();
         KeepMetadata(t, rec);
+        if (rec.metadata.size() > kept && rec.metadata.back().first == "units")
+          units_line_ = line_no_;  // ApplyUnitsMetadata's errors point at it
         continue;
       }
       header_line_ = line_no_;
@@ -266,6 +267,7 @@ class Parser {
   size_t pos_ = 0;
   long line_no_ = 0;
   long header_line_ = 0;
+  long units_line_ = 0;
   bool bom_ = false;
 };
 

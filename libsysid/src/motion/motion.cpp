@@ -64,14 +64,17 @@ void ExtractMotion(const Recording& recording, const MotionOptions& options, Mot
   m.u_v = recording.column("u");
   // a_mps2 is computed last; until then its storage is the sampling check's scratch.
   m.dt_s = CheckedSampleInterval(recording, m.t_s, options.max_relative_jitter, &m.a_mps2);
-  const bool has_v = recording.has(options.velocity_column);
-  const bool use_v = has_v && (options.prefer_velocity_column || !recording.has("x"));
-  if (use_v) {
+  m.velocity_from = MotionSource(recording, options);
+  if (m.velocity_from.rfind("column", 0) == 0) {
     m.v_mps = recording.column(options.velocity_column);
     if (recording.has("x")) {
       m.x_m = recording.column("x");
     } else {
       m.x_m.resize(0);
+    }
+    if (options.prefer_velocity_column && recording.has("a")) {
+      m.a_mps2 = recording.column("a");  // the data set's own acceleration, as it is
+      return;
     }
     // The velocity is measured: the acceleration is its derivative with the chosen filter.
     const DerivativeOptions& d = options.derivative;
@@ -88,12 +91,8 @@ void ExtractMotion(const Recording& recording, const MotionOptions& options, Mot
         m.a_mps2 = SavitzkyGolay(m.v_mps, m.dt_s, d.savgol_window, d.savgol_order, 1);
         break;
     }
-    m.velocity_from = "column " + options.velocity_column;
     return;
   }
-  if (!recording.has("x"))
-    throw InputError(fmt::format("{}: no position column 'x' and no velocity column '{}'",
-                                 recording.source, options.velocity_column));
   m.x_m = recording.column("x");
   if (options.derivative.method == DerivativeMethod::kCentral) {
     // Differentiate's central path (v = D x, a = D v) without its copy of x.
@@ -105,7 +104,20 @@ void ExtractMotion(const Recording& recording, const MotionOptions& options, Mot
     m.v_mps = std::move(d.v_mps);
     m.a_mps2 = std::move(d.a_mps2);
   }
-  m.velocity_from = "x (" + ToString(options.derivative.method) + ")";
+}
+
+std::string MotionSource(const Recording& recording, const MotionOptions& options) {
+  const bool has_v = recording.has(options.velocity_column), has_x = recording.has("x");
+  if (has_v && (options.prefer_velocity_column || !has_x)) {
+    if (options.prefer_velocity_column && recording.has("a"))
+      return "columns " + options.velocity_column + ", a";
+    return "column " + options.velocity_column + " (a: " +
+           ToString(options.derivative.method) + ")";
+  }
+  if (!has_x)
+    throw InputError(fmt::format("{}: no position column 'x' and no velocity column '{}'",
+                                 recording.source, options.velocity_column));
+  return "x (" + ToString(options.derivative.method) + ")";
 }
 
 double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions& derivative,

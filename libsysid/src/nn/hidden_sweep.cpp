@@ -113,6 +113,7 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
         row.test_mse =
             test ? MeanSquaredError(run.network, *test) : std::numeric_limits<double>::quiet_NaN();
         row.stop = run.stop;
+        row.still_falling = run.still_falling;
         row.wall_time_s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
         result.runs[k] = std::move(run);
@@ -143,10 +144,12 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
     if (score(result.rows[k]) < score(result.rows[result.chosen]))
       result.chosen = static_cast<int>(k);
   for (const auto& row : result.rows)
-    if (row.stop == TrainingStop::kMaxEpochs && options.training.max_epochs > 0)
+    if (row.stop == TrainingStop::kMaxEpochs && options.training.max_epochs > 0 &&
+        row.still_falling)
       result.warnings.push_back("H = " + std::to_string(row.hidden) + " stopped at --max-epochs " +
                                 std::to_string(options.training.max_epochs) +
-                                "; it may be under-trained");
+                                " while its training MSE was still falling; it may be "
+                                "under-trained");
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

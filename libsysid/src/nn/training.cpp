@@ -1,4 +1,5 @@
 // TrainNeuralNetwork: scaling, seeded initialisation, restarts, and the choice of trainer.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -266,14 +267,28 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
     }
   }
   result.network = net;
-  // A network that ran out of epochs may not be trained.
-  if (result.stop == TrainingStop::kMaxEpochs && options.max_epochs > 0)
+  result.still_falling = TrainingMseStillFalling(result.history, result.restart);
+  // A network that ran out of epochs while its error still fell is under-trained; one that
+  // ran out on a plateau is as good as more epochs would make it.
+  if (result.stop == TrainingStop::kMaxEpochs && options.max_epochs > 0 && result.still_falling)
     result.warnings.push_back(
         "training stopped at --max-epochs " + std::to_string(options.max_epochs) +
-        " before a convergence test was met; the network may be under-trained (raise "
+        " while the training MSE was still falling; the network may be under-trained (raise "
         "--max-epochs or check --goal-mse/--min-gradient)");
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
+}
+
+bool TrainingMseStillFalling(const std::vector<EpochRecord>& history, int restart) {
+  std::vector<double> mse;
+  for (const auto& e : history)
+    if (e.restart == restart) mse.push_back(e.train_mse);
+  if (mse.size() < 2) return true;
+  const size_t window = std::min(
+      mse.size() - 1, std::max<size_t>(kStillFallingMinEpochs, mse.size() / 10));
+  const double before = mse[mse.size() - 1 - window], last = mse.back();
+  if (!std::isfinite(before) || !std::isfinite(last)) return false;  // a failure, not a budget
+  return before - last > kStillFallingFraction * before;
 }
 
 }  // namespace sysid

@@ -67,6 +67,11 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   step("identify (pulse least squares)", [&] {
     PulseIdentificationOptions po;
     po.fit.a3 = inputs.a3.value_or(options.a3);
+    po.fit.a3_given = inputs.a3.has_value() || options.a3_given;
+    if (!po.fit.a3_given)
+      r.notes.push_back("warning: " + DescribeA3(po.fit.a3, false) +
+                        "; a1 and a2 scale with a3, so this model is the paper's stage's unless "
+                        "a3 is right for yours");
     r.pulse = IdentifyFromPulses(pulses, po);
     r.model = r.pulse.model;
   });

@@ -120,7 +120,9 @@ class ReportWriter {
       prow.push_back(row);
     }
     md_ += MarkdownTable(header, prow);
-    md_ += "\nThe final model (a3 given, then the delay" +
+    if (!p.a3_given) md_ += "\n**Warning:** " + DescribeA3(p.model.a3, false) + ".\n";
+    md_ += "\nThe final model (" + std::string(p.a3_given ? "a3 given" : "a3 the default") +
+           ", then the delay" +
            std::string(r_.refine ? " and the output-error refinement of all six parameters" : "") +
            ") is `model.json`.\n";
     WriteModel(Path("model.json"), r_.model);
