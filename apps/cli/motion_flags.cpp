@@ -13,6 +13,7 @@ void MotionFlags::Add(CLI::App* cmd, const std::string& derivative_help,
   cmd->add_option("--velocity-column", velocity_column,
                   "measured-velocity column [m/s] used when a recording has no x")
       ->capture_default_str();
+  recording.Add(cmd);
 }
 
 void MotionFlags::ApplyTo(MotionOptions& motion) const {
@@ -24,6 +25,7 @@ void MotionFlags::ApplyTo(MotionOptions& motion) const {
 std::vector<Recording> MotionFlags::ReadRecordings(const std::vector<std::string>& paths) const {
   ReadOptions ro;
   ro.any_of_columns = {"x", velocity_column};
+  ro.mapping = recording.Mapping();
   std::vector<Recording> recs;
   for (const auto& p : paths) recs.push_back(ReadRecording(p, ro));
   return recs;

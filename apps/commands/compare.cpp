@@ -13,6 +13,7 @@
 
 #include "cli/common.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
 #include "sysid/report.hpp"
@@ -30,6 +31,7 @@ struct CompareCliOptions {
   bool json = false;
   bool plots = true;
   int trim = 5;
+  RecordingFlags recording;
 };
 
 void RunCompare(const CompareCliOptions& o) {
@@ -49,7 +51,7 @@ void RunCompare(const CompareCliOptions& o) {
   for (size_t i = 0; i < o.files.size(); ++i) {
     Progress(fmt::format("compare: {}/{} {}", i + 1, o.files.size(), o.files[i]));
     results.push_back(
-        CompareInverseModels(ReadRecording(o.files[i]), model, nn ? &*nn : nullptr, co));
+        CompareInverseModels(ReadRecording(o.files[i], o.recording.Apply({})), model, nn ? &*nn : nullptr, co));
   }
   ProgressDone();
   nlohmann::ordered_json j;
@@ -126,6 +128,7 @@ void AddCompareCommand(CLI::App& app) {
                 "replace a folder an earlier sysid compare wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object with the metrics per recording");
   cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
+  o->recording.Add(cmd);
   cmd->callback([o] { RunCompare(*o); });
 }
 
