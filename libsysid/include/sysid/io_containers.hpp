@@ -68,7 +68,9 @@ void WriteRecordingByExtension(const std::string& path, const Recording& recordi
 struct ImportColumn {
   std::string column;  ///< the recording's column name (t, u, x, ...)
   std::string file;    ///< MAT, HDF5 or text file
-  std::string variable;  ///< spec inside the file; empty: the column's own name
+  /// Spec inside the file. Empty: the variable named like the column, else (MAT/HDF5) the
+  /// file's only numeric vector.
+  std::string variable;
 };
 struct ImportOptions {
   std::vector<ImportColumn> columns;

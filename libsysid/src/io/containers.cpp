@@ -29,14 +29,6 @@ std::string Num(double v) {
   return std::string(buf, r.ptr);
 }
 
-bool PlainIdentifier(const std::string& s) {
-  if (s.empty() || s.size() > 63) return false;
-  if (!(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-  });
-}
-
 }  // namespace
 
 VariableSpec ParseVariableSpec(const std::string& path, const std::string& spec) {

@@ -19,6 +19,25 @@ std::string Num(double v) {
   return std::string(buf, r.ptr);
 }
 
+// Without :VARIABLE, the variable named like the column, else the file's only numeric vector.
+std::string DefaultVariable(const ImportColumn& c) {
+  if (DetectFileFormat(c.file) == FileFormat::kText) return c.column;
+  const std::vector<VariableInfo> vars = ListVariables(c.file);
+  std::vector<std::string> vectors;
+  for (const auto& v : vars) {
+    const std::string bare = !v.name.empty() && v.name[0] == '/' ? v.name.substr(1) : v.name;
+    if (bare == c.column) return v.name;
+    if (v.numeric_vector && v.length > 1) vectors.push_back(v.name);
+  }
+  if (vectors.size() == 1) return vectors.front();
+  std::vector<std::string> names;
+  for (const auto& v : vars) names.push_back(v.name);
+  throw InputError(fmt::format("{}: --column {}: no variable '{}' and not exactly one numeric "
+                               "vector: name it, --column {}={}:VARIABLE (variables: {})",
+                               c.file, c.column, c.column, c.column, c.file,
+                               internal::JoinList(names)));
+}
+
 }  // namespace
 
 Recording ImportRecording(const ImportOptions& options) {
@@ -43,7 +62,7 @@ Recording ImportRecording(const ImportOptions& options) {
                          "columns");
     if (rec.has(c.column))
       throw OptionsError(fmt::format("--column {}: given twice", c.column), "columns");
-    const std::string spec = c.variable.empty() ? c.column : c.variable;
+    const std::string spec = c.variable.empty() ? DefaultVariable(c) : c.variable;
     const Eigen::VectorXd v = ReadSignal(c.file, spec);
     const std::string where = c.file + ":" + spec;
     if (!rec.names.empty() && v.size() != rec.rows())
