@@ -28,8 +28,10 @@ int main(int argc, char** argv) {
   int repeats = 3;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--samples" && i + 1 < argc) samples = std::atol(argv[++i]);
-    else if (a == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
+    if (a == "--samples" && i + 1 < argc)
+      samples = std::atol(argv[++i]);
+    else if (a == "--repeats" && i + 1 < argc)
+      repeats = std::atoi(argv[++i]);
   }
   sysid::Recording rec;
   rec.names = {"t", "u", "x", "v", "a"};
@@ -64,8 +66,8 @@ int main(int argc, char** argv) {
   const double n = static_cast<double>(samples);
   fmt::print("{:<44} {:>10} {:>14} {:>10}\n", "reader (5 columns)", "time [s]", "samples/s",
              "vs CSV");
-  fmt::print("{:<44} {:>10.3f} {:>14.3g} {:>9.2f}x\n", "sysid::ReadRecording, CSV (baseline)", t_csv,
-             n / t_csv, 1.0);
+  fmt::print("{:<44} {:>10.3f} {:>14.3g} {:>9.2f}x\n", "sysid::ReadRecording, CSV (baseline)",
+             t_csv, n / t_csv, 1.0);
   fmt::print("{:<44} {:>10.3f} {:>14.3g} {:>9.2f}x\n", "sysid::ReadRecording, MAT v5 (zlib, matio)",
              t_mat, n / t_mat, t_csv / t_mat);
   fmt::print("rows: CSV {}, MAT {}; MAT values equal the written ones: {}\n", rows_csv, rows_mat,

@@ -31,10 +31,7 @@ void ListFileVariables(const InfoOptions& o) {
     std::cout << VariableListToJson(o.path, vars);
     return;
   }
-  std::cout << fmt::format("file        {} ({})
-variables   {}
-
-", o.path,
+  std::cout << fmt::format("file        {} ({})\nvariables   {}\n\n", o.path,
                            DescribeFileFormat(o.path), vars.size());
   Table table({"variable", "class", "dims", "length", "min", "max"});
   for (const auto& v : vars) {

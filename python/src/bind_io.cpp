@@ -128,26 +128,10 @@ void BindIo(py::module_& m) {
       "Reads and validates a recording: CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
       "...' for any bad cell), or MAT (v4, v5, v7.3) / HDF5 through the column mapping `var` "
       "[(column, variable spec)], sample rate `rate` [Hz] and `scale` [(column, factor)].");
-  m.def("list_variables",
-        [](const std::string& path) {
-          std::vector<py::dict> out;
-          for (const auto& v : ListVariables(path)) {
-            py::dict d;
-            d["name"] = v.name;
-            d["type"] = v.type;
-            d["dims"] = v.dims;
-            d["complex"] = v.complex;
-            d["sparse"] = v.sparse;
-            if (v.numeric_vector) {
-              d["length"] = v.length;
-              d["min"] = v.min;
-              d["max"] = v.max;
-            }
-            out.push_back(d);
-          }
-          return out;
-        },
-        py::arg("path"), "The variables of a MAT or HDF5 file (as `sysid info` lists them).");
+  m.def(
+      "list_variables_json",
+      [](const std::string& path) { return VariableListToJson(path, ListVariables(path)); },
+      py::arg("path"), "The variables of a MAT or HDF5 file as `sysid info --json` prints them.");
   m.def("parse_recording", &ParseRecording, py::arg("text"), py::arg("source"),
         py::arg("options") = ReadOptions{}, ReleaseGil());
 

@@ -208,7 +208,8 @@ def read_recordings(paths, options=None, var=None, rate=None, scale=None, **kwar
 def list_variables(path):
     """The variables of a MAT or HDF5 file: dicts of name, type, dims, complex, sparse and, for
     numeric vectors, length, min, max."""
-    return _sysid.list_variables(_os.fspath(path))
+    import json
+    return json.loads(_sysid.list_variables_json(_os.fspath(path)))["variables"]
 
 
 def recording(source="arrays", metadata=(), options=None, **columns):

@@ -30,21 +30,21 @@ void Write(mat_t* mat, matvar_t* var, MatVersion version) {
 
 matvar_t* CharVar(const char* name, const std::string& s) {
   size_t dims[2] = {1, s.size()};
-  return Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UINT8, 2, dims,
-                       const_cast<char*>(s.data()), 0);  // copies
+  return Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UINT8, 2, dims, const_cast<char*>(s.data()),
+                       0);  // copies
 }
 
 matvar_t* DoubleVar(const char* name, const std::vector<double>& v, size_t rows, size_t cols) {
   size_t dims[2] = {rows, cols};
-  return Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
-                       const_cast<double*>(v.data()), 0);
+  return Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, const_cast<double*>(v.data()), 0);
 }
 
 }  // namespace
 
 void WriteMat(const std::string& path, MatVersion version, const std::vector<MatArray>& arrays) {
   mat_t* mat = Create(path, version);
-  for (const auto& a : arrays) Write(mat, DoubleVar(a.name.c_str(), a.values, a.rows, a.cols), version);
+  for (const auto& a : arrays)
+    Write(mat, DoubleVar(a.name.c_str(), a.values, a.rows, a.cols), version);
   Mat_Close(mat);
 }
 
@@ -116,8 +116,7 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
     Mat_VarSetStructFieldByName(y, "Name", i, CharVar("Name", signal_names[i]));
     Mat_VarSetStructFieldByName(y, "Type", i, CharVar("Type", "Value"));
     Mat_VarSetStructFieldByName(y, "Raster", i, CharVar("Raster", "Host Service 1"));
-    Mat_VarSetStructFieldByName(y, "Data", i,
-                                DoubleVar("Data", signals[i], 1, signals[i].size()));
+    Mat_VarSetStructFieldByName(y, "Data", i, DoubleVar("Data", signals[i], 1, signals[i].size()));
     Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", ""));
   }
   Mat_VarSetStructFieldByName(top, "X", 0, x);
@@ -168,8 +167,8 @@ void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint6
   const hid_t space = H5Screate_simple(2, dims, nullptr);
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(dcpl, 2, chunk);
-  const hid_t ds = H5Dcreate2(file, dataset.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl,
-                              H5P_DEFAULT);
+  const hid_t ds =
+      H5Dcreate2(file, dataset.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   H5Dclose(ds);
   H5Pclose(dcpl);
   H5Sclose(space);
@@ -181,8 +180,8 @@ void WriteH5Odd(const std::string& path) {
   hsize_t dims[1] = {3};
   const hid_t space = H5Screate_simple(1, dims, nullptr);
   const int ints[3] = {4, -5, 6};
-  hid_t ds = H5Dcreate2(file, "/counts", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                        H5P_DEFAULT);
+  hid_t ds =
+      H5Dcreate2(file, "/counts", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, ints);
   H5Dclose(ds);
   const hid_t ctype = H5Tcreate(H5T_COMPOUND, 2 * sizeof(double));
@@ -202,7 +201,7 @@ void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols) {
   const char text[] = "MATLAB 5.0 MAT-file, written by a test with a hostile header";
   std::memcpy(header.data(), text, sizeof text - 1);
   std::string bytes = header;
-  bytes.append(8, '\0');           // subsystem offset
+  bytes.append(8, '\0');                // subsystem offset
   bytes += std::string("\x00\x01", 2);  // version 0x0100, little-endian
   bytes += "IM";
   auto u32 = [&](std::uint32_t v) { bytes.append(reinterpret_cast<const char*>(&v), 4); };

@@ -34,8 +34,10 @@ std::vector<std::string> RunEach(const std::vector<std::string>& args,
   return outs;
 }
 
-TEST_CASE("a recording from MAT, HDF5 and CSV gives identical identify, dominance and compare "
-          "results", "[io][mat][hdf5][cli]") {
+TEST_CASE(
+    "a recording from MAT, HDF5 and CSV gives identical identify, dominance and compare "
+    "results",
+    "[io][mat][hdf5][cli]") {
   TempDir dir;
   Recording rec = ReadRecording(SourcePath("datasets/virtual/pulses.csv"));
   rec.metadata.clear();  // MAT and HDF5 carry no metadata lines
@@ -45,7 +47,8 @@ TEST_CASE("a recording from MAT, HDF5 and CSV gives identical identify, dominanc
   std::vector<H5Array> arrays;
   for (size_t c = 0; c < rec.names.size(); ++c) {
     const Eigen::VectorXd col = rec.data.col(static_cast<Eigen::Index>(c));
-    arrays.push_back({"/" + rec.names[c], {static_cast<std::uint64_t>(col.size())},
+    arrays.push_back({"/" + rec.names[c],
+                      {static_cast<std::uint64_t>(col.size())},
                       std::vector<double>(col.data(), col.data() + col.size())});
   }
   WriteH5(h5, arrays);

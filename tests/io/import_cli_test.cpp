@@ -136,7 +136,7 @@ TEST_CASE("sysid import -o never replaces a file it did not write", "[io][import
   WriteText(dir / "u.txt", "1\n2\n3\n");
   WriteText(dir / "mine.csv", "t,u\n0,1\n");
   const std::vector<std::string> base{"import", "--column", "u=" + (dir / "u.txt") + ":1",
-                                      "--rate", "2", "-o"};
+                                      "--rate", "2",        "-o"};
   auto args = base;
   args.push_back(dir / "mine.csv");
   CliResult r = RunCli(args);

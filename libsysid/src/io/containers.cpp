@@ -206,8 +206,11 @@ Recording ReadContainerRecording(const std::string& path, const ReadOptions& opt
     if (!reason.empty()) throw InputError(path + ": " + reason);
     for (const auto& name : c->DefaultColumns()) vars.emplace_back(name, name);
     if (vars.empty()) {
+      const std::vector<VariableInfo> all = c->List();
+      if (all.empty())
+        throw InputError(path + ": holds no variables (an empty or truncated file)");
       std::vector<std::string> names;
-      for (const auto& v : c->List()) names.push_back(v.name + " (" + v.type + " " +
+      for (const auto& v : all) names.push_back(v.name + " (" + v.type + " " +
                                                       FormatDims(v.dims) + ")");
       throw InputError(fmt::format(
           "{}: no top-level numeric vectors to read as columns; map variables with --var "

@@ -41,27 +41,23 @@ void ReadFile(const std::string& path, std::string* out) {
   if (failed) throw InputError(path + ": read error");
 }
 
-void WriteFileAtomically(const std::string& path, std::string_view content) {
+namespace internal {
+
+void WriteThroughTempFile(const std::string& path,
+                          const std::function<void(int fd, const std::string& tmp)>& write) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmpl.data());
   if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
-  const internal::TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
-  const char* p = content.data();
-  size_t left = content.size();
-  while (left > 0) {
-    const ssize_t w = ::write(fd, p, left);
-    if (w < 0) {
-      if (errno == EINTR) continue;
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      ::unlink(tmpl.c_str());
-      throw InputError(path + ": cannot write: " + reason);
-    }
-    p += w;
-    left -= static_cast<size_t>(w);
+  const TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
+  try {
+    write(fd, tmpl);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmpl.c_str());
+    throw;
   }
   // mkstemp creates 0600; a result file should be readable like any other output.
   const mode_t mask = ::umask(0);
@@ -72,6 +68,24 @@ void WriteFileAtomically(const std::string& path, std::string_view content) {
     ::unlink(tmpl.c_str());
     throw InputError(path + ": cannot write: " + reason);
   }
+}
+
+}  // namespace internal
+
+void WriteFileAtomically(const std::string& path, std::string_view content) {
+  internal::WriteThroughTempFile(path, [&](int fd, const std::string&) {
+    const char* p = content.data();
+    size_t left = content.size();
+    while (left > 0) {
+      const ssize_t w = ::write(fd, p, left);
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        throw InputError(path + ": cannot write: " + std::strerror(errno));
+      }
+      p += w;
+      left -= static_cast<size_t>(w);
+    }
+  });
 }
 
 }  // namespace sysid

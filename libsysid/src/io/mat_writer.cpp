@@ -1,17 +1,10 @@
 // WriteRecordingMat: a recording as a MAT v5 file (one double column vector per column), written
-// to a temporary file beside the target and renamed, so a reader never sees half a file.
+// through a temporary file beside the target and renamed, so a reader never sees half a file.
 #include <fmt/format.h>
 #include <matio.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
 #include <string>
 
 #include "io/containers.hpp"
@@ -32,38 +25,27 @@ void WriteRecordingMat(const std::string& path, const Recording& recording) {
                                    "then letters, digits or '_', at most 63)",
                                    path, name));
   }
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
-  const int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
-  ::close(fd);
-  const internal::TempFileGuard interrupted(tmpl);
-  const auto fail = [&](const std::string& why) {
-    ::unlink(tmpl.c_str());
-    throw InputError(path + ": cannot write: " + why);
-  };
-  mat_t* mat = Mat_CreateVer(tmpl.c_str(), nullptr, MAT_FT_MAT5);
-  if (!mat) fail("matio cannot create the file");
-  Eigen::VectorXd column;
-  for (size_t c = 0; c < recording.names.size(); ++c) {
-    column = recording.data.col(static_cast<Eigen::Index>(c));
-    size_t dims[2] = {static_cast<size_t>(column.size()), 1};
-    matvar_t* v = Mat_VarCreate(recording.names[c].c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
-                                column.data(), MAT_F_DONT_COPY_DATA);
-    const bool ok = v && Mat_VarWrite(mat, v, MAT_COMPRESSION_ZLIB) == 0;
-    if (v) Mat_VarFree(v);
-    if (!ok) {
-      Mat_Close(mat);
-      fail("matio cannot write variable '" + recording.names[c] + "'");
+  internal::WriteThroughTempFile(path, [&](int, const std::string& tmp) {
+    const auto fail = [&](const std::string& why) {
+      throw InputError(path + ": cannot write: " + why);
+    };
+    mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+    if (!mat) fail("matio cannot create the file");
+    Eigen::VectorXd column;
+    for (size_t c = 0; c < recording.names.size(); ++c) {
+      column = recording.data.col(static_cast<Eigen::Index>(c));
+      size_t dims[2] = {static_cast<size_t>(column.size()), 1};
+      matvar_t* v = Mat_VarCreate(recording.names[c].c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2,
+                                  dims, column.data(), MAT_F_DONT_COPY_DATA);
+      const bool ok = v && Mat_VarWrite(mat, v, MAT_COMPRESSION_ZLIB) == 0;
+      if (v) Mat_VarFree(v);
+      if (!ok) {
+        Mat_Close(mat);
+        fail("matio cannot write variable '" + recording.names[c] + "'");
+      }
     }
-  }
-  if (Mat_Close(mat) != 0) fail("matio cannot close the file");
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::chmod(tmpl.c_str(), 0666 & ~mask);
-  if (std::rename(tmpl.c_str(), path.c_str()) != 0) fail(std::strerror(errno));
+    if (Mat_Close(mat) != 0) fail("matio cannot close the file");
+  });
 }
 
 void WriteRecordingByExtension(const std::string& path, const Recording& recording) {

@@ -4,6 +4,7 @@
 #ifndef SYSID_SRC_IO_TEMP_FILES_HPP_
 #define SYSID_SRC_IO_TEMP_FILES_HPP_
 
+#include <functional>
 #include <string>
 
 namespace sysid::internal {
@@ -20,6 +21,13 @@ class TempFileGuard {
  private:
   int slot_ = -1;
 };
+
+/// Writes `path` atomically: `write(fd, tmp)` fills a new temporary file `tmp` beside it (open
+/// as `fd`; a library that opens files by name may write `tmp` itself), which then gets the
+/// umask's permissions and is renamed over `path`. On any exception, or a failed rename, the
+/// temporary file is removed and `path` is untouched. Throws InputError "PATH: cannot write: ...".
+void WriteThroughTempFile(const std::string& path,
+                          const std::function<void(int fd, const std::string& tmp)>& write);
 
 }  // namespace sysid::internal
 
