@@ -219,7 +219,10 @@ Recording ReadContainerRecording(const std::string& path, const ReadOptions& opt
     }
   }
   if (vars.size() > 256) throw InputError(path + ": more than 256 columns mapped");
+  const bool by_name = options.mapping.variables.empty();
   for (const auto& [column, spec_text] : vars) {
+    if (rec.has(column) && by_name)
+      throw InputError(fmt::format("{}: two variables named '{}'", path, column));
     if (rec.has(column))
       throw OptionsError(fmt::format("--var: column '{}' mapped twice", column), "mapping");
     const VariableSpec spec = ParseVariableSpec(path, spec_text);
