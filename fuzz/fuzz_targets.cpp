@@ -31,8 +31,8 @@ std::string InputFile(const std::string& target, std::string_view bytes) {
       (std::filesystem::temp_directory_path() /
        ("sysid-fuzz-" + std::to_string(::getpid()) + (target == "mat" ? ".mat" : ".h5")))
           .string();
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(),
-                                                                 static_cast<long>(bytes.size()));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<long>(bytes.size()));
   return path;
 }
 

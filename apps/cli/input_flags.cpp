@@ -38,7 +38,8 @@ NamedWaveform InputFlags::Choose() const {
   const int given = !input_path.empty() + !pulses.empty() + !waveform.empty();
   if (given != 1)
     throw OptionsError("give exactly one input: --input U.csv, --pulses A[,A...] or --waveform NAME");
-  if (!input_path.empty()) return ReadInputWaveform(input_path, ParseInputHold(hold), recording.Mapping());
+  if (!input_path.empty())
+    return ReadInputWaveform(input_path, ParseInputHold(hold), recording.Mapping());
   if (!pulses.empty()) {
     PulseTrainSpec spec = pulse_train;
     spec.amplitudes_v = pulses;

@@ -19,8 +19,9 @@ struct MotionFlags {
   std::string velocity_column = MotionOptions{}.velocity_column;  ///< used when a recording has no x
   RecordingFlags recording;  ///< --var, --rate, --scale (MAT/HDF5 files, renamed columns)
 
-  /// Adds the three flags and the recording flags (--var, --rate, --scale); `derivative_help` says what the filter is for, `default_filter`
-  /// names the filter the algorithm's options choose (shown as the default).
+  /// Adds the three flags and the recording flags (--var, --rate, --scale); `derivative_help` says
+  /// what the filter is for, `default_filter` names the filter the algorithm's options choose
+  /// (shown as the default).
   void Add(CLI::App* cmd, const std::string& derivative_help, const std::string& default_filter);
   /// Sets the filter, cut-off and velocity column of `motion`.
   void ApplyTo(MotionOptions& motion) const;

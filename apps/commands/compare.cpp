@@ -50,8 +50,8 @@ void RunCompare(const CompareCliOptions& o) {
   std::vector<InverseComparison> results;
   for (size_t i = 0; i < o.files.size(); ++i) {
     Progress(fmt::format("compare: {}/{} {}", i + 1, o.files.size(), o.files[i]));
-    results.push_back(
-        CompareInverseModels(ReadRecording(o.files[i], o.recording.Apply({})), model, nn ? &*nn : nullptr, co));
+    results.push_back(CompareInverseModels(ReadRecording(o.files[i], o.recording.Apply({})), model,
+                                           nn ? &*nn : nullptr, co));
   }
   ProgressDone();
   nlohmann::ordered_json j;

@@ -40,7 +40,8 @@ void RunDerive(const DeriveCliOptions& o) {
   if (o.decimate < 1)
     throw OptionsError(fmt::format("--decimate: K = {}. Violated constraint: K >= 1", o.decimate));
 
-  Recording rec = ReadRecording(o.path, o.recording.Apply(ReadOptions{{"t", "u", "x"}, {}, true, {}}));
+  Recording rec =
+      ReadRecording(o.path, o.recording.Apply(ReadOptions{{"t", "u", "x"}, {}, true, {}}));
   if (rec.rows() < 2)
     throw InputError(fmt::format("{}: {} row; derive needs a sampled signal", o.path, rec.rows()));
   if (o.resample_hz) rec = Resample(rec, *o.resample_hz);

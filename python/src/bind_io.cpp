@@ -96,11 +96,12 @@ void BindIo(py::module_& m) {
            "Appends or replaces a column.")
       .def("meta", &Recording::meta, py::arg("key"), py::arg("fallback") = "")
       .def("to_csv", &FormatRecording, "CSV text: metadata lines, header, 17 significant digits")
-      .def("save",
-           [](const Recording& r, const std::string& path) { WriteRecordingByExtension(path, r); },
-           py::arg("path"),
-           "Writes the CSV (MAT v5 when the path ends in .mat) atomically (temporary file, then "
-           "rename).")
+      .def(
+          "save",
+          [](const Recording& r, const std::string& path) { WriteRecordingByExtension(path, r); },
+          py::arg("path"),
+          "Writes the CSV (MAT v5 when the path ends in .mat) atomically (temporary file, then "
+          "rename).")
       .def("__repr__", [](const Recording& r) {
         std::string cols;
         for (const auto& n : r.names) cols += (cols.empty() ? "" : ", ") + n;
@@ -122,9 +123,8 @@ void BindIo(py::module_& m) {
         return ReadRecording(path, options);
       },
       py::arg("path"), py::arg("options") = ReadOptions{},
-      py::arg("var") = std::vector<std::pair<std::string, std::string>>{},
-      py::arg("rate") = 0.0, py::arg("scale") = std::vector<std::pair<std::string, double>>{},
-      ReleaseGil(),
+      py::arg("var") = std::vector<std::pair<std::string, std::string>>{}, py::arg("rate") = 0.0,
+      py::arg("scale") = std::vector<std::pair<std::string, double>>{}, ReleaseGil(),
       "Reads and validates a recording: CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
       "...' for any bad cell), or MAT (v4, v5, v7.3) / HDF5 through the column mapping `var` "
       "[(column, variable spec)], sample rate `rate` [Hz] and `scale` [(column, factor)].");

@@ -117,7 +117,9 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
     Mat_VarSetStructFieldByName(y, "Type", i, CharVar("Type", "Value"));
     Mat_VarSetStructFieldByName(y, "Raster", i, CharVar("Raster", "Host Service 1"));
     Mat_VarSetStructFieldByName(y, "Data", i, DoubleVar("Data", signals[i], 1, signals[i].size()));
-    Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", ""));
+    // Not empty: matio 1.5.23 writes an empty char field of a compressed struct array so that
+    // it cannot read it back ("Uncompressed type not MAT_T_MATRIX").
+    Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", "V"));
   }
   Mat_VarSetStructFieldByName(top, "X", 0, x);
   Mat_VarSetStructFieldByName(top, "Y", 0, y);

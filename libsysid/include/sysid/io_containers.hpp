@@ -39,7 +39,7 @@ struct VariableInfo {
   std::vector<std::uint64_t> dims;  ///< as MATLAB shows them (MAT) or h5py (HDF5)
   bool complex = false;
   bool sparse = false;
-  bool numeric_vector = false;      ///< real numeric with one non-singleton dimension (or 1x1)
+  bool numeric_vector = false;  ///< real numeric with one non-singleton dimension (or 1x1)
   /// For numeric vectors: length and range over the samples (NaN when a value is not finite).
   std::uint64_t length = 0;
   double min = 0, max = 0;

@@ -121,8 +121,7 @@ NeuralDataset MakeNeuralDataset(const Recording& recording,
 /// ("t" optional). Throws InputError.
 NeuralDataset ReadNeuralDataset(const std::string& path,
                                 const std::vector<std::string>& input_names,
-                                const std::string& output_name,
-                                const SourceMapping& mapping = {});
+                                const std::string& output_name, const SourceMapping& mapping = {});
 
 /// Every `stride`-th row (rows 0, stride, 2 stride, ...); stride <= 1 returns the set unchanged.
 /// The typical (v, a) network's 481 parameters make each LM epoch cost N P^2 flops: the

@@ -3,8 +3,6 @@
 // ReadRecording).
 #include "io/containers.hpp"
 
-#include "core/json_text.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {
@@ -90,8 +89,8 @@ double ElementCount(const std::vector<std::uint64_t>& dims) {
 void CheckFinite(const Eigen::VectorXd& v, const std::string& where) {
   for (Eigen::Index i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]))
-      throw InputError(fmt::format("{}[{}]: expected a finite number, found {}", where, i + 1,
-                                   Num(v[i])));
+      throw InputError(
+          fmt::format("{}[{}]: expected a finite number, found {}", where, i + 1, Num(v[i])));
 }
 
 void SetRange(VariableInfo& info, const Eigen::VectorXd& values) {
@@ -121,9 +120,9 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
   const SourceMapping& m = options.mapping;
   for (const auto& [column, factor] : m.scales) {
     if (!std::isfinite(factor) || factor == 0)
-      throw OptionsError(fmt::format("--scale {}={}: expected a finite, non-zero factor", column,
-                                     Num(factor)),
-                         "scales");
+      throw OptionsError(
+          fmt::format("--scale {}={}: expected a finite, non-zero factor", column, Num(factor)),
+          "scales");
     const int i = rec.index_of(column);
     if (i < 0)
       throw InputError(fmt::format("{}: --scale {}: no column '{}' (columns: {})", rec.source,
@@ -132,9 +131,9 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
   }
   if (m.rate_hz != 0) {
     if (!std::isfinite(m.rate_hz) || m.rate_hz <= 0)
-      throw OptionsError(fmt::format("--rate {}: expected a positive sample rate [Hz]",
-                                     Num(m.rate_hz)),
-                         "rate_hz");
+      throw OptionsError(
+          fmt::format("--rate {}: expected a positive sample rate [Hz]", Num(m.rate_hz)),
+          "rate_hz");
     if (rec.has("t"))
       throw InputError(fmt::format(
           "{}: has a time column 't' ({}); --rate applies only to recordings without one",
@@ -157,9 +156,10 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
             "{}: no time column 't' (columns: {}): give the sample rate with --rate HZ or map a "
             "time variable with --var t=NAME",
             rec.source, columns()));
-      throw InputError(fmt::format("{}: missing required column '{}' (columns: {}); map it with "
-                                   "--var {}=NAME",
-                                   rec.source, name, columns(), name));
+      throw InputError(
+          fmt::format("{}: missing required column '{}' (columns: {}); map it with "
+                      "--var {}=NAME",
+                      rec.source, name, columns(), name));
     }
   if (!options.any_of_columns.empty() &&
       std::none_of(options.any_of_columns.begin(), options.any_of_columns.end(),
@@ -176,9 +176,8 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
     const auto t = rec.data.col(ti);
     for (Eigen::Index k = 1; k < t.size(); ++k)
       if (!(t[k] > t[k - 1]))
-        throw InputError(fmt::format(
-            "{}[{}]: time must be strictly increasing, found {} after {}", origin("t"), k + 1,
-            Num(t[k]), Num(t[k - 1])));
+        throw InputError(fmt::format("{}[{}]: time must be strictly increasing, found {} after {}",
+                                     origin("t"), k + 1, Num(t[k]), Num(t[k - 1])));
   }
 }
 
@@ -207,11 +206,10 @@ Recording ReadContainerRecording(const std::string& path, const ReadOptions& opt
     for (const auto& name : c->DefaultColumns()) vars.emplace_back(name, name);
     if (vars.empty()) {
       const std::vector<VariableInfo> all = c->List();
-      if (all.empty())
-        throw InputError(path + ": holds no variables (an empty or truncated file)");
+      if (all.empty()) throw InputError(path + ": holds no variables (an empty or truncated file)");
       std::vector<std::string> names;
-      for (const auto& v : all) names.push_back(v.name + " (" + v.type + " " +
-                                                      FormatDims(v.dims) + ")");
+      for (const auto& v : all)
+        names.push_back(v.name + " (" + v.type + " " + FormatDims(v.dims) + ")");
       throw InputError(fmt::format(
           "{}: no top-level numeric vectors to read as columns; map variables with --var "
           "t=NAME,u=NAME,x=NAME (variables: {})",
@@ -265,8 +263,8 @@ Recording ParseMappedCsv(std::string_view text, const std::string& source,
   for (const auto& [column, spec] : options.mapping.variables) {
     const int src = in.index_of(spec);
     if (src < 0)
-      throw InputError(fmt::format("{}: --var {}={}: no column '{}' (columns: {})", source,
-                                   column, spec, spec, JoinList(in.names)));
+      throw InputError(fmt::format("{}: --var {}={}: no column '{}' (columns: {})", source, column,
+                                   spec, spec, JoinList(in.names)));
     const int clash = in.index_of(column);
     if (clash >= 0 && clash != src) keep[static_cast<size_t>(clash)] = false;
     names[static_cast<size_t>(src)] = column;

@@ -27,8 +27,8 @@ Probe ProbeFile(const std::string& path) {
   p.opened = true;
   unsigned char head[128] = {};
   const size_t n = std::fread(head, 1, sizeof head, f);
-  if (n == sizeof head && ((head[126] == 'I' && head[127] == 'M') ||
-                           (head[126] == 'M' && head[127] == 'I')))
+  if (n == sizeof head &&
+      ((head[126] == 'I' && head[127] == 'M') || (head[126] == 'M' && head[127] == 'I')))
     p.mat5 = true;
   if (n >= 19 && std::memcmp(head, "MATLAB 7.3 MAT-file", 19) == 0) p.mat73_text = true;
   for (size_t i = 0; i < std::min<size_t>(n, 64); ++i)

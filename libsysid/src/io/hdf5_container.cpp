@@ -49,27 +49,36 @@ std::string TypeName(hid_t type) {
   const H5T_class_t cls = H5Tget_class(type);
   const size_t size = H5Tget_size(type);
   switch (cls) {
-    case H5T_FLOAT: return size == 4 ? "single" : size == 8 ? "double" : "float";
+    case H5T_FLOAT:
+      return size == 4 ? "single" : size == 8 ? "double" : "float";
     case H5T_INTEGER: {
       const bool is_signed = H5Tget_sign(type) == H5T_SGN_2;
       return fmt::format("{}int{}", is_signed ? "" : "u", size * 8);
     }
-    case H5T_STRING: return "string";
-    case H5T_COMPOUND: return "compound";
-    case H5T_ENUM: return "enum";
-    case H5T_ARRAY: return "array";
-    case H5T_VLEN: return "vlen";
-    case H5T_REFERENCE: return "reference";
-    case H5T_OPAQUE: return "opaque";
-    case H5T_BITFIELD: return "bitfield";
-    default: return "unknown";
+    case H5T_STRING:
+      return "string";
+    case H5T_COMPOUND:
+      return "compound";
+    case H5T_ENUM:
+      return "enum";
+    case H5T_ARRAY:
+      return "array";
+    case H5T_VLEN:
+      return "vlen";
+    case H5T_REFERENCE:
+      return "reference";
+    case H5T_OPAQUE:
+      return "opaque";
+    case H5T_BITFIELD:
+      return "bitfield";
+    default:
+      return "unknown";
   }
 }
 
 class Hdf5Container : public SignalContainer {
  public:
-  explicit Hdf5Container(const std::string& path)
-      : path_(path), file_(Open(path), H5Fclose) {
+  explicit Hdf5Container(const std::string& path) : path_(path), file_(Open(path), H5Fclose) {
     if (!file_.ok())
       throw InputError(path + ": not a readable HDF5 file (bad superblock, or truncated)");
     if (H5Lvisit(file_.get(), H5_INDEX_NAME, H5_ITER_INC, &CollectDataset, &datasets_) < 0)
@@ -112,8 +121,8 @@ class Hdf5Container : public SignalContainer {
     const std::string where = path_ + ":" + spec.text;
     const std::string name = spec.name.front() == '/' ? spec.name : "/" + spec.name;
     if (std::find(datasets_.begin(), datasets_.end(), name) == datasets_.end())
-      throw InputError(fmt::format("{}: no dataset '{}' (datasets: {})", path_, name,
-                                   JoinList(datasets_)));
+      throw InputError(
+          fmt::format("{}: no dataset '{}' (datasets: {})", path_, name, JoinList(datasets_)));
     Handle ds(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     if (!ds.ok()) throw InputError(where + ": cannot open the dataset (corrupt file)");
     Handle type(H5Dget_type(ds.get()), H5Tclose);
@@ -129,26 +138,30 @@ class Hdf5Container : public SignalContainer {
                        "); expected a real numeric vector");
     const double count = ElementCount(dims);
     if (count == 0) throw InputError(where + ": is empty (" + shape + ")");
-    const int non_singleton = static_cast<int>(
-        std::count_if(dims.begin(), dims.end(), [](auto d) { return d != 1; }));
+    const int non_singleton =
+        static_cast<int>(std::count_if(dims.begin(), dims.end(), [](auto d) { return d != 1; }));
     Handle file_space(H5Dget_space(ds.get()), H5Sclose);
     if (!file_space.ok()) throw InputError(where + ": cannot read the dataset's shape");
     std::uint64_t n = 0;
     if (spec.pick == VariableSpec::Pick::kWhole) {
       if (non_singleton > 1)
-        throw InputError(fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
-                                     "with {}[k,:] (k 1-based, like MATLAB)",
-                                     where, shape, spec.name, spec.name));
+        throw InputError(
+            fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
+                        "with {}[k,:] (k 1-based, like MATLAB)",
+                        where, shape, spec.name, spec.name));
       n = static_cast<std::uint64_t>(count);
     } else {
       if (dims.size() != 2)
-        throw InputError(fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
-                                     "dataset", where, dims.size(), shape));
+        throw InputError(
+            fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
+                        "dataset",
+                        where, dims.size(), shape));
       const bool column = spec.pick == VariableSpec::Pick::kColumn;
       if (spec.index > (column ? dims[1] : dims[0]))
-        throw InputError(fmt::format("{}: {} {} out of range: the dataset is {} (indices are "
-                                     "1-based, like MATLAB)",
-                                     where, column ? "column" : "row", spec.index, shape));
+        throw InputError(
+            fmt::format("{}: {} {} out of range: the dataset is {} (indices are "
+                        "1-based, like MATLAB)",
+                        where, column ? "column" : "row", spec.index, shape));
       hsize_t start[2] = {column ? 0 : spec.index - 1, column ? spec.index - 1 : 0};
       hsize_t edge[2] = {column ? dims[0] : 1, column ? 1 : dims[1]};
       if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, edge, nullptr) < 0)
@@ -156,9 +169,10 @@ class Hdf5Container : public SignalContainer {
       n = column ? dims[0] : dims[1];
     }
     if (static_cast<double>(n) > kMaxVariableElements)
-      throw InputError(fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
-                                   "signal may hold",
-                                   where, shape, static_cast<double>(n), kMaxVariableElements));
+      throw InputError(
+          fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
+                      "signal may hold",
+                      where, shape, static_cast<double>(n), kMaxVariableElements));
     Eigen::VectorXd v(static_cast<Eigen::Index>(n));
     hsize_t mem_dims[1] = {n};
     Handle mem_space(H5Screate_simple(1, mem_dims, nullptr), H5Sclose);
@@ -191,8 +205,8 @@ class Hdf5Container : public SignalContainer {
     std::vector<std::uint64_t> dims;
     if (!space.ok()) return dims;
     const int rank = H5Sget_simple_extent_ndims(space.get());
-    if (rank == 0) return {1};                  // a scalar
-    if (rank < 0 || rank > 32) return {0};       // a null dataspace holds nothing
+    if (rank == 0) return {1};              // a scalar
+    if (rank < 0 || rank > 32) return {0};  // a null dataspace holds nothing
     std::vector<hsize_t> d(static_cast<size_t>(rank));
     H5Sget_simple_extent_dims(space.get(), d.data(), nullptr);
     for (const auto x : d) dims.push_back(x);

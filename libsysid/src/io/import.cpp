@@ -32,10 +32,10 @@ std::string DefaultVariable(const ImportColumn& c) {
   if (vectors.size() == 1) return vectors.front();
   std::vector<std::string> names;
   for (const auto& v : vars) names.push_back(v.name);
-  throw InputError(fmt::format("{}: --column {}: no variable '{}' and not exactly one numeric "
-                               "vector: name it, --column {}={}:VARIABLE (variables: {})",
-                               c.file, c.column, c.column, c.column, c.file,
-                               internal::JoinList(names)));
+  throw InputError(
+      fmt::format("{}: --column {}: no variable '{}' and not exactly one numeric "
+                  "vector: name it, --column {}={}:VARIABLE (variables: {})",
+                  c.file, c.column, c.column, c.column, c.file, internal::JoinList(names)));
 }
 
 }  // namespace
@@ -44,16 +44,16 @@ Recording ImportRecording(const ImportOptions& options) {
   if (options.columns.empty())
     throw OptionsError("import: no columns: give at least one --column NAME=FILE[:VARIABLE]",
                        "columns");
-  if (options.columns.size() > 256)
-    throw OptionsError("import: more than 256 columns", "columns");
+  if (options.columns.size() > 256) throw OptionsError("import: more than 256 columns", "columns");
   Recording rec;
   rec.source = "import";
   std::vector<std::pair<std::string, std::string>> origins;
   for (const auto& c : options.columns) {
     const bool ok = !c.column.empty() && c.column.size() <= 64 &&
-                    std::all_of(c.column.begin(), c.column.end(), [](char ch) {
-                      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-                    }) &&
+                    std::all_of(c.column.begin(), c.column.end(),
+                                [](char ch) {
+                                  return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                                }) &&
                     !std::isdigit(static_cast<unsigned char>(c.column[0]));
     if (!ok)
       throw OptionsError(fmt::format("--column {}: a column name is a letter or '_', then "

@@ -44,32 +44,58 @@ using VarPtr = std::unique_ptr<matvar_t, VarFree>;
 
 std::string ClassName(const matvar_t* v) {
   switch (v->class_type) {
-    case MAT_C_DOUBLE: return "double";
-    case MAT_C_SINGLE: return "single";
-    case MAT_C_INT8: return "int8";
-    case MAT_C_UINT8: return v->isLogical ? "logical" : "uint8";
-    case MAT_C_INT16: return "int16";
-    case MAT_C_UINT16: return "uint16";
-    case MAT_C_INT32: return "int32";
-    case MAT_C_UINT32: return "uint32";
-    case MAT_C_INT64: return "int64";
-    case MAT_C_UINT64: return "uint64";
-    case MAT_C_CHAR: return "char";
-    case MAT_C_STRUCT: return "struct";
-    case MAT_C_CELL: return "cell";
-    case MAT_C_SPARSE: return "sparse";
-    case MAT_C_FUNCTION: return "function";
-    case MAT_C_OBJECT: return "object";
-    case MAT_C_OPAQUE: return "opaque";
-    case MAT_C_EMPTY: return "empty";
+    case MAT_C_DOUBLE:
+      return "double";
+    case MAT_C_SINGLE:
+      return "single";
+    case MAT_C_INT8:
+      return "int8";
+    case MAT_C_UINT8:
+      return v->isLogical ? "logical" : "uint8";
+    case MAT_C_INT16:
+      return "int16";
+    case MAT_C_UINT16:
+      return "uint16";
+    case MAT_C_INT32:
+      return "int32";
+    case MAT_C_UINT32:
+      return "uint32";
+    case MAT_C_INT64:
+      return "int64";
+    case MAT_C_UINT64:
+      return "uint64";
+    case MAT_C_CHAR:
+      return "char";
+    case MAT_C_STRUCT:
+      return "struct";
+    case MAT_C_CELL:
+      return "cell";
+    case MAT_C_SPARSE:
+      return "sparse";
+    case MAT_C_FUNCTION:
+      return "function";
+    case MAT_C_OBJECT:
+      return "object";
+    case MAT_C_OPAQUE:
+      return "opaque";
+    case MAT_C_EMPTY:
+      return "empty";
   }
   return "unknown";
 }
 
 bool IsNumericClass(const matvar_t* v) {
   switch (v->class_type) {
-    case MAT_C_DOUBLE: case MAT_C_SINGLE: case MAT_C_INT8: case MAT_C_UINT8: case MAT_C_INT16:
-    case MAT_C_UINT16: case MAT_C_INT32: case MAT_C_UINT32: case MAT_C_INT64: case MAT_C_UINT64:
+    case MAT_C_DOUBLE:
+    case MAT_C_SINGLE:
+    case MAT_C_INT8:
+    case MAT_C_UINT8:
+    case MAT_C_INT16:
+    case MAT_C_UINT16:
+    case MAT_C_INT32:
+    case MAT_C_UINT32:
+    case MAT_C_INT64:
+    case MAT_C_UINT64:
       return true;
     default:
       return false;
@@ -95,8 +121,7 @@ double TreeElements(const matvar_t* v, int depth = 0) {
   if ((v->class_type != MAT_C_STRUCT && v->class_type != MAT_C_CELL) || !v->data) return own;
   double n = 0;
   size_t count = static_cast<size_t>(own);
-  if (v->class_type == MAT_C_STRUCT)
-    count *= Mat_VarGetNumberOfFields(const_cast<matvar_t*>(v));
+  if (v->class_type == MAT_C_STRUCT) count *= Mat_VarGetNumberOfFields(const_cast<matvar_t*>(v));
   matvar_t* const* items = static_cast<matvar_t* const*>(v->data);
   if (v->data_size != 0 && v->nbytes / v->data_size < count) return 1e30;  // inconsistent
   for (size_t i = 0; i < count; ++i)
@@ -171,8 +196,7 @@ class MatContainer : public SignalContainer {
       const size_t n = static_cast<size_t>(ElementCount(Dims(y)));
       for (size_t i = 0; i < n; ++i) {
         const matvar_t* d = Field(y, "Data", i);
-        VariableInfo info =
-            Describe(d, CharString(Field(y, "Name", i)));
+        VariableInfo info = Describe(d, CharString(Field(y, "Name", i)));
         info.type += fmt::format(" ({}.Y({}).Data)", controldesk_, i + 1);
         Eigen::VectorXd values;
         if (d && ToDoubles(d, &values)) SetRange(info, values);
@@ -200,8 +224,8 @@ class MatContainer : public SignalContainer {
     }
     if (!var) {
       std::vector<std::string> names = Names();
-      throw InputError(fmt::format("{}: no variable '{}' (variables: {})", path_, spec.name,
-                                   JoinList(names)));
+      throw InputError(
+          fmt::format("{}: no variable '{}' (variables: {})", path_, spec.name, JoinList(names)));
     }
     return Pick(var, spec, where);
   }
@@ -271,9 +295,10 @@ class MatContainer : public SignalContainer {
   void CheckBound(const matvar_t* info, const std::string& where) const {
     const double n = TreeElements(info);
     if (n > kMaxVariableElements)
-      throw InputError(fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
-                                   "variable may hold",
-                                   where, FormatDims(Dims(info)), n, kMaxVariableElements));
+      throw InputError(
+          fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
+                      "variable may hold",
+                      where, FormatDims(Dims(info)), n, kMaxVariableElements));
   }
 
   // The whole ControlDesk struct, read once.
@@ -332,17 +357,38 @@ class MatContainer : public SignalContainer {
     if (size == 0 || v->nbytes < n * size) return false;
     out->resize(static_cast<Eigen::Index>(n));
     switch (v->class_type) {
-      case MAT_C_DOUBLE: Convert<double>(v->data, n, *out); break;
-      case MAT_C_SINGLE: Convert<float>(v->data, n, *out); break;
-      case MAT_C_INT8: Convert<std::int8_t>(v->data, n, *out); break;
-      case MAT_C_UINT8: Convert<std::uint8_t>(v->data, n, *out); break;
-      case MAT_C_INT16: Convert<std::int16_t>(v->data, n, *out); break;
-      case MAT_C_UINT16: Convert<std::uint16_t>(v->data, n, *out); break;
-      case MAT_C_INT32: Convert<std::int32_t>(v->data, n, *out); break;
-      case MAT_C_UINT32: Convert<std::uint32_t>(v->data, n, *out); break;
-      case MAT_C_INT64: Convert<std::int64_t>(v->data, n, *out); break;
-      case MAT_C_UINT64: Convert<std::uint64_t>(v->data, n, *out); break;
-      default: return false;
+      case MAT_C_DOUBLE:
+        Convert<double>(v->data, n, *out);
+        break;
+      case MAT_C_SINGLE:
+        Convert<float>(v->data, n, *out);
+        break;
+      case MAT_C_INT8:
+        Convert<std::int8_t>(v->data, n, *out);
+        break;
+      case MAT_C_UINT8:
+        Convert<std::uint8_t>(v->data, n, *out);
+        break;
+      case MAT_C_INT16:
+        Convert<std::int16_t>(v->data, n, *out);
+        break;
+      case MAT_C_UINT16:
+        Convert<std::uint16_t>(v->data, n, *out);
+        break;
+      case MAT_C_INT32:
+        Convert<std::int32_t>(v->data, n, *out);
+        break;
+      case MAT_C_UINT32:
+        Convert<std::uint32_t>(v->data, n, *out);
+        break;
+      case MAT_C_INT64:
+        Convert<std::int64_t>(v->data, n, *out);
+        break;
+      case MAT_C_UINT64:
+        Convert<std::uint64_t>(v->data, n, *out);
+        break;
+      default:
+        return false;
     }
     return true;
   }
@@ -352,7 +398,8 @@ class MatContainer : public SignalContainer {
                               const std::string& where) {
     const auto dims = Dims(v);
     const std::string shape = ClassName(v) + " " + FormatDims(dims);
-    if (v->isComplex) throw InputError(where + ": is complex (" + shape + "); expected real numbers");
+    if (v->isComplex)
+      throw InputError(where + ": is complex (" + shape + "); expected real numbers");
     if (v->class_type == MAT_C_SPARSE)
       throw InputError(where + ": is a sparse matrix (" + FormatDims(dims) +
                        "); save it full (full(...)) first");
@@ -361,8 +408,9 @@ class MatContainer : public SignalContainer {
                        "); expected a numeric vector (a dSPACE ControlDesk export is read by "
                        "naming its signals: --var u=NAME)");
     if (!IsNumericClass(v))
-      throw InputError(where + ": is " + (v->class_type == MAT_C_CELL ? "a cell array" : "a " +
-                       ClassName(v)) + " (" + FormatDims(dims) + "); expected a real numeric vector");
+      throw InputError(where + ": is " +
+                       (v->class_type == MAT_C_CELL ? "a cell array" : "a " + ClassName(v)) + " (" +
+                       FormatDims(dims) + "); expected a real numeric vector");
     if (ElementCount(dims) == 0) throw InputError(where + ": is empty (" + shape + ")");
     Eigen::VectorXd all;
     if (!ToDoubles(v, &all))
@@ -370,21 +418,25 @@ class MatContainer : public SignalContainer {
     Eigen::VectorXd out;
     if (spec.pick == VariableSpec::Pick::kWhole) {
       if (NonSingleton(dims) > 1)
-        throw InputError(fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
-                                     "with {}[k,:] (k 1-based, like MATLAB)",
-                                     where, shape, spec.name, spec.name));
+        throw InputError(
+            fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
+                        "with {}[k,:] (k 1-based, like MATLAB)",
+                        where, shape, spec.name, spec.name));
       out = std::move(all);
     } else {
       if (dims.size() != 2)
-        throw InputError(fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
-                                     "matrix", where, dims.size(), shape));
+        throw InputError(
+            fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
+                        "matrix",
+                        where, dims.size(), shape));
       const bool column = spec.pick == VariableSpec::Pick::kColumn;
       const std::uint64_t rows = dims[0], cols = dims[1];
       const std::uint64_t limit = column ? cols : rows;
       if (spec.index > limit)
-        throw InputError(fmt::format("{}: {} {} out of range: the matrix is {} (indices are "
-                                     "1-based, like MATLAB)",
-                                     where, column ? "column" : "row", spec.index, shape));
+        throw InputError(
+            fmt::format("{}: {} {} out of range: the matrix is {} (indices are "
+                        "1-based, like MATLAB)",
+                        where, column ? "column" : "row", spec.index, shape));
       const std::uint64_t k = spec.index - 1;
       const auto n = static_cast<Eigen::Index>(column ? rows : cols);
       out.resize(n);

@@ -15,15 +15,15 @@ namespace sysid {
 
 void WriteRecordingMat(const std::string& path, const Recording& recording) {
   for (const auto& name : recording.names) {
-    const bool ok = !name.empty() && name.size() <= 63 &&
-                    std::isalpha(static_cast<unsigned char>(name[0])) &&
-                    std::all_of(name.begin(), name.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                    });
+    const bool ok =
+        !name.empty() && name.size() <= 63 && std::isalpha(static_cast<unsigned char>(name[0])) &&
+        std::all_of(name.begin(), name.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
     if (!ok)
-      throw InputError(fmt::format("{}: column '{}' is not a MATLAB variable name (a letter, "
-                                   "then letters, digits or '_', at most 63)",
-                                   path, name));
+      throw InputError(
+          fmt::format("{}: column '{}' is not a MATLAB variable name (a letter, "
+                      "then letters, digits or '_', at most 63)",
+                      path, name));
   }
   internal::WriteThroughTempFile(path, [&](int, const std::string& tmp) {
     const auto fail = [&](const std::string& why) {
@@ -35,8 +35,8 @@ void WriteRecordingMat(const std::string& path, const Recording& recording) {
     for (size_t c = 0; c < recording.names.size(); ++c) {
       column = recording.data.col(static_cast<Eigen::Index>(c));
       size_t dims[2] = {static_cast<size_t>(column.size()), 1};
-      matvar_t* v = Mat_VarCreate(recording.names[c].c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2,
-                                  dims, column.data(), MAT_F_DONT_COPY_DATA);
+      matvar_t* v = Mat_VarCreate(recording.names[c].c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims,
+                                  column.data(), MAT_F_DONT_COPY_DATA);
       const bool ok = v && Mat_VarWrite(mat, v, MAT_COMPRESSION_ZLIB) == 0;
       if (v) Mat_VarFree(v);
       if (!ok) {

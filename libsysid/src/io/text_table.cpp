@@ -1,13 +1,13 @@
 // ReadTextTable: whitespace- or comma-separated numbers, an optional header line of names,
 // '#' comment lines. As strict as the CSV reader: every cell is a whole finite number.
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
@@ -86,30 +86,29 @@ TextTable ReadTextTable(const std::string& path) {
       if (!ParseDouble(fields[0].first, &v)) {  // a header line of names
         for (const auto& f : fields) {
           if (f.first.empty())
-            throw InputError(fmt::format("{}:{}:{}: header: empty column name", path, line_no,
-                                         f.second));
+            throw InputError(
+                fmt::format("{}:{}:{}: header: empty column name", path, line_no, f.second));
           table.names.emplace_back(f.first);
         }
         continue;
       }
     }
     if (fields.size() != ncol)
-      throw InputError(fmt::format("{}:{}: expected {} fields, found {}", path, line_no, ncol,
-                                   fields.size()));
+      throw InputError(
+          fmt::format("{}:{}: expected {} fields, found {}", path, line_no, ncol, fields.size()));
     for (size_t c = 0; c < ncol; ++c) {
       double v = 0;
       const auto& [cell, col] = fields[c];
       if (!ParseDouble(cell, &v))
-        throw InputError(fmt::format("{}:{}:{}: column {}: expected a number, found \"{}\"",
-                                     path, line_no, col, c + 1,
-                                     cell.size() > 40 ? std::string(cell.substr(0, 40)) + "..."
-                                                      : std::string(cell)));
+        throw InputError(fmt::format(
+            "{}:{}:{}: column {}: expected a number, found \"{}\"", path, line_no, col, c + 1,
+            cell.size() > 40 ? std::string(cell.substr(0, 40)) + "..." : std::string(cell)));
       if (!std::isfinite(v))
         throw InputError(fmt::format("{}:{}:{}: column {}: expected a finite number, found \"{}\"",
                                      path, line_no, col, c + 1, std::string(cell)));
       if (static_cast<double>(table.columns[c].size()) >= kMaxSignalSamples)
-        throw InputError(fmt::format("{}:{}: more than {:.0f} rows", path, line_no,
-                                     kMaxSignalSamples));
+        throw InputError(
+            fmt::format("{}:{}: more than {:.0f} rows", path, line_no, kMaxSignalSamples));
       table.columns[c].push_back(v);
     }
   }

@@ -26,8 +26,7 @@ NeuralDataset MakeNeuralDataset(const Recording& recording,
 
 NeuralDataset ReadNeuralDataset(const std::string& path,
                                 const std::vector<std::string>& input_names,
-                                const std::string& output_name,
-                                const SourceMapping& mapping) {
+                                const std::string& output_name, const SourceMapping& mapping) {
   ReadOptions ro;
   ro.mapping = mapping;
   ro.required_columns = input_names;
