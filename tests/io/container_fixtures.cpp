@@ -11,7 +11,9 @@
 namespace sysid::test {
 namespace {
 
-mat_ft FileType(MatVersion v) { return v == MatVersion::kV73 ? MAT_FT_MAT73 : MAT_FT_MAT5; }
+mat_ft FileType(MatVersion v) {
+  return v == MatVersion::kV73 ? MAT_FT_MAT73 : v == MatVersion::kV4 ? MAT_FT_MAT4 : MAT_FT_MAT5;
+}
 matio_compression Compression(MatVersion v) {
   return v == MatVersion::kV5Compressed ? MAT_COMPRESSION_ZLIB : MAT_COMPRESSION_NONE;
 }
@@ -117,9 +119,7 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
     Mat_VarSetStructFieldByName(y, "Type", i, CharVar("Type", "Value"));
     Mat_VarSetStructFieldByName(y, "Raster", i, CharVar("Raster", "Host Service 1"));
     Mat_VarSetStructFieldByName(y, "Data", i, DoubleVar("Data", signals[i], 1, signals[i].size()));
-    // Not empty: matio 1.5.23 writes an empty char field of a compressed struct array so that
-    // it cannot read it back ("Uncompressed type not MAT_T_MATRIX").
-    Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", "V"));
+    Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", ""));
   }
   Mat_VarSetStructFieldByName(top, "X", 0, x);
   Mat_VarSetStructFieldByName(top, "Y", 0, y);

@@ -9,7 +9,7 @@
 
 namespace sysid::test {
 
-enum class MatVersion { kV5, kV5Compressed, kV73 };
+enum class MatVersion { kV4, kV5, kV5Compressed, kV73 };
 
 /// A real double matrix rows x cols, column-major values.
 struct MatArray {
