@@ -71,6 +71,31 @@ VariableSpec ParseVariableSpec(const std::string& path, const std::string& spec)
   return out;
 }
 
+std::uint64_t PickedLength(const VariableSpec& spec, const std::vector<std::uint64_t>& dims,
+                           const std::string& shape, const char* kind, const std::string& where) {
+  const double count = ElementCount(dims);
+  if (count > kMaxVariableElements)  // checked before any cast: count may be past 2^64
+    throw InputError(fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
+                                 "variable may hold",
+                                 where, shape, count, kMaxVariableElements));
+  if (spec.pick == VariableSpec::Pick::kWhole) {
+    if (std::count_if(dims.begin(), dims.end(), [](auto d) { return d != 1; }) > 1)
+      throw InputError(fmt::format("{}: is a {} ({}); pick a column with {}[:,k] or a row with "
+                                   "{}[k,:] (k 1-based, like MATLAB)",
+                                   where, kind, shape, spec.name, spec.name));
+    return static_cast<std::uint64_t>(count);
+  }
+  if (dims.size() != 2)
+    throw InputError(fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D {}",
+                                 where, dims.size(), shape, kind));
+  const bool column = spec.pick == VariableSpec::Pick::kColumn;
+  if (spec.index > (column ? dims[1] : dims[0]))
+    throw InputError(fmt::format("{}: {} {} out of range: the {} is {} (indices are 1-based, "
+                                 "like MATLAB)",
+                                 where, column ? "column" : "row", spec.index, kind, shape));
+  return column ? dims[0] : dims[1];
+}
+
 std::string FormatDims(const std::vector<std::uint64_t>& dims) {
   std::string s;
   for (const auto d : dims) s += (s.empty() ? "" : "x") + std::to_string(d);
@@ -81,7 +106,7 @@ double ElementCount(const std::vector<std::uint64_t>& dims) {
   double n = 1;
   for (const auto d : dims) {
     n *= static_cast<double>(d);
-    if (n > 1e30) return 1e30;
+    if (n > kElementCountCap) return kElementCountCap;
   }
   return n;
 }

@@ -55,13 +55,22 @@ std::unique_ptr<SignalContainer> OpenHdf5Container(const std::string& path);
 /// By DetectFileFormat; throws InputError for a text file.
 std::unique_ptr<SignalContainer> OpenContainer(const std::string& path);
 
+/// Checks `spec`'s pick against a variable of `dims` (`shape` and `kind`, "matrix" or "dataset",
+/// name it in messages) and returns the length of the vector it picks. Throws InputError
+/// "where: is a matrix (...); pick a column with NAME[:,k] ..." without an index on a matrix,
+/// "... column 4 out of range ..." or "... is 3-dimensional ..." (k 1-based in every message).
+std::uint64_t PickedLength(const VariableSpec& spec, const std::vector<std::uint64_t>& dims,
+                           const std::string& shape, const char* kind, const std::string& where);
+
 /// Turns off the HDF5 library's printing of its error stack (this thread): its failures become
 /// our InputErrors instead.
 void SilenceHdf5Errors();
 
 /// "1x8192", "40960x1".
 std::string FormatDims(const std::vector<std::uint64_t>& dims);
-/// Product of `dims`, or a value above kMaxVariableElements when it would overflow.
+/// Product of `dims`, at most kElementCountCap (below 2^64, so that it converts to uint64_t and
+/// size_t without overflow; far above kMaxVariableElements).
+inline constexpr double kElementCountCap = 1.8e19;
 double ElementCount(const std::vector<std::uint64_t>& dims);
 /// Throws InputError "where: expected a finite number, found NaN" at the first bad value,
 /// `where` followed by [i] with i 1-based.

@@ -138,41 +138,16 @@ class Hdf5Container : public SignalContainer {
                        "); expected a real numeric vector");
     const double count = ElementCount(dims);
     if (count == 0) throw InputError(where + ": is empty (" + shape + ")");
-    const int non_singleton =
-        static_cast<int>(std::count_if(dims.begin(), dims.end(), [](auto d) { return d != 1; }));
     Handle file_space(H5Dget_space(ds.get()), H5Sclose);
     if (!file_space.ok()) throw InputError(where + ": cannot read the dataset's shape");
-    std::uint64_t n = 0;
-    if (spec.pick == VariableSpec::Pick::kWhole) {
-      if (non_singleton > 1)
-        throw InputError(
-            fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
-                        "with {}[k,:] (k 1-based, like MATLAB)",
-                        where, shape, spec.name, spec.name));
-      n = static_cast<std::uint64_t>(count);
-    } else {
-      if (dims.size() != 2)
-        throw InputError(
-            fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
-                        "dataset",
-                        where, dims.size(), shape));
+    const std::uint64_t n = PickedLength(spec, dims, shape, "dataset", where);
+    if (spec.pick != VariableSpec::Pick::kWhole) {
       const bool column = spec.pick == VariableSpec::Pick::kColumn;
-      if (spec.index > (column ? dims[1] : dims[0]))
-        throw InputError(
-            fmt::format("{}: {} {} out of range: the dataset is {} (indices are "
-                        "1-based, like MATLAB)",
-                        where, column ? "column" : "row", spec.index, shape));
       hsize_t start[2] = {column ? 0 : spec.index - 1, column ? spec.index - 1 : 0};
       hsize_t edge[2] = {column ? dims[0] : 1, column ? 1 : dims[1]};
       if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, edge, nullptr) < 0)
         throw InputError(where + ": cannot select the " + (column ? "column" : "row"));
-      n = column ? dims[0] : dims[1];
     }
-    if (static_cast<double>(n) > kMaxVariableElements)
-      throw InputError(
-          fmt::format("{}: declares {} ({:.3g} elements), more than the {:.0f} a "
-                      "signal may hold",
-                      where, shape, static_cast<double>(n), kMaxVariableElements));
     Eigen::VectorXd v(static_cast<Eigen::Index>(n));
     hsize_t mem_dims[1] = {n};
     Handle mem_space(H5Screate_simple(1, mem_dims, nullptr), H5Sclose);

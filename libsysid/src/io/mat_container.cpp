@@ -115,7 +115,7 @@ int NonSingleton(const std::vector<std::uint64_t>& dims) {
 
 // Elements a variable declares, struct and cell leaves included (bounded before reading data).
 double TreeElements(const matvar_t* v, int depth = 0) {
-  if (depth > 16) return 1e30;
+  if (depth > 16) return kElementCountCap;
   const double own = ElementCount(Dims(v));
   if (own > kMaxVariableElements) return own;
   if ((v->class_type != MAT_C_STRUCT && v->class_type != MAT_C_CELL) || !v->data) return own;
@@ -123,7 +123,7 @@ double TreeElements(const matvar_t* v, int depth = 0) {
   size_t count = static_cast<size_t>(own);
   if (v->class_type == MAT_C_STRUCT) count *= Mat_VarGetNumberOfFields(const_cast<matvar_t*>(v));
   matvar_t* const* items = static_cast<matvar_t* const*>(v->data);
-  if (v->data_size != 0 && v->nbytes / v->data_size < count) return 1e30;  // inconsistent
+  if (v->data_size != 0 && v->nbytes / v->data_size < count) return kElementCountCap;  // bad
   for (size_t i = 0; i < count; ++i)
     if (items[i]) n += TreeElements(items[i], depth + 1);
   return n;
@@ -416,29 +416,12 @@ class MatContainer : public SignalContainer {
     if (!ToDoubles(v, &all))
       throw InputError(where + ": cannot read the variable's data (truncated or corrupt file)");
     Eigen::VectorXd out;
+    const auto n = static_cast<Eigen::Index>(PickedLength(spec, dims, shape, "matrix", where));
     if (spec.pick == VariableSpec::Pick::kWhole) {
-      if (NonSingleton(dims) > 1)
-        throw InputError(
-            fmt::format("{}: is a matrix ({}); pick a column with {}[:,k] or a row "
-                        "with {}[k,:] (k 1-based, like MATLAB)",
-                        where, shape, spec.name, spec.name));
       out = std::move(all);
     } else {
-      if (dims.size() != 2)
-        throw InputError(
-            fmt::format("{}: is {}-dimensional ({}); [:,k] and [k,:] need a 2-D "
-                        "matrix",
-                        where, dims.size(), shape));
       const bool column = spec.pick == VariableSpec::Pick::kColumn;
-      const std::uint64_t rows = dims[0], cols = dims[1];
-      const std::uint64_t limit = column ? cols : rows;
-      if (spec.index > limit)
-        throw InputError(
-            fmt::format("{}: {} {} out of range: the matrix is {} (indices are "
-                        "1-based, like MATLAB)",
-                        where, column ? "column" : "row", spec.index, shape));
-      const std::uint64_t k = spec.index - 1;
-      const auto n = static_cast<Eigen::Index>(column ? rows : cols);
+      const std::uint64_t rows = dims[0], k = spec.index - 1;
       out.resize(n);
       for (Eigen::Index i = 0; i < n; ++i)
         out[i] = column ? all[static_cast<Eigen::Index>(k * rows) + i]
