@@ -26,14 +26,23 @@ namespace {
 
 // matio and HDF5 read files, not memory: each input is written to one file per process (in the
 // system's temp folder) and read from there.
+// Removed when the process ends normally.
+struct ScratchFile {
+  std::string path;
+  ~ScratchFile() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+  }
+};
+
 std::string InputFile(const std::string& target, std::string_view bytes) {
-  static const std::string path =
+  static const ScratchFile file{
       (std::filesystem::temp_directory_path() /
        ("sysid-fuzz-" + std::to_string(::getpid()) + (target == "mat" ? ".mat" : ".h5")))
-          .string();
-  std::ofstream(path, std::ios::binary | std::ios::trunc)
+          .string()};
+  std::ofstream(file.path, std::ios::binary | std::ios::trunc)
       .write(bytes.data(), static_cast<long>(bytes.size()));
-  return path;
+  return file.path;
 }
 
 // The MAT and HDF5 readers: list the variables, then read the file as a recording both without
