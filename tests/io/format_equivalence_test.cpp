@@ -72,3 +72,31 @@ TEST_CASE(
 
 }  // namespace
 }  // namespace sysid::test
+
+namespace sysid::test {
+namespace {
+
+TEST_CASE("compare --traces mat writes the traces as MAT v5, equal to the CSV ones",
+          "[io][mat][cli]") {
+  TempDir dir;
+  const std::string rec = SourcePath("datasets/virtual/pulses.csv");
+  CliResult r = RunCli({"identify", "--method", "pulse", "--json", rec});
+  REQUIRE(r.exit_code == 0);
+  WriteText(dir / "m.json", r.out);
+  r = RunCli({"compare", "--model", dir / "m.json", "--no-plots", "-o", dir / "csv", rec});
+  REQUIRE(r.exit_code == 0);
+  r = RunCli({"compare", "--model", dir / "m.json", "--no-plots", "--traces", "mat", "-o",
+              dir / "mat", rec});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  ReadOptions any;
+  any.required_columns.clear();
+  any.any_of_columns.clear();
+  const Recording a = ReadRecording(dir / "csv/pulses_traces.csv", any);
+  const Recording b = ReadRecording(dir / "mat/pulses_traces.mat", any);
+  CHECK(b.names == a.names);
+  CHECK(b.data == a.data);
+}
+
+}  // namespace
+}  // namespace sysid::test
