@@ -38,3 +38,17 @@ def test_save_mat_round_trip(tmp_path):
     rec.save(str(tmp_path / "r.mat"))
     back = sysid.read_recording(str(tmp_path / "r.mat"))
     np.testing.assert_array_equal(back.data, rec.data)
+
+
+def test_batch_reads_mat_files_through_var(tmp_path):
+    csv = os.path.join(ROOT, "datasets", "virtual", "pulses.csv")
+    rec = sysid.read_recording(csv)
+    rec.save(str(tmp_path / "p.mat"))
+    a = sysid.batch([csv], task="identify_pulses", threads=1)
+    b = sysid.batch([str(tmp_path / "p.mat")], task="identify_pulses", threads=1,
+                 var={"t": "t", "u": "u", "x": "x"})
+    for k in ("a1p", "a1n", "a2p", "a2n"):
+        assert a[k][0] == b[k][0]
+    bad = sysid.batch([str(tmp_path / "p.mat")], task="dominance", model=sysid.Model.paper(),
+                   threads=1, errors="record", var={"t": "t", "u": "missing"})
+    assert "no variable 'missing'" in bad["error"][0]
