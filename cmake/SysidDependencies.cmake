@@ -8,6 +8,10 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(Threads REQUIRED)
+# MAT (libmatio-dev) and HDF5 (libhdf5-dev, the serial build) recordings, through pkg-config.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(SYSID_MATIO REQUIRED IMPORTED_TARGET GLOBAL matio)
+pkg_check_modules(SYSID_HDF5 REQUIRED IMPORTED_TARGET GLOBAL hdf5-serial)
 # Boost.Math headers (libboost-dev): the signal tests cross-check Savitzky-Golay against
 # boost::math::differentiation::discrete_lanczos_derivative. Tests only: not a library dependency.
 if(SYSID_BUILD_TESTS)

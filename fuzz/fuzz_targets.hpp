@@ -1,4 +1,5 @@
-// The fuzzed readers: the CSV reader and the three JSON readers (model, network, stage). A
+// The fuzzed readers: the CSV reader, the MAT and HDF5 readers, and the three JSON readers
+// (model, network, stage). A
 // target may reject its input only with sysid::InputError; anything else (another exception,
 // a sanitizer report, a crash) is a bug the fuzzers exist to find.
 #ifndef SYSID_FUZZ_FUZZ_TARGETS_HPP_
@@ -10,7 +11,7 @@
 
 namespace sysid::fuzz {
 
-/// Target names: csv, model, network, stage.
+/// Target names: csv, model, network, stage, mat (MAT v4/v5/v7.3 through matio), hdf5.
 bool IsTarget(const std::string& name);
 
 /// Runs `target` on `data`. Returns true when the input was accepted, false when it was

@@ -16,9 +16,9 @@ flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefin
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSYSID_FUZZ=ON -DSYSID_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build "$build" -j"${SYSID_JOBS:-2}" --target fuzz_csv fuzz_model fuzz_network fuzz_stage
+cmake --build "$build" -j"${SYSID_JOBS:-2}" --target fuzz_csv fuzz_model fuzz_network fuzz_stage fuzz_mat fuzz_hdf5
 d="$root/datasets"
-for target in csv model network stage; do
+for target in csv model network stage mat hdf5; do
   corpus="$build/corpus_$target"
   mkdir -p "$corpus"
   case $target in
@@ -26,6 +26,8 @@ for target in csv model network stage; do
     model) cp "$root/fuzz/corpus/model.json" "$corpus/" ;;
     network) cp "$d/paper/nn24.json" "$corpus/" ;;
     stage) cp "$d/virtual/stage.json" "$corpus/" ;;
+    mat) cp "$root"/fuzz/corpus/*.mat "$corpus/" ;;
+    hdf5) cp "$root/fuzz/corpus/small.h5" "$corpus/" ;;
   esac
   echo "fuzz.sh: $target for $seconds s (log: $build/fuzz_$target.log)"
   # A crash, leak, UB report, hang or memory blow-up makes libFuzzer exit non-zero: the log's

@@ -17,6 +17,7 @@ PACKAGES=(
   clang libclang-rt-dev                # libFuzzer + sanitizers for scripts/fuzz.sh (CI's fuzz step)
   libboost-dev                         # Boost.Math (test cross-check of the smoothing derivative)
   libmatio-dev libhdf5-dev             # MATLAB MAT (v4, v5, v7.3) and HDF5 recordings
+  pkgconf                              # finds matio and the serial HDF5 (cmake/SysidDependencies.cmake)
   python3-numpy python3-scipy          # the Python peers that benchmarks run side by side
   pybind11-dev python3-pybind11        # the Python package sysid (python/)
   python3-pandas python3-dask python3-distributed python3-pytest python3-matplotlib

@@ -26,6 +26,7 @@ void InputFlags::Add(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_option("--pulse-start", pulse_train.start_s, "time of the first pulse [s]")
       ->capture_default_str();
+  recording.Add(cmd);
   std::string names;
   for (const auto& n : NamedWaveformNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--waveform", waveform, "a named test waveform of the paper: " + names)
@@ -37,7 +38,8 @@ NamedWaveform InputFlags::Choose() const {
   const int given = !input_path.empty() + !pulses.empty() + !waveform.empty();
   if (given != 1)
     throw OptionsError("give exactly one input: --input U.csv, --pulses A[,A...] or --waveform NAME");
-  if (!input_path.empty()) return ReadInputWaveform(input_path, ParseInputHold(hold));
+  if (!input_path.empty())
+    return ReadInputWaveform(input_path, ParseInputHold(hold), recording.Mapping());
   if (!pulses.empty()) {
     PulseTrainSpec spec = pulse_train;
     spec.amplitudes_v = pulses;

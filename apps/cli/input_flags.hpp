@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/recording_flags.hpp"
 #include "sysid/input.hpp"
 
 namespace sysid::cli {
@@ -17,6 +18,7 @@ struct InputFlags {
   std::vector<double> pulses;
   PulseTrainSpec pulse_train;  // on, off, repeats, start: the flags' defaults are the library's
   std::string waveform;
+  RecordingFlags recording;  ///< --var, --rate, --scale for the --input table
 
   /// Adds the flags (--input, --hold, --pulses, --pulse-on, --pulse-off, --pulse-repeats,
   /// --pulse-start, --waveform); the three sources exclude each other.

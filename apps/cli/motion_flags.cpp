@@ -21,6 +21,7 @@ void MotionFlags::Add(CLI::App* cmd, const std::string& derivative_help,
   cmd->add_option("--velocity-column", velocity_column,
                   "measured-velocity column [m/s] used when a recording has no x")
       ->capture_default_str();
+  recording.Add(cmd);
 }
 
 void MotionFlags::ApplyTo(MotionOptions& motion) const {
@@ -43,6 +44,7 @@ std::string MotionSourceNote(const std::string& from) {
 std::vector<Recording> MotionFlags::ReadRecordings(const std::vector<std::string>& paths) const {
   ReadOptions ro;
   ro.any_of_columns = {"x", velocity_column};
+  ro.mapping = recording.Mapping();
   std::vector<Recording> recs;
   std::vector<std::string> sources;
   for (const auto& p : paths) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/recording_flags.hpp"
 #include "sysid/io.hpp"
 #include "sysid/motion.hpp"
 
@@ -24,9 +25,11 @@ struct MotionFlags {
   std::string derivative;
   double cutoff_hz = MotionOptions{}.derivative.cutoff_hz;            ///< [Hz] Butterworth cut-off
   std::string velocity_column = MotionOptions{}.velocity_column;  ///< used when a recording has no x
+  RecordingFlags recording;  ///< --var, --rate, --scale (MAT/HDF5 files, renamed columns)
 
-  /// Adds the three flags; `derivative_help` says what the filter is for, `default_filter`
-  /// names the filter the algorithm's options choose (shown as the default).
+  /// Adds the three flags and the recording flags (--var, --rate, --scale); `derivative_help` says
+  /// what the filter is for, `default_filter` names the filter the algorithm's options choose
+  /// (shown as the default).
   void Add(CLI::App* cmd, const std::string& derivative_help, const std::string& default_filter);
   /// Sets the filter, cut-off, velocity column and the column rule of `motion`, and keeps a
   /// copy for ReadRecordings' note.

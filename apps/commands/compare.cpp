@@ -15,8 +15,10 @@
 #include "cli/common.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/report.hpp"
 
 namespace sysid::cli {
@@ -32,6 +34,8 @@ struct CompareCliOptions {
   bool json = false;
   bool plots = true;
   int trim = 5;
+  std::string traces = "csv";  // csv or mat: the per-recording traces files
+  RecordingFlags recording;
 };
 
 /// "v, a: columns v, a (give --derivative to derive them from x)" once per distinct source.
@@ -63,8 +67,8 @@ void RunCompare(const CompareCliOptions& o) {
   std::vector<InverseComparison> results;
   for (size_t i = 0; i < o.files.size(); ++i) {
     Progress(fmt::format("compare: {}/{} {}", i + 1, o.files.size(), o.files[i]));
-    results.push_back(
-        CompareInverseModels(ReadRecording(o.files[i]), model, nn ? &*nn : nullptr, co));
+    results.push_back(CompareInverseModels(ReadRecording(o.files[i], o.recording.Apply({})), model,
+                                           nn ? &*nn : nullptr, co));
   }
   ProgressDone();
   nlohmann::ordered_json j;
@@ -87,7 +91,8 @@ void RunCompare(const CompareCliOptions& o) {
     folder->Write([&](const fs::path& dir) {
       for (const auto& c : results) {
         const std::string stem = fs::path(c.source).stem().string();
-        WriteRecording((dir / (stem + "_traces.csv")).string(), c.AsRecording());
+        WriteRecordingByExtension((dir / (stem + "_traces." + o.traces)).string(),
+                                  c.AsRecording());
         if (!o.plots) continue;
         PlotSpec spec;
         spec.title = "inverse models on " + stem;
@@ -142,6 +147,12 @@ void AddCompareCommand(CLI::App& app) {
                 "replace a folder an earlier sysid compare wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object with the metrics per recording");
   cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
+  cmd->add_option("--traces", o->traces,
+                  "format of the per-recording traces in the output folder: csv, or mat (MAT v5, "
+                  "one variable per column)")
+      ->check(CLI::IsMember({"csv", "mat"}))
+      ->capture_default_str();
+  o->recording.Add(cmd);
   cmd->callback([o] { RunCompare(*o); });
 }
 

@@ -10,9 +10,11 @@
 
 #include "cli/common.hpp"
 #include "cli/output_file.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/motion.hpp"
 #include "sysid/signal.hpp"
 
@@ -29,6 +31,7 @@ struct DeriveCliOptions {
   std::optional<double> resample_hz;
   double jitter_tolerance = MotionOptions{}.max_relative_jitter;
   bool json = false;
+  RecordingFlags recording;
 };
 
 void RunDerive(const DeriveCliOptions& o) {
@@ -39,7 +42,8 @@ void RunDerive(const DeriveCliOptions& o) {
   if (o.decimate < 1)
     throw OptionsError(fmt::format("--decimate: K = {}. Violated constraint: K >= 1", o.decimate));
 
-  Recording rec = ReadRecording(o.path, ReadOptions{{"t", "u", "x"}, {}, true});
+  Recording rec =
+      ReadRecording(o.path, o.recording.Apply(ReadOptions{{"t", "u", "x"}, {}, true, {}}));
   if (rec.rows() < 2)
     throw InputError(fmt::format("{}: {} row; derive needs a sampled signal", o.path, rec.rows()));
   if (o.resample_hz) {
@@ -65,7 +69,7 @@ void RunDerive(const DeriveCliOptions& o) {
   if (o.resample_hz) settings += fmt::format(" resample_hz={}", *o.resample_hz);
   rec.metadata.emplace_back("derive", settings);
 
-  if (!o.output.empty()) WriteRecording(o.output, rec);
+  if (!o.output.empty()) WriteRecordingByExtension(o.output, rec);
   if (o.json) {
     // The library's summary with the command's files in front.
     nlohmann::ordered_json j;
@@ -94,7 +98,7 @@ void AddDeriveCommand(CLI::App& app) {
       ->type_name("REC.csv");
   AddOutputOption(cmd, o->output,
                   "write the recording with v [m/s] and a [m/s^2] added (replaced if present) "
-                  "to FILE; without -o the CSV goes to stdout");
+                  "to FILE (MAT v5 when it ends in .mat); without -o the CSV goes to stdout");
   GuardOutputFiles(cmd, {{&o->output, "-o"}});
   cmd->add_option("--method", o->method,
                   "central: (x[k+1]-x[k-1])/(2 dt), as the paper; butterworth: zero-phase "
@@ -140,6 +144,7 @@ void AddDeriveCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print one JSON object (file, output, method, settings, rows, columns, dt_s, "
                 "sample_rate_hz, v_mps and a_mps2 min/max/rms) instead of the CSV or a summary");
+  o->recording.Add(cmd);
   cmd->callback([o] { RunDerive(*o); });
 }
 

@@ -43,7 +43,7 @@ void RunIdentify(const IdentifyCli& o) {
     if (!o.table.empty()) {
       if (!o.recordings.empty())
         throw OptionsError("--table: give either a pulse table or recordings, not both");
-      r = FitPulseTable(ReadPulseTable(o.table), o.pulse.fit);
+      r = FitPulseTable(ReadPulseTable(o.table, o.motion.recording.Mapping()), o.pulse.fit);
     } else {
       if (o.recordings.empty())
         throw OptionsError("identify: give recordings (REC.csv...) or --table T.csv");

@@ -1,14 +1,17 @@
-// sysid info FILE.csv [--json] [--jitter-tolerance R]: summary of a recording.
+// sysid info FILE.csv|FILE.mat|FILE.h5 [--json] [--jitter-tolerance R] [--var ...]: summary of
+// a recording, or the variables of a MAT/HDF5 file when no mapping is given.
 #include <fmt/format.h>
 
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/motion.hpp"
 
 namespace sysid::cli {
@@ -18,10 +21,37 @@ struct InfoOptions {
   std::string path;
   bool json = false;
   double jitter_tolerance = MotionOptions{}.max_relative_jitter;
+  RecordingFlags recording;
 };
 
+// A MAT/HDF5 file without a mapping: its variables, so the user can write one.
+void ListFileVariables(const InfoOptions& o) {
+  const std::vector<VariableInfo> vars = ListVariables(o.path);
+  if (o.json) {
+    std::cout << VariableListToJson(o.path, vars);
+    return;
+  }
+  std::cout << fmt::format("file        {} ({})\nvariables   {}\n\n", o.path,
+                           DescribeFileFormat(o.path), vars.size());
+  Table table({"variable", "class", "dims", "length", "min", "max"});
+  for (const auto& v : vars) {
+    std::string dims;
+    for (const auto d : v.dims) dims += (dims.empty() ? "" : " x ") + std::to_string(d);
+    if (v.complex) dims += " complex";
+    const bool range = v.numeric_vector && v.length > 0;
+    table.AddRow({v.name, v.type, dims, v.numeric_vector ? std::to_string(v.length) : "",
+                  range ? Num(v.min) : "", range ? Num(v.max) : ""});
+  }
+  std::cout << table.Render();
+}
+
 void RunInfo(const InfoOptions& o) {
-  const Recording rec = ReadRecording(o.path);  // its source is o.path
+  const ReadOptions ro = o.recording.Apply({});
+  if (ro.mapping.empty() && DetectFileFormat(o.path) != FileFormat::kText) {
+    ListFileVariables(o);
+    return;
+  }
+  const Recording rec = ReadRecording(o.path, ro);  // its source is o.path
   for (const auto& w : UnitSanityWarnings(rec)) std::cerr << "sysid info: warning: " << w << '\n';
   const std::string text = RecordingSummaryToJson(rec, o.jitter_tolerance);
   if (o.json) {
@@ -53,10 +83,12 @@ void AddInfoCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "info",
       "Summarise a recording: rows, columns, duration, sampling rate and jitter, "
-      "metadata, per-column ranges (SI units)");
-  cmd->add_option("file", o->path, "recording CSV: columns t [s], u [V], x [m] or v [m/s]")
+      "metadata, per-column ranges (SI units); for a MAT or HDF5 file without --var, list its "
+      "variables (name, class, dims, length, min, max)");
+  cmd->add_option("file", o->path,
+                  "recording CSV (columns t [s], u [V], x [m] or v [m/s]), or a MAT/HDF5 file")
       ->required()
-      ->type_name("FILE.csv");
+      ->type_name("FILE");
   cmd->add_flag("--json", o->json,
                 "print one JSON object (rows, columns, duration_s, sample_rate_hz, sampling, "
                 "column_stats, metadata)");
@@ -65,6 +97,7 @@ void AddInfoCommand(CLI::App& app) {
                   "[dimensionless]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  o->recording.Add(cmd);
   cmd->callback([o] { RunInfo(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/recording_flags.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 
@@ -18,6 +19,7 @@ namespace sysid::cli {
 
 struct NeuralCliOptions {
   std::string train_path, test_path, validation_path, model_path;
+  RecordingFlags recording;  ///< --var, --rate, --scale for the training, test, validation files
   std::string inputs = "v";
   std::string output = "u";
   std::string trainer;  // set from `training` (AddNeuralOptions)
@@ -68,6 +70,7 @@ inline std::string InitFlag(NeuralInit i) {
 inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
   o.trainer = TrainerFlag(o.training.trainer);
   o.init = InitFlag(o.training.init);
+  o.recording.Add(cmd);
   cmd->add_option("--train", o.train_path,
                   "training CSV with the input and output columns (t [s] optional)")
       ->required()

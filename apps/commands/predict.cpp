@@ -8,9 +8,11 @@
 
 #include "cli/common.hpp"
 #include "cli/output_file.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/nn.hpp"
 
 namespace sysid::cli {
@@ -19,11 +21,12 @@ namespace {
 struct PredictOptions {
   std::string nn_path, data_path, out_path, column;
   bool json = false;
+  RecordingFlags recording;
 };
 
 void RunPredict(const PredictOptions& o) {
   const NeuralNetwork net = ReadNeuralNetwork(o.nn_path);
-  ReadOptions ro;
+  ReadOptions ro = o.recording.Apply({});
   ro.required_columns = net.input_names();
   ro.any_of_columns = {};
   Recording rec = ReadRecording(o.data_path, ro);
@@ -34,7 +37,7 @@ void RunPredict(const PredictOptions& o) {
     throw OptionsError("--column: " + std::string(e.what()) + " with --column", "--column");
   }
   rec.metadata.push_back({"predicted_by", o.nn_path});
-  if (!o.out_path.empty()) WriteRecording(o.out_path, rec);
+  if (!o.out_path.empty()) WriteRecordingByExtension(o.out_path, rec);
   // The library's summary with the command's files in front.
   nlohmann::ordered_json j;
   j["nn"] = o.nn_path;
@@ -72,12 +75,13 @@ void AddPredictCommand(CLI::App& app) {
       ->required()
       ->type_name("DATA.csv");
   cmd->add_option("-o", o->out_path,
-                  "output CSV: the input file's columns plus the prediction (atomic); "
-                  "default: CSV to stdout")
+                  "output CSV (MAT v5 when it ends in .mat): the input file's columns plus the "
+                  "prediction (atomic); default: CSV to stdout")
       ->type_name("OUT.csv");
   GuardOutputFiles(cmd, {{&o->out_path, "-o"}});
   cmd->add_option("--column", o->column, "name of the prediction column; default <output>_nn");
   cmd->add_flag("--json", o->json, "print a JSON summary (rows, mse, column) to stdout");
+  o->recording.Add(cmd);
   cmd->callback([o] { RunPredict(*o); });
 }
 

@@ -19,6 +19,7 @@
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/model.hpp"
 
 namespace sysid::cli {
@@ -58,7 +59,7 @@ void RunSimulate(SimulateCliOptions o) {
   out.source = o.output.empty() ? "stdout" : o.output;
   // Everything is computed before anything is written: no partial output on error.
   if (!o.events_path.empty()) WriteFileAtomically(o.events_path, EventsToCsv(r.events));
-  if (!o.output.empty()) WriteRecording(o.output, out);
+  if (!o.output.empty()) WriteRecordingByExtension(o.output, out);
 
   if (o.json) {
     nlohmann::ordered_json j;
@@ -102,7 +103,8 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--dt", o->sim.dt_out_s, "output sample interval [s]")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  AddOutputOption(cmd, o->output, "trajectory CSV t,u,x,v,a (default: stdout)");
+  AddOutputOption(cmd, o->output,
+                  "trajectory CSV t,u,x,v,a, or MAT v5 when FILE ends in .mat (default: stdout)");
   GuardOutputFiles(cmd, {{&o->output, "-o"}, {&o->events_path, "--events"}});
   cmd->add_option("--events", o->events_path,
                   "event log CSV t [s], kind (stick, slip+, slip-, reverse, a1-switch)")

@@ -29,13 +29,15 @@ void RunSweep(SweepCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   so.training = o.nn.training;
   const auto names = SplitComma(o.nn.inputs);
-  const NeuralDataset train = ReadNeuralDataset(o.nn.train_path, names, o.nn.output);
+  const NeuralDataset train =
+      ReadNeuralDataset(o.nn.train_path, names, o.nn.output, o.nn.recording.Mapping());
   std::unique_ptr<NeuralDataset> test, validation;
   if (!o.nn.test_path.empty())
-    test = std::make_unique<NeuralDataset>(ReadNeuralDataset(o.nn.test_path, names, o.nn.output));
+    test = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.nn.test_path, names, o.nn.output, o.nn.recording.Mapping()));
   if (!o.nn.validation_path.empty())
     validation = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
+        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output, o.nn.recording.Mapping()));
   if (ProgressEnabled()) {
     Progress(fmt::format("training {} networks ...", so.hidden_sizes.size()));
     const std::string unit =

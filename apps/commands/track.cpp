@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
 #include "cli/registry.hpp"
@@ -32,6 +33,7 @@ struct TrackCliOptions {
   PiOptions pi;
   std::uint64_t seed = 1;
   bool json = false, plots = true, force = false;
+  RecordingFlags recording;  // --var, --rate, --scale for --reference
 };
 
 void RunTrack(const TrackCliOptions& o) {
@@ -45,7 +47,7 @@ void RunTrack(const TrackCliOptions& o) {
   try {
     schemes = ParseFeedforwardSchemes(o.ff);
     ref = o.reference_path.empty() ? MakeStageProfile(stage, o.profile)
-                                   : ReadPositionReference(o.reference_path);
+                                   : ReadPositionReference(o.reference_path, o.recording.Mapping());
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"schemes", "--ff"}, {"amplitude_m", "--amplitude"}});
   }
@@ -140,6 +142,7 @@ void AddTrackCommand(CLI::App& app) {
                 o->force, "replace a folder an earlier sysid track wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object (max_error_m, rms_error_m, schemes)");
   cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots");
+  o->recording.Add(cmd);
   cmd->callback([o] { RunTrack(*o); });
 }
 

@@ -28,13 +28,15 @@ void RunTrain(TrainCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   const auto names = SplitComma(o.nn.inputs);
   // Read everything before training so bad files fail fast.
-  const NeuralDataset train = ReadNeuralDataset(o.nn.train_path, names, o.nn.output);
+  const NeuralDataset train =
+      ReadNeuralDataset(o.nn.train_path, names, o.nn.output, o.nn.recording.Mapping());
   std::unique_ptr<NeuralDataset> test, validation;
   if (!o.nn.test_path.empty())
-    test = std::make_unique<NeuralDataset>(ReadNeuralDataset(o.nn.test_path, names, o.nn.output));
+    test = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.nn.test_path, names, o.nn.output, o.nn.recording.Mapping()));
   if (!o.nn.validation_path.empty())
     validation = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output));
+        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output, o.nn.recording.Mapping()));
   if (ProgressEnabled())
     Progress(fmt::format("training {}-{}-1 ...", names.size(), o.nn.training.hidden));
   AttachEpochProgress(o.nn.training, names.size(),

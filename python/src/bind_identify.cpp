@@ -207,7 +207,9 @@ void BindIdentify(py::module_& m) {
       .def_readwrite("u_v", &PulsePoint::u_v)
       .def_readwrite("v_mps", &PulsePoint::v_mps)
       .def_readwrite("label", &PulsePoint::label);
-  m.def("read_pulse_table", &ReadPulseTable, py::arg("path"));
+  m.def(
+      "read_pulse_table", [](const std::string& path) { return ReadPulseTable(path); },
+      py::arg("path"));
 
   py::class_<PulseIdentificationResult> pulse_result(m, "PulseIdentificationResult");
   pulse_result.def_readonly("model", &PulseIdentificationResult::model)

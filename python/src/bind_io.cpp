@@ -9,6 +9,7 @@
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid::python {
@@ -108,8 +109,12 @@ void BindIo(py::module_& m) {
           "before appending a column no longer track the recording.")
       .def("meta", &Recording::meta, py::arg("key"), py::arg("fallback") = "")
       .def("to_csv", &FormatRecording, "CSV text: metadata lines, header, 17 significant digits")
-      .def("save", [](const Recording& r, const std::string& path) { WriteRecording(path, r); },
-           py::arg("path"), "Writes the CSV atomically (temporary file, then rename).")
+      .def(
+          "save",
+          [](const Recording& r, const std::string& path) { WriteRecordingByExtension(path, r); },
+          py::arg("path"),
+          "Writes the CSV (MAT v5 when the path ends in .mat) atomically (temporary file, then "
+          "rename).")
       .def("__repr__", [](const Recording& r) {
         std::string cols;
         for (const auto& n : r.names) cols += (cols.empty() ? "" : ", ") + n;
@@ -120,10 +125,26 @@ void BindIo(py::module_& m) {
                        py::arg("metadata") = std::vector<std::pair<std::string, std::string>>{},
                        "A recording from {name: 1-D array}, checked by the reader's rules.");
 
-  m.def("read_recording", &ReadRecording, py::arg("path"), py::arg("options") = ReadOptions{},
-        ReleaseGil(),
-        "Reads and validates a recording CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
-        "...' for any bad cell).");
+  m.def(
+      "read_recording",
+      [](const std::string& path, ReadOptions options,
+         std::vector<std::pair<std::string, std::string>> var, double rate,
+         std::vector<std::pair<std::string, double>> scale) {
+        options.mapping.variables = std::move(var);
+        options.mapping.rate_hz = rate;
+        options.mapping.scales = std::move(scale);
+        return ReadRecording(path, options);
+      },
+      py::arg("path"), py::arg("options") = ReadOptions{},
+      py::arg("var") = std::vector<std::pair<std::string, std::string>>{}, py::arg("rate") = 0.0,
+      py::arg("scale") = std::vector<std::pair<std::string, double>>{}, ReleaseGil(),
+      "Reads and validates a recording: CSV (the strict reader: DataError 'FILE:LINE:COLUMN: "
+      "...' for any bad cell), or MAT (v4, v5, v7.3) / HDF5 through the column mapping `var` "
+      "[(column, variable spec)], sample rate `rate` [Hz] and `scale` [(column, factor)].");
+  m.def(
+      "list_variables_json",
+      [](const std::string& path) { return VariableListToJson(path, ListVariables(path)); },
+      py::arg("path"), "The variables of a MAT or HDF5 file as `sysid info --json` prints them.");
   m.def("unit_warnings", &UnitSanityWarnings, py::arg("recording"),
         "Warnings when x spans more than 10 m or moves faster than 5 m/s (likely mm or um): "
         "each names the likely unit and the fix ('# units: x=mm').");

@@ -109,8 +109,11 @@ void BindNeural(py::module_& m) {
       .def("__len__", &NeuralDataset::size);
   m.def("make_dataset", &MakeNeuralDataset, py::arg("recording"), py::arg("inputs"),
         py::arg("output"));
-  m.def("read_dataset", &ReadNeuralDataset, py::arg("path"), py::arg("inputs"),
-        py::arg("output"), ReleaseGil());
+  m.def(
+      "read_dataset",
+      [](const std::string& path, const std::vector<std::string>& inputs,
+         const std::string& output) { return ReadNeuralDataset(path, inputs, output); },
+      py::arg("path"), py::arg("inputs"), py::arg("output"), ReleaseGil());
   m.def("mean_squared_error", &MeanSquaredError, py::arg("network"), py::arg("data"));
 
   py::enum_<NeuralTrainer>(m, "Trainer")

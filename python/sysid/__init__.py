@@ -171,17 +171,58 @@ def _checked_units(rec):
     return rec
 
 
-def read_recording(path, options=None, **kwargs):
-    """Reads a recording CSV with the strict reader (DataError 'FILE:LINE:COLUMN: ...');
-    a UnitWarning when its speeds or travel look like mm or um read as metres."""
-    return _checked_units(
-        _sysid.read_recording(_os.fspath(path), _options(ReadOptions, options, kwargs)))
+def _pairs(value, name):
+    """{column: value}, [(column, value)] or "a=b,c=d" -> [(column, value)]."""
+    if value is None:
+        return []
+    if isinstance(value, str):
+        out, depth, part = [], 0, ""
+        for ch in value + ",":
+            depth += ch == "["
+            depth -= ch == "]"
+            if ch == "," and depth == 0:
+                if "=" not in part:
+                    raise ValueError(f"{name}: expected COLUMN=VALUE, found '{part}'")
+                k, v = part.split("=", 1)
+                out.append((k, v))
+                part = ""
+            else:
+                part += ch
+        return out
+    if isinstance(value, dict):
+        return list(value.items())
+    return list(value)
 
 
-def read_recordings(paths, options=None, **kwargs):
-    """Reads every file of a path, glob or list of them, in sorted order per pattern."""
+def _mapping(var, rate, scale):
+    return dict(var=[(k, str(v)) for k, v in _pairs(var, "var")], rate=float(rate or 0),
+                scale=[(k, float(v)) for k, v in _pairs(scale, "scale")])
+
+
+def read_recording(path, options=None, var=None, rate=None, scale=None, **kwargs):
+    """Reads a recording: CSV with the strict reader (DataError 'FILE:LINE:COLUMN: ...'), or a
+    MATLAB MAT (v4, v5, v7.3) or HDF5 file. ``var`` maps columns to variables
+    ({"u": "/multisine/u"} or "u=/multisine/u,x=data[:,2]", matrix columns 1-based), ``rate`` [Hz]
+    gives t = k / rate when there is no time variable, ``scale`` ({"x": 1e-6}) converts to SI.
+    A UnitWarning when its speeds or travel look like mm or um read as metres."""
+    return _checked_units(_sysid.read_recording(
+        _os.fspath(path), _options(ReadOptions, options, kwargs), **_mapping(var, rate, scale)))
+
+
+def read_recordings(paths, options=None, var=None, rate=None, scale=None, **kwargs):
+    """Reads every file of a path, glob or list of them, in sorted order per pattern (CSV, MAT or
+    HDF5, with the same ``var``, ``rate``, ``scale`` as read_recording)."""
     opts = _options(ReadOptions, options, kwargs)
-    return [_checked_units(_sysid.read_recording(p, opts)) for p in expand_paths(paths)]
+    mapping = _mapping(var, rate, scale)
+    return [_checked_units(_sysid.read_recording(p, opts, **mapping))
+            for p in expand_paths(paths)]
+
+
+def list_variables(path):
+    """The variables of a MAT or HDF5 file: dicts of name, type, dims, complex, sparse and, for
+    numeric vectors, length, min, max."""
+    import json
+    return json.loads(_sysid.list_variables_json(_os.fspath(path)))["variables"]
 
 
 def recording(source="arrays", metadata=(), options=None, **columns):

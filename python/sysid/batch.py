@@ -19,10 +19,12 @@ def _model_row(prefix, model):
     return {f"{prefix}{k}": getattr(model, k) for k in ("a1p", "a1n", "a2p", "a2n", "a3", "tau_s")}
 
 
-def _run_one(item, task, model, options):
-    """One recording -> one row (a dict). Runs in a worker thread or a Dask worker process."""
+def _run_one(item, task, model, options, mapping=None):
+    """One recording -> one row (a dict). Runs in a worker thread or a Dask worker process.
+    `mapping` (var, rate, scale) reads MAT/HDF5 files or renamed CSV columns."""
     import sysid  # in a fresh Dask worker process
-    rec = item if isinstance(item, sysid.Recording) else sysid.read_recording(item)
+    rec = item if isinstance(item, sysid.Recording) else sysid.read_recording(item,
+                                                                              **(mapping or {}))
     row = {"source": rec.source}
     if task == "dominance":
         row.update(_sysid.analyze_dominance(model, rec, options).row())
@@ -44,9 +46,9 @@ def _run_one(item, task, model, options):
     return row
 
 
-def _guarded(item, task, model, options, errors):
+def _guarded(item, task, model, options, errors, mapping=None):
     try:
-        return _run_one(item, task, model, options)
+        return _run_one(item, task, model, options, mapping)
     except _sysid.Error as e:
         if errors == "raise":
             raise
@@ -73,10 +75,16 @@ def _run_chunk(chunk, fn, kw):
     return [fn(item, **kw) for item in chunk]
 
 
-def _dominance_chunk(chunk, task, model, options, errors):
+def _dominance_chunk(chunk, task, model, options, errors, mapping=None):
     """A chunk of dominance tasks in one C++ call (files read there too) with the GIL released,
     so threads scale; a failing recording is re-run alone to raise its own exception."""
     import sysid  # in a fresh Dask worker process
+    if mapping:  # the files are read through the mapping in Python, then analysed in one call
+        chunk = [i if isinstance(i, sysid.Recording) else _guarded_read(i, mapping, errors)
+                 for i in chunk]
+        if any(isinstance(i, dict) for i in chunk):
+            return [i if isinstance(i, dict) else _guarded(i, task, model, options, errors)
+                    for i in chunk]
     paths = [i for i in chunk if not isinstance(i, sysid.Recording)]
     if len(paths) == len(chunk):
         rows = _sysid.dominance_rows_files(model, paths, options)
@@ -90,6 +98,17 @@ def _dominance_chunk(chunk, task, model, options, errors):
                 _run_one(item, task, model, options)  # raises the recording's sysid.Error
             del row["error_type"]
     return rows
+
+
+def _guarded_read(path, mapping, errors):
+    """The recording at `path` through `mapping`, or (errors='record') an error row."""
+    import sysid
+    try:
+        return sysid.read_recording(path, **mapping)
+    except _sysid.Error as e:
+        if errors == "raise":
+            raise
+        return {"source": _os.fspath(path), "error": f"{type(e).__name__}: {e}"}
 
 
 def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
@@ -144,7 +163,8 @@ def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
 
 
 def batch(recordings, task="dominance", model=None, client=None, threads=None, options=None,
-          errors="raise", chunksize=None, progress=None, **kwargs):
+          errors="raise", chunksize=None, progress=None, var=None, rate=None, scale=None,
+          **kwargs):
     """Runs `task` on every recording and returns one pandas.DataFrame, a row per recording in
     input order.
 
@@ -160,6 +180,9 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
                 row gets an 'error' column with the message and the batch goes on).
     chunksize:  recordings per task (default: about 4 tasks per worker thread).
     progress:   print "k/n" to stderr as tasks finish (default: when stderr is a terminal).
+    var, rate, scale: how files are read, as in sysid.read_recording (MAT and HDF5 files, or
+                renamed CSV columns; e.g. var={"u": "/multisine/u", "x": "/multisine/y"},
+                rate=750).
     """
     import pandas
     import sysid
@@ -176,8 +199,9 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
         items = sysid.expand_paths(recordings)
     items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
     opts = _default_options(task, options, kwargs)
+    mapping = sysid._mapping(var, rate, scale) if (var or rate or scale) else None
     rows = _map(_guarded, items, client, threads, chunksize, progress, task=task, model=model,
-                options=opts, errors=errors)
+                options=opts, errors=errors, mapping=mapping)
     return pandas.DataFrame.from_records(rows)
 
 

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sysid/io.hpp"
 #include "sysid/model.hpp"
 
 namespace sysid {
@@ -159,8 +160,10 @@ PositionReference MakeStageProfile(const StageParameters& stage, SmoothProfileOp
 /// Reference from sampled positions (e.g. a CSV column): v and a by central differences.
 PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen::VectorXd& x_m);
 /// Reference from a CSV with columns t [s] and x_ref [m] (or x [m] when there is no x_ref), as
-/// ReferenceFromPositions; the description is the path. Throws InputError as ReadRecording.
-PositionReference ReadPositionReference(const std::string& path);
+/// ReferenceFromPositions; the description is the path. MAT/HDF5 files through `mapping`.
+/// Throws InputError as ReadRecording.
+PositionReference ReadPositionReference(const std::string& path,
+                                        const SourceMapping& mapping = {});
 
 /// Traces and metrics of a closed-loop run; row k is sample k.
 struct TrackingResult {

@@ -180,8 +180,10 @@ struct PulsePoint {
   std::string label;  ///< where it came from ("table.csv:3", "rec.csv pulse 2")
 };
 
-/// Reads a pulse table: CSV with columns u [V] and v [m/s]. Throws InputError.
-std::vector<PulsePoint> ReadPulseTable(const std::string& path);
+/// Reads a pulse table: CSV with columns u [V] and v [m/s] (or MAT/HDF5 through `mapping`).
+/// Throws InputError.
+std::vector<PulsePoint> ReadPulseTable(const std::string& path,
+                                       const SourceMapping& mapping = {});
 
 struct PulseFitOptions {
   double a3 = 6.0;  ///< [m/(s^2 V)] actuator gain (steady states cannot separate it)

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sysid/io.hpp"
+
 namespace sysid {
 
 class InputSignal {
@@ -98,7 +100,8 @@ std::unique_ptr<InputSignal> MakeTableInput(std::vector<double> t_s, std::vector
                                             InputHold hold, const std::string& source = "table");
 /// Reads an input table CSV with columns t [s] and u [V] (sysid::ReadRecording rules: other
 /// columns are ignored). Throws InputError "FILE:LINE:COLUMN: ...".
-std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold);
+std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold,
+                                            const SourceMapping& mapping = {});
 
 /// A named test waveform of the paper, with its natural duration.
 struct NamedWaveform {
@@ -120,7 +123,8 @@ NamedWaveform MakeNamedWaveform(const std::string& name);
 
 /// An input table file (columns t [s], u [V], as ReadInputTable) with its natural length, the
 /// last row's t; described as "PATH (zoh)" or "PATH (linear)".
-NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold);
+NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold,
+                                const SourceMapping& mapping = {});
 /// A pulse train with its natural length spec.duration_s(), described with its amplitudes and
 /// timing.
 NamedWaveform PulseTrainWaveform(const PulseTrainSpec& spec);

@@ -51,6 +51,26 @@ struct Recording {
   void SetColumn(const std::string& name, const Eigen::VectorXd& values);
 };
 
+/// Where a recording's columns come from when the file's own names are not ours, or the file
+/// is MATLAB MAT (v4, v5, v7.3) or HDF5 (`sysid ... --var t=NAME,u=NAME --rate HZ --scale x=1e-6`).
+/// Variable specs: `NAME` (a MAT variable, an HDF5 dataset at the root, a CSV column, or the
+/// `Y(i).Name` of a dSPACE ControlDesk struct), `/group/dataset` (HDF5), `NAME[:,k]` or
+/// `NAME[k,:]` (column or row k of a 2-D matrix; k is 1-based, like MATLAB).
+struct SourceMapping {
+  /// column -> variable spec, in output column order. For CSV input the named columns are
+  /// renamed (a column that has the target's name is dropped, the others are kept); for MAT and
+  /// HDF5 input the recording holds exactly these columns (plus t from `rate_hz`, or from the
+  /// ControlDesk struct's X.Data).
+  std::vector<std::pair<std::string, std::string>> variables;
+  /// [Hz] sample rate: when > 0 and the recording has no column t, t = k / rate_hz [s],
+  /// k = 0, 1, ... is added as the first column. With a t column present it is an error.
+  double rate_hz = 0;
+  /// column -> factor to SI (e.g. x -> 1e-6 for a sensor in µm); applied after the mapping.
+  std::vector<std::pair<std::string, double>> scales;
+
+  bool empty() const { return variables.empty() && rate_hz == 0 && scales.empty(); }
+};
+
 /// Which columns a reader insists on.
 struct ReadOptions {
   /// Columns that must all be present. The default is a recording: t [s] and u [V].
@@ -59,6 +79,8 @@ struct ReadOptions {
   std::vector<std::string> any_of_columns{"x", "v"};
   /// When a column "t" exists it must be strictly increasing.
   bool require_increasing_time = true;
+  /// Column mapping, sample rate and scales (empty: the file's own column or variable names).
+  SourceMapping mapping;
 };
 
 /// Speeds and travel beyond these are implausible for a positioning stage: a recording that
@@ -71,9 +93,12 @@ inline constexpr double kMaxPlausibleTravel_m = 10.0;  ///< [m] max x - min x
 /// and the fix (a '# units: x=mm' line, which the reader honours, or scaling to metres).
 std::vector<std::string> UnitSanityWarnings(const Recording& recording);
 
-/// Reads and validates a recording. Throws InputError ("FILE:LINE:COLUMN: ...").
+/// Reads and validates a recording: CSV, or MATLAB MAT (v4, v5, v7.3) or HDF5 recognised by the
+/// file's first bytes (sysid/io_containers.hpp), through `options.mapping`. Without a mapping, a
+/// MAT or HDF5 file's top-level numeric vectors become the columns of their names. Throws
+/// InputError ("FILE:LINE:COLUMN: ..." for CSV, "FILE:VARIABLE[INDEX]: ..." for MAT and HDF5).
 /// A '# units:' line declaring x=mm, x=um (or "x [mm]"; likewise t, u, v, a, x_ref) makes the
-/// reader convert those columns to SI and say so in the line.
+/// CSV reader convert those columns to SI and say so in the line.
 Recording ReadRecording(const std::string& path, const ReadOptions& options = {});
 
 /// Parses recording text already in memory; `source` names it in error messages.

@@ -117,10 +117,11 @@ struct NeuralDataset {
 NeuralDataset MakeNeuralDataset(const Recording& recording,
                                 const std::vector<std::string>& input_names,
                                 const std::string& output_name);
-/// Reads a CSV with the input and output columns ("t" optional). Throws InputError.
+/// Reads a recording (CSV, MAT or HDF5 through `mapping`) with the input and output columns
+/// ("t" optional). Throws InputError.
 NeuralDataset ReadNeuralDataset(const std::string& path,
                                 const std::vector<std::string>& input_names,
-                                const std::string& output_name);
+                                const std::string& output_name, const SourceMapping& mapping = {});
 
 /// Every `stride`-th row (rows 0, stride, 2 stride, ...); stride <= 1 returns the set unchanged.
 /// The typical (v, a) network's 481 parameters make each LM epoch cost N P^2 flops: the

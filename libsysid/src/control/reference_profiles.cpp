@@ -117,8 +117,9 @@ PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen
   return r;
 }
 
-PositionReference ReadPositionReference(const std::string& path) {
+PositionReference ReadPositionReference(const std::string& path, const SourceMapping& mapping) {
   ReadOptions ro;
+  ro.mapping = mapping;
   ro.required_columns = {"t"};
   ro.any_of_columns = {"x_ref", "x"};
   const Recording r = ReadRecording(path, ro);

@@ -21,8 +21,9 @@ void PulseFitOptions::Validate() const {
         "PulseFitOptions::a3 = {}. Violated constraint: a3 > 0 and finite [m/(s^2 V)]", a3));
 }
 
-std::vector<PulsePoint> ReadPulseTable(const std::string& path) {
+std::vector<PulsePoint> ReadPulseTable(const std::string& path, const SourceMapping& mapping) {
   ReadOptions ro;
+  ro.mapping = mapping;
   ro.required_columns = {"u", "v"};
   ro.any_of_columns = {};
   const Recording rec = ReadRecording(path, ro);

@@ -95,8 +95,10 @@ std::unique_ptr<InputSignal> MakeTableInput(std::vector<double> t_s, std::vector
 }
 
 namespace {
-std::unique_ptr<InputSignal> ReadTable(const std::string& path, InputHold hold, double* end_s) {
+std::unique_ptr<InputSignal> ReadTable(const std::string& path, InputHold hold, double* end_s,
+                                       const SourceMapping& mapping) {
   ReadOptions options;
+  options.mapping = mapping;
   options.required_columns = {"t", "u"};
   options.any_of_columns = {};
   const Recording rec = ReadRecording(path, options);
@@ -109,14 +111,16 @@ std::unique_ptr<InputSignal> ReadTable(const std::string& path, InputHold hold, 
 }
 }  // namespace
 
-std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold) {
-  return ReadTable(path, hold, nullptr);
+std::unique_ptr<InputSignal> ReadInputTable(const std::string& path, InputHold hold,
+                                            const SourceMapping& mapping) {
+  return ReadTable(path, hold, nullptr, mapping);
 }
 
-NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold) {
+NamedWaveform ReadInputWaveform(const std::string& path, InputHold hold,
+                                const SourceMapping& mapping) {
   NamedWaveform w;
   w.name = path;
-  w.signal = ReadTable(path, hold, &w.duration_s);
+  w.signal = ReadTable(path, hold, &w.duration_s, mapping);
   w.description = path + (hold == InputHold::kLinear ? " (linear)" : " (zoh)");
   return w;
 }

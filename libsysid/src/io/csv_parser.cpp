@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "io/units.hpp"
+#include "io/containers.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 
 namespace sysid {
 namespace {
@@ -275,6 +277,7 @@ class Parser {
 
 Recording ParseRecording(std::string_view text, const std::string& source,
                          const ReadOptions& options) {
+  if (!options.mapping.empty()) return internal::ParseMappedCsv(text, source, options);
   Recording rec;
   std::vector<double> values;
   Parser(text, source, options).Run(rec, values);
@@ -282,10 +285,16 @@ Recording ParseRecording(std::string_view text, const std::string& source,
 }
 
 Recording ReadRecording(const std::string& path, const ReadOptions& options) {
+  if (DetectFileFormat(path) != FileFormat::kText)
+    return internal::ReadContainerRecording(path, options);
   return ParseRecording(ReadFile(path), path, options);
 }
 
 const Recording& RecordingReader::Read(const std::string& path) {
+  if (!options_.mapping.empty() || DetectFileFormat(path) != FileFormat::kText) {
+    recording_ = ReadRecording(path, options_);
+    return recording_;
+  }
   ReadFile(path, &text_);
   Parser(text_, path, options_).Run(recording_, values_);
   return recording_;

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -128,13 +129,17 @@ void ReadFile(const std::string& path, std::string* out) {
   if (failed) throw InputError(path + ": read error");
 }
 
-void WriteFileAtomically(const std::string& path, std::string_view content) {
+namespace internal {
+
+void WriteThroughTempFile(const std::string& path,
+                          const std::function<void(int fd, const std::string& tmp)>& write) {
   namespace fs = std::filesystem;
   std::string file = path;
-  if (const int own = OwnDescriptor(path); own >= 0 && ::fcntl(own, F_GETFD) != -1) {
-    std::fflush(stdout);  // what the program printed before stays before
-    return WriteAll(own, path, content);
-  }
+  // A pipe, a device or standard output cannot take a file that is written whole and renamed
+  // (MAT): refused, never replaced. Text output streams there instead (WriteFileAtomically).
+  if (WritesThrough(path))
+    throw OptionsError(path + ": is a pipe, a device or standard output; this format is written "
+                              "whole to a file: give a file name");
   struct stat lst {}, st {};
   if (::lstat(path.c_str(), &lst) == 0) {
     if (::stat(path.c_str(), &st) != 0) {
@@ -143,7 +148,6 @@ void WriteFileAtomically(const std::string& path, std::string_view content) {
                          (loop ? "in a loop" : "to a missing file") +
                          "; sysid follows links but never replaces one: give another name");
     }
-    if (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode)) return WriteThrough(path, content);
     if (!S_ISREG(st.st_mode))
       throw OptionsError(path + ": exists and is " + KindOf(st.st_mode) +
                          "; choose a file name");
@@ -155,13 +159,13 @@ void WriteFileAtomically(const std::string& path, std::string_view content) {
   const fs::path target(file);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
-  std::optional<internal::InterruptsBlocked> blocked(std::in_place);  // until registered
+  std::optional<InterruptsBlocked> blocked(std::in_place);  // until registered
   const int fd = mkstemp(tmpl.data());
   if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));
-  const internal::TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
+  const TempFileGuard interrupted(tmpl);  // Ctrl-C while writing removes it
   blocked.reset();
   try {
-    WriteAll(fd, path, content);
+    write(fd, tmpl);
   } catch (...) {
     ::close(fd);
     ::unlink(tmpl.c_str());
@@ -176,6 +180,20 @@ void WriteFileAtomically(const std::string& path, std::string_view content) {
     ::unlink(tmpl.c_str());
     throw InputError(path + ": cannot write: " + reason);
   }
+}
+
+}  // namespace internal
+
+void WriteFileAtomically(const std::string& path, std::string_view content) {
+  if (const int own = OwnDescriptor(path); own >= 0 && ::fcntl(own, F_GETFD) != -1) {
+    std::fflush(stdout);  // what the program printed before stays before
+    return WriteAll(own, path, content);
+  }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode)))
+    return WriteThrough(path, content);
+  internal::WriteThroughTempFile(path,
+                                 [&](int fd, const std::string&) { WriteAll(fd, path, content); });
 }
 
 }  // namespace sysid

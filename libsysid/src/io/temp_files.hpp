@@ -8,6 +8,7 @@
 
 #include <signal.h>
 
+#include <functional>
 #include <string>
 
 namespace sysid::internal {
@@ -48,6 +49,12 @@ class InterruptsBlocked {
 /// Removes `path` and everything below it the way the signal handler does (no allocation,
 /// async-signal-safe system calls only); for tests. Returns false when something remained.
 bool RemoveTreeSignalSafe(const char* path);
+/// Writes `path` atomically: `write(fd, tmp)` fills a new temporary file `tmp` beside it (open
+/// as `fd`; a library that opens files by name may write `tmp` itself), which then gets the
+/// umask's permissions and is renamed over `path`. On any exception, or a failed rename, the
+/// temporary file is removed and `path` is untouched. Throws InputError "PATH: cannot write: ...".
+void WriteThroughTempFile(const std::string& path,
+                          const std::function<void(int fd, const std::string& tmp)>& write);
 
 }  // namespace sysid::internal
 

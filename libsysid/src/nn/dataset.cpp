@@ -26,8 +26,9 @@ NeuralDataset MakeNeuralDataset(const Recording& recording,
 
 NeuralDataset ReadNeuralDataset(const std::string& path,
                                 const std::vector<std::string>& input_names,
-                                const std::string& output_name) {
+                                const std::string& output_name, const SourceMapping& mapping) {
   ReadOptions ro;
+  ro.mapping = mapping;
   ro.required_columns = input_names;
   ro.required_columns.push_back(output_name);
   ro.any_of_columns = {};

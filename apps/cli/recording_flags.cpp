@@ -1,0 +1,80 @@
+#include "cli/recording_flags.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+
+#include "sysid/error.hpp"
+
+namespace sysid::cli {
+
+void RecordingFlags::Add(CLI::App* cmd) {
+  cmd->add_option("--var", vars,
+                  "column mapping COLUMN=VARIABLE[,...] for MAT/HDF5 files or renamed CSV "
+                  "columns: t=time,u=/group/volts,x=data[:,2] (matrix column k 1-based, like "
+                  "MATLAB; a dSPACE ControlDesk signal by its Y(i).Name)")
+      ->type_name("MAP");
+  cmd->add_option("--rate", rate_hz,
+                  "sample rate [Hz] of recordings without a time column: t = k / rate")
+      ->check(CLI::PositiveNumber)
+      ->type_name("HZ");
+  cmd->add_option("--scale", scales,
+                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um")
+      ->type_name("MAP");
+}
+
+std::vector<std::pair<std::string, std::string>> ParseAssignments(
+    const std::vector<std::string>& items, const std::string& flag) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& item : items) {
+    int depth = 0;
+    size_t start = 0;
+    for (size_t i = 0; i <= item.size(); ++i) {
+      if (i < item.size() && item[i] == '[') ++depth;
+      if (i < item.size() && item[i] == ']') --depth;
+      if (i < item.size() && !(item[i] == ',' && depth == 0)) continue;
+      const std::string part = item.substr(start, i - start);
+      start = i + 1;
+      const size_t eq = part.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == part.size())
+        throw OptionsError(fmt::format("{} '{}': expected COLUMN=VALUE", flag, part), flag);
+      out.emplace_back(part.substr(0, eq), part.substr(eq + 1));
+    }
+  }
+  for (size_t i = 0; i < out.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (out[i].first == out[j].first)
+        throw OptionsError(fmt::format("{}: column '{}' given twice", flag, out[i].first), flag);
+  return out;
+}
+
+double ParseFlagNumber(const std::string& text, const std::string& flag) {
+  double v = 0;
+  const char* b = text.data();
+  const char* e = text.data() + text.size();
+  if (b != e && *b == '+') ++b;
+  const auto [ptr, ec] = std::from_chars(b, e, v);
+  if (text.empty() || ec != std::errc() || ptr != e || !std::isfinite(v))
+    throw OptionsError(fmt::format("{}: expected a finite number, found '{}'", flag, text), flag);
+  return v;
+}
+
+SourceMapping RecordingFlags::Mapping() const {
+  SourceMapping m;
+  m.variables = ParseAssignments(vars, "--var");
+  m.rate_hz = rate_hz;
+  for (const auto& [column, factor] : ParseAssignments(scales, "--scale")) {
+    const double f = ParseFlagNumber(factor, "--scale " + column);
+    if (f == 0) throw OptionsError("--scale " + column + ": factor 0", "--scale");
+    m.scales.emplace_back(column, f);
+  }
+  return m;
+}
+
+ReadOptions RecordingFlags::Apply(ReadOptions options) const {
+  options.mapping = Mapping();
+  return options;
+}
+
+}  // namespace sysid::cli

@@ -1,0 +1,232 @@
+#include "container_fixtures.hpp"
+
+#include <hdf5.h>
+#include <matio.h>
+
+#include <complex>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace sysid::test {
+namespace {
+
+mat_ft FileType(MatVersion v) {
+  return v == MatVersion::kV73 ? MAT_FT_MAT73 : v == MatVersion::kV4 ? MAT_FT_MAT4 : MAT_FT_MAT5;
+}
+matio_compression Compression(MatVersion v) {
+  return v == MatVersion::kV5Compressed ? MAT_COMPRESSION_ZLIB : MAT_COMPRESSION_NONE;
+}
+
+mat_t* Create(const std::string& path, MatVersion version) {
+  mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, FileType(version));
+  if (!mat) throw std::runtime_error("fixture: cannot create " + path);
+  return mat;
+}
+
+void Write(mat_t* mat, matvar_t* var, MatVersion version) {
+  if (!var || Mat_VarWrite(mat, var, Compression(version)) != 0)
+    throw std::runtime_error("fixture: cannot write a variable");
+  Mat_VarFree(var);
+}
+
+matvar_t* CharVar(const char* name, const std::string& s) {
+  size_t dims[2] = {1, s.size()};
+  return Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UINT8, 2, dims, const_cast<char*>(s.data()),
+                       0);  // copies
+}
+
+matvar_t* DoubleVar(const char* name, const std::vector<double>& v, size_t rows, size_t cols) {
+  size_t dims[2] = {rows, cols};
+  return Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, const_cast<double*>(v.data()), 0);
+}
+
+}  // namespace
+
+void WriteMat(const std::string& path, MatVersion version, const std::vector<MatArray>& arrays) {
+  mat_t* mat = Create(path, version);
+  for (const auto& a : arrays)
+    Write(mat, DoubleVar(a.name.c_str(), a.values, a.rows, a.cols), version);
+  Mat_Close(mat);
+}
+
+void WriteMatOddVariable(const std::string& path, MatVersion version, const std::string& name,
+                         const std::string& kind) {
+  mat_t* mat = Create(path, version);
+  size_t dims[2] = {1, 3};
+  matvar_t* v = nullptr;
+  if (kind == "int16") {
+    std::int16_t d[3] = {-2, 0, 7};
+    v = Mat_VarCreate(name.c_str(), MAT_C_INT16, MAT_T_INT16, 2, dims, d, 0);
+  } else if (kind == "single") {
+    float d[3] = {0.5f, 1.25f, -3.0f};
+    v = Mat_VarCreate(name.c_str(), MAT_C_SINGLE, MAT_T_SINGLE, 2, dims, d, 0);
+  } else if (kind == "complex") {
+    double re[3] = {1, 2, 3}, im[3] = {0, 1, 0};
+    mat_complex_split_t z{re, im};
+    v = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, &z, MAT_F_COMPLEX);
+  } else if (kind == "sparse") {
+    double values[2] = {1, 2};
+    mat_uint32_t ir[2] = {0, 0}, jc[4] = {0, 1, 1, 2};
+    mat_sparse_t s{};
+    s.nzmax = 2;
+    s.ir = ir;
+    s.nir = 2;
+    s.jc = jc;
+    s.njc = 4;
+    s.ndata = 2;
+    s.data = values;
+    v = Mat_VarCreate(name.c_str(), MAT_C_SPARSE, MAT_T_DOUBLE, 2, dims, &s, 0);
+  } else if (kind == "char") {
+    v = CharVar(name.c_str(), "abc");
+  } else if (kind == "cell") {
+    size_t cdims[2] = {1, 1};
+    v = Mat_VarCreate(name.c_str(), MAT_C_CELL, MAT_T_CELL, 2, cdims, nullptr, 0);
+    Mat_VarSetCell(v, 0, DoubleVar(nullptr, {1, 2, 3}, 1, 3));
+  } else if (kind == "struct") {
+    size_t sdims[2] = {1, 1};
+    const char* fields[] = {"a", nullptr};
+    v = Mat_VarCreateStruct2(name.c_str(), 2, sdims, fields);
+    Mat_VarSetStructFieldByName(v, "a", 0, DoubleVar("a", {1, 2, 3}, 1, 3));
+  } else if (kind == "empty") {
+    size_t edims[2] = {0, 0};
+    v = Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, edims, nullptr, 0);
+  } else {
+    throw std::runtime_error("fixture: unknown kind " + kind);
+  }
+  Write(mat, v, version);
+  Mat_Close(mat);
+}
+
+void WriteControlDesk(const std::string& path, MatVersion version, const std::string& name,
+                      const std::vector<double>& t, const std::vector<std::string>& signal_names,
+                      const std::vector<std::vector<double>>& signals) {
+  mat_t* mat = Create(path, version);
+  const char* top_fields[] = {"X", "Y", "Description", nullptr};
+  const char* x_fields[] = {"Name", "Type", "Data", "Unit", nullptr};
+  const char* y_fields[] = {"Name", "Type", "Raster", "Data", "Unit", nullptr};
+  size_t one[2] = {1, 1};
+  size_t ny[2] = {1, signals.size()};
+  matvar_t* top = Mat_VarCreateStruct2(name.c_str(), 2, one, top_fields);
+  matvar_t* x = Mat_VarCreateStruct2("X", 2, one, x_fields);
+  Mat_VarSetStructFieldByName(x, "Name", 0, CharVar("Name", "Time"));
+  Mat_VarSetStructFieldByName(x, "Type", 0, CharVar("Type", "Time"));
+  Mat_VarSetStructFieldByName(x, "Data", 0, DoubleVar("Data", t, 1, t.size()));
+  Mat_VarSetStructFieldByName(x, "Unit", 0, CharVar("Unit", "s"));
+  matvar_t* y = Mat_VarCreateStruct2("Y", 2, ny, y_fields);
+  for (size_t i = 0; i < signals.size(); ++i) {
+    Mat_VarSetStructFieldByName(y, "Name", i, CharVar("Name", signal_names[i]));
+    Mat_VarSetStructFieldByName(y, "Type", i, CharVar("Type", "Value"));
+    Mat_VarSetStructFieldByName(y, "Raster", i, CharVar("Raster", "Host Service 1"));
+    Mat_VarSetStructFieldByName(y, "Data", i, DoubleVar("Data", signals[i], 1, signals[i].size()));
+    Mat_VarSetStructFieldByName(y, "Unit", i, CharVar("Unit", ""));
+  }
+  Mat_VarSetStructFieldByName(top, "X", 0, x);
+  Mat_VarSetStructFieldByName(top, "Y", 0, y);
+  Mat_VarSetStructFieldByName(top, "Description", 0, CharVar("Description", "test capture"));
+  Write(mat, top, version);
+  Mat_Close(mat);
+}
+
+namespace {
+hid_t EnsureGroups(hid_t file, const std::string& path) {
+  size_t pos = 1;
+  while (true) {
+    const size_t slash = path.find('/', pos);
+    if (slash == std::string::npos) break;
+    const std::string group = path.substr(0, slash);
+    if (H5Lexists(file, group.c_str(), H5P_DEFAULT) <= 0) {
+      const hid_t g = H5Gcreate2(file, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      H5Gclose(g);
+    }
+    pos = slash + 1;
+  }
+  return file;
+}
+}  // namespace
+
+void WriteH5(const std::string& path, const std::vector<H5Array>& arrays) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file < 0) throw std::runtime_error("fixture: cannot create " + path);
+  for (const auto& a : arrays) {
+    EnsureGroups(file, a.path);
+    std::vector<hsize_t> dims(a.dims.begin(), a.dims.end());
+    const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    const hid_t ds = H5Dcreate2(file, a.path.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                H5P_DEFAULT, H5P_DEFAULT);
+    if (!a.values.empty())
+      H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.values.data());
+    H5Dclose(ds);
+    H5Sclose(space);
+  }
+  H5Fclose(file);
+}
+
+void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hsize_t dims[2] = {rows, 1};
+  hsize_t chunk[2] = {1024, 1};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 2, chunk);
+  const hid_t ds =
+      H5Dcreate2(file, dataset.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Dclose(ds);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+void WriteH5Odd(const std::string& path) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hsize_t dims[1] = {3};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const int ints[3] = {4, -5, 6};
+  hid_t ds =
+      H5Dcreate2(file, "/counts", H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, ints);
+  H5Dclose(ds);
+  const hid_t ctype = H5Tcreate(H5T_COMPOUND, 2 * sizeof(double));
+  H5Tinsert(ctype, "r", 0, H5T_NATIVE_DOUBLE);
+  H5Tinsert(ctype, "i", sizeof(double), H5T_NATIVE_DOUBLE);
+  const std::complex<double> z[3] = {{1, 0}, {2, 1}, {3, 0}};
+  ds = H5Dcreate2(file, "/z", ctype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(ds, ctype, H5S_ALL, H5S_ALL, H5P_DEFAULT, z);
+  H5Dclose(ds);
+  H5Tclose(ctype);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols) {
+  std::string header(116, ' ');
+  const char text[] = "MATLAB 5.0 MAT-file, written by a test with a hostile header";
+  std::memcpy(header.data(), text, sizeof text - 1);
+  std::string bytes = header;
+  bytes.append(8, '\0');                // subsystem offset
+  bytes += std::string("\x00\x01", 2);  // version 0x0100, little-endian
+  bytes += "IM";
+  auto u32 = [&](std::uint32_t v) { bytes.append(reinterpret_cast<const char*>(&v), 4); };
+  auto i32 = [&](std::int32_t v) { bytes.append(reinterpret_cast<const char*>(&v), 4); };
+  // miMATRIX: flags (16) + dims (16) + name (8, small element) + real part (8 + 8).
+  u32(14);
+  u32(16 + 16 + 8 + 16);
+  u32(6);  // miUINT32
+  u32(8);
+  u32(6);  // class mxDOUBLE_CLASS
+  u32(0);
+  u32(5);  // miINT32 dims
+  u32(8);
+  i32(1);
+  i32(static_cast<std::int32_t>(cols));
+  u32((1u << 16) | 1u);  // small data element: miINT8, 1 byte: the name "u"
+  bytes += "u";
+  bytes.append(3, '\0');
+  u32(9);  // miDOUBLE
+  u32(8);
+  const double one = 1.0;
+  bytes.append(reinterpret_cast<const char*>(&one), 8);
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+}  // namespace sysid::test

@@ -1,0 +1,50 @@
+// Small MAT (v5, v5 compressed, v7.3) and HDF5 files written with matio and the HDF5 library
+// in the tests themselves, including the dSPACE ControlDesk struct layout.
+#ifndef SYSID_TESTS_IO_CONTAINER_FIXTURES_HPP_
+#define SYSID_TESTS_IO_CONTAINER_FIXTURES_HPP_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sysid::test {
+
+enum class MatVersion { kV4, kV5, kV5Compressed, kV73 };
+
+/// A real double matrix rows x cols, column-major values.
+struct MatArray {
+  std::string name;
+  std::size_t rows = 1, cols = 1;
+  std::vector<double> values;
+};
+
+/// Writes `arrays` as double variables.
+void WriteMat(const std::string& path, MatVersion version, const std::vector<MatArray>& arrays);
+/// One variable of another class: "int16", "single", "complex", "sparse", "char", "cell",
+/// "struct" (a 1x1 struct with a field "a"), "empty".
+void WriteMatOddVariable(const std::string& path, MatVersion version, const std::string& name,
+                         const std::string& kind);
+/// A dSPACE ControlDesk export: struct `name` with X.Data = t and Y(i).Name / Y(i).Data.
+void WriteControlDesk(const std::string& path, MatVersion version, const std::string& name,
+                      const std::vector<double>& t, const std::vector<std::string>& signal_names,
+                      const std::vector<std::vector<double>>& signals);
+
+/// One HDF5 dataset: a path such as "/multisine/u" (groups created), dims, values (row-major).
+struct H5Array {
+  std::string path;
+  std::vector<std::uint64_t> dims;
+  std::vector<double> values;
+};
+void WriteH5(const std::string& path, const std::vector<H5Array>& arrays);
+/// A dataset declaring `rows` x 1 doubles (chunked, nothing written: no storage allocated).
+void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows);
+/// An integer (int32) dataset and a compound (complex-like) dataset.
+void WriteH5Odd(const std::string& path);
+
+/// A MAT v5 file, written byte by byte, whose double variable `u` declares 1 x `cols` elements
+/// but holds one value (a hostile header: the reader must refuse it before allocating).
+void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols);
+
+}  // namespace sysid::test
+
+#endif  // SYSID_TESTS_IO_CONTAINER_FIXTURES_HPP_
