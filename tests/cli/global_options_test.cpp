@@ -10,7 +10,7 @@
 
 using sysid::test::RunCli;
 
-TEST_CASE("--json and --threads before the subcommand act as after it", "[cli]") {
+TEST_CASE("global options: --json and --threads before the subcommand act as after it", "[cli]") {
   const std::string pulses = sysid::test::SourcePath("datasets/virtual/pulses.csv");
   const auto after = RunCli({"info", pulses, "--json"});
   REQUIRE(after.exit_code == 0);
@@ -31,13 +31,13 @@ TEST_CASE("--json and --threads before the subcommand act as after it", "[cli]")
   CHECK(d_equals.exit_code == 0);
 }
 
-TEST_CASE("--json before a nested subcommand lands after both names", "[cli]") {
+TEST_CASE("global options: --json before a nested subcommand lands after both names", "[cli]") {
   const auto r = RunCli({"--json", "stage", "facts", "--facts", "F1"});
   REQUIRE(r.exit_code == 0);
   CHECK_NOTHROW(nlohmann::json::parse(r.out));  // the JSON form, not the table
 }
 
-TEST_CASE("--progress after the subcommand is accepted (it was 'not expected')", "[cli]") {
+TEST_CASE("global options: --progress after the subcommand is accepted (it was 'not expected')", "[cli]") {
   const std::string pulses = sysid::test::SourcePath("datasets/virtual/pulses.csv");
   const auto r = RunCli({"info", pulses, "--progress"});
   CHECK(r.exit_code == 0);

@@ -228,10 +228,7 @@ TEST_CASE("bouc-wen: MATLAB's decimate(x, r, 'fir') keeps a slow sine and its ph
 TEST_CASE("bouc-wen: the benchmark chain reproduces the benchmark's test output",
           "[hysteresis][bouc-wen][benchmark]") {
   const std::string path = test::SourcePath("datasets/boucwen/test_multisine.csv");
-  if (!std::filesystem::exists(path)) {
-    WARN("datasets/boucwen/test_multisine.csv not bundled yet: the reproduction is not checked");
-    return;
-  }
+  REQUIRE(std::filesystem::exists(path));  // bundled (datasets/boucwen/README.md)
   const Recording test = ReadRecording(path);
   const Eigen::VectorXd u = test.column("u"), y = test.column("x");
   BoucWenSimulationOptions o;

@@ -80,7 +80,7 @@ struct ReadOptions {
   /// When a column "t" exists it must be strictly increasing.
   bool require_increasing_time = true;
   /// Column mapping, sample rate and scales (empty: the file's own column or variable names).
-  SourceMapping mapping;
+  SourceMapping mapping{};  // (an initialiser: {{cols}, {}} aggregates need not list it)
 };
 
 /// Speeds and travel beyond these are implausible for a positioning stage: a recording that
