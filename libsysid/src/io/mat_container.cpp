@@ -154,13 +154,13 @@ class MatContainer : public SignalContainer {
  public:
   explicit MatContainer(const std::string& path) : path_(path) {
     InitMatio();
-    mat_ = Mat_Open(path.c_str(), MAT_ACC_RDONLY);
+    mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     if (!mat_)
       throw InputError(path + ": not a readable MAT file (bad header, or truncated)" +
                        MatioDetail());
-    Mat_Rewind(mat_);
+    Mat_Rewind(mat_.get());
     while (true) {
-      matvar_t* v = Mat_VarReadNextInfo(mat_);
+      matvar_t* v = Mat_VarReadNextInfo(mat_.get());
       if (!v) break;
       infos_.emplace_back(v);
       if (infos_.size() > 100000) throw InputError(path + ": more than 100000 variables");
@@ -171,9 +171,6 @@ class MatContainer : public SignalContainer {
       if (v->class_type == MAT_C_STRUCT && v->name && ControlDeskShape(v.get()))
         controldesk_ = v->name;
   }
-  ~MatContainer() override {
-    if (mat_) Mat_Close(mat_);
-  }
 
   std::vector<VariableInfo> List() override {
     std::vector<VariableInfo> out;
@@ -181,7 +178,7 @@ class MatContainer : public SignalContainer {
       VariableInfo info = Describe(v.get(), v->name ? v->name : "");
       if (info.numeric_vector && info.length > 0 && TreeElements(v.get()) <= kMaxVariableElements) {
         g_matio_message.clear();
-        VarPtr full(Mat_VarRead(mat_, v->name));
+        VarPtr full(Mat_VarRead(mat_.get(), v->name));
         if (full) {
           Eigen::VectorXd values;
           if (ToDoubles(full.get(), &values)) SetRange(info, values);
@@ -214,7 +211,7 @@ class MatContainer : public SignalContainer {
     if (info) {
       CheckBound(info, where);
       g_matio_message.clear();
-      full.reset(Mat_VarRead(mat_, spec.name.c_str()));
+      full.reset(Mat_VarRead(mat_.get(), spec.name.c_str()));
       if (!full)
         throw InputError(where + ": cannot read the variable's data (truncated or corrupt file)" +
                          MatioDetail());
@@ -307,7 +304,7 @@ class MatContainer : public SignalContainer {
       const std::string where = path_ + ":" + controldesk_;
       CheckBound(Find(controldesk_), where);
       g_matio_message.clear();
-      controldesk_data_.reset(Mat_VarRead(mat_, controldesk_.c_str()));
+      controldesk_data_.reset(Mat_VarRead(mat_.get(), controldesk_.c_str()));
       if (!controldesk_data_ || !ControlDeskShape(controldesk_data_.get()))
         throw InputError(where + ": cannot read the struct's data (truncated or corrupt file)" +
                          MatioDetail());
@@ -432,7 +429,12 @@ class MatContainer : public SignalContainer {
   }
 
   std::string path_;
-  mat_t* mat_ = nullptr;
+  // Owned by a member, not closed in a destructor: the constructor throws on a malformed file
+  // after Mat_Open succeeded, and only members are cleaned up then (the fuzzer found the leak).
+  struct MatCloser {
+    void operator()(mat_t* m) const { Mat_Close(m); }
+  };
+  std::unique_ptr<mat_t, MatCloser> mat_;
   std::vector<VarPtr> infos_;
   std::string controldesk_;
   VarPtr controldesk_data_;
