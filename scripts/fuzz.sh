@@ -16,9 +16,16 @@ flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefin
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSYSID_FUZZ=ON -DSYSID_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build "$build" -j"${SYSID_JOBS:-2}" --target fuzz_csv fuzz_model fuzz_network fuzz_stage fuzz_mat fuzz_hdf5
+# The MAT and HDF5 targets are not in the default list: libhdf5 (behind HDF5 and MAT v7.3 files)
+# allocates and fills sizes a file declares before sysid can bound them (4 GB of RSS from a 64 KB
+# input, inside H5C_protect), so libFuzzer's RSS limit stops a run there at random. Their
+# deterministic mutation runs are CTest tests ("fuzz: mat|hdf5 reader") in both CI passes; run
+# these targets by hand with SYSID_FUZZ_TARGETS="mat hdf5" scripts/fuzz.sh.
+targets=${SYSID_FUZZ_TARGETS:-csv model network stage}
+# shellcheck disable=SC2086
+cmake --build "$build" -j"${SYSID_JOBS:-2}" --target $(printf 'fuzz_%s ' $targets)
 d="$root/datasets"
-for target in csv model network stage mat hdf5; do
+for target in $targets; do
   corpus="$build/corpus_$target"
   mkdir -p "$corpus"
   case $target in
