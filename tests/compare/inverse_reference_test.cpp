@@ -7,30 +7,16 @@
 #include <cmath>
 #include <vector>
 
+#include "identify/simulated_recording.hpp"
 #include "simulate/reference_integrator.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/input.hpp"
 #include "sysid/model.hpp"
 
-namespace {
-
-sysid::FrictionModel Model(double a1p, double a1n, double a2p, double a2n, double a3, double tau) {
-  sysid::FrictionModel m;
-  m.a1p = a1p;
-  m.a1n = a1n;
-  m.a2p = a2p;
-  m.a2n = a2n;
-  m.a3 = a3;
-  m.tau_s = tau;
-  return m;
-}
-
-}  // namespace
-
 TEST_CASE("analytic inverse: hand-worked table", "[compare][inverse][reference]") {
   // Round coefficients so every row can be checked on paper; a1 follows the sign of v(t - tau),
   // a2 the sign of v (the rows with opposite signs are the reversals).
-  const auto m = Model(100, 120, 3, 7, 5, 0.002);
+  const auto m = sysid::test::MakeModel(100, 120, 3, 7, 5, 0.002);
   struct Row {
     double a, vd, v, u;  // [m/s^2], [m/s], [m/s], expected [V]
   };
@@ -53,7 +39,7 @@ TEST_CASE("analytic inverse recovers the input of the forward model simulated by
           "reference integrator",
           "[compare][inverse][reference]") {
   // Direction-dependent coefficients (the paper's), so p/n swaps show; tau = 350 h exactly.
-  const auto m = Model(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
+  const auto m = sysid::test::MakeModel(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
   const double h = 1e-5;  // [s] the reference's step; tau = 350 h
   // Forward, reverse while v(t - tau) is still positive, stick, forward, slow and fast backward,
   // reverse while v(t - tau) is still negative. Edges on the grid.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "identify/simulated_recording.hpp"
 #include "identify/synthetic_motion.hpp"
 #include "support/test_support.hpp"
 #include "sysid/identify.hpp"
@@ -42,17 +43,6 @@ struct Spread {
   double ReportedSe(size_t i, int n) const { return std::sqrt(se2[i] / n); }
 };
 
-sysid::FrictionModel Model(double a1p, double a1n, double a2p, double a2n, double a3, double tau) {
-  sysid::FrictionModel m;
-  m.a1p = a1p;
-  m.a1n = a1n;
-  m.a2p = a2p;
-  m.a2n = a2n;
-  m.a3 = a3;
-  m.tau_s = tau;
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("pulse least squares: standard errors match the Monte-Carlo spread over 400 seeds",
@@ -62,7 +52,7 @@ TEST_CASE("pulse least squares: standard errors match the Monte-Carlo spread ove
   // so that the equation a1 v + a2 = a3 u has the same error variance (0.05 m/s^2)^2 in both:
   // the least squares' own model, one variance pooled over both directions.
   const auto table = sysid::ReadPulseTable(sysid::test::SourcePath("datasets/paper/pulse_table.csv"));
-  const auto truth = Model(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0);
+  const auto truth = sysid::test::MakeModel(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0);
   const double sigma_eq = 0.05;  // [m/s^2]
   std::mt19937 rng(2024);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -110,7 +100,8 @@ namespace {
 // deterministic misfit (x is exact, unquantised and the same at every seed: only the noise in u
 // differs between runs, as ordinary least squares assumes). 4 s at 1 kHz.
 struct TrajectoryCase {
-  sysid::FrictionModel truth = Model(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
+  sysid::FrictionModel truth =
+      sysid::test::MakeModel(104.0154, 117.1441, 3.1023, 6.8216, 6.0, 0.0035);
   std::vector<sysid::test::Sine> motion{{0.01, 0.8, 0.0}, {0.002, 4.3, 1.0}};
   double sigma_u = 0.1;   // [V]
   double duration = 4.0;  // [s]
