@@ -31,7 +31,7 @@ LAYERS = [
     ["dominance"],
     ["nn"],
     ["compare"],
-    ["stage"],
+    ["stage", "stack"],
     ["control"],
     ["facts"],
     ["pipeline"],
