@@ -1,6 +1,9 @@
 // sysid track --plant STAGE.json|virtual --ff none|analytic|nn[,...] [--model M.json]
 //             [--nn NN.json] (--freq F | --reference REF.csv) [--json] [-o DIR]
-// PI position control on the virtual stage with optional feedforward; tracking-error table.
+// sysid track --plant STACK.json|piezo-stack --ff none,hysteresis --hysteresis H.json
+//             [--waveform sine|triangle] (--freq F | --reference REF.csv) [--json] [-o DIR]
+// PI position control on the virtual stage or the virtual piezo stack (a file naming
+// "plant": "piezo-stack") with optional feedforward; tracking-error table.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -15,12 +18,14 @@
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
 #include "cli/registry.hpp"
+#include "sysid/compare_hysteresis.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/report.hpp"
+#include "sysid/stack.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid::cli {
@@ -28,7 +33,11 @@ namespace {
 
 struct TrackCliOptions {
   std::string plant = "virtual", ff = "none";
-  std::string model_path, nn_path, reference_path, out_dir;
+  std::string model_path, nn_path, hysteresis_path, reference_path, out_dir;
+  std::string waveform = "sine";  // the stack's reference
+  // The flags whose default differs between stage and stack (set when given).
+  const CLI::Option *freq = nullptr, *amplitude = nullptr, *kp = nullptr, *ki = nullptr,
+                    *u_max = nullptr;
   SmoothProfileOptions profile;  // the flags' defaults are the library's
   PiOptions pi;
   std::uint64_t seed = 1;
@@ -36,8 +45,111 @@ struct TrackCliOptions {
   RecordingFlags recording;  // --var, --rate, --scale for --reference
 };
 
+bool Given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
+
+// A stack preset, or a file that names "plant": "piezo-stack" (anything else is a stage).
+bool IsStackPlant(const std::string& plant) {
+  if (IsStackPresetName(plant)) return true;
+  if (StageParameters::IsPresetName(plant)) return false;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(plant, ec)) return false;
+  return IsStackFileText(ReadFile(plant));
+}
+
+void RunStackTrack(const TrackCliOptions& o) {
+  namespace fs = std::filesystem;
+  const auto folder = OptionalOutputFolder(o.out_dir, o.force,
+                                           {o.plant, o.hysteresis_path, o.reference_path}, "track");
+  if (!o.model_path.empty() || !o.nn_path.empty())
+    throw OptionsError(
+        "--model and --nn are the stage's inverse models; the piezo stack takes --hysteresis "
+        "H.json (--ff hysteresis)");
+  const StackParameters stack = LoadStack(o.plant);
+  PiOptions pi = StackPiOptions(stack);
+  if (Given(o.kp)) pi.kp_v_per_m = o.pi.kp_v_per_m;
+  if (Given(o.ki)) pi.ki_v_per_m_s = o.pi.ki_v_per_m_s;
+  if (Given(o.u_max)) pi.u_max_v = o.pi.u_max_v;
+  std::vector<FeedforwardScheme> schemes;
+  PositionReference ref;
+  try {
+    schemes = ParseFeedforwardSchemes(o.ff);
+    StackReferenceOptions ro;
+    ro.waveform = ParseStackWaveform(o.waveform);
+    if (Given(o.freq)) ro.frequency_hz = o.profile.frequency_hz;
+    if (Given(o.amplitude)) ro.stroke_m = o.profile.amplitude_m;
+    ro.cycles = o.profile.cycles;
+    ro.sample_rate_hz = stack.rig.control_rate_hz;
+    ref = o.reference_path.empty() ? MakeStackReference(ro)
+                                   : ReadPositionReference(o.reference_path, o.recording.Mapping());
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"schemes", "--ff"},
+                        {"waveform", "--waveform"},
+                        {"frequency_hz", "--freq"},
+                        {"stroke_m", "--amplitude"},
+                        {"cycles", "--cycles"}});
+  }
+  std::unique_ptr<HysteresisModel> hysteresis;
+  if (Uses(schemes, FeedforwardScheme::kHysteresis)) {
+    if (o.hysteresis_path.empty())
+      throw OptionsError("--ff hysteresis needs --hysteresis H.json (sysid hysteresis fit -o)");
+    hysteresis = ReadHysteresisModel(o.hysteresis_path);
+  }
+  std::vector<SchemeTracking> runs;
+  try {
+    runs = TrackStackSchemes(stack, o.seed, ref, pi, schemes, {nullptr, nullptr, hysteresis.get()},
+                             [&](FeedforwardScheme s, size_t i) {
+                               Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1,
+                                                    schemes.size()));
+                             });
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"schemes", "--ff"}});
+  }
+  ProgressDone();
+  const LoopMargins margins = StackPiMargins(stack, pi);
+
+  const std::string summary = TrackingSummaryToJson(
+      IsStackPresetName(o.plant) ? stack.name : o.plant, ref, pi, runs);
+  Table table({"feedforward", "max |e| [um]", "RMS e [um]", "RMS e / stroke", "RMS u [V]",
+               "max |u| [V]", "saturated", "limits"});
+  const double stroke = ref.x_m.maxCoeff() - ref.x_m.minCoeff();
+  for (const auto& run : runs) {
+    const auto& r = run.result;
+    table.AddRow({ToString(run.scheme), Num(1e6 * r.max_error_m, 5), Num(1e6 * r.rms_error_m, 5),
+                  stroke > 0 ? fmt::format("{:.3g} %", 100 * r.rms_error_m / stroke) : "-",
+                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
+                  run.stage_limits});
+  }
+  if (folder) {
+    folder->Write([&](const fs::path& dir) {
+      for (const auto& run : runs)
+        WriteRecording((dir / ("track_" + ToString(run.scheme) + ".csv")).string(),
+                       TrackingRecording(run.result, ToString(run.scheme)));
+      if (o.plots)
+        for (const auto& [name, spec] : TrackingPlots(runs)) {
+          const auto p = WritePlot((dir / name).string(), spec);
+          if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
+        }
+      WriteFileAtomically((dir / "summary.json").string(), summary);
+    });
+  }
+  if (o.json) {
+    std::cout << summary;
+    return;
+  }
+  std::cout << fmt::format("{}: {}\n", stack.name, ref.description)
+            << fmt::format(
+                   "PI Kp = {:.4g} V/m, Ki = {:.4g} V/(m s); linear margins at the steepest slope: "
+                   "gain {:.3g}, phase {:.3g} deg, crossover {:.3g} Hz\n",
+                   pi.kp_v_per_m, pi.ki_v_per_m_s, margins.gain_margin, margins.phase_margin_deg,
+                   margins.crossover_rad_s / (2 * M_PI))
+            << table.Render();
+}
+
 void RunTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
+  if (IsStackPlant(o.plant)) return RunStackTrack(o);
+  if (!o.hysteresis_path.empty())
+    throw OptionsError("--hysteresis is the piezo stack's feedforward model (--plant piezo-stack)");
   // The output folder is checked before any work; --plant may name a preset.
   const auto folder = OptionalOutputFolder(
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
@@ -99,12 +211,25 @@ void AddTrackCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "track",
       "PI position control of the virtual stage with feedforward (none, the analytic "
-      "inverse, or the NN inverse): maximum and RMS tracking error and control effort");
+      "inverse, or the NN inverse), or of the virtual piezo stack with a hysteresis model's "
+      "inverse as feedforward: maximum and RMS tracking error and control effort");
   cmd->add_option("--plant", o->plant,
                   "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
                   "calibrated velocity-source stage) or 'actuator-delay' (the former stage, on "
-                  "which the paper's gains limit-cycle and feedforward does not help)");
-  cmd->add_option("--ff", o->ff, "feedforward scheme(s), comma separated: none, analytic, nn")
+                  "which the paper's gains limit-cycle and feedforward does not help); or a "
+                  "piezo stack: a file naming \"plant\": \"piezo-stack\", or the preset "
+                  "'piezo-stack' (docs/piezo_stack.md)");
+  cmd->add_option("--ff", o->ff,
+                  "feedforward scheme(s), comma separated: none, analytic, nn (stage); none, "
+                  "hysteresis (stack)")
+      ->capture_default_str();
+  cmd->add_option("--hysteresis", o->hysteresis_path,
+                  "hysteresis model JSON (sysid hysteresis fit -o) whose inverse of the position "
+                  "reference is the feedforward (for --ff hysteresis; piezo stack)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--waveform", o->waveform,
+                  "the piezo stack's reference: sine or triangle, from 0 up to the stroke and back")
+      ->check(CLI::IsMember({"sine", "triangle"}))
       ->capture_default_str();
   cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
       ->check(CLI::ExistingFile);
@@ -114,24 +239,31 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   auto* freq =
       cmd->add_option("--freq", o->profile.frequency_hz,
-                      "frequency of the smooth back-and-forth profile [Hz]")
+                      "frequency of the smooth back-and-forth profile [Hz] (piezo stack: of its "
+                      "waveform, default 10)")
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
+  o->freq = freq;
   cmd->add_option("--reference", o->reference_path,
                   "position reference CSV with t [s] and x_ref [m] (or x) columns")
       ->check(CLI::ExistingFile)
       ->excludes(freq);
-  cmd->add_option("--amplitude", o->profile.amplitude_m, "stroke of the profile [m]")
-      ->capture_default_str();
+  o->amplitude = cmd->add_option("--amplitude", o->profile.amplitude_m,
+                                 "stroke of the profile [m] (piezo stack: default 2e-05)")
+                      ->capture_default_str();
   cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   const auto [kp, ki] = AddPiGainOptions(cmd, o->pi, "");
   kp->check(CLI::Range(0.0, 1e9));
   ki->check(CLI::Range(0.0, 1e12));
-  cmd->add_option("--u-max", o->pi.u_max_v, "output saturation [V]")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  o->kp = kp;
+  o->ki = ki;
+  o->u_max = cmd->add_option("--u-max", o->pi.u_max_v,
+                             "output saturation [V] (piezo stack: default its amplifier's upper "
+                             "end; its gains default to StackPiOptions, docs/piezo_stack.md)")
+                 ->check(CLI::PositiveNumber)
+                 ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
       ->capture_default_str();

@@ -27,8 +27,11 @@ namespace sysid {
 
 class VirtualStage;
 class NeuralNetwork;
+class HysteresisModel;
+class PiezoStack;
 struct Recording;
 struct StageParameters;
+struct StackParameters;
 
 enum class AntiWindup { kNone, kConditionalIntegration };
 
@@ -221,9 +224,10 @@ TrackingResult RunClosedLoop(VirtualStage& stage, const PositionReference& refer
 Feedforward SampledFeedforward(Eigen::VectorXd u_ff_v);
 
 /// The feedforward schemes of the tracking experiment: PI alone, PI + the analytic inverse
-/// model, PI + the neural inverse model.
-enum class FeedforwardScheme { kNone, kAnalytic, kNetwork };
-std::string ToString(FeedforwardScheme scheme);  ///< "none", "analytic", "nn"
+/// model, PI + the neural inverse model (the stage's), PI + a hysteresis model's inverse of
+/// the position reference (the piezo stack's).
+enum class FeedforwardScheme { kNone, kAnalytic, kNetwork, kHysteresis };
+std::string ToString(FeedforwardScheme scheme);  ///< "none", "analytic", "nn", "hysteresis"
 /// Inverse of ToString. Throws OptionsError naming the accepted names.
 FeedforwardScheme ParseFeedforwardScheme(const std::string& name);
 /// A comma-separated list of scheme names ("none,analytic"), in order. Throws OptionsError
@@ -236,11 +240,13 @@ bool Uses(const std::vector<FeedforwardScheme>& schemes, FeedforwardScheme schem
 struct InverseModels {
   const FrictionModel* model = nullptr;    ///< for kAnalytic
   const NeuralNetwork* network = nullptr;  ///< for kNetwork
+  const HysteresisModel* hysteresis = nullptr;  ///< for kHysteresis
 };
 
 /// The feedforward of `scheme` over `reference` sampled every `dt_s` [s]: empty for kNone,
 /// else the inverse model's voltages computed over the whole reference first (the analytic
-/// inverse uses the delayed velocity v_ref(t - tau)) and played back (SampledFeedforward).
+/// inverse uses the delayed velocity v_ref(t - tau); the hysteresis inverse u = H^-1[x_ref])
+/// and played back (SampledFeedforward).
 /// Throws OptionsError when the scheme's model is missing.
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
                               double dt_s, const InverseModels& models);
@@ -263,9 +269,59 @@ std::string TrackingSummaryToJson(const std::string& plant, const PositionRefere
 
 /// PI tracking of `reference` once per scheme, each on a fresh VirtualStage(stage, seed): every
 /// scheme sees the same plant and noise. pi.sample_time_s is taken from the stage. `on_scheme`
-/// (optional) is called before each run with the scheme and its 0-based index.
+/// (optional) is called before each run with the scheme and its 0-based index. The hysteresis
+/// scheme is the stack's (OptionsError here).
 std::vector<SchemeTracking> TrackSchemes(
     const StageParameters& stage, std::uint64_t seed, const PositionReference& reference,
+    PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme = {});
+
+// ---- The piezo stack (sysid/stack.hpp; docs/piezo_stack.md) -------------------------------
+
+/// The stack's reference waveforms: x(t) from 0 up to `stroke_m` and back, `cycles` periods of
+/// 1/f, starting at rest at 0 (where the stack starts):
+///   sine      x = (S/2) (1 - cos(2 pi f t))
+///   triangle  x rises linearly to S in 1/(2f) and falls back (v jumps at the corners, a = 0)
+enum class StackWaveform { kSine, kTriangle };
+std::string ToString(StackWaveform waveform);  ///< "sine", "triangle"
+/// Inverse of ToString; OptionsError (field "waveform") naming both otherwise.
+StackWaveform ParseStackWaveform(const std::string& name);
+
+struct StackReferenceOptions {
+  StackWaveform waveform = StackWaveform::kSine;
+  double frequency_hz = 10;        ///< [Hz] f > 0
+  double stroke_m = 20e-6;         ///< [m] S > 0, peak-to-peak
+  int cycles = 2;                  ///< >= 1
+  double sample_rate_hz = 10000;   ///< [Hz] > 0 (the stack's control rate)
+  /// OptionsError naming the field; also refuses more than kMaxStackReferenceSamples samples.
+  void Validate() const;
+};
+/// The longest reference a stack run takes (5e7 samples: 1.6 GB of traces).
+inline constexpr double kMaxStackReferenceSamples = 5e7;
+PositionReference MakeStackReference(const StackReferenceOptions& options);
+
+/// PI gains for a stack (docs/piezo_stack.md, "The PI loop"): with g = MaxStaticGain() [m/V]
+/// (the steepest static slope) and w_n = 2 pi f_n,
+///   Ki = 2 zeta w_n / (3 g)   (the integral path's gain at the resonance peak is 1/3),
+///   Kp = 0.05 / g             (a twentieth of the static gain: adds little at the peak),
+///   u_max = rig.voltage_max_v, Ts = the control period.
+PiOptions StackPiOptions(const StackParameters& stack);
+
+/// The PI loop's open loop on the stack with the hysteresis replaced by its steepest static
+/// slope p0 + sum w_i (the rate terms at rate 0) and the creep by its transfer function:
+///   L(j w) = C(e^(j w Ts)) (p0 + sum w_i) (1 + sum_j kappa_j / (1 + j w tau_j))
+///            w_n^2 / (w_n^2 - w^2 + 2 j zeta w_n w) e^(-j w Ts / 2),
+/// C(z) = Kp + Ki Ts / (1 - z^-1) the discrete PI law, e^(-j w Ts/2) the zero-order hold.
+std::complex<double> StackPiLoop(const StackParameters& stack, const PiOptions& pi,
+                                 double omega_rad_s);
+/// ComputeLoopMargins of StackPiLoop from 0.1 rad/s to the Nyquist frequency pi / Ts.
+LoopMargins StackPiMargins(const StackParameters& stack, const PiOptions& pi);
+
+/// PI tracking of `reference` on a fresh PiezoStack(stack, seed) once per scheme (none or
+/// hysteresis; OptionsError for the stage's schemes), every scheme on the same plant and noise.
+/// pi.sample_time_s is taken from the stack. stage_limits holds PiezoStack::DescribeLimits().
+std::vector<SchemeTracking> TrackStackSchemes(
+    const StackParameters& stack, std::uint64_t seed, const PositionReference& reference,
     PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
     const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme = {});
 

@@ -6,6 +6,7 @@
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis_model.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/stage.hpp"
@@ -20,15 +21,17 @@ std::string ToString(FeedforwardScheme scheme) {
       return "analytic";
     case FeedforwardScheme::kNetwork:
       return "nn";
+    case FeedforwardScheme::kHysteresis:
+      return "hysteresis";
   }
   SYSID_CHECK(false, "unknown FeedforwardScheme value");
 }
 
 FeedforwardScheme ParseFeedforwardScheme(const std::string& name) {
   for (auto s : {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
-                 FeedforwardScheme::kNetwork})
+                 FeedforwardScheme::kNetwork, FeedforwardScheme::kHysteresis})
     if (ToString(s) == name) return s;
-  throw OptionsError("'" + name + "' is not one of none, analytic, nn");
+  throw OptionsError("'" + name + "' is not one of none, analytic, nn, hysteresis");
 }
 
 std::vector<FeedforwardScheme> ParseFeedforwardSchemes(const std::string& comma_list) {
@@ -40,7 +43,7 @@ std::vector<FeedforwardScheme> ParseFeedforwardSchemes(const std::string& comma_
   } catch (const OptionsError& e) {
     throw OptionsError(e.what(), "schemes");
   }
-  if (out.empty()) throw OptionsError("expected none, analytic or nn", "schemes");
+  if (out.empty()) throw OptionsError("expected none, analytic, nn or hysteresis", "schemes");
   return out;
 }
 
@@ -62,6 +65,12 @@ Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference&
       if (models.network == nullptr)
         throw OptionsError("SchemeFeedforward: the nn scheme needs InverseModels::network");
       return SampledFeedforward(NetworkInverse(*models.network, reference.v_mps, reference.a_mps2));
+    case FeedforwardScheme::kHysteresis:
+      if (models.hysteresis == nullptr)
+        throw OptionsError("SchemeFeedforward: the hysteresis scheme needs InverseModels::hysteresis");
+      // The model maps voltage to position, so its inverse of the position reference is the
+      // voltage that would follow it quasi-statically.
+      return SampledFeedforward(models.hysteresis->Invert(reference.x_m, dt_s));
   }
   SYSID_CHECK(false, "unknown FeedforwardScheme value");
 }
@@ -73,6 +82,12 @@ std::vector<SchemeTracking> TrackSchemes(
   pi.sample_time_s = stage.sample_time_s();
   pi.Validate();
   std::vector<SchemeTracking> runs;
+  for (auto s : schemes)
+    if (s == FeedforwardScheme::kHysteresis)
+      throw OptionsError(
+          "the hysteresis scheme inverts a voltage-to-position model: it is for the piezo stack "
+          "(--plant piezo-stack), not the stage",
+          "schemes");
   for (std::size_t i = 0; i < schemes.size(); ++i) {
     if (on_scheme) on_scheme(schemes[i], i);
     SchemeTracking run;
