@@ -52,9 +52,13 @@ void Rk4(const sysid::StackParameters& p, double y, double h, std::vector<double
 
 }  // namespace
 
-TEST_CASE("stack: CVODE matches a tiny-step RK4 of the same ODE and operator sequence",
+TEST_CASE("stack: CVODE and the exact discretisation match a tiny-step RK4 of the same ODE "
+          "and operator sequence",
           "[stack]") {
-  const sysid::StackParameters p = Clean();
+  sysid::StackParameters p = Clean();
+  const auto method = GENERATE(sysid::StackMethod::kCvode, sysid::StackMethod::kExact);
+  p.integrator.method = method;
+  INFO("integrator.method " << sysid::ToString(method));
   const double ts = p.sample_time_s();
   const int n = 600;  // 60 ms: reversals at two rates, the resonance rung, creep under way
   Eigen::VectorXd u(n);
@@ -86,10 +90,13 @@ TEST_CASE("stack: CVODE matches a tiny-step RK4 of the same ODE and operator seq
 
 TEST_CASE("stack: each creep element follows kappa y (1 - exp(-t / tau)) after a step",
           "[stack]") {
+  const auto method = GENERATE(sysid::StackMethod::kCvode, sysid::StackMethod::kExact);
+  INFO("integrator.method " << sysid::ToString(method));
   // CVODE's local error (~rtol per sample) adds up over the 30000 restarts: ~7e-8 relative at
   // the default rtol 1e-10, so the comparison runs at 1e-12.
   sysid::StackParameters p = Clean();
   p.integrator.relative_tolerance = 1e-12;
+  p.integrator.method = method;
   sysid::PiezoStack stack(p);
   const double u = stack.DacOutput(50);  // 50 V to 3e-8 V, the 32-bit DAC's step
   const double ts = p.sample_time_s();

@@ -37,6 +37,7 @@ void Same(const sysid::StackParameters& a, const sysid::StackParameters& b) {
   CHECK(a.rig.dac_bits == b.rig.dac_bits);
   CHECK(a.rig.sensor_resolution_m == b.rig.sensor_resolution_m);
   CHECK(a.rig.sensor_noise_m == b.rig.sensor_noise_m);
+  CHECK(a.integrator.method == b.integrator.method);
   CHECK(a.integrator.relative_tolerance == b.integrator.relative_tolerance);
   CHECK(a.integrator.position_tolerance_m == b.integrator.position_tolerance_m);
 }
@@ -77,6 +78,8 @@ TEST_CASE("stack file: bad values name the file, line, column and key", "[stack]
   CHECK_THAT(Error("{\"plant\": \"piezo-stack\", \"rig\": {\"sensor_nois_m\": 1}}"),
              Contains("sensor_nois_m"));
   CHECK_THAT(Error("{\"name\": \"x\"}"), Contains("missing required key 'plant'"));
+  CHECK_THAT(Error("{\"plant\": \"piezo-stack\", \"integrator\": {\"method\": \"rk4\"}}"),
+             Contains("integrator.method: expected \"cvode\" or \"exact\", found string \"rk4\""));
   CHECK_THAT(Error("{\"plant\": \"stage\"}"), Contains("plant: expected \"piezo-stack\""));
   CHECK_THAT(Error("{\"plant\": \"piezo-stack\", \"hysteresis\": {\"linear_gain_m_per_v\": 0}}"),
              Contains("hysteresis.linear_gain_m_per_v: expected linear_gain_m_per_v > 0"));

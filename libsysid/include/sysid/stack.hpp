@@ -20,7 +20,9 @@
 //   sensor:     the reading round((x + n) / q) q, n ~ N(0, sensor_noise_m^2) (seeded, the
 //               stage's portable generator), q = sensor_resolution_m
 // x, x', c_j are integrated by CVODE (Adams; core/cvode_solver), restarted at every sample
-// because y jumps there. All states start at 0 (the stack at rest at 0 V).
+// because y jumps there, or (integrator.method "exact") by the ODE's exact zero-order-hold
+// discretisation: the ODE is linear and its input y is held over each sample. All states start
+// at 0 (the stack at rest at 0 V).
 #ifndef SYSID_STACK_HPP_
 #define SYSID_STACK_HPP_
 
@@ -71,8 +73,20 @@ struct StackRig {
   double sensor_noise_m = 1e-9;      ///< [m] standard deviation of the reading noise, >= 0
 };
 
-/// CVODE's tolerances (file section "integrator").
+/// How the linear ODE is advanced over a sample (file section "integrator").
+enum class StackMethod {
+  kCvode,  ///< "cvode": CVODE (Adams), restarted at every sample, tolerances below
+  /// "exact": the zero-order-hold discretisation s_(k+1) = Phi s_k + Gamma y_k, Phi and Gamma
+  /// from one matrix exponential of [[A, B], [0, 0]] Ts (Van Loan): exact for the held input,
+  /// to rounding, at one small matrix-vector product per sample
+  kExact,
+};
+std::string ToString(StackMethod method);
+/// "cvode" or "exact"; OptionsError (field "integrator.method") otherwise.
+StackMethod ParseStackMethod(const std::string& name);
+
 struct StackIntegrator {
+  StackMethod method = StackMethod::kCvode;
   double relative_tolerance = 1e-10;    ///< rtol in [1e-14, 1e-2]
   /// [m] atol of x and c_j (x' gets atol w_n), > 0: far below rtol x, because the creep
   /// states are ~1 % of x and their error adds up over the restarts at every sample

@@ -12,6 +12,9 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Core>
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include "core/cvode_solver.hpp"
 #include "core/portable_random.hpp"
 #include "sysid/error.hpp"
@@ -29,6 +32,12 @@ class PiezoStack::Impl {
     z_.assign(p_.hysteresis.thresholds_v.size(), 0.0);  // the operators at rest at 0 V
     dac_step_ = (p_.rig.voltage_max_v - p_.rig.voltage_min_v) / (std::ldexp(1.0, p_.rig.dac_bits) - 1);
     std::vector<double> y0(static_cast<size_t>(2 + m_), 0.0);
+    exact_state_ = Eigen::VectorXd::Zero(2 + m_);
+    if (p_.integrator.method == StackMethod::kExact) {
+      Discretise();
+      reading_ = Read(0.0);
+      return;
+    }
     cv_.emplace(2 + m_, internal::CvodeSolver::Method::kAdams, &Impl::Rhs, this, 0.0, y0.data(),
                 "virtual piezo stack", "try a larger integrator.relative_tolerance");
     std::vector<double> atol(y0.size(), p_.integrator.position_tolerance_m);
@@ -63,6 +72,12 @@ class PiezoStack::Impl {
     u_prev2_ = u_prev_;
     u_prev_ = u;
 
+    if (!cv_) {
+      exact_state_ = phi_ * exact_state_ + gamma_ * y;
+      ++k_;
+      reading_ = Read(exact_state_[0]);
+      return reading_;
+    }
     const double t0 = Time(), t1 = static_cast<double>(k_ + 1) * ts_;
     cv_->ReInit(t0);
     cv_->SetStopTime(t1);
@@ -86,12 +101,35 @@ class PiezoStack::Impl {
   double Time() const { return static_cast<double>(k_) * ts_; }
 
   StackState State() const {
+    const double* st = cv_ ? cv_->state() : exact_state_.data();
     StackState s;
-    s.x_m = cv_->state()[0];
-    s.v_mps = cv_->state()[1];
+    s.x_m = st[0];
+    s.v_mps = st[1];
     s.hysteresis_m = y_;
-    s.creep_m.assign(cv_->state() + 2, cv_->state() + 2 + m_);
+    s.creep_m.assign(st + 2, st + 2 + m_);
     return s;
+  }
+
+  // s' = A s + B y over one held sample: exp([[A, B], [0, 0]] Ts) = [[Phi, Gamma], [0, 1]].
+  void Discretise() {
+    const int n = 2 + m_;
+    Eigen::MatrixXd aug = Eigen::MatrixXd::Zero(n + 1, n + 1);
+    const double zeta = p_.mechanics.damping_ratio;
+    aug(0, 1) = 1;
+    aug(1, 0) = -wn_ * wn_;
+    aug(1, 1) = -2 * zeta * wn_;
+    aug(1, n) = wn_ * wn_;
+    for (int j = 0; j < m_; ++j) {
+      const double tau = p_.creep.time_constants_s[static_cast<size_t>(j)];
+      aug(1, 2 + j) = wn_ * wn_;
+      aug(2 + j, 2 + j) = -1 / tau;
+      aug(2 + j, n) = p_.creep.fractions[static_cast<size_t>(j)] / tau;
+    }
+    const Eigen::MatrixXd e = (aug * ts_).exp();
+    phi_ = e.topLeftCorner(n, n);
+    gamma_ = e.topRightCorner(n, 1);
+    if (!phi_.allFinite() || !gamma_.allFinite())
+      throw NumericalError("virtual piezo stack: the exact discretisation is not finite");
   }
 
   std::string DescribeLimits() const {
@@ -119,7 +157,9 @@ class PiezoStack::Impl {
 
   StackParameters p_;
   internal::PortableRandom noise_;
-  std::optional<internal::CvodeSolver> cv_;
+  std::optional<internal::CvodeSolver> cv_;  // empty: the exact discretisation
+  Eigen::MatrixXd phi_;
+  Eigen::VectorXd gamma_, exact_state_;
   double ts_ = 0, wn_ = 0, dac_step_ = 0;
   int m_ = 0;
   std::vector<double> z_;

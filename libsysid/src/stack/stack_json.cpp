@@ -49,9 +49,19 @@ const FieldList<StackRig>& RigFields() {
                                     .Add("sensor_noise_m", &R::sensor_noise_m);
   return f;
 }
+nlohmann::ordered_json MethodJson(const StackMethod& m) { return ToString(m); }
+void ReadMethod(const JsonNode& node, StackMethod& m) {
+  try {
+    m = ParseStackMethod(node.String());
+  } catch (const OptionsError&) {
+    node.Expected("\"cvode\" or \"exact\"");
+  }
+}
+
 const FieldList<StackIntegrator>& IntegratorFields() {
   using I = StackIntegrator;
   static const FieldList<I> f = FieldList<I>()
+                                    .Nested("method", &I::method, MethodJson, ReadMethod)
                                     .Add("relative_tolerance", &I::relative_tolerance)
                                     .Add("position_tolerance_m", &I::position_tolerance_m);
   return f;

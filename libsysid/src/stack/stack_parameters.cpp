@@ -16,6 +16,13 @@ namespace {
   throw OptionsError(s.str());
 }
 
+std::string G(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
 std::string At(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
 }  // namespace
@@ -40,6 +47,14 @@ StackParameters StackParameters::Default() {
   return p;
 }
 
+std::string ToString(StackMethod method) { return method == StackMethod::kCvode ? "cvode" : "exact"; }
+
+StackMethod ParseStackMethod(const std::string& name) {
+  if (name == "cvode") return StackMethod::kCvode;
+  if (name == "exact") return StackMethod::kExact;
+  throw OptionsError("'" + name + "' is not one of cvode, exact", "integrator.method");
+}
+
 bool IsStackPresetName(const std::string& name) { return name == "piezo-stack" || name == "stack"; }
 
 void StackParameters::Validate() const {
@@ -55,7 +70,7 @@ void StackParameters::Validate() const {
     if (!std::isfinite(r) || !(r > 0)) Violated(At("hysteresis.thresholds_v", i), r, "r_i > 0 and finite");
     if (i > 0 && !(r > h.thresholds_v[i - 1]))
       Violated(At("hysteresis.thresholds_v", i), r,
-               "thresholds increasing (r_i > r_(i-1) = " + std::to_string(h.thresholds_v[i - 1]) + ")");
+               "thresholds increasing (r_i > r_(i-1) = " + G(h.thresholds_v[i - 1]) + ")");
   }
   if (h.weights_m_per_v.size() != h.thresholds_v.size())
     Violated("hysteresis.weights_m_per_v", static_cast<double>(h.weights_m_per_v.size()),
@@ -93,14 +108,14 @@ void StackParameters::Validate() const {
   if (!std::isfinite(mechanics.resonance_hz) || !(mechanics.resonance_hz > 0) ||
       !(mechanics.resonance_hz < nyquist))
     Violated("mechanics.resonance_hz", mechanics.resonance_hz,
-             "0 < resonance_hz < control_rate_hz / 2 = " + std::to_string(nyquist));
+             "0 < resonance_hz < control_rate_hz / 2 = " + G(nyquist));
   if (!std::isfinite(mechanics.damping_ratio) || !(mechanics.damping_ratio > 0) ||
       mechanics.damping_ratio > 2)
     Violated("mechanics.damping_ratio", mechanics.damping_ratio, "damping_ratio in (0, 2]");
   if (!std::isfinite(rig.voltage_min_v)) Violated("rig.voltage_min_v", rig.voltage_min_v, "finite");
   if (!std::isfinite(rig.voltage_max_v) || !(rig.voltage_max_v > rig.voltage_min_v))
     Violated("rig.voltage_max_v", rig.voltage_max_v,
-             "voltage_max_v > voltage_min_v = " + std::to_string(rig.voltage_min_v));
+             "voltage_max_v > voltage_min_v = " + G(rig.voltage_min_v));
   if (rig.dac_bits < 1 || rig.dac_bits > 32) Violated("rig.dac_bits", rig.dac_bits, "dac_bits in 1..32");
   if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m > 0))
     Violated("rig.sensor_resolution_m", rig.sensor_resolution_m, "sensor_resolution_m > 0");
