@@ -39,8 +39,10 @@ int main(int argc, char** argv) {
   int repeats = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
-    if (flag == "--samples") samples = std::atol(argv[i + 1]);
-    else if (flag == "--repeats") repeats = std::atoi(argv[i + 1]);
+    if (flag == "--samples")
+      samples = std::atol(argv[i + 1]);
+    else if (flag == "--repeats")
+      repeats = std::atoi(argv[i + 1]);
     else {
       fmt::print(stderr, "usage: bench_stack [--samples N] [--repeats R]\n");
       return 1;
@@ -74,9 +76,10 @@ int main(int argc, char** argv) {
       BestRate(samples, repeats, [&] { sysid::RunOpenLoop(stage, u_stage, 1); });
   fmt::print("stack cvode  {:.4g} samples/s ({} samples at {:g} Hz, best of {})\n", stack_rate,
              samples, rate, repeats);
-  fmt::print("stack exact  {:.4g} samples/s; max |x_exact - x_cvode| = {:.3g} m of max |x| {:.3g} m\n",
-             exact_rate, (exact_run.x_true_m - cvode_run.x_true_m).cwiseAbs().maxCoeff(),
-             cvode_run.x_true_m.cwiseAbs().maxCoeff());
+  fmt::print(
+      "stack exact  {:.4g} samples/s; max |x_exact - x_cvode| = {:.3g} m of max |x| {:.3g} m\n",
+      exact_rate, (exact_run.x_true_m - cvode_run.x_true_m).cwiseAbs().maxCoeff(),
+      cvode_run.x_true_m.cwiseAbs().maxCoeff());
   fmt::print("stage        {:.4g} samples/s (same samples and rate)\n", stage_rate);
   fmt::print("ratio stack cvode/stage {:.2f}\n", stack_rate / stage_rate);
   fmt::print("ratio stack exact/stage {:.2f}\n", exact_rate / stage_rate);

@@ -37,7 +37,7 @@ struct TrackCliOptions {
   std::string waveform = "sine";  // the stack's reference
   // The flags whose default differs between stage and stack (set when given).
   const CLI::Option *freq = nullptr, *amplitude = nullptr, *kp = nullptr, *ki = nullptr,
-                    *u_max = nullptr;
+                    *u_max = nullptr, *waveform_flag = nullptr;
   SmoothProfileOptions profile;  // the flags' defaults are the library's
   PiOptions pi;
   std::uint64_t seed = 1;
@@ -150,6 +150,9 @@ void RunTrack(const TrackCliOptions& o) {
   if (IsStackPlant(o.plant)) return RunStackTrack(o);
   if (!o.hysteresis_path.empty())
     throw OptionsError("--hysteresis is the piezo stack's feedforward model (--plant piezo-stack)");
+  if (Given(o.waveform_flag))
+    throw OptionsError("--waveform is the piezo stack's reference; the stage tracks its smooth "
+                       "profile (--freq, --amplitude) or --reference");
   // The output folder is checked before any work; --plant may name a preset.
   const auto folder = OptionalOutputFolder(
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
@@ -227,10 +230,12 @@ void AddTrackCommand(CLI::App& app) {
                   "hysteresis model JSON (sysid hysteresis fit -o) whose inverse of the position "
                   "reference is the feedforward (for --ff hysteresis; piezo stack)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--waveform", o->waveform,
-                  "the piezo stack's reference: sine or triangle, from 0 up to the stroke and back")
-      ->check(CLI::IsMember({"sine", "triangle"}))
-      ->capture_default_str();
+  o->waveform_flag =
+      cmd->add_option("--waveform", o->waveform,
+                      "the piezo stack's reference: sine or triangle, from 0 up to the stroke and "
+                      "back")
+          ->check(CLI::IsMember({"sine", "triangle"}))
+          ->capture_default_str();
   cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--nn", o->nn_path,

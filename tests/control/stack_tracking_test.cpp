@@ -39,7 +39,8 @@ void Propagate(double wn, double zeta, double f, double h, double& x, double& v)
 
 }  // namespace
 
-TEST_CASE("stack loop without hysteresis: the closed form of the linear PI loop", "[control][stack]") {
+TEST_CASE("stack loop without hysteresis: the closed form of the linear PI loop",
+          "[control][stack]") {
   const sysid::StackParameters p = LinearStack();
   const sysid::PiOptions pi = sysid::StackPiOptions(sysid::StackParameters::Default());
   const double ts = p.sample_time_s(), step = 10e-6;
@@ -70,7 +71,8 @@ TEST_CASE("stack loop without hysteresis: the closed form of the linear PI loop"
   CHECK(r.saturated_samples == 0);
 }
 
-TEST_CASE("stack PI gains: stable with the stated margins on the default stack", "[control][stack]") {
+TEST_CASE("stack PI gains: stable with the stated margins on the default stack",
+          "[control][stack]") {
   const auto stack = sysid::StackParameters::Default();
   const sysid::PiOptions pi = sysid::StackPiOptions(stack);
   const sysid::LoopMargins m = sysid::StackPiMargins(stack, pi);

@@ -52,9 +52,10 @@ void Rk4(const sysid::StackParameters& p, double y, double h, std::vector<double
 
 }  // namespace
 
-TEST_CASE("stack: CVODE and the exact discretisation match a tiny-step RK4 of the same ODE "
-          "and operator sequence",
-          "[stack]") {
+TEST_CASE(
+    "CVODE and the exact discretisation match a tiny-step RK4 of the same ODE "
+    "and operator sequence",
+    "[stack]") {
   sysid::StackParameters p = Clean();
   const auto method = GENERATE(sysid::StackMethod::kCvode, sysid::StackMethod::kExact);
   p.integrator.method = method;
@@ -88,8 +89,7 @@ TEST_CASE("stack: CVODE and the exact discretisation match a tiny-step RK4 of th
   CHECK(worst <= 1e-6 * scale);
 }
 
-TEST_CASE("stack: each creep element follows kappa y (1 - exp(-t / tau)) after a step",
-          "[stack]") {
+TEST_CASE("each creep element follows kappa y (1 - exp(-t / tau)) after a step", "[stack]") {
   const auto method = GENERATE(sysid::StackMethod::kCvode, sysid::StackMethod::kExact);
   INFO("integrator.method " << sysid::ToString(method));
   // CVODE's local error (~rtol per sample) adds up over the 30000 restarts: ~7e-8 relative at
@@ -127,8 +127,7 @@ TEST_CASE("stack: each creep element follows kappa y (1 - exp(-t / tau)) after a
   }
 }
 
-TEST_CASE("stack: the DAC clips to the amplifier's range and the sensor quantises",
-          "[stack]") {
+TEST_CASE("the stack's DAC clips to the amplifier's range and the sensor quantises", "[stack]") {
   sysid::StackParameters p = sysid::StackParameters::Default();
   p.rig.sensor_noise_m = 0;
   p.rig.sensor_resolution_m = 1e-9;
@@ -147,7 +146,8 @@ TEST_CASE("stack: the DAC clips to the amplifier's range and the sensor quantise
   CHECK_THROWS_AS(stack.Step(std::nan("")), sysid::OptionsError);
 }
 
-TEST_CASE("stack: the same seed gives the same readings, another seed other noise", "[stack]") {
+TEST_CASE("the stack's readings: the same seed gives the same readings, another seed other noise",
+          "[stack]") {
   const sysid::StackParameters p = sysid::StackParameters::Default();
   Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(200, 0, 80);
   const auto a = sysid::RunStackOpenLoop(p, u, 7), b = sysid::RunStackOpenLoop(p, u, 7),

@@ -61,10 +61,11 @@ TEST_CASE("stack file: written and read back, and the bundled file is the defaul
 }
 
 TEST_CASE("stack file: bad values name the file, line, column and key", "[stack]") {
-  CHECK_THAT(Error("{\"plant\": \"piezo-stack\",\n \"hysteresis\": {\"thresholds_v\": [1, 3, 2, 4, 5, "
-                   "6, 7, 8, 9, 10]}}"),
-             Contains("s.json:2:") && Contains("hysteresis.thresholds_v[2]: expected thresholds "
-                                               "increasing"));
+  CHECK_THAT(
+      Error("{\"plant\": \"piezo-stack\",\n \"hysteresis\": {\"thresholds_v\": [1, 3, 2, 4, 5, "
+            "6, 7, 8, 9, 10]}}"),
+      Contains("s.json:2:") && Contains("hysteresis.thresholds_v[2]: expected thresholds "
+                                        "increasing"));
   CHECK_THAT(Error("{\"plant\": \"piezo-stack\",\n \"hysteresis\": {\"weights_m_per_v\": [1e-8]}}"),
              Contains("s.json:2:17: hysteresis.weights_m_per_v: expected one weight per "
                       "threshold (10), found 1"));

@@ -23,9 +23,9 @@ TEST_CASE("sysid track on the piezo stack: traces -> pi fit -> feedforward beats
   WriteText(dir / "stack.json",
             "{\"plant\": \"piezo-stack\", \"integrator\": {\"method\": \"exact\"}}");
   for (const char* f : {"2", "10", "40"}) {
-    const auto r = RunCli({"track", "--plant", dir / "stack.json", "--ff", "none", "--freq", f,
-                           "--amplitude", "22e-6", "--seed", "2", "--no-plots", "-o",
-                           dir / (std::string("train_") + f)});
+    const auto r =
+        RunCli({"track", "--plant", dir / "stack.json", "--ff", "none", "--freq", f, "--amplitude",
+                "22e-6", "--seed", "2", "--no-plots", "-o", dir / (std::string("train_") + f)});
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("gain 2.23, phase 92.6 deg, crossover 32.5 Hz"));
   }
@@ -33,9 +33,9 @@ TEST_CASE("sysid track on the piezo stack: traces -> pi fit -> feedforward beats
                            dir / "train_2/track_none.csv", dir / "train_10/track_none.csv",
                            dir / "train_40/track_none.csv", "-o", dir / "pi.json"});
   REQUIRE(fit.exit_code == 0);
-  const auto r = RunCli({"track", "--plant", dir / "stack.json", "--ff", "none,hysteresis",
-                         "--hysteresis", dir / "pi.json", "--waveform", "triangle", "--freq",
-                         "10", "--seed", "3", "--json"});
+  const auto r =
+      RunCli({"track", "--plant", dir / "stack.json", "--ff", "none,hysteresis", "--hysteresis",
+              dir / "pi.json", "--waveform", "triangle", "--freq", "10", "--seed", "3", "--json"});
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["schemes"].size() == 2);
@@ -52,9 +52,11 @@ TEST_CASE("sysid track on the piezo stack: traces -> pi fit -> feedforward beats
   CHECK_FALSE(std::filesystem::exists(dir / "far"));
   // The stage's schemes on the stack, the stack's on the stage, a missing model.
   CHECK(RunCli({"track", "--plant", "piezo-stack", "--ff", "analytic"}).exit_code == 1);
-  CHECK(RunCli({"track", "--plant", "virtual", "--ff", "hysteresis", "--hysteresis",
-                dir / "pi.json"})
-            .exit_code == 1);
+  CHECK(
+      RunCli({"track", "--plant", "virtual", "--ff", "hysteresis", "--hysteresis", dir / "pi.json"})
+          .exit_code == 1);
+  CHECK_THAT(RunCli({"track", "--plant", "virtual", "--waveform", "triangle"}).err,
+             Contains("--waveform is the piezo stack's reference"));
   CHECK_THAT(RunCli({"track", "--plant", "piezo-stack", "--ff", "hysteresis"}).err,
              Contains("--ff hysteresis needs --hysteresis"));
 }

@@ -59,18 +59,18 @@ struct StackCreep {
 
 /// The stack's second-order mechanics (file section "mechanics").
 struct StackMechanics {
-  double resonance_hz = 1000;  ///< [Hz] f_n > 0, below the control rate's Nyquist frequency
-  double damping_ratio = 0.05; ///< [1] zeta in (0, 2]
+  double resonance_hz = 1000;   ///< [Hz] f_n > 0, below the control rate's Nyquist frequency
+  double damping_ratio = 0.05;  ///< [1] zeta in (0, 2]
 };
 
 /// The rig around the stack (file section "rig").
 struct StackRig {
-  double control_rate_hz = 10000;    ///< [Hz] DAC hold, sensor reads and controller, (0, 1e6]
-  double voltage_min_v = -20;        ///< [V] amplifier range, lower end
-  double voltage_max_v = 120;        ///< [V] amplifier range, upper end, > voltage_min_v
-  int dac_bits = 16;                 ///< DAC resolution over the amplifier range, 1..32
+  double control_rate_hz = 10000;      ///< [Hz] DAC hold, sensor reads and controller, (0, 1e6]
+  double voltage_min_v = -20;          ///< [V] amplifier range, lower end
+  double voltage_max_v = 120;          ///< [V] amplifier range, upper end, > voltage_min_v
+  int dac_bits = 16;                   ///< DAC resolution over the amplifier range, 1..32
   double sensor_resolution_m = 1e-10;  ///< [m] q > 0 (capacitive sensor)
-  double sensor_noise_m = 1e-9;      ///< [m] standard deviation of the reading noise, >= 0
+  double sensor_noise_m = 1e-9;        ///< [m] standard deviation of the reading noise, >= 0
 };
 
 /// How the linear ODE is advanced over a sample (file section "integrator").
@@ -87,7 +87,7 @@ StackMethod ParseStackMethod(const std::string& name);
 
 struct StackIntegrator {
   StackMethod method = StackMethod::kCvode;
-  double relative_tolerance = 1e-10;    ///< rtol in [1e-14, 1e-2]
+  double relative_tolerance = 1e-10;  ///< rtol in [1e-14, 1e-2]
   /// [m] atol of x and c_j (x' gets atol w_n), > 0: far below rtol x, because the creep
   /// states are ~1 % of x and their error adds up over the restarts at every sample
   double position_tolerance_m = 1e-20;
@@ -138,10 +138,10 @@ StackParameters LoadStack(const std::string& preset_or_path);
 
 /// The true (unmeasured) state.
 struct StackState {
-  double x_m = 0;                 ///< [m] displacement
-  double v_mps = 0;               ///< [m/s] its rate
-  double hysteresis_m = 0;        ///< [m] y of the last sample
-  std::vector<double> creep_m;    ///< [m] c_j
+  double x_m = 0;               ///< [m] displacement
+  double v_mps = 0;             ///< [m/s] its rate
+  double hysteresis_m = 0;      ///< [m] y of the last sample
+  std::vector<double> creep_m;  ///< [m] c_j
 };
 
 /// The plant, one control sample at a time: at t_k the sensor has read measured_position_m();

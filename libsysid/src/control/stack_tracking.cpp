@@ -47,7 +47,8 @@ void StackReferenceOptions::Validate() const {
 
 PositionReference MakeStackReference(const StackReferenceOptions& o) {
   o.Validate();
-  const auto n = static_cast<Eigen::Index>(std::llround(o.cycles * o.sample_rate_hz / o.frequency_hz)) + 1;
+  const auto n =
+      static_cast<Eigen::Index>(std::llround(o.cycles * o.sample_rate_hz / o.frequency_hz)) + 1;
   PositionReference r;
   r.t_s.resize(n);
   r.x_m.resize(n);
@@ -98,7 +99,8 @@ std::complex<double> StackPiLoop(const StackParameters& stack, const PiOptions& 
   for (size_t i = 0; i < stack.creep.fractions.size(); ++i)
     creep += stack.creep.fractions[i] / (1.0 + j * w * stack.creep.time_constants_s[i]);
   const double wn = 2 * M_PI * stack.mechanics.resonance_hz;
-  const C mechanics = wn * wn / (wn * wn - w * w + 2.0 * j * stack.mechanics.damping_ratio * wn * w);
+  const C mechanics =
+      wn * wn / (wn * wn - w * w + 2.0 * j * stack.mechanics.damping_ratio * wn * w);
   return controller * slope * creep * mechanics * std::exp(-j * w * ts / 2.0);
 }
 

@@ -4,16 +4,15 @@
 // the control period). The ODE's input y jumps at every sample, so the integrator is restarted
 // there (CVodeReInit) and stopped exactly at the next sample (tstop): each integrated piece has a
 // constant input and a smooth solution.
+#include <fmt/format.h>
+
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
-#include <vector>
-
-#include <fmt/format.h>
-
-#include <Eigen/Core>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "core/cvode_solver.hpp"
 #include "core/portable_random.hpp"
@@ -30,7 +29,8 @@ class PiezoStack::Impl {
     wn_ = 2 * M_PI * p_.mechanics.resonance_hz;
     m_ = static_cast<int>(p_.creep.time_constants_s.size());
     z_.assign(p_.hysteresis.thresholds_v.size(), 0.0);  // the operators at rest at 0 V
-    dac_step_ = (p_.rig.voltage_max_v - p_.rig.voltage_min_v) / (std::ldexp(1.0, p_.rig.dac_bits) - 1);
+    dac_step_ =
+        (p_.rig.voltage_max_v - p_.rig.voltage_min_v) / (std::ldexp(1.0, p_.rig.dac_bits) - 1);
     std::vector<double> y0(static_cast<size_t>(2 + m_), 0.0);
     exact_state_ = Eigen::VectorXd::Zero(2 + m_);
     if (p_.integrator.method == StackMethod::kExact) {
@@ -48,7 +48,8 @@ class PiezoStack::Impl {
   }
 
   double DacOutput(double u) const {
-    if (!std::isfinite(u)) throw OptionsError(fmt::format("PiezoStack::Step: command {} V is not finite", u));
+    if (!std::isfinite(u))
+      throw OptionsError(fmt::format("PiezoStack::Step: command {} V is not finite", u));
     const double lo = p_.rig.voltage_min_v, hi = p_.rig.voltage_max_v;
     const double c = std::clamp(u, lo, hi);
     return std::min(hi, lo + std::round((c - lo) / dac_step_) * dac_step_);
@@ -93,7 +94,8 @@ class PiezoStack::Impl {
   }
 
   double Read(double x) {
-    const double n = p_.rig.sensor_noise_m > 0 ? p_.rig.sensor_noise_m * noise_.IrwinHallGaussian() : 0.0;
+    const double n =
+        p_.rig.sensor_noise_m > 0 ? p_.rig.sensor_noise_m * noise_.IrwinHallGaussian() : 0.0;
     const double q = p_.rig.sensor_resolution_m;
     return std::round((x + n) / q) * q;
   }

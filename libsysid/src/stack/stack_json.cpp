@@ -33,9 +33,10 @@ const FieldList<StackCreep>& CreepFields() {
   return f;
 }
 const FieldList<StackMechanics>& MechanicsFields() {
-  static const FieldList<StackMechanics> f = FieldList<StackMechanics>()
-                                                 .Add("resonance_hz", &StackMechanics::resonance_hz)
-                                                 .Add("damping_ratio", &StackMechanics::damping_ratio);
+  static const FieldList<StackMechanics> f =
+      FieldList<StackMechanics>()
+          .Add("resonance_hz", &StackMechanics::resonance_hz)
+          .Add("damping_ratio", &StackMechanics::damping_ratio);
   return f;
 }
 const FieldList<StackRig>& RigFields() {
@@ -93,9 +94,11 @@ StackParameters ParseStackParameters(std::string_view json_text, const std::stri
   ReadPlant(root.Get("plant"), scratch);
   StackParameters p = StackParameters::Default();
   if (root.Has("name")) p.name = root.Get("name").String(true);
-  if (root.Has("hysteresis")) ReadSection<StackHysteresis, HysteresisFields>(root.Get("hysteresis"), p.hysteresis);
+  if (root.Has("hysteresis"))
+    ReadSection<StackHysteresis, HysteresisFields>(root.Get("hysteresis"), p.hysteresis);
   if (root.Has("creep")) ReadSection<StackCreep, CreepFields>(root.Get("creep"), p.creep);
-  if (root.Has("mechanics")) ReadSection<StackMechanics, MechanicsFields>(root.Get("mechanics"), p.mechanics);
+  if (root.Has("mechanics"))
+    ReadSection<StackMechanics, MechanicsFields>(root.Get("mechanics"), p.mechanics);
   if (root.Has("rig")) ReadSection<StackRig, RigFields>(root.Get("rig"), p.rig);
   if (root.Has("integrator"))
     ReadSection<StackIntegrator, IntegratorFields>(root.Get("integrator"), p.integrator);

@@ -23,7 +23,9 @@ std::string G(double v) {
   return s.str();
 }
 
-std::string At(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+std::string At(const char* array, size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
 
 }  // namespace
 
@@ -47,7 +49,9 @@ StackParameters StackParameters::Default() {
   return p;
 }
 
-std::string ToString(StackMethod method) { return method == StackMethod::kCvode ? "cvode" : "exact"; }
+std::string ToString(StackMethod method) {
+  return method == StackMethod::kCvode ? "cvode" : "exact";
+}
 
 StackMethod ParseStackMethod(const std::string& name) {
   if (name == "cvode") return StackMethod::kCvode;
@@ -67,7 +71,8 @@ void StackParameters::Validate() const {
              "at most " + std::to_string(kMaxPlayOperators) + " thresholds");
   for (size_t i = 0; i < h.thresholds_v.size(); ++i) {
     const double r = h.thresholds_v[i];
-    if (!std::isfinite(r) || !(r > 0)) Violated(At("hysteresis.thresholds_v", i), r, "r_i > 0 and finite");
+    if (!std::isfinite(r) || !(r > 0))
+      Violated(At("hysteresis.thresholds_v", i), r, "r_i > 0 and finite");
     if (i > 0 && !(r > h.thresholds_v[i - 1]))
       Violated(At("hysteresis.thresholds_v", i), r,
                "thresholds increasing (r_i > r_(i-1) = " + G(h.thresholds_v[i - 1]) + ")");
@@ -92,17 +97,20 @@ void StackParameters::Validate() const {
     Violated("creep.time_constants_s", static_cast<double>(creep.time_constants_s.size()),
              "at most " + std::to_string(kMaxCreepElements) + " creep elements");
   if (creep.fractions.size() != creep.time_constants_s.size())
-    Violated("creep.fractions", static_cast<double>(creep.fractions.size()),
-             "one fraction per time constant (" + std::to_string(creep.time_constants_s.size()) + ")");
+    Violated(
+        "creep.fractions", static_cast<double>(creep.fractions.size()),
+        "one fraction per time constant (" + std::to_string(creep.time_constants_s.size()) + ")");
   for (size_t j = 0; j < creep.time_constants_s.size(); ++j) {
     const double tau = creep.time_constants_s[j];
-    if (!std::isfinite(tau) || !(tau > 0)) Violated(At("creep.time_constants_s", j), tau, "tau_j > 0 and finite");
+    if (!std::isfinite(tau) || !(tau > 0))
+      Violated(At("creep.time_constants_s", j), tau, "tau_j > 0 and finite");
     const double kappa = creep.fractions[j];
     if (!std::isfinite(kappa) || kappa < 0 || kappa > 10)
       Violated(At("creep.fractions", j), kappa, "kappa_j in [0, 10]");
   }
 
-  if (!std::isfinite(rig.control_rate_hz) || !(rig.control_rate_hz > 0) || rig.control_rate_hz > 1e6)
+  if (!std::isfinite(rig.control_rate_hz) || !(rig.control_rate_hz > 0) ||
+      rig.control_rate_hz > 1e6)
     Violated("rig.control_rate_hz", rig.control_rate_hz, "control_rate_hz in (0, 1e6]");
   const double nyquist = 0.5 * rig.control_rate_hz;
   if (!std::isfinite(mechanics.resonance_hz) || !(mechanics.resonance_hz > 0) ||
@@ -116,7 +124,8 @@ void StackParameters::Validate() const {
   if (!std::isfinite(rig.voltage_max_v) || !(rig.voltage_max_v > rig.voltage_min_v))
     Violated("rig.voltage_max_v", rig.voltage_max_v,
              "voltage_max_v > voltage_min_v = " + G(rig.voltage_min_v));
-  if (rig.dac_bits < 1 || rig.dac_bits > 32) Violated("rig.dac_bits", rig.dac_bits, "dac_bits in 1..32");
+  if (rig.dac_bits < 1 || rig.dac_bits > 32)
+    Violated("rig.dac_bits", rig.dac_bits, "dac_bits in 1..32");
   if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m > 0))
     Violated("rig.sensor_resolution_m", rig.sensor_resolution_m, "sensor_resolution_m > 0");
   if (!std::isfinite(rig.sensor_noise_m) || rig.sensor_noise_m < 0)
