@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
       "stack exact  {:.4g} samples/s; max |x_exact - x_cvode| = {:.3g} m of max |x| {:.3g} m\n",
       exact_rate, (exact_run.x_true_m - cvode_run.x_true_m).cwiseAbs().maxCoeff(),
       cvode_run.x_true_m.cwiseAbs().maxCoeff());
+  fmt::print("x_end exact {:.9e} m, cvode {:.9e} m (true x before the last sample)\n",
+             exact_run.x_true_m[samples - 1], cvode_run.x_true_m[samples - 1]);
   fmt::print("stage        {:.4g} samples/s (same samples and rate)\n", stage_rate);
   fmt::print("ratio stack cvode/stage {:.2f}\n", stack_rate / stage_rate);
   fmt::print("ratio stack exact/stage {:.2f}\n", exact_rate / stage_rate);
