@@ -244,8 +244,9 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   auto* freq =
       cmd->add_option("--freq", o->profile.frequency_hz,
-                      "frequency of the smooth back-and-forth profile [Hz] (piezo stack: of its "
-                      "waveform, default 10)")
+                      fmt::format("frequency of the smooth back-and-forth profile [Hz] (piezo "
+                                  "stack: of its waveform, {:g} when not given)",
+                                  StackReferenceOptions{}.frequency_hz))
           ->check(CLI::PositiveNumber)
           ->capture_default_str();
   o->freq = freq;
@@ -254,7 +255,8 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->excludes(freq);
   o->amplitude = cmd->add_option("--amplitude", o->profile.amplitude_m,
-                                 "stroke of the profile [m] (piezo stack: default 2e-05)")
+                                 fmt::format("stroke of the profile [m] (piezo stack: {:g} when not given)",
+                                             StackReferenceOptions{}.stroke_m))
                       ->capture_default_str();
   cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
       ->check(CLI::PositiveNumber)
