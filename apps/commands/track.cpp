@@ -254,10 +254,11 @@ void AddTrackCommand(CLI::App& app) {
                   "position reference CSV with t [s] and x_ref [m] (or x) columns")
       ->check(CLI::ExistingFile)
       ->excludes(freq);
-  o->amplitude = cmd->add_option("--amplitude", o->profile.amplitude_m,
-                                 fmt::format("stroke of the profile [m] (piezo stack: {:g} when not given)",
-                                             StackReferenceOptions{}.stroke_m))
-                      ->capture_default_str();
+  o->amplitude =
+      cmd->add_option("--amplitude", o->profile.amplitude_m,
+                      fmt::format("stroke of the profile [m] (piezo stack: {:g} when not given)",
+                                  StackReferenceOptions{}.stroke_m))
+          ->capture_default_str();
   cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
