@@ -73,8 +73,14 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
                   false,
                   1400,
                   500};
+    // The data's range plus a quarter each way: a network that strays far outside (a typical
+    // network extrapolating in a) is cut at the frame instead of flattening the data.
+    const double lo = va.targets.minCoeff(), hi = va.targets.maxCoeff(), pad = 0.25 * (hi - lo);
+    spec.y_min = lo - pad;
+    spec.y_max = hi + pad;
     s.plots.push_back({fmt::format("network_{}.png", set), spec,
-                       fmt::format("network outputs against the {} set", set)});
+                       fmt::format("network outputs against the {} set (y: the data's range "
+                                   "+-25 %)", set)});
   }
   const bool contrast = m.typical_test >= 2 * m.typical_train && m.dominant_test < m.typical_test;
   s.markdown = fmt::format(
