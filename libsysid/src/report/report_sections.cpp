@@ -36,6 +36,12 @@ Recording WithDerivatives(const std::string& path) {
   return rec;
 }
 
+// F8's note without its "not met: " lead (the verdict is already in bold).
+std::string FailedParts(const std::string& note) {
+  const std::string lead = "not met: ";
+  return note.rfind(lead, 0) == 0 ? note.substr(lead.size()) : note;
+}
+
 }  // namespace
 
 ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
@@ -88,7 +94,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
       "Each network's output and the data u on every row of the training set and of the test "
       "set (the paper's figures of the typical network, \"fits the training set, test very "
       "poor\", and of the dominant one). The four MSEs in one table, computed as the facts' F7 "
-      "(every row of each set; the typical network trained on every {}-th training row):\n\n",
+      "(every row of each set; the typical network trained on every n-th training row, n = "
+      "{}):\n\n",
       r.options.typical_stride);
   s.markdown += MarkdownTable(
       {"network", "training MSE [V²]", "test MSE [V²]", "paper (training / test)"},
@@ -114,10 +121,11 @@ ReportSection LoopFactSection(const StageFacts& facts) {
   const VoltageLoop& t = *facts.loop_triangle;
   s.markdown = fmt::format(
       "\n### F8 on the stage: the loop of the paper's section-3 tests\n\n"
-      "`sysid stage facts --facts F8` (docs/virtual_stage.md, \"Stage facts\"): **{}**. {}\n\n"
+      "`sysid stage facts --facts F8` (docs/virtual_stage.md, \"Stage facts\"): **{}**{}.\n\n"
       "Triangle (one period, open loop): starts forward at {} V, backward at {} V; width = "
       "v (\\|u\\| falling) − v (\\|u\\| rising); mean width = enclosed area / voltage span.\n\n",
-      f->met ? "met" : "not met", f->note, G(t.start_forward_v), G(t.start_backward_v));
+      f->met ? "met" : "not met", f->met ? std::string() : ", " + FailedParts(f->note),
+      G(t.start_forward_v), G(t.start_backward_v));
   std::vector<std::vector<std::string>> rows;
   std::string csv = "test,amplitude_v,frequency_hz,level_v,width_mps,mean_width_forward_mps,"
                     "mean_width_backward_mps,mean_width_mps\n";
