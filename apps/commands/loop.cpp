@@ -1,5 +1,6 @@
-// sysid loop REC.csv [--levels 1.2,-1.75] [--json]: the voltage-velocity loop of a slow
-// open-loop sweep (the paper's triangle test; libsysid: AnalyzeVoltageLoop in identify.hpp).
+// sysid loop REC.csv [--levels 1.2,-1.75] [--cycles N] [--json]: the voltage-velocity loop of
+// an open-loop sweep (the paper's triangle test, or its sinusoids; libsysid: AnalyzeVoltageLoop
+// in identify.hpp): the loop at levels, the starts and stops, the enclosed areas and mean widths.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -52,6 +53,12 @@ void RunLoop(const LoopCli& o) {
                   MmOrDash(l.v_falling_mps), MmOrDash(l.WidthMps()),
                   fmt::format("{} / {}", l.rising_crossings, l.falling_crossings)});
   std::cout << table.Render();
+  std::cout << fmt::format(
+      "\nenclosed area per period [mV m/s] (mean width [mm/s] = area / span of u while moving): "
+      "forward {:.4g} over {:.3f} V ({}), backward {:.4g} over {:.3f} V ({})\n",
+      1e3 * loop.area_forward_v_mps, loop.span_forward_v, MmOrDash(loop.MeanWidthForwardMps()),
+      1e3 * loop.area_backward_v_mps, loop.span_backward_v,
+      MmOrDash(loop.MeanWidthBackwardMps()));
 }
 
 void AddLoopCommand(CLI::App& app) {
@@ -60,7 +67,8 @@ void AddLoopCommand(CLI::App& app) {
       "loop",
       "The voltage-velocity loop of a slow open-loop sweep (the paper's triangle test, e.g. "
       "sysid generate triangle): velocity [mm/s] where |u| passes each level going up and "
-      "going down, the loop's width, and the voltages where the stage starts and stops");
+      "going down, the loop's width, the voltages where the stage starts and stops, and the "
+      "area the loop encloses per direction (its mean width = area / voltage span)");
   cmd->add_option("file", o->path, "recording CSV: t [s], u [V], x [m] (or a velocity column)")
       ->required()
       ->type_name("REC.csv");
@@ -73,6 +81,10 @@ void AddLoopCommand(CLI::App& app) {
                   "velocity at a crossing: mean over +-N samples")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
+  cmd->add_option("--cycles", o->loop.cycles,
+                  "whole periods of u in the recording: the enclosed areas are per period")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   cmd->add_option("--moving-speed", o->loop.moving_speed_mps,
                   "|v| above this is motion, for the start and stop voltages [m/s]")
       ->check(CLI::PositiveNumber)
@@ -80,7 +92,9 @@ void AddLoopCommand(CLI::App& app) {
   o->motion.Add(cmd, "how v is obtained from x", "central");
   cmd->add_flag("--json", o->json,
                 "print {\"source\", \"peak_forward_v\", \"peak_backward_v\", \"start_forward_v\", "
-                "\"start_backward_v\", \"stop_forward_v\", \"stop_backward_v\", \"levels\": "
+                "\"start_backward_v\", \"stop_forward_v\", \"stop_backward_v\", \"area_forward_v_mps\", "
+                "\"area_backward_v_mps\", \"span_forward_v\", \"span_backward_v\", "
+                "\"mean_width_forward_mps\", \"mean_width_backward_mps\", \"levels\": "
                 "[{\"level_v\", \"v_rising_mps\", \"v_falling_mps\", \"width_mps\", "
                 "\"rising_crossings\", \"falling_crossings\"}]}");
   cmd->callback([o] { RunLoop(*o); });

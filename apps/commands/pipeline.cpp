@@ -131,7 +131,7 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_flag("--refine", p.refine, "refine all parameters by output error (Ceres)");
   cmd->add_flag("!--no-track", p.track, "skip the PI tracking experiment");
   cmd->add_flag("--facts", p.facts,
-                "also check the paper's facts F1-F7 on the stage file (sysid stage facts, ~10 s): "
+                "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");
   AddPiGainOptions(cmd, p.pi, "PI ");
   cmd->add_option("--seed", p.training.seed, "seed of the network initialisations")

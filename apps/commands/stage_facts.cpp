@@ -1,7 +1,7 @@
 // sysid stage facts [--stage S.json] [--json] [--facts F1,F3] [--seed N | --seeds A-B]
 // [--nn-inits K] [--reduced]:
 // runs the paper's experiments on a virtual stage and prints, for each of the paper's facts
-// F1-F7, the paper's value, the stage's, the tolerance and whether it is met
+// F1-F8, the paper's value, the stage's, the tolerance and whether it is met
 // (libsysid: sysid/stage_facts.hpp).
 #include "sysid/stage_facts.hpp"
 
@@ -92,8 +92,9 @@ void AddStageCommand(CLI::App& app) {
       "facts",
       "Run the paper's experiments on a stage (pulse test, delay tuning, PI tracking at the "
       "paper's gains with none/analytic/NN feedforward, the sinusoidal dominance test, the "
-      "typical and dominant networks) and print, for each fact F1-F7, the paper's value, the "
-      "stage's, the tolerance and met / not met. F1-F6 are required, F7 is reported. Exit 0 "
+      "typical and dominant networks, the open-loop voltage-velocity loops) and print, for each "
+      "fact F1-F8, the paper's value, the stage's, the tolerance and met / not met. F1-F6 and F8 "
+      "are required, F7 is reported. Exit 0 "
       "whether or not the facts are met (read \"met\" / \"required_met\" in the JSON)");
   cmd->add_option("--stage", o->stage_path,
                   "stage parameter file (JSON) or a preset: virtual (default, the calibrated "
@@ -101,7 +102,7 @@ void AddStageCommand(CLI::App& app) {
       ->type_name("S.json|PRESET");
   cmd->add_option("--facts", o->facts, "only these facts (and what they need), e.g. F1,F3")
       ->delimiter(',')
-      ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7"}))
+      ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"}))
       ->type_name("ID,...");
   auto* seed =
       cmd->add_option("--seed", o->options.seed, "noise seed of every experiment [integer]")

@@ -236,16 +236,17 @@ void BindIdentify(py::module_& m) {
   m.def(
       "voltage_loop_json",
       [](const Recording& recording, const py::object& levels_v, int half_window,
-         double moving_speed_mps, const MotionOptions& motion) {
+         double moving_speed_mps, int cycles, const MotionOptions& motion) {
         VoltageLoopOptions o;
         const Eigen::VectorXd levels = RealVector(levels_v, "levels_v", /*allow_empty=*/true);
         o.levels_v.assign(levels.begin(), levels.end());
         o.half_window = half_window;
         o.moving_speed_mps = moving_speed_mps;
+        o.cycles = cycles;
         return ToJson(AnalyzeVoltageLoop(recording, o, motion));
       },
       py::arg("recording"), py::arg("levels_v"), py::arg("half_window"),
-      py::arg("moving_speed_mps"), py::arg("motion"));
+      py::arg("moving_speed_mps"), py::arg("cycles"), py::arg("motion"));
 
   // ---- Trajectory ----
   py::class_<TrajectoryOptions> trajectory_options(m, "TrajectoryOptions");

@@ -405,17 +405,20 @@ DominanceSummary.message = property(
                  f"{self.min_margin:.3g}, median {self.median_margin:.3g}")
 
 
-def voltage_loop(recording, levels_v=(), half_window=10, moving_speed_mps=1e-3, motion=None):
+def voltage_loop(recording, levels_v=(), half_window=10, moving_speed_mps=1e-3, motion=None,
+                 cycles=1):
     """The voltage-velocity loop of a slow open-loop sweep (the paper's triangle test), as a dict
     (the JSON of ``sysid loop --json``): velocity [m/s] where |u| passes each level [V] going up
-    and going down, the loop's width, and the start / stop voltages. ``recording``: a
-    Recording or a path; ``levels_v`` empty: six per direction past the start voltage."""
+    and going down, the loop's width, the start / stop voltages, and the area [V m/s] the loop
+    encloses per direction per period (``cycles``: whole periods of u in the recording) with its
+    mean width [m/s]. ``recording``: a Recording or a path; ``levels_v`` empty: six per
+    direction past the start voltage."""
     import json as _json
     rec = _as_recordings(recording, "recording")
     if len(rec) != 1:
         raise TypeError(f"voltage_loop: expected one recording, got {len(rec)}")
     return _json.loads(_sysid.voltage_loop_json(
-        rec[0], levels_v, int(half_window), float(moving_speed_mps),
+        rec[0], levels_v, int(half_window), float(moving_speed_mps), int(cycles),
         _options(MotionOptions, motion, {})))
 
 

@@ -244,3 +244,4 @@ def test_voltage_loop_matches_cli_loop():
     assert py == cli
     assert py["levels"][0]["width_mps"] > 0
     assert sysid.voltage_loop(sysid.read_recording(path)) == cli_json("loop", path)
+    assert sysid.voltage_loop(path, cycles=2) == cli_json("loop", path, "--cycles", "2")

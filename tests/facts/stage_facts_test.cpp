@@ -331,7 +331,7 @@ TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]")
 TEST_CASE("stage facts options are validated before any experiment", "[stage][facts]") {
   const StageParameters stage = StageParameters::Default();
   FactsOptions o = FactsOptions::Reduced();
-  o.facts = {"F8"};
+  o.facts = {"F9"};
   CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("ids are F1"));
   o = FactsOptions::Reduced();
   o.track_frequencies_hz = {1e-9};  // would ask for 2e12 samples

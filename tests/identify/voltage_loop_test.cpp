@@ -69,6 +69,52 @@ TEST_CASE("voltage loop: the branches, starts and stops of a known loop", "[iden
   CHECK(loop.peak_backward_v == -2.0);
 }
 
+TEST_CASE("voltage loop: the enclosed areas of a known loop, per period", "[identify][loop]") {
+  // Closed forms of the synthetic loop's areas above |v| = 1 mm/s (the excluded slivers at the
+  // start and stop cancel: the two branches are parallel). Forward: the falling branch
+  // 0.1 (u - 0.9) from 0.9 to 1.5 V minus the rising 0.1 (u - 1.0) from 1.0 to 1.5 V:
+  // 0.05 (0.6^2 - 0.5^2) = 0.0055 V m/s. Backward: 0.04 (0.7^2 - 0.5^2) = 0.0096 V m/s.
+  // The sampled loop jumps from one branch to the other at the peak, and the trapezoid across
+  // that step costs half a step times the jump: 0.5 mV x 10 mm/s = 5e-6 V m/s forward,
+  // 0.5 mV x 16 mm/s = 8e-6 V m/s backward.
+  const sysid::VoltageLoop one = sysid::AnalyzeVoltageLoop(SyntheticLoop());
+  CHECK(one.area_forward_v_mps == Approx(0.0055 - 5e-6).margin(1e-7));
+  CHECK(one.area_backward_v_mps == Approx(0.0096 - 8e-6).margin(1e-7));
+  // Moving forward from 0.911 V (falling) to 1.5 V; backward from -1.3125 to -2.0 V.
+  CHECK(one.span_forward_v == Approx(0.589).margin(1.5e-3));
+  CHECK(one.span_backward_v == Approx(0.6875).margin(1.5e-3));
+  CHECK(one.MeanWidthForwardMps() == Approx(0.0055 / 0.589).epsilon(3e-3));
+  CHECK(one.MeanWidthBackwardMps() == Approx(0.0096 / 0.6875).epsilon(3e-3));
+  // Two periods back to back with cycles = 2: the same areas per period.
+  const sysid::Recording a = SyntheticLoop();
+  sysid::Recording two = a;
+  two.data.resize(2 * a.data.rows(), 3);
+  two.data << a.data, a.data;
+  two.data.col(0).tail(a.data.rows()).array() += a.data(a.data.rows() - 1, 0) + 1e-3;
+  sysid::VoltageLoopOptions o;
+  o.cycles = 2;
+  const sysid::VoltageLoop per = sysid::AnalyzeVoltageLoop(two, o);
+  CHECK(per.area_forward_v_mps == Approx(one.area_forward_v_mps).margin(1e-9));
+  CHECK(per.area_backward_v_mps == Approx(one.area_backward_v_mps).margin(1e-9));
+  // A static map (one branch both ways) encloses nothing, however curved; a sweep that never
+  // moves has no span and no mean width.
+  sysid::Recording map = SyntheticLoop();
+  for (Eigen::Index k = 0; k < map.data.rows(); ++k) {
+    const double u = map.data(k, 1);
+    map.data(k, 2) = u > 0 ? 0.1 * std::pow(std::max(u - 1.0, 0.0), 1.5)
+                           : -0.08 * std::pow(std::max(-u - 1.5, 0.0), 0.7);
+  }
+  const sysid::VoltageLoop flat = sysid::AnalyzeVoltageLoop(map);
+  CHECK(flat.area_forward_v_mps == Approx(0).margin(1e-12));
+  CHECK(flat.area_backward_v_mps == Approx(0).margin(1e-12));
+  map.data.col(2).setZero();
+  const sysid::VoltageLoop still = sysid::AnalyzeVoltageLoop(map);
+  CHECK(still.span_forward_v == 0);
+  CHECK(std::isnan(still.MeanWidthForwardMps()));
+  o.cycles = 0;
+  CHECK_THROWS_WITH(sysid::AnalyzeVoltageLoop(a, o), Catch::Contains("cycles"));
+}
+
 TEST_CASE("voltage loop: default levels, and bad input", "[identify][loop]") {
   const sysid::VoltageLoop loop = sysid::AnalyzeVoltageLoop(SyntheticLoop());
   // Six per direction, from 2 % of the peak past the start voltage to 95 % of the peak.
@@ -107,6 +153,20 @@ TEST_CASE("sysid loop on the bundled triangle test", "[identify][loop][cli]") {
   CHECK(j["start_forward_v"].get<double>() == Approx(1.19).margin(0.01));
   CHECK(j["start_backward_v"].get<double>() == Approx(-1.70).margin(0.01));
   for (const auto& l : j["levels"]) CHECK(l["width_mps"].get<double>() > 0);
+  // The enclosed areas: a lagging loop both ways, and the mean width is area over span.
+  for (const char* d : {"forward", "backward"}) {
+    const double area = j[std::string("area_") + d + "_v_mps"].get<double>();
+    const double span = j[std::string("span_") + d + "_v"].get<double>();
+    CHECK(area > 0);
+    CHECK(j[std::string("mean_width_") + d + "_mps"].get<double>() == Approx(area / span));
+  }
+  // --cycles 2 halves the areas (per period), and the text names them.
+  const auto two = sysid::test::RunCli({"loop", file, "--cycles", "2", "--json"});
+  REQUIRE(two.exit_code == 0);
+  CHECK(nlohmann::json::parse(two.out)["area_forward_v_mps"].get<double>() ==
+        Approx(0.5 * j["area_forward_v_mps"].get<double>()));
+  CHECK_THAT(sysid::test::RunCli({"loop", file}).out, Catch::Contains("enclosed area per period"));
+  CHECK(sysid::test::RunCli({"loop", file, "--cycles", "0"}).exit_code == 1);
   CHECK(sysid::test::RunCli({"loop", file, "--levels", "0"}).exit_code == 1);
   sysid::test::TempDir dir;
   sysid::test::WriteText(dir / "bad.csv", "t,u,x\n0,0,0\n0.001,zero,0\n");

@@ -3,10 +3,14 @@
 #include "sysid/pipeline.hpp"
 #include "sysid/report.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
@@ -165,6 +169,38 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   const auto margins = nlohmann::json::parse(sysid::test::ReadText(out + "/margins.json"));
   CHECK(margins["directions"].size() == 2);
   CHECK(margins["kp_v_per_m"].get<double>() == 19000);
+  // The paper's figure pair and its four MSEs (F7's form), recomputed here from the network
+  // files and the bundled sets, one row at a time.
+  CHECK(md.find("### The paper's figure pair") != std::string::npos);
+  CHECK(md.find("| dominant (v), H = ") != std::string::npos);
+  if (sysid::GnuplotAvailable()) {
+    CHECK(std::filesystem::exists(out + "/network_training.png"));
+    CHECK(std::filesystem::exists(out + "/network_test.png"));
+  }
+  // network,inputs,hidden,set,mse_v2: typical and dominant on training, then on test.
+  std::vector<double> mse;
+  std::istringstream csv(sysid::test::ReadText(out + "/network_mse.csv"));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "network,inputs,hidden,set,mse_v2");
+  while (std::getline(csv, line)) mse.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  REQUIRE(mse.size() == 4);
+  const sysid::NeuralNetwork typical = sysid::ReadNeuralNetwork(out + "/nn_typical.json");
+  const sysid::NeuralNetwork dominant = sysid::ReadNeuralNetwork(out + "/nn.json");
+  int row = 0;
+  for (const char* set : {"training", "test"}) {
+    const sysid::Recording rec = sysid::ReadRecording(SourcePath("datasets/virtual/") + set + ".csv");
+    const Eigen::VectorXd u = rec.column("u"), v = rec.column("v"), a = rec.column("a");
+    double st = 0, sd = 0;
+    for (Eigen::Index k = 0; k < u.size(); ++k) {
+      st += std::pow(typical.Evaluate(Eigen::Vector2d(v[k], a[k])) - u[k], 2);
+      sd += std::pow(dominant.Evaluate(Eigen::VectorXd::Constant(1, v[k])) - u[k], 2);
+    }
+    INFO(set);
+    const auto n = static_cast<double>(u.size());
+    CHECK(mse[static_cast<std::size_t>(row++)] == Approx(st / n).epsilon(1e-6));
+    CHECK(mse[static_cast<std::size_t>(row++)] == Approx(sd / n).epsilon(1e-6));
+  }
 }
 
 TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {
@@ -181,11 +217,11 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
   o.track = false;
   o.facts = true;
   o.facts_options = sysid::FactsOptions::Reduced();
-  o.facts_options.facts = {"F1", "F2", "F3"};
+  o.facts_options.facts = {"F1", "F2", "F3", "F8"};
   const auto inputs = sysid::PipelineInputs::FromDirectory(SourcePath("datasets/virtual"));
   const sysid::PipelineResult r = sysid::RunPipeline(inputs, o);
   REQUIRE(r.facts.has_value());
-  REQUIRE(r.facts->facts.size() == 3);
+  REQUIRE(r.facts->facts.size() == 4);
   TempDir dir;
   sysid::WritePipelineReport(r, dir / "report");
   const std::string md = sysid::test::ReadText(dir / "report/report.md");
@@ -196,8 +232,20 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
   CHECK((md.find("Every required fact is met.") != std::string::npos) == all);
   CHECK((md.find("Not met on this stage") != std::string::npos) == !all);
   const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "report/facts.json"));
-  CHECK(j["facts"].size() == 3);
+  CHECK(j["facts"].size() == 4);
   CHECK(j["required_met"] == all);
+  // F8's loop numbers in the loop section, after the bundled triangle's table: its verdict,
+  // one row per triangle level and per sinusoid, and loop_fact.csv with the same rows.
+  const auto loop = md.find("## 8. Voltage-velocity loop");
+  const auto f8 = md.find("### F8 on the stage: the loop of the paper's section-3 tests");
+  CHECK(loop != std::string::npos);
+  CHECK(f8 > loop);
+  CHECK(md.find(r.facts->Find("F8")->met ? "**met**" : "**not met**", f8) != std::string::npos);
+  const std::string csv = sysid::test::ReadText(dir / "report/loop_fact.csv");
+  const auto lines = std::count(csv.begin(), csv.end(), '\n');
+  CHECK(lines == 1 + static_cast<long>(r.facts->loop_triangle->levels.size() +
+                                       r.facts->loop_frequency_sweep.size() +
+                                       r.facts->loop_amplitude_sweep.size()));
 }
 
 TEST_CASE("the pipeline states the PI gains' loop margins, with or without a stage",

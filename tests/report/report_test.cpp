@@ -32,6 +32,25 @@ TEST_CASE("plots are written as PNG when gnuplot is present", "[report]") {
                       std::filesystem::directory_iterator{}) == 1);  // no temp file left
 }
 
+TEST_CASE("a plot's fixed y range replaces the autoscale, and only a valid one", "[report]") {
+  if (!sysid::GnuplotAvailable()) return;
+  sysid::test::TempDir dir;
+  sysid::PlotSpec spec;
+  spec.title = "sine";
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(50, 0, 1);
+  spec.series.push_back({"sin", t, t.array().sin().matrix(), "lines"});
+  REQUIRE(sysid::WritePlot(dir / "auto.png", spec).written);
+  spec.y_min = -10;
+  spec.y_max = 10;
+  REQUIRE(sysid::WritePlot(dir / "fixed.png", spec).written);
+  spec.y_min = 10;  // backwards: ignored
+  spec.y_max = -10;
+  REQUIRE(sysid::WritePlot(dir / "backwards.png", spec).written);
+  const std::string autoscaled = sysid::test::ReadText(dir / "auto.png");
+  CHECK(sysid::test::ReadText(dir / "fixed.png") != autoscaled);
+  CHECK(sysid::test::ReadText(dir / "backwards.png") == autoscaled);
+}
+
 TEST_CASE("tracking plots: error in mm and control signal, one series per scheme", "[report]") {
   sysid::SchemeTracking none, nn;
   nn.scheme = sysid::FeedforwardScheme::kNetwork;

@@ -37,6 +37,8 @@ struct VoltageLoopOptions {
   std::vector<double> levels_v;
   int half_window = 10;               ///< v at a crossing: mean over +-half_window samples
   double moving_speed_mps = 1e-3;     ///< [m/s] |v| above this is motion (start / stop)
+  /// Whole periods of u the recording holds (1 to 10000): the loop areas are per period.
+  int cycles = 1;
   void Validate() const;
 };
 
@@ -63,6 +65,19 @@ struct VoltageLoop {
   double stop_forward_v = std::numeric_limits<double>::quiet_NaN();
   double stop_backward_v = std::numeric_limits<double>::quiet_NaN();
   double peak_forward_v = 0, peak_backward_v = 0;  ///< [V] max u, min u
+  /// [V m/s] the area the loop encloses in each direction, per period:
+  /// -(1 / cycles) sum of v du (trapezoid) over the steps on which the stage moves that way
+  /// (|v| > moving_speed_mps at both ends, same sign). Positive when |v| is larger while |u|
+  /// falls (a lagging loop), negative for the opposite sense; 0 for any static map u -> v,
+  /// whatever its shape. Over whole periods of a periodic response a lobe cut by the record's
+  /// ends still counts whole (its two pieces add up).
+  double area_forward_v_mps = 0, area_backward_v_mps = 0;
+  /// [V] the range of u over those steps (max u - min u); 0 when the stage never moves that way.
+  double span_forward_v = 0, span_backward_v = 0;
+  /// [m/s] area / span: the loop's mean width over the voltages where the stage moves that
+  /// way (for a band of constant width w, w); NaN when the span is 0.
+  double MeanWidthForwardMps() const;
+  double MeanWidthBackwardMps() const;
   Eigen::VectorXd u_v, v_mps;  ///< [V], [m/s] the traces it was read from (not in the JSON)
 };
 
@@ -73,8 +88,10 @@ struct VoltageLoop {
 VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOptions& options = {},
                                const MotionOptions& motion = {});
 /// {"source", "peak_forward_v", "peak_backward_v", "start_forward_v", "start_backward_v",
-///  "stop_forward_v", "stop_backward_v", "levels": [{"level_v", "v_rising_mps",
-///  "v_falling_mps", "width_mps", "rising_crossings", "falling_crossings"}]}; NaN as null.
+///  "stop_forward_v", "stop_backward_v", "area_forward_v_mps", "area_backward_v_mps",
+///  "span_forward_v", "span_backward_v", "mean_width_forward_mps", "mean_width_backward_mps",
+///  "levels": [{"level_v", "v_rising_mps", "v_falling_mps", "width_mps", "rising_crossings",
+///  "falling_crossings"}]}; NaN as null.
 std::string ToJson(const VoltageLoop& loop, int indent = 2);
 
 // ----------------------------------------------------------------------------------------------

@@ -73,7 +73,7 @@ struct PipelineOptions {
   std::vector<double> track_frequencies_hz{0.5, 1.0};
   double track_amplitude_m = 0.01;  ///< [m] stroke of the smooth profile
   PiOptions pi;             ///< the paper's gains (stable on the default velocity-source stage)
-  /// Also run the paper's experiments on the stage file (RunStageFacts, F1-F7, ~10 s) and put
+  /// Also run the paper's experiments on the stage file (RunStageFacts, F1-F8, ~10 s) and put
   /// the facts table (paper vs stage, tolerance, met) in the report and facts.json.
   bool facts = false;
   FactsOptions facts_options;  ///< the paper's experiments by default (threads: `threads`)

@@ -6,6 +6,7 @@
 #define SYSID_REPORT_HPP_
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,10 @@ struct PlotSpec {
   bool log_y = false;
   int width_px = 900;
   int height_px = 500;
+  /// [y unit] a fixed y range when both are finite and y_min < y_max (points outside are cut at
+  /// the frame); otherwise gnuplot's autoscale.
+  double y_min = std::numeric_limits<double>::quiet_NaN();
+  double y_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct PlotOutcome {

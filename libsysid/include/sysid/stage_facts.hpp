@@ -13,6 +13,13 @@
 //                         max |x''| / max |a1 x'| over the moving part <= 0.3 (O(10^-1))
 //   F7 networks           typical (v, a) 120-unit vs dominant v 24-unit network MSEs; reported,
 //                         not required (the paper's contrast: typical fits training, not test)
+//   F8 voltage loop       the voltage-velocity loop of the paper's section-3 tests, open loop:
+//                         (a) on the 6 s triangle (+1.5 / -2.1 V) a loop, width at stated
+//                         voltages of the pulse region >= a fraction of the velocity there;
+//                         (b) asymmetric: the start voltages of the two directions differ;
+//                         (c) rate: under u = 1.6 sin(2 pi f t - pi/2) - 0.3 V the loop's mean
+//                         width grows with f; (d) amplitude: at 1 Hz the mean width changes
+//                         with A (criteria below, at FactsOptions' loop_* fields)
 //
 // F4's criteria, on the PI-alone runs of the smooth profile (control.hpp, MakeSmoothProfile;
 // dwell 10 % of the period at each end):
@@ -66,7 +73,7 @@ struct PaperFacts {
 };
 
 struct FactsOptions {
-  /// Facts to run ("F1".."F7"); empty: all. Prerequisites run as needed.
+  /// Facts to run ("F1".."F8"); empty: all. Prerequisites run as needed.
   std::vector<std::string> facts;
   std::uint64_t seed = 1;  ///< noise seed of every experiment
   int threads = 0;         ///< for delay tuning (0: all cores); training uses one (repeatable)
@@ -96,6 +103,29 @@ struct FactsOptions {
   /// from rest, a start-up transient the paper did not plot); default one period.
   double dominance_duration_s = 4.0;
   double dominance_min_speed_mps = 1e-3;  ///< [m/s] the moving part
+  /// F8: the triangle of the paper's sections 3 and 4, one period (TriangleProcedure).
+  double loop_period_s = 6;           ///< [s] (0, 600]
+  double loop_peak_forward_v = 1.5;   ///< [V] (0, 10]
+  double loop_peak_backward_v = 2.1;  ///< [V] (0, 10], magnitude of the negative peak
+  /// [V] F8 (a): signed voltages at which the triangle's loop width is read (1 to 20 levels,
+  /// each inside the triangle's range; default: the pulse region, 1.4 V and -1.9 V).
+  std::vector<double> loop_levels_v{1.4, -1.9};
+  /// F8 (a): at every level, width >= this fraction of the mean |v| of the two branches.
+  double loop_min_relative_width = 0.05;
+  /// F8 (b): larger / smaller |start voltage| of the two directions >= this (> 1).
+  double loop_min_start_ratio = 1.2;
+  /// F8 (c), (d): u = A sin(2 pi f t - pi/2) + loop_sine_offset_v, two periods from rest, the
+  /// second analysed (the first starts with a step from rest).
+  double loop_sine_offset_v = -0.3;
+  double loop_sine_amplitude_v = 1.6;                          ///< [V] A of the rate sweep
+  std::vector<double> loop_sine_frequencies_hz{0.25, 0.5, 1, 2};  ///< [Hz] 2 to 10, increasing
+  double loop_sine_frequency_hz = 1;                           ///< [Hz] f of the amplitude sweep
+  std::vector<double> loop_sine_amplitudes_v{1.6, 1.8, 2.0, 2.2};  ///< [V] 2 to 10, increasing
+  /// F8 (c): mean width at the highest frequency >= this x the lowest frequency's (> 1).
+  double loop_min_rate_ratio = 1.5;
+  /// F8 (d): mean width at the largest amplitude and at the smallest differ by at least this
+  /// fraction of the smaller (> 0).
+  double loop_min_amplitude_change = 0.1;
   void Validate() const;                  ///< throws OptionsError naming the field and the rule
   static DelayTuningOptions DefaultDelay();
   static NeuralTrainingOptions DefaultTraining();
@@ -112,7 +142,7 @@ FactsOptions FactsOptionsFromJson(std::string_view text, const std::string& sour
 
 /// One fact: text for the table and JSON, and the numbers behind it.
 struct StageFact {
-  std::string id;             ///< "F1".."F7"
+  std::string id;             ///< "F1".."F8"
   std::string fact;           ///< what is checked, one line
   std::string paper;          ///< the paper's value(s)
   std::string virtual_value;  ///< the stage's value(s) (JSON key "virtual")
@@ -134,6 +164,16 @@ struct FactsTrackingRow {
   double max_abs_u_v = 0;  ///< [V]
 };
 
+/// One open-loop sinusoid of F8: u = amplitude sin(2 pi f t - pi/2) + offset, its second period.
+struct FactsLoopSine {
+  double amplitude_v = 0;   ///< [V]
+  double frequency_hz = 0;  ///< [Hz]
+  VoltageLoop loop;         ///< areas, spans and starts of the analysed period
+  /// [m/s] (area forward + area backward) / (span forward + span backward): the loop's mean
+  /// width over both directions (facts::LoopMeanWidth); NaN when the stage never moves.
+  double mean_width_mps = 0;
+};
+
 struct StageFacts {
   std::string stage_name;
   std::vector<StageFact> facts;  ///< the facts run, in id order
@@ -147,6 +187,9 @@ struct StageFacts {
   double dominance_pointwise_q99 = 0;  ///< 99 % quantile of |x''(t)| / |a1 x'(t)|
   double dominant_train_mse = 0, dominant_test_mse = 0;  ///< [V^2]
   double typical_train_mse = 0, typical_test_mse = 0;    ///< [V^2]
+  std::optional<VoltageLoop> loop_triangle;  ///< F8: the triangle's loop (levels as options)
+  std::vector<FactsLoopSine> loop_frequency_sweep;  ///< F8 (c), in frequency order
+  std::vector<FactsLoopSine> loop_amplitude_sweep;  ///< F8 (d), in amplitude order
 
   const StageFact* Find(const std::string& id) const;
   /// Every required fact that was run is met.
@@ -187,6 +230,19 @@ bool DominanceMet(double peak_ratio);
 /// F7's contrast: the typical network's test MSE >= 2x its training MSE, and the dominant
 /// network's test MSE below the typical's.
 bool NetworkContrast(double typical_train, double typical_test, double dominant_test);
+/// F8: a loop's mean width over both directions [m/s], (area_f + area_b) / (span_f + span_b);
+/// NaN when the stage never moved.
+double LoopMeanWidth(const VoltageLoop& loop);
+/// F8 (a): width / mean(|v_rising|, |v_falling|) at a level; NaN without both branches.
+double LoopRelativeWidth(const VoltageLoopLevel& level);
+/// F8 (b): max / min of |start forward|, |start backward|; NaN when either never starts.
+double StartRatio(const VoltageLoop& loop);
+/// F8 (a): every relative width >= min_fraction (none NaN, at least one).
+bool LoopWidthMet(const std::vector<double>& relative_widths, double min_fraction);
+/// F8 (c): last / first >= min_ratio, both finite and the first > 0.
+bool LoopRateMet(const std::vector<double>& widths_by_frequency, double min_ratio);
+/// F8 (d): |last - first| >= min_change x min(|first|, |last|), both finite and nonzero.
+bool LoopAmplitudeMet(const std::vector<double>& widths_by_amplitude, double min_change);
 }  // namespace facts
 
 using FactsProgress = std::function<void(const std::string& step)>;

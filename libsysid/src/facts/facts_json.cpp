@@ -41,7 +41,20 @@ const FieldList<FactsOptions>& FactsFields() {
           .Add("dominance_omega_rad_s", &O::dominance_omega_rad_s)
           .Add("dominance_offset_v", &O::dominance_offset_v)
           .Add("dominance_duration_s", &O::dominance_duration_s)
-          .Add("dominance_min_speed_mps", &O::dominance_min_speed_mps);
+          .Add("dominance_min_speed_mps", &O::dominance_min_speed_mps)
+          .Add("loop_period_s", &O::loop_period_s)
+          .Add("loop_peak_forward_v", &O::loop_peak_forward_v)
+          .Add("loop_peak_backward_v", &O::loop_peak_backward_v)
+          .Add("loop_levels_v", &O::loop_levels_v)
+          .Add("loop_min_relative_width", &O::loop_min_relative_width)
+          .Add("loop_min_start_ratio", &O::loop_min_start_ratio)
+          .Add("loop_sine_offset_v", &O::loop_sine_offset_v)
+          .Add("loop_sine_amplitude_v", &O::loop_sine_amplitude_v)
+          .Add("loop_sine_frequencies_hz", &O::loop_sine_frequencies_hz)
+          .Add("loop_sine_frequency_hz", &O::loop_sine_frequency_hz)
+          .Add("loop_sine_amplitudes_v", &O::loop_sine_amplitudes_v)
+          .Add("loop_min_rate_ratio", &O::loop_min_rate_ratio)
+          .Add("loop_min_amplitude_change", &O::loop_min_amplitude_change);
   return fields;
 }
 

@@ -1,5 +1,6 @@
 // RunStageFacts: the paper's experiments on a stage (pulse test, delay tuning, PI tracking with
-// feedforward, the sinusoidal dominance test, the two networks) and the facts F1-F7 they give.
+// feedforward, the sinusoidal dominance test, the two networks, the open-loop voltage loops) and
+// the facts F1-F8 they give.
 // The experiments reuse the library's procedures; the criteria are in stage_facts_checks.cpp.
 #include "sysid/stage_facts.hpp"
 
@@ -40,7 +41,7 @@ NeuralDataset MovingRows(const NeuralDataset& data) {
   out.targets.conservativeResize(n);
   return out;
 }
-const std::vector<std::string> kIds{"F1", "F2", "F3", "F4", "F5", "F6", "F7"};
+const std::vector<std::string> kIds{"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"};
 
 std::string Mm(double m) { return fmt::format("{:.4g}", 1e3 * m); }
 std::string Pct(double r) { return fmt::format("{:.2g} %", 100 * r); }
@@ -65,6 +66,7 @@ class FactsRun {
       if (id == "F5") F5();
       if (id == "F6") F6();
       if (id == "F7") F7();
+      if (id == "F8") F8();
     }
     return std::move(r_);
   }
@@ -562,6 +564,151 @@ class FactsRun {
     r_.facts.push_back(f);
   }
 
+  // F8's open-loop sinusoid: two periods from rest, the second one analysed (the first starts
+  // with a step to A sin(-pi/2) + offset from rest, a transient the periodic loop does not
+  // have). The encoder's x at the record rate, v by the loop analysis' central difference, as
+  // `sysid loop` on a rig's recording.
+  FactsLoopSine SineLoop(double amplitude_v, double frequency_hz, std::uint64_t stream) const {
+    const double rate = stage_.sample_rate_hz, record_rate = stage_.RecordRateHz();
+    const long stride = stage_.RecordStride();
+    const auto period = static_cast<Eigen::Index>(std::llround(record_rate / frequency_hz));
+    Eigen::VectorXd u(2 * period * stride + 1);
+    for (Eigen::Index k = 0; k < u.size(); ++k) {
+      const double t = static_cast<double>(k) / rate;
+      u[k] = amplitude_v * std::sin(4 * kHalfPi * frequency_hz * t - kHalfPi) + o_.loop_sine_offset_v;
+    }
+    const StageRun run = RunOpenLoop(stage_, u, DeriveSeed(o_.seed, stream));
+    Recording rec;
+    rec.source = fmt::format("open-loop sinusoid {:g} V, {:g} Hz", amplitude_v, frequency_hz);
+    rec.names = {"t", "u", "x"};
+    rec.data.resize(period + 1, 3);
+    for (Eigen::Index k = 0; k <= period; ++k) {
+      const Eigen::Index at = (period + k) * stride;
+      rec.data(k, 0) = run.t_s[at] - run.t_s[period * stride];
+      rec.data(k, 1) = run.u_v[at];
+      rec.data(k, 2) = run.x_m[at];
+    }
+    FactsLoopSine out;
+    out.amplitude_v = amplitude_v;
+    out.frequency_hz = frequency_hz;
+    VoltageLoopOptions lo;
+    lo.levels_v = {o_.loop_sine_offset_v + 0.5 * amplitude_v};  // one level: the areas matter
+    out.loop = AnalyzeVoltageLoop(rec, lo);
+    out.loop.u_v.resize(0);  // the traces are not kept (12 seeds x 8 runs)
+    out.loop.v_mps.resize(0);
+    out.mean_width_mps = facts::LoopMeanWidth(out.loop);
+    return out;
+  }
+
+  void F8() {
+    Step("open-loop triangle (voltage-velocity loop)");
+    TriangleProcedure tri;
+    tri.period_s = o_.loop_period_s;
+    tri.peak_forward_v = o_.loop_peak_forward_v;
+    tri.peak_backward_v = o_.loop_peak_backward_v;
+    const Recording rec =
+        RunTriangleTest(stage_, tri, DeriveSeed(o_.seed, 4), TrackingProcedure{}.derivative);
+    VoltageLoopOptions lo;
+    lo.levels_v = o_.loop_levels_v;
+    lo.cycles = tri.cycles;
+    r_.loop_triangle = AnalyzeVoltageLoop(rec, lo);
+    const VoltageLoop& t = *r_.loop_triangle;
+    std::uint64_t stream = 5;
+    for (double hz : o_.loop_sine_frequencies_hz) {
+      Step(fmt::format("open-loop sinusoid {:g} V at {:g} Hz", o_.loop_sine_amplitude_v, hz));
+      r_.loop_frequency_sweep.push_back(SineLoop(o_.loop_sine_amplitude_v, hz, stream++));
+    }
+    for (double a : o_.loop_sine_amplitudes_v) {
+      Step(fmt::format("open-loop sinusoid {:g} V at {:g} Hz", a, o_.loop_sine_frequency_hz));
+      r_.loop_amplitude_sweep.push_back(SineLoop(a, o_.loop_sine_frequency_hz, stream++));
+    }
+
+    StageFact f;
+    f.id = "F8";
+    f.fact = "voltage-velocity loop, open loop: (a) a loop on the triangle, (b) asymmetric, "
+             "(c) wider at a higher rate, (d) changes with amplitude";
+    f.paper = fmt::format(
+        "(a) a hysteresis loop on the {:g} s triangle (Fig. 3), (b) direction-dependent (Fig. 3; "
+        "pulse LS a2n / a2p = {:.3g}), (c), (d) shapes depend on the voltage's rate and "
+        "amplitude (Figs. 4, 5: {:g} V at several f, 1 Hz at several A); no widths printed",
+        tri.period_s, PaperFacts::PulseModel().a2n / PaperFacts::PulseModel().a2p,
+        o_.loop_sine_amplitude_v);
+    // (a) the triangle's width at the stated voltages.
+    std::vector<double> relative;
+    std::string a_text;
+    for (const auto& l : t.levels) {
+      const double rel = facts::LoopRelativeWidth(l);
+      relative.push_back(rel);
+      a_text += fmt::format("{}{:+g} V {:.3g} mm/s ({:.2g} %)", a_text.empty() ? "" : ", ",
+                            l.level_v, 1e3 * l.WidthMps(), 100 * rel);
+      f.values.emplace_back(fmt::format("triangle width_mps at {:+g} V", l.level_v), l.WidthMps());
+      f.values.emplace_back(fmt::format("triangle relative_width at {:+g} V", l.level_v), rel);
+    }
+    const bool a_met = facts::LoopWidthMet(relative, o_.loop_min_relative_width);
+    // (b) the start voltages of the two directions.
+    const double start_ratio = facts::StartRatio(t);
+    const bool b_met = start_ratio >= o_.loop_min_start_ratio;
+    f.values.insert(f.values.end(),
+                    {{"triangle start_forward_v", t.start_forward_v},
+                     {"triangle start_backward_v", t.start_backward_v},
+                     {"triangle stop_forward_v", t.stop_forward_v},
+                     {"triangle stop_backward_v", t.stop_backward_v},
+                     {"triangle start_ratio", start_ratio},
+                     {"triangle mean_width_forward_mps", t.MeanWidthForwardMps()},
+                     {"triangle mean_width_backward_mps", t.MeanWidthBackwardMps()},
+                     {"triangle area_forward_v_mps", t.area_forward_v_mps},
+                     {"triangle area_backward_v_mps", t.area_backward_v_mps}});
+    // (c), (d) the sinusoids' mean widths.
+    auto sweep = [&](const std::vector<FactsLoopSine>& runs, bool by_frequency) {
+      std::vector<double> widths;
+      std::string text;
+      for (const auto& r : runs) {
+        widths.push_back(r.mean_width_mps);
+        const std::string key = by_frequency ? fmt::format("{:g} Hz", r.frequency_hz)
+                                             : fmt::format("{:g} V", r.amplitude_v);
+        text += fmt::format("{}{} {:.3g}", text.empty() ? "" : ", ", key, 1e3 * r.mean_width_mps);
+        f.values.emplace_back(fmt::format("sine {:g} V {:g} Hz mean_width_mps", r.amplitude_v,
+                                          r.frequency_hz),
+                              r.mean_width_mps);
+      }
+      return std::make_pair(widths, text);
+    };
+    const auto [by_f, c_text] = sweep(r_.loop_frequency_sweep, true);
+    const auto [by_a, d_text] = sweep(r_.loop_amplitude_sweep, false);
+    const bool c_met = facts::LoopRateMet(by_f, o_.loop_min_rate_ratio);
+    const bool d_met = facts::LoopAmplitudeMet(by_a, o_.loop_min_amplitude_change);
+    const double rate_ratio = by_f.back() / by_f.front();
+    const double amplitude_change = (by_a.back() - by_a.front()) / std::min(std::abs(by_a.front()),
+                                                                            std::abs(by_a.back()));
+    f.values.insert(f.values.end(), {{"rate_ratio", rate_ratio},
+                                     {"amplitude_change", amplitude_change},
+                                     {"a_met", a_met ? 1.0 : 0.0},
+                                     {"b_met", b_met ? 1.0 : 0.0},
+                                     {"c_met", c_met ? 1.0 : 0.0},
+                                     {"d_met", d_met ? 1.0 : 0.0}});
+    f.virtual_value = fmt::format(
+        "(a) width {}; (b) starts {:.3f} / {:.3f} V (ratio {:.3g}); (c) mean width [mm/s] {} "
+        "(x {:.3g}); (d) at {:g} Hz {} ({:+.2g} %)",
+        a_text, t.start_forward_v, t.start_backward_v, start_ratio, c_text, rate_ratio,
+        o_.loop_sine_frequency_hz, d_text, 100 * amplitude_change);
+    f.tolerance = fmt::format(
+        "(a) width >= {:g} % of |v| at each level; (b) start ratio >= {:g}; (c) highest f's mean "
+        "width >= {:g} x lowest f's; (d) largest A's and smallest A's differ by >= {:g} %",
+        100 * o_.loop_min_relative_width, o_.loop_min_start_ratio, o_.loop_min_rate_ratio,
+        100 * o_.loop_min_amplitude_change);
+    f.met = a_met && b_met && c_met && d_met;
+    std::vector<std::string> failed;
+    if (!a_met) failed.push_back("(a) the triangle's loop is thinner than stated at a level");
+    if (!b_met) failed.push_back("(b) the directions start at similar voltages");
+    if (!c_met) failed.push_back("(c) the loop does not widen enough with the rate");
+    if (!d_met) failed.push_back("(d) the loop's mean width hardly changes with the amplitude");
+    for (const auto& w : failed) f.note += (f.note.empty() ? "not met: " : "; ") + w;
+    if (f.note.empty())
+      f.note = "width = v (|u| falling) - v (|u| rising) at a level; mean width = enclosed area "
+               "/ voltage span of the motion (`sysid loop`)";
+    r_.facts.push_back(f);
+  }
+
   const StageParameters& stage_;
   const FactsOptions& o_;
   const FactsProgress& progress_;
@@ -611,7 +758,7 @@ void FactsOptions::Validate() const {
   };
   for (const auto& id : facts)
     if (std::find(kIds.begin(), kIds.end(), id) == kIds.end())
-      fail("facts contains '" + id + "'", "ids are F1, F2, F3, F4, F5, F6, F7");
+      fail("facts contains '" + id + "'", "ids are F1, F2, F3, F4, F5, F6, F7, F8");
   if (threads < 0) fail("threads = " + std::to_string(threads), "threads >= 0 (0: all cores)");
   pulse.Validate();
   delay.Validate();
@@ -647,6 +794,45 @@ void FactsOptions::Validate() const {
       !(dominance_omega_rad_s > 0))
     fail("dominance input", "finite amplitude and offset, omega > 0");
   if (!(dominance_min_speed_mps > 0)) fail("dominance_min_speed_mps", "> 0");
+  if (!(loop_period_s > 0 && loop_period_s <= 600))
+    fail(fmt::format("loop_period_s = {:g}", loop_period_s), "0 < period <= 600 s");
+  if (!(loop_peak_forward_v > 0 && loop_peak_forward_v <= 10) ||
+      !(loop_peak_backward_v > 0 && loop_peak_backward_v <= 10))
+    fail(fmt::format("loop_peak_forward_v = {:g}, loop_peak_backward_v = {:g}",
+                     loop_peak_forward_v, loop_peak_backward_v),
+         "each in (0, 10] V");
+  if (loop_levels_v.empty() || loop_levels_v.size() > 20)
+    fail(fmt::format("loop_levels_v has {} values", loop_levels_v.size()), "1 to 20 levels");
+  for (double l : loop_levels_v)
+    if (!(l > 0 ? l < loop_peak_forward_v : l > -loop_peak_backward_v))
+      fail(fmt::format("loop_levels_v has {:g}", l),
+           "every level != 0 and inside the triangle's range (-peak_backward_v, peak_forward_v)");
+  if (!(loop_min_relative_width > 0) || !std::isfinite(loop_min_relative_width))
+    fail(fmt::format("loop_min_relative_width = {:g}", loop_min_relative_width), "> 0");
+  if (!(loop_min_start_ratio > 1) || !std::isfinite(loop_min_start_ratio))
+    fail(fmt::format("loop_min_start_ratio = {:g}", loop_min_start_ratio), "> 1");
+  if (!(loop_min_rate_ratio > 1) || !std::isfinite(loop_min_rate_ratio))
+    fail(fmt::format("loop_min_rate_ratio = {:g}", loop_min_rate_ratio), "> 1");
+  if (!(loop_min_amplitude_change > 0) || !std::isfinite(loop_min_amplitude_change))
+    fail(fmt::format("loop_min_amplitude_change = {:g}", loop_min_amplitude_change), "> 0");
+  if (!(std::abs(loop_sine_offset_v) <= 10))
+    fail(fmt::format("loop_sine_offset_v = {:g}", loop_sine_offset_v), "|offset| <= 10 V");
+  auto sweep = [&](const std::vector<double>& x, const std::string& name, double lo, double hi,
+                   const std::string& unit) {
+    if (x.size() < 2 || x.size() > 10)
+      fail(fmt::format("{} has {} values", name, x.size()), "2 to 10 values");
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (!(x[i] >= lo && x[i] <= hi) || (i > 0 && !(x[i] > x[i - 1])))
+        fail(fmt::format("{} has {:g}", name, x[i]),
+             fmt::format("increasing, each in [{:g}, {:g}] {}", lo, hi, unit));
+  };
+  // Bounds the runs: two periods of the slowest sinusoid, at most 2 / 0.05 = 40 s.
+  sweep(loop_sine_frequencies_hz, "loop_sine_frequencies_hz", 0.05, 50, "Hz");
+  sweep(loop_sine_amplitudes_v, "loop_sine_amplitudes_v", 0.01, 10, "V");
+  if (!(loop_sine_frequency_hz >= 0.05 && loop_sine_frequency_hz <= 50))
+    fail(fmt::format("loop_sine_frequency_hz = {:g}", loop_sine_frequency_hz), "0.05 to 50 Hz");
+  if (!(std::abs(loop_sine_amplitude_v) <= 10) || !(loop_sine_amplitude_v > 0))
+    fail(fmt::format("loop_sine_amplitude_v = {:g}", loop_sine_amplitude_v), "0 < A <= 10 V");
 }
 
 StageFacts RunStageFacts(const StageParameters& stage, const FactsOptions& options,

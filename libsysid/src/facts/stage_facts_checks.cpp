@@ -144,6 +144,41 @@ bool NetworkContrast(double typical_train, double typical_test, double dominant_
   return typical_test >= 2 * typical_train && dominant_test < typical_test;
 }
 
+double LoopMeanWidth(const VoltageLoop& loop) {
+  const double span = loop.span_forward_v + loop.span_backward_v;
+  return span > 0 ? (loop.area_forward_v_mps + loop.area_backward_v_mps) / span : std::nan("");
+}
+
+double LoopRelativeWidth(const VoltageLoopLevel& level) {
+  const double mean = 0.5 * (std::abs(level.v_rising_mps) + std::abs(level.v_falling_mps));
+  return mean > 0 ? level.WidthMps() / mean : std::nan("");
+}
+
+double StartRatio(const VoltageLoop& loop) {
+  const double f = std::abs(loop.start_forward_v), b = std::abs(loop.start_backward_v);
+  if (!(f > 0) || !(b > 0)) return std::nan("");
+  return std::max(f, b) / std::min(f, b);
+}
+
+bool LoopWidthMet(const std::vector<double>& relative_widths, double min_fraction) {
+  return !relative_widths.empty() &&
+         std::all_of(relative_widths.begin(), relative_widths.end(),
+                     [&](double w) { return w >= min_fraction; });
+}
+
+bool LoopRateMet(const std::vector<double>& widths, double min_ratio) {
+  if (widths.size() < 2) return false;
+  const double first = widths.front(), last = widths.back();
+  return first > 0 && std::isfinite(last) && last >= min_ratio * first;
+}
+
+bool LoopAmplitudeMet(const std::vector<double>& widths, double min_change) {
+  if (widths.size() < 2) return false;
+  const double first = widths.front(), last = widths.back();
+  if (!std::isfinite(first) || !std::isfinite(last) || first == 0 || last == 0) return false;
+  return std::abs(last - first) >= min_change * std::min(std::abs(first), std::abs(last));
+}
+
 }  // namespace facts
 
 // ---- Output ---------------------------------------------------------------------------------

@@ -61,6 +61,26 @@ void FindStartsAndStops(const Eigen::VectorXd& u, const Eigen::VectorXd& v, doub
   loop.stop_backward_v = Mean(stop[1]);
 }
 
+// The enclosed areas: sum of -v du per direction. A closed path of a static map encloses none;
+// the steps near rest (|v| <= moving) are left out so that encoder noise at rest, whose sign is
+// random, adds nothing.
+void FindAreas(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const VoltageLoopOptions& o,
+               VoltageLoop& loop) {
+  double area[2] = {0, 0}, lo[2] = {kNaN, kNaN}, hi[2] = {kNaN, kNaN};
+  for (Eigen::Index k = 0; k + 1 < u.size(); ++k) {
+    if (!(std::abs(v[k]) > o.moving_speed_mps && std::abs(v[k + 1]) > o.moving_speed_mps)) continue;
+    if ((v[k] > 0) != (v[k + 1] > 0)) continue;
+    const int d = v[k] > 0 ? 0 : 1;
+    area[d] -= 0.5 * (v[k] + v[k + 1]) * (u[k + 1] - u[k]);
+    lo[d] = std::isnan(lo[d]) ? std::min(u[k], u[k + 1]) : std::min({lo[d], u[k], u[k + 1]});
+    hi[d] = std::isnan(hi[d]) ? std::max(u[k], u[k + 1]) : std::max({hi[d], u[k], u[k + 1]});
+  }
+  loop.area_forward_v_mps = area[0] / o.cycles;
+  loop.area_backward_v_mps = area[1] / o.cycles;
+  loop.span_forward_v = std::isnan(lo[0]) ? 0.0 : hi[0] - lo[0];
+  loop.span_backward_v = std::isnan(lo[1]) ? 0.0 : hi[1] - lo[1];
+}
+
 }  // namespace
 
 void VoltageLoopOptions::Validate() const {
@@ -75,6 +95,15 @@ void VoltageLoopOptions::Validate() const {
     rule(fmt::format("half_window = {}", half_window), "0 <= half_window <= 100000");
   if (!(moving_speed_mps > 0) || !std::isfinite(moving_speed_mps))
     rule(fmt::format("moving_speed_mps = {}", moving_speed_mps), "moving_speed_mps > 0 [m/s]");
+  if (cycles < 1 || cycles > 10000) rule(fmt::format("cycles = {}", cycles), "1 <= cycles <= 10000");
+}
+
+double VoltageLoop::MeanWidthForwardMps() const {
+  return span_forward_v > 0 ? area_forward_v_mps / span_forward_v : kNaN;
+}
+
+double VoltageLoop::MeanWidthBackwardMps() const {
+  return span_backward_v > 0 ? area_backward_v_mps / span_backward_v : kNaN;
 }
 
 double VoltageLoopLevel::WidthMps() const {
@@ -95,6 +124,7 @@ VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOpti
   loop.peak_forward_v = std::max(u.maxCoeff(), 0.0);
   loop.peak_backward_v = std::min(u.minCoeff(), 0.0);
   FindStartsAndStops(u, v, options.moving_speed_mps, loop);
+  FindAreas(u, v, options, loop);
   std::vector<double> levels = options.levels_v;
   if (levels.empty()) {
     levels = DefaultLevels(loop.peak_forward_v, loop.start_forward_v);
@@ -135,6 +165,12 @@ std::string ToJson(const VoltageLoop& loop, int indent) {
   j["start_backward_v"] = NumberOrNull(loop.start_backward_v);
   j["stop_forward_v"] = NumberOrNull(loop.stop_forward_v);
   j["stop_backward_v"] = NumberOrNull(loop.stop_backward_v);
+  j["area_forward_v_mps"] = loop.area_forward_v_mps;
+  j["area_backward_v_mps"] = loop.area_backward_v_mps;
+  j["span_forward_v"] = loop.span_forward_v;
+  j["span_backward_v"] = loop.span_backward_v;
+  j["mean_width_forward_mps"] = NumberOrNull(loop.MeanWidthForwardMps());
+  j["mean_width_backward_mps"] = NumberOrNull(loop.MeanWidthBackwardMps());
   j["levels"] = nlohmann::ordered_json::array();
   for (const auto& l : loop.levels)
     j["levels"].push_back({{"level_v", l.level_v},

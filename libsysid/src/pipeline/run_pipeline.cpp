@@ -184,7 +184,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   }
 
   if (options.facts && !inputs.stage.empty()) {
-    step("paper facts on the stage (F1-F7)", [&] {
+    step("paper facts on the stage (F1-F8)", [&] {
       FactsOptions fo = options.facts_options;
       fo.threads = options.threads;
       r.facts = RunStageFacts(ReadStageParameters(inputs.stage), fo);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "report/report_sections.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/pipeline.hpp"
@@ -81,6 +82,12 @@ class ReportWriter {
       md_ += "\n*(plot `" + file + "` not drawn: " + p.message + ")*\n";
       notes_.push_back(p.message);
     }
+  }
+
+  void Render(const internal::ReportSection& s) {
+    md_ += s.markdown;
+    for (const auto& p : s.plots) Plot(p.file, p.spec, p.caption);
+    for (const auto& [name, text] : s.files) WriteFileAtomically(Path(name), text);
   }
 
   void Model() {
@@ -311,6 +318,7 @@ class ReportWriter {
                      F(t.train_mse), F(r_.typical_test_mse), F(train_dom), F(r_.network_test_mse),
                      r_.options.typical_max_epochs, r_.options.typical_stride);
     WriteNeuralNetwork(Path("nn_typical.json"), t.network);
+    Render(internal::NetworkFigurePair(r_));
   }
 
   void Comparison() {
@@ -461,7 +469,9 @@ class ReportWriter {
 
   // The slow open-loop sweeps: the voltage-velocity loop (the paper's Fig. 3 test).
   void Loops() {
-    if (r_.loops.empty()) return;
+    const internal::ReportSection fact =
+        r_.facts ? internal::LoopFactSection(*r_.facts) : internal::ReportSection{};
+    if (r_.loops.empty() && fact.markdown.empty()) return;
     md_ += "\n## 8. Voltage-velocity loop (slow open-loop sweep)\n\n";
     md_ += "The paper's triangle test (its Fig. 3: an asymmetric loop). Velocity where |u| "
            "passes each level going up and going down (mean of ±10 samples; `sysid loop`); "
@@ -495,7 +505,8 @@ class ReportWriter {
       Plot(fmt::format("loop_{}.png", i + 1), spec, "voltage-velocity loop " + name);
       WriteFileAtomically(Path(fmt::format("loop_{}.json", i + 1)), ToJson(l) + "\n");
     }
-    WriteFileAtomically(Path("loops.csv"), csv);
+    if (!r_.loops.empty()) WriteFileAtomically(Path("loops.csv"), csv);
+    Render(fact);
   }
 
   void Facts() {
@@ -503,8 +514,9 @@ class ReportWriter {
     md_ += "\n## 7. The paper's facts on the stage (`sysid stage facts`)\n\n";
     md_ +=
         "Each fact of the paper measured on this stage by the paper's own experiment "
-        "(docs/virtual_stage.md, \"Stage facts\"). F1-F6 are required of a stage that stands "
-        "in for the paper's; F7 is reported.\n\n";
+        "(docs/virtual_stage.md, \"Stage facts\"). F1-F6 and F8 are required of a stage that "
+        "stands in for the paper's; F7 is reported (its figure pair is in section 4, F8's loop "
+        "numbers in section 8).\n\n";
     md_ += r_.facts->ToMarkdown();
     std::string failed;
     for (const auto& f : r_.facts->facts)

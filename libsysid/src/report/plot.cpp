@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -96,6 +97,8 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
   script << "set ylabel \"" << Sanitise(spec.y_label) << "\" noenhanced\n";
   script << "set grid\nset key outside right top noenhanced\n";
   if (spec.log_y) script << "set logscale y\n";
+  if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && spec.y_min < spec.y_max)
+    script << "set yrange [" << spec.y_min << ":" << spec.y_max << "]\n";
   script << "plot ";
   for (size_t i = 0; i < spec.series.size(); ++i) {
     const auto& s = spec.series[i];

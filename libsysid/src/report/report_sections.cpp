@@ -1,0 +1,161 @@
+// The report's networks figure pair and F8's loop tables (report_sections.hpp).
+#include "report/report_sections.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sysid/io.hpp"
+#include "sysid/motion.hpp"
+#include "sysid/nn.hpp"
+
+namespace sysid::internal {
+namespace {
+
+std::string G(double v, int digits = 4) {
+  return std::isnan(v) ? std::string("-") : fmt::format("{:.{}g}", v, digits);
+}
+
+std::string Join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (const auto& x : v) out += (out.empty() ? "" : sep) + x;
+  return out;
+}
+
+// The recording with v and a as the pipeline trains on them: its own columns when present,
+// else from x by the default filter (run_pipeline.cpp's rule).
+Recording WithDerivatives(const std::string& path) {
+  Recording rec = ReadRecording(path);
+  if (rec.has("v") && rec.has("a")) return rec;
+  const MotionSignals m = ExtractMotion(rec);
+  rec.SetColumn("v", m.v_mps);
+  rec.SetColumn("a", m.a_mps2);
+  return rec;
+}
+
+// F8's note without its "not met: " lead (the verdict is already in bold).
+std::string FailedParts(const std::string& note) {
+  const std::string lead = "not met: ";
+  return note.rfind(lead, 0) == 0 ? note.substr(lead.size()) : note;
+}
+
+}  // namespace
+
+ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
+  ReportSection s;
+  if (!r.typical) return s;
+  const NeuralNetwork& typical = r.typical->network;
+  const NeuralNetwork& dominant = r.network;
+  NetworkMses m;
+  std::string csv = "network,inputs,hidden,set,mse_v2\n";
+  for (const auto& [set, path] : {std::pair<std::string, std::string>{"training", r.inputs.training},
+                                  {"test", r.inputs.test}}) {
+    const Recording rec = WithDerivatives(path);
+    const NeuralDataset va = MakeNeuralDataset(rec, {"v", "a"}, "u");
+    const NeuralDataset dv = MakeNeuralDataset(rec, r.nn_inputs, "u");
+    const Eigen::VectorXd yt = typical.EvaluateBatch(va.inputs);
+    const Eigen::VectorXd yd = dominant.EvaluateBatch(dv.inputs);
+    const double mt = MeanSquaredError(typical, va), md = MeanSquaredError(dominant, dv);
+    (set == "training" ? m.typical_train : m.typical_test) = mt;
+    (set == "training" ? m.dominant_train : m.dominant_test) = md;
+    csv += fmt::format("typical,v a,{},{},{:.9g}\n", typical.hidden_size(), set, mt);
+    csv += fmt::format("dominant,{},{},{},{:.9g}\n", Join(r.nn_inputs, " "),
+                       dominant.hidden_size(), set, md);
+    // Against the row index, as the paper's figures: the set is segments in random order, and
+    // the index keeps them side by side without the gaps a time axis could show.
+    Eigen::VectorXd k(va.size());
+    for (Eigen::Index i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i);
+    PlotSpec spec{fmt::format("networks against the {} set", set),
+                  "sample",
+                  "u [V]",
+                  {{"data u", k, va.targets, "lines"},
+                   {fmt::format("typical (v, a), H = {}", typical.hidden_size()), k, yt, "lines"},
+                   {fmt::format("dominant ({}), H = {}", Join(r.nn_inputs, ", "),
+                                dominant.hidden_size()),
+                    k, yd, "lines"}},
+                  false,
+                  1400,
+                  500};
+    // The data's range plus a quarter each way: a network that strays far outside (a typical
+    // network extrapolating in a) is cut at the frame instead of flattening the data.
+    const double lo = va.targets.minCoeff(), hi = va.targets.maxCoeff(), pad = 0.25 * (hi - lo);
+    spec.y_min = lo - pad;
+    spec.y_max = hi + pad;
+    s.plots.push_back({fmt::format("network_{}.png", set), spec,
+                       fmt::format("network outputs against the {} set (y: the data's range "
+                                   "+-25 %)", set)});
+  }
+  const bool contrast = m.typical_test >= 2 * m.typical_train && m.dominant_test < m.typical_test;
+  s.markdown = fmt::format(
+      "\n### The paper's figure pair: each network against the training and the test set\n\n"
+      "Each network's output and the data u on every row of the training set and of the test "
+      "set (the paper's figures of the typical network, \"fits the training set, test very "
+      "poor\", and of the dominant one). The four MSEs in one table, computed as the facts' F7 "
+      "(every row of each set; the typical network trained on every n-th training row, n = "
+      "{}):\n\n",
+      r.options.typical_stride);
+  s.markdown += MarkdownTable(
+      {"network", "training MSE [V²]", "test MSE [V²]", "paper (training / test)"},
+      {{fmt::format("typical (v, a), H = {}", typical.hidden_size()), G(m.typical_train),
+        G(m.typical_test), "fits training; test very poor"},
+       {fmt::format("dominant ({}), H = {}", Join(r.nn_inputs, ", "), dominant.hidden_size()),
+        G(m.dominant_train), G(m.dominant_test),
+        fmt::format("{:.3f} / {:.3f}", PaperFacts::kDominantTrainMseV2,
+                    PaperFacts::kDominantTestMseV2)}});
+  s.markdown += fmt::format(
+      "\nF7's contrast (typical test ≥ 2 × typical training and dominant test < typical test): "
+      "**{}** (typical test / training {:.3g}).\n",
+      contrast ? "yes, as in the paper" : "no", m.typical_test / m.typical_train);
+  s.files.emplace_back("network_mse.csv", csv);
+  if (mses) *mses = m;
+  return s;
+}
+
+ReportSection LoopFactSection(const StageFacts& facts) {
+  ReportSection s;
+  const StageFact* f = facts.Find("F8");
+  if (!f || !facts.loop_triangle) return s;
+  const VoltageLoop& t = *facts.loop_triangle;
+  s.markdown = fmt::format(
+      "\n### F8 on the stage: the loop of the paper's section-3 tests\n\n"
+      "`sysid stage facts --facts F8` (docs/virtual_stage.md, \"Stage facts\"): **{}**{}.\n\n"
+      "Triangle (one period, open loop): starts forward at {} V, backward at {} V; width = "
+      "v (\\|u\\| falling) − v (\\|u\\| rising); mean width = enclosed area / voltage span.\n\n",
+      f->met ? "met" : "not met", f->met ? std::string() : ", " + FailedParts(f->note),
+      G(t.start_forward_v), G(t.start_backward_v));
+  std::vector<std::vector<std::string>> rows;
+  std::string csv = "test,amplitude_v,frequency_hz,level_v,width_mps,mean_width_forward_mps,"
+                    "mean_width_backward_mps,mean_width_mps\n";
+  for (const auto& l : t.levels) {
+    rows.push_back({fmt::format("{:+g}", l.level_v), G(1e3 * l.v_rising_mps),
+                    G(1e3 * l.v_falling_mps), G(1e3 * l.WidthMps()),
+                    G(100 * facts::LoopRelativeWidth(l), 3)});
+    csv += fmt::format("triangle,,,{:g},{:.9g},{:.9g},{:.9g},{:.9g}\n", l.level_v, l.WidthMps(),
+                       t.MeanWidthForwardMps(), t.MeanWidthBackwardMps(),
+                       facts::LoopMeanWidth(t));
+  }
+  s.markdown += MarkdownTable({"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]",
+                               "width [mm/s]", "width / \\|v\\| [%]"},
+                              rows);
+  s.markdown += "\nSinusoids u = A sin(2π f t − π/2) − 0.3 V (second period; mean width [mm/s]):\n\n";
+  rows.clear();
+  for (const auto* sweep : {&facts.loop_frequency_sweep, &facts.loop_amplitude_sweep})
+    for (const auto& r : *sweep) {
+      rows.push_back({G(r.amplitude_v), G(r.frequency_hz), G(r.loop.start_forward_v),
+                      G(r.loop.start_backward_v), G(1e3 * r.loop.MeanWidthForwardMps()),
+                      G(1e3 * r.loop.MeanWidthBackwardMps()), G(1e3 * r.mean_width_mps)});
+      csv += fmt::format("sine,{:g},{:g},,,{:.9g},{:.9g},{:.9g}\n", r.amplitude_v, r.frequency_hz,
+                         r.loop.MeanWidthForwardMps(), r.loop.MeanWidthBackwardMps(),
+                         r.mean_width_mps);
+    }
+  s.markdown += MarkdownTable({"A [V]", "f [Hz]", "start forward [V]", "start backward [V]",
+                               "forward", "backward", "both"},
+                              rows);
+  s.files.emplace_back("loop_fact.csv", csv);
+  return s;
+}
+
+}  // namespace sysid::internal
