@@ -129,3 +129,16 @@ def test_compare_scores_the_models_inverse_like_the_cli(tmp_path):
     e = back - u[5:-5]
     assert table.loc[0, "rmse_v"] == pytest.approx(math.sqrt(np.mean(e ** 2)), rel=1e-12)
     assert table.loc[0, "samples"] == len(u) - 10
+
+
+def test_hysteresis_batch_on_dask_equals_threads():
+    distributed = pytest.importorskip("distributed")
+    rec, *_ = _pi_recording(1000)
+    models = ["pi", {"kind": "gpi", "operators": 3, "label": "GPI 3"}]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        table = sysid.hysteresis_batch([rec, rec], models=models, client=client)
+    serial = sysid.hysteresis_batch([rec, rec], models=models, threads=1)
+    pandas.testing.assert_frame_equal(table.drop(columns="fit_time_s"),
+                                      serial.drop(columns="fit_time_s"))
