@@ -3,6 +3,7 @@
 // v, a, the forward and inverse plots, the model files, models.csv and summary.json.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -83,7 +84,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
     const auto& s = r.stack_models[i];
     const std::string inverse =
         s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
-    rows.push_back({s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
+    rows.push_back({std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
                     s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")",
                     G(s.forward_rms_m), Pct(s.forward_nrmse), inverse, Pct(s.inverse_nrmse)});
     csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
@@ -94,7 +95,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
       WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
                           s.model->ToJson(2) + "\n");
   }
-  md += MarkdownTable({"model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward NRMSE",
+  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward NRMSE",
                        "inverse e_RMS [V]", "inverse NRMSE"},
                       rows);
   md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
@@ -102,24 +103,34 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
         "are wall times on this machine (the only numbers of this report that vary between runs).\n";
   WriteFileAtomically(path("models.csv"), csv);
 
-  // The first recording's scored part: measured beside each model, forward and inverse.
+  // The first recording's scored part, its first 600 samples (a few periods: the loops stay
+  // readable): measured beside each model, forward and inverse.
   if (!r.stack_models.empty()) {
     ReadOptions ro;
     ro.required_columns = {"t", "u", "x"};
     ro.any_of_columns = {};
     const Recording rec = ReadRecording(r.inputs.stack.front(), ro);
-    const Eigen::Index k = TrainingPart(rec, kStackTrainFraction).rows(), m = rec.rows() - k;
-    const Eigen::VectorXd t = rec.column("t").tail(m);
+    const Eigen::Index k = TrainingPart(rec, kStackTrainFraction).rows();
+    const Eigen::Index m = std::min<Eigen::Index>(rec.rows() - k, 600);
+    const Eigen::VectorXd t = rec.column("t").segment(k, m);
     const std::string name = fs::path(rec.source).filename().string();
-    PlotSpec fwd{"forward models on the scored part of " + name, "t [s]", "x [um]", {}, false, 1000, 550};
-    PlotSpec inv{"inverse models on the scored part of " + name, "t [s]", "u [V]", {}, false, 1000, 550};
-    fwd.series.push_back({"measured", t, 1e6 * Eigen::VectorXd(rec.column("x").tail(m)), "lines"});
-    inv.series.push_back({"measured", t, rec.column("u").tail(m), "lines"});
-    for (const auto& s : r.stack_models) {
-      if (!s.x_model.empty()) fwd.series.push_back({s.label, t, 1e6 * s.x_model.front().tail(m), "lines"});
-      if (!s.u_model.empty()) inv.series.push_back({s.label, t, s.u_model.front().tail(m), "lines"});
+    PlotSpec fwd{"forward models: the start of the scored part of " + name, "t [s]", "x [um]", {},
+                 false, 1000, 550};
+    PlotSpec inv{"inverse models: the start of the scored part of " + name, "t [s]", "u [V]", {},
+                 false, 1000, 550};
+    fwd.series.push_back(
+        {"measured", t, 1e6 * Eigen::VectorXd(rec.column("x").segment(k, m)), "lines"});
+    inv.series.push_back({"measured", t, rec.column("u").segment(k, m), "lines"});
+    for (size_t i = 0; i < r.stack_models.size(); ++i) {
+      const auto& s = r.stack_models[i];
+      // Short legends (the table's row number and kind): long ones squeeze the plot.
+      const std::string label = fmt::format("{} {}", i + 1, s.kind);
+      if (!s.x_model.empty())
+        fwd.series.push_back({label, t, 1e6 * s.x_model.front().segment(k, m), "lines"});
+      if (!s.u_model.empty()) inv.series.push_back({label, t, s.u_model.front().segment(k, m), "lines"});
     }
-    md += "\n";
+    md += "\nThe first " + std::to_string(m) + " scored samples of `" + name +
+          "` (legend: the table's row and the model's kind):\n";
     plot("stack_forward.png", fwd, md);
     plot("stack_inverse.png", inv, md);
   }
