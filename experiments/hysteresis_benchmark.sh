@@ -66,7 +66,7 @@ print(len(s['parameters']), '%.3g' % s['fit_time_s'])" "$OUT/piezo_fit_$i.json")
   fn_pct=$(python3 -c "import sys; print('%.2f %%' % (100 * float(sys.argv[1])))" "$fn")
   in_pct=$(python3 -c "import sys; v = float(sys.argv[1]); print('-' if v != v else '%.2f %%' % (100 * v))" "$in")
   # Not invertible: say why, in the library's words up to the first colon-separated detail.
-  [ "$ie" = "nan" ] && ie="- ($(sed -e 's/^sysid: [a-z ]*: //' -e 's/ (an error.*//' "$OUT/piezo_inv_$i.err" | head -c 160))"
+  [ "$ie" = "nan" ] && ie="- ($(sed -e 's/^sysid: [a-z ]*: //' -e 's/ (an error.*//' "$OUT/piezo_inv_$i.err" | head -c 160 | sed 's/|/\\|/g'))"
   echo "| $name | $params | $fit_time | $fe | $fn_pct | $ie | $in_pct |"
 done
 echo
