@@ -5,8 +5,10 @@
 # state, e_RMS = sqrt(mean((y_model - y_test)^2)) in metres, beside the published black boxes.
 #
 #   experiments/boucwen_benchmark.sh [BUILD_DIR] [THREADS]     (default: build, 2)
-# Needs bench_bouc_wen (configure with -DSYSID_BUILD_BENCH=ON); until `sysid hysteresis` lands
-# the fit runs there. Writes the fitted model to out/boucwen/bouc_wen.json.
+# Needs bench_bouc_wen (configure with -DSYSID_BUILD_BENCH=ON), which also scores the true
+# parameters and the CVODE integrators (the rows that say what limits the score). The same fit
+# through the CLI alone (no bench binary): experiments/hysteresis_benchmark.sh. Writes the
+# fitted model to out/boucwen/bouc_wen.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD="${1:-build}"

@@ -1,5 +1,6 @@
-// sysid compare --model M.json [--nn NN.json] [--json] [-o DIR] DATA.csv...
-// Measured voltage vs the analytic inverse and the network, per recording.
+// sysid compare [--model M.json] [--nn NN.json] [--hysteresis H.json]... [--json] [-o DIR] DATA.csv...
+// Measured voltage vs the analytic inverse, the network and hysteresis models' inverses, per
+// recording.
 #include "sysid/compare.hpp"
 
 #include <fmt/format.h>
@@ -17,6 +18,8 @@
 #include "cli/output_folder.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
+#include "sysid/compare_hysteresis.hpp"
+#include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
 #include "sysid/report.hpp"
@@ -27,6 +30,7 @@ namespace {
 struct CompareCliOptions {
   std::string model_path;
   std::string nn_path;
+  std::vector<std::string> hysteresis_paths;
   std::vector<std::string> files;
   std::string out_dir;
   bool force = false;
@@ -50,15 +54,56 @@ std::string MotionSourcesNote(const std::vector<InverseComparison>& results) {
   return out;
 }
 
+/// A hysteresis model file for compare: read, labelled "KIND:STEM", and refused up front (exit 2
+/// naming the file, nothing written) when it cannot be inverted at all.
+struct HysteresisEntry {
+  std::string path;
+  std::unique_ptr<HysteresisModel> model;
+  std::string label;
+};
+
+std::vector<HysteresisEntry> ReadHysteresisModels(const std::vector<std::string>& paths) {
+  std::vector<HysteresisEntry> out;
+  for (const auto& path : paths) {
+    HysteresisEntry e;
+    e.path = path;
+    e.model = ReadHysteresisModel(path);
+    e.label = e.model->kind() + ":" + std::filesystem::path(path).stem().string();
+    for (const auto& other : out)
+      if (other.label == e.label)
+        throw OptionsError("--hysteresis: " + other.path + " and " + path +
+                           " would both be labelled '" + e.label +
+                           "' (KIND:FILE_STEM); give the files different names");
+    if (!e.model->invertible()) {
+      std::string why = "the " + e.model->kind() + " model is not invertible";
+      try {
+        e.model->Invert(Eigen::VectorXd::Zero(2), 1.0);  // the model's own reason
+      } catch (const Error& err) {
+        why = err.what();
+      }
+      throw InputError("--hysteresis " + path + ": cannot be used as an inverse model: " + why);
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 void RunCompare(const CompareCliOptions& o) {
   namespace fs = std::filesystem;
+  if (o.model_path.empty() && o.nn_path.empty() && o.hysteresis_paths.empty())
+    throw OptionsError("--model, --nn, --hysteresis: give at least one inverse model");
   // The output folder is checked before any work (cli/output_folder.hpp).
   std::vector<std::string> inputs = o.files;
   inputs.insert(inputs.end(), {o.model_path, o.nn_path});
+  inputs.insert(inputs.end(), o.hysteresis_paths.begin(), o.hysteresis_paths.end());
   const auto folder = OptionalOutputFolder(o.out_dir, o.force, inputs, "compare");
-  const FrictionModel model = ReadModel(o.model_path);
+  std::optional<FrictionModel> model;
+  if (!o.model_path.empty()) model = ReadModel(o.model_path);
   std::optional<NeuralNetwork> nn;
   if (!o.nn_path.empty()) nn = ReadNeuralNetwork(o.nn_path);
+  const std::vector<HysteresisEntry> hysteresis = ReadHysteresisModels(o.hysteresis_paths);
+  std::vector<NamedHysteresisModel> named;
+  for (const auto& h : hysteresis) named.push_back({h.label, h.model.get()});
   CompareOptions co;
   co.derivative.method = ParseDerivativeMethod(o.derivative.empty() ? "central" : o.derivative);
   co.use_recorded_columns = o.derivative.empty();  // the one rule (MotionOptions)
@@ -67,24 +112,36 @@ void RunCompare(const CompareCliOptions& o) {
   std::vector<InverseComparison> results;
   for (size_t i = 0; i < o.files.size(); ++i) {
     Progress(fmt::format("compare: {}/{} {}", i + 1, o.files.size(), o.files[i]));
-    results.push_back(CompareInverseModels(ReadRecording(o.files[i], o.recording.Apply({})), model,
-                                           nn ? &*nn : nullptr, co));
+    const Recording rec = ReadRecording(o.files[i], o.recording.Apply({}));
+    try {
+      results.push_back(
+          CompareInverseModels(rec, model ? &*model : nullptr, nn ? &*nn : nullptr, named, co));
+    } catch (const NumericalError& e) {
+      // A model that refuses this recording's reference is the input's problem (exit 2).
+      throw InputError(std::string("--hysteresis: ") + e.what());
+    }
   }
   ProgressDone();
   nlohmann::ordered_json j;
-  j["model"] = o.model_path;
+  if (model) j["model"] = o.model_path;
   if (nn) j["nn"] = o.nn_path;
+  if (!hysteresis.empty()) {
+    j["hysteresis"] = nlohmann::ordered_json::array();
+    for (const auto& h : hysteresis)
+      j["hysteresis"].push_back({{"label", h.label}, {"kind", h.model->kind()}, {"file", h.path}});
+  }
   j["recordings"] = nlohmann::ordered_json::array();
   Table table({"recording", "model", "RMSE [V]", "peak [V]", "NRMSE", "R^2"});
   for (const auto& c : results) {
     const std::string name = fs::path(c.source).stem().string();
     j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(c)));
-    auto row = [&](const char* which, const PredictionErrors& e) {
+    auto row = [&](const std::string& which, const PredictionErrors& e) {
       table.AddRow(
           {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse, 4), Num(e.r2, 4)});
     };
-    row("analytic", c.analytic);
+    if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
+    for (const auto& h : c.hysteresis) row(h.label, h.errors);
   }
   if (folder) {
     std::vector<std::string> notes;
@@ -99,8 +156,11 @@ void RunCompare(const CompareCliOptions& o) {
         spec.x_label = "t [s]";
         spec.y_label = "u [V]";
         spec.series.push_back({"measured", c.t_s, c.u_measured_v, "lines"});
-        spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
+        if (c.has_analytic)
+          spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
         if (c.has_nn) spec.series.push_back({"NN inverse", c.t_s, c.u_nn_v, "lines"});
+        for (const auto& h : c.hysteresis)
+          spec.series.push_back({h.label + " inverse", c.t_s, h.u_v, "lines"});
         const auto p = WritePlot((dir / (stem + ".png")).string(), spec);
         if (!p.written) notes.push_back(p.message);
       }
@@ -121,14 +181,21 @@ void AddCompareCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "compare",
       "Compare inverse models on recordings: measured u beside the analytic inverse "
-      "(x'' + a1 v(t-tau) + a2 sgn v)/a3 and the network's prediction; RMSE, peak error, NRMSE");
+      "(x'' + a1 v(t-tau) + a2 sgn v)/a3, the network's prediction and hysteresis models "
+      "inverted on the recorded x; RMSE, peak error, NRMSE (at least one of --model, --nn, "
+      "--hysteresis)");
   cmd->add_option("--model", o->model_path, "friction model JSON (a1p, a1n, a2p, a2n, a3, tau)")
-      ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--nn", o->nn_path,
                   "neural inverse model JSON (inputs by name: v [m/s], "
                   "a [m/s^2])")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--hysteresis", o->hysteresis_paths,
+                  "hysteresis model file from `sysid hysteresis fit` (repeatable): its inverse "
+                  "on the recording's x [m] from the model's initial state; row KIND:FILE_STEM")
+      ->check(CLI::ExistingFile)
+      ->allow_extra_args(false)  // one file per flag: the recordings stay positionals
+      ->type_name("H.json");
   cmd->add_option("files", o->files,
                   "recordings: t [s], u [V] and x [m] (or v [m/s] and a [m/s^2] columns)")
       ->required()

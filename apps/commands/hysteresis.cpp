@@ -31,6 +31,8 @@ struct HysteresisCli {
   std::string input;
   bool periodic = false;
   bool no_offset = false;
+  std::string integrator = "cvode";  // Bouc–Wen fits: cvode | benchmark-chain
+  std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
 };
 
 std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
@@ -61,6 +63,15 @@ void PrintSummary(const HysteresisFitSummary& s, const HysteresisModel& model) {
 void RunFit(const HysteresisCli& o) {
   HysteresisFitOptions options = o.options;
   options.pi.offset = !o.no_offset;
+  BoucWenSimulationOptions& sim = options.bouc_wen.simulation;
+  sim.integrator = o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
+                                                     : BoucWenIntegrator::kCvode;
+  sim.input = o.input_model == "hold"           ? InputInterpolation::kHold
+              : o.input_model == "band-limited" ? InputInterpolation::kBandLimited
+                                                : InputInterpolation::kLinear;
+  if (o.kind != "bouc-wen" && sim.integrator == BoucWenIntegrator::kBenchmarkChain)
+    throw OptionsError("--integrator benchmark-chain: only for --model bouc-wen (the "
+                       "benchmark's generator of the mechanical form)");
   try {
     options.Validate(o.kind);
   } catch (const OptionsError& e) {
@@ -77,7 +88,8 @@ void RunFit(const HysteresisCli& o) {
   try {
     model = FitHysteresis(o.kind, recs, options, &s);
   } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"}});
+    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"},
+                        {"starts", "--starts"}, {"threads", "--threads"}});
   }
   const std::string summary_json = HysteresisFitSummaryJson(s, *model, 2);
   nlohmann::ordered_json file = nlohmann::ordered_json::parse(model->ToJson(2));
@@ -212,6 +224,23 @@ void AddHysteresisCommand(CLI::App& app) {
   fit->add_option("--epochs", o->options.network.max_epochs, "nn-operators: LM epochs per network")
       ->capture_default_str();
   fit->add_option("--seed", o->options.network.seed, "nn-operators: initialisation seed")
+      ->capture_default_str();
+  fit->add_option("--integrator", o->integrator,
+                  "bouc-wen, bouc-wen-piezo: how the fit simulates: cvode, or benchmark-chain "
+                  "(bouc-wen only: the Bouc-Wen benchmark's own generator, docs/hysteresis.md)")
+      ->check(CLI::IsMember({"cvode", "benchmark-chain"}))
+      ->capture_default_str();
+  fit->add_option("--input", o->input_model,
+                  "bouc-wen, bouc-wen-piezo with cvode: u between samples: hold, linear or "
+                  "band-limited (the record as one period of a periodic input)")
+      ->check(CLI::IsMember({"hold", "linear", "band-limited"}))
+      ->capture_default_str();
+  fit->add_option("--starts", o->options.bouc_wen.starts,
+                  "bouc-wen, bouc-wen-piezo: starting points (1..64)")
+      ->capture_default_str();
+  fit->add_option("--threads", o->options.bouc_wen.threads,
+                  "bouc-wen, bouc-wen-piezo: simulations in parallel for the Jacobian; 0 = all cores")
+      ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()

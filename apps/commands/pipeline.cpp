@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -31,6 +32,36 @@ struct PipelineCliOptions {
   bool json = false;
 };
 
+// A stack data set's run: the hysteresis models' table (report.md has the same).
+void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) {
+  if (json) {
+    nlohmann::ordered_json j;
+    j["report"] = (out / "report.md").string();
+    j.update(nlohmann::ordered_json::parse(StackSummaryJson(r)));
+    std::cout << j.dump(2) << '\n';
+    return;
+  }
+  for (const auto& d : r.stack_dominance)
+    std::cout << fmt::format("{}: dominant variable {} (margin {:.3g})\n",
+                             fs::path(d.source).filename().string(), d.dominant, d.margin);
+  std::cout << fmt::format("stack data set: models fitted on the first {:g} % of each recording, "
+                           "scored on the rest\n", 100 * kStackTrainFraction);
+  Table t({"model", "params", "fit [s]", "fwd e_RMS [m]", "fwd NRMSE", "inv e_RMS [V]",
+           "inv NRMSE"});
+  auto pct = [](double v) { return std::isnan(v) ? std::string("-") : Num(100 * v, 3) + " %"; };
+  auto num = [](double v) { return std::isnan(v) ? std::string("-") : Num(v, 4); };
+  for (const auto& s : r.stack_models)
+    t.AddRow({s.label, std::to_string(s.parameters), Num(s.fit_time_s, 3), num(s.forward_rms_m),
+              pct(s.forward_nrmse), s.inverse_error.empty() ? num(s.inverse_rms_v) : "refused",
+              pct(s.inverse_nrmse)});
+  std::cout << t.Render();
+  for (const auto& s : r.stack_models) {
+    if (!s.error.empty()) std::cout << s.label << ": no score: " << s.error << '\n';
+    if (!s.inverse_error.empty()) std::cout << s.label << ": no inverse: " << s.inverse_error << '\n';
+  }
+  std::cout << "report: " << (out / "report.md").string() << '\n';
+}
+
 void RunPipelineCommand(const PipelineCliOptions& o) {
   // Check the output folder before any work (cli/output_folder.hpp).
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
@@ -56,6 +87,10 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
     std::string times;
     for (const auto& [name, s] : r.step_seconds) times += fmt::format(" {} {:.3g} s;", name, s);
     std::cerr << "sysid pipeline: wall time:" << times << '\n';
+  }
+  if (inputs.IsStack()) {
+    PrintStackSummary(r, out, o.json);
+    return;
   }
 
   if (!r.pulse.a3_given)
@@ -91,7 +126,9 @@ void AddPipelineCommand(CLI::App& app) {
       "dominance -> NN sweep (+ typical (v, a) network) -> compare -> PI tracking -> report. "
       "DIR holds pulses*.csv, training*.csv, test*.csv, waveform*.csv and optionally "
       "loop*.csv (slow open-loop sweeps: the voltage-velocity loop) and stage.json (enables "
-      "tracking), or a manifest.json naming them");
+      "tracking), or a manifest.json naming them. A folder with none of pulses*, train*, "
+      "test* (or a manifest {\"stack\": [...]}) is a stack data set: its recordings (t, u, x) "
+      "fit the hysteresis models on their first 40 % and score them on the rest");
   cmd->add_option("input", o->input, "folder of recordings, or a manifest JSON")
       ->required()
       ->check(CLI::ExistingPath)

@@ -3,7 +3,9 @@
 #include <memory>
 
 #include "bind_common.hpp"
+#include "sysid/compare.hpp"
 #include "sysid/compare_hysteresis.hpp"
+#include "sysid/compare_stack.hpp"
 #include "sysid/hysteresis_model.hpp"
 
 namespace sysid::python {
@@ -55,6 +57,90 @@ void BindHysteresis(py::module_& m) {
       },
       py::arg("kind"), py::arg("recordings"), py::arg("operators") = 10, py::arg("offset") = true,
       py::arg("degree") = 3, py::arg("hidden") = 10, py::arg("epochs") = 300, py::arg("seed") = 1);
+  // `sysid compare --hysteresis` on one recording: each (label, model)'s inverse on the
+  // recording's x, scored against its u on the trimmed samples (sysid.hysteresis.compare).
+  m.def(
+      "compare_hysteresis_inverses",
+      [](const Recording& recording,
+         const std::vector<std::pair<std::string, std::shared_ptr<HysteresisModel>>>& models,
+         int trim_samples) {
+        std::vector<NamedHysteresisModel> named;
+        for (const auto& [label, model] : models) named.push_back({label, model.get()});
+        CompareOptions o;
+        o.trim_samples = trim_samples;
+        InverseComparison c;
+        {
+          py::gil_scoped_release release;
+          c = CompareInverseModels(recording, nullptr, nullptr, named, o);
+        }
+        py::list rows;
+        for (const auto& h : c.hysteresis) {
+          py::dict row;
+          row["label"] = h.label;
+          row["kind"] = h.kind;
+          row["rmse_v"] = h.errors.rmse_v;
+          row["peak_error_v"] = h.errors.peak_error_v;
+          row["nrmse"] = h.errors.nrmse;
+          row["r2"] = h.errors.r2;
+          row["u_v"] = h.u_v;
+          rows.append(row);
+        }
+        return py::make_tuple(c.t_s, c.u_measured_v, rows);
+      },
+      py::arg("recording"), py::arg("models"), py::arg("trim_samples") = 5);
+  // The stack model table's row (sysid/compare_stack.hpp): fit on the first train_fraction of
+  // each recording, score the rest (sysid.batch over models x recordings).
+  m.def("stack_model_specs", [] {
+    py::list out;
+    for (const auto& s : StackModelSpecs()) {
+      py::dict d;
+      d["label"] = s.label;
+      d["kind"] = s.kind;
+      d["operators"] = s.options.operators;
+      d["hidden"] = s.options.network.hidden;
+      out.append(d);
+    }
+    return out;
+  });
+  m.def(
+      "fit_and_score_hysteresis",
+      [](const std::vector<Recording>& recordings, const std::string& kind,
+         const std::string& label, int operators, bool offset, int degree, int hidden,
+         int epochs, std::uint64_t seed, double train_fraction, int threads) {
+        HysteresisModelSpec spec;
+        spec.label = label.empty() ? kind : label;
+        spec.kind = kind;
+        spec.options.operators = operators;
+        spec.options.pi.offset = offset;
+        spec.options.pi.polynomial_degree = degree;
+        spec.options.network.hidden = hidden;
+        spec.options.network.max_epochs = epochs;
+        spec.options.network.seed = seed;
+        spec.options.bouc_wen.threads = threads;
+        HysteresisSplitScore s;
+        {
+          py::gil_scoped_release release;
+          s = FitAndScoreHysteresis(spec, recordings, train_fraction);
+        }
+        py::dict row;
+        row["model"] = s.label;
+        row["kind"] = s.kind;
+        row["parameters"] = s.parameters;
+        row["fit_time_s"] = s.fit_time_s;
+        row["train_samples"] = s.train_samples;
+        row["test_samples"] = s.test_samples;
+        row["forward_rms_m"] = s.forward_rms_m;
+        row["forward_nrmse"] = s.forward_nrmse;
+        row["inverse_rms_v"] = s.inverse_rms_v;
+        row["inverse_nrmse"] = s.inverse_nrmse;
+        row["inverse_error"] = s.inverse_error;
+        row["fit_error"] = s.error;
+        return row;
+      },
+      py::arg("recordings"), py::arg("kind"), py::arg("label") = "", py::arg("operators") = 10,
+      py::arg("offset") = true, py::arg("degree") = 3, py::arg("hidden") = 10,
+      py::arg("epochs") = 300, py::arg("seed") = 1, py::arg("train_fraction") = 0.4,
+      py::arg("threads") = 1);
   m.def("read_hysteresis_model",
         [](const std::string& path) { return std::shared_ptr<HysteresisModel>(ReadHysteresisModel(path)); },
         py::arg("path"));

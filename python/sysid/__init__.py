@@ -468,5 +468,5 @@ def _track(parameters=None, reference=None, feedforward="none", model=None, netw
 
 stage.track = _track
 
-from .batch import batch, sweep_grid  # noqa: E402,F401
+from .batch import batch, hysteresis_batch, sweep_grid  # noqa: E402,F401
 from . import hysteresis  # noqa: E402,F401

@@ -12,7 +12,10 @@ import sys as _sys
 
 from . import _sysid
 
-TASKS = ("dominance", "identify_pulses", "identify_trajectory", "tune_delay")
+TASKS = ("dominance", "identify_pulses", "identify_trajectory", "tune_delay", "hysteresis")
+
+# The fit options a hysteresis model spec may set (sysid.hysteresis.fit's keywords).
+_HYSTERESIS_KEYS = ("kind", "label", "operators", "offset", "degree", "hidden", "epochs", "seed")
 
 
 def _model_row(prefix, model):
@@ -162,16 +165,89 @@ def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
     return [row for chunk in results for row in chunk]
 
 
+def _hysteresis_specs(models):
+    """Model specs (dicts with kind, label and fit keywords) from kinds, dicts, or None (the
+    pipeline's stack models)."""
+    import sysid
+    if models is None:
+        return [dict(s) for s in _sysid.stack_model_specs()]
+    if isinstance(models, (str, dict)):
+        models = [models]
+    specs = []
+    for m in models:
+        spec = {"kind": m} if isinstance(m, str) else dict(m)
+        unknown = set(spec) - set(_HYSTERESIS_KEYS)
+        if "kind" not in spec or unknown:
+            raise sysid.OptionsError(
+                f"batch: hysteresis model spec {m!r}: expected a kind or a dict with 'kind' and "
+                f"any of {', '.join(_HYSTERESIS_KEYS[1:])}")
+        spec.setdefault("label", spec["kind"])
+        specs.append(spec)
+    return specs
+
+
+def _hysteresis_one(pair, train_fraction, errors, mapping=None):
+    """One (recording, model spec) -> one row: the model fitted on the recording's first part
+    and scored on the rest (sysid/compare_stack.hpp)."""
+    import sysid  # in a fresh Dask worker process
+    item, spec = pair
+    source = item.source if isinstance(item, _sysid.Recording) else _os.fspath(item)
+    try:
+        rec = item if isinstance(item, sysid.Recording) else sysid.read_recording(
+            item, **(mapping or {}))
+        kw = {k: v for k, v in spec.items() if k != "kind"}
+        row = _sysid.fit_and_score_hysteresis([rec], spec["kind"], train_fraction=train_fraction,
+                                              threads=1, **kw)
+    except _sysid.Error as e:
+        if errors == "raise":
+            raise
+        return {"recording": source, "model": spec["label"], "kind": spec["kind"],
+                "error": f"{type(e).__name__}: {e}"}
+    return {"recording": rec.source, **row}
+
+
+def hysteresis_batch(recordings, models=None, client=None, threads=None, train_fraction=0.4,
+                     errors="raise", chunksize=1, progress=None, var=None, rate=None,
+                     scale=None):
+    """Hysteresis models x recordings into one pandas.DataFrame, a row per (recording, model)
+    in recordings-major order: each model fitted on the first `train_fraction` of the
+    recording's rows and scored on the rest, as the pipeline's stack table (docs/hysteresis.md):
+    recording, model (label), kind, parameters, fit_time_s [s], train_samples, test_samples,
+    forward_rms_m [m], forward_nrmse (/ std x), inverse_rms_v [V], inverse_nrmse (/ std u),
+    inverse_error (the model's reason when it cannot invert, else ''), fit_error.
+
+    models: kinds ('pi', ...) or dicts {kind, label, operators, offset, degree, hidden, epochs,
+            seed}; None: the pipeline's six stack models (sysid._sysid.stack_model_specs()).
+    client, threads, errors, chunksize, progress, var/rate/scale: as in `batch` (one task per
+            (recording, model) pair; each task fits on one thread).
+    """
+    import pandas
+    import sysid
+    if errors not in ("raise", "record"):
+        raise sysid.OptionsError("batch: errors must be 'raise' or 'record'")
+    items = recordings
+    if isinstance(recordings, (str, _os.PathLike)):
+        items = sysid.expand_paths(recordings)
+    items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
+    specs = _hysteresis_specs(models)
+    pairs = [(item, spec) for item in items for spec in specs]
+    mapping = sysid._mapping(var, rate, scale) if (var or rate or scale) else None
+    rows = _map(_hysteresis_one, pairs, client, threads, chunksize, progress,
+                train_fraction=train_fraction, errors=errors, mapping=mapping)
+    return pandas.DataFrame.from_records(rows)
+
+
 def batch(recordings, task="dominance", model=None, client=None, threads=None, options=None,
           errors="raise", chunksize=None, progress=None, var=None, rate=None, scale=None,
-          **kwargs):
+          models=None, train_fraction=0.4, **kwargs):
     """Runs `task` on every recording and returns one pandas.DataFrame, a row per recording in
     input order.
 
     recordings: a glob pattern, a path, or a list of paths / sysid.Recording objects (paths
                 are read where the task runs, so Dask workers read their own files).
     task:       'dominance' (needs `model`), 'identify_pulses', 'identify_trajectory',
-                'tune_delay' (needs `model`).
+                'tune_delay' (needs `model`), 'hysteresis' (hysteresis `models` x recordings,
+                fitted on the first `train_fraction` of each: see hysteresis_batch).
     model:      sysid.Model or a model JSON path.
     client:     a dask.distributed.Client: tasks run on its workers; None: a local thread pool
                 of `threads` (default: all cores).
@@ -188,6 +264,9 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
     import sysid
     if task not in TASKS:
         raise sysid.OptionsError(f"batch: task '{task}': expected one of {', '.join(TASKS)}")
+    if task == "hysteresis":
+        return hysteresis_batch(recordings, models, client, threads, train_fraction, errors,
+                                chunksize or 1, progress, var, rate, scale)
     if errors not in ("raise", "record"):
         raise sysid.OptionsError("batch: errors must be 'raise' or 'record'")
     if task in ("dominance", "tune_delay"):

@@ -6,6 +6,7 @@ Bouc–Wen and the operator-input network, fitted by kind, simulated and inverte
     print(fit.fit_time_s, fit.parameters[0])
     x_model = hy.simulate(fit.model, u, dt_s=0.005)
     u_ff = hy.invert(fit.model, x_desired, dt_s=0.005)
+    table = hy.compare(["pi.json", "gpi.json"], "piezo.csv")   # as `sysid compare --hysteresis`
 
 Units: u [V], x [m], dt_s [s]; parameters carry their SI unit and standard error (NaN when the
 fit gives none).
@@ -73,3 +74,33 @@ def invert(model, x_m, dt_s):
     if isinstance(model, str):
         model = read(model)
     return model.invert(x_m, dt_s)
+
+
+def compare(models, recordings, trim_samples=5):
+    """Each model's inverse on each recording's x scored against its u, as `sysid compare
+    --hysteresis` does: one pandas.DataFrame row per (recording, model) with recording (the
+    file stem), model (the label), kind, rmse_v [V], peak_error_v [V], nrmse (RMSE / range of
+    u), r2, samples (scored, after dropping `trim_samples` at each end).
+
+    models: model file paths (labelled KIND:FILE_STEM, as the CLI labels them), or a dict
+            {label: model or path}. recordings: paths, globs or Recordings (t, u, x)."""
+    import os
+    import pandas
+    from . import _as_recordings
+    if isinstance(models, dict):
+        named = [(label, read(m) if isinstance(m, (str, os.PathLike)) else m)
+                 for label, m in models.items()]
+    else:
+        named = []
+        for path in ([models] if isinstance(models, (str, os.PathLike)) else models):
+            m = read(path)
+            named.append((f"{m.kind}:{os.path.splitext(os.path.basename(os.fspath(path)))[0]}", m))
+    rows = []
+    for rec in _as_recordings(recordings):
+        t, _, scored = _sysid.compare_hysteresis_inverses(rec, named, trim_samples)
+        stem = os.path.splitext(os.path.basename(rec.source))[0]
+        for r in scored:
+            rows.append({"recording": stem, "model": r["label"], "kind": r["kind"],
+                         "rmse_v": r["rmse_v"], "peak_error_v": r["peak_error_v"],
+                         "nrmse": r["nrmse"], "r2": r["r2"], "samples": len(t)})
+    return pandas.DataFrame.from_records(rows)

@@ -3,6 +3,7 @@ and the CLI of the same build."""
 import math
 
 import numpy as np
+import pandas
 import pytest
 
 import sysid
@@ -48,3 +49,96 @@ def test_errors_are_the_library_errors():
     with pytest.raises(sysid.OptionsError, match="preisach"):
         hy.fit([rec], model="preisach")
     assert "nn-operators" in hy.kinds()
+
+
+def _scores(model, rec, split):
+    """Forward and inverse RMS / NRMSE over the rows after `split`, computed here from the
+    single-model functions (the definitions of docs/hysteresis.md's tables)."""
+    t, u, x = (np.asarray(rec[c]) for c in ("t", "u", "x"))
+    dt = t[1] - t[0]
+    xm = hy.simulate(model, u, dt)
+    ef = xm[split:] - x[split:]
+    fwd = math.sqrt(np.mean(ef ** 2))
+    um = hy.invert(model, x, dt)
+    ei = um[split:] - u[split:]
+    inv = math.sqrt(np.mean(ei ** 2))
+    return fwd, fwd / np.std(x[split:]), inv, inv / np.std(u[split:])
+
+
+def test_batch_models_by_recordings_equals_the_single_model_functions(tmp_path):
+    # Two recordings of a known PI whose first 40 % spans the input range of the rest (a scored
+    # reference outside the fitted range is refused, as it should be): sines of constant
+    # amplitude; the second at another amplitude and period, with 1 nm of noise.
+    truth = sysid._sysid.hysteresis_model_from_json(
+        '{"kind": "pi", "thresholds": [0.5, 1.0], "weights": [2e-6, 1e-6], '
+        '"polynomial": [3e-6], "offset_m": -1e-4, "input_min_v": 0, "input_max_v": 3.6}', "t.json")
+    dt = 0.005
+    t = np.arange(1500) * dt
+    u = 1.8 + 1.5 * np.sin(2 * np.pi * t / 2.0)
+    rec = sysid.recording(source="first", t=t, u=u, x=truth.simulate(u, dt))
+    rng = np.random.default_rng(3)
+    t2 = np.arange(1000) * dt
+    u2 = 1.8 + 1.2 * np.sin(2 * np.pi * t2 / 1.5)
+    x2 = truth.simulate(u2, dt) + 1e-9 * rng.standard_normal(len(u2))
+    path2 = tmp_path / "second.csv"
+    path2.write_text("t,u,x\n" + "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in zip(t2, u2, x2)))
+    models = [{"kind": "pi", "operators": 4, "label": "PI 4"},
+              {"kind": "gpi", "operators": 4, "label": "GPI 4"}]
+    table = sysid.batch([rec, str(path2)], task="hysteresis", models=models, threads=2)
+    assert list(table["model"]) == ["PI 4", "GPI 4", "PI 4", "GPI 4"]
+    assert list(table["kind"]) == ["pi", "gpi", "pi", "gpi"]
+    serial = sysid.hysteresis_batch([rec, str(path2)], models=models, threads=1)
+    pandas.testing.assert_frame_equal(table.drop(columns="fit_time_s"),
+                                      serial.drop(columns="fit_time_s"))
+    for row in table.to_dict("records"):
+        r = rec if row["recording"] == rec.source else sysid.read_recording(str(path2))
+        n = len(r["t"])
+        split = int(round(0.4 * n))
+        assert (row["train_samples"], row["test_samples"]) == (split, n - split)
+        train = sysid.recording(t=np.asarray(r["t"])[:split], u=np.asarray(r["u"])[:split],
+                                x=np.asarray(r["x"])[:split])
+        fit = hy.fit([train], model=row["kind"], operators=4)
+        assert row["parameters"] == len(fit.parameters)
+        expected = _scores(fit.model, r, split)
+        got = (row["forward_rms_m"], row["forward_nrmse"], row["inverse_rms_v"],
+               row["inverse_nrmse"])
+        assert got == pytest.approx(expected, rel=1e-9, abs=0)
+        assert row["inverse_error"] == "" and row["fit_error"] == ""
+        assert row["fit_time_s"] >= 0
+    # The default models are the pipeline's six; a model that cannot invert is a row with the
+    # model's reason (rdpi's rate feedback), not an exception.
+    assert len(sysid._sysid.stack_model_specs()) == 6
+    with pytest.raises(sysid.OptionsError, match="spec"):
+        sysid.hysteresis_batch([rec], models=[{"kind": "pi", "nope": 1}])
+    bad = tmp_path / "bad.csv"
+    bad.write_text("t,u,x\n0,1,2\n0.005,1,oops\n")
+    with pytest.raises(sysid.DataError, match="bad.csv:3:"):
+        sysid.batch([bad], task="hysteresis", models=["pi"])
+    recorded = sysid.batch([rec, bad], task="hysteresis", models=["pi"], errors="record")
+    assert pandas.isna(recorded.loc[0, "error"]) and "DataError" in recorded.loc[1, "error"]
+
+
+def test_compare_scores_the_models_inverse_like_the_cli(tmp_path):
+    rec, u, x, dt = _pi_recording(1200)
+    fit = hy.fit([rec], model="pi", operators=2)
+    path = tmp_path / "pi2.json"
+    path.write_text(fit.model.to_json())
+    table = hy.compare([str(path)], [rec], trim_samples=5)
+    assert list(table["model"]) == ["pi:pi2"]
+    back = hy.invert(fit.model, x, dt)[5:-5]
+    e = back - u[5:-5]
+    assert table.loc[0, "rmse_v"] == pytest.approx(math.sqrt(np.mean(e ** 2)), rel=1e-12)
+    assert table.loc[0, "samples"] == len(u) - 10
+
+
+def test_hysteresis_batch_on_dask_equals_threads():
+    distributed = pytest.importorskip("distributed")
+    rec, *_ = _pi_recording(1000)
+    models = ["pi", {"kind": "gpi", "operators": 3, "label": "GPI 3"}]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        table = sysid.hysteresis_batch([rec, rec], models=models, client=client)
+    serial = sysid.hysteresis_batch([rec, rec], models=models, threads=1)
+    pandas.testing.assert_frame_equal(table.drop(columns="fit_time_s"),
+                                      serial.drop(columns="fit_time_s"))

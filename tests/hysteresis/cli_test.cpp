@@ -210,3 +210,28 @@ TEST_CASE("sysid hysteresis: bouc-wen-piezo through the dispatch (fit, model fil
                                                   sysid::ReadOptions{{"t", "u"}, {}, true});
   CHECK((u.column("u") - rec.column("u")).cwiseAbs().maxCoeff() < 1e-9);
   }
+
+TEST_CASE("sysid hysteresis fit: the Bouc-Wen simulation flags reach the model file",
+          "[hysteresis][cli]") {
+  TempDir dir;
+  sysid::WriteRecording(dir / "rec.csv", PiRecording(600));
+  // The piezo form fitted with a held input: the model file says how it simulates.
+  auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--input", "hold",
+                   "--starts", "2", "--threads", "1", dir / "rec.csv", "-o", dir / "bw.json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "bw.json"));
+  CHECK(j["simulation"]["integrator"] == "cvode");
+  CHECK(j["simulation"]["input"] == "hold");
+  CHECK_THAT(j["fit"]["message"].get<std::string>(), Catch::Contains("2 starts"));
+  // The benchmark's chain is the mechanical form's only; bad values name the flag.
+  r = RunCli({"hysteresis", "fit", "--model", "pi", "--integrator", "benchmark-chain",
+              dir / "rec.csv", "-o", dir / "pi.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--integrator"));
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--starts", "0", dir / "rec.csv",
+              "-o", dir / "pi.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--starts"));
+  CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
+}

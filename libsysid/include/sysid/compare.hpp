@@ -2,7 +2,8 @@
 //
 //   u_analytic = (x'' + a1 v(t - tau) + a2 sgn v) / a3            (model.hpp)
 //
-// and a neural network's prediction u_nn = net(v[, a]) (nn.hpp), with error metrics per model.
+// a neural network's prediction u_nn = net(v[, a]) (nn.hpp) and hysteresis models inverted on the
+// recording's x (u = H^-1[x], hysteresis_model.hpp), with error metrics per model.
 #ifndef SYSID_COMPARE_HPP_
 #define SYSID_COMPARE_HPP_
 
@@ -11,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sysid/hysteresis_model.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
@@ -42,6 +44,30 @@ Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
 Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::VectorXd& v_mps,
                                const Eigen::VectorXd& a_mps2, const Recording* recording = nullptr);
 
+/// A hysteresis model's inverse u = H^-1[x] [V] on a recording's x column [m], over the whole
+/// recording from the model's initial state, at the recording's sample step. Throws
+/// InputError when the recording has no x column or x leaves the model's range (naming the
+/// sample), NumericalError with the model's reason when it cannot be inverted.
+Eigen::VectorXd HysteresisInverse(const HysteresisModel& model, const Recording& recording);
+
+/// A hysteresis model taking part in a comparison under a label (`sysid compare` uses
+/// "KIND:FILE_STEM").
+struct NamedHysteresisModel {
+  std::string label;
+  const HysteresisModel* model = nullptr;
+};
+
+/// One hysteresis model's inverse scored on a recording.
+struct HysteresisInverseResult {
+  std::string label;      ///< NamedHysteresisModel::label
+  std::string kind;       ///< HysteresisModel::kind()
+  Eigen::VectorXd u_v;    ///< [V] the inverse's voltage, trimmed like u_measured_v
+  PredictionErrors errors;
+  /// The traces' column for u_v: "u_" + the label with every character outside [A-Za-z0-9_]
+  /// replaced by '_' (a MATLAB variable name for --traces mat).
+  std::string TraceColumn() const;
+};
+
 struct CompareOptions {
   /// Used when v and a come from x (no v column, or use_recorded_columns = false).
   DerivativeOptions derivative;
@@ -57,15 +83,17 @@ struct InverseComparison {
   std::string source;
   Eigen::VectorXd t_s;           ///< [s]
   Eigen::VectorXd u_measured_v;  ///< [V]
-  Eigen::VectorXd u_analytic_v;  ///< [V]
+  Eigen::VectorXd u_analytic_v;  ///< [V]; empty without a friction model
   Eigen::VectorXd u_nn_v;        ///< [V]; empty without a network
   Eigen::VectorXd v_mps;         ///< [m/s] velocity used
   Eigen::VectorXd a_mps2;        ///< [m/s^2] acceleration used
   std::string motion_from;       ///< MotionSource: "columns v, a", "x (central)", ...
-  PredictionErrors analytic;
+  PredictionErrors analytic;  ///< meaningful when has_analytic
   PredictionErrors nn;  ///< meaningful when has_nn
+  bool has_analytic = true;
   bool has_nn = false;
-  /// The traces as a recording: t, u, u_analytic[, u_nn], v, a.
+  std::vector<HysteresisInverseResult> hysteresis;  ///< in the order given
+  /// The traces as a recording: t, u[, u_analytic][, u_nn][, u_<label>...], v, a.
   Recording AsRecording() const;
 };
 
@@ -74,6 +102,15 @@ struct InverseComparison {
 /// from {v, a} or from the recording's columns. Throws InputError for missing columns.
 InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel& model,
                                        const NeuralNetwork* network,
+                                       const CompareOptions& options = {});
+/// The same with any subset of inverse models: the analytic inverse when `model` is not null,
+/// the network when `network` is not null, and each hysteresis model's HysteresisInverse
+/// (scored on the same trimmed samples; needs an x column). At least one model; throws
+/// OptionsError otherwise, and what HysteresisInverse throws, prefixed with the recording and
+/// the model's label.
+InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel* model,
+                                       const NeuralNetwork* network,
+                                       const std::vector<NamedHysteresisModel>& hysteresis,
                                        const CompareOptions& options = {});
 
 /// The options as JSON ({"derivative": {...}, "trim_samples"}) and the reader: every key
@@ -87,11 +124,13 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
 std::string ToJson(const PredictionErrors& errors, int indent = 2);
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name);
 /// One recording as `sysid compare --json` lists it: file, samples, v_a_from (MotionSource),
-/// analytic errors and (with a network) nn errors. The traces are not included (AsRecording
-/// writes them).
+/// analytic errors (with a friction model), nn errors (with a network) and, with hysteresis
+/// models, "hysteresis": [{label, kind, rmse_v, peak_error_v, nrmse, r2}]. The traces are not
+/// included (AsRecording writes them).
 std::string ToJson(const InverseComparison& comparison, int indent = 2);
 /// The comparisons as CSV (`sysid compare -o`'s summary.csv): recording (the source's file
-/// stem), model ("analytic", "nn"), rmse_v, peak_error_v, nrmse, r2; one row per model.
+/// stem), model ("analytic", "nn", or a hysteresis model's label), rmse_v, peak_error_v,
+/// nrmse, r2; one row per model.
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons);
 
 }  // namespace sysid

@@ -18,9 +18,11 @@
 #include <vector>
 
 #include "sysid/compare.hpp"
+#include "sysid/compare_stack.hpp"
 #include "sysid/control.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
+#include "sysid/dominance_candidates.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/stage_facts.hpp"
@@ -37,6 +39,11 @@ namespace sysid {
 /// training*.csv or train*.csv (tracking training set), test*.csv (tracking test set),
 /// waveform*.csv (test waveforms), loop*.csv (slow open-loop sweeps: the voltage-velocity
 /// loop, optional), stage.json (a virtual-stage file, enables tracking).
+///
+/// A **stack** data set (a piezo stack: no pulse test, recordings with columns t [s], u [V],
+/// x [m]) is a folder with none of pulses*, train*, test* (every *.csv in it is a stack
+/// recording), or a manifest {"stack": ["piezo.csv", ...]} (without the stage's keys). The
+/// pipeline then fits and scores the hysteresis models instead (RunPipeline, "stack").
 struct PipelineInputs {
   std::string root;                    ///< the folder or manifest it came from
   std::vector<std::string> pulses;     ///< pulse-test recordings (t, u, x), at least one
@@ -46,6 +53,9 @@ struct PipelineInputs {
   std::vector<std::string> loops;      ///< open-loop sweeps for the voltage-velocity loop
   std::string stage;                   ///< stage parameter file for tracking, may be empty
   std::optional<double> a3;            ///< [m/(s^2 V)] from the manifest, if given
+  std::vector<std::string> stack;      ///< a stack's recordings (t, u, x); empty for a stage
+
+  bool IsStack() const { return !stack.empty(); }
 
   /// Throws InputError naming the folder and what is missing.
   static PipelineInputs FromDirectory(const std::string& dir);
@@ -121,6 +131,12 @@ struct PipelineResult {
   /// the stage's sample time, else at the pulse recordings' (the report's section 6).
   std::optional<PiMarginsReport> margins;
   std::optional<StageFacts> facts;  ///< when options.facts and a stage file
+  /// A stack data set (inputs.IsStack()): the stage's steps above are skipped and these are
+  /// filled instead. Each of StackModelSpecs fitted on the first kStackTrainFraction of every
+  /// recording and scored on the rest (FitAndScoreHysteresis), and RankCandidates of each
+  /// recording (which variable carries the input).
+  std::vector<HysteresisSplitScore> stack_models;
+  std::vector<CandidateRanking> stack_dominance;
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report
 };
@@ -128,6 +144,8 @@ struct PipelineResult {
 using PipelineProgress = std::function<void(const std::string& step)>;
 
 /// Runs every step. Throws like the steps do (InputError, NumericalError, OptionsError).
+/// For a stack data set (inputs.IsStack()) the steps are: read the recordings, rank the
+/// candidate variables, fit and score each hysteresis model (RunStackPipeline).
 PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
                            const PipelineProgress& progress = {});
 
@@ -149,6 +167,15 @@ std::string ToJson(const PipelineResult& result, int indent = 2);
 /// facts_required_met against the facts. Throws InputError "SOURCE:LINE:COL: NAME: expected
 /// ..., found ...".
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name);
+
+/// The stack steps of RunPipeline (inputs.IsStack() required).
+PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
+                                const PipelineProgress& progress = {});
+
+/// A stack run's summary (`sysid pipeline --json`, summary.json of the report): dataset
+/// "stack", recordings, train_fraction, split (in words), dominance [{source, dominant,
+/// margin, r2}], models [ToJson(HysteresisSplitScore)], steps [{name, wall_time_s}].
+std::string StackSummaryJson(const PipelineResult& result, int indent = 2);
 
 // The pipeline's written report (report.md, plots) is WritePipelineReport in report.hpp.
 

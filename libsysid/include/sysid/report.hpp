@@ -58,6 +58,11 @@ std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<Sc
 std::vector<std::string> WritePipelineReport(const PipelineResult& result,
                                              const std::string& out_dir);
 
+/// The report of a stack data set (result.inputs.IsStack(); WritePipelineReport calls it):
+/// report.md (the split, the dominance of x, v, a, the hysteresis models' table, forward and
+/// inverse plots), models.csv, summary.json (StackSummaryJson) and model_<row>_<kind>.json.
+std::vector<std::string> WriteStackReport(const PipelineResult& result, const std::string& out_dir);
+
 /// A GitHub-flavoured markdown table.
 std::string MarkdownTable(const std::vector<std::string>& header,
                           const std::vector<std::vector<std::string>>& rows);

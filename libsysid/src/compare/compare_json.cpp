@@ -45,8 +45,17 @@ std::string ToJson(const InverseComparison& c, int indent) {
   j["file"] = c.source;
   j["samples"] = c.t_s.size();
   j["v_a_from"] = c.motion_from;
-  j["analytic"] = ErrorsJson(c.analytic);
+  if (c.has_analytic) j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
+  if (!c.hysteresis.empty()) {
+    Json list = Json::array();
+    for (const auto& h : c.hysteresis) {
+      Json row = {{"label", h.label}, {"kind", h.kind}};
+      row.update(ErrorsJson(h.errors));
+      list.push_back(std::move(row));
+    }
+    j["hysteresis"] = std::move(list);
+  }
   return internal::DumpJson(j, indent);
 }
 
@@ -79,12 +88,13 @@ std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons
   std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
   for (const auto& c : comparisons) {
     const std::string name = std::filesystem::path(c.source).stem().string();
-    auto row = [&](const char* which, const PredictionErrors& e) {
+    auto row = [&](const std::string& which, const PredictionErrors& e) {
       csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
                          e.peak_error_v, e.nrmse, e.r2);
     };
-    row("analytic", c.analytic);
+    if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
+    for (const auto& h : c.hysteresis) row(h.label, h.errors);
   }
   return csv;
 }

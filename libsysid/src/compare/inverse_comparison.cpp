@@ -1,9 +1,11 @@
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 
 #include "sysid/compare.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
 #include "sysid/motion.hpp"
 
 namespace sysid {
@@ -70,6 +72,18 @@ Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::Vector
   return network.EvaluateBatch(X);
 }
 
+Eigen::VectorXd HysteresisInverse(const HysteresisModel& model, const Recording& recording) {
+  // column() names the source and the missing column
+  return model.Invert(recording.column("x"), RecordingStep(recording));
+}
+
+std::string HysteresisInverseResult::TraceColumn() const {
+  std::string name = "u_" + label;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') ch = '_';
+  return name;
+}
+
 void CompareOptions::Validate() const {
   if (trim_samples < 0)
     throw OptionsError("CompareOptions::trim_samples = " + std::to_string(trim_samples) +
@@ -80,11 +94,12 @@ Recording InverseComparison::AsRecording() const {
   Recording rec;
   rec.source = source;
   rec.metadata = {{"content", "measured and predicted voltages of inverse models"},
-                  {"units", "t [s], u [V], u_analytic [V], u_nn [V], v [m/s], a [m/s^2]"}};
+                  {"units", "t [s], u [V], u_analytic [V], u_nn [V], u_* [V], v [m/s], a [m/s^2]"}};
   rec.SetColumn("t", t_s);
   rec.SetColumn("u", u_measured_v);
-  rec.SetColumn("u_analytic", u_analytic_v);
+  if (has_analytic) rec.SetColumn("u_analytic", u_analytic_v);
   if (has_nn) rec.SetColumn("u_nn", u_nn_v);
+  for (const auto& h : hysteresis) rec.SetColumn(h.TraceColumn(), h.u_v);
   rec.SetColumn("v", v_mps);
   rec.SetColumn("a", a_mps2);
   return rec;
@@ -93,8 +108,18 @@ Recording InverseComparison::AsRecording() const {
 InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel& model,
                                        const NeuralNetwork* network,
                                        const CompareOptions& options) {
+  return CompareInverseModels(recording, &model, network, {}, options);
+}
+
+InverseComparison CompareInverseModels(const Recording& recording, const FrictionModel* model,
+                                       const NeuralNetwork* network,
+                                       const std::vector<NamedHysteresisModel>& hysteresis,
+                                       const CompareOptions& options) {
   options.Validate();
-  model.Validate();
+  if (!model && !network && hysteresis.empty())
+    throw OptionsError("CompareInverseModels: no inverse model. Violated constraint: a friction "
+                       "model, a network or at least one hysteresis model");
+  if (model) model->Validate();
   InverseComparison c;
   c.source = recording.source;
   MotionOptions mo;
@@ -110,20 +135,39 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
     throw InputError(recording.source + ": " + std::to_string(n) +
                      " rows leave too few samples after trimming " + std::to_string(trim) +
                      " at each end");
-  const Eigen::VectorXd u_analytic = AnalyticInverse(model, dt, v, a);
-  Eigen::VectorXd u_nn;
-  if (network) u_nn = NetworkInverse(*network, v, a, &recording);
   const Eigen::Index m = n - 2 * trim;
   c.t_s = t.segment(trim, m);
   c.u_measured_v = u.segment(trim, m);
-  c.u_analytic_v = u_analytic.segment(trim, m);
   c.v_mps = v.segment(trim, m);
   c.a_mps2 = a.segment(trim, m);
-  c.analytic = ComputePredictionErrors(c.u_measured_v, c.u_analytic_v);
+  c.has_analytic = model != nullptr;
+  if (model) {
+    c.u_analytic_v = AnalyticInverse(*model, dt, v, a).segment(trim, m);
+    c.analytic = ComputePredictionErrors(c.u_measured_v, c.u_analytic_v);
+  }
   if (network) {
-    c.u_nn_v = u_nn.segment(trim, m);
+    c.u_nn_v = NetworkInverse(*network, v, a, &recording).segment(trim, m);
     c.nn = ComputePredictionErrors(c.u_measured_v, c.u_nn_v);
     c.has_nn = true;
+  }
+  for (const auto& named : hysteresis) {
+    SYSID_CHECK(named.model != nullptr, "hysteresis model '" + named.label + "' is null");
+    // The inverse runs over the whole recording from the model's initial state (its state
+    // needs the samples before the scored ones), then is scored on the trimmed samples.
+    Eigen::VectorXd u_h;
+    try {
+      u_h = HysteresisInverse(*named.model, recording);
+    } catch (const InputError& e) {
+      throw InputError(recording.source + ": " + named.label + ": " + e.what());
+    } catch (const NumericalError& e) {
+      throw NumericalError(recording.source + ": " + named.label + ": " + e.what());
+    }
+    HysteresisInverseResult h;
+    h.label = named.label;
+    h.kind = named.model->kind();
+    h.u_v = u_h.segment(trim, m);
+    h.errors = ComputePredictionErrors(c.u_measured_v, h.u_v);
+    c.hysteresis.push_back(std::move(h));
   }
   return c;
 }

@@ -55,10 +55,12 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
   }
   if (ec) throw InputError(dir + ": cannot list the folder: " + ec.message());
   std::sort(files.begin(), files.end());  // deterministic order
+  std::vector<std::string> csvs;
   for (const auto& p : files) {
     const std::string name = p.filename().string();
     if (p.extension() == ".json" && name == "stage.json") in.stage = p.string();
     if (p.extension() != ".csv") continue;
+    csvs.push_back(p.string());
     if (StartsWith(name, "pulses"))
       in.pulses.push_back(p.string());
     else if (StartsWith(name, "train"))
@@ -70,6 +72,13 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
     else if (StartsWith(name, "loop"))
       in.loops.push_back(p.string());
   }
+  // No trace of a stage's pulse test or tracking sets: a stack's recordings (t, u, x).
+  if (in.pulses.empty() && in.training.empty() && in.test.empty() && !csvs.empty()) {
+    PipelineInputs stack;
+    stack.root = dir;
+    stack.stack = csvs;
+    return stack;
+  }
   RequireComplete(in);
   return in;
 }
@@ -79,14 +88,23 @@ PipelineInputs PipelineInputs::FromManifest(const std::string& path) {
   // Every complaint names FILE:LINE:COL of the key (internal::JsonDocument), exit 2.
   const internal::JsonDocument doc(text, path);
   const internal::JsonNode root = doc.Root();
-  root.ExpectObject({"pulses", "training", "test", "waveforms", "loops", "stage", "a3"},
-                    {"note"});
   const fs::path base = fs::path(path).parent_path();
   auto resolve = [&](const internal::JsonNode& v) {
     return (base / v.String(/*non_empty=*/true)).string();
   };
   PipelineInputs in;
   in.root = path;
+  if (root.json().is_object() && root.Has("stack")) {
+    // A stack's manifest names its recordings and nothing of a stage's.
+    root.ExpectObject({"stack"}, {"note"});
+    const internal::JsonNode list = root.Get("stack");
+    list.ExpectArray();
+    for (size_t i = 0; i < list.Size(); ++i) in.stack.push_back(resolve(list.Element(i)));
+    if (in.stack.empty()) list.Expected("a non-empty list of recordings (t, u, x)");
+    return in;
+  }
+  root.ExpectObject({"pulses", "training", "test", "waveforms", "loops", "stage", "a3", "stack"},
+                    {"note"});
   for (const char* key : {"pulses", "waveforms", "loops"}) {
     if (!root.Has(key)) continue;
     const internal::JsonNode list = root.Get(key);

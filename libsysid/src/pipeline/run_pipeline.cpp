@@ -42,6 +42,7 @@ Recording WithDerivatives(const Recording& rec) {
 
 PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
                            const PipelineProgress& progress) {
+  if (inputs.IsStack()) return RunStackPipeline(inputs, options, progress);
   options.Validate();
   PipelineResult r;
   r.inputs = inputs;

@@ -562,6 +562,7 @@ class ReportWriter {
 
 std::vector<std::string> WritePipelineReport(const PipelineResult& result,
                                              const std::string& out_dir) {
+  if (result.inputs.IsStack()) return WriteStackReport(result, out_dir);  // stack_report.cpp
   return ReportWriter(result, out_dir).Write();
 }
 

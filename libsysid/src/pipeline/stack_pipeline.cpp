@@ -1,0 +1,81 @@
+// The pipeline on a stack data set (no pulse test; recordings t, u, x): the hysteresis models
+// fitted on the first part of every recording and scored on the rest (sysid/compare_stack.hpp).
+#include <fmt/format.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/json_text.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
+#include "sysid/pipeline.hpp"
+
+namespace sysid {
+
+PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
+                                const PipelineProgress& progress) {
+  SYSID_CHECK(inputs.IsStack(), "RunStackPipeline on a stage's inputs");
+  options.Validate();
+  PipelineResult r;
+  r.inputs = inputs;
+  r.options = options;
+  auto step = [&](const std::string& name, auto&& body) {
+    if (progress) progress(name);
+    const auto t0 = std::chrono::steady_clock::now();
+    body();
+    r.step_seconds.emplace_back(
+        name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  };
+  std::vector<Recording> recs;
+  step("read recordings", [&] {
+    ReadOptions ro;
+    ro.required_columns = {"t", "u", "x"};
+    ro.any_of_columns = {};
+    for (const auto& path : inputs.stack) {
+      recs.push_back(ReadRecording(path, ro));
+      TrainingPart(recs.back(), kStackTrainFraction);  // InputError now if too short to split
+    }
+  });
+  step("dominance of x, v, a (training parts)", [&] {
+    for (const auto& rec : recs)
+      r.stack_dominance.push_back(RankCandidates(TrainingPart(rec, kStackTrainFraction)));
+  });
+  for (const auto& spec : StackModelSpecs(options.threads)) {
+    step("fit and score: " + spec.label, [&] {
+      r.stack_models.push_back(FitAndScoreHysteresis(spec, recs, kStackTrainFraction));
+      const auto& s = r.stack_models.back();
+      if (!s.error.empty()) r.notes.push_back(s.label + ": no score: " + s.error);
+    });
+  }
+  return r;
+}
+
+std::string StackSummaryJson(const PipelineResult& r, int indent) {
+  using Json = nlohmann::ordered_json;
+  Json j;
+  j["dataset"] = "stack";
+  j["recordings"] = r.inputs.stack;
+  j["train_fraction"] = kStackTrainFraction;
+  j["split"] = fmt::format(
+      "each model fitted on the first {:g} % of every recording's rows and scored on the rest; "
+      "forward and inverse run over the whole recording from the model's initial state",
+      100 * kStackTrainFraction);
+  Json dom = Json::array();
+  for (const auto& d : r.stack_dominance)
+    dom.push_back({{"source", d.source}, {"dominant", d.dominant},
+                   {"margin", internal::NumberOrNull(d.margin)},
+                   {"r2", internal::NumberOrNull(d.r2)}});
+  j["dominance"] = dom;
+  Json models = Json::array();
+  for (const auto& s : r.stack_models) models.push_back(Json::parse(ToJson(s)));
+  j["models"] = models;
+  Json steps = Json::array();
+  for (const auto& [name, seconds] : r.step_seconds)
+    steps.push_back({{"name", name}, {"wall_time_s", seconds}});
+  j["steps"] = steps;
+  return internal::DumpJson(j, indent);
+}
+
+}  // namespace sysid

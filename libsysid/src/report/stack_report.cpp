@@ -1,0 +1,153 @@
+// The pipeline's report for a stack data set (PipelineInputs::IsStack): the hysteresis models'
+// table (fitted on the first part of each recording, scored on the rest), the dominance of x,
+// v, a, the forward and inverse plots, the model files, models.csv and summary.json.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sysid/io.hpp"
+#include "sysid/report.hpp"
+
+namespace sysid {
+namespace {
+namespace fs = std::filesystem;
+
+std::string G(double v, int digits = 4) {
+  return std::isnan(v) ? std::string("-") : fmt::format("{:.{}g}", v, digits);
+}
+std::string Pct(double v) { return std::isnan(v) ? std::string("-") : fmt::format("{:.2f} %", 100 * v); }
+
+// Markdown cells may not hold a bare '|'.
+std::string Cell(std::string s) {
+  for (size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::string& dir) {
+  fs::create_directories(dir);
+  auto path = [&](const std::string& name) { return (fs::path(dir) / name).string(); };
+  std::vector<std::string> notes;
+  auto plot = [&](const std::string& file, const PlotSpec& spec, std::string& md) {
+    const PlotOutcome p = WritePlot(path(file), spec);
+    if (p.written) {
+      md += "\n![" + spec.title + "](" + file + ")\n";
+    } else {
+      md += "\n*(plot `" + file + "` not drawn: " + p.message + ")*\n";
+      notes.push_back(p.message);
+    }
+  };
+  std::string md = "# libsysid pipeline report: a stack data set\n\n";
+  md += "Inputs: `" + r.inputs.root + "` — " + std::to_string(r.inputs.stack.size()) +
+        " recording(s) of a stack actuator (columns t [s], u [V], x [m]; no pulse test, so the "
+        "stage's friction model is not identified):";
+  for (const auto& p : r.inputs.stack) md += " `" + fs::path(p).filename().string() + "`";
+  md += ".\n\n";
+  md += fmt::format(
+      "**Split.** Every model is fitted on the first {0:g} % of each recording's rows and "
+      "scored on the remaining {1:g} %; nothing is chosen on the scored part (the models and "
+      "their settings are fixed beforehand: docs/hysteresis.md). Forward: the model simulated "
+      "from u alone over the whole recording (its state runs through the fitted part), e_RMS "
+      "[m] and NRMSE = e_RMS / std(x) over the scored rows. Inverse: the model inverted on the "
+      "measured x over the whole recording, e_RMS [V] and NRMSE = e_RMS / std(u) over the "
+      "scored rows.\n",
+      100 * kStackTrainFraction, 100 * (1 - kStackTrainFraction));
+
+  md += "\n## 1. Which variable carries the input (`sysid hysteresis dominance`)\n\n";
+  md += "A linear inverse model u ≈ c + θ_x x + θ_v v + θ_a a + Σ θ_i F_ri[x] on each "
+        "recording's fitted part, the variables ranked by the RMS of their terms:\n\n";
+  std::vector<std::vector<std::string>> drows;
+  for (const auto& d : r.stack_dominance) {
+    std::string terms;
+    for (const auto& t : d.ranking) terms += (terms.empty() ? "" : ", ") + t.name + " " + G(t.rms, 3);
+    drows.push_back({fs::path(d.source).filename().string(), "**" + d.dominant + "**",
+                     G(d.margin, 3), terms, G(d.r2, 3)});
+  }
+  md += MarkdownTable({"recording", "dominant", "margin (top / second)", "term RMS [V]", "R²"},
+                      drows);
+
+  md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
+  std::vector<std::vector<std::string>> rows;
+  std::string csv =
+      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse,"
+      "inverse_rms_v,inverse_nrmse,inverse_error,error\n";
+  auto quoted = [](std::string s) {
+    for (size_t i = 0; (i = s.find('"', i)) != std::string::npos; i += 2) s.insert(i, 1, '"');
+    return "\"" + s + "\"";
+  };
+  for (size_t i = 0; i < r.stack_models.size(); ++i) {
+    const auto& s = r.stack_models[i];
+    const std::string inverse =
+        s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
+    rows.push_back({std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
+                    s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")",
+                    G(s.forward_rms_m), Pct(s.forward_nrmse), inverse, Pct(s.inverse_nrmse)});
+    csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
+                       s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
+                       s.forward_rms_m, s.forward_nrmse, s.inverse_rms_v, s.inverse_nrmse,
+                       quoted(s.inverse_error), quoted(s.error));
+    if (s.model)
+      WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
+                          s.model->ToJson(2) + "\n");
+  }
+  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward NRMSE",
+                       "inverse e_RMS [V]", "inverse NRMSE"},
+                      rows);
+  md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
+        "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
+        "are wall times on this machine (the only numbers of this report that vary between runs).\n";
+  WriteFileAtomically(path("models.csv"), csv);
+
+  // The first recording's scored part, its first 600 samples (a few periods: the loops stay
+  // readable): measured beside each model, forward and inverse.
+  if (!r.stack_models.empty()) {
+    ReadOptions ro;
+    ro.required_columns = {"t", "u", "x"};
+    ro.any_of_columns = {};
+    const Recording rec = ReadRecording(r.inputs.stack.front(), ro);
+    const Eigen::Index k = TrainingPart(rec, kStackTrainFraction).rows();
+    const Eigen::Index m = std::min<Eigen::Index>(rec.rows() - k, 600);
+    const Eigen::VectorXd t = rec.column("t").segment(k, m);
+    const std::string name = fs::path(rec.source).filename().string();
+    PlotSpec fwd{"forward models: the start of the scored part of " + name, "t [s]", "x [um]", {},
+                 false, 1000, 550};
+    PlotSpec inv{"inverse models: the start of the scored part of " + name, "t [s]", "u [V]", {},
+                 false, 1000, 550};
+    fwd.series.push_back(
+        {"measured", t, 1e6 * Eigen::VectorXd(rec.column("x").segment(k, m)), "lines"});
+    inv.series.push_back({"measured", t, rec.column("u").segment(k, m), "lines"});
+    for (size_t i = 0; i < r.stack_models.size(); ++i) {
+      const auto& s = r.stack_models[i];
+      // Short legends (the table's row number and kind): long ones squeeze the plot.
+      const std::string label = fmt::format("{} {}", i + 1, s.kind);
+      if (!s.x_model.empty())
+        fwd.series.push_back({label, t, 1e6 * s.x_model.front().segment(k, m), "lines"});
+      if (!s.u_model.empty()) inv.series.push_back({label, t, s.u_model.front().segment(k, m), "lines"});
+    }
+    md += "\nThe first " + std::to_string(m) + " scored samples of `" + name +
+          "` (legend: the table's row and the model's kind):\n";
+    plot("stack_forward.png", fwd, md);
+    plot("stack_inverse.png", inv, md);
+  }
+
+  md += "\n## Run\n\nSteps:";
+  for (const auto& [step, seconds] : r.step_seconds) {
+    (void)seconds;
+    md += " " + step + ";";
+  }
+  md += " wall times are in `summary.json` and on stderr.\n";
+  if (!r.notes.empty()) {
+    md += "\nNotes:\n";
+    for (const auto& n : r.notes) md += "- " + n + "\n";
+  }
+  WriteFileAtomically(path("summary.json"), StackSummaryJson(r) + "\n");
+  WriteFileAtomically(path("report.md"), md);
+  return notes;
+}
+
+}  // namespace sysid

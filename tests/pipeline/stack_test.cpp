@@ -1,0 +1,174 @@
+// The pipeline on a stack data set (no pulse test; recordings t, u, x): the hysteresis models'
+// table, fitted on the first 40 % of each recording and scored on the rest.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/test_support.hpp"
+#include "sysid/compare_stack.hpp"
+#include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
+#include "sysid/io.hpp"
+#include "sysid/pipeline.hpp"
+#include "sysid/report.hpp"
+
+using sysid::test::RunCli;
+using sysid::test::TempDir;
+
+namespace {
+
+constexpr double kDt = 5e-3;  // [s]
+
+// A known classical PI driven by decaying loops, with 2 nm of noise on x (seeded).
+sysid::Recording StackRecording(int n) {
+  sysid::PiParameters p;
+  p.thresholds = {0.4, 0.9, 1.4};
+  p.weights = {3e-6, 1.5e-6, 0.7e-6};
+  p.polynomial = {5e-6};
+  p.offset_m = -1.1e-4;
+  p.input_min_v = 0;
+  p.input_max_v = 3.6;
+  const sysid::PrandtlIshlinskiiModel truth(p);
+  Eigen::VectorXd u(n);
+  for (int k = 0; k < n; ++k)
+    u[k] = 1.8 + 1.7 * std::sin(2 * M_PI * k / 200.0) * (0.65 + 0.35 * std::cos(k / 300.0));
+  Eigen::VectorXd x = truth.Simulate(u, kDt);
+  std::uint64_t state = 12345;
+  for (int k = 0; k < n; ++k) {  // a small LCG: uniform noise of 2 nm amplitude
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    x[k] += 2e-9 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
+  }
+  sysid::Recording rec;
+  rec.names = {"t", "u", "x"};
+  rec.data.resize(n, 3);
+  for (int k = 0; k < n; ++k) rec.data.row(k) << k * kDt, u[k], x[k];
+  return rec;
+}
+
+}  // namespace
+
+TEST_CASE("a folder or manifest without a pulse test is a stack data set", "[pipeline][stack]") {
+  TempDir dir;
+  sysid::WriteRecording(dir / "piezo.csv", StackRecording(50));
+  auto in = sysid::PipelineInputs::FromDirectory(dir.path().string());
+  REQUIRE(in.IsStack());
+  CHECK(in.stack.size() == 1);
+  CHECK(in.stack[0].find("piezo.csv") != std::string::npos);
+  CHECK(in.pulses.empty());
+  // A stage folder missing its pulse test is still the stage's error, not a stack.
+  TempDir stage;
+  sysid::WriteRecording(stage / "training.csv", StackRecording(50));
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(stage.path().string()),
+                    Catch::Contains("missing pulse recordings"));
+  // The manifest names the stack's recordings; a stage's keys beside them are refused.
+  sysid::test::WriteText(dir / "manifest.json", "{\"stack\": [\"piezo.csv\"], \"note\": \"x\"}");
+  in = sysid::PipelineInputs::FromDirectory(dir.path().string());
+  REQUIRE(in.IsStack());
+  CHECK(in.stack[0] == (std::filesystem::path(dir.path()) / "piezo.csv").string());
+  sysid::test::WriteText(dir / "manifest.json",
+                         "{\"stack\": [\"piezo.csv\"],\n \"pulses\": [\"p.csv\"]}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("manifest.json:2:2:") && Catch::Contains("pulses"));
+  sysid::test::WriteText(dir / "manifest.json", "{\"stack\": []}");
+  CHECK_THROWS_WITH(sysid::PipelineInputs::FromDirectory(dir.path().string()),
+                    Catch::Contains("stack") && Catch::Contains("non-empty"));
+}
+
+TEST_CASE("the training part is the first 40 % of the rows and both parts need 2 rows",
+          "[pipeline][stack]") {
+  const sysid::Recording rec = StackRecording(1001);
+  const sysid::Recording part = sysid::TrainingPart(rec, 0.4);
+  CHECK(part.rows() == 400);  // round(400.4)
+  CHECK(part.data == rec.data.topRows(400));
+  CHECK_THROWS_AS(sysid::TrainingPart(StackRecording(3), 0.4), sysid::InputError);
+  CHECK_THROWS_AS(sysid::TrainingPart(rec, 1.0), sysid::OptionsError);
+}
+
+TEST_CASE("the stack pipeline scores each model as fitting and simulating it directly does",
+          "[pipeline][stack]") {
+  const sysid::Recording rec = StackRecording(2000);
+  TempDir dir;
+  sysid::WriteRecording(dir / "stack.csv", rec);
+  sysid::PipelineInputs in;
+  in.root = dir.path().string();
+  in.stack = {(dir / "stack.csv")};
+  sysid::PipelineOptions o;
+  o.threads = 2;
+  const sysid::PipelineResult r = sysid::RunPipeline(in, o);
+  REQUIRE(r.stack_models.size() == sysid::StackModelSpecs().size());
+  REQUIRE(r.stack_dominance.size() == 1);
+  CHECK(r.stack_dominance[0].dominant == "x");  // a stack: displacement carries the voltage
+  const auto& pi = r.stack_models[0];
+  CHECK(pi.kind == "pi");
+  CHECK(pi.parameters == 22);  // p0, 20 weights, offset
+  CHECK(pi.train_samples == 800);
+  CHECK(pi.test_samples == 1200);
+  // An independent computation of the same row: fit on the first 800 rows, simulate and invert
+  // the whole recording, score rows 800.. (RMS and population std by hand).
+  sysid::PiFitOptions fo;
+  fo.operators = 20;
+  const auto direct = sysid::FitPrandtlIshlinskii({sysid::TrainingPart(rec, 0.4)}, fo);
+  const Eigen::VectorXd xm = direct->Simulate(rec.column("u"), kDt);
+  const Eigen::VectorXd um = direct->Invert(rec.column("x"), kDt);
+  double se = 0, su = 0, mx = 0, mu = 0;
+  for (int k = 800; k < 2000; ++k) mx += rec.data(k, 2) / 1200, mu += rec.data(k, 1) / 1200;
+  double vx = 0, vu = 0;
+  for (int k = 800; k < 2000; ++k) {
+    se += std::pow(xm[k] - rec.data(k, 2), 2) / 1200;
+    su += std::pow(um[k] - rec.data(k, 1), 2) / 1200;
+    vx += std::pow(rec.data(k, 2) - mx, 2) / 1200;
+    vu += std::pow(rec.data(k, 1) - mu, 2) / 1200;
+  }
+  CHECK(pi.forward_rms_m == Approx(std::sqrt(se)).epsilon(1e-10));
+  CHECK(pi.forward_nrmse == Approx(std::sqrt(se / vx)).epsilon(1e-8));
+  CHECK(pi.inverse_rms_v == Approx(std::sqrt(su)).epsilon(1e-10));
+  CHECK(pi.inverse_nrmse == Approx(std::sqrt(su / vu)).epsilon(1e-8));
+  // 20 uniform operators approximate the 3-operator truth on data it never saw.
+  CHECK(pi.forward_nrmse < 0.02);
+  CHECK(pi.inverse_nrmse < 0.02);
+  for (const auto& s : r.stack_models) {
+    INFO(s.label << ": " << s.error << s.inverse_error);
+    CHECK(s.error.empty());
+    CHECK(s.forward_nrmse < 0.5);  // even the static network, a line through the loop
+    if (s.inverse_error.empty()) CHECK(s.inverse_nrmse < 0.5);
+  }
+  // The summary names the split and carries the table.
+  const auto j = nlohmann::json::parse(sysid::StackSummaryJson(r));
+  CHECK(j["dataset"] == "stack");
+  CHECK(j["train_fraction"] == 0.4);
+  CHECK(j["models"].size() == r.stack_models.size());
+  CHECK(j["models"][0]["forward_rms_m"].get<double>() == pi.forward_rms_m);
+  CHECK(j["dominance"][0]["dominant"] == "x");
+}
+
+TEST_CASE("sysid pipeline on a stack folder writes the model table", "[pipeline][stack][cli]") {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "stack");
+  sysid::WriteRecording(dir / "stack/piezo.csv", StackRecording(1200));
+  const auto r = RunCli({"pipeline", dir / "stack", "-o", dir / "report", "--threads", "2", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["dataset"] == "stack");
+  CHECK(j["models"].size() == 6);
+  const auto summary = nlohmann::json::parse(sysid::test::ReadText(dir / "report/summary.json"));
+  CHECK(summary["models"] == j["models"]);
+  const std::string md = sysid::test::ReadText(dir / "report/report.md");
+  CHECK_THAT(md, Catch::Contains("first 40 %") &&
+                     Catch::Contains("| model | parameters | fit time [s] | forward e_RMS [m]") &&
+                     Catch::Contains("Bouc–Wen, piezo form"));
+  const std::string csv = sysid::test::ReadText(dir / "report/models.csv");
+  CHECK(csv.rfind("model,kind,parameters,fit_time_s,", 0) == 0);
+  CHECK(std::filesystem::exists(dir / "report/model_1_pi.json"));
+  // The model file is the one scored: `hysteresis simulate` with it gives the table's row.
+  CHECK(sysid::ReadHysteresisModel(dir / "report/model_1_pi.json")->kind() == "pi");
+  // Too short to split: exit 2 naming the file, no report.
+  std::filesystem::create_directory(dir / "short");
+  sysid::WriteRecording(dir / "short/s.csv", StackRecording(3));
+  const auto bad = RunCli({"pipeline", dir / "short", "-o", dir / "report2"});
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("s.csv") && Catch::Contains("at least 2 rows"));
+  CHECK_FALSE(std::filesystem::exists(dir / "report2"));
+}
