@@ -276,3 +276,28 @@ TEST_CASE("drive hysteresis in the stage file: written only when set, read back,
   sysid::StageParameters q = sysid::StageParameters::Default();
   CHECK_THROWS_AS(q.SetDriveHysteresis(wide), sysid::OptionsError);
 }
+
+TEST_CASE("the drive-hysteresis preset: candidate C's loop with the ceramic's loop, the pulse "
+          "table kept",
+          "[stage][hysteresis][file]") {
+  REQUIRE(sysid::StageParameters::IsPresetName("drive-hysteresis"));
+  const sysid::StageParameters p = sysid::LoadStage("drive-hysteresis");
+  CHECK(p.hysteresis.enabled());
+  CHECK(p.sample_rate_hz == 10000);
+  CHECK(p.RecordRateHz() == 1000);
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
+    CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+  // On a slow rise the stage starts where the default does (the dead zone moved by the lag).
+  const sysid::StageParameters def = sysid::StageParameters::Default();
+  CHECK(p.motor.dead_zone_forward_v + p.hysteresis.HeldLag(true) ==
+        Approx(def.motor.dead_zone_forward_v));
+  CHECK(p.motor.dead_zone_backward_v + p.hysteresis.HeldLag(false) ==
+        Approx(def.motor.dead_zone_backward_v));
+  const std::string text = sysid::StageParametersToJson(p);
+  CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "p.json")) == text);
+  // A file may name it as its preset and change one value.
+  CHECK(sysid::ParseStageParameters(
+            "{\"preset\": \"drive-hysteresis\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
+            "p.json")
+            .hysteresis.asymmetry == 0);
+}

@@ -125,16 +125,41 @@ double MotorParameters::DroopForThrust(double f) const {
   return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::atanh(f / thrust_limit_mps2) : f;
 }
 
+namespace {
+
+// Preset "drive-hysteresis" (docs/virtual_stage.md, "Drive hysteresis"): the loop-rate
+// candidate C (10 kHz control, 1 kHz records, a 0.1 ms driver envelope) with the ceramic's
+// asymmetric hysteresis, the candidate closest to the paper's F7 (not its contrast).
+StageParameters DriveHysteresisPreset() {
+  StageParameters p = StageParameters::Default();
+  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis)";
+  p.sample_rate_hz = 10000;
+  p.record_rate_hz = 1000;
+  p.lag_time_constant_s = 0.0001;
+  DriveHysteresis h;
+  h.thresholds_v = {0.1, 0.2, 0.3};
+  h.weights = {0.2, 0.2, 0.2};
+  h.rate_weights_s_per_v = {0, 0, 0};
+  h.rate_time_constant_s = 0.01;
+  h.asymmetry = 0.3;
+  p.SetDriveHysteresis(h);
+  return p;
+}
+
+}  // namespace
+
 bool StageParameters::IsPresetName(const std::string& name) {
-  return name == "virtual" || name == "velocity-source" || name == "actuator-delay";
+  return name == "virtual" || name == "velocity-source" || name == "actuator-delay" ||
+         name == "drive-hysteresis";
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
   if (name == "virtual" || name == "velocity-source") return Default();
   if (name == "actuator-delay") return ActuatorDelay();
+  if (name == "drive-hysteresis") return DriveHysteresisPreset();
   throw OptionsError("stage preset '" + name +
                      "' is not one of virtual (= velocity-source), velocity-source, "
-                     "actuator-delay");
+                     "actuator-delay, drive-hysteresis");
 }
 
 std::string ToString(StageModel model) {
