@@ -19,6 +19,9 @@
 //   v_f(u_i) = v_i + g(v_i) / p through the paper's ten pulse points (u_i, v_i).
 //   Start and stop differ: from rest the stage starts when |v_f| > Fs / p; sliding, it stops
 //   when v_f falls to ~Fc / p (start/stop hysteresis of the rail's static friction).
+//   Optional drive hysteresis (drive.hysteresis, DriveHysteresis below): the lag's input is the
+//   piezoceramic's effective voltage u_h = H[u_s] (asymmetric play operators with
+//   rate-dependent weights, per control sample) instead of u_s; preset "drive-hysteresis".
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -193,7 +196,9 @@ struct StageParameters {
   /// The stage of libsysid before the velocity-source model (transport delay + lag + LuGre):
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
-  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay".
+  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay",
+  /// "drive-hysteresis" (the loop-rate candidate C, 10 kHz control with 1 kHz records and a
+  /// 0.1 ms lag, plus the ceramic's asymmetric hysteresis; docs/virtual_stage.md).
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
@@ -243,7 +248,8 @@ StageParameters ReadStageParameters(const std::string& path);
 /// JSON text with nested objects "drive", "friction", "rig", "integrator"; units in key names.
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
-/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay) or
+/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay,
+/// drive-hysteresis) or
 /// the path of a stage file.
 StageParameters LoadStage(const std::string& preset_or_path);
 
