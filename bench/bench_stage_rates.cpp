@@ -4,7 +4,11 @@
 // sample; the ratio of the two lengths' speeds shows whether the cost is linear in simulated
 // time (1.0 = linear), and every rate's speed is also given as a ratio against the 1 kHz run
 // of the same process (the baseline, same machine, same load).
+// With --stage (a preset or a stage file, e.g. drive-hysteresis) it also times that stage at its
+// own control rate, against the default stage at 1 kHz and against the same stage without its
+// drive hysteresis (issue #28: the operators' cost and the dynamics they change).
 //   bench_stage_rates [--freq HZ] [--rates 100,1000,5000,10000,20000] [--repeats N]
+//                     [--stage PRESET|FILE]
 #include <fmt/format.h>
 #include <time.h>
 
@@ -30,9 +34,8 @@ struct Run {
 };
 
 // The fastest of `repeats` runs (CPU time: the least disturbed by the machine's other load).
-Run Measure(double rate_hz, double freq_hz, int cycles, int repeats) {
-  sysid::StageParameters stage = sysid::StageParameters::Default();
-  stage.sample_rate_hz = rate_hz;
+Run MeasureStage(const sysid::StageParameters& stage, double freq_hz, int cycles, int repeats) {
+  const double rate_hz = stage.sample_rate_hz;
   sysid::SmoothProfileOptions p;
   p.frequency_hz = freq_hz;
   p.cycles = cycles;
@@ -54,6 +57,12 @@ Run Measure(double rate_hz, double freq_hz, int cycles, int repeats) {
   return best;
 }
 
+Run Measure(double rate_hz, double freq_hz, int cycles, int repeats) {
+  sysid::StageParameters stage = sysid::StageParameters::Default();
+  stage.sample_rate_hz = rate_hz;
+  return MeasureStage(stage, freq_hz, cycles, repeats);
+}
+
 std::vector<double> ParseList(const std::string& text) {
   std::vector<double> out;
   std::stringstream s(text);
@@ -68,12 +77,15 @@ int main(int argc, char** argv) {
   double freq = 0.5;
   int repeats = 3;
   std::vector<double> rates{100, 1000, 5000, 10000, 20000};
+  std::string stage_name;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--freq")
       freq = std::atof(argv[i + 1]);
     else if (a == "--rates")
       rates = ParseList(argv[i + 1]);
+    else if (a == "--stage")
+      stage_name = argv[i + 1];
     else if (a == "--repeats")
       repeats = std::max(1, std::atoi(argv[i + 1]));
     else {
@@ -93,6 +105,19 @@ int main(int argc, char** argv) {
     const double s1 = one.simulated_s / one.cpu_s, s2 = two.simulated_s / two.cpu_s;
     fmt::print("| {:g} | {:.3g} | {:.3g} | {:.2f} | {:.3f} | {:.2f} | {:.4f} |\n", rate / 1000, s1,
                s2, s2 / s1, s2 / base_speed, two.steps_per_sample, 1e3 * two.max_error_m);
+  }
+  if (!stage_name.empty()) {
+    const sysid::StageParameters stage = sysid::LoadStage(stage_name);
+    sysid::StageParameters plain = stage;
+    plain.SetDriveHysteresis({});  // the dead zones and knots back where they were
+    const Run with = MeasureStage(stage, freq, 2, repeats);
+    const Run without = MeasureStage(plain, freq, 2, repeats);
+    const double sw = with.simulated_s / with.cpu_s, so = without.simulated_s / without.cpu_s;
+    fmt::print("\n{} ({:g} kHz loop), 2 cycles: {:.3g} simulated s per CPU s, {:.2f} CVODE steps "
+               "per sample; vs the default stage at 1 kHz {:.3f}; without its drive hysteresis "
+               "{:.3g} simulated s per CPU s (with / without {:.3f})\n",
+               stage_name, stage.sample_rate_hz / 1000, sw, with.steps_per_sample,
+               sw / base_speed, so, sw / so);
   }
   fmt::print("load average after: {}\n", LoadAverage());
   return 0;

@@ -19,6 +19,9 @@
 //   v_f(u_i) = v_i + g(v_i) / p through the paper's ten pulse points (u_i, v_i).
 //   Start and stop differ: from rest the stage starts when |v_f| > Fs / p; sliding, it stops
 //   when v_f falls to ~Fc / p (start/stop hysteresis of the rail's static friction).
+//   Optional drive hysteresis (drive.hysteresis, DriveHysteresis below): the lag's input is the
+//   piezoceramic's effective voltage u_h = H[u_s] (asymmetric play operators with
+//   rate-dependent weights, per control sample) instead of u_s; preset "drive-hysteresis".
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -108,6 +111,31 @@ struct MotorParameters {
   double DroopForThrust(double f) const;
 };
 
+/// The piezoceramic fingers' rate-dependent, asymmetric hysteresis (velocity source only;
+/// docs/virtual_stage.md, "Drive hysteresis"). It acts on the driver's clipped command u_k (one
+/// value per control sample, held: the DAC's ZOH) before the envelope lag, which is the
+/// fingers' resonant build-up and follows the ceramic's strain:
+///   F_i,k = PlayStep(u_k - alpha r_i, r_i, F_i,k-1)   (asymmetric play: the band
+///           [u - r_i (1 + alpha), u + r_i (1 - alpha)]; F_i = 0 at t = 0)
+///   rate:  q_k = q_k-1 + b ((u_k - u_k-1) / Ts - q_k-1),  b = 1 - exp(-Ts / tau),  rho_k = |q_k|
+///   u_h,k = u_k - sum_i c_i(rho_k) (u_k - F_i,k),  c_i(rho) = w_i + s_i min(rho, rho_sat)
+/// with rho_sat = (1 - sum w) / sum s, so that sum c_i <= 1 (u_h non-decreasing in u_k). The
+/// lag then gives T_l u_d' = u_h - u_d, and v_f(u_d) as without hysteresis. A held voltage
+/// reached by a rise of at least 2 r_max (every pulse of the paper's table from 0 V) settles
+/// at u_h = u - sum w_i r_i (1 + alpha); by a fall, u + sum w_i r_i (1 - alpha).
+struct DriveHysteresis {
+  std::vector<double> thresholds_v;  ///< r_i [V], 0 < r_1 < ... < r_n; empty: no hysteresis
+  std::vector<double> weights;       ///< w_i [1] >= 0 at rest rate, sum w_i < 1
+  std::vector<double> rate_weights_s_per_v;  ///< s_i [s/V] >= 0: weight per V/s of input rate
+  double rate_time_constant_s = 0.01;  ///< [s] tau >= 0: the rate's relaxation (0: last step)
+  double asymmetry = 0;  ///< alpha [1] in (-1, 1): rising bands (1 + alpha) r, falling (1 - alpha) r
+  bool enabled() const { return !thresholds_v.empty(); }
+  /// [V] sum w_i r_i (1 + alpha) (rising) or (1 - alpha) (falling): the held lag.
+  double HeldLag(bool rising) const;
+  /// [V/s] rho_sat, the rate above which the weights stop growing (infinity without s_i).
+  double SaturationRate() const;
+};
+
 /// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.
 struct StageParameters {
   std::string name = "virtual PLS8/HR-8 (velocity source)";
@@ -119,6 +147,9 @@ struct StageParameters {
   double saturation_v = 10.0;           ///< [V] driver input clip, > dead_zone_v
   double transport_delay_s = 0.0;       ///< [s] >= 0, any multiple of the sample time
   double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
+  /// Velocity source: the ceramic's hysteresis before the lag (file: drive.hysteresis, written
+  /// only when enabled; a file without it has none).
+  DriveHysteresis hysteresis;
   // Actuator-delay model only: force actuator and LuGre rail friction.
   double gain_mps2_per_v = 6.0;         ///< [m/(s^2 V)] a3, force per volt per unit mass
   double dead_zone_v = 0.15;            ///< [V] dz >= 0
@@ -165,7 +196,9 @@ struct StageParameters {
   /// The stage of libsysid before the velocity-source model (transport delay + lag + LuGre):
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
-  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay".
+  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay",
+  /// "drive-hysteresis" (the loop-rate candidate C, 10 kHz control with 1 kHz records and a
+  /// 0.1 ms lag, plus the ceramic's asymmetric hysteresis; docs/virtual_stage.md).
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
@@ -183,17 +216,28 @@ struct StageParameters {
   /// [m/s] steady sliding velocity under a constant voltage reached from rest (ignoring noise
   /// and limits), found by bisection on the model's steady force balance; 0 when the drive
   /// does not break away (velocity source: |p v_f(u)| <= Fs; actuator delay: a3 M <= Fs).
+  /// With drive hysteresis the voltage is reached from 0 V (a rise for u > 0, a fall for
+  /// u < 0, of at least 2 r_max): v_f is read at u -+ HeldLag.
   double SteadyVelocity(double u_v) const;
   /// Velocity source: sets the speed map's knots so that a held voltage u_i settles at v_i for
   /// each (u_i [V], v_i [m/s]) (steady law T(p (v_f - v)) = g(|v|), so
   /// v_f(u_i) = v_i + sgn(v_i) T^-1(g(|v_i|)) / p), for the current pole, thrust limit and rail.
+  /// With drive hysteresis the knot sits at the held u_h: u_i reached from 0 V by a rise
+  /// (u_i > 0) or a fall (u_i < 0) of at least 2 r_max, u_i -+ HeldLag.
   /// Default() calls it with the paper's pulse table.
   void SetSpeedMapThrough(const std::vector<std::pair<double, double>>& steady_points);
+  /// Velocity source: sets drive hysteresis `h` and moves the dead zones and the speed map's
+  /// knots by the change of the held lags (forward side by HeldLag(true), backward by
+  /// HeldLag(false)), so that a voltage held after a rise from 0 V (forward) or a fall
+  /// (backward) gives the same steady velocity as before: the pulse table stays. Throws
+  /// OptionsError (Validate) when the moved dead zones or knots are not valid.
+  void SetDriveHysteresis(const DriveHysteresis& h);
   /// The paper's pulse table: (amplitude [V], steady velocity [m/s]), ten pulses.
   static std::vector<std::pair<double, double>> PaperPulseTable();
 
  private:
   void ValidateVelocitySource() const;
+  void ValidateHysteresis() const;
   void ValidateDriveMap() const;
 };
 
@@ -204,7 +248,8 @@ StageParameters ReadStageParameters(const std::string& path);
 /// JSON text with nested objects "drive", "friction", "rig", "integrator"; units in key names.
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
-/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay) or
+/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay,
+/// drive-hysteresis) or
 /// the path of a stage file.
 StageParameters LoadStage(const std::string& preset_or_path);
 
@@ -214,7 +259,7 @@ struct StageState {
   double v_mps = 0;  ///< [m/s] velocity
   double z_m = 0;    ///< [m] LuGre bristle deflection (actuator delay; 0 for velocity source)
   double w_v = 0;    ///< [V] driver lag state (actuator delay: drive force / a3; velocity
-                     ///  source: the lagged drive voltage u_d)
+                     ///  source: the lagged drive voltage u_d, after the drive's hysteresis)
   bool stuck = false;  ///< velocity source: held by the rail's static friction (v = 0)
   /// [m/s] velocity source: the rail's lagged slip speed s (rail.memory_time_s > 0), else |v|
   double slip_memory_mps = 0;

@@ -19,7 +19,8 @@ constexpr double kMaxStageSampleRateHz = 1e6;
 // Why a key or section is required: said in every such message.
 constexpr const char* kCompleteRule =
     "a stage file gives every section and key of its model, or names \"preset\": NAME "
-    "(virtual, velocity-source, actuator-delay) whose values fill what it leaves out";
+    "(virtual, velocity-source, actuator-delay, drive-hysteresis) whose values fill what it "
+    "leaves out";
 
 // Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
 // (handled by the caller). With `complete` (a file that names no "preset") every key but those
@@ -125,7 +126,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     const internal::JsonNode at = root.Get("preset");
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
-      at.Expected("a preset name (virtual, velocity-source, actuator-delay)");
+      at.Expected("a preset name (virtual, velocity-source, actuator-delay, drive-hysteresis)");
     preset = StageParameters::Preset(name);
   }
   const bool complete = !preset;
@@ -159,11 +160,24 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                {"lag_time_constant_s", &p.lag_time_constant_s}},
               {},
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
-              {}}
+              {"hysteresis"}}
           .Read(root.Get(key), complete,
                 vs ? std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v", "map_in_v",
-                                              "map_out_v"}
-                   : std::vector<std::string>{});
+                                              "map_out_v", "hysteresis"}
+                   : std::vector<std::string>{"hysteresis"});
+      if (root.Get(key).Has("hysteresis")) {
+        // The ceramic's hysteresis (velocity source only); a file without the block has none.
+        const internal::JsonNode h = root.Get(key).Get("hysteresis");
+        if (!vs) other_model(h);
+        Section{{{"rate_time_constant_s", &p.hysteresis.rate_time_constant_s},
+                 {"asymmetry", &p.hysteresis.asymmetry}},
+                {},
+                {{"thresholds_v", &p.hysteresis.thresholds_v},
+                 {"weights", &p.hysteresis.weights},
+                 {"rate_weights_s_per_v", &p.hysteresis.rate_weights_s_per_v}},
+                {}}
+            .Read(h, complete);
+      }
     } else if (key == "motor") {
       if (!vs) other_model(root.Get(key));
       Section{{{"pole_per_s", &p.motor.pole_per_s},
@@ -296,6 +310,15 @@ std::string StageParametersToJson(const StageParameters& p) {
   drive["saturation_v"] = p.saturation_v;
   drive["transport_delay_s"] = p.transport_delay_s;
   drive["lag_time_constant_s"] = p.lag_time_constant_s;
+  if (vs && p.hysteresis.enabled()) {
+    OJ h;
+    h["thresholds_v"] = p.hysteresis.thresholds_v;
+    h["weights"] = p.hysteresis.weights;
+    h["rate_weights_s_per_v"] = p.hysteresis.rate_weights_s_per_v;
+    h["rate_time_constant_s"] = p.hysteresis.rate_time_constant_s;
+    h["asymmetry"] = p.hysteresis.asymmetry;
+    drive["hysteresis"] = h;
+  }
   if (!vs) {
     drive["map_in_v"] = p.drive_map_in_v;
     drive["map_out_v"] = p.drive_map_out_v;

@@ -2,6 +2,7 @@
 // the steady sliding velocity.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -65,7 +66,8 @@ void StageParameters::SetSpeedMapThrough(
     const std::vector<std::pair<double, double>>& steady_points) {
   std::vector<std::pair<double, double>> knots;
   for (const auto& [u, v] : steady_points)
-    knots.emplace_back(u, v + (v > 0 ? 1.0 : -1.0) *
+    knots.emplace_back(u > 0 ? u - hysteresis.HeldLag(true) : u + hysteresis.HeldLag(false),
+                       v + (v > 0 ? 1.0 : -1.0) *
                                   motor.DroopForThrust(rail.Sliding(std::abs(v))) /
                                   motor.pole_per_s);
   std::sort(knots.begin(), knots.end());
@@ -85,6 +87,30 @@ StageParameters StageParameters::Default() {
   return p;
 }
 
+void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
+  const double forward = h.HeldLag(true) - hysteresis.HeldLag(true);
+  const double backward = h.HeldLag(false) - hysteresis.HeldLag(false);
+  hysteresis = h;
+  motor.dead_zone_forward_v -= forward;
+  motor.dead_zone_backward_v -= backward;
+  for (double& u : motor.speed_map_in_v) u += u > 0 ? -forward : backward;
+  Validate();
+}
+
+double DriveHysteresis::HeldLag(bool rising) const {
+  double lag = 0;
+  for (size_t i = 0; i < thresholds_v.size() && i < weights.size(); ++i)
+    lag += weights[i] * thresholds_v[i];
+  return lag * (rising ? 1 + asymmetry : 1 - asymmetry);
+}
+
+double DriveHysteresis::SaturationRate() const {
+  double w = 0, s = 0;
+  for (double x : weights) w += x;
+  for (double x : rate_weights_s_per_v) s += x;
+  return s > 0 ? (1 - w) / s : std::numeric_limits<double>::infinity();
+}
+
 double MotorParameters::Thrust(double y) const {
   return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::tanh(y / thrust_limit_mps2) : y;
 }
@@ -99,16 +125,41 @@ double MotorParameters::DroopForThrust(double f) const {
   return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::atanh(f / thrust_limit_mps2) : f;
 }
 
+namespace {
+
+// Preset "drive-hysteresis" (docs/virtual_stage.md, "Drive hysteresis"): the loop-rate
+// candidate C (10 kHz control, 1 kHz records, a 0.1 ms driver envelope) with the ceramic's
+// asymmetric hysteresis, the candidate closest to the paper's F7 (not its contrast).
+StageParameters DriveHysteresisPreset() {
+  StageParameters p = StageParameters::Default();
+  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis)";
+  p.sample_rate_hz = 10000;
+  p.record_rate_hz = 1000;
+  p.lag_time_constant_s = 0.0001;
+  DriveHysteresis h;
+  h.thresholds_v = {0.1, 0.2, 0.3};
+  h.weights = {0.2, 0.2, 0.2};
+  h.rate_weights_s_per_v = {0, 0, 0};
+  h.rate_time_constant_s = 0.01;
+  h.asymmetry = 0.3;
+  p.SetDriveHysteresis(h);
+  return p;
+}
+
+}  // namespace
+
 bool StageParameters::IsPresetName(const std::string& name) {
-  return name == "virtual" || name == "velocity-source" || name == "actuator-delay";
+  return name == "virtual" || name == "velocity-source" || name == "actuator-delay" ||
+         name == "drive-hysteresis";
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
   if (name == "virtual" || name == "velocity-source") return Default();
   if (name == "actuator-delay") return ActuatorDelay();
+  if (name == "drive-hysteresis") return DriveHysteresisPreset();
   throw OptionsError("stage preset '" + name +
                      "' is not one of virtual (= velocity-source), velocity-source, "
-                     "actuator-delay");
+                     "actuator-delay, drive-hysteresis");
 }
 
 std::string ToString(StageModel model) {
@@ -214,6 +265,9 @@ void StageParameters::Validate() const {
     ValidateVelocitySource();
     return;
   }
+  Require(!hysteresis.enabled(), "hysteresis.thresholds_v",
+          static_cast<double>(hysteresis.thresholds_v.size()),
+          "no drive hysteresis on the actuator-delay model (it belongs to the velocity source)");
   // Actuator-delay model: LuGre rail and drive map.
   Require(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
           "bristle_stiffness_per_s2 > 0");
@@ -266,6 +320,7 @@ void StageParameters::ValidateVelocitySource() const {
     Require(pos && neg, "motor.speed_map_in_v", static_cast<double>(in.size()),
             "at least one knot on each side of the dead zone");
   }
+  ValidateHysteresis();
   RequireFinite("rail.coulomb_mps2", rail.coulomb_mps2);
   RequireFinite("rail.static_mps2", rail.static_mps2);
   RequireFinite("rail.stribeck_velocity_mps", rail.stribeck_velocity_mps);
@@ -292,6 +347,42 @@ void StageParameters::ValidateVelocitySource() const {
             "pole_per_s (1 - (Fs / thrust_limit)^2 with a thrust limit) > (Fs - Fc) sqrt(2/e) / "
             "vs = " + Fmt(slope) + " (a single steady speed per voltage)");
   }
+}
+
+void StageParameters::ValidateHysteresis() const {
+  const DriveHysteresis& h = hysteresis;
+  const size_t n = h.thresholds_v.size();
+  Require(n <= 200, "hysteresis.thresholds_v", static_cast<double>(n),
+          "at most 200 play operators");
+  Require(h.weights.size() == n, "hysteresis.weights", static_cast<double>(h.weights.size()),
+          "one weight per threshold (" + std::to_string(n) + ")");
+  Require(h.rate_weights_s_per_v.size() == n, "hysteresis.rate_weights_s_per_v",
+          static_cast<double>(h.rate_weights_s_per_v.size()),
+          "one rate weight per threshold (" + std::to_string(n) + ")");
+  double sum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const std::string idx = "[" + std::to_string(i) + "]";
+    RequireFinite("hysteresis.thresholds_v" + idx, h.thresholds_v[i]);
+    RequireFinite("hysteresis.weights" + idx, h.weights[i]);
+    RequireFinite("hysteresis.rate_weights_s_per_v" + idx, h.rate_weights_s_per_v[i]);
+    Require(h.thresholds_v[i] > (i > 0 ? h.thresholds_v[i - 1] : 0.0),
+            "hysteresis.thresholds_v" + idx, h.thresholds_v[i],
+            i > 0 ? "thresholds strictly increasing (previous " + Fmt(h.thresholds_v[i - 1]) + ")"
+                  : std::string("thresholds_v > 0"));
+    Require(h.weights[i] >= 0, "hysteresis.weights" + idx, h.weights[i], "weights >= 0");
+    Require(h.rate_weights_s_per_v[i] >= 0, "hysteresis.rate_weights_s_per_v" + idx,
+            h.rate_weights_s_per_v[i], "rate_weights_s_per_v >= 0");
+    sum += h.weights[i];
+  }
+  Require(sum < 1, "hysteresis.weights", sum,
+          "sum of weights < 1 (the effective voltage rises with the command)");
+  RequireFinite("hysteresis.rate_time_constant_s", h.rate_time_constant_s);
+  Require(h.rate_time_constant_s >= 0 && h.rate_time_constant_s <= 10,
+          "hysteresis.rate_time_constant_s", h.rate_time_constant_s,
+          "0 <= rate_time_constant_s <= 10");
+  RequireFinite("hysteresis.asymmetry", h.asymmetry);
+  Require(h.asymmetry > -1 && h.asymmetry < 1, "hysteresis.asymmetry", h.asymmetry,
+          "-1 < asymmetry < 1");
 }
 
 void StageParameters::ValidateDriveMap() const {
@@ -361,7 +452,9 @@ double StageParameters::SteadyVelocity(double u_v) const {
   const double u =
       std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
   if (model == StageModel::kVelocitySource) {
-    const double vf = NoLoadSpeed(u);
+    const double vf = NoLoadSpeed(u > 0   ? u - hysteresis.HeldLag(true)
+                                  : u < 0 ? u + hysteresis.HeldLag(false)
+                                          : 0.0);
     const double p = motor.pole_per_s;
     if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
     // h(s) = T(p (|v_f| - s)) - g(s) falls through zero wherever it is zero (Validate), h(0) > 0

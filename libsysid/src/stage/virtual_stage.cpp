@@ -17,6 +17,14 @@
 // integration is restarted (CVodeReInit) at every edge where the input changes: the right-hand
 // side is then smooth on each integrated piece, which keeps BDF at full order and accuracy.
 //
+// Drive hysteresis (velocity source, drive.hysteresis): the piezoceramic's rate-dependent,
+// asymmetric hysteresis acts on the clipped DAC value once per control sample, before the
+// envelope lag (DriveHysteresis in stage.hpp). On a held input the play operators change only
+// at the DAC's edges, so the per-sample update is exact and the lag's input stays piecewise
+// constant: the integrated pieces keep their smooth right-hand side and no new root is needed.
+// The operator is causal per sample, so a transport delay delays its output as it would its
+// input: the history holds the driven values.
+//
 // Work per sample is bounded (integrator.max_steps_per_sample: CVODE steps plus switches), so a
 // stage that cannot be integrated ends with NumericalError naming the time and the state
 // instead of running on.
@@ -33,6 +41,7 @@
 #include "core/cvode_solver.hpp"
 #include "core/portable_random.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -65,6 +74,14 @@ class VirtualStage::Impl {
     encoder_divisor_ = std::abs(inv_q - std::round(inv_q)) < 1e-9 * inv_q ? std::round(inv_q) : 0;
 
     vs_ = p_.model == StageModel::kVelocitySource;
+    if (vs_) {
+      hysteresis_ = p_.hysteresis;
+      play_.assign(hysteresis_.thresholds_v.size(), 0.0);
+      rate_gain_ = hysteresis_.rate_time_constant_s > 0
+                       ? -std::expm1(-ts_ / hysteresis_.rate_time_constant_s)
+                       : 1.0;
+      rate_limit_ = hysteresis_.SaturationRate();
+    }
     const std::array<double, kStates> y0{p_.initial_position_m, 0.0, 0.0, 0.0};
     cv_.emplace(kStates, internal::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
                 "virtual stage",
@@ -94,19 +111,36 @@ class VirtualStage::Impl {
   }
 
   // Driver input after clipping, dead zone and the static map, for a DAC value u (velocity
-  // source: after clipping only; its dead zone acts on the lagged voltage through v_f).
-  double Drive(double u) const {
+  // source: after clipping and the ceramic's hysteresis; its dead zone acts on the lagged
+  // voltage through v_f). Called once per sample, in order: the hysteresis has state.
+  double Drive(double u) {
     const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
-    if (vs_) return s;
+    if (vs_) return hysteresis_.enabled() ? Hysteresis(s) : s;
     if (std::abs(s) <= p_.dead_zone_v) return 0.0;
     return p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v);
   }
 
+  // u_h of DriveHysteresis for the clipped command s: the play operators' states and the
+  // filtered rate advance by one sample.
+  double Hysteresis(double s) {
+    const DriveHysteresis& h = hysteresis_;
+    rate_ += rate_gain_ * ((s - last_input_) / ts_ - rate_);
+    last_input_ = s;
+    const double rho = std::min(std::abs(rate_), rate_limit_);
+    double out = s;
+    for (size_t i = 0; i < play_.size(); ++i) {
+      const double r = h.thresholds_v[i];
+      play_[i] = PlayStep(s - h.asymmetry * r, r, play_[i]);
+      out -= (h.weights[i] + h.rate_weights_s_per_v[i] * rho) * (s - play_[i]);
+    }
+    return out;
+  }
+
   double Step(double u_command) {
     const double u = Dac(u_command);
-    // history_[j] = DAC output of sample k - j after the shift: [0] is this sample.
+    // history_[j] = driven value of sample k - j after the shift: [0] is this sample.
     std::rotate(history_.rbegin(), history_.rbegin() + 1, history_.rend());
-    history_[0] = u;
+    history_[0] = Drive(u);
     const double t0 = static_cast<double>(k_) * ts_;
     const double t1 = static_cast<double>(k_ + 1) * ts_;
     sample_start_steps_ = cv_->Counters().steps;
@@ -116,10 +150,10 @@ class VirtualStage::Impl {
     if (delay_fraction_ > 0) {
       // The delayed input is the older value until t_k + f Ts, then the newer one.
       const double before = history_[static_cast<size_t>(delay_samples_) + 1];
-      Advance(t0 + delay_fraction_ * ts_, Drive(before));
-      Advance(t1, Drive(now));
+      Advance(t0 + delay_fraction_ * ts_, before);
+      Advance(t1, now);
     } else {
-      Advance(t1, Drive(now));
+      Advance(t1, now);
     }
     ++k_;
     const double v = cv_->state()[kV];
@@ -395,6 +429,12 @@ class VirtualStage::Impl {
   long sample_switches_ = 0;     // root returns in this sample
   double sample_u_ = 0;          // [V] this sample's DAC output
   StageStatus status_;
+  DriveHysteresis hysteresis_;   // velocity source: the ceramic's hysteresis (may be off)
+  std::vector<double> play_;     // [V] the play operators' outputs F_i
+  double rate_ = 0;              // [V/s] the filtered input rate q
+  double rate_gain_ = 1;         // b = 1 - exp(-Ts / tau)
+  double rate_limit_ = 0;        // [V/s] rho_sat
+  double last_input_ = 0;        // [V] the previous clipped command
   std::optional<internal::CvodeSolver> cv_;  // made once p_ is validated
 };
 

@@ -1,0 +1,324 @@
+// The drive's rate-dependent, asymmetric hysteresis (stage.hpp, DriveHysteresis) against the
+// hysteresis module's own operators driven by the same command sequence, and the stage with it
+// against the tiny-step RK4 reference replaying the effective voltage.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
+#include "sysid/stage.hpp"
+#include "velocity_source_reference.hpp"
+
+namespace {
+
+using sysid::test::VelocitySourceReference;
+
+// Pulses, a slow and a fast triangle, a sinusoid with reversals and a hold: rises, falls and
+// minor loops at several rates [V], one value per sample.
+std::vector<double> Commands(int n) {
+  std::vector<double> u(static_cast<size_t>(n), 0.0);
+  for (int k = 0; k < n; ++k) {
+    const double t = k / static_cast<double>(n);
+    double v = 0;
+    if (t < 0.15) v = t < 0.05 ? 0 : (t < 0.1 ? 2.0 : -2.3);
+    else if (t < 0.4) v = 1.8 * std::sin(2 * M_PI * (t - 0.15) / 0.25);             // slow
+    else if (t < 0.55) v = 1.6 * std::sin(2 * M_PI * (t - 0.4) / 0.05) - 0.3;        // fast
+    else if (t < 0.8) v = 0.4 * std::sin(2 * M_PI * (t - 0.55) / 0.03) + 1.45;       // minor
+    else v = t < 0.9 ? -2.0 : 1.5;
+    u[static_cast<size_t>(k)] = v;
+  }
+  return u;
+}
+
+sysid::DriveHysteresis Ceramic(double alpha, double rate_weight, double tau) {
+  sysid::DriveHysteresis h;
+  h.thresholds_v = {0.05, 0.12, 0.25};
+  h.weights = {0.15, 0.1, 0.2};
+  h.rate_weights_s_per_v = {rate_weight, 0.0, 2 * rate_weight};
+  h.rate_time_constant_s = tau;
+  h.asymmetry = alpha;
+  return h;
+}
+
+// The effective voltage written out from the module's play operator (whole sequence at once)
+// and the documented rate filter.
+std::vector<double> Reference(const sysid::DriveHysteresis& h, const std::vector<double>& u,
+                              double ts) {
+  const Eigen::VectorXd in = Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<long>(u.size()));
+  std::vector<Eigen::VectorXd> f;
+  for (double r : h.thresholds_v)
+    f.push_back(sysid::PlayOperator(in.array() - h.asymmetry * r, r, 0.0));
+  double wsum = 0, ssum = 0;
+  for (double w : h.weights) wsum += w;
+  for (double s : h.rate_weights_s_per_v) ssum += s;
+  const double rho_sat = ssum > 0 ? (1 - wsum) / ssum : 1e300;
+  const double b = h.rate_time_constant_s > 0 ? 1 - std::exp(-ts / h.rate_time_constant_s) : 1;
+  std::vector<double> out(u.size());
+  double q = 0, prev = 0;
+  for (size_t k = 0; k < u.size(); ++k) {
+    q += b * ((u[k] - prev) / ts - q);
+    prev = u[k];
+    const double rho = std::min(std::abs(q), rho_sat);
+    double y = u[k];
+    for (size_t i = 0; i < f.size(); ++i)
+      y -= (h.weights[i] + h.rate_weights_s_per_v[i] * rho) * (u[k] - f[i][static_cast<long>(k)]);
+    out[k] = y;
+  }
+  return out;
+}
+
+// The stage's effective voltage in each sample, recovered from its lag state: over a held
+// sample, u_d(t1) = u_h + (u_d(t0) - u_h) e^(-Ts/T_l).
+std::vector<double> StageEffective(const sysid::StageParameters& p, const std::vector<double>& u) {
+  sysid::VirtualStage stage(p, 1);
+  const double e = std::exp(-p.sample_time_s() / p.lag_time_constant_s);
+  std::vector<double> out;
+  double w0 = stage.state().w_v;
+  for (double x : u) {
+    stage.Step(x);
+    const double w1 = stage.state().w_v;
+    out.push_back((w1 - e * w0) / (1 - e));
+    w0 = w1;
+  }
+  return out;
+}
+
+sysid::StageParameters Stage(const sysid::DriveHysteresis& h) {
+  sysid::StageParameters p = sysid::StageParameters::Default();
+  p.position_noise_m = 0;
+  p.SetDriveHysteresis(h);
+  return p;
+}
+
+double MaxDiff(const std::vector<double>& a, const std::vector<double>& b) {
+  double worst = 0;
+  for (size_t k = 0; k < a.size(); ++k) worst = std::max(worst, std::abs(a[k] - b[k]));
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("drive hysteresis: symmetric and rate-free, it is the module's classical PI model",
+          "[stage][hysteresis]") {
+  const sysid::DriveHysteresis h = Ceramic(0.0, 0.0, 0.0);
+  const sysid::StageParameters p = Stage(h);
+  const std::vector<double> u = Commands(2000);
+  // y = (1 - sum w) u + sum w_i F_ri[u]: a PI model with p0 = 1 - sum w, no offset.
+  sysid::PiParameters pi;
+  pi.thresholds = h.thresholds_v;
+  pi.weights = h.weights;
+  pi.polynomial = {1 - 0.45};
+  pi.input_min_v = -3;
+  pi.input_max_v = 3;
+  const sysid::PrandtlIshlinskiiModel model(pi);
+  std::vector<double> dac;
+  sysid::VirtualStage probe(p, 1);
+  for (double x : u) dac.push_back(probe.DacOutput(x));
+  const Eigen::VectorXd y = model.Simulate(
+      Eigen::Map<const Eigen::VectorXd>(dac.data(), static_cast<long>(dac.size())),
+      p.sample_time_s());
+  const std::vector<double> got = StageEffective(p, u);
+  double worst = 0;
+  for (size_t k = 0; k < u.size(); ++k) worst = std::max(worst, std::abs(got[k] - y[static_cast<long>(k)]));
+  INFO("max |u_h - PI| " << worst << " V");
+  CHECK(worst < 1e-5);  // the lag state's CVODE tolerance, divided by 1 - e^(-Ts/T_l)
+  // It is a hysteresis: the same command gives different effective voltages on the way up and
+  // down (the loop of the slow sinusoid at 1.0 V is 2 sum w_i r_i = 0.165 V wide).
+  CHECK(h.HeldLag(true) == Approx(0.15 * 0.05 + 0.1 * 0.12 + 0.2 * 0.25));
+}
+
+TEST_CASE("drive hysteresis: asymmetric and rate-dependent, against the play operator and the "
+          "rate filter written out",
+          "[stage][hysteresis]") {
+  const double tau = GENERATE(0.0, 0.005);
+  const sysid::DriveHysteresis h = Ceramic(0.4, 0.004, tau);
+  sysid::StageParameters p = Stage(h);
+  const std::vector<double> u = Commands(2000);
+  std::vector<double> dac;
+  sysid::VirtualStage probe(p, 1);
+  for (double x : u) dac.push_back(probe.DacOutput(x));
+  const std::vector<double> want = Reference(h, dac, p.sample_time_s());
+  const std::vector<double> got = StageEffective(p, u);
+  INFO("tau " << tau << " s: max |u_h - reference| " << MaxDiff(got, want) << " V");
+  CHECK(MaxDiff(got, want) < 1e-5);
+  // The rate widens the loop: without the rate weights the effective voltage differs.
+  sysid::DriveHysteresis slow = h;
+  slow.rate_weights_s_per_v = {0, 0, 0};
+  CHECK(MaxDiff(Reference(slow, dac, p.sample_time_s()), want) > 0.05);
+  // Asymmetric: a rise holds back (1 + alpha) sum w r, a fall (1 - alpha) sum w r.
+  CHECK(h.HeldLag(true) / h.HeldLag(false) == Approx(1.4 / 0.6));
+}
+
+TEST_CASE("drive hysteresis behind a transport delay: its output is delayed, not its state",
+          "[stage][hysteresis]") {
+  // The operators are causal per sample, so delaying their input by n samples delays their
+  // output by n samples (the stage's history holds the driven values).
+  const sysid::DriveHysteresis h = Ceramic(0.3, 0.004, 0.005);
+  sysid::StageParameters p = Stage(h);
+  p.transport_delay_s = 2 * p.sample_time_s();
+  const std::vector<double> u = Commands(1500);
+  std::vector<double> dac;
+  sysid::VirtualStage probe(p, 1);
+  for (double x : u) dac.push_back(probe.DacOutput(x));
+  const std::vector<double> want = Reference(h, dac, p.sample_time_s());
+  const std::vector<double> got = StageEffective(p, u);
+  double worst = 0;
+  for (size_t k = 2; k < u.size(); ++k) worst = std::max(worst, std::abs(got[k] - want[k - 2]));
+  INFO("max |u_h(k) - reference(k - 2)| " << worst << " V");
+  CHECK(worst < 1e-5);
+  CHECK(std::abs(got[0]) < 1e-12);
+  CHECK(std::abs(got[1]) < 1e-12);
+}
+
+TEST_CASE("the stage with drive hysteresis matches the tiny-step reference replaying u_h",
+          "[stage][hysteresis][plant]") {
+  const sysid::DriveHysteresis h = Ceramic(0.3, 0.003, 0.01);
+  const sysid::StageParameters p = Stage(h);
+  const std::vector<double> u = Commands(1500);
+  std::vector<double> dac;
+  sysid::VirtualStage stage(p, 1);
+  for (double x : u) dac.push_back(stage.DacOutput(x));
+  const std::vector<double> uh = Reference(h, dac, p.sample_time_s());
+  VelocitySourceReference ref{p};
+  double worst_x = 0, worst_v = 0;
+  int slides = 0;
+  for (size_t k = 0; k < u.size(); ++k) {
+    stage.Step(u[k]);
+    for (int i = 0; i < 1000; ++i) ref.Step(uh[k], 1e-6);
+    const sysid::StageState s = stage.state();
+    worst_x = std::max(worst_x, std::abs(s.x_m - ref.x));
+    worst_v = std::max(worst_v, std::abs(s.v_mps - ref.v));
+    if (k > 20) CHECK(s.stuck == ref.stuck);
+    slides += s.stuck ? 0 : 1;
+  }
+  INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s, sliding samples " << slides);
+  CHECK(slides > 300);
+  CHECK(std::abs(ref.x) + worst_x > 1e-3);
+  // The bounds of the plant test without hysteresis (the same integrators).
+  CHECK(worst_x < 6e-8);
+  CHECK(worst_v < 5e-5);
+}
+
+TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle on the paper's "
+          "plateaus",
+          "[stage][hysteresis]") {
+  const sysid::DriveHysteresis h = Ceramic(0.3, 0.003, 0.01);
+  const sysid::StageParameters p = Stage(h);
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable()) {
+    CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+    // From rest, first the opposite direction then back to 0 V, then the pulse held 1.2 s:
+    // the plateau is the stage's without hysteresis (the same run), and the paper's (F1).
+    std::vector<double> cmd(300, u > 0 ? -2.0 : 2.0);
+    cmd.resize(600, 0.0);
+    cmd.resize(1800, u);
+    const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
+    sysid::StageParameters from = p, plain = sysid::StageParameters::Default();
+    from.initial_position_m = plain.initial_position_m = u > 0 ? -0.04 : 0.04;
+    plain.position_noise_m = 0;
+    const double got = sysid::RunOpenLoop(from, command, 1).v_true_mps[1799];
+    const double without = sysid::RunOpenLoop(plain, command, 1).v_true_mps[1799];
+    INFO("u = " << u << " V");
+    CHECK(got == Approx(without).epsilon(1e-6));
+    CHECK(got == Approx(v).epsilon(1e-3));
+  }
+  // Moving the knots by the held lag: without it the held pulses would be slower.
+  sysid::StageParameters raw = sysid::StageParameters::Default();
+  raw.hysteresis = h;
+  raw.motor.dead_zone_forward_v -= h.HeldLag(true);
+  raw.motor.dead_zone_backward_v -= h.HeldLag(false);
+  CHECK(std::abs(raw.SteadyVelocity(1.5)) < 0.0574 - 0.003);
+}
+
+TEST_CASE("drive hysteresis in the stage file: written only when set, read back, validated at "
+          "its place",
+          "[stage][hysteresis][file]") {
+  const sysid::StageParameters def = sysid::StageParameters::Default();
+  const std::string plain = sysid::StageParametersToJson(def);
+  CHECK(plain.find("hysteresis") == std::string::npos);  // old files: byte for byte
+  const sysid::StageParameters p = Stage(Ceramic(0.3, 0.003, 0.01));
+  const std::string text = sysid::StageParametersToJson(p);
+  const sysid::StageParameters back = sysid::ParseStageParameters(text, "h.json");
+  CHECK(back.hysteresis.thresholds_v == p.hysteresis.thresholds_v);
+  CHECK(back.hysteresis.rate_weights_s_per_v == p.hysteresis.rate_weights_s_per_v);
+  CHECK(back.hysteresis.asymmetry == 0.3);
+  CHECK(sysid::StageParametersToJson(back) == text);
+  // A preset file adds the block (the preset's dead zones and map stay: the user moves them).
+  const auto pre = sysid::ParseStageParameters(
+      "{\"preset\": \"virtual\", \"drive\": {\"hysteresis\": {\"thresholds_v\": [0.1], "
+      "\"weights\": [0.2], \"rate_weights_s_per_v\": [0], \"rate_time_constant_s\": 0, "
+      "\"asymmetry\": 0}}}",
+      "p.json");
+  CHECK(pre.hysteresis.enabled());
+  // Errors name the key, the rule and the value at the key's place.
+  auto edited = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const size_t at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    return t.replace(at, from.size(), to);
+  };
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(edited("\"asymmetry\": 0.3", "\"asymmetry\": 1"),
+                                                "h.json"),
+                    Catch::Contains("h.json:") &&
+                        Catch::Contains("hysteresis.asymmetry: expected -1 < asymmetry < 1, "
+                                        "found 1"));
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters(edited("\"weights\": [\n        0.15", "\"weights\": [\n  0.75"),
+                                  "h.json"),
+      Catch::Contains("hysteresis.weights: expected sum of weights < 1"));
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters(edited("\"thresholds_v\": [\n        0.05",
+                                         "\"thresholds_v\": [\n        0.5"),
+                                  "h.json"),
+      Catch::Contains("hysteresis.thresholds_v[1]: expected thresholds strictly increasing"));
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters(edited("\"rate_weights_s_per_v\": [\n        0.003,",
+                                         "\"rate_weights_s_per_v\": ["),
+                                  "h.json"),
+      Catch::Contains("hysteresis.rate_weights_s_per_v: expected one rate weight per threshold "
+                      "(3), found 2"));
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(edited("\"asymmetry\": 0.3", "\"_was\": 0"), "h.json"),
+                    Catch::Contains("missing required key 'asymmetry'"));
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(edited("\"asymmetry\": 0.3", "\"asymetry\": 0.3"),
+                                                "h.json"),
+                    Catch::Contains("unknown key 'asymetry'"));
+  // Not on the actuator-delay model.
+  CHECK_THROWS_WITH(
+      sysid::ParseStageParameters("{\"preset\": \"actuator-delay\", \"drive\": {\"hysteresis\": "
+                                  "{\"thresholds_v\": [0.1]}}}",
+                                  "a.json"),
+      Catch::Contains("belongs to the velocity-source model"));
+  // Too large a lag for the dead zones: SetDriveHysteresis refuses it.
+  sysid::DriveHysteresis wide = Ceramic(0.0, 0.0, 0.0);
+  wide.weights = {0.3, 0.3, 0.39};
+  wide.thresholds_v = {0.5, 1.0, 2.0};
+  sysid::StageParameters q = sysid::StageParameters::Default();
+  CHECK_THROWS_AS(q.SetDriveHysteresis(wide), sysid::OptionsError);
+}
+
+TEST_CASE("the drive-hysteresis preset: candidate C's loop with the ceramic's loop, the pulse "
+          "table kept",
+          "[stage][hysteresis][file]") {
+  REQUIRE(sysid::StageParameters::IsPresetName("drive-hysteresis"));
+  const sysid::StageParameters p = sysid::LoadStage("drive-hysteresis");
+  CHECK(p.hysteresis.enabled());
+  CHECK(p.sample_rate_hz == 10000);
+  CHECK(p.RecordRateHz() == 1000);
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
+    CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+  // On a slow rise the stage starts where the default does (the dead zone moved by the lag).
+  const sysid::StageParameters def = sysid::StageParameters::Default();
+  CHECK(p.motor.dead_zone_forward_v + p.hysteresis.HeldLag(true) ==
+        Approx(def.motor.dead_zone_forward_v));
+  CHECK(p.motor.dead_zone_backward_v + p.hysteresis.HeldLag(false) ==
+        Approx(def.motor.dead_zone_backward_v));
+  const std::string text = sysid::StageParametersToJson(p);
+  CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "p.json")) == text);
+  // A file may name it as its preset and change one value.
+  CHECK(sysid::ParseStageParameters(
+            "{\"preset\": \"drive-hysteresis\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
+            "p.json")
+            .hysteresis.asymmetry == 0);
+}
