@@ -201,6 +201,10 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
     CHECK(mse[static_cast<std::size_t>(row++)] == Approx(st / n).epsilon(1e-6));
     CHECK(mse[static_cast<std::size_t>(row++)] == Approx(sd / n).epsilon(1e-6));
   }
+  // The verdict follows the recomputed MSEs, and a missing contrast points at the search.
+  const bool contrast = mse[2] >= 2 * mse[0] && mse[3] < mse[2];
+  CHECK((md.find("**yes, as in the paper**") != std::string::npos) == contrast);
+  CHECK((md.find("lists 17 candidates") != std::string::npos) == !contrast);
 }
 
 TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {

@@ -109,6 +109,16 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
       "\nF7's contrast (typical test ≥ 2 × typical training and dominant test < typical test): "
       "**{}** (typical test / training {:.3g}).\n",
       contrast ? "yes, as in the paper" : "no", m.typical_test / m.typical_train);
+  // Issue #28 asks the report to say so when the stage's physics gives no contrast, and where
+  // the search for a drive that would is recorded.
+  if (!contrast)
+    s.markdown +=
+        "\nThe paper's headline (the typical network overfits, the dominant one generalises) "
+        "needs a drive whose voltage depends on the motion's history in a way the acceleration "
+        "encodes differently on the training and the test waveforms. No drive tried on the twin "
+        "does it without breaking another fact: docs/virtual_stage.md, \"Drive hysteresis\", "
+        "lists 17 candidates with their four MSEs; the closest to the paper is the preset "
+        "`drive-hysteresis` (a static, asymmetric loop in the pulse region).\n";
   s.files.emplace_back("network_mse.csv", csv);
   if (mses) *mses = m;
   return s;
