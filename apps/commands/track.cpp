@@ -56,6 +56,23 @@ bool IsStackPlant(const std::string& plant) {
   return IsStackFileText(ReadFile(plant));
 }
 
+// -o DIR for stage and stack alike: a trace per scheme, the plots, the summary.
+template <typename Folder, typename Runs>
+void WriteTrackFolder(Folder& folder, const Runs& runs, bool plots, const std::string& summary) {
+  namespace fs = std::filesystem;
+  folder.Write([&](const fs::path& dir) {
+    for (const auto& run : runs)
+      WriteRecording((dir / ("track_" + ToString(run.scheme) + ".csv")).string(),
+                     TrackingRecording(run.result, ToString(run.scheme)));
+    if (plots)
+      for (const auto& [name, spec] : TrackingPlots(runs)) {
+        const auto p = WritePlot((dir / name).string(), spec);
+        if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
+      }
+    WriteFileAtomically((dir / "summary.json").string(), summary);
+  });
+}
+
 void RunStackTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
   const auto folder = OptionalOutputFolder(o.out_dir, o.force,
@@ -119,19 +136,7 @@ void RunStackTrack(const TrackCliOptions& o) {
                   Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
                   run.stage_limits});
   }
-  if (folder) {
-    folder->Write([&](const fs::path& dir) {
-      for (const auto& run : runs)
-        WriteRecording((dir / ("track_" + ToString(run.scheme) + ".csv")).string(),
-                       TrackingRecording(run.result, ToString(run.scheme)));
-      if (o.plots)
-        for (const auto& [name, spec] : TrackingPlots(runs)) {
-          const auto p = WritePlot((dir / name).string(), spec);
-          if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
-        }
-      WriteFileAtomically((dir / "summary.json").string(), summary);
-    });
-  }
+  if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
   if (o.json) {
     std::cout << summary;
     return;
@@ -193,19 +198,7 @@ void RunTrack(const TrackCliOptions& o) {
                   Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
                   run.stage_limits});
   }
-  if (folder) {
-    folder->Write([&](const fs::path& dir) {
-      for (const auto& run : runs)
-        WriteRecording((dir / ("track_" + ToString(run.scheme) + ".csv")).string(),
-                       TrackingRecording(run.result, ToString(run.scheme)));
-      if (o.plots)
-        for (const auto& [name, spec] : TrackingPlots(runs)) {
-          const auto p = WritePlot((dir / name).string(), spec);
-          if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
-        }
-      WriteFileAtomically((dir / "summary.json").string(), summary);
-    });
-  }
+  if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
   std::cout << (o.json ? summary : table.Render());
 }
 
