@@ -15,6 +15,7 @@
 #include "cli/common.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 
@@ -29,6 +30,7 @@ struct PipelineCliOptions {
   PipelineOptions options;  // the flags' defaults are the library's
   std::string hidden;  // FIRST:LAST:STEP or a list; set from options.hidden_sizes
   std::string inputs;
+  RecordingFlags recording;  // --var/--rate/--scale for every recording of the folder
   bool json = false;
 };
 
@@ -67,9 +69,9 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
   const fs::path& out = folder.path();
   std::error_code ec;  // a link loop is no folder: the manifest reader names it (exit 2)
-  const PipelineInputs inputs = fs::is_directory(o.input, ec)
-                                    ? PipelineInputs::FromDirectory(o.input)
-                                    : PipelineInputs::FromManifest(o.input);
+  PipelineInputs inputs = fs::is_directory(o.input, ec) ? PipelineInputs::FromDirectory(o.input)
+                                                         : PipelineInputs::FromManifest(o.input);
+  inputs.mapping = o.recording.Mapping();
   PipelineOptions opt = o.options;
   opt.hidden_sizes = ParseHiddenSizes(o.hidden);
   if (!o.inputs.empty()) opt.nn_inputs = CLI::detail::split(o.inputs, ',');
@@ -124,8 +126,9 @@ void AddPipelineCommand(CLI::App& app) {
       "pipeline",
       "The whole workflow on a stage's recordings: identify -> tune delay -> [refine] -> "
       "dominance -> NN sweep (+ typical (v, a) network) -> compare -> PI tracking -> report. "
-      "DIR holds pulses*.csv, training*.csv, test*.csv, waveform*.csv and optionally "
-      "loop*.csv (slow open-loop sweeps: the voltage-velocity loop) and stage.json (enables "
+      "DIR holds pulses*, training*, test*, waveform* and optionally "
+      "loop* recordings (slow open-loop sweeps: the voltage-velocity loop) as .csv, .mat, .h5 "
+      "or .hdf5 (--var/--rate/--scale map every one) and stage.json (enables "
       "tracking), or a manifest.json naming them. A folder with none of pulses*, train*, "
       "test* (or a manifest {\"stack\": [...]}) is a stack data set: its recordings (t, u, x) "
       "fit the hysteresis models on their first 40 % and score them on the rest");
@@ -181,6 +184,7 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_option("--reference", p.reference_path,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);
+  o->recording.Add(cmd);
   cmd->add_flag("--json", o->json,
                 "print a JSON summary (model, dominant, MSEs, tracking, the PI gains' margins, "
                 "facts' verdicts, steps)");

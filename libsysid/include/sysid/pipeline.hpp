@@ -24,6 +24,7 @@
 #include "sysid/dominance.hpp"
 #include "sysid/dominance_candidates.hpp"
 #include "sysid/identify.hpp"
+#include "sysid/io.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/stage_facts.hpp"
 
@@ -54,8 +55,16 @@ struct PipelineInputs {
   std::string stage;                   ///< stage parameter file for tracking, may be empty
   std::optional<double> a3;            ///< [m/(s^2 V)] from the manifest, if given
   std::vector<std::string> stack;      ///< a stack's recordings (t, u, x); empty for a stage
+  /// Applied to every recording above (`sysid pipeline --var/--rate/--scale`); empty: a CSV's
+  /// own columns, a MAT/HDF5 file's top-level vectors named t, u, x (v, a).
+  SourceMapping mapping;
 
   bool IsStack() const { return !stack.empty(); }
+  /// `base` with `mapping`: how every step and the report read these recordings.
+  ReadOptions Read(ReadOptions base = {}) const {
+    base.mapping = mapping;
+    return base;
+  }
 
   /// Throws InputError naming the folder and what is missing.
   static PipelineInputs FromDirectory(const std::string& dir);

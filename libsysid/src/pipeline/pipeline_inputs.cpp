@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,11 +16,20 @@ namespace {
 
 bool StartsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+// A recording the folder layout picks up: CSV, MAT or HDF5 by its extension (any case). The
+// file's first bytes still decide how it is read (ReadRecording).
+bool IsRecordingFile(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".csv" || ext == ".mat" || ext == ".h5" || ext == ".hdf5";
+}
+
 void RequireComplete(const PipelineInputs& in) {
   std::string missing;
-  if (in.pulses.empty()) missing += " pulse recordings (pulses*.csv),";
-  if (in.training.empty()) missing += " a training set (training*.csv),";
-  if (in.test.empty()) missing += " a test set (test*.csv),";
+  if (in.pulses.empty()) missing += " pulse recordings (pulses*.csv|mat|h5),";
+  if (in.training.empty()) missing += " a training set (training*.csv|mat|h5),";
+  if (in.test.empty()) missing += " a test set (test*.csv|mat|h5),";
   if (!missing.empty()) {
     missing.pop_back();
     throw InputError(in.root + ": missing" + missing +
@@ -41,7 +51,7 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
   std::vector<fs::path> files;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::path& p = it->path();
-    const bool used = p.extension() == ".csv" || p.filename() == "stage.json";
+    const bool used = IsRecordingFile(p) || p.filename() == "stage.json";
     std::error_code entry_ec;
     const bool regular = it->is_regular_file(entry_ec);
     // A link loop or a dangling link among the files the pipeline would read is an error
@@ -55,12 +65,20 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
   }
   if (ec) throw InputError(dir + ": cannot list the folder: " + ec.message());
   std::sort(files.begin(), files.end());  // deterministic order
-  std::vector<std::string> csvs;
-  for (const auto& p : files) {
+  std::vector<std::string> recordings;
+  for (size_t i = 0; i < files.size(); ++i) {
+    const fs::path& p = files[i];
     const std::string name = p.filename().string();
-    if (p.extension() == ".json" && name == "stage.json") in.stage = p.string();
-    if (p.extension() != ".csv") continue;
-    csvs.push_back(p.string());
+    if (name == "stage.json") in.stage = p.string();
+    if (!IsRecordingFile(p)) continue;
+    // training.csv beside training.mat is one recording twice (a conversion left behind):
+    // which one to use is the user's call, not the sort order's.
+    for (size_t j = 0; j < i; ++j)
+      if (IsRecordingFile(files[j]) && files[j].stem() == p.stem())
+        throw InputError(dir + ": " + files[j].filename().string() + " and " + name +
+                         " are the same recording in two formats; keep one, or name the files "
+                         "in a manifest.json");
+    recordings.push_back(p.string());
     if (StartsWith(name, "pulses"))
       in.pulses.push_back(p.string());
     else if (StartsWith(name, "train"))
@@ -73,10 +91,10 @@ PipelineInputs PipelineInputs::FromDirectory(const std::string& dir) {
       in.loops.push_back(p.string());
   }
   // No trace of a stage's pulse test or tracking sets: a stack's recordings (t, u, x).
-  if (in.pulses.empty() && in.training.empty() && in.test.empty() && !csvs.empty()) {
+  if (in.pulses.empty() && in.training.empty() && in.test.empty() && !recordings.empty()) {
     PipelineInputs stack;
     stack.root = dir;
-    stack.stack = csvs;
+    stack.stack = recordings;
     return stack;
   }
   RequireComplete(in);

@@ -13,10 +13,10 @@
 namespace sysid {
 namespace {
 
-std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
+std::vector<Recording> ReadAll(const std::vector<std::string>& paths, const ReadOptions& ro) {
   std::vector<Recording> out;
   out.reserve(paths.size());
-  for (const auto& p : paths) out.push_back(ReadRecording(p));
+  for (const auto& p : paths) out.push_back(ReadRecording(p, ro));
   return out;
 }
 
@@ -59,10 +59,10 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   Recording training, test;
   std::vector<Recording> waveforms;
   step("read recordings", [&] {
-    pulses = ReadAll(inputs.pulses);
-    training = WithDerivatives(ReadRecording(inputs.training));
-    test = WithDerivatives(ReadRecording(inputs.test));
-    waveforms = ReadAll(inputs.waveforms);
+    pulses = ReadAll(inputs.pulses, inputs.Read());
+    training = WithDerivatives(ReadRecording(inputs.training, inputs.Read()));
+    test = WithDerivatives(ReadRecording(inputs.test, inputs.Read()));
+    waveforms = ReadAll(inputs.waveforms, inputs.Read());
   });
 
   step("identify (pulse least squares)", [&] {
@@ -150,7 +150,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (!inputs.loops.empty()) {
     step("voltage-velocity loop", [&] {
       for (const auto& path : inputs.loops)
-        r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path)));
+        r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path, inputs.Read())));
     });
   }
 

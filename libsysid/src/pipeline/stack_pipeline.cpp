@@ -30,7 +30,7 @@ PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOpti
   };
   std::vector<Recording> recs;
   step("read recordings", [&] {
-    ReadOptions ro;
+    ReadOptions ro = inputs.Read();
     ro.required_columns = {"t", "u", "x"};
     ro.any_of_columns = {};
     for (const auto& path : inputs.stack) {

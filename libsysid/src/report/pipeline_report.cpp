@@ -166,7 +166,7 @@ class ReportWriter {
 
   // Measured velocity of the first pulse recording beside the model with tau = 0 and tuned.
   void VelocityPlot() {
-    const Recording rec = ReadRecording(r_.inputs.pulses.front());
+    const Recording rec = ReadRecording(r_.inputs.pulses.front(), r_.inputs.Read());
     const MotionSignals m = ExtractMotion(rec);
     const auto t = m.t_s;
     std::vector<double> tt(t.data(), t.data() + t.size()),
@@ -228,7 +228,7 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    const Recording rec = ReadRecording(r_.inputs.training);
+    const Recording rec = ReadRecording(r_.inputs.training, r_.inputs.Read());
     const MotionSignals m = ExtractMotion(rec);
     const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, r_.model.tau_s);
     Eigen::VectorXd viscous(vd.size());

@@ -27,8 +27,8 @@ std::string Join(const std::vector<std::string>& v, const std::string& sep) {
 
 // The recording with v and a as the pipeline trains on them: its own columns when present,
 // else from x by the default filter (run_pipeline.cpp's rule).
-Recording WithDerivatives(const std::string& path) {
-  Recording rec = ReadRecording(path);
+Recording WithDerivatives(const std::string& path, const ReadOptions& ro) {
+  Recording rec = ReadRecording(path, ro);
   if (rec.has("v") && rec.has("a")) return rec;
   const MotionSignals m = ExtractMotion(rec);
   rec.SetColumn("v", m.v_mps);
@@ -53,7 +53,7 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
   std::string csv = "network,inputs,hidden,set,mse_v2\n";
   for (const auto& [set, path] : {std::pair<std::string, std::string>{"training", r.inputs.training},
                                   {"test", r.inputs.test}}) {
-    const Recording rec = WithDerivatives(path);
+    const Recording rec = WithDerivatives(path, r.inputs.Read());
     const NeuralDataset va = MakeNeuralDataset(rec, {"v", "a"}, "u");
     const NeuralDataset dv = MakeNeuralDataset(rec, r.nn_inputs, "u");
     const Eigen::VectorXd yt = typical.EvaluateBatch(va.inputs);

@@ -106,7 +106,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
   // The first recording's scored part, its first 600 samples (a few periods: the loops stay
   // readable): measured beside each model, forward and inverse.
   if (!r.stack_models.empty()) {
-    ReadOptions ro;
+    ReadOptions ro = r.inputs.Read();
     ro.required_columns = {"t", "u", "x"};
     ro.any_of_columns = {};
     const Recording rec = ReadRecording(r.inputs.stack.front(), ro);
