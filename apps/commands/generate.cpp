@@ -1,4 +1,5 @@
-// sysid generate pulses|tracking|waveforms|all [--stage STAGE.json] [--seed N] [-o DIR]:
+// sysid generate pulses|tracking|waveforms|all [--stage STAGE.json] [--seed N] [--format csv|mat]
+// [-o DIR]:
 // runs the paper's data-collection procedures on the virtual stage and writes recordings.
 #include <fmt/format.h>
 
@@ -14,6 +15,7 @@
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_containers.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid::cli {
@@ -25,9 +27,14 @@ struct GenerateOptions {
   std::uint64_t seed = 1;
   std::string out_dir = ".";
   std::string derivative = ToString(TrackingProcedure{}.derivative.method);
+  std::string format = "csv";  // csv or mat: the recordings' file format
   bool json = false;
   bool force = false;
 };
+
+// What a MAT recording's text header starts with when generate wrote it (WriteRecordingMat's
+// description): MAT files have no '#' metadata to tell.
+constexpr const char* kMatHeaderLead = "MATLAB 5.0 MAT-file, sysid generate: ";
 
 // True when `path` holds what generate writes, told by its metadata: a recording whose first
 // line is "# stage: " and whose metadata names the "# procedure: ", or a stage file carrying
@@ -37,6 +44,7 @@ bool WrittenByGenerate(const std::filesystem::path& path) {
   std::string head(64 * 1024, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
+  if (path.extension() == ".mat") return head.rfind(kMatHeaderLead, 0) == 0;
   if (path.filename() == "stage.json")
     return head.find("\"note\": \"Virtual piezo stage for libsysid") != std::string::npos;
   if (head.rfind("# stage: ", 0) != 0) return false;
@@ -59,11 +67,14 @@ void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::strin
     const std::filesystem::path path = std::filesystem::path(o.out_dir) / name;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec) || WrittenByGenerate(path)) continue;
+    const bool mat = path.extension() == ".mat";
     throw OptionsError(fmt::format(
-        "-o {}: {} exists and was not written by sysid generate (no '# stage:' and "
-        "'# procedure:' metadata{}); refusing to replace it: choose another folder, move the "
+        "-o {}: {} exists and was not written by sysid generate ({}{}); refusing to replace it: choose another folder, move the "
         "file, or pass --force",
-        o.out_dir, path.string(), name == "stage.json" ? ", no stage note" : ""));
+        o.out_dir, path.string(),
+        mat ? "its MAT header does not name sysid generate"
+            : "no '# stage:' and '# procedure:' metadata",
+        name == "stage.json" ? ", no stage note" : ""));
   }
 }
 
@@ -74,32 +85,34 @@ void RunGenerate(const GenerateOptions& o) {
   tracking.derivative.method = ParseDerivativeMethod(o.derivative);
   tracking.Validate(stage);
   const bool all = o.what == "all";
+  const bool mat = o.format == "mat";
+  const std::string ext = mat ? ".mat" : ".csv";
   std::vector<std::string> names;
   if (all) names.push_back("stage.json");
-  if (all || o.what == "pulses") names.push_back("pulses.csv");
-  if (all || o.what == "tracking") names.insert(names.end(), {"training.csv", "test.csv"});
-  if (all || o.what == "triangle") names.push_back("loop_triangle.csv");
+  if (all || o.what == "pulses") names.push_back("pulses" + ext);
+  if (all || o.what == "tracking") names.insert(names.end(), {"training" + ext, "test" + ext});
+  if (all || o.what == "triangle") names.push_back("loop_triangle" + ext);
   if (all || o.what == "waveforms")
-    for (const auto& w : PaperTestWaveforms()) names.push_back("waveform_" + w.name + ".csv");
+    for (const auto& w : PaperTestWaveforms()) names.push_back("waveform_" + w.name + ext);
   CheckGenerateTargets(o, names);
   // Everything is computed before anything is written: an error leaves no partial dataset.
   std::vector<std::pair<std::string, Recording>> files;
   if (all || o.what == "pulses") {
     Progress("generate: pulse test");
-    files.emplace_back("pulses.csv",
+    files.emplace_back("pulses" + ext,
                        RunPulseTest(stage, PulseProcedure{}, o.seed, tracking.derivative));
   }
   if (all || o.what == "tracking") {
     Progress("generate: training set");
-    files.emplace_back("training.csv", RunTrackingSet(stage, TrainingGrid(), tracking,
+    files.emplace_back("training" + ext, RunTrackingSet(stage, TrainingGrid(), tracking,
                                                       DeriveSeed(o.seed, 1), "training"));
     Progress("generate: test set");
-    files.emplace_back("test.csv",
+    files.emplace_back("test" + ext,
                        RunTrackingSet(stage, TestGrid(), tracking, DeriveSeed(o.seed, 2), "test"));
   }
   if (all || o.what == "triangle") {
     Progress("generate: triangle loop");
-    files.emplace_back("loop_triangle.csv", RunTriangleTest(stage, TriangleProcedure{},
+    files.emplace_back("loop_triangle" + ext, RunTriangleTest(stage, TriangleProcedure{},
                                                             DeriveSeed(o.seed, 3),
                                                             tracking.derivative));
   }
@@ -107,7 +120,7 @@ void RunGenerate(const GenerateOptions& o) {
     const auto waves = PaperTestWaveforms();
     for (size_t i = 0; i < waves.size(); ++i) {
       Progress("generate: waveform " + waves[i].name);
-      files.emplace_back("waveform_" + waves[i].name + ".csv",
+      files.emplace_back("waveform_" + waves[i].name + ext,
                          TrackWaveform(stage, waves[i], tracking, DeriveSeed(o.seed, 100 + i)));
     }
   }
@@ -128,7 +141,12 @@ void RunGenerate(const GenerateOptions& o) {
   }
   for (auto& [name, rec] : files) {
     const std::string path = (std::filesystem::path(o.out_dir) / name).string();
-    WriteRecording(path, rec);
+    if (mat)
+      WriteRecordingMat(path, rec,
+                        fmt::format("sysid generate: stage {}, procedure {}, seed {}",
+                                    rec.meta("stage"), rec.meta("procedure"), rec.meta("seed")));
+    else
+      WriteRecording(path, rec);
     const double duration = rec.rows() > 0 ? rec.data(rec.rows() - 1, 0) - rec.data(0, 0) : 0;
     // The written file's shape as the library states it (as `excite --json` lists files).
     nlohmann::ordered_json f{{"path", path}, {"limits", rec.meta("limits", "none")}};
@@ -150,7 +168,8 @@ void AddGenerateCommand(CLI::App& app) {
       "(t [s], u [V], x [m], v [m/s], a [m/s^2]) with '#' metadata: pulses -> pulses.csv, "
       "tracking -> training.csv + test.csv, waveforms -> waveform_<name>.csv, triangle -> "
       "loop_triangle.csv (open-loop 6 s triangle, +1.5 / -2.1 V: the voltage-velocity loop), "
-      "all -> every one plus stage.json");
+      "all -> every one plus stage.json; --format mat writes each recording as NAME.mat "
+      "instead");
   cmd->add_option("what", o->what,
                   "which procedure: pulses, tracking, waveforms, triangle or all")
       ->required()
@@ -169,6 +188,12 @@ void AddGenerateCommand(CLI::App& app) {
                   "output folder, created if missing; files of the same names are replaced only "
                   "when generate wrote them (their '#' metadata says so) or with --force")
       ->type_name("DIR")
+      ->capture_default_str();
+  cmd->add_option("--format", o->format,
+                  "file format of the recordings: csv (with the '#' metadata) or mat (MAT v5, "
+                  "one double column vector per column, same base names; the metadata is not "
+                  "kept, the header names generate, the stage, the procedure and the seed)")
+      ->check(CLI::IsMember({"csv", "mat"}))
       ->capture_default_str();
   cmd->add_flag("--force", o->force,
                 "replace files of the same names in the folder that generate did not write "

@@ -59,8 +59,11 @@ std::string VariableListToJson(const std::string& path, const std::vector<Variab
 Eigen::VectorXd ReadSignal(const std::string& path, const std::string& spec);
 
 /// Writes `recording` as a MAT v5 file (zlib-compressed), one double column vector per column
-/// named as the column, atomically. Metadata lines are not kept (MAT has no place for them).
-void WriteRecordingMat(const std::string& path, const Recording& recording);
+/// named as the column, atomically. Metadata lines are not kept (MAT has no place for them);
+/// `description`, when given, goes into the file's 116-byte text header after
+/// "MATLAB 5.0 MAT-file, " (cut to fit) in place of matio's platform line.
+void WriteRecordingMat(const std::string& path, const Recording& recording,
+                       const std::string& description = "");
 /// WriteRecordingMat when `path` ends in ".mat" (any case), else WriteRecording (CSV).
 void WriteRecordingByExtension(const std::string& path, const Recording& recording);
 

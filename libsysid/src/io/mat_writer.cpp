@@ -13,7 +13,8 @@
 
 namespace sysid {
 
-void WriteRecordingMat(const std::string& path, const Recording& recording) {
+void WriteRecordingMat(const std::string& path, const Recording& recording,
+                       const std::string& description) {
   for (const auto& name : recording.names) {
     const bool ok =
         !name.empty() && name.size() <= 63 && std::isalpha(static_cast<unsigned char>(name[0])) &&
@@ -29,7 +30,9 @@ void WriteRecordingMat(const std::string& path, const Recording& recording) {
     const auto fail = [&](const std::string& why) {
       throw InputError(path + ": cannot write: " + why);
     };
-    mat_t* mat = Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5);
+    const std::string header = ("MATLAB 5.0 MAT-file, " + description).substr(0, 116);
+    mat_t* mat =
+        Mat_CreateVer(tmp.c_str(), description.empty() ? nullptr : header.c_str(), MAT_FT_MAT5);
     if (!mat) fail("matio cannot create the file");
     Eigen::VectorXd column;
     for (size_t c = 0; c < recording.names.size(); ++c) {
