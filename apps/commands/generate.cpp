@@ -186,7 +186,7 @@ void AddGenerateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("-o,--output", o->out_dir,
                   "output folder, created if missing; files of the same names are replaced only "
-                  "when generate wrote them (their '#' metadata says so) or with --force")
+                  "when generate wrote them (their '#' metadata or MAT header says so) or with --force")
       ->type_name("DIR")
       ->capture_default_str();
   cmd->add_option("--format", o->format,
