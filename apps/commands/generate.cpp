@@ -69,8 +69,8 @@ void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::strin
     if (!std::filesystem::is_regular_file(path, ec) || WrittenByGenerate(path)) continue;
     const bool mat = path.extension() == ".mat";
     throw OptionsError(fmt::format(
-        "-o {}: {} exists and was not written by sysid generate ({}{}); refusing to replace it: choose another folder, move the "
-        "file, or pass --force",
+        "-o {}: {} exists and was not written by sysid generate ({}{}); refusing to replace "
+        "it: choose another folder, move the file, or pass --force",
         o.out_dir, path.string(),
         mat ? "its MAT header does not name sysid generate"
             : "no '# stage:' and '# procedure:' metadata",
@@ -186,7 +186,8 @@ void AddGenerateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("-o,--output", o->out_dir,
                   "output folder, created if missing; files of the same names are replaced only "
-                  "when generate wrote them (their '#' metadata or MAT header says so) or with --force")
+                  "when generate wrote them (their '#' metadata or MAT header says so) or with "
+                  "--force")
       ->type_name("DIR")
       ->capture_default_str();
   cmd->add_option("--format", o->format,
