@@ -132,6 +132,10 @@ TEST_CASE("sysid pipeline maps every MAT recording of its folder with --var/--ra
   CHECK(from_lab["model"]["tau"].get<double>() ==
         Approx(from_csv["model"]["tau"].get<double>()).margin(5e-7));
   CHECK(from_lab["dominant"] == from_csv["dominant"]);
+  // The report says how its files were read.
+  CHECK_THAT(sysid::test::ReadText(In(dir, "rep_lab", "report.md")),
+             Catch::Contains("Read with `--var u=volts,x=pos_um,v=v,a=a --rate 1000 --scale "
+                             "x=1e-06`."));
 
   // Without the mapping the lab files have no t, u, x: the error names the file (exit 2).
   const auto bare = RunCli({"pipeline", dir / "lab", "-o", dir / "rep_bare"});

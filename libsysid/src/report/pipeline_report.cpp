@@ -55,7 +55,7 @@ class ReportWriter {
            (r_.inputs.loops.empty()
                 ? std::string()
                 : ", " + std::to_string(r_.inputs.loops.size()) + " voltage-loop sweep(s)") +
-           ".\n";
+           "." + internal::MappingSentence(r_.inputs) + "\n";
     if (ref_) md_ += "Reference numbers (" + ref_->label + ") are set beside ours.\n";
     Model();
     Delay();

@@ -44,6 +44,25 @@ std::string FailedParts(const std::string& note) {
 
 }  // namespace
 
+std::string MappingSentence(const PipelineInputs& inputs) {
+  const SourceMapping& m = inputs.mapping;
+  if (m.empty()) return "";
+  std::string flags;
+  if (!m.variables.empty()) {
+    std::vector<std::string> parts;
+    for (const auto& [column, spec] : m.variables) parts.push_back(column + "=" + spec);
+    flags += " --var " + Join(parts, ",");
+  }
+  if (m.rate_hz > 0) flags += fmt::format(" --rate {}", m.rate_hz);
+  if (!m.scales.empty()) {
+    std::vector<std::string> parts;
+    for (const auto& [column, factor] : m.scales)
+      parts.push_back(fmt::format("{}={}", column, factor));  // shortest round-trip text
+    flags += " --scale " + Join(parts, ",");
+  }
+  return " Read with `" + flags.substr(1) + "`.";
+}
+
 ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
   ReportSection s;
   if (!r.typical) return s;

@@ -14,6 +14,10 @@
 
 namespace sysid::internal {
 
+/// " Read with `--var ... --rate ... --scale ...`." when the inputs carry a mapping (so the
+/// report says how its files were read), else "".
+std::string MappingSentence(const PipelineInputs& inputs);
+
 struct ReportPlot {
   std::string file;  ///< e.g. "network_training.png"
   PlotSpec spec;

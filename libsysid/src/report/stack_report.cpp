@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "report/report_sections.hpp"
 #include "sysid/io.hpp"
 #include "sysid/report.hpp"
 
@@ -47,7 +48,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
         " recording(s) of a stack actuator (columns t [s], u [V], x [m]; no pulse test, so the "
         "stage's friction model is not identified):";
   for (const auto& p : r.inputs.stack) md += " `" + fs::path(p).filename().string() + "`";
-  md += ".\n\n";
+  md += "." + internal::MappingSentence(r.inputs) + "\n\n";
   md += fmt::format(
       "**Split.** Every model is fitted on the first {0:g} % of each recording's rows and "
       "scored on the remaining {1:g} %; nothing is chosen on the scored part (the models and "
