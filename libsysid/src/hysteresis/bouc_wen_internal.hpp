@@ -57,6 +57,20 @@ void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen
 /// The prime factors of r, ascending (MATLAB's factor()).
 std::vector<int> PrimeFactors(int r);
 
+/// Fine samples the FIR cascade (decimation by `factors` in turn) reads past a coarse sample:
+/// 15 per stage at that stage's rate.
+Eigen::Index FirLookahead(const std::vector<int>& factors);
+/// y decimated by each of `factors` in turn (DecimateFir).
+Eigen::VectorXd DecimateChain(Eigen::VectorXd y, const std::vector<int>& factors);
+
+/// The benchmark chain in two halves. ChainInput: u [N] (one period) at `upsampling` times the
+/// rate, continued periodically for the FIR cascade's lookahead — it depends on u alone, so a
+/// fit computes it once instead of once per simulation. ChainOutput: y [m] at the n coarse
+/// samples, dt_s apart, from ChainInput's result; the two together are Simulate's chain.
+Eigen::VectorXd ChainInput(const Eigen::VectorXd& u, int upsampling);
+Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
+                            Eigen::Index n, double dt_s, int upsampling);
+
 /// The piezo form's exact step: h after u moves in a straight line from u0 to u1, from h0.
 double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h0);
 
