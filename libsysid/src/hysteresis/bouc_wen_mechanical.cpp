@@ -32,7 +32,6 @@ int MechanicalRhs(double t, N_Vector x, N_Vector dx, void* data) {
   return std::isfinite(d[1]) && std::isfinite(d[2]) ? 0 : 1;  // > 0: CVODE retries smaller
 }
 
-
 }  // namespace
 
 MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
