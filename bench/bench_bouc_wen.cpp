@@ -6,6 +6,12 @@
 //     simulates TEST's input alone in its periodic steady state; prints key=value lines:
 //     "fit ..." (parameters, standard errors, fit time, training rms), "score model=... e_rms=..."
 //     for the fitted model (chain, and CVODE with band-limited input) and the true system.
+//   bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats R]
+//     What the benchmark fit costs: one chain simulation of TRAIN's u (true parameters) as the
+//     fit ran it before (Simulate: the input upsampled on every call) against the fit's path now
+//     (the upsampled input computed once, internal::ChainOutput), best CPU time of R, the outputs
+//     compared bit for bit; then the fit itself: CPU [s] (user + system of every thread), wall
+//     [s], simulations. Prints "simulation ..." and "fit ..." lines.
 //   bench_bouc_wen throughput REC.csv [--repeats R]
 //     Samples per second of Simulate on REC's u (true parameters): the chain, CVODE with linear
 //     and band-limited input, and the piezo form. Prints "throughput method=... samples_per_s=...".
@@ -19,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
@@ -97,6 +104,65 @@ int ScoreCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+int FitSpeedCommand(const std::vector<std::string>& args) {
+  std::string train;
+  sysid::BoucWenFitOptions o;
+  o.simulation.integrator = BoucWenIntegrator::kBenchmarkChain;
+  int repeats = 5;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--threads" && i + 1 < args.size())
+      o.threads = std::atoi(args[++i].c_str());
+    else if (args[i] == "--starts" && i + 1 < args.size())
+      o.starts = std::atoi(args[++i].c_str());
+    else if (args[i] == "--repeats" && i + 1 < args.size())
+      repeats = std::max(1, std::atoi(args[++i].c_str()));
+    else
+      train = args[i];
+  }
+  if (train.empty()) {
+    fmt::print(stderr,
+               "usage: bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats "
+               "R]\n");
+    return 1;
+  }
+  const sysid::Recording tr = sysid::ReadRecording(train);
+  const Eigen::VectorXd u = tr.column("u");
+  const double dt = tr.column("t")[1] - tr.column("t")[0];
+  const sysid::MechanicalBoucWen truth({}, o.simulation);
+  const Eigen::VectorXd chain_u = sysid::internal::ChainInput(u, o.simulation.upsampling);
+  auto best_of = [&](auto&& simulate, Eigen::VectorXd* y) {
+    double best = 1e300;
+    // CPU time (one thread here): the machine is shared, wall time is the load's.
+    for (int r = 0; r < repeats; ++r) {
+      const std::clock_t t0 = std::clock();
+      *y = simulate();
+      best = std::min(best, static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC);
+    }
+    return best;
+  };
+  Eigen::VectorXd y_old, y_new;
+  const double t_old = best_of([&] { return truth.Simulate(u, dt); }, &y_old);
+  const double t_new = best_of(
+      [&] {
+        return sysid::internal::ChainOutput(truth.values(), chain_u, u.size(), dt,
+                                            o.simulation.upsampling);
+      },
+      &y_new);
+  fmt::print(
+      "simulation samples={} before_cpu_s={:.4f} now_cpu_s={:.4f} ratio={:.2f} identical={}\n",
+      u.size(), t_old, t_new, t_old / t_new, y_old == y_new);
+  sysid::HysteresisFitSummary summary;
+  const std::clock_t cpu0 = std::clock();
+  const auto model = sysid::FitBoucWen(sysid::BoucWenForm::kMechanical, {tr}, o, &summary);
+  const double cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  fmt::print("fit samples={} starts={} threads={} wall_s={:.2f} cpu_s={:.2f} training_rms={:.6e}\n",
+             summary.samples, o.starts, o.threads, summary.fit_time_s, cpu_s, summary.training_rms);
+  fmt::print("fit_message {}\n", summary.message);
+  for (const auto& p : model->parameters())
+    fmt::print("parameter name={} value={:.10g} std_error={:.3g}\n", p.name, p.value, p.std_error);
+  return 0;
+}
+
 int ThroughputCommand(const std::vector<std::string>& args) {
   std::string path;
   int repeats = 3;
@@ -150,10 +216,11 @@ int main(int argc, char** argv) {
   try {
     if (command == "score") return ScoreCommand(args);
     if (command == "throughput") return ThroughputCommand(args);
+    if (command == "fit-speed") return FitSpeedCommand(args);
   } catch (const sysid::Error& e) {
     fmt::print(stderr, "bench_bouc_wen: {}\n", e.what());
     return 2;
   }
-  fmt::print(stderr, "usage: bench_bouc_wen score|throughput ...\n");
+  fmt::print(stderr, "usage: bench_bouc_wen score|fit-speed|throughput ...\n");
   return 1;
 }

@@ -92,7 +92,11 @@ def main():
     p.add_argument("--chain-samples", type=int, default=512)
     p.add_argument("--repeats", type=int, default=1)
     a = p.parse_args()
-    data = np.loadtxt(a.rec, delimiter=",", skiprows=1, comments="#")
+    # sysid's CSVs open with "# ..." provenance lines, then the header: loadtxt's skiprows
+    # counts the comment lines too, so drop both before parsing.
+    with open(a.rec) as f:
+        rows = [line for line in f if not line.startswith("#")][1:]
+    data = np.loadtxt(rows, delimiter=",")
     t, u = data[:, 0], data[:, 1]
     dt = t[1] - t[0]
 

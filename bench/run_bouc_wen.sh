@@ -10,6 +10,8 @@ THREADS="${2:-2}"
 TRAIN=datasets/boucwen/train.csv
 TEST=datasets/boucwen/test_multisine.csv
 uptime
+# One chain simulation as the fit ran it before against now (CPU, same process), then the fit.
+"$BUILD/bench/bench_bouc_wen" fit-speed "$TRAIN" --threads "$THREADS" | grep -E '^(simulation|fit)'
 "$BUILD/bench/bench_bouc_wen" score "$TRAIN" "$TEST" --threads "$THREADS" | grep -E '^(fit|score)'
 OURS="$("$BUILD/bench/bench_bouc_wen" throughput "$TEST" --repeats 3)"
 echo "$OURS"

@@ -26,23 +26,6 @@ std::vector<int> PrimeFactors(int r) {
   return f;
 }
 
-BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v, double z) {
-  const double av = std::abs(v), az = std::abs(z);
-  const double sv = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
-  const double sz = z > 0 ? 1.0 : z < 0 ? -1.0 : 0.0;
-  if (p.nu == 1) {
-    // |z|^0 z = z: the common case without pow.
-    return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * z + p.delta * v * az),
-            p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * z + p.delta * az),
-            -p.beta_per_m * (p.gamma * av + p.delta * v * sz)};
-  }
-  const double pow1 = std::pow(az, p.nu - 1);  // |z|^(nu-1), nu >= 1
-  const double pownu = pow1 * az;
-  return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * pow1 * z + p.delta * v * pownu),
-          p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * pow1 * z + p.delta * pownu),
-          -p.beta_per_m * p.nu * pow1 * (p.gamma * av + p.delta * v * sz)};
-}
-
 void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen::Index n, double h,
                     NewmarkState* s, double* y_out) {
   if (n < 1) return;
@@ -92,6 +75,40 @@ void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen
     s->z = z1;
     y_out[i] = y1;
   }
+}
+
+Eigen::Index FirLookahead(const std::vector<int>& factors) {
+  Eigen::Index l = 0, rate = 1;
+  for (int r : factors) {
+    l += 15 * rate;
+    rate *= r;
+  }
+  return l;
+}
+
+Eigen::VectorXd DecimateChain(Eigen::VectorXd y, const std::vector<int>& factors) {
+  for (int r : factors) y = DecimateFir(y, r);
+  return y;
+}
+
+Eigen::VectorXd ChainInput(const Eigen::VectorXd& u, int upsampling) {
+  const Eigen::VectorXd uf = UpsampleBandLimited(u, upsampling);
+  const Eigen::Index nf = uf.size();
+  if (nf == 0) return uf;
+  // The benchmark integrated one period more than it kept, for the filter's lookahead: the
+  // input continues periodically.
+  const Eigen::Index total = nf + FirLookahead(PrimeFactors(upsampling));
+  Eigen::VectorXd ufx(total);
+  for (Eigen::Index i = 0; i < total; ++i) ufx[i] = uf[i % nf];
+  return ufx;
+}
+
+Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
+                            Eigen::Index n, double dt_s, int upsampling) {
+  Eigen::VectorXd yf(ufx.size());
+  NewmarkState s;
+  NewmarkBoucWen(p, ufx.data(), ufx.size(), dt_s / upsampling, &s, yf.data());
+  return DecimateChain(std::move(yf), PrimeFactors(upsampling)).head(n);
 }
 
 }  // namespace internal
@@ -147,9 +164,16 @@ Eigen::VectorXd DecimateFir(const Eigen::VectorXd& x, int r) {
     // filter(b, 1, x) delayed by kDelay, evaluated at sample i = j r: sum_k b_k x[i + kDelay - k]
     const Eigen::Index i = j * r;
     double acc = 0;
-    for (int k = 0; k <= kOrder; ++k) {
-      const Eigen::Index idx = i + kDelay - k;
-      if (idx >= 0 && idx < n) acc += b[k] * x[idx];
+    if (i >= kDelay && i + kDelay < n) {
+      // Inside: no tap falls off either end (the same sum in the same order, without the tests
+      // that made this loop a seventh of a fit's time).
+      const double* xi = x.data() + i + kDelay;
+      for (int k = 0; k <= kOrder; ++k) acc += b[k] * xi[-k];
+    } else {
+      for (int k = 0; k <= kOrder; ++k) {
+        const Eigen::Index idx = i + kDelay - k;
+        if (idx >= 0 && idx < n) acc += b[k] * x[idx];
+      }
     }
     y[j] = acc;
   }

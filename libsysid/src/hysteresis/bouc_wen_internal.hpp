@@ -3,6 +3,7 @@
 #define SYSID_SRC_HYSTERESIS_BOUC_WEN_INTERNAL_HPP_
 
 #include <Eigen/Core>
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -41,7 +42,23 @@ void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const
 struct BoucWenRate {
   double f, df_dv, df_dz;
 };
-BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v, double z);
+// Inline: Newton calls it at every step of the fine grid (a sixth of a fit's time as a call).
+inline BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v, double z) {
+  const double av = std::abs(v), az = std::abs(z);
+  const double sv = v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0;
+  const double sz = z > 0 ? 1.0 : z < 0 ? -1.0 : 0.0;
+  if (p.nu == 1) {
+    // |z|^0 z = z: the common case without pow.
+    return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * z + p.delta * v * az),
+            p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * z + p.delta * az),
+            -p.beta_per_m * (p.gamma * av + p.delta * v * sz)};
+  }
+  const double pow1 = std::pow(az, p.nu - 1);  // |z|^(nu-1), nu >= 1
+  const double pownu = pow1 * az;
+  return {p.alpha_n_per_m * v - p.beta_per_m * (p.gamma * av * pow1 * z + p.delta * v * pownu),
+          p.alpha_n_per_m - p.beta_per_m * (p.gamma * sv * pow1 * z + p.delta * pownu),
+          -p.beta_per_m * p.nu * pow1 * (p.gamma * av + p.delta * v * sz)};
+}
 
 /// Newmark average acceleration (gamma = 1/2, beta = 1/4) on y with the trapezoidal rule on z,
 /// the implicit step solved by Newton on (y, z), at step h_s over the samples u (already at the
@@ -56,6 +73,20 @@ void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen
 
 /// The prime factors of r, ascending (MATLAB's factor()).
 std::vector<int> PrimeFactors(int r);
+
+/// Fine samples the FIR cascade (decimation by `factors` in turn) reads past a coarse sample:
+/// 15 per stage at that stage's rate.
+Eigen::Index FirLookahead(const std::vector<int>& factors);
+/// y decimated by each of `factors` in turn (DecimateFir).
+Eigen::VectorXd DecimateChain(Eigen::VectorXd y, const std::vector<int>& factors);
+
+/// The benchmark chain in two halves. ChainInput: u [N] (one period) at `upsampling` times the
+/// rate, continued periodically for the FIR cascade's lookahead — it depends on u alone, so a
+/// fit computes it once instead of once per simulation. ChainOutput: y [m] at the n coarse
+/// samples, dt_s apart, from ChainInput's result; the two together are Simulate's chain.
+Eigen::VectorXd ChainInput(const Eigen::VectorXd& u, int upsampling);
+Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
+                            Eigen::Index n, double dt_s, int upsampling);
 
 /// The piezo form's exact step: h after u moves in a straight line from u0 to u1, from h0.
 double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h0);

@@ -32,22 +32,6 @@ int MechanicalRhs(double t, N_Vector x, N_Vector dx, void* data) {
   return std::isfinite(d[1]) && std::isfinite(d[2]) ? 0 : 1;  // > 0: CVODE retries smaller
 }
 
-
-// Fine samples the FIR cascade reads past a coarse sample: 15 per stage at that stage's rate.
-Eigen::Index FirLookahead(const std::vector<int>& factors) {
-  Eigen::Index l = 0, rate = 1;
-  for (int r : factors) {
-    l += 15 * rate;
-    rate *= r;
-  }
-  return l;
-}
-
-Eigen::VectorXd DecimateChain(Eigen::VectorXd y, const std::vector<int>& factors) {
-  for (int r : factors) y = DecimateFir(y, r);
-  return y;
-}
-
 }  // namespace
 
 MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
@@ -64,19 +48,8 @@ Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_
   Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
   if (n == 0) return y;
   if (options_.integrator == BoucWenIntegrator::kBenchmarkChain) {
-    const int up = options_.upsampling;
-    const std::vector<int> factors = internal::PrimeFactors(up);
-    const Eigen::VectorXd uf = UpsampleBandLimited(u, up);
-    const Eigen::Index nf = uf.size();
-    // The benchmark integrated one period more than it kept, for the filter's lookahead: the
-    // input continues periodically.
-    const Eigen::Index total = nf + FirLookahead(factors);
-    Eigen::VectorXd ufx(total);
-    for (Eigen::Index i = 0; i < total; ++i) ufx[i] = uf[i % nf];
-    Eigen::VectorXd yf(total);
-    internal::NewmarkState s;
-    internal::NewmarkBoucWen(p_, ufx.data(), total, dt_s / up, &s, yf.data());
-    return DecimateChain(yf, factors).head(n);
+    return internal::ChainOutput(p_, internal::ChainInput(u, options_.upsampling), n, dt_s,
+                                 options_.upsampling);
   }
   const internal::SampledInput input(u, dt_s, options_.input);
   MechanicalOde ode{&p_, &input, 0};
@@ -119,7 +92,7 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
   const std::vector<int> factors = internal::PrimeFactors(up);
   const Eigen::VectorXd uf = UpsampleBandLimited(u_period, up);
   const Eigen::Index nf = uf.size();
-  if (n < 1 || FirLookahead(factors) > nf)
+  if (n < 1 || internal::FirLookahead(factors) > nf)
     throw InputError(fmt::format(
         "bouc-wen: a period of {} samples is shorter than the decimation filter's reach", n));
   // The last three fine periods: the middle one, decimated with its neighbours, is the steady
@@ -141,7 +114,7 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
         "bouc-wen: no periodic steady state within {} periods: the last two periods still "
         "differ by {:.3g} m (tolerance {:.3g} m)",
         max_periods, change, tolerance));
-  const Eigen::VectorXd yd = DecimateChain(yf, factors);
+  const Eigen::VectorXd yd = internal::DecimateChain(yf, factors);
   return yd.segment(n, n);
 }
 
