@@ -1,12 +1,12 @@
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "pipeline/timed_step.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/stage.hpp"
 
@@ -48,11 +48,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   r.inputs = inputs;
   r.options = options;
   auto step = [&](const std::string& name, auto&& body) {
-    if (progress) progress(name);
-    const auto t0 = std::chrono::steady_clock::now();
-    body();
-    r.step_seconds.emplace_back(
-        name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    internal::TimedStep(r, progress, name, body);
   };
 
   std::vector<Recording> pulses;

@@ -2,7 +2,6 @@
 // fitted on the first part of every recording and scored on the rest (sysid/compare_stack.hpp).
 #include <fmt/format.h>
 
-#include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -10,6 +9,7 @@
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "pipeline/timed_step.hpp"
 #include "sysid/pipeline.hpp"
 
 namespace sysid {
@@ -22,11 +22,7 @@ PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOpti
   r.inputs = inputs;
   r.options = options;
   auto step = [&](const std::string& name, auto&& body) {
-    if (progress) progress(name);
-    const auto t0 = std::chrono::steady_clock::now();
-    body();
-    r.step_seconds.emplace_back(
-        name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    internal::TimedStep(r, progress, name, body);
   };
   std::vector<Recording> recs;
   step("read recordings", [&] {
