@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "support/known_pi.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/compare_hysteresis.hpp"
@@ -20,30 +21,14 @@ using sysid::test::TempDir;
 
 constexpr double kDt = 5e-3;  // [s] 200 Hz, as the piezo recording
 
-sysid::PiParameters TruthParameters() {
-  sysid::PiParameters p;
-  p.thresholds = {0.5, 1.0, 1.5};
-  p.weights = {2e-6, 1e-6, 0.5e-6};
-  p.polynomial = {4e-6};
-  p.offset_m = -1e-4;
-  p.input_min_v = 0;
-  p.input_max_v = 3.6;
-  return p;
-}
+sysid::PiParameters TruthParameters() { return sysid::test::KnownPiParameters(); }
 
 // t, u, x of the known PI driven by decaying loops (every operator reverses).
 sysid::Recording TruthRecording(int n, const std::string& source = "run.csv") {
-  const sysid::PrandtlIshlinskiiModel truth(TruthParameters());
-  Eigen::VectorXd u(n);
-  for (int k = 0; k < n; ++k)
-    u[k] = 1.8 + 1.7 * std::sin(2 * M_PI * k / 400.0) * (0.6 + 0.4 * std::cos(k / 900.0));
-  const Eigen::VectorXd x = truth.Simulate(u, kDt);
-  sysid::Recording rec;
-  rec.source = source;
-  rec.names = {"t", "u", "x"};
-  rec.data.resize(n, 3);
-  for (int k = 0; k < n; ++k) rec.data.row(k) << k * kDt, u[k], x[k];
-  return rec;
+  sysid::test::KnownPiDrive drive;
+  drive.sample_time_s = kDt;
+  drive.source = source;
+  return sysid::test::KnownPiRecording(TruthParameters(), n, drive);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "support/known_pi.hpp"
 #include "support/test_support.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/io.hpp"
@@ -13,24 +14,9 @@ namespace {
 using sysid::test::RunCli;
 using sysid::test::TempDir;
 
-// A recording of a known PI model (t, u, x) at 200 Hz.
+// A recording of the known PI model (t, u, x) at 200 Hz.
 sysid::Recording PiRecording(int n) {
-  sysid::PiParameters p;
-  p.thresholds = {0.5, 1.0, 1.5};
-  p.weights = {2e-6, 1e-6, 0.5e-6};
-  p.polynomial = {4e-6};
-  p.offset_m = -1e-4;
-  p.input_min_v = 0;
-  p.input_max_v = 3.6;
-  const sysid::PrandtlIshlinskiiModel m(p);
-  Eigen::VectorXd u(n);
-  for (int k = 0; k < n; ++k) u[k] = 1.8 + 1.7 * std::sin(2 * M_PI * k / 400.0) * (0.6 + 0.4 * std::cos(k / 900.0));
-  const Eigen::VectorXd x = m.Simulate(u, 5e-3);
-  sysid::Recording rec;
-  rec.names = {"t", "u", "x"};
-  rec.data.resize(n, 3);
-  for (int k = 0; k < n; ++k) rec.data.row(k) << k * 5e-3, u[k], x[k];
-  return rec;
+  return sysid::test::KnownPiRecording(sysid::test::KnownPiParameters(), n);
 }
 
 }  // namespace

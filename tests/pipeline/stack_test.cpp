@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support/known_pi.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare_stack.hpp"
 #include "sysid/error.hpp"
@@ -21,7 +22,8 @@ namespace {
 
 constexpr double kDt = 5e-3;  // [s]
 
-// A known classical PI driven by decaying loops, with 2 nm of noise on x (seeded).
+// A known classical PI (its own parameters) driven by faster decaying loops, with 2 nm of
+// uniform noise on x (seeded).
 sysid::Recording StackRecording(int n) {
   sysid::PiParameters p;
   p.thresholds = {0.4, 0.9, 1.4};
@@ -30,21 +32,13 @@ sysid::Recording StackRecording(int n) {
   p.offset_m = -1.1e-4;
   p.input_min_v = 0;
   p.input_max_v = 3.6;
-  const sysid::PrandtlIshlinskiiModel truth(p);
-  Eigen::VectorXd u(n);
-  for (int k = 0; k < n; ++k)
-    u[k] = 1.8 + 1.7 * std::sin(2 * M_PI * k / 200.0) * (0.65 + 0.35 * std::cos(k / 300.0));
-  Eigen::VectorXd x = truth.Simulate(u, kDt);
-  std::uint64_t state = 12345;
-  for (int k = 0; k < n; ++k) {  // a small LCG: uniform noise of 2 nm amplitude
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    x[k] += 2e-9 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
-  }
-  sysid::Recording rec;
-  rec.names = {"t", "u", "x"};
-  rec.data.resize(n, 3);
-  for (int k = 0; k < n; ++k) rec.data.row(k) << k * kDt, u[k], x[k];
-  return rec;
+  sysid::test::KnownPiDrive drive;
+  drive.period_samples = 200;
+  drive.envelope_samples = 300;
+  drive.depth = 0.35;
+  drive.sample_time_s = kDt;
+  drive.noise_width_m = 2e-9;
+  return sysid::test::KnownPiRecording(p, n, drive);
 }
 
 }  // namespace
