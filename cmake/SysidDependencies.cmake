@@ -8,6 +8,8 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(fmt 9 REQUIRED)
 find_package(CLI11 2.1 REQUIRED)
 find_package(Threads REQUIRED)
+# k-d tree of the irreducible-error estimate (libnanoflann-dev, header only).
+find_package(nanoflann 1.3 REQUIRED)
 # MAT (libmatio-dev) and HDF5 (libhdf5-dev, the serial build) recordings, through pkg-config.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(SYSID_MATIO REQUIRED IMPORTED_TARGET GLOBAL matio)

@@ -15,6 +15,7 @@ PACKAGES=(
   catch2 libcli11-dev nlohmann-json3-dev libfmt-dev   # tests, CLI, JSON, formatting
   gnuplot-nox                          # plots in reports
   clang libclang-rt-dev                # libFuzzer + sanitizers for scripts/fuzz.sh (CI's fuzz step)
+  libnanoflann-dev                     # k-d tree: the irreducible-error estimate (nn module)
   libboost-dev                         # Boost.Math (test cross-check of the smoothing derivative)
   libmatio-dev libhdf5-dev             # MATLAB MAT (v4, v5, v7.3) and HDF5 recordings
   pkgconf                              # finds matio and the serial HDF5 (cmake/SysidDependencies.cmake)

@@ -282,6 +282,17 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <= r.typical_train_mse * (1 + 1e-12));
   CHECK(Value(*f7, "dominant_test_moving_mse_v2") >= 0);
   CHECK(Value(*f7, "typical_test_moving_mse_v2") >= 0);
+  // The irreducible MSEs (the k-NN floor, tested against closed forms in tests/nn): no network
+  // on v (or v, a) may sit clearly below what v (or v, a) determine on the same set.
+  for (const char* set : {"train", "test"}) {
+    const double floor_v = Value(*f7, std::string(set) + "_irreducible_mse_v_v2");
+    const double floor_va = Value(*f7, std::string(set) + "_irreducible_mse_va_v2");
+    CHECK(floor_v > 0);
+    CHECK(floor_va > 0);
+    const bool train = std::string(set) == "train";
+    CHECK((train ? r.dominant_train_mse : r.dominant_test_mse) >= 0.9 * floor_v);
+    CHECK((train ? r.typical_train_mse : r.typical_test_mse) >= 0.9 * floor_va);
+  }
 }
 
 TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]") {

@@ -138,3 +138,38 @@ TEST_CASE("bad input and options: exit codes, messages, no output file", "[nn][c
   CHECK_THAT(r.err, Contains("broken.json:3:13"));
   CHECK_FALSE(std::filesystem::exists(dir / "p.csv"));
 }
+
+TEST_CASE("sysid irreducible: v determines u, a adds only noise; bad input is named",
+          "[nn][cli][irreducible]") {
+  // u = 2 v^2 + 10 v + e (e uniform, width 0.2 V: variance 0.04/12), a independent noise: the
+  // floor given v is e's variance (closed form); given (v, a) it cannot be smaller than that.
+  sysid::test::TempDir dir;
+  std::ostringstream csv;
+  csv << "t,u,v,a\n";
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uni(-0.5, 0.5);
+  for (int k = 0; k < 6000; ++k) {
+    const double v = 0.1 * std::sin(k * 1e-3);
+    csv << k * 1e-3 << ',' << 2 * v * v + 10 * v + 0.2 * uni(rng) << ',' << v << ','
+        << uni(rng) << '\n';
+  }
+  sysid::test::WriteText(dir / "rec.csv", csv.str());
+  const auto r = RunCli({"irreducible", dir / "rec.csv", "--inputs", "v", "--inputs", "v,a",
+                         "--neighbours", "20", "--json"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["rows"].size() == 2);
+  CHECK(j["rows"][0]["irreducible_mse"].get<double>() == Approx(0.04 / 12).epsilon(0.08));
+  CHECK(j["rows"][1]["irreducible_mse"].get<double>() >
+        0.95 * j["rows"][0]["irreducible_mse"].get<double>());
+  CHECK(j["rows"][1]["inputs"] == nlohmann::json({"v", "a"}));
+
+  const auto missing = RunCli({"irreducible", dir / "rec.csv", "--inputs", "v,x"});
+  CHECK(missing.exit_code == 2);
+  CHECK_THAT(missing.err, Contains("rec.csv") && Contains("x"));
+  const auto empty = RunCli({"irreducible", dir / "rec.csv", "--inputs", "v,"});
+  CHECK(empty.exit_code == 1);
+  CHECK_THAT(empty.err, Contains("--inputs"));
+  const auto k = RunCli({"irreducible", dir / "rec.csv", "--neighbours", "1"});
+  CHECK(k.exit_code == 1);
+}

@@ -18,6 +18,7 @@
 #include "sysid/compare.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/error.hpp"
+#include "sysid/nn_irreducible.hpp"
 
 namespace sysid {
 namespace {
@@ -147,6 +148,12 @@ class FactsRun {
                          MeanSquaredError(typical, MovingRows(train_va)));
     moving_.emplace_back("typical_test_moving_mse_v2",
                          MeanSquaredError(typical, MovingRows(test_va)));
+    // What no network on these inputs could do better than, from the data alone: tells the
+    // networks' training apart from what v (or v and a) determine on each set.
+    floors_ = {{"train_irreducible_mse_v_v2", EstimateIrreducibleError(train_v_).mse},
+               {"test_irreducible_mse_v_v2", EstimateIrreducibleError(test_v).mse},
+               {"train_irreducible_mse_va_v2", EstimateIrreducibleError(train_va).mse},
+               {"test_irreducible_mse_va_v2", EstimateIrreducibleError(test_va).mse}};
   }
 
   // The dominant network's training options, from the k-th initial weights (k = 0: the
@@ -540,6 +547,7 @@ class FactsRun {
                 {"dominant_test_mse_v2", r_.dominant_test_mse}};
     f.values.insert(f.values.end(), coverage_.begin(), coverage_.end());
     f.values.insert(f.values.end(), moving_.begin(), moving_.end());
+    f.values.insert(f.values.end(), floors_.begin(), floors_.end());
     // The note's numbers, looked up in the values just written (coverage and moving MSEs).
     auto cov = [&](const std::string& name) {
       for (const auto& [n, v] : f.values)
@@ -552,7 +560,8 @@ class FactsRun {
         "{:.3g} % of the training rows are at rest (|v| < 1 mm/s) with u spread over the dead "
         "zone (variance {:.3g} V^2) and carry {:.3g} % of the dominant network's training MSE; on "
         "the moving rows the MSEs are typical {:.3g} / {:.3g}, dominant {:.3g} / {:.3g} V^2 "
-        "(train / test)",
+        "(train / test); the least MSE any function of v can reach (k-NN estimate, sysid "
+        "irreducible) is {:.3g} / {:.3g} V^2, of (v, a) {:.3g} / {:.3g} V^2",
         f.met ? "contrast" : "no contrast", 100 * cov("test_rows_outside_training_box_fraction"),
         cov("training_max_abs_v_mps"), cov("training_max_abs_a_mps2"),
         cov("training_a_noise_rms_mps2"), cov("training_a_rms_mps2"),
@@ -560,7 +569,9 @@ class FactsRun {
         100 * (1 - (1 - cov("training_rest_fraction")) * cov("dominant_train_moving_mse_v2") /
                        r_.dominant_train_mse),
         cov("typical_train_moving_mse_v2"), cov("typical_test_moving_mse_v2"),
-        cov("dominant_train_moving_mse_v2"), cov("dominant_test_moving_mse_v2"));
+        cov("dominant_train_moving_mse_v2"), cov("dominant_test_moving_mse_v2"),
+        cov("train_irreducible_mse_v_v2"), cov("test_irreducible_mse_v_v2"),
+        cov("train_irreducible_mse_va_v2"), cov("test_irreducible_mse_va_v2"));
     r_.facts.push_back(f);
   }
 
@@ -719,6 +730,7 @@ class FactsRun {
   NeuralDataset train_v_;  // the dominant networks' training set (v -> u)
   std::vector<std::pair<std::string, double>> coverage_;
   std::vector<std::pair<std::string, double>> moving_;  // F7's MSEs on the moving rows [V^2]
+  std::vector<std::pair<std::string, double>> floors_;  // F7's irreducible MSEs [V^2]
   bool want_typical_ = false;
   bool tracked_none_ = false, tracked_ff_ = false;
 };
