@@ -1,11 +1,13 @@
 // Neural inverse models (sysid/nn.hpp): the network and its JSON files, datasets, both trainers
 // and the hidden-size sweep.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "bind_common.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/nn_irreducible.hpp"
 
 namespace sysid::python {
 namespace {
@@ -115,6 +117,31 @@ void BindNeural(py::module_& m) {
          const std::string& output) { return ReadNeuralDataset(path, inputs, output); },
       py::arg("path"), py::arg("inputs"), py::arg("output"), ReleaseGil());
   m.def("mean_squared_error", &MeanSquaredError, py::arg("network"), py::arg("data"));
+
+  py::class_<IrreducibleError>(m, "IrreducibleError",
+                               "The least MSE any model of the output on these inputs can reach "
+                               "on the data (k-NN estimate; docs/neural.md)")
+      .def_readonly("input_names", &IrreducibleError::input_names)
+      .def_readonly("output_name", &IrreducibleError::output_name)
+      .def_readonly("rows", &IrreducibleError::rows)
+      .def_readonly("neighbours", &IrreducibleError::neighbours)
+      .def_readonly("output_variance", &IrreducibleError::output_variance)
+      .def_readonly("mse", &IrreducibleError::mse)
+      .def_property_readonly("unexplained_share", &IrreducibleError::unexplained_share)
+      .def("__repr__", [](const IrreducibleError& e) {
+        return "IrreducibleError(mse=" + std::to_string(e.mse) +
+               ", output_variance=" + std::to_string(e.output_variance) +
+               ", rows=" + std::to_string(e.rows) + ")";
+      });
+  m.def(
+      "estimate_irreducible_error",
+      [](const NeuralDataset& data, int neighbours, std::uint64_t seed) {
+        IrreducibleErrorOptions o;
+        o.neighbours = neighbours;
+        o.seed = seed;
+        return EstimateIrreducibleError(data, o);
+      },
+      py::arg("data"), py::arg("neighbours") = 10, py::arg("seed") = 1, ReleaseGil());
 
   py::enum_<NeuralTrainer>(m, "Trainer")
       .value("lm", NeuralTrainer::kLevenbergMarquardt)

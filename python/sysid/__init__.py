@@ -30,6 +30,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
     SegmentOptions, DelayTuningOptions, DelayTuningResult, RefineOptions, RefineResult,
     CandidateTerm, DominanceOptions, TermStats, DominanceResult, DominanceSummary,
     ScaledVariable, Network, NeuralDataset, make_dataset, read_dataset, mean_squared_error,
+    IrreducibleError,
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
     SweepResult, parse_hidden_sizes, PipelineResult,
     stage, analytic_inverse, network_inverse, unit_warnings,
@@ -364,6 +365,16 @@ def train(train, validation=None, inputs=("v",), output="u", options=None, **kwa
     return _sysid.train_dataset(_as_dataset(train, inputs, output),
                                 _as_dataset(validation, inputs, output),
                                 _options(TrainingOptions, options, kwargs))
+
+
+def irreducible_error(data, inputs=("v",), output="u", neighbours=10, seed=1):
+    """The least MSE any model of `output` on `inputs` can reach on `data` (a CSV path,
+    Recording or NeuralDataset), estimated without a model: the output's variance among each
+    row's `neighbours` nearest rows in the standardised inputs, averaged (docs/neural.md,
+    "Irreducible error"). Returns an IrreducibleError (mse, output_variance, unexplained_share)."""
+    if isinstance(inputs, str):
+        inputs = inputs.split(",")
+    return _sysid.estimate_irreducible_error(_as_dataset(data, inputs, output), neighbours, seed)
 
 
 def sweep(train, validation=None, test=None, inputs=("v",), output="u", hidden_sizes=None,
