@@ -11,6 +11,7 @@
 #include "cli/common.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
+#include "commands/nn_training_options.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/nn_irreducible.hpp"
@@ -29,19 +30,12 @@ struct IrreducibleCli {
   RecordingFlags recording;
 };
 
+// "v,a" -> {"v", "a"}, as train's --inputs (SplitComma), with the same empty-name rule.
 std::vector<std::string> SplitInputs(const std::string& text) {
-  std::vector<std::string> names;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = text.find(',', start);
-    const std::string name = text.substr(start, comma - start);
-    if (name.empty())
-      throw OptionsError("--inputs '" + text + "': expected comma-separated column names",
-                         "--inputs");
-    names.push_back(name);
-    if (comma == std::string::npos) return names;
-    start = comma + 1;
-  }
+  std::vector<std::string> names = SplitComma(text);
+  for (const auto& n : names)
+    if (n.empty()) throw OptionsError("--inputs '" + text + "': empty column name", "--inputs");
+  return names;
 }
 
 void RunIrreducible(const IrreducibleCli& o) {
