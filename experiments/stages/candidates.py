@@ -127,6 +127,13 @@ def _creep(v_mps, dz, fs, fc=0.6):
               rail={"static_mps2": fs, "coulomb_mps2": fc})
 
 
+def _PLAY(thresholds_v):
+    """Symmetric, rate-free drive hysteresis, weight 0.2 per operator."""
+    n = len(thresholds_v)
+    return {"thresholds_v": thresholds_v, "weights": [0.2] * n, "rate_weights_s_per_v": [0.0] * n,
+            "rate_time_constant_s": 0.01, "asymmetry": 0.0}
+
+
 # Every candidate of docs/virtual_stage.md's "F4 at 1 Hz" table, in its order.
 CANDIDATES = {
     "A": {"rate": 1000},
@@ -153,15 +160,27 @@ CANDIDATES = {
     "K8-Fs1-dz0.6/1.0": _creep(0.008, (0.6, 1.0), 1.0),
     "K8-Fs1.5-dz0.3/0.6": _creep(0.008, (0.3, 0.6), 1.5),
     "K8-Fs1.5-dz0.6/1.0": _creep(0.008, (0.6, 1.0), 1.5),
+    "K8-Fs1.5-dz0.6/1.0-wide": dict(_creep(0.008, (0.6, 1.0), 1.5),
+                                    knots=[[1.15, 0.008], [1.22, 0.010], [-1.65, -0.008], [-1.72, -0.010]]),
+    "K8@1.2-Fs1.5-dz0.6/1.0": dict(_creep(0.008, (0.6, 1.0), 1.5), knots=[[1.2, 0.008], [-1.7, -0.008]]),
     "K10-Fs2-dz0.6/1.0": _creep(0.010, (0.6, 1.0), 2.0),
     "K8-Fs1.5-dz0.8/1.2": _creep(0.008, (0.8, 1.2), 1.5),
     "S3-dz0.3/0.6": _creep(0.003, (0.3, 0.6), 0.6),
     "S3-dz0.6/1.0": _creep(0.003, (0.6, 1.0), 0.6),
     "S3-dz0.7/1.0": _creep(0.003, (0.7, 1.0), 0.6),
     "S3-dz0.6/1.1": _creep(0.003, (0.6, 1.1), 0.6),
+    "S3-dz0.65/1.0": _creep(0.003, (0.65, 1.0), 0.6),
+    "S3-dz0.7/1.05": _creep(0.003, (0.7, 1.05), 0.6),
+    "S3.1-dz0.7/1.0": _creep(0.0031, (0.7, 1.0), 0.6),
+    "S3-Fs0.7-dz0.7/1.0": _creep(0.003, (0.7, 1.0), 0.7),
     "S4-dz0.6/1.0": _creep(0.004, (0.6, 1.0), 0.6),
     "M4-Fs0.9-dz0.6/1.0": _creep(0.004, (0.6, 1.0), 0.9),
     "M5-Fs0.9-dz0.6/1.0": _creep(0.005, (0.6, 1.0), 0.9),
+    # The ceramic's play operators with a large total weight (small-signal gain 0.2): they add
+    # a backlash-like lag and ring more (tried to quiet the 1 kHz loop).
+    "S3-dz0.7/1.05+PI0.8-small": dict(_creep(0.003, (0.7, 1.05), 0.6), hyst=_PLAY([0.02, 0.04, 0.06, 0.08])),
+    "S3-dz0.7/1.05+PI0.8": dict(_creep(0.003, (0.7, 1.05), 0.6), hyst=_PLAY([0.05, 0.1, 0.15, 0.2])),
+    "C+PI0.8": dict(_c(), hyst=_PLAY([0.05, 0.1, 0.15, 0.2])),
 }
 for _n, _c_ in CANDIDATES.items():
     _c_["name"] = _n
