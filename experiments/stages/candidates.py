@@ -160,9 +160,11 @@ CANDIDATES = {
     "K8-Fs1-dz0.6/1.0": _creep(0.008, (0.6, 1.0), 1.0),
     "K8-Fs1.5-dz0.3/0.6": _creep(0.008, (0.3, 0.6), 1.5),
     "K8-Fs1.5-dz0.6/1.0": _creep(0.008, (0.6, 1.0), 1.5),
-    "K8-Fs1.5-dz0.6/1.0-wide": dict(_creep(0.008, (0.6, 1.0), 1.5),
-                                    knots=[[1.15, 0.008], [1.22, 0.010], [-1.65, -0.008], [-1.72, -0.010]]),
-    "K8@1.2-Fs1.5-dz0.6/1.0": dict(_creep(0.008, (0.6, 1.0), 1.5), knots=[[1.2, 0.008], [-1.7, -0.008]]),
+    "K8-Fs1.5-dz0.6/1.0-wide": dict(
+        _creep(0.008, (0.6, 1.0), 1.5),
+        knots=[[1.15, 0.008], [1.22, 0.010], [-1.65, -0.008], [-1.72, -0.010]]),
+    "K8@1.2-Fs1.5-dz0.6/1.0": dict(_creep(0.008, (0.6, 1.0), 1.5),
+                                   knots=[[1.2, 0.008], [-1.7, -0.008]]),
     "K10-Fs2-dz0.6/1.0": _creep(0.010, (0.6, 1.0), 2.0),
     "K8-Fs1.5-dz0.8/1.2": _creep(0.008, (0.8, 1.2), 1.5),
     "S3-dz0.3/0.6": _creep(0.003, (0.3, 0.6), 0.6),
@@ -178,8 +180,10 @@ CANDIDATES = {
     "M5-Fs0.9-dz0.6/1.0": _creep(0.005, (0.6, 1.0), 0.9),
     # The ceramic's play operators with a large total weight (small-signal gain 0.2): they add
     # a backlash-like lag and ring more (tried to quiet the 1 kHz loop).
-    "S3-dz0.7/1.05+PI0.8-small": dict(_creep(0.003, (0.7, 1.05), 0.6), hyst=_PLAY([0.02, 0.04, 0.06, 0.08])),
-    "S3-dz0.7/1.05+PI0.8": dict(_creep(0.003, (0.7, 1.05), 0.6), hyst=_PLAY([0.05, 0.1, 0.15, 0.2])),
+    "S3-dz0.7/1.05+PI0.8-small": dict(_creep(0.003, (0.7, 1.05), 0.6),
+                                      hyst=_PLAY([0.02, 0.04, 0.06, 0.08])),
+    "S3-dz0.7/1.05+PI0.8": dict(_creep(0.003, (0.7, 1.05), 0.6),
+                                hyst=_PLAY([0.05, 0.1, 0.15, 0.2])),
     "C+PI0.8": dict(_c(), hyst=_PLAY([0.05, 0.1, 0.15, 0.2])),
 }
 for _n, _c_ in CANDIDATES.items():
@@ -214,7 +218,8 @@ def main():
         cells = "  ".join(f"{int(rate)}Hz: {res[(rate, .5)][0]:5.2f}/{res[(rate, 1.)][0]:5.2f} um "
                           f"[after breakaway {res[(rate, .5)][4]:.2f}/{res[(rate, 1.)][4]:.2f}] "
                           f"({res[(rate, .5)][1]:.0f}/{res[(rate, 1.)][1]:.0f} Hz; onset "
-                          f"{res[(rate, 1.)][3]*100:.0f}%; max e {res[(rate, .5)][2]:.4f}/{res[(rate, 1.)][2]:.4f} mm)"
+                          f"{res[(rate, 1.)][3]*100:.0f}%; max e {res[(rate, .5)][2]:.4f}/"
+                          f"{res[(rate, 1.)][2]:.4f} mm)"
                           for rate in sorted({k[0] for k in res}))
         print(f"{c['name']:28s} {cells}", flush=True)
 

@@ -62,7 +62,9 @@ def moving_residual(e, rate_hz, freq_hz, window_s=0.05):
 
 
 def analyse(p, freq, seed=1, after_s=0.06):
+    """F4's PI-alone run at `freq` [Hz] on stage `p`, and where its residual sits."""
     rate = p.sample_rate_hz
+    # F4's profile: 10 mm strokes, dwell 10 % of the period at each end, 2 cycles.
     prof = S.SmoothProfileOptions(frequency_hz=freq, amplitude_m=0.01, cycles=2,
                                   sample_rate_hz=rate)
     ref = S.smooth_profile(prof)
@@ -73,12 +75,14 @@ def analyse(p, freq, seed=1, after_s=0.06):
     t = np.asarray(res.t_s)
     k, r = moving_residual(e, rate, freq)
     rms = float(np.sqrt(np.mean(r ** 2)))
-    # Replay the commands open loop: the same plant, its true state.
+    # Replay the commands open loop: the same plant, its true state (the replay's encoder must
+    # equal the loop's, else the state read here is not the loop's).
     run = S.run_open_loop(p, u, seed)
-    x_true = np.asarray(run.x_true_m)
     v = np.asarray(run.v_true_mps)
-    x_meas = np.asarray(res.x_m)
-    replay_dx = float(np.max(np.abs(np.asarray(run.x_m) - x_meas)))
+    replay_dx = float(np.max(np.abs(np.asarray(run.x_m) - np.asarray(res.x_m))))
+    if replay_dx > 0:
+        print(f"warning: the open-loop replay differs from the loop by {replay_dx:g} m",
+              file=sys.stderr)
     period = 1.0 / freq
     dwell = 0.1 * period
     tm = 0.5 * period - dwell
@@ -87,7 +91,8 @@ def analyse(p, freq, seed=1, after_s=0.06):
     stuck = v == 0.0  # the rail's stuck state (a sliding stage passes v = 0 at one instant)
     tk = t[k]
     # Each stroke: onset window = the reference leaves the dwell .. the stage's breakaway
-    # + after_s; motion = the rest of the stroke; dwell = the reference at rest.
+    # + after_s; motion = the rest of the stroke; dwell = the reference at rest. (A stage still
+    # sliding when the reference leaves, as in a 1 kHz loop's ring, "breaks away" at once.)
     label = np.full(len(tk), 2)  # 0 onset, 1 motion, 2 dwell
     breaks = []
     for o in onsets:
@@ -99,7 +104,8 @@ def analyse(p, freq, seed=1, after_s=0.06):
         tb = ib / rate
         label[(tk >= o) & (tk < o + tm)] = 1
         label[(tk >= o) & (tk < min(tb + after_s, o + tm))] = 0
-    def part(mask):
+
+    def part(mask):  # (its share of the whole RMS, the RMS inside, its share of the samples)
         return (float(np.sqrt(np.sum(r[mask] ** 2) / len(r))),
                 float(np.sqrt(np.mean(r[mask] ** 2))) if mask.any() else 0.0,
                 float(mask.mean()))
@@ -120,8 +126,6 @@ def analyse(p, freq, seed=1, after_s=0.06):
     # band energies
     bands = [(0, 20), (20, 50), (50, 150), (150, 500), (500, rate / 2 + 1)]
     band = [(lo, hi, float(P[(f >= lo) & (f < hi)].sum() / P.sum())) for lo, hi in bands]
-    # stick/slip: at rest when v == 0 exactly (the rail's stuck state)
-    stuck = v == 0.0
     out = {"rate_hz": rate, "freq_hz": freq, "rms_um": rms * 1e6,
            "replay_max_dx_m": replay_dx,
            "onset": part(near_on), "motion": part(motion), "dwell": part(rest),
@@ -181,24 +185,29 @@ def main():
         if a.json:
             print(json.dumps(o))
             continue
-        print(f"{a.stage} @ {o['rate_hz']:.0f} Hz loop, {f} Hz: ripple in motion {o['rms_um']:.2f} um "
-              f"(max |r| {o['max_abs_r_um']:.1f} um at t = {o['t_max_r']:.4f} s; max |e| {o['max_e_mm']:.4f} mm; "
+        print(f"{a.stage} @ {o['rate_hz']:.0f} Hz loop, {f} Hz: ripple in motion "
+              f"{o['rms_um']:.2f} um (max |r| {o['max_abs_r_um']:.1f} um at t = "
+              f"{o['t_max_r']:.4f} s; max |e| {o['max_e_mm']:.4f} mm; "
               f"replay max dx {o['replay_max_dx_m']:.1e} m)")
         print(f"  without the breakaway transients (departure .. peak |e| + 50 ms): "
-              f"{o['rms_after_breakaway_um']:.2f} um over {o['kept_fraction']*100:.0f} % of the samples")
+              f"{o['rms_after_breakaway_um']:.2f} um over {o['kept_fraction']*100:.0f} % "
+              f"of the samples")
         for name in ("onset", "motion", "dwell"):
             c, rr, fr = o[name]
             print(f"  {name:6s}: share of sum r^2 {c**2 / (o['rms_um']*1e-6)**2 * 100:5.1f} %  "
                   f"RMS inside {rr*1e6:6.2f} um  time share {fr*100:5.1f} %")
-        print("  peaks [Hz, share]: " + ", ".join(f"{q:.1f} ({s*100:.1f} %)" for q, s in o["peaks"]))
-        print("  bands: " + ", ".join(f"{lo:.0f}-{hi:.0f} Hz {s*100:.1f} %" for lo, hi, s in o["bands"]))
+        print("  peaks [Hz, share]: " +
+              ", ".join(f"{q:.1f} ({s*100:.1f} %)" for q, s in o["peaks"]))
+        print("  bands: " +
+              ", ".join(f"{lo:.0f}-{hi:.0f} Hz {s*100:.1f} %" for lo, hi, s in o["bands"]))
         print(f"  steady motion: stuck {o['motion_stuck_fraction']*100:.1f} % of samples, "
               f"{o['motion_stick_events']} stick events")
         for ev in o["onsets"]:
-            print("  onset t={t_onset:.3f}: u in the dwell {u_dwell_v:.3f} V; breakaway after {t_break_ms:.1f} ms "
-                  "at u={u_break_v:.3f} V, e={e_break_um:.1f} um, v_ref {vref_break_mmps:.1f} mm/s; "
-                  "v peak {v_peak_mmps:.1f} mm/s in the next 60 ms ({stick_events} sticks); "
-                  "r RMS onset..break+60 ms {r_rms_onset_um:.1f} um".format(**ev))
+            print("  onset t={t_onset:.3f}: u in the dwell {u_dwell_v:.3f} V; breakaway after "
+                  "{t_break_ms:.1f} ms at u={u_break_v:.3f} V, e={e_break_um:.1f} um, v_ref "
+                  "{vref_break_mmps:.1f} mm/s; v peak {v_peak_mmps:.1f} mm/s in the next 60 ms "
+                  "({stick_events} sticks); r RMS onset..break+60 ms "
+                  "{r_rms_onset_um:.1f} um".format(**ev))
 
 
 if __name__ == "__main__":

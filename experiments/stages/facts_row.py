@@ -20,7 +20,8 @@ for path in sys.argv[1:]:
             if k.startswith(key):
                 return fmt.format(v * scale)
         return "?"
-    f4 = "{} / {} um".format(g("motion_ripple_m at 0.5", 1e6, "{:.2f}"), g("motion_ripple_m at 1", 1e6, "{:.2f}"))
+    f4 = "{} / {} um".format(g("motion_ripple_m at 0.5", 1e6, "{:.2f}"),
+                             g("motion_ripple_m at 1", 1e6, "{:.2f}"))
     f5 = "; ".join(" / ".join(g(f"max_error_m at {fr} Hz {s}") for s in ("none", "analytic", "nn"))
                    for fr in ("0.5", "1"))
     tau = g("tau_s", 1e3, "{:.2f}")

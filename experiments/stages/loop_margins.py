@@ -56,7 +56,8 @@ def map_slope(motor, vf, direction):
         vs = [0.0] + [-v for u, v in zip(u_in, v_out) if u < 0][::-1]
     for i in range(1, len(us)):
         if vf <= vs[i] or i == len(us) - 1:
-            return (vs[i] - vs[i - 1]) / (us[i] - us[i - 1]), us[i - 1] + (vf - vs[i - 1]) * (us[i] - us[i - 1]) / (vs[i] - vs[i - 1])
+            slope = (vs[i] - vs[i - 1]) / (us[i] - us[i - 1])
+            return slope, us[i - 1] + (vf - vs[i - 1]) / slope
     raise ValueError
 
 
@@ -106,7 +107,8 @@ def margins(num, den, ts):
         out["phase_crossover_hz"] = float(w[i] / 2 / math.pi)
         out["gm"] = float(1 / mag[i])
     # closed-loop poles: the largest |z| (stable when < 1)
-    numL = np.polymul(np.polyadd(np.array([KP + KI * ts, 0.0]), np.array([-KP])), numd)  # C = ((Kp+KiTs) z - Kp)/(z - 1)
+    # C(z) = ((Kp + Ki Ts) z - Kp) / (z - 1)
+    numL = np.polymul(np.polyadd(np.array([KP + KI * ts, 0.0]), np.array([-KP])), numd)
     denL = np.polymul([1.0, -1.0], dend)
     char = np.polyadd(denL, numL)
     poles = np.roots(char)
@@ -129,15 +131,18 @@ def main():
             num, den, info = plant(j, v, direction, not a.no_hysteresis_factor)
             for rate in [float(x) for x in a.rates.split(",")]:
                 m = margins(num, den, 1 / rate)
-                rows.append({"direction": direction, "v_mmps": v * 1e3, "rate_hz": rate, **info, **m})
+                rows.append({"direction": direction, "v_mmps": v * 1e3, "rate_hz": rate,
+                             **info, **m})
     if a.json:
         print(json.dumps(rows))
         return
     print(f"{a.stage}: PI Kp {KP:g} V/m, Ki {KI:g} V/(m s), linearised in steady sliding")
-    print("dir  v[mm/s]  u0[V]   k[m/(s V)]  g'[1/s]  rate[Hz]  crossover[Hz]  PM[deg]  GM    max|pole|")
+    print("dir  v[mm/s]  u0[V]   k[m/(s V)]  g'[1/s]  rate[Hz]  crossover[Hz]  PM[deg]  GM    "
+          "max|pole|")
     for r in rows:
-        print(f"{'+' if r['direction'] > 0 else '-'}   {r['v_mmps']:6.1f}  {r['u0_v']:6.3f}  {r['k_mps_per_v']:8.4f}  "
-              f"{r['g_slope_per_s']:8.1f}  {r['rate_hz']:7.0f}  {r['crossover_hz']:10.1f}  {r['pm_deg']:8.1f}  "
+        print(f"{'+' if r['direction'] > 0 else '-'}   {r['v_mmps']:6.1f}  {r['u0_v']:6.3f}  "
+              f"{r['k_mps_per_v']:8.4f}  {r['g_slope_per_s']:8.1f}  {r['rate_hz']:7.0f}  "
+              f"{r['crossover_hz']:10.1f}  {r['pm_deg']:8.1f}  "
               f"{r['gm']:5.2f}  {r['max_pole_mag']:.4f}")
 
 
