@@ -387,6 +387,38 @@ TEST_CASE("F5 over initial weights: each network's row is a separate run's NN ro
   CHECK_THAT(f1.virtual_value, !Catch::Contains("initial weights"));
 }
 
+namespace {
+
+// F4's breakaway windows by plain loops, in time: the strokes of the profile (dwell, stroke,
+// dwell, stroke per period) start when the reference leaves a dwell; each window runs from
+// there to 50 ms after the largest |e| in the stroke's first half.
+std::vector<bool> BreakawayMask(const Eigen::VectorXd& e, double frequency_hz, double rate_hz,
+                                int cycles, double dwell_fraction = 0.1) {
+  std::vector<bool> out(static_cast<std::size_t>(e.size()), false);
+  const double period = 1 / frequency_hz, dwell = dwell_fraction * period;
+  const double stroke = period / 2 - dwell;
+  for (int c = 0; c < cycles; ++c) {
+    for (int s = 0; s < 2; ++s) {
+      const double t0 = c * period + dwell + s * (dwell + stroke);
+      long best = -1;
+      for (long k = 0; k < e.size(); ++k) {
+        const double t = static_cast<double>(k) / rate_hz;
+        if (t < t0 - 1e-9 || t >= t0 + stroke / 2) continue;
+        if (best < 0 || std::abs(e[k]) > std::abs(e[best])) best = k;
+      }
+      if (best < 0) continue;
+      for (long k = 0; k < e.size(); ++k) {
+        const double t = static_cast<double>(k) / rate_hz;
+        if (t >= t0 - 1e-9 && k <= best + std::lround(0.05 * rate_hz))
+          out[static_cast<std::size_t>(k)] = true;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("F4 in motion: RMS of e minus its 50 ms moving average, and the ringing frequency",
           "[stage][facts]") {
   sysid::SmoothProfileOptions p;
@@ -401,8 +433,14 @@ TEST_CASE("F4 in motion: RMS of e minus its 50 ms moving average, and the ringin
     e[k] = 1e-4 * std::sin(M_PI * t) + 5e-6 * std::sin(2 * M_PI * 77 * t);
   }
   const facts::MotionRipple m = facts::MotionRippleOf(e, p, 0.05);
-  // After the first cycle (k >= 1000) with whole 51-sample windows (k <= 1975): 976 samples.
-  CHECK(m.samples == 976);
+  // After the first cycle (k >= 1000) with whole 51-sample windows (k <= 1975): 976 samples,
+  // less the two strokes' breakaway windows of cycle 1.
+  const std::vector<bool> mask = BreakawayMask(e, 1.0, 1000, 2);
+  long left_out = 0;
+  for (long k = 1000; k <= 1975; ++k) left_out += mask[static_cast<std::size_t>(k)];
+  CHECK(left_out > 50);  // two windows of at least 51 samples each
+  CHECK(m.breakaway_samples == left_out);
+  CHECK(m.samples == 976 - left_out);
   // RMS of the ring, 5 um / sqrt 2; the 51-sample average of a 77 Hz sine (3.9 periods) keeps
   // at most 1/(pi 3.9) = 8 % of its amplitude, and the slow sine's curvature 0.1 %.
   CHECK(m.rms_m == Approx(5e-6 / std::sqrt(2.0)).epsilon(0.08));
@@ -410,7 +448,7 @@ TEST_CASE("F4 in motion: RMS of e minus its 50 ms moving average, and the ringin
   // A quiet error: a straight ramp is its own centred moving average.
   const Eigen::VectorXd ramp = Eigen::VectorXd::LinSpaced(n, 0.0, 2e-4);
   const facts::MotionRipple quiet = facts::MotionRippleOf(ramp, p, 0.05);
-  CHECK(quiet.samples == 976);
+  CHECK(quiet.samples + quiet.breakaway_samples == 976);
   CHECK(quiet.rms_m < 1e-15);  // rounding of the sums only
   CHECK_THROWS_AS(facts::MotionRippleOf(e, p, 0.0), sysid::OptionsError);
 }
@@ -432,17 +470,21 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
     sysid::VirtualStage plant(stage, o.seed);
     const sysid::TrackingResult t = sysid::RunClosedLoop(plant, sysid::MakeSmoothProfile(p), o.pi);
     const Eigen::VectorXd& e = t.e_m;
-    const long first = std::lround(1000 / row.frequency_hz), half = 25;
+    const double rate = stage.sample_rate_hz;
+    const long first = std::lround(rate / row.frequency_hz), half = std::lround(0.025 * rate);
+    const std::vector<bool> mask = BreakawayMask(e, row.frequency_hz, rate, o.track_cycles);
     double sum2 = 0;
+    long counted = 0;
     std::vector<double> residual;
     for (long k = first; k + half < e.size(); ++k) {
       double mean = 0;
       for (long j = k - half; j <= k + half; ++j) mean += e[j];
-      residual.push_back(e[k] - mean / (2 * half + 1));
+      residual.push_back(mask[static_cast<std::size_t>(k)] ? 0.0 : e[k] - mean / (2 * half + 1));
       sum2 += residual.back() * residual.back();
+      counted += !mask[static_cast<std::size_t>(k)];
     }
     const auto m = static_cast<long>(residual.size());
-    const double rms = std::sqrt(sum2 / static_cast<double>(m));
+    const double rms = std::sqrt(sum2 / static_cast<double>(counted));
     // The ringing frequency by a plain DFT sum at each bin j (1000 j / m Hz) of the
     // Hann-windowed residual (the fact uses an FFT library).
     long peak = 1;
@@ -460,7 +502,7 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
         peak = j;
       }
     }
-    const double dft_hz = 1000.0 * static_cast<double>(peak) / static_cast<double>(m);
+    const double dft_hz = rate * static_cast<double>(peak) / static_cast<double>(m);
     INFO(row.frequency_hz << " Hz: ripple in motion " << row.motion_ripple_m << " m at "
                           << row.ringing_hz << " Hz; recomputed " << rms << " m at " << dft_hz
                           << " Hz");

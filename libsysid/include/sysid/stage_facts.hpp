@@ -213,12 +213,16 @@ bool DelayMet(double tau_s, double rms_at_tau_mps, double rms_at_zero_mps);
 double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile);
 /// F4 in motion: the RMS of e minus its centred moving average over `window_s` [s] (an odd
 /// number of samples, 2 round(window_s rate / 2) + 1), over the samples after the first cycle
-/// whose window lies inside e [m], and the frequency [Hz] of the largest peak of that
-/// residual's Hann-windowed periodogram (0 when there are fewer than 4 samples).
+/// whose window lies inside e [m], each stroke's breakaway transient left out (from the
+/// reference leaving a dwell to `window_s` after the largest |e| in the stroke's first half:
+/// the onset error F5 measures), and the frequency [Hz] of the largest peak of that
+/// residual's Hann-windowed periodogram, the left-out samples as 0 (0 when there are fewer
+/// than 4 samples).
 struct MotionRipple {
   double rms_m = 0;      ///< [m]
   double ringing_hz = 0;  ///< [Hz]
   long samples = 0;      ///< samples the RMS is over
+  long breakaway_samples = 0;  ///< samples after cycle 1 left out as breakaway transients
 };
 MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile,
                             double window_s = 0.05);

@@ -379,7 +379,8 @@ class FactsRun {
     f.tolerance = fmt::format(
         "PI alone: ripple (half peak-to-peak of e over the last half of each dwell after cycle 1) "
         "<= {:g} um, no sample with |u| clipped at {:g} V, and in motion RMS of e minus its "
-        "{:g} ms moving average after cycle 1 <= {:g} um",
+        "{:g} ms moving average after cycle 1, each stroke's breakaway transient left out, "
+        "<= {:g} um",
         1e6 * o_.ripple_tolerance_m, o_.pi.u_max_v, 1e3 * o_.motion_ripple_window_s,
         1e6 * o_.motion_ripple_tolerance_m);
     f.met = true;

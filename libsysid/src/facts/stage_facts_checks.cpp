@@ -105,17 +105,42 @@ MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptio
   for (Eigen::Index k = 0; k < n; ++k)
     prefix[static_cast<std::size_t>(k) + 1] = prefix[static_cast<std::size_t>(k)] + e_m[k];
   const auto width = static_cast<long double>(2 * half + 1);
-  std::vector<double> residual(static_cast<std::size_t>(last - first));
+  // Each stroke's breakaway transient is left out: from the reference leaving a dwell to one
+  // window after the largest |e| in the stroke's first half. A PI on a dead-zone stage winds
+  // up while the stage sticks and overshoots at breakaway; that hump is the tracking error F5
+  // measures (the paper's "greatest at the onset of motion"), not a ring, and counting it
+  // would fail the paper's own PI row (docs/virtual_stage.md, "F4 in motion at 1 Hz").
+  std::vector<bool> left_out(static_cast<std::size_t>(n), false);
+  const double period = 1.0 / p.frequency_hz, dwell = p.dwell_fraction * period;
+  const double stroke = 0.5 * period - dwell;
+  const auto window = static_cast<Eigen::Index>(std::llround(window_s * p.sample_rate_hz));
+  for (int c = 0; c < p.cycles; ++c)
+    for (const double start : {c * period + dwell, c * period + 2 * dwell + stroke}) {
+      const auto k0 = static_cast<Eigen::Index>(std::ceil(start * p.sample_rate_hz - 1e-9));
+      const auto k1 = std::min<Eigen::Index>(
+          n, static_cast<Eigen::Index>(std::ceil((start + 0.5 * stroke) * p.sample_rate_hz)));
+      if (k0 >= k1) continue;
+      Eigen::Index peak = 0;
+      e_m.segment(k0, k1 - k0).cwiseAbs().maxCoeff(&peak);
+      for (Eigen::Index k = k0; k <= std::min(n - 1, k0 + peak + window); ++k)
+        left_out[static_cast<std::size_t>(k)] = true;
+    }
+  std::vector<double> residual(static_cast<std::size_t>(last - first), 0.0);
   double sum2 = 0;
   for (Eigen::Index k = first; k < last; ++k) {
+    if (left_out[static_cast<std::size_t>(k)]) {
+      ++out.breakaway_samples;
+      continue;  // its residual stays 0 in the periodogram below
+    }
     const long double mean = (prefix[static_cast<std::size_t>(k + half + 1)] -
                               prefix[static_cast<std::size_t>(k - half)]) / width;
     const double r = e_m[k] - static_cast<double>(mean);
     residual[static_cast<std::size_t>(k - first)] = r;
     sum2 += r * r;
+    ++out.samples;
   }
-  out.samples = static_cast<long>(residual.size());
-  out.rms_m = std::sqrt(sum2 / static_cast<double>(residual.size()));
+  if (out.samples < 1) return out;
+  out.rms_m = std::sqrt(sum2 / static_cast<double>(out.samples));
   if (residual.size() < 4) return out;
   // The ringing frequency: the largest bin of the Hann-windowed periodogram (DC left out).
   const std::size_t m = residual.size();
