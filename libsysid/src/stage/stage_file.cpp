@@ -160,11 +160,11 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                {"lag_time_constant_s", &p.lag_time_constant_s}},
               {},
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
-              {"hysteresis"}}
+              {"hysteresis", "creep"}}
           .Read(root.Get(key), complete,
                 vs ? std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v", "map_in_v",
-                                              "map_out_v", "hysteresis"}
-                   : std::vector<std::string>{"hysteresis"});
+                                              "map_out_v", "hysteresis", "creep"}
+                   : std::vector<std::string>{"hysteresis", "creep"});
       if (root.Get(key).Has("hysteresis")) {
         // The ceramic's hysteresis (velocity source only); a file without the block has none.
         const internal::JsonNode h = root.Get(key).Get("hysteresis");
@@ -177,6 +177,18 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                  {"rate_weights_s_per_v", &p.hysteresis.rate_weights_s_per_v}},
                 {}}
             .Read(h, complete);
+      }
+      if (root.Get(key).Has("creep")) {
+        // The ceramic's creep (velocity source only); a file without the block has none.
+        const internal::JsonNode c = root.Get(key).Get("creep");
+        if (!vs) other_model(c);
+        Section{{{"voltage_share", &p.creep.voltage_share},
+                 {"loop_share", &p.creep.loop_share},
+                 {"time_constant_s", &p.creep.time_constant_s}},
+                {},
+                {},
+                {}}
+            .Read(c, complete);
       }
     } else if (key == "motor") {
       if (!vs) other_model(root.Get(key));
@@ -318,6 +330,13 @@ std::string StageParametersToJson(const StageParameters& p) {
     h["rate_time_constant_s"] = p.hysteresis.rate_time_constant_s;
     h["asymmetry"] = p.hysteresis.asymmetry;
     drive["hysteresis"] = h;
+  }
+  if (vs && p.creep.enabled()) {
+    OJ c;
+    c["voltage_share"] = p.creep.voltage_share;
+    c["loop_share"] = p.creep.loop_share;
+    c["time_constant_s"] = p.creep.time_constant_s;
+    drive["creep"] = c;
   }
   if (!vs) {
     drive["map_in_v"] = p.drive_map_in_v;
