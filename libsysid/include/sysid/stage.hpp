@@ -21,9 +21,11 @@
 //   when v_f falls to ~Fc / p (start/stop hysteresis of the rail's static friction).
 //   Optional drive hysteresis (drive.hysteresis, DriveHysteresis below): the lag's input is the
 //   piezoceramic's effective voltage u_h = H[u_s] (asymmetric play operators with
-//   rate-dependent weights, per control sample) instead of u_s; preset "drive-hysteresis".
+//   rate-dependent weights, per control sample) instead of u_s; preset
+//   "drive-hysteresis-static".
 //   Optional creep (drive.creep, DriveCreep below): shares of that voltage and of the
-//   hysteresis' lag relax with a time constant (the ceramic's domain relaxation).
+//   hysteresis' lag relax with a time constant (the ceramic's domain relaxation); preset
+//   "drive-hysteresis" (both).
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -223,8 +225,10 @@ struct StageParameters {
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
   /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay",
-  /// "drive-hysteresis" (the loop-rate candidate C, 10 kHz control with 1 kHz records and a
-  /// 0.1 ms lag, plus the ceramic's asymmetric hysteresis; docs/virtual_stage.md).
+  /// "drive-hysteresis-static" (the loop-rate candidate C, 10 kHz control with 1 kHz records
+  /// and a 0.1 ms lag, plus the ceramic's asymmetric hysteresis: candidate H2),
+  /// "drive-hysteresis" (C with wider play operators whose lag partly creeps out: the loop
+  /// widens with the rate; docs/virtual_stage.md, "Creep: the loop's rate dependence").
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
@@ -286,7 +290,7 @@ StageParameters ReadStageParameters(const std::string& path);
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
 /// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay,
-/// drive-hysteresis) or
+/// drive-hysteresis, drive-hysteresis-static) or
 /// the path of a stage file.
 StageParameters LoadStage(const std::string& preset_or_path);
 

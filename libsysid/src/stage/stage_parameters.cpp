@@ -142,17 +142,15 @@ double MotorParameters::DroopForThrust(double f) const {
 
 namespace {
 
-// Preset "drive-hysteresis" (docs/virtual_stage.md, "Drive hysteresis"): the loop-rate
-// candidate C (10 kHz control, 1 kHz records, a 0.1 ms driver envelope) with the ceramic's
-// asymmetric hysteresis, the candidate closest to the paper's F7 (not its contrast).
-StageParameters DriveHysteresisPreset() {
+// Candidate C (docs/virtual_stage.md, "Loop rate"): 10 kHz control, 1 kHz records, a 0.1 ms
+// driver envelope, with asymmetric play operators of thresholds r [V] (weights 0.2, alpha 0.3).
+StageParameters LoopRateCWithPlay(const std::vector<double>& r) {
   StageParameters p = StageParameters::Default();
-  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis)";
   p.sample_rate_hz = 10000;
   p.record_rate_hz = 1000;
   p.lag_time_constant_s = 0.0001;
   DriveHysteresis h;
-  h.thresholds_v = {0.1, 0.2, 0.3};
+  h.thresholds_v = r;
   h.weights = {0.2, 0.2, 0.2};
   h.rate_weights_s_per_v = {0, 0, 0};
   h.rate_time_constant_s = 0.01;
@@ -161,20 +159,44 @@ StageParameters DriveHysteresisPreset() {
   return p;
 }
 
+// Preset "drive-hysteresis-static" (docs/virtual_stage.md, "Drive hysteresis", candidate H2):
+// C with the ceramic's asymmetric, rate-independent hysteresis.
+StageParameters DriveHysteresisStaticPreset() {
+  StageParameters p = LoopRateCWithPlay({0.1, 0.2, 0.3});
+  p.name = "virtual PLS8/HR-8 (velocity source, static drive hysteresis)";
+  return p;
+}
+
+// Preset "drive-hysteresis" (docs/virtual_stage.md, "Creep: the loop's rate dependence",
+// candidate K35): C with wider play operators (H5's) whose lag partly creeps out (the creep's
+// loop share), so that the loop widens with the rate (F8 (c)) while a held pulse settles as
+// without it (F1-F3).
+StageParameters DriveHysteresisPreset() {
+  StageParameters p = LoopRateCWithPlay({0.15, 0.3, 0.45});
+  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis with creep)";
+  DriveCreep c;
+  c.voltage_share = 0;
+  c.loop_share = 0.6;
+  c.time_constant_s = 0.04;
+  p.SetDriveCreep(c);
+  return p;
+}
+
 }  // namespace
 
 bool StageParameters::IsPresetName(const std::string& name) {
   return name == "virtual" || name == "velocity-source" || name == "actuator-delay" ||
-         name == "drive-hysteresis";
+         name == "drive-hysteresis" || name == "drive-hysteresis-static";
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
   if (name == "virtual" || name == "velocity-source") return Default();
   if (name == "actuator-delay") return ActuatorDelay();
   if (name == "drive-hysteresis") return DriveHysteresisPreset();
+  if (name == "drive-hysteresis-static") return DriveHysteresisStaticPreset();
   throw OptionsError("stage preset '" + name +
                      "' is not one of virtual (= velocity-source), velocity-source, "
-                     "actuator-delay, drive-hysteresis");
+                     "actuator-delay, drive-hysteresis, drive-hysteresis-static");
 }
 
 std::string ToString(StageModel model) {
