@@ -168,7 +168,7 @@ StageParameters DriveHysteresisStaticPreset() {
 }
 
 // Preset "drive-hysteresis" (docs/virtual_stage.md, "Creep: the loop's rate dependence",
-// candidate K35): C with wider play operators (H5's) whose lag partly creeps out (the creep's
+// candidate K62): C with wider play operators (H5's) whose lag partly creeps out (the creep's
 // loop share), so that the loop widens with the rate (F8 (c)) while a held pulse settles as
 // without it (F1-F3).
 StageParameters DriveHysteresisPreset() {
