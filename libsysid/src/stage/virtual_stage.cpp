@@ -27,10 +27,11 @@
 //
 // Creep (velocity source, drive.creep): the ceramic's relaxation with T_c (DriveCreep in
 // stage.hpp). Its input is held per sample, so the relaxation has a closed form on each held
-// piece and the lag's input is u_t + (z_a - q) e^(-(t - t_a) / T_c), anchored where the
-// relaxing target q last changed: the right-hand side stays smooth on the piece (no new state,
-// no root), and a held command keeps the same anchor, so the integrator is not restarted while
-// the creep settles (a per-sample held u_h would restart it every sample of every plateau).
+// piece and the lag's input is (1 - k_v) u_pi + q + (z_a - q) e^(-(t - t_a) / T_c), anchored
+// where the relaxing target q last changed: the right-hand side stays smooth on the piece (no
+// new state, no root), and a held command keeps the same anchor, so the integrator is not
+// restarted while the creep settles (a per-sample held u_h would restart it every sample of
+// every plateau).
 //
 // Work per sample is bounded (integrator.max_steps_per_sample: CVODE steps plus switches), so a
 // stage that cannot be integrated ends with NumericalError naming the time and the state
