@@ -298,27 +298,33 @@ TEST_CASE("drive hysteresis in the stage file: written only when set, read back,
   CHECK_THROWS_AS(q.SetDriveHysteresis(wide), sysid::OptionsError);
 }
 
-TEST_CASE("the drive-hysteresis preset: candidate C's loop with the ceramic's loop, the pulse "
+TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's loop, the pulse "
           "table kept",
           "[stage][hysteresis][file]") {
-  REQUIRE(sysid::StageParameters::IsPresetName("drive-hysteresis"));
-  const sysid::StageParameters p = sysid::LoadStage("drive-hysteresis");
+  const std::string name = GENERATE(std::string("drive-hysteresis"),
+                                    std::string("drive-hysteresis-static"));
+  INFO(name);
+  REQUIRE(sysid::StageParameters::IsPresetName(name));
+  const sysid::StageParameters p = sysid::LoadStage(name);
   CHECK(p.hysteresis.enabled());
+  // The static one (H2) has no creep; the default one's play lag partly relaxes.
+  CHECK(p.creep.enabled() == (name == "drive-hysteresis"));
   CHECK(p.sample_rate_hz == 10000);
   CHECK(p.RecordRateHz() == 1000);
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
-  // On a slow rise the stage starts where the default does (the dead zone moved by the lag).
+  // On a slow rise the stage starts where the default does (the dead zone moved by the lag a
+  // held voltage keeps).
   const sysid::StageParameters def = sysid::StageParameters::Default();
-  CHECK(p.motor.dead_zone_forward_v + p.hysteresis.HeldLag(true) ==
+  CHECK(p.motor.dead_zone_forward_v + p.HeldDriveLag(true) ==
         Approx(def.motor.dead_zone_forward_v));
-  CHECK(p.motor.dead_zone_backward_v + p.hysteresis.HeldLag(false) ==
+  CHECK(p.motor.dead_zone_backward_v + p.HeldDriveLag(false) ==
         Approx(def.motor.dead_zone_backward_v));
   const std::string text = sysid::StageParametersToJson(p);
   CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "p.json")) == text);
   // A file may name it as its preset and change one value.
-  CHECK(sysid::ParseStageParameters(
-            "{\"preset\": \"drive-hysteresis\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
-            "p.json")
+  CHECK(sysid::ParseStageParameters("{\"preset\": \"" + name +
+                                        "\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
+                                    "p.json")
             .hysteresis.asymmetry == 0);
 }

@@ -21,7 +21,11 @@
 //   when v_f falls to ~Fc / p (start/stop hysteresis of the rail's static friction).
 //   Optional drive hysteresis (drive.hysteresis, DriveHysteresis below): the lag's input is the
 //   piezoceramic's effective voltage u_h = H[u_s] (asymmetric play operators with
-//   rate-dependent weights, per control sample) instead of u_s; preset "drive-hysteresis".
+//   rate-dependent weights, per control sample) instead of u_s; preset
+//   "drive-hysteresis-static".
+//   Optional creep (drive.creep, DriveCreep below): shares of that voltage and of the
+//   hysteresis' lag relax with a time constant (the ceramic's domain relaxation); preset
+//   "drive-hysteresis" (both).
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -136,6 +140,27 @@ struct DriveHysteresis {
   double SaturationRate() const;
 };
 
+/// The piezoceramic's creep (domain relaxation; velocity source only; docs/virtual_stage.md,
+/// "Creep: the loop's rate dependence"): one first-order relaxation with time constant T_c
+/// acting on two shares, after the hysteresis. With s the clipped command, u_pi the
+/// hysteresis' output (s without it) and D = s - u_pi the play operators' lag:
+///   T_c z' = q - z,   q = k_v u_pi + k_l D,   u_h = (1 - k_v) u_pi + z     (z = 0 at t = 0)
+/// k_v (voltage_share): that share of the voltage reaches the fingers late (strain creep after
+///   a step; a pure lag of the voltage);
+/// k_l (loop_share): that share of the play operators' lag creeps out while the voltage is
+///   held (the pinned domain walls relax), so a slow sweep traces a loop (1 - k_l) as wide as
+///   a fast one: the loop widens with the rate.
+/// Held, z = q and u_h = u_pi + k_l D = s - (1 - k_l) D: the held lag is (1 - k_l) times the
+/// hysteresis' (StageParameters::HeldDriveLag). s and u_pi are held per control sample, so z
+/// has the closed form q + (z_a - q) e^(-(t - t_a) / T_c) over each held piece: the envelope
+/// lag sees that continuous u_h (no integrator state, z advanced exactly from piece to piece).
+struct DriveCreep {
+  double voltage_share = 0;      ///< k_v [1] in [0, 1): the voltage's share that arrives late
+  double loop_share = 0;         ///< k_l [1] in [0, 1): the hysteresis lag's share that relaxes
+  double time_constant_s = 0.1;  ///< T_c [s] in (0, 100]: the relaxation's time constant
+  bool enabled() const { return voltage_share > 0 || loop_share > 0; }
+};
+
 /// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.
 struct StageParameters {
   std::string name = "virtual PLS8/HR-8 (velocity source)";
@@ -150,6 +175,9 @@ struct StageParameters {
   /// Velocity source: the ceramic's hysteresis before the lag (file: drive.hysteresis, written
   /// only when enabled; a file without it has none).
   DriveHysteresis hysteresis;
+  /// Velocity source: the ceramic's creep after its hysteresis (file: drive.creep, written
+  /// only when enabled; a file without it has none).
+  DriveCreep creep;
   // Actuator-delay model only: force actuator and LuGre rail friction.
   double gain_mps2_per_v = 6.0;         ///< [m/(s^2 V)] a3, force per volt per unit mass
   double dead_zone_v = 0.15;            ///< [V] dz >= 0
@@ -197,8 +225,10 @@ struct StageParameters {
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
   /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay",
-  /// "drive-hysteresis" (the loop-rate candidate C, 10 kHz control with 1 kHz records and a
-  /// 0.1 ms lag, plus the ceramic's asymmetric hysteresis; docs/virtual_stage.md).
+  /// "drive-hysteresis-static" (the loop-rate candidate C, 10 kHz control with 1 kHz records
+  /// and a 0.1 ms lag, plus the ceramic's asymmetric hysteresis: candidate H2),
+  /// "drive-hysteresis" (C with wider play operators whose lag partly creeps out: the loop
+  /// widens with the rate; docs/virtual_stage.md, "Creep: the loop's rate dependence").
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
@@ -217,18 +247,26 @@ struct StageParameters {
   /// and limits), found by bisection on the model's steady force balance; 0 when the drive
   /// does not break away (velocity source: |p v_f(u)| <= Fs; actuator delay: a3 M <= Fs).
   /// With drive hysteresis the voltage is reached from 0 V (a rise for u > 0, a fall for
-  /// u < 0, of at least 2 r_max): v_f is read at u -+ HeldLag.
+  /// u < 0, of at least 2 r_max): v_f is read at u -+ HeldDriveLag.
   double SteadyVelocity(double u_v) const;
   /// Velocity source: sets the speed map's knots so that a held voltage u_i settles at v_i for
   /// each (u_i [V], v_i [m/s]) (steady law T(p (v_f - v)) = g(|v|), so
   /// v_f(u_i) = v_i + sgn(v_i) T^-1(g(|v_i|)) / p), for the current pole, thrust limit and rail.
   /// With drive hysteresis the knot sits at the held u_h: u_i reached from 0 V by a rise
-  /// (u_i > 0) or a fall (u_i < 0) of at least 2 r_max, u_i -+ HeldLag.
+  /// (u_i > 0) or a fall (u_i < 0) of at least 2 r_max, u_i -+ HeldDriveLag.
   /// Default() calls it with the paper's pulse table.
   void SetSpeedMapThrough(const std::vector<std::pair<double, double>>& steady_points);
+  /// [V] Velocity source: the drive's lag of a voltage held after a rise (rising) or a fall of
+  /// at least 2 r_max from 0 V: the hysteresis' HeldLag, of which the creep's loop share has
+  /// relaxed, (1 - k_l) HeldLag (0 without hysteresis).
+  double HeldDriveLag(bool rising) const;
+  /// Velocity source: sets the creep `c` and moves the dead zones and the speed map's knots by
+  /// the change of HeldDriveLag, as SetDriveHysteresis does (the voltage share does not move
+  /// them: a held voltage has relaxed). Throws OptionsError (Validate) as SetDriveHysteresis.
+  void SetDriveCreep(const DriveCreep& c);
   /// Velocity source: sets drive hysteresis `h` and moves the dead zones and the speed map's
-  /// knots by the change of the held lags (forward side by HeldLag(true), backward by
-  /// HeldLag(false)), so that a voltage held after a rise from 0 V (forward) or a fall
+  /// knots by the change of the held lags (forward side by HeldDriveLag(true), backward by
+  /// HeldDriveLag(false)), so that a voltage held after a rise from 0 V (forward) or a fall
   /// (backward) gives the same steady velocity as before: the pulse table stays. Throws
   /// OptionsError (Validate) when the moved dead zones or knots are not valid.
   void SetDriveHysteresis(const DriveHysteresis& h);
@@ -238,6 +276,9 @@ struct StageParameters {
  private:
   void ValidateVelocitySource() const;
   void ValidateHysteresis() const;
+  void ValidateCreep() const;
+  /// Moves the dead zones and knots by the change of HeldDriveLag from (forward, backward).
+  void MoveForHeldLag(double forward_before, double backward_before);
   void ValidateDriveMap() const;
 };
 
@@ -249,7 +290,7 @@ StageParameters ReadStageParameters(const std::string& path);
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
 /// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay,
-/// drive-hysteresis) or
+/// drive-hysteresis, drive-hysteresis-static) or
 /// the path of a stage file.
 StageParameters LoadStage(const std::string& preset_or_path);
 

@@ -150,8 +150,9 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
         "needs a drive whose voltage depends on the motion's history in a way the acceleration "
         "encodes differently on the training and the test waveforms. No drive tried on the twin "
         "does it without breaking another fact: docs/virtual_stage.md, \"Drive hysteresis\", "
-        "lists 17 candidates with their four MSEs; the closest to the paper is the preset "
-        "`drive-hysteresis` (a static, asymmetric loop in the pulse region).\n";
+        "lists 17 candidates with their four MSEs; the closest to the paper are the presets "
+        "`drive-hysteresis-static` (a static, asymmetric loop in the pulse region) and "
+        "`drive-hysteresis` (that loop widening with the rate: the ceramic's creep).\n";
   if (!contrast)
     s.markdown += fmt::format(
         "\nOn these recordings no model of u on the dominant inputs can go below {} V² on the "

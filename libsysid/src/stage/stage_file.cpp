@@ -19,8 +19,8 @@ constexpr double kMaxStageSampleRateHz = 1e6;
 // Why a key or section is required: said in every such message.
 constexpr const char* kCompleteRule =
     "a stage file gives every section and key of its model, or names \"preset\": NAME "
-    "(virtual, velocity-source, actuator-delay, drive-hysteresis) whose values fill what it "
-    "leaves out";
+    "(virtual, velocity-source, actuator-delay, drive-hysteresis, drive-hysteresis-static) "
+    "whose values fill what it leaves out";
 
 // Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
 // (handled by the caller). With `complete` (a file that names no "preset") every key but those
@@ -126,7 +126,9 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     const internal::JsonNode at = root.Get("preset");
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
-      at.Expected("a preset name (virtual, velocity-source, actuator-delay, drive-hysteresis)");
+      at.Expected(
+          "a preset name (virtual, velocity-source, actuator-delay, drive-hysteresis, "
+          "drive-hysteresis-static)");
     preset = StageParameters::Preset(name);
   }
   const bool complete = !preset;
@@ -160,11 +162,11 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                {"lag_time_constant_s", &p.lag_time_constant_s}},
               {},
               {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
-              {"hysteresis"}}
+              {"hysteresis", "creep"}}
           .Read(root.Get(key), complete,
                 vs ? std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v", "map_in_v",
-                                              "map_out_v", "hysteresis"}
-                   : std::vector<std::string>{"hysteresis"});
+                                              "map_out_v", "hysteresis", "creep"}
+                   : std::vector<std::string>{"hysteresis", "creep"});
       if (root.Get(key).Has("hysteresis")) {
         // The ceramic's hysteresis (velocity source only); a file without the block has none.
         const internal::JsonNode h = root.Get(key).Get("hysteresis");
@@ -177,6 +179,18 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
                  {"rate_weights_s_per_v", &p.hysteresis.rate_weights_s_per_v}},
                 {}}
             .Read(h, complete);
+      }
+      if (root.Get(key).Has("creep")) {
+        // The ceramic's creep (velocity source only); a file without the block has none.
+        const internal::JsonNode c = root.Get(key).Get("creep");
+        if (!vs) other_model(c);
+        Section{{{"voltage_share", &p.creep.voltage_share},
+                 {"loop_share", &p.creep.loop_share},
+                 {"time_constant_s", &p.creep.time_constant_s}},
+                {},
+                {},
+                {}}
+            .Read(c, complete);
       }
     } else if (key == "motor") {
       if (!vs) other_model(root.Get(key));
@@ -318,6 +332,13 @@ std::string StageParametersToJson(const StageParameters& p) {
     h["rate_time_constant_s"] = p.hysteresis.rate_time_constant_s;
     h["asymmetry"] = p.hysteresis.asymmetry;
     drive["hysteresis"] = h;
+  }
+  if (vs && p.creep.enabled()) {
+    OJ c;
+    c["voltage_share"] = p.creep.voltage_share;
+    c["loop_share"] = p.creep.loop_share;
+    c["time_constant_s"] = p.creep.time_constant_s;
+    drive["creep"] = c;
   }
   if (!vs) {
     drive["map_in_v"] = p.drive_map_in_v;

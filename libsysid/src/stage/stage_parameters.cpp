@@ -66,7 +66,7 @@ void StageParameters::SetSpeedMapThrough(
     const std::vector<std::pair<double, double>>& steady_points) {
   std::vector<std::pair<double, double>> knots;
   for (const auto& [u, v] : steady_points)
-    knots.emplace_back(u > 0 ? u - hysteresis.HeldLag(true) : u + hysteresis.HeldLag(false),
+    knots.emplace_back(u > 0 ? u - HeldDriveLag(true) : u + HeldDriveLag(false),
                        v + (v > 0 ? 1.0 : -1.0) *
                                   motor.DroopForThrust(rail.Sliding(std::abs(v))) /
                                   motor.pole_per_s);
@@ -88,13 +88,28 @@ StageParameters StageParameters::Default() {
 }
 
 void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
-  const double forward = h.HeldLag(true) - hysteresis.HeldLag(true);
-  const double backward = h.HeldLag(false) - hysteresis.HeldLag(false);
+  const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
   hysteresis = h;
+  MoveForHeldLag(forward, backward);
+}
+
+void StageParameters::SetDriveCreep(const DriveCreep& c) {
+  const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
+  creep = c;
+  MoveForHeldLag(forward, backward);
+}
+
+void StageParameters::MoveForHeldLag(double forward_before, double backward_before) {
+  const double forward = HeldDriveLag(true) - forward_before;
+  const double backward = HeldDriveLag(false) - backward_before;
   motor.dead_zone_forward_v -= forward;
   motor.dead_zone_backward_v -= backward;
   for (double& u : motor.speed_map_in_v) u += u > 0 ? -forward : backward;
   Validate();
+}
+
+double StageParameters::HeldDriveLag(bool rising) const {
+  return (1 - creep.loop_share) * hysteresis.HeldLag(rising);
 }
 
 double DriveHysteresis::HeldLag(bool rising) const {
@@ -127,17 +142,15 @@ double MotorParameters::DroopForThrust(double f) const {
 
 namespace {
 
-// Preset "drive-hysteresis" (docs/virtual_stage.md, "Drive hysteresis"): the loop-rate
-// candidate C (10 kHz control, 1 kHz records, a 0.1 ms driver envelope) with the ceramic's
-// asymmetric hysteresis, the candidate closest to the paper's F7 (not its contrast).
-StageParameters DriveHysteresisPreset() {
+// Candidate C (docs/virtual_stage.md, "Loop rate"): 10 kHz control, 1 kHz records, a 0.1 ms
+// driver envelope, with asymmetric play operators of thresholds r [V] (weights 0.2, alpha 0.3).
+StageParameters LoopRateCWithPlay(const std::vector<double>& r) {
   StageParameters p = StageParameters::Default();
-  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis)";
   p.sample_rate_hz = 10000;
   p.record_rate_hz = 1000;
   p.lag_time_constant_s = 0.0001;
   DriveHysteresis h;
-  h.thresholds_v = {0.1, 0.2, 0.3};
+  h.thresholds_v = r;
   h.weights = {0.2, 0.2, 0.2};
   h.rate_weights_s_per_v = {0, 0, 0};
   h.rate_time_constant_s = 0.01;
@@ -146,20 +159,44 @@ StageParameters DriveHysteresisPreset() {
   return p;
 }
 
+// Preset "drive-hysteresis-static" (docs/virtual_stage.md, "Drive hysteresis", candidate H2):
+// C with the ceramic's asymmetric, rate-independent hysteresis.
+StageParameters DriveHysteresisStaticPreset() {
+  StageParameters p = LoopRateCWithPlay({0.1, 0.2, 0.3});
+  p.name = "virtual PLS8/HR-8 (velocity source, static drive hysteresis)";
+  return p;
+}
+
+// Preset "drive-hysteresis" (docs/virtual_stage.md, "Creep: the loop's rate dependence",
+// candidate K62): C with wider play operators (H5's) whose lag partly creeps out (the creep's
+// loop share), so that the loop widens with the rate (F8 (c)) while a held pulse settles as
+// without it (F1-F3).
+StageParameters DriveHysteresisPreset() {
+  StageParameters p = LoopRateCWithPlay({0.15, 0.3, 0.45});
+  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis with creep)";
+  DriveCreep c;
+  c.voltage_share = 0;
+  c.loop_share = 0.6;
+  c.time_constant_s = 0.04;
+  p.SetDriveCreep(c);
+  return p;
+}
+
 }  // namespace
 
 bool StageParameters::IsPresetName(const std::string& name) {
   return name == "virtual" || name == "velocity-source" || name == "actuator-delay" ||
-         name == "drive-hysteresis";
+         name == "drive-hysteresis" || name == "drive-hysteresis-static";
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
   if (name == "virtual" || name == "velocity-source") return Default();
   if (name == "actuator-delay") return ActuatorDelay();
   if (name == "drive-hysteresis") return DriveHysteresisPreset();
+  if (name == "drive-hysteresis-static") return DriveHysteresisStaticPreset();
   throw OptionsError("stage preset '" + name +
                      "' is not one of virtual (= velocity-source), velocity-source, "
-                     "actuator-delay, drive-hysteresis");
+                     "actuator-delay, drive-hysteresis, drive-hysteresis-static");
 }
 
 std::string ToString(StageModel model) {
@@ -268,6 +305,10 @@ void StageParameters::Validate() const {
   Require(!hysteresis.enabled(), "hysteresis.thresholds_v",
           static_cast<double>(hysteresis.thresholds_v.size()),
           "no drive hysteresis on the actuator-delay model (it belongs to the velocity source)");
+  Require(!creep.enabled(), "creep.voltage_share", creep.voltage_share,
+          "no drive creep on the actuator-delay model (it belongs to the velocity source)");
+  Require(!creep.enabled(), "creep.loop_share", creep.loop_share,
+          "no drive creep on the actuator-delay model (it belongs to the velocity source)");
   // Actuator-delay model: LuGre rail and drive map.
   Require(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
           "bristle_stiffness_per_s2 > 0");
@@ -321,6 +362,7 @@ void StageParameters::ValidateVelocitySource() const {
             "at least one knot on each side of the dead zone");
   }
   ValidateHysteresis();
+  ValidateCreep();
   RequireFinite("rail.coulomb_mps2", rail.coulomb_mps2);
   RequireFinite("rail.static_mps2", rail.static_mps2);
   RequireFinite("rail.stribeck_velocity_mps", rail.stribeck_velocity_mps);
@@ -383,6 +425,23 @@ void StageParameters::ValidateHysteresis() const {
   RequireFinite("hysteresis.asymmetry", h.asymmetry);
   Require(h.asymmetry > -1 && h.asymmetry < 1, "hysteresis.asymmetry", h.asymmetry,
           "-1 < asymmetry < 1");
+}
+
+void StageParameters::ValidateCreep() const {
+  RequireFinite("creep.voltage_share", creep.voltage_share);
+  Require(creep.voltage_share >= 0 && creep.voltage_share < 1, "creep.voltage_share",
+          creep.voltage_share, "0 <= voltage_share < 1 (the voltage's share that arrives late)");
+  RequireFinite("creep.loop_share", creep.loop_share);
+  Require(creep.loop_share >= 0 && creep.loop_share < 1, "creep.loop_share", creep.loop_share,
+          "0 <= loop_share < 1 (the hysteresis lag's share that relaxes)");
+  // The loop share relaxes the play operators' lag: without them it would do nothing.
+  Require(creep.loop_share == 0 || hysteresis.enabled(), "creep.loop_share", creep.loop_share,
+          "loop_share = 0 without drive.hysteresis (it relaxes the play operators' lag)");
+  RequireFinite("creep.time_constant_s", creep.time_constant_s);
+  // The bound keeps a relaxation within the procedures' reach (one slower than every recording
+  // is a gain change, not a rate effect).
+  Require(creep.time_constant_s > 0 && creep.time_constant_s <= 100, "creep.time_constant_s",
+          creep.time_constant_s, "0 < time_constant_s <= 100");
 }
 
 void StageParameters::ValidateDriveMap() const {
@@ -452,8 +511,8 @@ double StageParameters::SteadyVelocity(double u_v) const {
   const double u =
       std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
   if (model == StageModel::kVelocitySource) {
-    const double vf = NoLoadSpeed(u > 0   ? u - hysteresis.HeldLag(true)
-                                  : u < 0 ? u + hysteresis.HeldLag(false)
+    const double vf = NoLoadSpeed(u > 0   ? u - HeldDriveLag(true)
+                                  : u < 0 ? u + HeldDriveLag(false)
                                           : 0.0);
     const double p = motor.pole_per_s;
     if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;

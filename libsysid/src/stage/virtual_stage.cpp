@@ -25,6 +25,14 @@
 // The operator is causal per sample, so a transport delay delays its output as it would its
 // input: the history holds the driven values.
 //
+// Creep (velocity source, drive.creep): the ceramic's relaxation with T_c (DriveCreep in
+// stage.hpp). Its input is held per sample, so the relaxation has a closed form on each held
+// piece and the lag's input is (1 - k_v) u_pi + q + (z_a - q) e^(-(t - t_a) / T_c), anchored
+// where the relaxing target q last changed: the right-hand side stays smooth on the piece (no
+// new state, no root), and a held command keeps the same anchor, so the integrator is not
+// restarted while the creep settles (a per-sample held u_h would restart it every sample of
+// every plateau).
+//
 // Work per sample is bounded (integrator.max_steps_per_sample: CVODE steps plus switches), so a
 // stage that cannot be integrated ends with NumericalError naming the time and the state
 // instead of running on.
@@ -49,6 +57,20 @@ namespace {
 
 enum : int { kX = 0, kV = 1, kZ = 2, kW = 3, kStates = 4 };
 
+// The driver's input on a piece [V]: target + relax e^(-(t - from_s) / T_c); relax = 0
+// without creep (then exactly target, as before creep existed).
+struct DriveInput {
+  double target = 0;  // [V] the value it relaxes to
+  double relax = 0;   // [V] the part still relaxing at from_s
+  double from_s = 0;  // [s] the anchor t_a on the stage's clock (after the transport delay)
+  double At(double t, double time_constant_s) const {
+    return relax == 0 ? target : target + relax * std::exp(-(t - from_s) / time_constant_s);
+  }
+  bool operator!=(const DriveInput& o) const {
+    return target != o.target || relax != o.relax || from_s != o.from_s;
+  }
+};
+
 std::string Num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g", v);
@@ -66,7 +88,7 @@ class VirtualStage::Impl {
     delay_samples_ = static_cast<long>(std::floor(d + 1e-9));
     delay_fraction_ = d - static_cast<double>(delay_samples_);
     if (delay_fraction_ < 1e-9) delay_fraction_ = 0;
-    history_.assign(static_cast<size_t>(delay_samples_) + 2, 0.0);
+    history_.assign(static_cast<size_t>(delay_samples_) + 2, DriveInput{});
     dac_step_ = 2.0 * p_.dac_range_v / std::ldexp(1.0, p_.dac_bits);
     const double inv_q = 1.0 / p_.encoder_resolution_m;
     // Readings as n / (1/q) when 1/q is an integer: the decimal text of the reading is then
@@ -112,12 +134,32 @@ class VirtualStage::Impl {
 
   // Driver input after clipping, dead zone and the static map, for a DAC value u (velocity
   // source: after clipping and the ceramic's hysteresis; its dead zone acts on the lagged
-  // voltage through v_f). Called once per sample, in order: the hysteresis has state.
-  double Drive(double u) {
+  // voltage through v_f). Called once per sample, in order: the hysteresis and the creep have
+  // state.
+  DriveInput Drive(double u) {
     const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
-    if (vs_) return hysteresis_.enabled() ? Hysteresis(s) : s;
-    if (std::abs(s) <= p_.dead_zone_v) return 0.0;
-    return p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v);
+    if (vs_) {
+      const double pi = hysteresis_.enabled() ? Hysteresis(s) : s;
+      return p_.creep.enabled() ? Creep(s, pi) : DriveInput{pi, 0, 0};
+    }
+    if (std::abs(s) <= p_.dead_zone_v) return {};
+    return {p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v), 0, 0};
+  }
+
+  // DriveCreep for the clipped command s and the hysteresis' output pi: z relaxes to
+  // q = k_v pi + k_l (s - pi), u_h = (1 - k_v) pi + z. A new anchor where q changes (z there
+  // from the old anchor's closed form), the old one while q is held.
+  DriveInput Creep(double s, double pi) {
+    const DriveCreep& c = p_.creep;
+    const double t = static_cast<double>(k_) * ts_;
+    const double q = c.voltage_share * pi + c.loop_share * (s - pi);
+    if (q != creep_target_) {
+      creep_z_ = creep_target_ +
+                 (creep_z_ - creep_target_) * std::exp(-(t - creep_from_) / c.time_constant_s);
+      creep_target_ = q;
+      creep_from_ = t;
+    }
+    return {(1 - c.voltage_share) * pi + q, creep_z_ - q, creep_from_ + p_.transport_delay_s};
   }
 
   // u_h of DriveHysteresis for the clipped command s: the play operators' states and the
@@ -146,10 +188,10 @@ class VirtualStage::Impl {
     sample_start_steps_ = cv_->Counters().steps;
     sample_switches_ = 0;
     sample_u_ = u;
-    const double now = history_[static_cast<size_t>(delay_samples_)];
+    const DriveInput now = history_[static_cast<size_t>(delay_samples_)];
     if (delay_fraction_ > 0) {
       // The delayed input is the older value until t_k + f Ts, then the newer one.
-      const double before = history_[static_cast<size_t>(delay_samples_) + 1];
+      const DriveInput before = history_[static_cast<size_t>(delay_samples_) + 1];
       Advance(t0 + delay_fraction_ * ts_, before);
       Advance(t1, now);
     } else {
@@ -186,7 +228,7 @@ class VirtualStage::Impl {
 
  private:
   // Integrates to `t_end` with driver input `drive` (after dead zone and map).
-  void Advance(double t_end, double drive) {
+  void Advance(double t_end, const DriveInput& drive) {
     double* y = cv_->state();
     const double pull = vs_ ? p_.NoLoadSpeed(y[kW]) : y[kW];
     if (stop_ != 0 && pull * stop_ < 0) {
@@ -312,11 +354,11 @@ class VirtualStage::Impl {
 
   const FrictionBranch& Branch(double v) const { return v < 0 ? p_.backward : p_.forward; }
 
-  static int Rhs(double, N_Vector yv, N_Vector ydot, void* data) {
+  static int Rhs(double t, N_Vector yv, N_Vector ydot, void* data) {
     const Impl& s = *static_cast<const Impl*>(data);
     const double* y = N_VGetArrayPointer(yv);
     double* d = N_VGetArrayPointer(ydot);
-    d[kW] = (s.drive_ - y[kW]) / s.p_.lag_time_constant_s;
+    d[kW] = (s.drive_.At(t, s.p_.creep.time_constant_s) - y[kW]) / s.p_.lag_time_constant_s;
     const double tm = s.vs_ ? s.p_.rail.memory_time_s : 0.0;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) {
       d[kX] = d[kV] = 0;
@@ -414,12 +456,12 @@ class VirtualStage::Impl {
   double ts_ = 1e-3;
   long delay_samples_ = 0;
   double delay_fraction_ = 0;
-  std::vector<double> history_;
+  std::vector<DriveInput> history_;
   double dac_step_ = 0;
   double encoder_divisor_ = 0;
   long k_ = 0;
   double t_ = 0;
-  double drive_ = 0;
+  DriveInput drive_;
   int stop_ = 0;
   bool vs_ = false;        // velocity-source model
   bool stuck_ = true;      // velocity source: held by the rail's static friction
@@ -435,6 +477,9 @@ class VirtualStage::Impl {
   double rate_gain_ = 1;         // b = 1 - exp(-Ts / tau)
   double rate_limit_ = 0;        // [V/s] rho_sat
   double last_input_ = 0;        // [V] the previous clipped command
+  double creep_target_ = 0;      // [V] creep: q of the current anchor
+  double creep_z_ = 0;           // [V] creep: z at the anchor (z = 0 at t = 0)
+  double creep_from_ = 0;        // [s] creep: the anchor's sample time (before the delay)
   std::optional<internal::CvodeSolver> cv_;  // made once p_ is validated
 };
 
