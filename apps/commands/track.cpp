@@ -211,10 +211,11 @@ void AddTrackCommand(CLI::App& app) {
       "inverse as feedforward: maximum and RMS tracking error and control effort");
   cmd->add_option("--plant", o->plant,
                   "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
-                  "calibrated velocity-source stage) or 'actuator-delay' (the former stage, on "
-                  "which the paper's gains limit-cycle and feedforward does not help); or a "
-                  "piezo stack: a file naming \"plant\": \"piezo-stack\", or the preset "
-                  "'piezo-stack' (docs/piezo_stack.md)");
+                  "calibrated velocity-source stage, 10 kHz loop), 'virtual-1khz' (the same at a "
+                  "1 kHz loop, the former default), 'drive-hysteresis' or 'actuator-delay' (the "
+                  "older stage, on which the paper's gains limit-cycle and feedforward does not "
+                  "help); or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
+                  "preset 'piezo-stack' (docs/piezo_stack.md)");
   cmd->add_option("--ff", o->ff,
                   "feedforward scheme(s), comma separated: none, analytic, nn (stage); none, "
                   "hysteresis (stack)")

@@ -1,9 +1,10 @@
 // Issue #12's acceptance: the default (velocity-source) stage meets the paper's facts F1-F3 and
-// F6, F4's dwell and clipping criteria, and F5's controller ordering against PI, as computed by
-// `sysid stage facts --json` (never stored); the actuator-delay preset does not. Issue #26's
-// F4 in motion is not met on the default stage (its 1 kHz loop rings at ~80 Hz while moving:
-// docs/virtual_stage.md, "Loop rate"), and the fact says so with the ringing frequency. F5's NN-vs-analytic order is not asserted: it
-// depends on the trained network (docs/virtual_stage.md, "Measured").
+// F6, F4, and F5's controller ordering against PI, as computed by
+// `sysid stage facts --json` (never stored); the actuator-delay preset does not. The default is
+// the loop-rate candidate C (10 kHz loop, 1 kHz records, 0.1 ms driver lag): issue #26's F4 in
+// motion no longer rings at the 1 kHz loop's ~80 Hz (docs/virtual_stage.md, "Loop rate"); the
+// error's jump at each stroke's onset is F5's, not F4's. F5's NN-vs-analytic order is not
+// asserted: it depends on the trained network (docs/virtual_stage.md, "Measured").
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,7 +21,7 @@ const nlohmann::json* FindFact(const nlohmann::json& j, const std::string& id) {
 
 }  // namespace
 
-TEST_CASE("the default stage meets F1-F3, F6, F4 at rest and F5's ordering against PI",
+TEST_CASE("the default stage meets F1-F4, F6 and F5's ordering against PI",
           "[stage][facts][cli]") {
   // --reduced shortens delay tuning and trains a small network (8 hidden units, 15 epochs) so
   // that this runs in seconds under the sanitizers; F1-F4 and F6 are the full experiments, F5's
@@ -40,8 +41,11 @@ TEST_CASE("the default stage meets F1-F3, F6, F4 at rest and F5's ordering again
     CHECK((*f)["required"] == true);
     CHECK((*f)["met"] == true);
   }
-  // F5: PI alone is the worst at both frequencies and every error is within a factor 3 of the
-  // paper's table (0.10651 / 0.03609 / 0.01779 mm at 0.5 Hz, 0.17156 / 0.10579 / 0.07292 at 1 Hz).
+  // F5: PI alone is the worst at both frequencies; PI and analytic are within a factor 3 of the
+  // paper's table (0.10651 / 0.03609 / 0.01779 mm at 0.5 Hz, 0.17156 / 0.10579 / 0.07292 at 1 Hz)
+  // and the reduced network's row is at most 3x the paper's. Not its lower bound: on the 10 kHz
+  // loop the reduced network's 1 Hz row is better than a third of the paper's 0.07292 mm
+  // (measured 0.0235 mm; the full 24-unit network's, docs/virtual_stage.md, 0.025 mm at seed 1).
   const auto& f5 = (*FindFact(j, "F5"))["values"];
   const double paper[2][3] = {{0.10651e-3, 0.03609e-3, 0.01779e-3},
                               {0.17156e-3, 0.10579e-3, 0.07292e-3}};
@@ -55,26 +59,23 @@ TEST_CASE("the default stage meets F1-F3, F6, F4 at rest and F5's ordering again
       e[k] = f5[key].get<double>();
       INFO(key << " = " << e[k] << " m, paper " << paper[i][k] << " m");
       CHECK(e[k] <= 3 * paper[i][k]);
-      CHECK(e[k] >= paper[i][k] / 3);
+      if (k < 2) CHECK(e[k] >= paper[i][k] / 3);
     }
     CHECK(e[0] > e[1]);
     CHECK(e[0] > e[2]);
   }
-  // F4: quiet at rest (dwell ripple <= 1 um, nothing clipped), ringing in motion: RMS ripple
-  // in motion above 5 um (measured 17.7 / 26.2 um) at the 1 kHz loop's ringing frequency
-  // (measured 79 / 85 Hz; a linear loop margin of 0.5 deg at a 543 rad/s = 86 Hz crossover).
+  // F4: quiet at rest (dwell ripple <= 1 um, nothing clipped) and in motion (RMS ripple with
+  // each stroke's breakaway transient left out <= 5 um, measured 0.8 um at both frequencies;
+  // the 1 kHz loop rings at ~80 Hz with 18.6 / 27.1 um by the same metric).
   const auto& f4 = *FindFact(j, "F4");
-  CHECK(f4["met"] == false);
-  CHECK(f4["note"].get<std::string>().find("rings in motion") != std::string::npos);
   for (const char* hz : {"0.5 Hz", "1 Hz"}) {
     const auto& v = f4["values"];
     INFO(hz << ": " << f4["virtual"].get<std::string>());
     CHECK(v[std::string("ripple_m at ") + hz].get<double>() <= 1e-6);
     CHECK(v[std::string("clipped_samples at ") + hz].get<double>() == 0);
-    CHECK(v[std::string("motion_ripple_m at ") + hz].get<double>() > 5e-6);
-    CHECK(v[std::string("ringing_hz at ") + hz].get<double>() > 50);
-    CHECK(v[std::string("ringing_hz at ") + hz].get<double>() < 120);
+    CHECK(v[std::string("motion_ripple_m at ") + hz].get<double>() <= 5e-6);
   }
+  CHECK(f4["met"] == true);
   // F3's numbers themselves: tau in 2.5-4.5 ms.
   const auto& f3 = (*FindFact(j, "F3"))["values"];
   REQUIRE(f3.contains("tau_s"));

@@ -140,7 +140,7 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
   REQUIRE(r.delay.has_value());
   const sysid::Recording rec = sysid::RunPulseTest(stage, o.pulse, o.seed);
   const Eigen::VectorXd t = rec.column("t"), u = rec.column("u"), x = rec.column("x");
-  const double dt = 1.0 / stage.sample_rate_hz, h = 5e-5;
+  const double dt = 1.0 / stage.RecordRateHz(), h = 5e-5;  // the recording's rate
   const sysid::PiecewiseConstantInput input(std::vector<double>(t.data(), t.data() + t.size()),
                                             std::vector<double>(u.data(), u.data() + u.size()));
   auto central = [&](const std::vector<double>& y, Eigen::Index k) {
@@ -203,14 +203,18 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   // central differences (a = central difference of v, the paper's "numerical differentiation"),
   // the moving part |x'| >= 1 mm/s, a1 by the direction of motion.
   // One lead-in period (the input starts with a -1.8 V step from rest), then the analysed one.
-  const double rate = stage.sample_rate_hz;
+  // The stage runs at its control rate (10 kHz); the positions are read at the record rate
+  // (1 kHz, every 10th control sample), as the paper differentiated its logged positions.
+  const double control_rate = stage.sample_rate_hz, rate = stage.RecordRateHz();
+  const Eigen::Index stride = stage.RecordStride();
   const Eigen::Index n = static_cast<Eigen::Index>(std::llround(o.dominance_duration_s * rate)) + 1;
   const Eigen::Index lead = n - 1;
-  Eigen::VectorXd u(lead + n);
-  for (Eigen::Index k = 0; k < lead + n; ++k)
-    u[k] = 1.5 * std::sin(M_PI / 2 * static_cast<double>(k) / rate - M_PI / 2) - 0.3;
+  Eigen::VectorXd u((lead + n - 1) * stride + 1);
+  for (Eigen::Index k = 0; k < u.size(); ++k)
+    u[k] = 1.5 * std::sin(M_PI / 2 * static_cast<double>(k) / control_rate - M_PI / 2) - 0.3;
   const sysid::StageRun run = sysid::RunOpenLoop(stage, u, sysid::DeriveSeed(o.seed, 3));
-  const Eigen::VectorXd x = run.x_m.tail(n);
+  Eigen::VectorXd x(n);
+  for (Eigen::Index k = 0; k < n; ++k) x[k] = run.x_m[(lead + k) * stride];
   const sysid::FrictionModel m = *r.pulse_model;
   // Central differences, second-order one-sided at the two ends (the window ends at full
   // backward speed, so its last samples count).
@@ -454,7 +458,10 @@ TEST_CASE("F4 in motion: RMS of e minus its 50 ms moving average, and the ringin
 }
 
 TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[stage][facts]") {
-  const StageParameters stage = StageParameters::Default();
+  // The 1 kHz preset (the default before the loop-rate candidate C): the recomputation below
+  // reads one error sample per ms (50 ms = 51 samples, DFT bins of 1000 j / m Hz), and its
+  // plain DFT sum over the 10 kHz loop's 100x as many products would take minutes.
+  const StageParameters stage = StageParameters::Preset("virtual-1khz");
   const FactsOptions o = Only({"F4"});
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
   REQUIRE(r.tracking.size() == 2);

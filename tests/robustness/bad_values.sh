@@ -38,8 +38,8 @@ expect_stage() {  # expect_stage MESSAGE SED-EXPRESSION
   grep -q -- "$1" err.txt || fail "stage $2: message lacks '$1'"
   [ ! -e gen ] || fail "partial output"
 }
-expect_stage "s.json:[0-9]*:[0-9]*: rig.sample_rate_hz: expected sample_rate_hz > 0, found 0" \
-  's/"sample_rate_hz": [0-9.e]*/"sample_rate_hz": 0/'
+expect_stage "s.json:[0-9]*:[0-9]*: rig.control_rate_hz: expected sample_rate_hz > 0, found 0" \
+  's/"control_rate_hz": [0-9.e]*/"control_rate_hz": 0/'
 expect_stage "rail.coulomb_mps2: expected coulomb_mps2 > 0, found -1" \
   '0,/"coulomb_mps2": [0-9.e]*/s//"coulomb_mps2": -1/'
 expect_stage "motor.pole_per_s: expected pole_per_s > 0, found -6" \

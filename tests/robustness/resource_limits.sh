@@ -16,8 +16,8 @@ expect 1 "above the limit of 4 GB" train --hidden 100000 --train "$train" --inpu
 expect 1 "sizes must be <= 100000" sweep --hidden 1:2000000000 --train "$train"
 expect 1 "more than 1000 sizes" sweep --hidden 1:5000 --train "$train"
 expect 1 "seed" train --seed -1 --train "$train"
-sed 's/"sample_rate_hz": [0-9.e]*/"sample_rate_hz": 1e12/' "$src/datasets/virtual/stage.json" > fast.json
-expect 2 "fast.json:[0-9]*:[0-9]*: rig.sample_rate_hz: expected a number in (0, 1e+06]" \
+sed 's/"control_rate_hz": [0-9.e]*/"control_rate_hz": 1e12/' "$src/datasets/virtual/stage.json" > fast.json
+expect 2 "fast.json:[0-9]*:[0-9]*: rig.control_rate_hz: expected a number in (0, 1e+06]" \
   generate pulses --stage fast.json -o g
 [ ! -e sim.csv ] && [ ! -e g ] || fail "partial output left"
 echo "ok: every oversized request refused before allocation"

@@ -14,6 +14,7 @@
 
 namespace {
 
+using sysid::test::Stage1kHz;
 using sysid::test::VelocitySourceReference;
 
 // Pulses, a slow and a fast triangle, a sinusoid with reversals and a hold: rises, falls and
@@ -87,7 +88,7 @@ std::vector<double> StageEffective(const sysid::StageParameters& p, const std::v
 }
 
 sysid::StageParameters Stage(const sysid::DriveHysteresis& h) {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   p.position_noise_m = 0;
   p.SetDriveHysteresis(h);
   return p;
@@ -215,7 +216,7 @@ TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle o
     cmd.resize(600, 0.0);
     cmd.resize(1800, u);
     const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
-    sysid::StageParameters from = p, plain = sysid::StageParameters::Default();
+    sysid::StageParameters from = p, plain = Stage1kHz();
     from.initial_position_m = plain.initial_position_m = u > 0 ? -0.04 : 0.04;
     plain.position_noise_m = 0;
     const double got = sysid::RunOpenLoop(from, command, 1).v_true_mps[1799];
@@ -225,7 +226,7 @@ TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle o
     CHECK(got == Approx(v).epsilon(1e-3));
   }
   // Moving the knots by the held lag: without it the held pulses would be slower.
-  sysid::StageParameters raw = sysid::StageParameters::Default();
+  sysid::StageParameters raw = Stage1kHz();
   raw.hysteresis = h;
   raw.motor.dead_zone_forward_v -= h.HeldLag(true);
   raw.motor.dead_zone_backward_v -= h.HeldLag(false);
@@ -235,7 +236,7 @@ TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle o
 TEST_CASE("drive hysteresis in the stage file: written only when set, read back, validated at "
           "its place",
           "[stage][hysteresis][file]") {
-  const sysid::StageParameters def = sysid::StageParameters::Default();
+  const sysid::StageParameters def = Stage1kHz();
   const std::string plain = sysid::StageParametersToJson(def);
   CHECK(plain.find("hysteresis") == std::string::npos);  // old files: byte for byte
   const sysid::StageParameters p = Stage(Ceramic(0.3, 0.003, 0.01));
@@ -294,7 +295,7 @@ TEST_CASE("drive hysteresis in the stage file: written only when set, read back,
   sysid::DriveHysteresis wide = Ceramic(0.0, 0.0, 0.0);
   wide.weights = {0.3, 0.3, 0.39};
   wide.thresholds_v = {0.5, 1.0, 2.0};
-  sysid::StageParameters q = sysid::StageParameters::Default();
+  sysid::StageParameters q = Stage1kHz();
   CHECK_THROWS_AS(q.SetDriveHysteresis(wide), sysid::OptionsError);
 }
 
@@ -315,13 +316,23 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
   // On a slow rise the stage starts where the default does (the dead zone moved by the lag a
   // held voltage keeps).
-  const sysid::StageParameters def = sysid::StageParameters::Default();
+  const sysid::StageParameters def = Stage1kHz();
   CHECK(p.motor.dead_zone_forward_v + p.HeldDriveLag(true) ==
         Approx(def.motor.dead_zone_forward_v));
   CHECK(p.motor.dead_zone_backward_v + p.HeldDriveLag(false) ==
         Approx(def.motor.dead_zone_backward_v));
   const std::string text = sysid::StageParametersToJson(p);
   CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "p.json")) == text);
+  // It is candidate C with the hysteresis block whichever stage is the default: built here
+  // from the 1 kHz preset with C's rates and lag written out.
+  sysid::StageParameters c = sysid::LoadStage("virtual-1khz");
+  c.name = p.name;
+  c.sample_rate_hz = 10000;
+  c.record_rate_hz = 1000;
+  c.lag_time_constant_s = 0.0001;
+  c.SetDriveHysteresis(p.hysteresis);
+  if (p.creep.enabled()) c.SetDriveCreep(p.creep);
+  CHECK(sysid::StageParametersToJson(c) == text);
   // A file may name it as its preset and change one value.
   CHECK(sysid::ParseStageParameters("{\"preset\": \"" + name +
                                         "\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",

@@ -16,8 +16,9 @@
 
 namespace {
 
+// The former default (0.3 ms lag) at another rate: the stage on which the 10 kHz run hung.
 sysid::StageParameters AtRate(double control_hz, double record_hz = 0) {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = sysid::test::Stage1kHz();
   p.sample_rate_hz = control_hz;
   p.record_rate_hz = record_hz;
   return p;
@@ -104,7 +105,7 @@ TEST_CASE("through the former hang at 10 kHz the stage follows an independent ti
 
 TEST_CASE("a stage that cannot be integrated within the work budget ends with the time and state",
           "[stage][loop-rate]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = sysid::test::Stage1kHz();
   // A budget of 10 steps per sample: the start of a 2 V pulse needs ~50 at 1 kHz (BDF restarts
   // at order 1 after every switch), so this stage "cannot be integrated".
   p.max_steps_per_sample = 10;
@@ -176,15 +177,20 @@ TEST_CASE("stage files: one rate, or the control and record rates apart", "[stag
   const sysid::StageParameters back = ParseStageParameters(text, "b.json");
   CHECK(back.sample_rate_hz == 10000);
   CHECK(back.record_rate_hz == 1000);
-  // The alias sets both; a default stage writes it alone (files as before).
+  // The alias sets both; a stage with one rate writes it alone (files as before), the default
+  // (10 kHz loop, 1 kHz records) both.
   const sysid::StageParameters alias =
       ParseStageParameters(R"({"preset": "virtual", "rig": {"sample_rate_hz": 5000}})", "c.json");
   CHECK(alias.sample_rate_hz == 5000);
   CHECK(alias.RecordRateHz() == 5000);
-  const std::string one = sysid::StageParametersToJson(sysid::StageParameters::Default());
+  const std::string one = sysid::StageParametersToJson(sysid::test::Stage1kHz());
   CHECK(one.find("\"sample_rate_hz\": 1000") != std::string::npos);
   CHECK(one.find("control_rate_hz") == std::string::npos);
   CHECK(one.find("max_steps_per_sample") == std::string::npos);
+  const std::string two = sysid::StageParametersToJson(sysid::StageParameters::Default());
+  CHECK(two.find("\"control_rate_hz\": 10000") != std::string::npos);
+  CHECK(two.find("\"record_rate_hz\": 1000") != std::string::npos);
+  CHECK(two.find("\"sample_rate_hz\"") == std::string::npos);
   // Both ways at once, or a record rate that does not divide the control rate: errors at the key.
   CHECK_THROWS_WITH(
       ParseStageParameters(
@@ -198,7 +204,8 @@ TEST_CASE("stage files: one rate, or the control and record rates apart", "[stag
       Catch::StartsWith("e.json:1:") && Catch::Contains("record_rate_hz") &&
           Catch::Contains("integer multiple"));
   CHECK_THROWS_AS(
-      ParseStageParameters(R"({"preset": "virtual", "rig": {"record_rate_hz": 2000}})", "f.json"),
+      ParseStageParameters(R"({"preset": "virtual-1khz", "rig": {"record_rate_hz": 2000}})",
+                           "f.json"),
       sysid::InputError);  // faster than the 1 kHz control rate
   const sysid::StageParameters budget = ParseStageParameters(
       R"({"preset": "virtual", "integrator": {"max_steps_per_sample": 500}})", "g.json");

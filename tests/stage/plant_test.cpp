@@ -12,6 +12,7 @@
 
 namespace {
 
+using sysid::test::Stage1kHz;
 using sysid::test::VelocitySourceReference;
 
 // The plant equations of stage.hpp, written out again and integrated by classic RK4 with
@@ -87,7 +88,7 @@ std::pair<double, double> CompareWithReference(const sysid::StageParameters& p) 
 TEST_CASE("the velocity-source plant matches a tiny-step reference through stick, slip and "
           "reversals",
           "[stage][plant]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   REQUIRE(p.model == sysid::StageModel::kVelocitySource);
   p.position_noise_m = 0;
   SECTION("memoryless rail (Karnopp with g(|v|))") {
@@ -119,7 +120,7 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
 
 TEST_CASE("thrust limit: steady velocities, breakaway and the limit on acceleration",
           "[stage][plant]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   p.motor.pole_per_s = 2000;
   p.motor.thrust_limit_mps2 = 8;
   p.rail = {0.6, 1.0, 0.005, 0.0};
@@ -160,7 +161,7 @@ TEST_CASE("thrust limit: steady velocities, breakaway and the limit on accelerat
 }
 
 TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "[stage][plant]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   p.position_noise_m = 0;
   p.rail = {0.6, 4.0, 0.01, 0.02};
   const double tm = p.rail.memory_time_s;
@@ -197,7 +198,7 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
   // dependence" (measured: 3.1 / 16.1 / 24.2 mm/s at 6 / 1.5 / 0.75 s; 9.9 mm/s at 1.5 s without
   // memory).
   auto width = [](double memory_time_s, double period_s) {
-    sysid::StageParameters p = sysid::StageParameters::Default();
+    sysid::StageParameters p = Stage1kHz();
     p.rail.memory_time_s = memory_time_s;
     p.position_noise_m = 0;
     const int n = static_cast<int>(period_s * 1000);
@@ -235,7 +236,7 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
 
 TEST_CASE("velocity source: speed map, steady velocities and breakaway against closed forms",
           "[stage][plant]") {
-  const sysid::StageParameters p = sysid::StageParameters::Default();
+  const sysid::StageParameters p = Stage1kHz();
   const double pp = p.motor.pole_per_s;
   // The map passes its knots, is 0 in the dead zone and extends its end segments linearly.
   for (size_t i = 0; i < p.motor.speed_map_in_v.size(); ++i)
@@ -339,7 +340,7 @@ TEST_CASE("the transport delay holds the drive back by whole and half samples", 
 }
 
 TEST_CASE("DAC, encoder and noise are what the rig specifies", "[stage][rig]") {
-  const sysid::StageParameters p = sysid::StageParameters::Default();
+  const sysid::StageParameters p = Stage1kHz();
   sysid::VirtualStage stage(p, 11);
   const double q = 20.0 / 65536;
   for (double u : {1.3, -2.5, 0.0, 0.1234567})
@@ -387,7 +388,7 @@ TEST_CASE("the noise is seeded, standard-specified and close to N(0,1)", "[stage
 }
 
 TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[stage][limits]") {
-  for (const auto& preset : {sysid::StageParameters::Default(),
+  for (const auto& preset : {Stage1kHz(),
                              sysid::StageParameters::ActuatorDelay()}) {
     INFO(preset.name);
     sysid::StageParameters p = preset;
@@ -410,7 +411,7 @@ TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[
 
 TEST_CASE("an integrator failure is the CVODE wrapper's sentence with the stage's hint",
           "[stage][plant]") {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   p.relative_tolerance = 1e-300;  // valid (> 0) but below what a double can deliver
   p.position_tolerance_m = 1e-300;
   sysid::VirtualStage stage(p, 1);

@@ -51,6 +51,43 @@ TEST_CASE("the thrust limit: written when set, read back, absent means none", "[
       Catch::Contains("motor.thrust_limit_mps2") && Catch::Contains("> rail.static_mps2"));
 }
 
+TEST_CASE("the default is the loop-rate candidate C; virtual-1khz is the former default",
+          "[stage][file]") {
+  const sysid::StageParameters c = sysid::StageParameters::Default();
+  CHECK(c.sample_rate_hz == 10000);
+  CHECK(c.RecordRateHz() == 1000);
+  CHECK(c.RecordStride() == 10);
+  CHECK(c.lag_time_constant_s == 0.0001);
+  REQUIRE(sysid::StageParameters::IsPresetName("virtual-1khz"));
+  const sysid::StageParameters a = sysid::LoadStage("virtual-1khz");
+  CHECK(a.model == sysid::StageModel::kVelocitySource);
+  CHECK(a.sample_rate_hz == 1000);
+  CHECK(a.RecordRateHz() == 1000);
+  CHECK(a.lag_time_constant_s == 0.0003);
+  // Both give the paper's pulse table (the speed map does not depend on the rates or the lag).
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable()) {
+    CHECK(c.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+    CHECK(a.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+  }
+  // They differ in the two rates, the lag and the name only: the whole file compared.
+  sysid::StageParameters moved = a;
+  moved.name = c.name;
+  moved.sample_rate_hz = 10000;
+  moved.record_rate_hz = 1000;
+  moved.lag_time_constant_s = 0.0001;
+  CHECK(sysid::StageParametersToJson(moved) == sysid::StageParametersToJson(c));
+  CHECK(sysid::StageParametersToJson(sysid::LoadStage("virtual")) ==
+        sysid::StageParametersToJson(c));
+  // A file may change it like any preset.
+  CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual-1khz\", \"rig\": "
+                                    "{\"position_noise_m\": 0}}",
+                                    "a.json")
+            .lag_time_constant_s == 0.0003);
+  CHECK_THROWS_WITH(sysid::StageParameters::Preset("fast"), Catch::Contains("virtual-1khz"));
+  CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json"),
+                    Catch::Contains("virtual-1khz"));
+}
+
 TEST_CASE("stage files name their model, presets load by name", "[stage][file]") {
   // The actuator-delay preset round-trips and keeps its model.
   const auto ad = sysid::StageParameters::ActuatorDelay();
@@ -152,10 +189,12 @@ std::string At(const std::string& text, const std::string& needle) {
 }  // namespace
 
 TEST_CASE("stage file value errors are positioned: key, rule, found value", "[stage][file]") {
-  auto bad = Edited("\"sample_rate_hz\": 1000.0", "\"sample_rate_hz\": 0");
+  // The bundled stage writes its two rates apart (10 kHz loop, 1 kHz records); the control
+  // rate is the library's sample_rate_hz.
+  auto bad = Edited("\"control_rate_hz\": 10000.0", "\"control_rate_hz\": 0");
   CHECK_THROWS_WITH(sysid::ParseStageParameters(bad, "s.json"),
-                    Catch::Equals("s.json:" + At(bad, "\"sample_rate_hz\"") +
-                                  ": rig.sample_rate_hz: expected sample_rate_hz > 0, found 0"));
+                    Catch::Equals("s.json:" + At(bad, "\"control_rate_hz\"") +
+                                  ": rig.control_rate_hz: expected sample_rate_hz > 0, found 0"));
   bad = Edited("\"coulomb_mps2\": ", "\"coulomb_mps2\": -1, \"_was\": ");
   CHECK_THROWS_WITH(sysid::ParseStageParameters(bad, "s.json"),
                     Catch::Equals("s.json:" + At(bad, "\"coulomb_mps2\"") +

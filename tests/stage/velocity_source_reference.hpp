@@ -9,6 +9,13 @@
 
 namespace sysid::test {
 
+// The velocity-source stage on a 1 kHz loop with a 0.3 ms driver lag (preset "virtual-1khz",
+// the default before the loop-rate candidate C): the mechanism tests that replay 1 ms samples
+// (1000 reference steps of 1 us each, 2000-sample command sequences) were written for it.
+inline sysid::StageParameters Stage1kHz() {
+  return sysid::StageParameters::Preset("virtual-1khz");
+}
+
 // The velocity-source equations of stage.hpp written out again: RK4 with h = 1 us while
 // sliding; the Karnopp switches are checked after every step (a sign change of v ends the
 // slide: stick when |p v_f| <= Fs, else reverse; stuck, it breaks away once |p v_f| > Fs).

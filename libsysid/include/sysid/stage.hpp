@@ -7,7 +7,7 @@
 // motor's fingertips push with a force that droops linearly with speed, from the stall force at
 // rest to zero at the no-load speed v_f(u): per unit mass p (v_f(u) - v).
 //   DAC:     u_dac as below; driver: u_s = clip(u_dac(t - transport_delay_s), +-saturation_v),
-//            first-order envelope lag  T_l u_d' = u_s - u_d   (lag_time_constant_s, ~0.3 ms)
+//            first-order envelope lag  T_l u_d' = u_s - u_d   (lag_time_constant_s, 0.1 ms)
 //   motor:   v_f(u_d) = 0 for -dz_b <= u_d <= dz_f (the fingertip preload: below these
 //            voltages the fingers do not slide on the belt and hold the stage), else piecewise
 //            linear through (dz_f, 0), the speed-map knots and (-dz_b, 0), extrapolated linearly
@@ -219,12 +219,16 @@ struct StageParameters {
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
   /// Checks the rig, the driver and the parameters of `model` (the other model's are unused).
   void Validate() const;
-  /// The calibrated virtual stage (identical to datasets/virtual/stage.json): velocity source.
+  /// The calibrated virtual stage (identical to datasets/virtual/stage.json): velocity source
+  /// on the loop-rate candidate C, a 10 kHz control loop recorded at 1 kHz with a 0.1 ms
+  /// driver lag (docs/virtual_stage.md, "Loop rate"). The member defaults are the 1 kHz loop
+  /// with a 0.3 ms lag: Preset("virtual-1khz"), the default before C.
   static StageParameters Default();
   /// The stage of libsysid before the velocity-source model (transport delay + lag + LuGre):
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
-  /// A named preset: "virtual" or "velocity-source" (= Default()), "actuator-delay",
+  /// A named preset: "virtual" or "velocity-source" (= Default()), "virtual-1khz" (Default()
+  /// at the member defaults' 1 kHz loop and 0.3 ms lag, the former default), "actuator-delay",
   /// "drive-hysteresis-static" (the loop-rate candidate C, 10 kHz control with 1 kHz records
   /// and a 0.1 ms lag, plus the ceramic's asymmetric hysteresis: candidate H2),
   /// "drive-hysteresis" (C with wider play operators whose lag partly creeps out: the loop
@@ -289,9 +293,8 @@ StageParameters ReadStageParameters(const std::string& path);
 /// JSON text with nested objects "drive", "friction", "rig", "integrator"; units in key names.
 std::string StageParametersToJson(const StageParameters& parameters);
 void WriteStageParameters(const std::string& path, const StageParameters& parameters);
-/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, actuator-delay,
-/// drive-hysteresis, drive-hysteresis-static) or
-/// the path of a stage file.
+/// A preset name (StageParameters::IsPresetName: virtual, velocity-source, virtual-1khz,
+/// actuator-delay, drive-hysteresis, drive-hysteresis-static) or the path of a stage file.
 StageParameters LoadStage(const std::string& preset_or_path);
 
 /// The true (unmeasured) state of the plant.

@@ -19,8 +19,8 @@ constexpr double kMaxStageSampleRateHz = 1e6;
 // Why a key or section is required: said in every such message.
 constexpr const char* kCompleteRule =
     "a stage file gives every section and key of its model, or names \"preset\": NAME "
-    "(virtual, velocity-source, actuator-delay, drive-hysteresis, drive-hysteresis-static) "
-    "whose values fill what it leaves out";
+    "(virtual, velocity-source, virtual-1khz, actuator-delay, drive-hysteresis, "
+    "drive-hysteresis-static) whose values fill what it leaves out";
 
 // Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
 // (handled by the caller). With `complete` (a file that names no "preset") every key but those
@@ -127,8 +127,8 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
       at.Expected(
-          "a preset name (virtual, velocity-source, actuator-delay, drive-hysteresis, "
-          "drive-hysteresis-static)");
+          "a preset name (virtual, velocity-source, virtual-1khz, actuator-delay, "
+          "drive-hysteresis, drive-hysteresis-static)");
     preset = StageParameters::Preset(name);
   }
   const bool complete = !preset;

@@ -79,11 +79,31 @@ void StageParameters::SetSpeedMapThrough(
   }
 }
 
-StageParameters StageParameters::Default() {
+namespace {
+
+// The velocity source on the member defaults (1 kHz loop, 0.3 ms envelope): the default
+// before the loop-rate candidate C, kept as the preset "virtual-1khz".
+StageParameters VelocitySourceAtMemberDefaults() {
   StageParameters p;  // velocity source: the member defaults are the calibrated values
   // Speed map through the paper's ten pulse points: a held pulse settles where
   // p (v_f(u_i) - v) = g(v), so v_f(u_i) = v_i + sgn(v_i) g(|v_i|) / p gives exactly v_i.
-  p.SetSpeedMapThrough(PaperPulseTable());
+  p.SetSpeedMapThrough(StageParameters::PaperPulseTable());
+  return p;
+}
+
+}  // namespace
+
+StageParameters StageParameters::Default() {
+  StageParameters p = VelocitySourceAtMemberDefaults();
+  // The loop-rate candidate C (docs/virtual_stage.md, "Loop rate"): at the member defaults'
+  // 1 kHz loop with a 0.3 ms envelope the paper's PI gains ring in motion and the NN
+  // feedforward beats the analytic inverse at 5 of 12 seeds (F5); a 10 kHz loop recorded at
+  // 1 kHz (the paper's record rate) with a 0.1 ms envelope is quiet after each breakaway and
+  // meets F5 at 11 of 12. The member defaults stay 1 kHz / 0.3 ms because the actuator-delay
+  // preset builds on them; the speed map does not depend on the rates or the lag.
+  p.sample_rate_hz = 10000;
+  p.record_rate_hz = 1000;
+  p.lag_time_constant_s = 0.0001;
   return p;
 }
 
@@ -144,8 +164,10 @@ namespace {
 
 // Candidate C (docs/virtual_stage.md, "Loop rate"): 10 kHz control, 1 kHz records, a 0.1 ms
 // driver envelope, with asymmetric play operators of thresholds r [V] (weights 0.2, alpha 0.3).
+// The rates and lag are written out, not read from Default(), so that the presets stay C if
+// the default moves again.
 StageParameters LoopRateCWithPlay(const std::vector<double>& r) {
-  StageParameters p = StageParameters::Default();
+  StageParameters p = VelocitySourceAtMemberDefaults();
   p.sample_rate_hz = 10000;
   p.record_rate_hz = 1000;
   p.lag_time_constant_s = 0.0001;
@@ -185,18 +207,24 @@ StageParameters DriveHysteresisPreset() {
 }  // namespace
 
 bool StageParameters::IsPresetName(const std::string& name) {
-  return name == "virtual" || name == "velocity-source" || name == "actuator-delay" ||
-         name == "drive-hysteresis" || name == "drive-hysteresis-static";
+  return name == "virtual" || name == "velocity-source" || name == "virtual-1khz" ||
+         name == "actuator-delay" || name == "drive-hysteresis" ||
+         name == "drive-hysteresis-static";
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
   if (name == "virtual" || name == "velocity-source") return Default();
+  if (name == "virtual-1khz") {
+    StageParameters p = VelocitySourceAtMemberDefaults();
+    p.name = "virtual PLS8/HR-8 (velocity source, 1 kHz loop)";
+    return p;
+  }
   if (name == "actuator-delay") return ActuatorDelay();
   if (name == "drive-hysteresis") return DriveHysteresisPreset();
   if (name == "drive-hysteresis-static") return DriveHysteresisStaticPreset();
   throw OptionsError("stage preset '" + name +
                      "' is not one of virtual (= velocity-source), velocity-source, "
-                     "actuator-delay, drive-hysteresis, drive-hysteresis-static");
+                     "virtual-1khz, actuator-delay, drive-hysteresis, drive-hysteresis-static");
 }
 
 std::string ToString(StageModel model) {
