@@ -16,6 +16,7 @@
 
 namespace {
 
+using sysid::test::Stage1kHz;
 using sysid::test::VelocitySourceReference;
 
 // Rises, falls, minor loops and holds [V], one value per sample (as the hysteresis test's).
@@ -97,7 +98,7 @@ struct ClosedForm {
 };
 
 sysid::StageParameters Stage(bool hysteresis, const sysid::DriveCreep& c) {
-  sysid::StageParameters p = sysid::StageParameters::Default();
+  sysid::StageParameters p = Stage1kHz();
   p.position_noise_m = 0;
   if (hysteresis) p.SetDriveHysteresis(Ceramic());
   p.SetDriveCreep(c);
@@ -289,7 +290,7 @@ TEST_CASE(
   CHECK(p.HeldDriveLag(false) == Approx(0.4 * h.HeldLag(false)));
   // A slow rise starts the stage where the default's does (the dead zones moved by the held
   // lag that remains).
-  const sysid::StageParameters def = sysid::StageParameters::Default();
+  const sysid::StageParameters def = Stage1kHz();
   CHECK(p.motor.dead_zone_forward_v + p.HeldDriveLag(true) ==
         Approx(def.motor.dead_zone_forward_v));
   CHECK(p.motor.dead_zone_backward_v + p.HeldDriveLag(false) ==
@@ -311,7 +312,7 @@ TEST_CASE(
     CHECK(got == Approx(without).epsilon(1e-6));
   }
   // Setting the creep first and the hysteresis after moves the dead zones alike.
-  sysid::StageParameters other = sysid::StageParameters::Default();
+  sysid::StageParameters other = Stage1kHz();
   sysid::DriveHysteresis tiny = h;
   tiny.weights = {0.0, 0.0, 0.01};
   other.SetDriveHysteresis(tiny);
