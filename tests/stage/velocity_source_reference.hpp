@@ -3,7 +3,10 @@
 #ifndef SYSID_TESTS_STAGE_VELOCITY_SOURCE_REFERENCE_HPP_
 #define SYSID_TESTS_STAGE_VELOCITY_SOURCE_REFERENCE_HPP_
 
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "sysid/stage.hpp"
 
@@ -75,6 +78,30 @@ struct VelocitySourceReference {
     }
   }
 };
+
+// Drives `stage` with the commands u and, after each sample, `advance_reference(k)` (which steps
+// `ref` over sample k); checks that both stick and slide alike after the first 20 samples, that
+// the run slides enough to test something, and the plant test's bounds (6e-8 m, 5e-5 m/s).
+template <class AdvanceReference>
+void CheckAgainstReference(sysid::VirtualStage& stage, const VelocitySourceReference& ref,
+                           const std::vector<double>& u, AdvanceReference advance_reference) {
+  double worst_x = 0, worst_v = 0;
+  int slides = 0;
+  for (size_t k = 0; k < u.size(); ++k) {
+    stage.Step(u[k]);
+    advance_reference(k);
+    const sysid::StageState s = stage.state();
+    worst_x = std::max(worst_x, std::abs(s.x_m - ref.x));
+    worst_v = std::max(worst_v, std::abs(s.v_mps - ref.v));
+    if (k > 20) CHECK(s.stuck == ref.stuck);
+    slides += s.stuck ? 0 : 1;
+  }
+  INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s, sliding samples " << slides);
+  CHECK(slides > 300);
+  CHECK(std::abs(ref.x) + worst_x > 1e-3);
+  CHECK(worst_x < 6e-8);
+  CHECK(worst_v < 5e-5);
+}
 
 }  // namespace sysid::test
 
