@@ -179,7 +179,8 @@ void AddGenerateCommand(CLI::App& app) {
                   "default, the calibrated velocity-source stage identical to "
                   "datasets/virtual/stage.json: 10 kHz loop, 1 kHz records), virtual-1khz (the "
                   "same at a 1 kHz loop, the former default), drive-hysteresis (with the "
-                  "ceramic's hysteresis) or actuator-delay (the older stage, on which "
+                  "ceramic's hysteresis and creep), drive-hysteresis-static (without the creep) "
+                  "or actuator-delay (the older stage, on which "
                   "the paper's feedforward does not help; docs/virtual_stage.md)")
       ->type_name("STAGE.json|PRESET");
   cmd->add_option("--seed", o->seed,

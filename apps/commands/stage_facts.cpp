@@ -99,7 +99,9 @@ void AddStageCommand(CLI::App& app) {
   cmd->add_option("--stage", o->stage_path,
                   "stage parameter file (JSON) or a preset: virtual (default, the calibrated "
                   "velocity-source stage: 10 kHz loop, 1 kHz records), virtual-1khz (the same "
-                  "at a 1 kHz loop, the former default), drive-hysteresis or actuator-delay")
+                  "at a 1 kHz loop, the former default), drive-hysteresis (the ceramic's loop "
+                  "with its creep), drive-hysteresis-static (the loop without creep) or "
+                  "actuator-delay")
       ->type_name("S.json|PRESET");
   cmd->add_option("--facts", o->facts, "only these facts (and what they need), e.g. F1,F3")
       ->delimiter(',')

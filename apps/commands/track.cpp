@@ -212,8 +212,8 @@ void AddTrackCommand(CLI::App& app) {
   cmd->add_option("--plant", o->plant,
                   "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
                   "calibrated velocity-source stage, 10 kHz loop), 'virtual-1khz' (the same at a "
-                  "1 kHz loop, the former default), 'drive-hysteresis' or 'actuator-delay' (the "
-                  "older stage, on which the paper's gains limit-cycle and feedforward does not "
+                  "1 kHz loop, the former default), 'drive-hysteresis', "
+                  "'drive-hysteresis-static' or 'actuator-delay' (the older stage, on which the paper's gains limit-cycle and feedforward does not "
                   "help); or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
                   "preset 'piezo-stack' (docs/piezo_stack.md)");
   cmd->add_option("--ff", o->ff,
