@@ -12,7 +12,11 @@ import sys as _sys
 
 from . import _sysid
 
-TASKS = ("dominance", "identify_pulses", "identify_trajectory", "tune_delay", "hysteresis")
+TASKS = ("dominance", "identify_pulses", "identify_trajectory", "tune_delay", "hysteresis",
+         "irreducible")
+
+# The keywords of task "irreducible" (sysid.irreducible_error's) and their defaults.
+_IRREDUCIBLE_DEFAULTS = {"inputs": ("v", "v,a"), "output": "u", "neighbours": 10, "seed": 1}
 
 # The fit options a hysteresis model spec may set (sysid.hysteresis.fit's keywords).
 _HYSTERESIS_KEYS = ("kind", "label", "operators", "offset", "degree", "hidden", "epochs", "seed")
@@ -41,6 +45,12 @@ def _run_one(item, task, model, options, mapping=None):
         row.update(_model_row("", r.model))
         row.update({"samples_used": r.samples_used, "relative_error": r.relative_error,
                     "termination": r.termination})
+    elif task == "irreducible":
+        for inputs in options["inputs"]:
+            e = sysid.irreducible_error(rec, inputs=inputs, output=options["output"],
+                                        neighbours=options["neighbours"], seed=options["seed"])
+            row[f"irreducible_mse[{','.join(e.input_names)}]"] = e.mse
+            row.update({"rows": e.rows, "output_variance": e.output_variance})
     elif task == "tune_delay":
         r = _sysid.tune_delay_recordings(model, [rec], options)
         row.update({"tau_s": r.tau_s, "cost": r.cost, "rms_error_mps": r.rms_error_mps,
@@ -61,6 +71,19 @@ def _guarded(item, task, model, options, errors, mapping=None):
 
 def _default_options(task, options, kwargs):
     import sysid
+    if task == "irreducible":
+        given = dict(options or {}, **kwargs)
+        unknown = set(given) - set(_IRREDUCIBLE_DEFAULTS)
+        if unknown:
+            raise sysid.OptionsError(
+                f"batch: task 'irreducible' takes {', '.join(_IRREDUCIBLE_DEFAULTS)}; got "
+                f"{', '.join(sorted(unknown))}")
+        opts = {**_IRREDUCIBLE_DEFAULTS, **given}
+        if isinstance(opts["inputs"], str):
+            opts["inputs"] = (opts["inputs"],)
+        opts["inputs"] = [list(i.split(",")) if isinstance(i, str) else list(i)
+                          for i in opts["inputs"]]
+        return opts
     cls = {"dominance": sysid.DominanceOptions, "identify_pulses": sysid.PulseIdentificationOptions,
            "identify_trajectory": sysid.TrajectoryOptions,
            "tune_delay": sysid.DelayTuningOptions}[task]
@@ -247,7 +270,11 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
                 are read where the task runs, so Dask workers read their own files).
     task:       'dominance' (needs `model`), 'identify_pulses', 'identify_trajectory',
                 'tune_delay' (needs `model`), 'hysteresis' (hysteresis `models` x recordings,
-                fitted on the first `train_fraction` of each: see hysteresis_batch).
+                fitted on the first `train_fraction` of each: see hysteresis_batch),
+                'irreducible' (the least MSE any model of `output` on each input set can reach,
+                sysid.irreducible_error: columns irreducible_mse[v], irreducible_mse[v,a], ...,
+                rows, output_variance; keywords inputs=("v", "v,a"), output="u",
+                neighbours=10, seed=1).
     model:      sysid.Model or a model JSON path.
     client:     a dask.distributed.Client: tasks run on its workers; None: a local thread pool
                 of `threads` (default: all cores).

@@ -124,3 +124,17 @@ def test_progress_on_stderr(model, capsys):
     assert "sysid batch: 2/6" in err and err.endswith("sysid batch: 6/6\n")
     sysid.batch(WAVEFORMS, model=model, threads=2, progress=False)
     assert capsys.readouterr().err == ""
+
+
+def test_batch_irreducible_row_per_recording_equals_single_calls():
+    paths = [str(VIRTUAL / "training.csv"), str(VIRTUAL / "test.csv")]
+    table = sysid.batch(paths, task="irreducible", threads=2, neighbours=12)
+    assert list(table["source"]) == paths
+    for row, path in zip(table.to_dict("records"), paths):
+        for inputs in ("v", "v,a"):
+            single = sysid.irreducible_error(path, inputs=inputs, neighbours=12)
+            assert row[f"irreducible_mse[{inputs}]"] == single.mse  # same seed: bit for bit
+        assert row["rows"] == single.rows
+        assert row["output_variance"] == single.output_variance
+    with pytest.raises(sysid.OptionsError, match="takes inputs"):
+        sysid.batch(paths, task="irreducible", k=3)
