@@ -3,6 +3,7 @@
 // estimated from the data alone (libsysid: EstimateIrreducibleError in sysid/nn_irreducible.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "cli/registry.hpp"
 #include "commands/nn_training_options.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/nn_irreducible.hpp"
 
@@ -45,15 +47,29 @@ void RunIrreducible(const IrreducibleCli& o) {
     throw OptionsError(fmt::format("--inputs given {} times; at most {}", sets.size(),
                                    kMaxInputSets),
                        "--inputs");
+  // Every set's columns, checked before any file is read; each file is then read once.
+  std::vector<std::vector<std::string>> inputs;
+  ReadOptions ro = o.recording.Apply({});
+  ro.required_columns = {o.output};
+  ro.any_of_columns = {};
+  for (const auto& set : sets) {
+    inputs.push_back(SplitInputs(set));
+    for (const auto& name : inputs.back())
+      if (std::find(ro.required_columns.begin(), ro.required_columns.end(), name) ==
+          ro.required_columns.end())
+        ro.required_columns.push_back(name);
+  }
   std::vector<IrreducibleError> rows;
   std::vector<std::string> files;
-  for (const auto& path : o.paths)
-    for (const auto& set : sets) {
-      Progress(fmt::format("irreducible error: {} given {}", path, set));
-      rows.push_back(EstimateIrreducibleError(
-          ReadNeuralDataset(path, SplitInputs(set), o.output, o.recording.Mapping()), o.options));
+  for (const auto& path : o.paths) {
+    const Recording rec = ReadRecording(path, ro);
+    for (size_t i = 0; i < sets.size(); ++i) {
+      Progress(fmt::format("irreducible error: {} given {}", path, sets[i]));
+      rows.push_back(
+          EstimateIrreducibleError(MakeNeuralDataset(rec, inputs[i], o.output), o.options));
       files.push_back(path);
     }
+  }
   if (o.json) {
     nlohmann::json j = nlohmann::json::array();
     for (size_t i = 0; i < rows.size(); ++i)
