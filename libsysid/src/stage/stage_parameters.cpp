@@ -91,21 +91,25 @@ StageParameters VelocitySourceAtMemberDefaults() {
   return p;
 }
 
-}  // namespace
-
-StageParameters StageParameters::Default() {
+// The loop-rate candidate C (docs/virtual_stage.md, "Loop rate"): at the member defaults'
+// 1 kHz loop with a 0.3 ms envelope the paper's PI gains ring in motion and the NN
+// feedforward beats the analytic inverse at 5 of 12 seeds (F5); a 10 kHz loop recorded at
+// 1 kHz (the paper's record rate) with a 0.1 ms envelope is quiet after each breakaway and
+// meets F5 at 11 of 12. The member defaults stay 1 kHz / 0.3 ms because the actuator-delay
+// preset builds on them; the speed map does not depend on the rates or the lag. The
+// drive-hysteresis presets build on C itself, not on Default(), so that they stay C if the
+// default moves again.
+StageParameters LoopRateC() {
   StageParameters p = VelocitySourceAtMemberDefaults();
-  // The loop-rate candidate C (docs/virtual_stage.md, "Loop rate"): at the member defaults'
-  // 1 kHz loop with a 0.3 ms envelope the paper's PI gains ring in motion and the NN
-  // feedforward beats the analytic inverse at 5 of 12 seeds (F5); a 10 kHz loop recorded at
-  // 1 kHz (the paper's record rate) with a 0.1 ms envelope is quiet after each breakaway and
-  // meets F5 at 11 of 12. The member defaults stay 1 kHz / 0.3 ms because the actuator-delay
-  // preset builds on them; the speed map does not depend on the rates or the lag.
   p.sample_rate_hz = 10000;
   p.record_rate_hz = 1000;
   p.lag_time_constant_s = 0.0001;
   return p;
 }
+
+}  // namespace
+
+StageParameters StageParameters::Default() { return LoopRateC(); }
 
 void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
   const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
@@ -162,15 +166,9 @@ double MotorParameters::DroopForThrust(double f) const {
 
 namespace {
 
-// Candidate C (docs/virtual_stage.md, "Loop rate"): 10 kHz control, 1 kHz records, a 0.1 ms
-// driver envelope, with asymmetric play operators of thresholds r [V] (weights 0.2, alpha 0.3).
-// The rates and lag are written out, not read from Default(), so that the presets stay C if
-// the default moves again.
+// Candidate C with asymmetric play operators of thresholds r [V] (weights 0.2, alpha 0.3).
 StageParameters LoopRateCWithPlay(const std::vector<double>& r) {
-  StageParameters p = VelocitySourceAtMemberDefaults();
-  p.sample_rate_hz = 10000;
-  p.record_rate_hz = 1000;
-  p.lag_time_constant_s = 0.0001;
+  StageParameters p = LoopRateC();
   DriveHysteresis h;
   h.thresholds_v = r;
   h.weights = {0.2, 0.2, 0.2};
