@@ -12,43 +12,18 @@
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/stage.hpp"
+#include "drive_reference.hpp"
 #include "velocity_source_reference.hpp"
 
 namespace {
 
+using sysid::test::Commands;
+using sysid::test::Reference;
 using sysid::test::Stage1kHz;
 using sysid::test::VelocitySourceReference;
 
-// Rises, falls, minor loops and holds [V], one value per sample (as the hysteresis test's).
-std::vector<double> Commands(int n) {
-  std::vector<double> u(static_cast<size_t>(n), 0.0);
-  for (int k = 0; k < n; ++k) {
-    const double t = k / static_cast<double>(n);
-    double v = 0;
-    if (t < 0.15)
-      v = t < 0.05 ? 0 : (t < 0.1 ? 2.0 : -2.3);
-    else if (t < 0.4)
-      v = 1.8 * std::sin(2 * M_PI * (t - 0.15) / 0.25);
-    else if (t < 0.55)
-      v = 1.6 * std::sin(2 * M_PI * (t - 0.4) / 0.05) - 0.3;
-    else if (t < 0.8)
-      v = 0.4 * std::sin(2 * M_PI * (t - 0.55) / 0.03) + 1.45;
-    else
-      v = t < 0.9 ? -2.0 : 1.5;
-    u[static_cast<size_t>(k)] = v;
-  }
-  return u;
-}
-
-sysid::DriveHysteresis Ceramic() {
-  sysid::DriveHysteresis h;
-  h.thresholds_v = {0.05, 0.12, 0.25};
-  h.weights = {0.15, 0.1, 0.2};
-  h.rate_weights_s_per_v = {0, 0, 0};
-  h.rate_time_constant_s = 0;
-  h.asymmetry = 0.3;
-  return h;
-}
+// The hysteresis tests' ceramic, rate-independent.
+sysid::DriveHysteresis Ceramic() { return sysid::test::Ceramic(0.3, 0.0, 0.0); }
 
 sysid::DriveCreep Creep(double voltage_share, double loop_share, double time_constant_s) {
   sysid::DriveCreep c;
@@ -118,18 +93,6 @@ std::vector<double> StageLag(const sysid::StageParameters& p, const std::vector<
   return out;
 }
 
-std::vector<double> PlayOutput(const sysid::DriveHysteresis& h, const std::vector<double>& s) {
-  const Eigen::VectorXd in =
-      Eigen::Map<const Eigen::VectorXd>(s.data(), static_cast<long>(s.size()));
-  std::vector<double> out(s);
-  for (size_t i = 0; i < h.thresholds_v.size(); ++i) {
-    const double r = h.thresholds_v[i];
-    const Eigen::VectorXd f = sysid::PlayOperator(in.array() - h.asymmetry * r, r, 0.0);
-    for (size_t k = 0; k < s.size(); ++k) out[k] -= h.weights[i] * (s[k] - f[static_cast<long>(k)]);
-  }
-  return out;
-}
-
 double MaxDiff(const std::vector<double>& a, const std::vector<double>& b, size_t shift = 0) {
   double worst = 0;
   for (size_t k = shift; k < a.size(); ++k) worst = std::max(worst, std::abs(a[k] - b[k - shift]));
@@ -176,12 +139,12 @@ TEST_CASE(
   std::vector<double> dac;
   const std::vector<double> got = StageLag(p, u, &dac);
   const ClosedForm ref{p.sample_time_s(), 0, c.time_constant_s, p.lag_time_constant_s, kv, 0.6};
-  const std::vector<double> want = ref.Lag(dac, PlayOutput(Ceramic(), dac));
+  const std::vector<double> want = ref.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s()));
   INFO("k_v " << kv << ": max |u_d - reference| " << MaxDiff(got, want) << " V");
   CHECK(MaxDiff(got, want) < 1e-5);
   // The creep changes the drive: without it the lag follows the play operators alone.
   const ClosedForm none{p.sample_time_s(), 0, 1.0, p.lag_time_constant_s, 0, 0};
-  CHECK(MaxDiff(none.Lag(dac, PlayOutput(Ceramic(), dac)), want) > 0.03);
+  CHECK(MaxDiff(none.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s())), want) > 0.03);
 }
 
 TEST_CASE(
@@ -196,7 +159,7 @@ TEST_CASE(
   const std::vector<double> got = StageLag(p, u, &dac);
   const ClosedForm ref{
       p.sample_time_s(), p.transport_delay_s, c.time_constant_s, p.lag_time_constant_s, 0.3, 0.5};
-  const std::vector<double> want = ref.Lag(dac, PlayOutput(Ceramic(), dac));
+  const std::vector<double> want = ref.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s()));
   INFO("max |u_d - reference| " << MaxDiff(got, want) << " V");
   CHECK(MaxDiff(got, want) < 1e-5);
   CHECK(std::abs(got[1]) < 1e-12);  // nothing arrives before the delay
@@ -247,7 +210,7 @@ TEST_CASE("the stage with drive creep matches the tiny-step reference integratin
   std::vector<double> dac;
   sysid::VirtualStage stage(p, 1);
   for (double x : u) dac.push_back(stage.DacOutput(x));
-  const std::vector<double> pi = PlayOutput(Ceramic(), dac);
+  const std::vector<double> pi = Reference(Ceramic(), dac, p.sample_time_s());
   VelocitySourceReference ref{p};
   double z = 0;
   const double h = 1e-6;
