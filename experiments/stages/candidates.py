@@ -138,7 +138,7 @@ def _PLAY(thresholds_v):
 CANDIDATES = {
     "A": {"rate": 1000},
     "C": dict(C),
-    "H2": {"base": "drive-hysteresis"},
+    "H2": {"base": "drive-hysteresis-static"},
     "C-dz1.15/1.45": _c(dz=[1.15, 1.45]),
     "C-dz1.0/1.65": _c(dz=[1.0, 1.65]),
     "C-dz1.05/1.5": _c(dz=[1.05, 1.5]),

@@ -424,13 +424,18 @@ class ReportWriter {
       const facts::MotionRipple m =
           facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
       if (m.rms_m <= limits.motion_ripple_tolerance_m) return {};
+      // Below 10 kHz the loop rate is what rings it (docs/virtual_stage.md, "Loop rate": the
+      // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz (candidate B).
+      const char* cure = p.sample_rate_hz < 1e4
+                             ? "a faster loop (rig.control_rate_hz, e.g. 10 kHz) quiets it"
+                             : "at this rate the driver's envelope lag sets that margin "
+                               "(drive.lag_time_constant_s: 0.3 ms rings, 0.1 ms is quiet)";
       return fmt::format(
           " PI alone rings while the stage moves (RMS of e minus its 50 ms moving average "
           "{:.3g} um at {:.3g} Hz, above F4's 5 um), so every error plot carries a band at that "
           "frequency: at this stage's {:g} Hz loop rate the paper's gains leave the loop almost "
-          "no phase margin in motion; a faster loop (rig.control_rate_hz) quiets it "
-          "(docs/virtual_stage.md, \"Loop rate\").",
-          1e6 * m.rms_m, m.ringing_hz, p.sample_rate_hz);
+          "no phase margin in motion; {} (docs/virtual_stage.md, \"Loop rate\").",
+          1e6 * m.rms_m, m.ringing_hz, p.sample_rate_hz, cure);
     }
     return {};
   }
