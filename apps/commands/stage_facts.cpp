@@ -36,6 +36,7 @@ void RunStageFactsCommand(const StageFactsCli& o) {
   f.seed = o.options.seed;
   f.threads = o.options.threads;
   f.network_initializations = o.options.network_initializations;
+  f.collection_kp_v_per_m = o.options.collection_kp_v_per_m;
   if (!o.seeds.empty()) {
     std::vector<std::uint64_t> seeds;
     try {
@@ -126,6 +127,11 @@ void AddStageCommand(CLI::App& app) {
                   "report each one's tracking error and how many beat the analytic inverse "
                   "(the verdict stays the first network's)")
       ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--collect-kp", o->options.collection_kp_v_per_m,
+                  "[V/m] P gain of the controller that collects the networks' training and test "
+                  "sets (F5's NN, F7)")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "

@@ -363,6 +363,11 @@ TEST_CASE("stage facts options are validated before any experiment", "[stage][fa
     CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o),
                       Catch::Contains("1 <= network_initializations <= 100"));
   }
+  for (double kp : {0.0, -1.0, std::nan("")}) {
+    o = FactsOptions::Reduced();
+    o.collection_kp_v_per_m = kp;
+    CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("collection_kp_v_per_m"));
+  }
 }
 
 TEST_CASE("F5 over initial weights: each network's row is a separate run's NN row",

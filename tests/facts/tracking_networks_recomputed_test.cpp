@@ -57,13 +57,16 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
   sysid::FactsOptions o = sysid::FactsOptions::Reduced();
   o.facts = {"F5", "F7"};
   o.threads = 2;
+  // Not the default gain, so a facts run that ignored the option would train on other data.
+  o.collection_kp_v_per_m = 3000;
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
   REQUIRE(r.delay.has_value());
   const sysid::FrictionModel model = r.delay->model;  // pulse LS + tuned tau (F2, F3 checked)
 
   // The networks, trained again from the same data and options (training is deterministic per
   // seed: nn training tests), then scored row by row.
-  const sysid::TrackingProcedure tp;
+  sysid::TrackingProcedure tp;
+  tp.kp_v_per_m = 3000;
   const sysid::Recording training = sysid::RunTrackingSet(
       stage, sysid::TrainingGrid(), tp, sysid::DeriveSeed(o.seed, 1), "training");
   const sysid::Recording test =

@@ -231,8 +231,8 @@ struct StageParameters {
   /// at the member defaults' 1 kHz loop and 0.3 ms lag, the former default), "actuator-delay",
   /// "drive-hysteresis-static" (the loop-rate candidate C, 10 kHz control with 1 kHz records
   /// and a 0.1 ms lag, plus the ceramic's asymmetric hysteresis: candidate H2),
-  /// "drive-hysteresis" (C with wider play operators whose lag partly creeps out: the loop
-  /// widens with the rate; docs/virtual_stage.md, "Creep: the loop's rate dependence").
+  /// "drive-hysteresis" (C with narrower play operators whose lag partly creeps out: the loop
+  /// widens with the rate; docs/virtual_stage.md, "F8 with F5").
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.

@@ -91,6 +91,9 @@ struct FactsOptions {
   int typical_hidden = 120;
   int typical_max_epochs = 60;
   int typical_stride = 2;  ///< typical network trains on every n-th training row
+  /// [V/m] > 0: the P gain that collects the networks' training and test sets
+  /// (TrackingProcedure::kp_v_per_m; the paper does not print its value).
+  double collection_kp_v_per_m = TrackingProcedure{}.kp_v_per_m;
   /// F5: also track with dominant networks trained from this many initial weights (network k
   /// from training.seed + k * training.restarts) and report each one's max |e| and how many
   /// beat the analytic inverse; the verdict stays the first network's. 1 to 100.

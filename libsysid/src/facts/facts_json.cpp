@@ -36,6 +36,7 @@ const FieldList<FactsOptions>& FactsFields() {
           .Add("typical_hidden", &O::typical_hidden)
           .Add("typical_max_epochs", &O::typical_max_epochs)
           .Add("typical_stride", &O::typical_stride)
+          .Add("collection_kp_v_per_m", &O::collection_kp_v_per_m)
           .Add("network_initializations", &O::network_initializations)
           .Add("dominance_amplitude_v", &O::dominance_amplitude_v)
           .Add("dominance_omega_rad_s", &O::dominance_omega_rad_s)

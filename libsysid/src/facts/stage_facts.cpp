@@ -120,7 +120,8 @@ class FactsRun {
   void Networks() {
     if (network_) return;
     Step("training and test sets (P-controlled sinusoids)");
-    const TrackingProcedure tp;
+    TrackingProcedure tp;
+    tp.kp_v_per_m = o_.collection_kp_v_per_m;
     const Recording training =
         RunTrackingSet(stage_, TrainingGrid(), tp, DeriveSeed(o_.seed, 1), "training");
     const Recording test = RunTrackingSet(stage_, TestGrid(), tp, DeriveSeed(o_.seed, 2), "test");
@@ -797,6 +798,8 @@ void FactsOptions::Validate() const {
   if (training.hidden < 1 || typical_hidden < 1) fail("hidden sizes", ">= 1");
   if (typical_max_epochs < 0) fail("typical_max_epochs", ">= 0");
   if (typical_stride < 1) fail("typical_stride", ">= 1");
+  if (!(collection_kp_v_per_m > 0) || !std::isfinite(collection_kp_v_per_m))
+    fail("collection_kp_v_per_m", "> 0 and finite");
   if (network_initializations < 1 || network_initializations > 100)
     fail("network_initializations = " + std::to_string(network_initializations),
          "1 <= network_initializations <= 100");
