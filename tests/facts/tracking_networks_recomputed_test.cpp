@@ -92,6 +92,7 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
   CHECK(r.typical_test_mse == Approx(typ_test).epsilon(1e-12));
   // F7's contrast, written out: typical test >= 2 x typical train, dominant test below typical.
   CHECK(r.Find("F7")->met == (typ_test >= 2 * typ_train && dom_test < typ_test));
+  CHECK(r.Find("F7")->note.find("collected at Kp 3000 V/m") != std::string::npos);
 
   // F5: each scheme tracked on the stage, errors and feedforwards recomputed from the traces.
   bool order_met = true;
