@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -80,6 +81,20 @@ void RethrowWithFlag(const OptionsError& e, const std::map<std::string, std::str
   if (flag == field_flags.end() && fallback.empty()) throw e;
   throw OptionsError((flag == field_flags.end() ? fallback : flag->second) + ": " + e.what(),
                      e.field());
+}
+
+CLI::Validator FiniteRange(double lo, double hi) {
+  const CLI::Range range(lo, hi);  // only for its help text, "FLOAT in [lo - hi]"
+  return CLI::Validator(
+      [lo, hi](std::string& input) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(input, v) || !std::isfinite(v))
+          return fmt::format("Value {} is not a finite number (expected one in [{:g}, {:g}])",
+                             input, lo, hi);
+        if (v < lo || v > hi) return fmt::format("Value {} is outside [{:g}, {:g}]", input, lo, hi);
+        return {};
+      },
+      range.get_description());
 }
 
 bool EndsWithCsv(const std::string& path) {

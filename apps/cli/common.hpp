@@ -68,6 +68,11 @@ std::string FormatHiddenSizes(const std::vector<int>& sizes);
                                   const std::map<std::string, std::string>& field_flags,
                                   const std::string& fallback = "");
 
+/// A floating-point option's range [lo, hi] that, unlike CLI::Range, also refuses NaN (every
+/// comparison with NaN is false, so CLI::Range lets it through to the library's checks, whose
+/// errors name a field instead of the flag). Same help text as CLI::Range(lo, hi).
+CLI::Validator FiniteRange(double lo, double hi);
+
 /// True when `path` ends in .csv or .CSV.
 bool EndsWithCsv(const std::string& path);
 

@@ -64,11 +64,11 @@ void AddMarginsCommand(CLI::App& app) {
       ->type_name("M.json");
   AddPiGainOptions(cmd, o->pi, "PI ");
   cmd->add_option("--rate", o->rate_hz, "controller sample rate [Hz]")
-      ->check(CLI::Range(1e-3, 1e7))
+      ->check(FiniteRange(1e-3, 1e7))
       ->capture_default_str();
   cmd->add_option("--extra-delay", o->extra_delay_s,
                   "actuator delay beyond the sample-and-hold, e.g. a driver lag [s]")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(FiniteRange(0.0, 10.0))
       ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print {\"kp_v_per_m\", \"ki_v_per_m_s\", \"sample_time_s\", \"extra_delay_s\", "

@@ -131,7 +131,7 @@ void AddStageCommand(CLI::App& app) {
   cmd->add_option("--collect-kp", o->options.collection_kp_v_per_m,
                   "[V/m] P gain of the controller that collects the networks' training and test "
                   "sets (F5's NN, F7); the paper does not print it")
-      ->check(CLI::Range(1.0, 1e6))
+      ->check(FiniteRange(1.0, 1e6))
       ->capture_default_str();
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "

@@ -257,8 +257,8 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   const auto [kp, ki] = AddPiGainOptions(cmd, o->pi, "");
-  kp->check(CLI::Range(0.0, 1e9));
-  ki->check(CLI::Range(0.0, 1e12));
+  kp->check(FiniteRange(0.0, 1e9));
+  ki->check(FiniteRange(0.0, 1e12));
   o->kp = kp;
   o->ki = ki;
   o->u_max = cmd->add_option("--u-max", o->pi.u_max_v,

@@ -68,7 +68,7 @@ void AddTuneDelayCommand(CLI::App& app) {
   AddDeprecatedAlias(cmd, "--min", tau_min, d.tau_min_s, tau_range);
   AddDeprecatedAlias(cmd, "--max", tau_max, d.tau_max_s, tau_range);
   cmd->add_option("--xtol", d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
-      ->check(CLI::Range(1e-12, 1.0))
+      ->check(FiniteRange(1e-12, 1.0))
       ->capture_default_str();
   cmd->add_option("--curve", d.curve_points,
                   fmt::format("also evaluate the cost on this many evenly spaced tau values "

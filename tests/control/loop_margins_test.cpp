@@ -203,6 +203,14 @@ TEST_CASE("sysid margins: table, JSON and bad input", "[control][cli]") {
   CHECK_THAT(table.out, Catch::Contains("phase margin [deg]"));
   CHECK(sysid::test::RunCli({"margins", "--model", model, "--rate", "0"}).exit_code == 1);
   CHECK(sysid::test::RunCli({"margins", "--model", model, "--kp", "-5"}).exit_code == 1);
+  // NaN compares false with both bounds: the flag's own range still refuses it, by name.
+  for (const char* flag : {"--rate", "--extra-delay"}) {
+    const auto nan = sysid::test::RunCli({"margins", "--model", model, flag, "nan"});
+    CHECK(nan.exit_code == 1);
+    CHECK(nan.out.empty());
+    CHECK(nan.err.find(std::string(flag) + ": Value nan is not a finite number") !=
+          std::string::npos);
+  }
   sysid::test::WriteText(dir / "bad.json",
                          "{\"a1p\": 104, \"a1n\": 117, \"a2p\": 3.1, \"a2n\": 6.8,\n"
                          " \"a3\": \"six\", \"tau\": 0}");
