@@ -97,6 +97,23 @@ CLI::Validator FiniteRange(double lo, double hi) {
       range.get_description());
 }
 
+namespace {
+// `base` with NaN refused first (its name and description kept, so the help text is the same).
+CLI::Validator RefusingNan(const CLI::Validator& base) {
+  CLI::Validator v = base;
+  v.operation([base](std::string& input) -> std::string {
+    double x = 0;
+    if (CLI::detail::lexical_cast(input, x) && std::isnan(x))
+      return "Value " + input + " is not a number";
+    return base(input);
+  });
+  return v;
+}
+}  // namespace
+
+CLI::Validator PositiveNumber() { return RefusingNan(CLI::PositiveNumber); }
+CLI::Validator NonNegativeNumber() { return RefusingNan(CLI::NonNegativeNumber); }
+
 bool EndsWithCsv(const std::string& path) {
   return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||
                               path.compare(path.size() - 4, 4, ".CSV") == 0);

@@ -73,6 +73,11 @@ std::string FormatHiddenSizes(const std::vector<int>& sizes);
 /// errors name a field instead of the flag). Same help text as CLI::Range(lo, hi).
 CLI::Validator FiniteRange(double lo, double hi);
 
+/// CLI::PositiveNumber and CLI::NonNegativeNumber (same help text) refusing NaN too, by the
+/// flag's name: CLI11's comparisons are false for NaN, so its own checks let it through.
+CLI::Validator PositiveNumber();
+CLI::Validator NonNegativeNumber();
+
 /// True when `path` ends in .csv or .CSV.
 bool EndsWithCsv(const std::string& path);
 

@@ -1,5 +1,6 @@
 #include "cli/input_flags.hpp"
 
+#include "cli/common.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid::cli {
@@ -16,13 +17,13 @@ void InputFlags::Add(CLI::App* cmd) {
           ->delimiter(',')
           ->excludes(input);
   cmd->add_option("--pulse-on", pulse_train.on_s, "pulse length [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--pulse-off", pulse_train.off_s, "rest after each pulse [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber())
       ->capture_default_str();
   cmd->add_option("--pulse-repeats", pulse_train.repeats, "repeats of the amplitude list [count]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--pulse-start", pulse_train.start_s, "time of the first pulse [s]")
       ->capture_default_str();

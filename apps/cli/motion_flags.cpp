@@ -16,7 +16,7 @@ void MotionFlags::Add(CLI::App* cmd, const std::string& derivative_help,
       ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
       ->default_str(default_filter);
   cmd->add_option("--cutoff", cutoff_hz, "Butterworth cut-off [Hz]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--velocity-column", velocity_column,
                   "measured-velocity column [m/s] used when a recording has no x")

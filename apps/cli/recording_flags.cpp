@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "cli/common.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid::cli {
@@ -17,7 +18,7 @@ void RecordingFlags::Add(CLI::App* cmd) {
       ->type_name("MAP");
   cmd->add_option("--rate", rate_hz,
                   "sample rate [Hz] of recordings without a time column: t = k / rate")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", scales,
                   "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um")

@@ -206,7 +206,7 @@ void AddCompareCommand(CLI::App& app) {
       ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
       ->default_str("central");
   cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   AddOutputOption(cmd, o->out_dir,
                   "new folder for <name>_traces.csv, <name>.png, summary.csv, summary.json")
       ->type_name("DIR");

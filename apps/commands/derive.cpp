@@ -135,11 +135,11 @@ void AddDeriveCommand(CLI::App& app) {
                   "first resample every column onto a uniform grid at HZ [Hz] by linear "
                   "interpolation (for irregular time stamps)")
       ->type_name("HZ")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
                   "relative sampling jitter above which the recording is rejected as irregular "
                   "[dimensionless]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print one JSON object (file, output, method, settings, rows, columns, dt_s, "

@@ -115,26 +115,26 @@ void AddExciteCommand(CLI::App& app) {
                 "replace a folder an earlier sysid excite wrote (one holding .sysid-output), "
                 "or an existing -o FILE that sysid did not write");
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--amplitudes", o->amplitudes_v,
                   "pulse amplitudes [V], in order (default: the paper's ten, alternating "
                   "direction)")
       ->delimiter(',');
   cmd->add_option("--on", o->pulses.on_s, "pulse length [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--rest", o->pulses.rest_s, "rest after each pulse [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber())
       ->capture_default_str();
   cmd->add_option("--lead", o->pulses.lead_s, "0 V before the first pulse [s]")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber())
       ->capture_default_str();
   cmd->add_option("--set", o->set, "tracking grid: training or test")
       ->check(CLI::IsMember({"training", "test"}))
       ->capture_default_str();
   cmd->add_option("--cycles", o->cycles, "reference cycles per waveform [1]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_flag("--json", o->json,
                 "print one JSON object: what, sample_rate_hz, files (path, waveform, samples, "

@@ -112,7 +112,7 @@ void AddIdentifyCommand(CLI::App& app) {
   auto& pulse = o->pulse;
   cmd->add_option("--min-duration", pulse.detection.min_duration_s,
                   "pulse: shortest pulse [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--window-fraction", pulse.plateau.window_fraction,
                   "pulse: plateau = this last fraction of each pulse [dimensionless]")
@@ -138,7 +138,7 @@ void AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--decimate", traj.decimation,
                   "trajectory: keep every n-th sample after anti-alias filtering [samples]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_flag("--offset", traj.offset,
                 "trajectory: add a constant offset c0 [m/s^2]; Coulomb becomes symmetric a2");

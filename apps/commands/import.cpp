@@ -114,7 +114,7 @@ void AddImportCommand(CLI::App& app) {
       ->required()
       ->type_name("COLUMN=FILE[:VAR]");
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz] when no t column is given: t = k / rate")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", o->scales, "factor to SI units, COLUMN=FACTOR[,...] (x=1e-6: um)")
       ->type_name("MAP");

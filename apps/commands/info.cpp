@@ -95,7 +95,7 @@ void AddInfoCommand(CLI::App& app) {
   cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
                   "relative sampling jitter above which sampling is reported irregular "
                   "[dimensionless]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   o->recording.Add(cmd);
   cmd->callback([o] { RunInfo(*o); });

@@ -87,7 +87,7 @@ void AddLoopCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--moving-speed", o->loop.moving_speed_mps,
                   "|v| above this is motion, for the start and stop voltages [m/s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   o->motion.Add(cmd, "how v is obtained from x", "central");
   cmd->add_flag("--json", o->json,

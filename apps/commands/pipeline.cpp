@@ -147,7 +147,7 @@ void AddPipelineCommand(CLI::App& app) {
   cmd->add_option("--a3", p.a3,
                   "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins); the "
                   "default is the paper's HR-8 data-sheet value, not your stage's")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str()
       ->each([&p](const std::string&) { p.a3_given = true; });
   cmd->add_option("--hidden", o->hidden, "hidden sizes to sweep: first:last:step or a list")
@@ -164,7 +164,7 @@ void AddPipelineCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--typical-stride", p.typical_stride,
                   "train the typical network on every n-th training row")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_flag("!--no-typical", p.typical, "skip the typical (v, a) network");
   cmd->add_flag("!--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");

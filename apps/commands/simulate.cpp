@@ -99,9 +99,9 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--t-end", o->t_end_s,
                   "end time [s] (default: the input's end: last table row, end of the pulse "
                   "train or of the waveform)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--dt", o->sim.dt_out_s, "output sample interval [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   AddOutputOption(cmd, o->output,
                   "trajectory CSV t,u,x,v,a, or MAT v5 when FILE ends in .mat (default: stdout)");
@@ -116,10 +116,10 @@ void AddSimulateCommand(CLI::App& app) {
       ->check(CLI::IsMember({"adams", "bdf"}))
       ->capture_default_str();
   cmd->add_option("--rtol", o->sim.rtol, "relative tolerance [dimensionless]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--atol", o->sim.atol, "absolute tolerance [m, m/s]")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   cmd->add_option("--x0", o->sim.x0_m, "initial position [m]")->capture_default_str();
   cmd->add_option("--v0", o->sim.v0_mps, "initial velocity [m/s]")->capture_default_str();

@@ -241,7 +241,7 @@ void AddTrackCommand(CLI::App& app) {
                       fmt::format("frequency of the smooth back-and-forth profile [Hz] (piezo "
                                   "stack: of its waveform, {:g} when not given)",
                                   StackReferenceOptions{}.frequency_hz))
-          ->check(CLI::PositiveNumber)
+          ->check(PositiveNumber())
           ->capture_default_str();
   o->freq = freq;
   cmd->add_option("--reference", o->reference_path,
@@ -254,7 +254,7 @@ void AddTrackCommand(CLI::App& app) {
                                   StackReferenceOptions{}.stroke_m))
           ->capture_default_str();
   cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   const auto [kp, ki] = AddPiGainOptions(cmd, o->pi, "");
   kp->check(FiniteRange(0.0, 1e9));
@@ -264,7 +264,7 @@ void AddTrackCommand(CLI::App& app) {
   o->u_max = cmd->add_option("--u-max", o->pi.u_max_v,
                              "output saturation [V] (piezo stack: default its amplifier's upper "
                              "end; its gains default to StackPiOptions, docs/piezo_stack.md)")
-                 ->check(CLI::PositiveNumber)
+                 ->check(PositiveNumber())
                  ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
