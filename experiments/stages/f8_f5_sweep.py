@@ -23,6 +23,9 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from candidates import held_lag  # noqa: E402  (the lag a held voltage keeps, per direction)
+
 SYSID = os.path.join(HERE, "..", "..", "build", "apps", "sysid")
 PLAY = {"H0": [0.03, 0.06, 0.12], "H1": [0.05, 0.1, 0.2], "H2": [0.1, 0.2, 0.3],
         "H5": [0.15, 0.3, 0.45]}
@@ -52,15 +55,15 @@ def stage_file(name, fam, w, alpha, kl, tc):
     s = json.load(open(os.path.join(HERE, "C.json")))
     s["name"] = "F8/F5 candidate " + name
     r = PLAY[fam]
-    lag = (1 - kl) * sum(w * x for x in r)
-    rising, falling = lag * (1 + alpha), lag * (1 - alpha)
+    h = {"thresholds_v": r, "weights": [w] * len(r), "rate_weights_s_per_v": [0] * len(r),
+         "rate_time_constant_s": 0.01, "asymmetry": alpha}
+    # The creep's loop share relaxes that part of the lag while the voltage is held.
+    rising, falling = (1 - kl) * held_lag(h, True), (1 - kl) * held_lag(h, False)
     m = s["motor"]
     m["dead_zone_forward_v"] -= rising
     m["dead_zone_backward_v"] -= falling
     m["speed_map_in_v"] = [u - rising if u > 0 else u + falling for u in m["speed_map_in_v"]]
-    s["drive"]["hysteresis"] = {"thresholds_v": r, "weights": [w] * len(r),
-                                "rate_weights_s_per_v": [0] * len(r),
-                                "rate_time_constant_s": 0.01, "asymmetry": alpha}
+    s["drive"]["hysteresis"] = h
     s["drive"]["creep"] = {"voltage_share": 0.0, "loop_share": kl, "time_constant_s": tc}
     return s
 
