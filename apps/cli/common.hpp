@@ -21,6 +21,16 @@ namespace sysid::cli {
 
 enum ExitCode : int { kSuccess = 0, kUsage = 1, kBadInput = 2, kNumerical = 3 };
 
+/// The stage presets, for the help of every option that takes one (generate --stage, stage
+/// facts --stage, track --plant): StageParameters::Preset's names with what each is.
+inline constexpr const char* kStagePresets =
+    "virtual (the default, = drive-hysteresis: the calibrated velocity-source stage with the "
+    "ceramic's asymmetric hysteresis and creep, 10 kHz loop, 1 kHz records), velocity-source "
+    "(the same without hysteresis or creep, the default before it), virtual-1khz "
+    "(velocity-source at a 1 kHz loop), drive-hysteresis-static (wider play operators, no "
+    "creep) or actuator-delay (the older stage, on which the paper's feedforward does not "
+    "help; docs/virtual_stage.md)";
+
 /// Options shared by every subcommand (--json, --progress), filled by main().
 struct GlobalOptions {
   bool progress = false;   ///< --progress: report progress on stderr even when not a terminal

@@ -10,7 +10,7 @@ std::pair<CLI::Option*, CLI::Option*> AddPiGainOptions(CLI::App* cmd, PiOptions&
   CLI::Option* kp =
       cmd->add_option("--kp", pi.kp_v_per_m,
                       fmt::format("{}proportional gain [V/m]; the default is the paper's, stable "
-                                  "on the bundled velocity-source stage; the actuator-delay "
+                                  "on the bundled stage (velocity source); the actuator-delay "
                                   "preset needs {} (docs/control.md)",
                                   prefix, delay_stage.kp_v_per_m))
           ->capture_default_str();

@@ -175,13 +175,8 @@ void AddGenerateCommand(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({"pulses", "tracking", "waveforms", "triangle", "all"}));
   cmd->add_option("--stage", o->stage_path,
-                  "stage parameter file (JSON, SI units in the keys) or a preset: virtual (the "
-                  "default, the calibrated velocity-source stage identical to "
-                  "datasets/virtual/stage.json: 10 kHz loop, 1 kHz records), virtual-1khz (the "
-                  "same at a 1 kHz loop, the former default), drive-hysteresis (with the "
-                  "ceramic's hysteresis and creep), drive-hysteresis-static (without the creep) "
-                  "or actuator-delay (the older stage, on which "
-                  "the paper's feedforward does not help; docs/virtual_stage.md)")
+                  std::string("stage parameter file (JSON, SI units in the keys) or a preset: ") +
+                      cli::kStagePresets + "; datasets/virtual/stage.json is the default's file")
       ->type_name("STAGE.json|PRESET");
   cmd->add_option("--seed", o->seed,
                   "noise seed [integer]; the same seed gives byte-identical files")

@@ -98,11 +98,7 @@ void AddStageCommand(CLI::App& app) {
       "are required, F7 is reported. Exit 0 "
       "whether or not the facts are met (read \"met\" / \"required_met\" in the JSON)");
   cmd->add_option("--stage", o->stage_path,
-                  "stage parameter file (JSON) or a preset: virtual (default, the calibrated "
-                  "velocity-source stage: 10 kHz loop, 1 kHz records), virtual-1khz (the same "
-                  "at a 1 kHz loop, the former default), drive-hysteresis (the ceramic's loop "
-                  "with its creep), drive-hysteresis-static (the loop without creep) or "
-                  "actuator-delay")
+                  std::string("stage parameter file (JSON) or a preset: ") + cli::kStagePresets)
       ->type_name("S.json|PRESET");
   cmd->add_option("--facts", o->facts, "only these facts (and what they need), e.g. F1,F3")
       ->delimiter(',')

@@ -210,11 +210,9 @@ void AddTrackCommand(CLI::App& app) {
       "inverse, or the NN inverse), or of the virtual piezo stack with a hysteresis model's "
       "inverse as feedforward: maximum and RMS tracking error and control effort");
   cmd->add_option("--plant", o->plant,
-                  "stage parameter file STAGE.json, or a preset: 'virtual' (the bundled "
-                  "calibrated velocity-source stage, 10 kHz loop), 'virtual-1khz' (the same at a "
-                  "1 kHz loop, the former default), 'drive-hysteresis', "
-                  "'drive-hysteresis-static' or 'actuator-delay' (the older stage, on which the paper's gains limit-cycle and feedforward does not "
-                  "help); or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
+                  std::string("stage parameter file STAGE.json, or a stage preset: ") +
+                      cli::kStagePresets +
+                      "; or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
                   "preset 'piezo-stack' (docs/piezo_stack.md)");
   cmd->add_option("--ff", o->ff,
                   "feedforward scheme(s), comma separated: none, analytic, nn (stage); none, "

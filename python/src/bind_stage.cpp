@@ -16,6 +16,9 @@ void BindStage(py::module_& m) {
                               "docs/virtual_stage.md. Edit through to_json / from_json.")
       .def(py::init(&StageParameters::Default))
       .def_static("default", &StageParameters::Default)
+      .def_static("preset", &StageParameters::Preset, py::arg("name"),
+                  "A named preset (virtual = drive-hysteresis, velocity-source, virtual-1khz, "
+                  "actuator-delay, drive-hysteresis-static); docs/virtual_stage.md.")
       .def_static("load", &ReadStageParameters, py::arg("path"))
       .def("save",
            [](const StageParameters& p, const std::string& path) {

@@ -164,6 +164,24 @@ def test_stage_pulse_test_matches_cli_generate(tmp_path):
         np.testing.assert_array_equal(rec[c], cli[c])
 
 
+def test_stage_presets_match_cli_generate(tmp_path):
+    # A preset by name gives the same pulse recording in Python as on the command line; the
+    # default carries the drive's hysteresis and creep, velocity-source neither.
+    StageParameters = sysid.stage.StageParameters
+    run_cli("generate", "pulses", "--stage", "velocity-source", "-o", tmp_path)
+    cli = sysid.read_recording(tmp_path / "pulses.csv")
+    rec = sysid.stage.run_pulse_test(StageParameters.preset("velocity-source"), seed=1)
+    for c in ("t", "u", "x"):
+        np.testing.assert_array_equal(rec[c], cli[c])
+    default = sysid.read_recording(VIRTUAL / "pulses.csv")
+    assert np.abs(default["x"] - cli["x"]).max() > 1e-4  # the drive hysteresis moves it [m]
+    assert StageParameters.preset("virtual").to_json() == StageParameters.default().to_json()
+    assert "hysteresis" in StageParameters.default().to_json()
+    assert "hysteresis" not in StageParameters.preset("velocity-source").to_json()
+    with pytest.raises(sysid.OptionsError, match="velocity-source"):
+        StageParameters.preset("no-such-stage")
+
+
 def test_stage_tracking_matches_bundled_waveform():
     # datasets/virtual/waveform_*.csv are `sysid generate waveforms` with seed 1.
     waves = sysid.stage.paper_test_waveforms()

@@ -134,7 +134,7 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
     INFO(hz << " Hz: worst feedforward differences " << worst_a << " V (analytic), " << worst_n
             << " V (nn)");
     CHECK(worst_a <= 1e-9);   // interpolation weights rounded differently: ~1e-13 V
-    CHECK(worst_n <= 1e-12);  // the same network, evaluated one sample at a time
+    CHECK(worst_n <= 1e-11);  // the same network, evaluated one sample at a time: ~1e-12 V
     const char* names[] = {"none", "analytic", "nn"};
     const auto& f5 = *r.Find("F5");
     for (int s = 0; s < 3; ++s) {

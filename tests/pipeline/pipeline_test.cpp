@@ -207,7 +207,7 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   // The verdict follows the recomputed MSEs, and a missing contrast points at the search.
   const bool contrast = mse[2] >= 2 * mse[0] && mse[3] < mse[2];
   CHECK((md.find("**yes, as in the paper**") != std::string::npos) == contrast);
-  CHECK((md.find("lists 17 candidates") != std::string::npos) == !contrast);
+  CHECK((md.find("lists 124 candidates") != std::string::npos) == !contrast);
 }
 
 TEST_CASE("sysid pipeline on a folder without recordings: exit 2, no report", "[pipeline][cli]") {

@@ -287,7 +287,8 @@ TEST_CASE(
   CHECK(sysid::StageParametersToJson(back) == text);
   // A preset file may add or change it (the preset's dead zones stay: the user moves them).
   const auto pre = sysid::ParseStageParameters(
-      "{\"preset\": \"virtual\", \"drive\": {\"creep\": {\"voltage_share\": 0.1}}}", "p.json");
+      "{\"preset\": \"velocity-source\", \"drive\": {\"creep\": {\"voltage_share\": 0.1}}}",
+      "p.json");
   CHECK(pre.creep.voltage_share == 0.1);
   CHECK(pre.creep.loop_share == 0);
   auto edited = [&](const std::string& from, const std::string& to) {
@@ -317,7 +318,8 @@ TEST_CASE(
   // The loop share relaxes the play operators' lag: without them it is refused.
   CHECK_THROWS_WITH(
       sysid::ParseStageParameters(
-          "{\"preset\": \"virtual\", \"drive\": {\"creep\": {\"loop_share\": 0.5}}}", "p.json"),
+          "{\"preset\": \"velocity-source\", \"drive\": {\"creep\": {\"loop_share\": 0.5}}}",
+          "p.json"),
       Catch::Contains("p.json:") &&
           Catch::Contains("creep.loop_share: expected loop_share = 0 without drive.hysteresis"));
   // Not on the actuator-delay model.

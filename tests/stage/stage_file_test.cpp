@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
@@ -51,9 +52,9 @@ TEST_CASE("the thrust limit: written when set, read back, absent means none", "[
       Catch::Contains("motor.thrust_limit_mps2") && Catch::Contains("> rail.static_mps2"));
 }
 
-TEST_CASE("the default is the loop-rate candidate C; virtual-1khz is the former default",
+TEST_CASE("velocity-source is the loop-rate candidate C; virtual-1khz is C at 1 kHz",
           "[stage][file]") {
-  const sysid::StageParameters c = sysid::StageParameters::Default();
+  const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
   CHECK(c.sample_rate_hz == 10000);
   CHECK(c.RecordRateHz() == 1000);
   CHECK(c.RecordStride() == 10);
@@ -76,7 +77,7 @@ TEST_CASE("the default is the loop-rate candidate C; virtual-1khz is the former 
   moved.record_rate_hz = 1000;
   moved.lag_time_constant_s = 0.0001;
   CHECK(sysid::StageParametersToJson(moved) == sysid::StageParametersToJson(c));
-  CHECK(sysid::StageParametersToJson(sysid::LoadStage("virtual")) ==
+  CHECK(sysid::StageParametersToJson(sysid::LoadStage("velocity-source")) ==
         sysid::StageParametersToJson(c));
   // A file may change it like any preset.
   CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual-1khz\", \"rig\": "
@@ -86,6 +87,41 @@ TEST_CASE("the default is the loop-rate candidate C; virtual-1khz is the former 
   CHECK_THROWS_WITH(sysid::StageParameters::Preset("fast"), Catch::Contains("virtual-1khz"));
   CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json"),
                     Catch::Contains("virtual-1khz"));
+}
+
+TEST_CASE("the default is C with the drive's hysteresis and creep; files without them have none",
+          "[stage][file]") {
+  const sysid::StageParameters d = sysid::StageParameters::Default();
+  const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
+  REQUIRE(d.hysteresis.enabled());
+  REQUIRE(d.creep.enabled());
+  CHECK_FALSE(c.hysteresis.enabled());
+  CHECK_FALSE(c.creep.enabled());
+  CHECK(d.hysteresis.thresholds_v == std::vector<double>{0.05, 0.1, 0.2});
+  CHECK(d.creep.loop_share == 0.3);
+  for (const char* name : {"virtual", "drive-hysteresis"})
+    CHECK(sysid::StageParametersToJson(sysid::LoadStage(name)) ==
+          sysid::StageParametersToJson(d));
+  // Both settle on the paper's pulse table: the operators' held lag moved the dead zones and knots.
+  for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
+    CHECK(d.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
+  // A complete file without the blocks (C's, as written) is read as it is, not as the default
+  // it would otherwise be filled from; the default's own file keeps them.
+  const std::string c_text = sysid::StageParametersToJson(c);
+  REQUIRE(c_text.find("hysteresis") == std::string::npos);
+  const sysid::StageParameters c_back = sysid::ParseStageParameters(c_text, "c.json");
+  CHECK_FALSE(c_back.hysteresis.enabled());
+  CHECK_FALSE(c_back.creep.enabled());
+  CHECK(sysid::StageParametersToJson(c_back) == c_text);
+  const std::string d_text = sysid::StageParametersToJson(d);
+  CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(d_text, "d.json")) == d_text);
+  // A preset file changes what it names and keeps the rest of its preset.
+  const auto vs = sysid::ParseStageParameters(
+      "{\"preset\": \"velocity-source\", \"rig\": {\"position_noise_m\": 0}}", "v.json");
+  CHECK_FALSE(vs.hysteresis.enabled());
+  const auto dv = sysid::ParseStageParameters(
+      "{\"preset\": \"virtual\", \"rig\": {\"position_noise_m\": 0}}", "d.json");
+  CHECK(dv.hysteresis.thresholds_v == d.hysteresis.thresholds_v);
 }
 
 TEST_CASE("stage files name their model, presets load by name", "[stage][file]") {

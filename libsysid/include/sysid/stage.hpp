@@ -3,7 +3,7 @@
 // data-collection procedures (pulse test, tracking sets, test waveforms) that run on it.
 // Two plant models share the rig (DAC, encoder, end stops) and the integrator (CVODE):
 //
-// VELOCITY SOURCE (model "velocity-source", the default; docs/virtual_stage.md). An ultrasonic
+// VELOCITY SOURCE (model "velocity-source", the default's; docs/virtual_stage.md). An ultrasonic
 // motor's fingertips push with a force that droops linearly with speed, from the stall force at
 // rest to zero at the no-load speed v_f(u): per unit mass p (v_f(u) - v).
 //   DAC:     u_dac as below; driver: u_s = clip(u_dac(t - transport_delay_s), +-saturation_v),
@@ -22,10 +22,10 @@
 //   Optional drive hysteresis (drive.hysteresis, DriveHysteresis below): the lag's input is the
 //   piezoceramic's effective voltage u_h = H[u_s] (asymmetric play operators with
 //   rate-dependent weights, per control sample) instead of u_s; preset
-//   "drive-hysteresis-static".
+//   "drive-hysteresis-static" (without the creep below).
 //   Optional creep (drive.creep, DriveCreep below): shares of that voltage and of the
-//   hysteresis' lag relax with a time constant (the ceramic's domain relaxation); preset
-//   "drive-hysteresis" (both).
+//   hysteresis' lag relax with a time constant (the ceramic's domain relaxation); the default
+//   stage, preset "drive-hysteresis", has both (issue #28); preset "velocity-source" neither.
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -219,20 +219,23 @@ struct StageParameters {
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
   /// Checks the rig, the driver and the parameters of `model` (the other model's are unused).
   void Validate() const;
-  /// The calibrated virtual stage (identical to datasets/virtual/stage.json): velocity source
-  /// on the loop-rate candidate C, a 10 kHz control loop recorded at 1 kHz with a 0.1 ms
-  /// driver lag (docs/virtual_stage.md, "Loop rate"). The member defaults are the 1 kHz loop
-  /// with a 0.3 ms lag: Preset("virtual-1khz"), the default before C.
+  /// The calibrated virtual stage (identical to datasets/virtual/stage.json): the preset
+  /// "drive-hysteresis", VelocitySource() plus the ceramic's asymmetric play operators whose
+  /// lag partly creeps out (docs/virtual_stage.md, "F8 with F5", candidate P2; issue #28).
   static StageParameters Default();
+  /// The velocity-source stage without drive hysteresis, the default before it (candidate C):
+  /// a 10 kHz control loop recorded at 1 kHz with a 0.1 ms driver lag (docs/virtual_stage.md,
+  /// "Loop rate"). The member defaults are the 1 kHz loop with a 0.3 ms lag:
+  /// Preset("virtual-1khz").
+  static StageParameters VelocitySource();
   /// The stage of libsysid before the velocity-source model (transport delay + lag + LuGre):
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
-  /// A named preset: "virtual" or "velocity-source" (= Default()), "virtual-1khz" (Default()
-  /// at the member defaults' 1 kHz loop and 0.3 ms lag, the former default), "actuator-delay",
-  /// "drive-hysteresis-static" (the loop-rate candidate C, 10 kHz control with 1 kHz records
-  /// and a 0.1 ms lag, plus the ceramic's asymmetric hysteresis: candidate H2),
-  /// "drive-hysteresis" (C with narrower play operators whose lag partly creeps out: the loop
-  /// widens with the rate; docs/virtual_stage.md, "F8 with F5").
+  /// A named preset: "virtual" or "drive-hysteresis" (= Default()), "velocity-source"
+  /// (= VelocitySource(), the default before the drive hysteresis), "virtual-1khz"
+  /// (VelocitySource() at the member defaults' 1 kHz loop and 0.3 ms lag), "actuator-delay",
+  /// "drive-hysteresis-static" (VelocitySource() plus the ceramic's asymmetric hysteresis with
+  /// wider operators and no creep: candidate H2).
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.

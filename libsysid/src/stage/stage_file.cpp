@@ -136,8 +136,13 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
       preset ? *preset : vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
-  // A complete file written before the rail had memory leaves the key out: no memory.
-  if (complete) p.rail.memory_time_s = 0.0;
+  // A complete file written before the rail had memory leaves the key out: no memory; one
+  // without the drive's hysteresis or creep blocks has none (the default stage has both).
+  if (complete) {
+    p.rail.memory_time_s = 0.0;
+    p.hysteresis = DriveHysteresis{};
+    p.creep = DriveCreep{};
+  }
   const std::string model_name = ToString(model);
   auto other_model = [&](const internal::JsonNode& at) {
     const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);

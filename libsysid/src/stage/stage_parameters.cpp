@@ -109,7 +109,6 @@ StageParameters LoopRateC() {
 
 }  // namespace
 
-StageParameters StageParameters::Default() { return LoopRateC(); }
 
 void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
   const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
@@ -204,6 +203,17 @@ StageParameters DriveHysteresisPreset() {
 
 }  // namespace
 
+// The default is the drive-hysteresis stage (P2): of every stage tried it is the closest to the
+// paper that meets each required fact at seed 1, F8's loop among them (issue #28). C, the
+// default before it, stays as the preset "velocity-source".
+StageParameters StageParameters::Default() { return DriveHysteresisPreset(); }
+
+StageParameters StageParameters::VelocitySource() {
+  StageParameters p = LoopRateC();
+  p.name = "virtual PLS8/HR-8 (velocity source)";
+  return p;
+}
+
 bool StageParameters::IsPresetName(const std::string& name) {
   return name == "virtual" || name == "velocity-source" || name == "virtual-1khz" ||
          name == "actuator-delay" || name == "drive-hysteresis" ||
@@ -211,17 +221,17 @@ bool StageParameters::IsPresetName(const std::string& name) {
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
-  if (name == "virtual" || name == "velocity-source") return Default();
+  if (name == "virtual" || name == "drive-hysteresis") return Default();
+  if (name == "velocity-source") return VelocitySource();
   if (name == "virtual-1khz") {
     StageParameters p = VelocitySourceAtMemberDefaults();
     p.name = "virtual PLS8/HR-8 (velocity source, 1 kHz loop)";
     return p;
   }
   if (name == "actuator-delay") return ActuatorDelay();
-  if (name == "drive-hysteresis") return DriveHysteresisPreset();
   if (name == "drive-hysteresis-static") return DriveHysteresisStaticPreset();
   throw OptionsError("stage preset '" + name +
-                     "' is not one of virtual (= velocity-source), velocity-source, "
+                     "' is not one of virtual (= drive-hysteresis), velocity-source, "
                      "virtual-1khz, actuator-delay, drive-hysteresis, drive-hysteresis-static");
 }
 
