@@ -5,7 +5,7 @@
 #include "sysid/control.hpp"
 #include "sysid/stage.hpp"
 
-TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile; feedforward helps",
+TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile, feedforward helps",
           "[control][stage]") {
   const sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
   sysid::SmoothProfileOptions o;

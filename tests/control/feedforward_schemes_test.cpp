@@ -10,7 +10,7 @@
 
 using namespace sysid;
 
-TEST_CASE("feedforward scheme names round-trip; unknown names are refused", "[control]") {
+TEST_CASE("feedforward scheme names round-trip, unknown names are refused", "[control]") {
   for (auto s : {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
                  FeedforwardScheme::kNetwork})
     CHECK(ParseFeedforwardScheme(ToString(s)) == s);

@@ -17,7 +17,7 @@
 using sysid::test::RunCli;
 using sysid::test::SourcePath;
 
-TEST_CASE("dominance JSON: the CLI prints the library's text; pooling", "[dominance][json]") {
+TEST_CASE("dominance JSON: the CLI prints the library's text, pooling", "[dominance][json]") {
   sysid::test::TempDir dir;
   const auto model = sysid::FrictionModel::Paper();
   sysid::WriteModel(dir / "m.json", model);
@@ -79,7 +79,7 @@ TEST_CASE("one recording's dominance JSON round trip and positioned errors",
   }
 }
 
-TEST_CASE("a batch's dominance JSON round-trips; counts in the batch's order",
+TEST_CASE("a batch's dominance JSON round-trips, counts in the batch's order",
           "[dominance][json]") {
   const auto model = sysid::FrictionModel::Paper();
   const std::string a = SourcePath("datasets/virtual/waveform_square.csv");

@@ -30,7 +30,7 @@ TEST_CASE("number rules describe themselves as the messages print them", "[json]
   CHECK_FALSE(NumberRule::Closed(0, 1).Accepts(1.5));
 }
 
-TEST_CASE("values are found by pointer: nested, in arrays; a duplicate key is refused",
+TEST_CASE("values are found by pointer: nested, in arrays, a duplicate key is refused",
           "[json]") {
   // Issue #29: nlohmann kept the last of duplicate keys silently; the reader names both.
   const std::string dup = "{\n  \"a\": {\"b\": [1,\n    2, \"x\"]},\n  \"c\": 1, \"c\": -2\n}";

@@ -60,7 +60,7 @@ TEST_CASE("ExtractMotion uses the v, a columns unless told to derive from x", "[
   CHECK(sysid::MotionSource(r, derive) == "x (central)");
 }
 
-TEST_CASE("dominance and compare use derive's columns and say so; --derivative re-derives",
+TEST_CASE("dominance and compare use derive's columns and say so, --derivative re-derives",
           "[motion][cli]") {
   // The issue's case: v, a from `derive --method butterworth` used to give the raw file's
   // numbers in dominance (it re-derived) and the columns' in compare.

@@ -32,7 +32,7 @@ std::string MakeCsv(int N, unsigned seed) {
 
 }  // namespace
 
-TEST_CASE("sysid train writes a model and reports MSEs; predict reproduces them", "[nn][cli]") {
+TEST_CASE("sysid train writes a model and reports MSEs, predict reproduces them", "[nn][cli]") {
   sysid::test::TempDir dir;
   sysid::test::WriteText(dir / "train.csv", MakeCsv(400, 1u));
   sysid::test::WriteText(dir / "test.csv", MakeCsv(200, 2u));
@@ -139,7 +139,7 @@ TEST_CASE("bad input and options: exit codes, messages, no output file", "[nn][c
   CHECK_FALSE(std::filesystem::exists(dir / "p.csv"));
 }
 
-TEST_CASE("sysid irreducible: v determines u, a adds only noise; bad input is named",
+TEST_CASE("sysid irreducible: v determines u, a adds only noise, bad input is named",
           "[nn][cli][irreducible]") {
   // u = 2 v^2 + 10 v + e (e uniform, width 0.2 V: variance 0.04/12), a independent noise: the
   // floor given v is e's variance (closed form); given (v, a) it cannot be smaller than that.

@@ -58,7 +58,7 @@ TEST_CASE("train and sweep --json carry the library's reports", "[nn][json]") {
   CHECK(scli["rows"][1]["train_mse"] == slib["rows"][1]["train_mse"]);
 }
 
-TEST_CASE("training JSON round-trips; the network is attached from its file", "[nn][json]") {
+TEST_CASE("training JSON round-trips, the network is attached from its file", "[nn][json]") {
   const auto train =
       sysid::ReadNeuralDataset(SourcePath("datasets/virtual/training.csv"), {"v"}, "u");
   sysid::NeuralTrainingOptions o;

@@ -73,7 +73,7 @@ TEST_CASE("the library LM reaches Ceres' MSE from the same start", "[nn][train][
   CHECK(hybrid.train_mse == Approx(ceres.train_mse).epsilon(0.03));
 }
 
-TEST_CASE("training is deterministic per seed; restarts keep the best", "[nn][train]") {
+TEST_CASE("training is deterministic per seed, restarts keep the best", "[nn][train]") {
   const auto train = MakeSet(300, 6u, kSigma, &Smooth);
   sysid::NeuralTrainingOptions o;
   o.hidden = 5;

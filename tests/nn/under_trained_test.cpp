@@ -50,7 +50,7 @@ TEST_CASE("TrainingMseStillFalling: the last tenth (at least 5 epochs) fell by m
   CHECK(TrainingMseStillFalling(History({0.3}), 0));
 }
 
-TEST_CASE("a budget stop on a plateau gives no warning; one while falling does", "[nn]") {
+TEST_CASE("a budget stop on a plateau gives no warning, one while falling does", "[nn]") {
   // The bundled training set with a 2-unit network: by epoch 200 the training MSE has settled
   // (it moves by about 1e-5 over the last 20 epochs, measured) yet no convergence test fires,
   // so training stops at max epochs on a plateau -- the paper sweep's case in issue 29.

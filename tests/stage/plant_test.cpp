@@ -387,7 +387,7 @@ TEST_CASE("the noise is seeded, standard-specified and close to N(0,1)", "[stage
   CHECK(s4 / n == Approx(2.9).margin(0.1));
 }
 
-TEST_CASE("end stops hold the stage and are reported; overspeed is reported", "[stage][limits]") {
+TEST_CASE("end stops hold the stage and are reported, overspeed is reported", "[stage][limits]") {
   for (const auto& preset : {Stage1kHz(),
                              sysid::StageParameters::ActuatorDelay()}) {
     INFO(preset.name);

@@ -52,7 +52,7 @@ TEST_CASE("the thrust limit: written when set, read back, absent means none", "[
       Catch::Contains("motor.thrust_limit_mps2") && Catch::Contains("> rail.static_mps2"));
 }
 
-TEST_CASE("velocity-source is the loop-rate candidate C; virtual-1khz is C at 1 kHz",
+TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 kHz",
           "[stage][file]") {
   const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
   CHECK(c.sample_rate_hz == 10000);
@@ -89,7 +89,7 @@ TEST_CASE("velocity-source is the loop-rate candidate C; virtual-1khz is C at 1 
                     Catch::Contains("virtual-1khz"));
 }
 
-TEST_CASE("the default is C with the drive's hysteresis and creep; files without them have none",
+TEST_CASE("the default is C with the drive's hysteresis and creep, files without them have none",
           "[stage][file]") {
   const sysid::StageParameters d = sysid::StageParameters::Default();
   const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
