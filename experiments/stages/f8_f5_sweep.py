@@ -8,11 +8,14 @@ Each candidate's dead zones and knots move by the lag a held voltage keeps,
 do, so the pulse plateaus (F1, F2) stay the paper's.
 
   /usr/bin/python3 experiments/stages/f8_f5_sweep.py OUT_DIR [--seeds 1-12] [--jobs 2]
-      [--only P2,P3]
+      [--only NAME,NAME] [--f7]
 
 writes OUT_DIR/NAME.json (the stage file) and OUT_DIR/NAME.facts.json, and prints the doc's
 table (one row per candidate that meets F8 at seed 1, ordered by F5's count). About 25 min on
-2 cores for every candidate (F5 over 12 seeds is 2-4 min a candidate).
+2 cores for every candidate (F5 over 12 seeds is 2-4 min a candidate). With --f7 F7 runs over
+the seeds beside F5 (the typical network adds about a third) and a second table gives F7's count
+and the four MSEs: issue #28's candidate table (mechanism, parameters, F4 ripple, F5 and F7 counts
+over the seeds, the four MSEs).
 """
 import argparse
 import json
@@ -81,6 +84,7 @@ def main():
     ap.add_argument("--seeds", default="1-12")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--only", default="", help="comma-separated candidate names")
+    ap.add_argument("--f7", action="store_true", help="F7 over the seeds too, and its table")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     cands = candidates()
@@ -94,7 +98,7 @@ def main():
             json.dump(stage_file(name, *spec), f, indent=1)
         r = facts(path, "F1,F2,F3,F4,F6,F8")
         if r["F8"]["met"]:
-            r["F5"] = facts(path, "F5", a.seeds)["F5"]
+            r.update(facts(path, "F5,F7" if a.f7 else "F5", a.seeds))
         with open(os.path.join(a.out, name + ".facts.json"), "w") as f:
             json.dump(r, f, indent=1)
         print(f"{name}: F8 {'met' if r['F8']['met'] else 'not met'}", file=sys.stderr, flush=True)
@@ -115,6 +119,25 @@ def main():
               f"{kl:g} / {tc * 1000:g} | {'met' if not failed else 'fail: ' + ', '.join(failed)} | "
               f"{f4.group(1)} / {f4.group(2)} | {a8.group(1)} / {a8.group(2)}, x{c8.group(1)}, "
               f"{d8.group(1)} % | {f5['met_count']} ({', '.join(map(str, f5['met_seeds']))}) |")
+    if a.f7:
+        print()
+        print("| candidate | F1-F4, F6 at seed 1 | F4 in motion [um] | F5 count | F7 count | "
+              "typical train / test [V^2] | dominant train / test [V^2] | typical test / train |")
+        print("|---|---|---|---|---|---|---|---|")
+        for name, _, r in results:
+            failed = [k for k in ("F1", "F2", "F3", "F4", "F6") if not r[k]["met"]]
+            f4 = re.search(r"in motion ([\d.]+) um.*in motion ([\d.]+) um", r["F4"]["virtual"])
+            mse = [[float(x) for x in re.findall(r"train ([\d.]+), test ([\d.]+)", v)[k]]
+                   for v in r["F7"]["virtual"] for k in (0, 1)]
+            typ, dom = mse[0::2], mse[1::2]  # per seed: [train, test]
+            span = lambda xs: f"{min(xs):.3g}" if min(xs) == max(xs) else \
+                f"{min(xs):.3g}-{max(xs):.3g}"
+            ratio = [t[1] / t[0] for t in typ]
+            print(f"| {name} | {'met' if not failed else 'fail: ' + ', '.join(failed)} | "
+                  f"{f4.group(1)} / {f4.group(2)} | {r['F5']['met_count']} | "
+                  f"{r['F7']['met_count']} | {span([t[0] for t in typ])} / "
+                  f"{span([t[1] for t in typ])} | {span([d[0] for d in dom])} / "
+                  f"{span([d[1] for d in dom])} | {span(ratio)} |")
 
 
 if __name__ == "__main__":
