@@ -109,7 +109,6 @@ StageParameters LoopRateC() {
 
 }  // namespace
 
-
 void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
   const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
   hysteresis = h;
