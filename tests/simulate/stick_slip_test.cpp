@@ -131,7 +131,7 @@ TEST_CASE("breakaway thresholds differ by direction", "[simulate]") {
   }
 }
 
-TEST_CASE("a sinusoid below the breakaway force never moves the stage, above, it does",
+TEST_CASE("a sinusoid below the breakaway force never moves the stage, one above it does",
           "[simulate]") {
   const FrictionModel m = FrictionModel::Paper();
   SimulationOptions o;
