@@ -558,14 +558,16 @@ class FactsRun {
       return std::nan("");
     };
     f.note = fmt::format(
-        "{} (sets collected at Kp {:g} V/m): {:.3g} % of the test rows lie outside the training set's (v, a) box (|v| <= {:.3g} "
-        "m/s, |a| <= {:.3g} m/s^2); acceleration noise RMS {:.3g} against RMS a {:.3g} m/s^2; "
+        "{} (sets collected at Kp {:g} V/m): {:.3g} % of the test rows lie outside the training "
+        "set's (v, a) box (|v| <= {:.3g} m/s, |a| <= {:.3g} m/s^2); acceleration noise RMS {:.3g} "
+        "against RMS a {:.3g} m/s^2; "
         "{:.3g} % of the training rows are at rest (|v| < 1 mm/s) with u spread over the dead "
         "zone (variance {:.3g} V^2) and carry {:.3g} % of the dominant network's training MSE; on "
         "the moving rows the MSEs are typical {:.3g} / {:.3g}, dominant {:.3g} / {:.3g} V^2 "
         "(train / test); the least MSE any function of v can reach (k-NN estimate, sysid "
         "irreducible) is {:.3g} / {:.3g} V^2, of (v, a) {:.3g} / {:.3g} V^2",
-        f.met ? "contrast" : "no contrast", o_.collection_kp_v_per_m, 100 * cov("test_rows_outside_training_box_fraction"),
+        f.met ? "contrast" : "no contrast", o_.collection_kp_v_per_m,
+        100 * cov("test_rows_outside_training_box_fraction"),
         cov("training_max_abs_v_mps"), cov("training_max_abs_a_mps2"),
         cov("training_a_noise_rms_mps2"), cov("training_a_rms_mps2"),
         100 * cov("training_rest_fraction"), cov("training_u_variance_at_rest_v2"),

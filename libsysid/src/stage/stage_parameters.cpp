@@ -170,7 +170,7 @@ StageParameters LoopRateCWithPlay(const std::vector<double>& r, double w) {
   DriveHysteresis h;
   h.thresholds_v = r;
   h.weights.assign(r.size(), w);
-  h.rate_weights_s_per_v = {0, 0, 0};
+  h.rate_weights_s_per_v.assign(r.size(), 0.0);
   h.rate_time_constant_s = 0.01;
   h.asymmetry = 0.3;
   p.SetDriveHysteresis(h);
