@@ -71,6 +71,20 @@ def stage_file(name, fam, w, alpha, kl, tc):
     return s
 
 
+def seed1_cells(r):
+    """The two cells both tables share: the verdict of F1-F4 and F6 at seed 1, and F4's ripple
+    in motion at 0.5 / 1 Hz [um]."""
+    failed = [k for k in ("F1", "F2", "F3", "F4", "F6") if not r[k]["met"]]
+    f4 = re.search(r"in motion ([\d.]+) um.*in motion ([\d.]+) um", r["F4"]["virtual"])
+    return ("met" if not failed else "fail: " + ", ".join(failed),
+            f"{f4.group(1)} / {f4.group(2)}")
+
+
+def span(xs):
+    """min-max of a list, or the one value when they are equal (3 significant digits)."""
+    return f"{min(xs):.3g}" if min(xs) == max(xs) else f"{min(xs):.3g}-{max(xs):.3g}"
+
+
 def facts(path, ids, seeds=None):
     cmd = [SYSID, "stage", "facts", "--stage", path, "--facts", ids, "--json", "--threads", "1"]
     cmd += ["--seeds", seeds] if seeds else []
@@ -108,16 +122,15 @@ def main():
         results = [x for x in ex.map(run, cands.items()) if "F5" in x[2]]
     results.sort(key=lambda x: (-x[2]["F5"]["met_count"], x[0]))
     for name, (fam, w, alpha, kl, tc), r in results:
-        failed = [k for k in ("F1", "F2", "F3", "F4", "F6") if not r[k]["met"]]
+        verdict, f4 = seed1_cells(r)
         v8 = r["F8"]["virtual"]
         a8 = re.search(r"\+1.4 V [\d.]+ mm/s \(([\d.]+) %\), -1.9 V [\d.]+ mm/s \(([\d.]+) %\)", v8)
         c8 = re.search(r"\(x ([\d.]+)\)", v8)
         d8 = re.search(r"\(d\).*\(([-+][\d.]+) %\)", v8)
-        f4 = re.search(r"in motion ([\d.]+) um.*in motion ([\d.]+) um", r["F4"]["virtual"])
         f5 = r["F5"]
         print(f"| {name} | {'/'.join(f'{x:g}' for x in PLAY[fam])} | {w:g} | {alpha:g} | "
-              f"{kl:g} / {tc * 1000:g} | {'met' if not failed else 'fail: ' + ', '.join(failed)} | "
-              f"{f4.group(1)} / {f4.group(2)} | {a8.group(1)} / {a8.group(2)}, x{c8.group(1)}, "
+              f"{kl:g} / {tc * 1000:g} | {verdict} | "
+              f"{f4} | {a8.group(1)} / {a8.group(2)}, x{c8.group(1)}, "
               f"{d8.group(1)} % | {f5['met_count']} ({', '.join(map(str, f5['met_seeds']))}) |")
     if a.f7:
         print()
@@ -125,16 +138,12 @@ def main():
               "typical train / test [V^2] | dominant train / test [V^2] | typical test / train |")
         print("|---|---|---|---|---|---|---|---|")
         for name, _, r in results:
-            failed = [k for k in ("F1", "F2", "F3", "F4", "F6") if not r[k]["met"]]
-            f4 = re.search(r"in motion ([\d.]+) um.*in motion ([\d.]+) um", r["F4"]["virtual"])
+            verdict, f4 = seed1_cells(r)
             mse = [[float(x) for x in re.findall(r"train ([\d.]+), test ([\d.]+)", v)[k]]
                    for v in r["F7"]["virtual"] for k in (0, 1)]
             typ, dom = mse[0::2], mse[1::2]  # per seed: [train, test]
-            span = lambda xs: f"{min(xs):.3g}" if min(xs) == max(xs) else \
-                f"{min(xs):.3g}-{max(xs):.3g}"
             ratio = [t[1] / t[0] for t in typ]
-            print(f"| {name} | {'met' if not failed else 'fail: ' + ', '.join(failed)} | "
-                  f"{f4.group(1)} / {f4.group(2)} | {r['F5']['met_count']} | "
+            print(f"| {name} | {verdict} | {f4} | {r['F5']['met_count']} | "
                   f"{r['F7']['met_count']} | {span([t[0] for t in typ])} / "
                   f"{span([t[1] for t in typ])} | {span([d[0] for d in dom])} / "
                   f"{span([d[1] for d in dom])} | {span(ratio)} |")
