@@ -189,14 +189,17 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
   CHECK(f.met == (a && b && c && d));
 }
 
-TEST_CASE("F8 tells the velocity-source stage's loop from a quasi-static stage's",
+TEST_CASE("F8 holds on the default stage, fails (a) on velocity-source and a quasi-static one",
           "[stage][facts][loop]") {
+  const sysid::StageFacts def = sysid::RunStageFacts(StageParameters::Default(), F8Only());
   const sysid::StageFacts vs =
       sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
   const sysid::StageFacts qs = sysid::RunStageFacts(QuasiStatic(), F8Only());
+  const sysid::StageFact& h = def.facts.front();
   const sysid::StageFact& d = vs.facts.front();
   const sysid::StageFact& q = qs.facts.front();
-  INFO("velocity-source: " << d.virtual_value << "\nquasi-static: " << q.virtual_value);
+  INFO("default: " << h.virtual_value << "\nvelocity-source: " << d.virtual_value
+                   << "\nquasi-static: " << q.virtual_value);
   // Both stages start at the same asymmetric thresholds (the dead zones and breakaway): (b).
   CHECK(Value(d, "b_met") == 1.0);
   CHECK(Value(q, "b_met") == 1.0);
@@ -212,24 +215,12 @@ TEST_CASE("F8 tells the velocity-source stage's loop from a quasi-static stage's
   CHECK(wq < 0.5 * wd);
   CHECK(Value(q, "a_met") == 0.0);
   CHECK_FALSE(q.met);
-}
-
-TEST_CASE("F8 holds on the default stage: the drive's hysteresis is the loop's static width",
-          "[stage][facts][loop]") {
-  // The same stage without its play operators and creep (VelocitySource(), whose dead zones
-  // the operators' held lag moved) fails (a) alone; with them every sub-criterion holds, and
-  // the width in the pulse region comes from the operators: at +1.4 V the default's is several
-  // times the velocity-source stage's.
-  const sysid::StageFacts def = sysid::RunStageFacts(StageParameters::Default(), F8Only());
-  const sysid::StageFacts vs =
-      sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
-  const sysid::StageFact& d = def.facts.front();
-  INFO("default: " << d.virtual_value << "\nvelocity-source: "
-                   << vs.facts.front().virtual_value);
-  for (const char* k : {"a_met", "b_met", "c_met", "d_met"}) CHECK(Value(d, k) == 1.0);
-  CHECK(d.met);
-  CHECK(Value(d, "triangle width_mps at +1.4 V") >
-        3 * Value(vs.facts.front(), "triangle width_mps at +1.4 V"));
+  // The default is that stage with the play operators and creep (its dead zones moved by the
+  // operators' held lag): every sub-criterion holds, and the width in the pulse region comes
+  // from the operators: at +1.4 V the default's is several times the velocity-source stage's.
+  for (const char* k : {"a_met", "b_met", "c_met", "d_met"}) CHECK(Value(h, k) == 1.0);
+  CHECK(h.met);
+  CHECK(Value(h, "triangle width_mps at +1.4 V") > 3 * Value(d, "triangle width_mps at +1.4 V"));
 }
 
 TEST_CASE("F8's options are validated before any experiment", "[stage][facts][loop]") {
