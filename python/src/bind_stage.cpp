@@ -7,6 +7,16 @@
 #include "sysid/stage.hpp"
 
 namespace sysid::python {
+namespace {
+
+// pybind11 keeps the pointer: the text lives as long as the module.
+const char* PresetDoc() {
+  static const std::string doc =
+      "A named preset (" + StageParameters::PresetNameList() + "); docs/virtual_stage.md.";
+  return doc.c_str();
+}
+
+}  // namespace
 
 void BindStage(py::module_& m) {
   py::module_ s = m.def_submodule("stage", "The virtual piezo stage and its procedures.");
@@ -16,9 +26,9 @@ void BindStage(py::module_& m) {
                               "docs/virtual_stage.md. Edit through to_json / from_json.")
       .def(py::init(&StageParameters::Default))
       .def_static("default", &StageParameters::Default)
-      .def_static("preset", &StageParameters::Preset, py::arg("name"),
-                  "A named preset (virtual = drive-hysteresis, velocity-source, virtual-1khz, "
-                  "actuator-delay, drive-hysteresis-static); docs/virtual_stage.md.")
+      .def_static("preset", &StageParameters::Preset, py::arg("name"), PresetDoc())
+      .def_static("preset_names", &StageParameters::PresetNames,
+                  "The names StageParameters.preset takes, \"virtual\" first.")
       .def_static("load", &ReadStageParameters, py::arg("path"))
       .def("save",
            [](const StageParameters& p, const std::string& path) {

@@ -180,6 +180,11 @@ def test_stage_presets_match_cli_generate(tmp_path):
     assert "hysteresis" not in StageParameters.preset("velocity-source").to_json()
     with pytest.raises(sysid.OptionsError, match="velocity-source"):
         StageParameters.preset("no-such-stage")
+    names = StageParameters.preset_names()
+    assert names[0] == "virtual" and "drive-hysteresis-static" in names
+    for name in names:  # each loads, and its name is in the docstring
+        assert StageParameters.preset(name).to_json()
+        assert name in StageParameters.preset.__doc__
 
 
 def test_stage_tracking_matches_bundled_waveform():

@@ -168,3 +168,16 @@ TEST_CASE("no help text carries a hand-written default number", "[cli]") {
     }
   }
 }
+
+TEST_CASE("every option that takes a stage preset lists every preset", "[cli]") {
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"generate", "pulses"}, {"stage", "facts"}, {"track"}}) {
+    const std::string help = Help(command);
+    for (const std::string& name : sysid::StageParameters::PresetNames()) {
+      INFO("sysid " << command[0] << " --help, preset " << name);
+      // The whole name: "drive-hysteresis" inside "drive-hysteresis-static" does not count.
+      const std::regex word("(^|[^a-z0-9-])" + name + "([^a-z0-9-]|$)");
+      CHECK(std::regex_search(help, word));
+    }
+  }
+}

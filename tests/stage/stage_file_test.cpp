@@ -89,6 +89,51 @@ TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 
                     Catch::Contains("virtual-1khz"));
 }
 
+TEST_CASE("every preset name loads, and every message that lists the presets lists them all",
+          "[stage][file]") {
+  const auto& names = sysid::StageParameters::PresetNames();
+  REQUIRE(names.size() == 6);
+  CHECK(names.front() == "virtual");
+  for (const std::string& name : names) {
+    INFO(name);
+    CHECK(sysid::StageParameters::IsPresetName(name));
+    const sysid::StageParameters p = sysid::StageParameters::Preset(name);
+    CHECK_NOTHROW(p.Validate());
+    // A file naming the preset and nothing else is the preset.
+    CHECK(sysid::StageParametersToJson(
+              sysid::ParseStageParameters("{\"preset\": \"" + name + "\"}", "p.json")) ==
+          sysid::StageParametersToJson(p));
+  }
+  CHECK_FALSE(sysid::StageParameters::IsPresetName("Virtual"));
+  CHECK_FALSE(sysid::StageParameters::IsPresetName(""));
+  // The aliases are the same stage, the others differ from each other.
+  CHECK(sysid::StageParametersToJson(sysid::StageParameters::Preset("virtual")) ==
+        sysid::StageParametersToJson(sysid::StageParameters::Preset("drive-hysteresis")));
+  CHECK(sysid::StageParametersToJson(sysid::StageParameters::Preset("velocity-source")) !=
+        sysid::StageParametersToJson(sysid::StageParameters::Preset("virtual-1khz")));
+  std::string preset_error, file_error, incomplete_error;
+  try {
+    sysid::StageParameters::Preset("fast");
+  } catch (const std::exception& e) {
+    preset_error = e.what();
+  }
+  try {
+    sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json");
+  } catch (const std::exception& e) {
+    file_error = e.what();
+  }
+  try {
+    sysid::ParseStageParameters("{\"model\": \"velocity-source\"}", "c.json");
+  } catch (const std::exception& e) {
+    incomplete_error = e.what();
+  }
+  for (const std::string& name : names) {
+    CHECK_THAT(preset_error, Catch::Contains("'fast'") && Catch::Contains(name));
+    CHECK_THAT(file_error, Catch::Contains("p.json") && Catch::Contains(name));
+    CHECK_THAT(incomplete_error, Catch::Contains("c.json") && Catch::Contains(name));
+  }
+}
+
 TEST_CASE("the default is C with the drive's hysteresis and creep, files without them have none",
           "[stage][file]") {
   const sysid::StageParameters d = sysid::StageParameters::Default();

@@ -240,6 +240,10 @@ struct StageParameters {
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.
   static bool IsPresetName(const std::string& name);
+  /// Preset's names, "virtual" first.
+  static const std::vector<std::string>& PresetNames();
+  /// PresetNames() for messages: "virtual (= drive-hysteresis), velocity-source, …".
+  static std::string PresetNameList();
   /// [s] 1 / sample_rate_hz, the control period.
   double sample_time_s() const { return 1.0 / sample_rate_hz; }
   /// [Hz] the recordings' rate: record_rate_hz, or sample_rate_hz when that is 0.

@@ -17,10 +17,10 @@ namespace {
 
 constexpr double kMaxStageSampleRateHz = 1e6;
 // Why a key or section is required: said in every such message.
-constexpr const char* kCompleteRule =
-    "a stage file gives every section and key of its model, or names \"preset\": NAME "
-    "(virtual, velocity-source, virtual-1khz, actuator-delay, drive-hysteresis, "
-    "drive-hysteresis-static) whose values fill what it leaves out";
+std::string CompleteRule() {
+  return "a stage file gives every section and key of its model, or names \"preset\": NAME (" +
+         StageParameters::PresetNameList() + ") whose values fill what it leaves out";
+}
 
 // Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
 // (handled by the caller). With `complete` (a file that names no "preset") every key but those
@@ -50,7 +50,7 @@ struct Section {
     if (!complete) return;
     for (const auto& k : known)
       if (!node.Has(k) && std::find(optional.begin(), optional.end(), k) == optional.end())
-        node.Fail("missing required key '" + k + "' (" + kCompleteRule + ")");
+        node.Fail("missing required key '" + k + "' (" + CompleteRule() + ")");
   }
 };
 
@@ -126,9 +126,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     const internal::JsonNode at = root.Get("preset");
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
-      at.Expected(
-          "a preset name (virtual, velocity-source, virtual-1khz, actuator-delay, "
-          "drive-hysteresis, drive-hysteresis-static)");
+      at.Expected("a preset name (" + StageParameters::PresetNameList() + ")");
     preset = StageParameters::Preset(name);
   }
   const bool complete = !preset;
@@ -257,7 +255,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
           .Read(rig, complete, {"sample_rate_hz", "control_rate_hz", "record_rate_hz"});
       if (complete && !rig.Has("sample_rate_hz") && !rig.Has("control_rate_hz"))
         rig.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
-                 kCompleteRule + ")");
+                 CompleteRule() + ")");
       if (rig.Has("sample_rate_hz")) {
         p.sample_rate_hz = alias;
         p.record_rate_hz = 0;  // the control rate
@@ -281,7 +279,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     for (const char* section : sections)
       if (!root.Has(section))
         root.Fail(std::string("expected section '") + section + "' of the " + model_name +
-                  " model, found none (" + kCompleteRule + ")");
+                  " model, found none (" + CompleteRule() + ")");
   }
   try {
     p.Validate();

@@ -213,25 +213,54 @@ StageParameters StageParameters::VelocitySource() {
   return p;
 }
 
+namespace {
+
+StageParameters VirtualOneKhz() {
+  StageParameters p = VelocitySourceAtMemberDefaults();
+  p.name = "virtual PLS8/HR-8 (velocity source, 1 kHz loop)";
+  return p;
+}
+
+struct PresetEntry {
+  const char* name;
+  StageParameters (*make)();
+};
+
+// Every preset, once: IsPresetName, Preset, PresetNames and every message listing them read it.
+constexpr PresetEntry kPresets[] = {{"virtual", &StageParameters::Default},
+                                    {"velocity-source", &StageParameters::VelocitySource},
+                                    {"virtual-1khz", &VirtualOneKhz},
+                                    {"actuator-delay", &StageParameters::ActuatorDelay},
+                                    {"drive-hysteresis", &StageParameters::Default},
+                                    {"drive-hysteresis-static", &DriveHysteresisStaticPreset}};
+
+}  // namespace
+
+const std::vector<std::string>& StageParameters::PresetNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const PresetEntry& e : kPresets) v.emplace_back(e.name);
+    return v;
+  }();
+  return names;
+}
+
+std::string StageParameters::PresetNameList() {
+  std::string text;
+  for (const std::string& name : PresetNames())
+    text += (text.empty() ? "" : ", ") + name + (name == "virtual" ? " (= drive-hysteresis)" : "");
+  return text;
+}
+
 bool StageParameters::IsPresetName(const std::string& name) {
-  return name == "virtual" || name == "velocity-source" || name == "virtual-1khz" ||
-         name == "actuator-delay" || name == "drive-hysteresis" ||
-         name == "drive-hysteresis-static";
+  const auto& names = PresetNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 StageParameters StageParameters::Preset(const std::string& name) {
-  if (name == "virtual" || name == "drive-hysteresis") return Default();
-  if (name == "velocity-source") return VelocitySource();
-  if (name == "virtual-1khz") {
-    StageParameters p = VelocitySourceAtMemberDefaults();
-    p.name = "virtual PLS8/HR-8 (velocity source, 1 kHz loop)";
-    return p;
-  }
-  if (name == "actuator-delay") return ActuatorDelay();
-  if (name == "drive-hysteresis-static") return DriveHysteresisStaticPreset();
-  throw OptionsError("stage preset '" + name +
-                     "' is not one of virtual (= drive-hysteresis), velocity-source, "
-                     "virtual-1khz, actuator-delay, drive-hysteresis, drive-hysteresis-static");
+  for (const PresetEntry& e : kPresets)
+    if (name == e.name) return e.make();
+  throw OptionsError("stage preset '" + name + "' is not one of " + PresetNameList());
 }
 
 std::string ToString(StageModel model) {
