@@ -8,7 +8,9 @@ install(TARGETS sysid sysid_report EXPORT SysidTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY libsysid/include/sysid DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS sysid_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# Component "cli": scripts/setup.sh installs the program alone (with the Python package), so
+# that `sysid` is on the PATH after the README's commands.
+install(TARGETS sysid_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
 
 set(SYSID_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Sysid)
 install(EXPORT SysidTargets NAMESPACE sysid:: DESTINATION ${SYSID_CMAKE_DIR})

@@ -46,15 +46,23 @@ jobs="${SYSID_JOBS:-$(nproc)}"
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@" >&2
 cmake --build "$BUILD_DIR" -j "$jobs" >&2
 
-# The Python package (python/, built when pybind11 and NumPy are present): installed into
-# Debian's python3 site-packages, so `import sysid` works with no further step.
+# The sysid program (into /usr/local/bin, so the docs' bare `sysid` works) and the Python
+# package (python/, built when pybind11 and NumPy are present; into Debian's python3
+# site-packages, so `import sysid` works with no further step).
+# A sanitizer build installs nothing (its program needs the sanitizers' run-time options).
+components=()
+grep -q '^SYSID_SANITIZE:BOOL=ON' "$BUILD_DIR/CMakeCache.txt" 2>/dev/null || components+=(cli)
 if grep -q '^SYSID_PYTHON:BOOL=ON' "$BUILD_DIR/CMakeCache.txt" 2>/dev/null; then
-  if [ "$(id -u)" -eq 0 ]; then
-    cmake --install "$BUILD_DIR" --component python >&2
-  elif sudo -n true 2>/dev/null; then
-    sudo cmake --install "$BUILD_DIR" --component python >&2
-  else
-    echo "setup: Python package built in $BUILD_DIR/python (PYTHONPATH=$BUILD_DIR/python);" \
-      "'sudo cmake --install $BUILD_DIR --component python' installs it" >&2
-  fi
+  components+=(python)
 fi
+for component in ${components[@]+"${components[@]}"}; do
+  if [ "$(id -u)" -eq 0 ]; then
+    cmake --install "$BUILD_DIR" --component "$component" >&2
+  elif sudo -n true 2>/dev/null; then
+    sudo cmake --install "$BUILD_DIR" --component "$component" >&2
+  else
+    echo "setup: $component not installed (no root): the program is $BUILD_DIR/apps/sysid, the" \
+      "Python package $BUILD_DIR/python (PYTHONPATH=$BUILD_DIR/python);" \
+      "'sudo cmake --install $BUILD_DIR --component $component' installs it" >&2
+  fi
+done
