@@ -62,7 +62,8 @@ bool WrittenBySysid(const fs::path& path) {
   if (head[first] == '{')
     return Contains(head, "\"a1p\": \"1/s\"") ||        // a model's unit block
            Contains(head, "\"type\": \"tanh-mlp\"") ||  // a network
-           Contains(head, "\"note\": \"Virtual piezo stage for libsysid");
+           Contains(head, "\"note\": \"Virtual piezo stage for libsysid") ||
+           Contains(head, "\"fit_time_s\":");  // a hysteresis model from `hysteresis fit`
   return CsvWrittenBySysid(head);
 }
 

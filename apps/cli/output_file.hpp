@@ -17,7 +17,8 @@ namespace sysid::cli {
 /// leading '#' metadata holds a key only sysid writes (stage, procedure, derive, model,
 /// content, ff, waveform_name, resampled), a CSV table with the comment or header sysid gives
 /// it (the dominance table, simulation events), or a JSON object with sysid's unit block
-/// ("units": {"a1p": "1/s", ...}), its network type ("tanh-mlp") or its stage note.
+/// ("units": {"a1p": "1/s", ...}), its network type ("tanh-mlp"), its stage note or the fit
+/// block of a hysteresis model ("fit_time_s").
 bool WrittenBySysid(const std::filesystem::path& path);
 
 /// Checks "FLAG PATH" before any work (throws OptionsError, exit 1): nothing there, not a

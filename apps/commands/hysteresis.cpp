@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/dominance_candidates.hpp"
@@ -250,6 +251,7 @@ void AddHysteresisCommand(CLI::App& app) {
                 "parameters: [{name, unit, value, std_error}]}");
   AddOutputOption(fit, o->output, "write the model file (JSON)")->required();
   fit->callback([o] { RunFit(*o); });
+  GuardOutputFiles(fit, {{&o->output, "-o"}});
 
   CLI::App* sim = h->add_subcommand(
       "simulate", "Drive a model with a recording's u from the model's initial state; write t, u, x_model");
@@ -260,6 +262,7 @@ void AddHysteresisCommand(CLI::App& app) {
                 "write the last period");
   AddOutputOption(sim, o->output, "write t, u, x_model (CSV)")->required();
   sim->callback([o] { RunSimulate(*o); });
+  GuardOutputFiles(sim, {{&o->output, "-o"}});
 
   CLI::App* inv = h->add_subcommand(
       "invert", "The input u [V] that makes the model follow a reference x [m]; write t, x, u");
@@ -267,6 +270,7 @@ void AddHysteresisCommand(CLI::App& app) {
   inv->add_option("reference", o->input, "CSV with t [s] and x [m]")->required()->type_name("REF.csv");
   AddOutputOption(inv, o->output, "write t, x, u (CSV)")->required();
   inv->callback([o] { RunInvert(*o); });
+  GuardOutputFiles(inv, {{&o->output, "-o"}});
 
   auto rank = std::make_shared<CandidateRankingOptions>();
   CLI::App* dom = h->add_subcommand(

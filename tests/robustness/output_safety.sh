@@ -35,8 +35,23 @@ echo "my events" > ev.csv
 expect 1 "--events ev.csv: exists and was not written by sysid" \
   simulate --paper-model --pulses 1 --events ev.csv -o s1.csv
 [ ! -e s1.csv ] || fail "simulate wrote -o although --events was refused"
+# The hysteresis writers too (they replaced any file before): a user's notes stay.
+pz="$src/datasets/piezo_aye_ang/piezo.csv"
+expect 0 "" hysteresis fit --model pi "$pz" -o hy.json
+echo "my notes" > notes.json
+cp notes.json notes0.json
+expect 1 "-o notes.json: exists and was not written by sysid" \
+  hysteresis fit --model pi "$pz" -o notes.json
+expect 1 "-o notes.json: exists and was not written by sysid" \
+  hysteresis simulate --model hy.json "$pz" -o notes.json
+expect 1 "-o notes.json: exists and was not written by sysid" \
+  hysteresis invert --model hy.json "$pz" -o notes.json
+cmp -s notes.json notes0.json || fail "a hysteresis command replaced the user's notes.json"
+expect 0 "" hysteresis fit --model pi "$pz" -o notes.json --force
 # Each writer's own files are replaced without --force (their marks are recognised).
 for i in 1 2; do
+  expect 0 "" hysteresis fit --model pi "$pz" -o hy.json
+  expect 0 "" hysteresis simulate --model hy.json "$pz" -o hy_sim.csv
   expect 0 "" identify --a3 6 "$v/pulses.csv" -o id.json
   expect 0 "" dominance --model id.json -o dom.csv "$v/test.csv"
   expect 0 "" simulate --model id.json --pulses 1 --events ev2.csv -o sim.csv
