@@ -43,8 +43,8 @@ void RunMargins(const MarginsCli& o) {
   Table table({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
                "phase crossover [rad/s]", "gain margin", "stable"});
   for (const auto& [name, a1, m] : r.Directions())
-    table.AddRow({name, Num(a1), num(m.crossover_rad_s, "{:.1f}"),
-                  num(m.phase_margin_deg, "{:.2f}"), num(m.phase_crossover_rad_s, "{:.1f}"),
+    table.AddRow({name, Num(a1), num(m.crossover_rad_s, "{:.4g}"),
+                  num(m.phase_margin_deg, "{:.2f}"), num(m.phase_crossover_rad_s, "{:.4g}"),
                   num(m.gain_margin, "{:.3f}"), m.Stable() ? "yes" : "no"});
   std::cout << table.Render()
             << "\nLinear, around steady sliding: stick-slip, the dead zone and saturation are "

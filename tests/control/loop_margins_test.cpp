@@ -179,6 +179,29 @@ TEST_CASE("loop margins: direction, delay and bad input", "[control]") {
   CHECK_THROWS_AS(sysid::ComputeLoopMargins(blows_up, 1, 10), sysid::NumericalError);
 }
 
+TEST_CASE("loop margins of a low-gain loop: the crossover below 0.1 rad/s, closed form",
+          "[control]") {
+  // P only, tau = 0: |L| = Kp a3 / (w |jw + a1|) (the hold's half sample is a pure delay), so
+  // w_c^2 = (sqrt(a1^4 + 4 (Kp a3)^2) - a1^2) / 2 and the phase margin is
+  // 90 - atan(w_c / a1) - w_c Ts / 2. Kp = 0.5 V/m puts w_c at 0.03 rad/s: a sweep from
+  // 0.1 rad/s found no crossover and called this stable loop unstable.
+  sysid::PiOptions pi;
+  pi.kp_v_per_m = 0.5;
+  pi.ki_v_per_m_s = 0;
+  const double a1 = 100, a3 = 6, k = pi.kp_v_per_m * a3;
+  const double wc = std::sqrt((std::sqrt(std::pow(a1, 4) + 4 * k * k) - a1 * a1) / 2);
+  REQUIRE(wc < 0.1);
+  const auto m = sysid::RoughModelPiMargins(Model(a1, a1, a3, 0), 1, pi);
+  CHECK(m.crossover_rad_s == Approx(wc).epsilon(1e-9));
+  CHECK(m.phase_margin_deg ==
+        Approx(90 - (std::atan(wc / a1) + wc * pi.sample_time_s / 2) * 180 / kPi).epsilon(1e-9));
+  CHECK(m.Stable());
+  // No loop at all is an error, not a verdict.
+  pi.kp_v_per_m = 0;
+  CHECK_THROWS_WITH(sysid::RoughModelPiMargins(Model(a1, a1, a3, 0), 1, pi),
+                    Catch::Contains("open loop"));
+}
+
 TEST_CASE("sysid margins: table, JSON and bad input", "[control][cli]") {
   sysid::test::TempDir dir;
   const std::string model = dir / "m.json";

@@ -80,7 +80,9 @@ std::complex<double> RoughModelPiLoop(const FrictionModel& model, int direction,
                                       const PiOptions& pi, double omega_rad_s,
                                       double extra_delay_s = 0);
 
-/// ComputeLoopMargins of RoughModelPiLoop from 0.1 rad/s to the Nyquist frequency pi / Ts.
+/// ComputeLoopMargins of RoughModelPiLoop from 0.1 rad/s (lower, to where |L| > 1, for a
+/// low-gain loop whose crossover lies below it) to the Nyquist frequency pi / Ts. Throws
+/// OptionsError for Kp = Ki = 0 (no loop).
 LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const PiOptions& pi,
                                 double extra_delay_s = 0);
 

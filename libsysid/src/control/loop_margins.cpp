@@ -16,6 +16,8 @@ namespace sysid {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// [rad/s] where the sweep's start stops moving down (a period of 200 years).
+constexpr double kLowestSweepStartRadS = 1e-9;
 
 // The root of f between lo and hi (f(lo), f(hi) of opposite signs), by bisection in log omega.
 double Bisect(const std::function<double(double)>& f, double lo, double hi) {
@@ -110,9 +112,15 @@ LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const
   if (!(extra_delay_s >= 0) || !std::isfinite(extra_delay_s))
     throw OptionsError("RoughModelPiMargins: expected extra_delay_s >= 0, found " +
                        std::to_string(extra_delay_s));
-  return ComputeLoopMargins(
-      [&](double w) { return RoughModelPiLoop(model, direction, pi, w, extra_delay_s); }, 0.1,
-      kPi / pi.sample_time_s);
+  if (pi.kp_v_per_m == 0 && pi.ki_v_per_m_s == 0)
+    throw OptionsError("RoughModelPiMargins: Kp = Ki = 0 is an open loop: it has no margins");
+  auto loop = [&](double w) { return RoughModelPiLoop(model, direction, pi, w, extra_delay_s); };
+  // The sweep starts at 0.1 rad/s, or lower until |L| > 1 there: the loop has an integrator
+  // (|L| grows without bound as omega -> 0), so a low-gain loop's crossover lies below 0.1 rad/s
+  // and a sweep started above it would find none and call a stable loop unstable.
+  double w_min = 0.1;
+  while (std::abs(loop(w_min)) <= 1 && w_min > kLowestSweepStartRadS) w_min /= 10;
+  return ComputeLoopMargins(loop, w_min, kPi / pi.sample_time_s);
 }
 
 PiMarginsReport AnalyzePiMargins(const FrictionModel& model, const PiOptions& pi,
