@@ -31,6 +31,33 @@ TEST_CASE("metadata lines are kept in order, plain comments are not", "[io]") {
   CHECK(rec.meta("absent", "fallback") == "fallback");
 }
 
+TEST_CASE("control bytes in metadata and names never reach a terminal or break a line", "[io]") {
+  TempDir dir;
+  const std::string path = dir / "esc.csv";
+  // An OSC title sequence and a screen clear in a comment: kept, as \xHH text.
+  sysid::test::WriteText(path, "# note: a\x1b]0;t\x07\x1b[2J b\nt,u,x\n0,1,0\n0.001,1,0\n");
+  const auto rec = sysid::ReadRecording(path);
+  CHECK(rec.meta("note") == "a\\x1B]0;t\\x07\\x1B[2J b");
+  // A column name with one is an error at its place.
+  sysid::test::WriteText(path, "t,u,x\x1b[2J\n0,1,0\n0.001,1,0\n");
+  CHECK_THROWS_WITH(sysid::ReadRecording(path),
+                    Catch::StartsWith(path + ":1:5: header: expected a column name of printable") &&
+                        Catch::Contains("\"x\\x1B[2J\"") && !Catch::Contains("\x1b"));
+  // A metadata value with a newline (a file name may hold one) is written as one line and
+  // reads back as the same text.
+  sysid::Recording out;
+  out.names = {"t", "u", "x"};
+  out.data = Eigen::MatrixXd::Zero(2, 3);
+  out.data(1, 0) = 0.001;
+  out.metadata = {{"input", "lab\nrun 2.csv"}, {"unit", "m/s\xC2\xB2"}};
+  sysid::WriteRecording(path, out);
+  const auto back = sysid::ReadRecording(path);
+  REQUIRE(back.metadata.size() == 2);
+  CHECK(back.meta("input") == "lab\\x0Arun 2.csv");
+  CHECK(back.meta("unit") == "m/s\xC2\xB2");  // UTF-8 text passes unchanged
+  CHECK(back.names == out.names);
+}
+
 TEST_CASE("numbers parse exactly as strtod does, signs and exponents included", "[io]") {
   const std::string text = "t,u,v\n0,+1.5,-2.5e-3\n1e-3, 2 ,.5\n2E-3,-0,1.7976931348623157e308\n";
   const auto rec = sysid::ParseRecording(text, "mem");

@@ -129,6 +129,13 @@ TEST_CASE("sysid import: bad input exits 2 with the file and variable, nothing w
   r = RunCli({"import", "--column", "u=" + (dir / "bad.txt") + ":2", "--rate", "1"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Catch::Contains("bad.txt:2:3: column 2: expected a number, found \"x4\""));
+  // A unit is printable text: an escape sequence is a usage error, shown as \xHH.
+  r = RunCli({"import", "--column", "u=" + (dir / "a.mat") + ":u", "--rate", "10", "--unit",
+              "u=\x1b[2J", "-o", dir / "o.csv"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--unit u=\\x1B[2J: expected a unit of 1 to 32 printable") &&
+                        !Catch::Contains("\x1b"));
+  CHECK_FALSE(std::filesystem::exists(dir / "o.csv"));
 }
 
 TEST_CASE("sysid import -o never replaces a file it did not write", "[io][import][errors]") {

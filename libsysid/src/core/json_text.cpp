@@ -222,6 +222,17 @@ std::string Join(const std::vector<std::string>& keys) {
 
 }  // namespace
 
+bool HasControlByte(std::string_view s) {
+  return std::any_of(s.begin(), s.end(), [](char c) {
+    const auto b = static_cast<unsigned char>(c);
+    return b < 0x20 || b == 0x7F;
+  });
+}
+
+std::string OneLine(std::string_view s) {
+  return HasControlByte(s) ? Printable(s, s.size()) : std::string(s);
+}
+
 std::string Printable(std::string_view s, size_t max_chars) {
   std::string out;
   size_t chars = 0;

@@ -32,6 +32,14 @@ nlohmann::json ParseJsonText(std::string_view text, const std::string& source);
 /// `max_chars` is cut with "...". Used wherever an error message quotes file data.
 std::string Printable(std::string_view s, size_t max_chars = 80);
 
+/// True when `s` holds a control byte (tab and newline included) or DEL.
+bool HasControlByte(std::string_view s);
+
+/// `s` as one line of text: unchanged unless it holds a control byte, then Printable(s), uncut.
+/// For metadata, whose values come from users (comments, file names) and are written as
+/// "# key: value" lines and printed by `sysid info`.
+std::string OneLine(std::string_view s);
+
 /// The accepted range of a number read from a file, with the rule as it is printed
 /// ("a number > 0"). Every number must also be finite.
 struct NumberRule {

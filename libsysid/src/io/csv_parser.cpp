@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/json_text.hpp"
 #include "io/units.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
@@ -20,12 +21,9 @@ namespace {
 
 using internal::Trim;
 
-// Shows a cell in an error message: quoted, shortened if long.
-std::string Quote(std::string_view s) {
-  std::string out = "\"";
-  out += s.size() > 40 ? std::string(s.substr(0, 40)) + "..." : std::string(s);
-  return out + "\"";
-}
+// Shows a cell in an error message: quoted, shortened if long, control bytes as \xHH.
+std::string Quote(std::string_view s) { return "\"" + internal::Printable(s, 40) + "\""; }
+
 
 class Parser {
  public:
@@ -87,7 +85,9 @@ class Parser {
              c == ' ';
     });
     if (!keyish) return;
-    rec.metadata.emplace_back(std::string(key), std::string(Trim(comment.substr(colon + 1))));
+    // A comment is the user's free text, kept; its control bytes (an escape sequence would
+    // reach the terminal through `sysid info` and every file that copies metadata) as \xHH.
+    rec.metadata.emplace_back(std::string(key), internal::OneLine(Trim(comment.substr(colon + 1))));
   }
 
   void ReadHeader(Recording& rec) {
@@ -112,6 +112,9 @@ class Parser {
         const std::string_view name = Trim(raw);
         const long col = static_cast<long>(start) + 1;
         if (name.empty()) Fail(line_no_, col, "header: empty column name");
+        if (internal::HasControlByte(name))
+          Fail(line_no_, col,
+               "header: expected a column name of printable characters, found " + Quote(name));
         if (std::find(rec.names.begin(), rec.names.end(), name) != rec.names.end())
           Fail(line_no_, col, "header: duplicate column name " + Quote(name));
         if (std::isdigit(static_cast<unsigned char>(name.front())) || name.front() == '-' ||

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_text.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
 
@@ -45,6 +46,12 @@ Recording ImportRecording(const ImportOptions& options) {
     throw OptionsError("import: no columns: give at least one --column NAME=FILE[:VARIABLE]",
                        "columns");
   if (options.columns.size() > 256) throw OptionsError("import: more than 256 columns", "columns");
+  for (const auto& [c, u] : options.units)
+    if (u.empty() || u.size() > 32 || internal::Printable(u, 32) != u)
+      throw OptionsError(fmt::format("--unit {}={}: expected a unit of 1 to 32 printable "
+                                     "characters",
+                                     internal::Printable(c, 64), internal::Printable(u, 32)),
+                         "units");
   Recording rec;
   rec.source = "import";
   std::vector<std::pair<std::string, std::string>> origins;
@@ -79,7 +86,10 @@ Recording ImportRecording(const ImportOptions& options) {
   internal::FinishMappedRecording(rec, ro, origins);
 
   // Provenance, in the recording's column order.
-  for (const auto& [column, where] : origins) rec.metadata.emplace_back("source." + column, where);
+  // A file name may hold a newline or an escape sequence: written as \xHH, so the metadata
+  // line stays one line and never reaches a terminal raw.
+  for (const auto& [column, where] : origins)
+    rec.metadata.emplace_back("source." + column, internal::OneLine(where));
   if (options.rate_hz > 0) rec.metadata.emplace_back("sample_rate_hz", Num(options.rate_hz));
   for (const auto& [column, factor] : options.scales)
     rec.metadata.emplace_back("scale." + column, Num(factor));

@@ -2,6 +2,7 @@
 #include <charconv>
 #include <string>
 
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
@@ -67,7 +68,10 @@ std::string FormatRecording(const Recording& recording) {
   std::string out;
   const auto rows = recording.data.rows(), cols = recording.data.cols();
   out.reserve(static_cast<size_t>(rows * cols) * 16 + 256);
-  for (const auto& [k, v] : recording.metadata) out += "# " + k + ": " + v + "\n";
+  // Metadata values may come from users (file names, comments): one line each, whatever they
+  // hold, so the file reads back and prints safely.
+  for (const auto& [k, v] : recording.metadata)
+    out += "# " + internal::OneLine(k) + ": " + internal::OneLine(v) + "\n";
   for (Eigen::Index c = 0; c < cols; ++c) {
     out += recording.names[static_cast<size_t>(c)];
     out += c + 1 < cols ? ',' : '\n';
