@@ -95,7 +95,7 @@ void AddTrainCommand(CLI::App& app) {
                          "Levenberg-Marquardt; MSE in the output's unit squared (V^2)");
   AddNeuralOptions(cmd, o->nn);
   cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H")
-      ->check(CLI::Range(1, 100000))
+      ->check(CLI::Range(1, kMaxHiddenUnits))
       ->capture_default_str();
   cmd->add_option("--threads", o->nn.training.threads,
                   "threads for each epoch (lm trainer); 0 = all cores; results do not depend "

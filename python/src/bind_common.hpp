@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -139,6 +140,14 @@ inline void CheckSameLength(const std::string& who, const std::string& name_a, E
   if (n_a != n_b)
     throw InputError(who + ": " + name_a + " has " + std::to_string(n_a) + " values, " + name_b +
                      " has " + std::to_string(n_b) + "; they must be equally long");
+}
+
+/// OptionsError "WHO: dt_s = X. Violated constraint: 0 < dt_s < infinity" (the library's rule
+/// and words for a sample interval, as AnalyticInverse) unless dt_s is positive and finite.
+inline void CheckTimeStep(const std::string& who, double dt_s) {
+  if (!(dt_s > 0) || !std::isfinite(dt_s))
+    throw OptionsError(who + ": dt_s = " + std::to_string(dt_s) +
+                       ". Violated constraint: 0 < dt_s < infinity");
 }
 
 /// f applied to every element of RealArray(value, name): a scalar for a scalar, else an array of

@@ -29,10 +29,36 @@ void BindHysteresis(py::module_& m) {
   py::class_<HysteresisModel, std::shared_ptr<HysteresisModel>>(m, "HysteresisModel")
       .def_property_readonly("kind", &HysteresisModel::kind)
       .def_property_readonly("invertible", &HysteresisModel::invertible)
-      .def("simulate", &HysteresisModel::Simulate, py::arg("u_v"), py::arg("dt_s"), ReleaseGil())
-      .def("simulate_periodic", &HysteresisModel::SimulatePeriodic, py::arg("u_period_v"),
-           py::arg("dt_s"), py::arg("tolerance") = 1e-12, py::arg("max_periods") = 256, ReleaseGil())
-      .def("invert", &HysteresisModel::Invert, py::arg("x_m"), py::arg("dt_s"), ReleaseGil())
+      .def(
+          "simulate",
+          [](const HysteresisModel& model, const py::object& u_v, double dt_s) {
+            const Eigen::VectorXd u = RealVector(u_v, "u_v");
+            CheckTimeStep("HysteresisModel.simulate", dt_s);
+            py::gil_scoped_release release;
+            return model.Simulate(u, dt_s);
+          },
+          py::arg("u_v"), py::arg("dt_s"), "x [m] for the inputs u [V] spaced dt_s [s].")
+      .def(
+          "simulate_periodic",
+          [](const HysteresisModel& model, const py::object& u_period_v, double dt_s,
+             double tolerance, int max_periods) {
+            const Eigen::VectorXd u = RealVector(u_period_v, "u_period_v");
+            CheckTimeStep("HysteresisModel.simulate_periodic", dt_s);
+            py::gil_scoped_release release;
+            return model.SimulatePeriodic(u, dt_s, tolerance, max_periods);
+          },
+          py::arg("u_period_v"), py::arg("dt_s"), py::arg("tolerance") = 1e-12,
+          py::arg("max_periods") = 256,
+          "x [m] over one period of the periodic steady state for one period of u [V].")
+      .def(
+          "invert",
+          [](const HysteresisModel& model, const py::object& x_m, double dt_s) {
+            const Eigen::VectorXd x = RealVector(x_m, "x_m");
+            CheckTimeStep("HysteresisModel.invert", dt_s);
+            py::gil_scoped_release release;
+            return model.Invert(x, dt_s);
+          },
+          py::arg("x_m"), py::arg("dt_s"), "u [V] that makes the model follow x [m].")
       .def_property_readonly("parameters", &HysteresisModel::parameters)
       .def("to_json", &HysteresisModel::ToJson, py::arg("indent") = 2);
   m.def("hysteresis_kinds", &HysteresisKinds);

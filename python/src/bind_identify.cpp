@@ -174,8 +174,18 @@ void BindIdentify(py::module_& m) {
       .def_readonly("amplitude_v", &Pulse::amplitude_v)
       .def_readonly("at_record_start", &Pulse::at_record_start)
       .def_readonly("at_record_end", &Pulse::at_record_end);
-  m.def("detect_pulses", &DetectPulses, py::arg("t_s"), py::arg("u_v"),
-        py::arg("options") = PulseDetectionOptions{}, py::arg("source") = "");
+  m.def(
+      "detect_pulses",
+      [](const py::object& t_s, const py::object& u_v, const PulseDetectionOptions& options,
+         const std::string& source) {
+        const Eigen::VectorXd t = RealVector(t_s, "t_s"), u = RealVector(u_v, "u_v");
+        // The library only asserts equal lengths (InternalError): from Python it is bad data.
+        CheckSameLength("detect_pulses", "t_s", t.size(), "u_v", u.size());
+        py::gil_scoped_release release;
+        return DetectPulses(t, u, options, source);
+      },
+      py::arg("t_s"), py::arg("u_v"), py::arg("options") = PulseDetectionOptions{},
+      py::arg("source") = "", "Pulses of u [V] sampled at t [s] (equally long 1-D arrays).");
   py::class_<PulseEstimate>(m, "PulseEstimate")
       .def_readonly("pulse", &PulseEstimate::pulse)
       .def_readonly("v_mps", &PulseEstimate::v_mps)

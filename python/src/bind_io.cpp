@@ -2,7 +2,9 @@
 // sysid/identify.hpp).
 #include <fmt/format.h>
 
+#include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "bind_common.hpp"
@@ -42,6 +44,81 @@ Recording RecordingFromArrays(const py::dict& columns, const std::string& source
   return ParseRecording(FormatRecording(r), source, options);
 }
 
+// ---- NumPy views into a recording's storage ----
+// rec[name] and rec.data are views into Recording::data (no copy), and appending a column grows
+// that matrix (Recording::SetColumn -> conservativeResize -> realloc), which may move it and free
+// the old buffer: a view taken before then reads and writes freed heap (the audit's `double free
+// or corruption`). Of the sound fixes this is the cheapest for users: copying on every rec[name]
+// would cost a column per access and stop writes reaching the recording, and refusing set_column
+// while any view lives would make appending fail because of a stray variable. Instead every view
+// of a recording's current buffer has one owner (a capsule, the views' `base`), which holds the
+// recording alive; when set_column must grow the storage while that owner lives, the owner takes
+// the old buffer and the recording continues in a copy. The views stay valid with the values
+// they had (detached: writes through them no longer reach the recording). With no live view,
+// appending costs what it always did.
+
+struct ViewOwner {
+  const Recording* recording;  // whose storage the views show; nullptr once detached
+  PyObject* recording_object;  // strong reference while attached: a view keeps its recording
+  PyObject* capsule;           // borrowed: the Python object owning this struct
+  Eigen::MatrixXd detached;    // the buffer the views show, once detached
+};
+
+/// The live owner of each recording's views; used only with the GIL held. Leaked on purpose: a
+/// capsule freed during interpreter shutdown must not find it destroyed.
+std::unordered_map<const Recording*, ViewOwner*>& ViewOwners() {
+  static auto* owners = new std::unordered_map<const Recording*, ViewOwner*>();
+  return *owners;
+}
+
+void ReleaseViewOwner(void* pointer) {
+  auto* owner = static_cast<ViewOwner*>(pointer);
+  if (owner->recording) ViewOwners().erase(owner->recording);
+  PyObject* recording = owner->recording_object;
+  delete owner;
+  Py_XDECREF(recording);  // last: may destroy the recording
+}
+
+/// The owner of the views of `self`'s current buffer (made on the first view).
+py::object ViewOwnerOf(const py::object& self) {
+  const Recording* r = &self.cast<const Recording&>();
+  auto& owners = ViewOwners();
+  if (const auto it = owners.find(r); it != owners.end())
+    return py::reinterpret_borrow<py::object>(it->second->capsule);
+  auto made = std::make_unique<ViewOwner>(ViewOwner{r, nullptr, nullptr, {}});
+  py::object capsule = py::capsule(made.get(), &ReleaseViewOwner);
+  ViewOwner* owner = made.release();  // the capsule's now
+  owner->recording_object = self.inc_ref().ptr();
+  owner->capsule = capsule.ptr();
+  owners.emplace(r, owner);
+  return capsule;
+}
+
+/// Before `r`'s storage moves: hands the current buffer to its views' owner, if any view lives.
+void DetachViews(Recording& r) {
+  auto& owners = ViewOwners();
+  const auto it = owners.find(&r);
+  if (it == owners.end()) return;
+  ViewOwner* owner = it->second;
+  owners.erase(it);
+  owner->detached = std::move(r.data);  // the views' buffer, now the owner's
+  r.data = owner->detached;             // the recording continues in a copy
+  owner->recording = nullptr;
+  // The caller holds the recording, so this reference is not its last.
+  Py_CLEAR(owner->recording_object);
+}
+
+/// rows x cols column-major view of `r.data` (or of column `column` alone), owned by ViewOwnerOf.
+py::array StorageView(const py::object& self, int column) {
+  const Recording& r = self.cast<const Recording&>();
+  const auto rows = static_cast<py::ssize_t>(r.data.rows());
+  const auto item = static_cast<py::ssize_t>(sizeof(double));
+  const py::object owner = ViewOwnerOf(self);
+  if (column >= 0) return py::array_t<double>({rows}, {item}, r.data.data() + column * rows, owner);
+  return py::array_t<double>({rows, static_cast<py::ssize_t>(r.data.cols())}, {item, item * rows},
+                             r.data.data(), owner);
+}
+
 Recording DeriveRecording(Recording recording, const DerivativeOptions& options,
                           double max_relative_jitter) {
   const SamplingReport sampling = AnalyzeSampling(recording.column("t"), max_relative_jitter);
@@ -70,14 +147,15 @@ void BindIo(py::module_& m) {
   py::class_<Recording> recording(
       m, "Recording",
       "A table of named, equally long columns in SI units (t [s], u [V], x [m], v [m/s], "
-      "a [m/s^2]) with the file's '# key: value' metadata. rec['x'] is a NumPy view (no copy).");
+      "a [m/s^2]) with the file's '# key: value' metadata. rec['x'] is a NumPy view (no copy; "
+      "see set_column).");
   recording.def(py::init<>())
       .def_readwrite("source", &Recording::source)
       .def_readonly("names", &Recording::names)
       .def_readwrite("metadata", &Recording::metadata)
       .def_property_readonly(
-          "data", [](Recording& r) -> Eigen::MatrixXd& { return r.data; },
-          py::return_value_policy::reference_internal, "rows x columns view (column-major)")
+          "data", [](const py::object& self) { return StorageView(self, -1); },
+          "rows x columns view (column-major); detached by appending a column (see set_column)")
       .def_property_readonly("rows", &Recording::rows)
       .def("__len__", &Recording::rows)
       .def("__contains__", &Recording::has)
@@ -90,9 +168,7 @@ void BindIo(py::module_& m) {
               // The library's message for a missing column.
               (void)r.column(name);
             }
-            const double* p = r.data.data() + static_cast<Eigen::Index>(c) * r.data.rows();
-            return py::array_t<double>({r.data.rows()},
-                                       {static_cast<py::ssize_t>(sizeof(double))}, p, self);
+            return StorageView(self, c);
           },
           "The named column as a NumPy view [SI unit of the column]; DataError if absent.")
       .def(
@@ -102,11 +178,14 @@ void BindIo(py::module_& m) {
             if (!r.names.empty())
               CheckSameLength((r.source.empty() ? "recording" : r.source) + ": set_column",
                               "values", v.size(), "the recording", r.rows());
+            if (!r.has(name)) DetachViews(r);  // appending may move the storage
             r.SetColumn(name, v);
           },
           py::arg("name"), py::arg("values"),
-          "Appends or replaces a column (as long as the others). Views from rec[name] taken "
-          "before appending a column no longer track the recording.")
+          "Appends or replaces a column (as long as the others). Replacing writes in place, so "
+          "views see the new values; appending detaches the views taken before (rec[name], "
+          "rec.data): they stay valid with the values they had, but no longer track the "
+          "recording (take them again).")
       .def("meta", &Recording::meta, py::arg("key"), py::arg("fallback") = "")
       .def("to_csv", &FormatRecording, "CSV text: metadata lines, header, 17 significant digits")
       .def(

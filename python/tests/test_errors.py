@@ -81,3 +81,15 @@ def test_options_defaults_come_from_cpp():
     assert str(t.motion.derivative.method) == "butterworth"  # TrajectoryOptions::DefaultMotion
     assert sysid.TrainingOptions().hidden == 24
     assert sysid.DelayTuningOptions(tau_max_s=0.05).to_dict()["tau_max_s"] == 0.05
+
+
+def test_sizes_are_bounded_before_allocation():
+    # A typo'd size is refused at once with the CLI's limit and message (the checks live in the
+    # library: tests/robustness/resource_limits.sh), not attempted until a MemoryError.
+    with pytest.raises(sysid.OptionsError, match=r"repeats .*<= 20000000 table rows") as info:
+        sysid.pulse_train(sysid.PulseTrainSpec(amplitudes_v=[1.0], repeats=2_000_000_000))
+    assert str(info.value) == cli_error("simulate", "--paper-model", "--pulses", "1",
+                                        "--pulse-repeats", "2000000000", expect=1)
+    with pytest.raises(sysid.OptionsError, match=r"hidden = 1000000000\. .*1 <= hidden <= 100000"):
+        sysid.Network([sysid.ScaledVariable("v")], sysid.ScaledVariable("u"), 10**9)
+    assert sysid.Network([sysid.ScaledVariable("v")], sysid.ScaledVariable("u"), 2).hidden_size == 2

@@ -94,6 +94,10 @@ MODEL = sysid.Model.paper()
 NET = sysid.Network([sysid.ScaledVariable("v", "m/s", -0.1, 0.1),
                      sysid.ScaledVariable("a", "m/s^2", -1.0, 1.0)],
                     sysid.ScaledVariable("u", "V", -2.0, 2.0), 3)
+# A classical PI hysteresis model (test_hysteresis.py's truth): x = c u + sum w_i F_r_i(u) + offset.
+PI = sysid._sysid.hysteresis_model_from_json(
+    '{"kind": "pi", "thresholds": [0.5, 1.0], "weights": [2e-6, 1e-6], "polynomial": [3e-6], '
+    '"offset_m": -1e-4, "input_min_v": 0, "input_max_v": 3.6}', "pi.json")
 
 
 # ---- The cases of issue 29, exactly --------------------------------------------------------
@@ -130,6 +134,49 @@ def test_issue_cases():
     assert len(rec) > 0
 
 
+def test_audit_cases():
+    # detect_pulses, HysteresisModel.simulate / .invert and analytic_inverse's model skipped the
+    # rules above: lengths were an InternalError, "1e-5" was parsed, 1+1j lost its imaginary
+    # part, None became NaN, dt_s = nan and a3 = 0 (u = inf) were accepted.
+    t = np.arange(20) * 0.1
+    u = np.where((t > 0.55) & (t < 1.15), 1.5, 0.0)  # 1.5 V on rows 6..11 (0.6 s >= 0.2 s)
+    with pytest.raises(sysid.DataError, match="detect_pulses: t_s has 20 values, u_v has 10"):
+        sysid.detect_pulses(t, u[:10])
+    with pytest.raises(sysid.DataError, match="u_v: expected real numbers, got dtype <U"):
+        sysid.detect_pulses(t, u.astype(str))
+    (pulse,) = sysid.detect_pulses(t, u)
+    assert (pulse.first_row, pulse.end_row, pulse.amplitude_v) == (6, 12, 1.5)
+    assert pulse.duration_s == pytest.approx(0.6, rel=1e-12)
+    assert len(sysid.detect_pulses(list(t), (u > 0).astype(int))) == 1  # int: converted, 1 V
+    for call, name in ((PI.simulate, "u_v"), (PI.simulate_periodic, "u_period_v"),
+                       (PI.invert, "x_m")):
+        expected = f"{name}: expected real numbers, got dtype"
+        with pytest.raises(sysid.DataError, match=f"{expected} complex"):
+            call(np.full(5, 1e-5 + 1e-3j), 1e-3)
+        with pytest.raises(sysid.DataError, match=f"{expected} <U4"):
+            call(np.array(["1e-5"] * 3), 1e-3)
+        with pytest.raises(sysid.DataError, match=f"{expected} object"):
+            call([None, 1e-5], 1e-3)
+        with pytest.raises(sysid.DataError, match=f"{name}: expected a 1-D array, got 2 dim"):
+            call(np.full((3, 3), 1e-5), 1e-3)
+        for dt in (float("nan"), 0.0, -1e-3, float("inf")):
+            with pytest.raises(sysid.OptionsError, match=r"dt_s = .*0 < dt_s < infinity"):
+                call(np.full(5, 2e-6), dt)
+    # The reference: the model's own closed form (the PI is exact), u = 2 V from rest, x(0) = 0
+    # state: x = 3e-6 u + 2e-6 (u - 0.5) + 1e-6 (u - 1) - 1e-4; an int array gives the same.
+    x = PI.simulate(np.array([2]), 1e-3)
+    assert x[0] == pytest.approx(3e-6 * 2 + 2e-6 * 1.5 + 1e-6 * 1.0 - 1e-4, rel=1e-12)
+    assert np.array_equal(PI.simulate([0, 1, 2, 3, 2], 1e-3), PI.simulate(
+        np.array([0.0, 1.0, 2.0, 3.0, 2.0]), 1e-3))
+    v = np.full(5, 0.01)
+    for bad, rule in ((dict(a3=0.0), "a3 = 0.000000. Violated constraint: a3 > 0"),
+                      (dict(a1p=float("nan")), "a1p = nan. Violated constraint: finite")):
+        model = sysid.Model(**{**dict(a1p=1.0, a1n=1.0, a2p=1.0, a2n=1.0, a3=6.0, tau_s=0.0),
+                               **bad})
+        with pytest.raises(sysid.OptionsError, match=rule):
+            sysid.analytic_inverse(model, 1e-3, v, np.zeros(5))
+
+
 def sysid_virtual():
     from conftest import VIRTUAL
     return VIRTUAL
@@ -159,6 +206,9 @@ def test_elementwise_and_vector_functions(a, b, c, dt):
     returns_or_documented(wave.position, a)
     returns_or_documented(sysid.analytic_inverse, MODEL, dt, a, b)
     returns_or_documented(sysid.network_inverse, NET, a, b)
+    returns_or_documented(sysid.detect_pulses, a, b)
+    returns_or_documented(PI.simulate, a, dt)
+    returns_or_documented(PI.invert, a, dt)
     returns_or_documented(NET.predict, a)
     returns_or_documented(NET.predict, {"v": a, "a": b})
     net = sysid.Network([sysid.ScaledVariable("v")], sysid.ScaledVariable("u"), 2)

@@ -73,6 +73,16 @@ TEST_CASE("the inverses refuse v and a of different lengths (issue 29)", "[compa
     CHECK_THROWS_WITH(sysid::AnalyticInverse(m, dt, v, a),
                       Catch::Matchers::Contains("Violated constraint: 0 < dt_s"));
   }
+  // An invalid model is refused as by every other consumer (was u = inf for a3 = 0, NaN for a
+  // NaN field).
+  sysid::FrictionModel bad = m;
+  bad.a3 = 0;
+  CHECK_THROWS_WITH(sysid::AnalyticInverse(bad, 1e-3, v, a),
+                    Catch::Matchers::Contains("a3 = 0.000000. Violated constraint: a3 > 0"));
+  bad = m;
+  bad.a1p = std::nan("");
+  CHECK_THROWS_WITH(sysid::AnalyticInverse(bad, 1e-3, v, a),
+                    Catch::Matchers::Contains("a1p = nan. Violated constraint: finite"));
   // Equal lengths still work, and a steady slide needs u = (a1 v + a2) / a3 (a = 0, v const).
   const Eigen::VectorXd u = sysid::AnalyticInverse(m, 1e-3, v, a);
   CHECK(u[9] == Approx((m.a1p * 0.01 + m.a2p) / m.a3).epsilon(1e-12));  // closed form

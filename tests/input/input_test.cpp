@@ -51,6 +51,23 @@ TEST_CASE("the paper's pulse train", "[input]") {
                     Catch::Contains("PulseTrainSpec::on_s") && Catch::Contains("on_s > 0"));
 }
 
+TEST_CASE("a pulse train is bounded by the signal limit before allocation", "[input]") {
+  PulseTrainSpec spec;
+  spec.amplitudes_v = {1.0};
+  spec.repeats = 2000000000;  // 4e9 table rows, 64 GB: refused at once
+  CHECK_THROWS_WITH(MakePulseTrain(spec), Catch::Contains("PulseTrainSpec::repeats") &&
+                                              Catch::Contains("<= 20000000 table rows") &&
+                                              Catch::Contains("asked for 4000000000"));
+  spec.repeats = 10000001;  // one pulse (two rows) past the limit
+  CHECK_THROWS_WITH(MakePulseTrain(spec), Catch::Contains("asked for 20000002"));
+  spec.off_s = 0;  // without rests one row a pulse: 3 x 6666667 = 20000001 rows
+  spec.amplitudes_v = {1.0, -1.0, 2.0};
+  spec.repeats = 6666667;
+  CHECK_THROWS_AS(MakePulseTrain(spec), OptionsError);
+  spec.repeats = 1000;
+  CHECK(MakePulseTrain(spec).Value(0.1) == 1.0);
+}
+
 TEST_CASE("named waveforms", "[input]") {
   for (const auto& name : NamedWaveformNames()) {
     const NamedWaveform w = MakeNamedWaveform(name);

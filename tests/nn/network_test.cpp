@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
@@ -49,6 +50,16 @@ TEST_CASE("Evaluate and EvaluateBatch follow the definition", "[nn]") {
   }
   CHECK(net.parameter_count() == 13);
   CHECK(net.parameters() == SmallNet().parameters());
+}
+
+TEST_CASE("the constructor bounds the hidden size before allocating", "[nn]") {
+  const std::vector<sysid::ScaledVariable> in{{"v", "m/s", -1.0, 1.0}};
+  const sysid::ScaledVariable out{"u", "V", -1.0, 1.0};
+  // 10^9 units would be 24 GB of weights: refused, naming the limit the CLI and files share.
+  CHECK_THROWS_WITH(sysid::NeuralNetwork(in, out, 1000000000),
+                    Contains("hidden = 1000000000. Violated constraint: 1 <= hidden <= 100000"));
+  CHECK_THROWS_AS(sysid::NeuralNetwork(in, out, 0), sysid::OptionsError);
+  CHECK(sysid::NeuralNetwork(in, out, sysid::kMaxHiddenUnits).hidden_size() == 100000);
 }
 
 TEST_CASE("model files round-trip exactly", "[nn][file]") {

@@ -12,6 +12,7 @@ expect 1 "cycles / frequency_hz" track --cycles 1000000000
 expect 1 "20 samples a period" track --freq 1e9
 expect 1 "stage's travel" track --amplitude 1e9
 expect 1 "2e7 output samples" simulate --paper-model --pulses 1 --t-end 1e5 -o sim.csv
+expect 1 "20000000 table rows" simulate --paper-model --pulses 1 --pulse-repeats 2000000000 -o sim.csv
 expect 1 "above the limit of 4 GB" train --hidden 100000 --train "$train" --inputs v,a
 expect 1 "sizes must be <= 100000" sweep --hidden 1:2000000000 --train "$train"
 expect 1 "more than 1000 sizes" sweep --hidden 1:5000 --train "$train"

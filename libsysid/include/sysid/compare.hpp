@@ -34,7 +34,8 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
 
 /// The analytic inverse over uniformly sampled signals: v(t - tau) by linear interpolation of
 /// v (v before the first sample taken as v[0]). Returns u [V] for each sample. Throws
-/// InputError when v_mps and a_mps2 differ in length, OptionsError unless 0 < dt_s < inf.
+/// OptionsError for an invalid model (FrictionModel::Validate) or unless 0 < dt_s < inf,
+/// InputError when v_mps and a_mps2 differ in length.
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2);
 

@@ -83,7 +83,8 @@ struct PulseTrainSpec {
   double start_s = 0.0;       ///< [s]
   double duration_s() const;  ///< [s] start_s + repeats * n * (on_s + off_s)
 };
-/// The pulse train as a zero-order-hold table.
+/// The pulse train as a zero-order-hold table. Throws OptionsError for a bad field, or when the
+/// table would exceed kMaxSignalSamples rows (checked before allocating).
 PiecewiseConstantInput MakePulseTrain(const PulseTrainSpec& spec);
 
 /// How a table of (t, u) rows is held between its rows.

@@ -43,12 +43,16 @@ struct ScaledVariable {
 /// The SI unit of a well-known symbol (t, u, x, v, a), or "" when unknown.
 std::string DefaultUnit(std::string_view symbol);
 
+/// The most hidden units a network may have (`train --hidden`, a network file's "hidden", the
+/// NeuralNetwork constructor): a typo such as 10^9 is refused before allocating gigabytes.
+inline constexpr int kMaxHiddenUnits = 100000;
+
 /// A one-hidden-layer tanh network with input and output scaling.
 class NeuralNetwork {
  public:
   NeuralNetwork() = default;
-  /// A network with all weights zero. Throws OptionsError for hidden < 1, no inputs or an
-  /// empty/inverted range.
+  /// A network with all weights zero. Throws OptionsError for hidden outside
+  /// [1, kMaxHiddenUnits], no inputs or an empty/inverted range.
   NeuralNetwork(std::vector<ScaledVariable> inputs, ScaledVariable output, int hidden);
 
   const std::vector<ScaledVariable>& inputs() const { return inputs_; }

@@ -40,6 +40,8 @@ void CheckSameLength(const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2
 
 Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                                 const Eigen::VectorXd& v_mps, const Eigen::VectorXd& a_mps2) {
+  // As every model consumer does: a3 = 0 would give u = inf, a NaN field NaN, without a word.
+  model.Validate();
   CheckSameLength(v_mps, a_mps2, "AnalyticInverse");
   if (!(dt_s > 0) || !std::isfinite(dt_s))
     throw OptionsError("AnalyticInverse: dt_s = " + std::to_string(dt_s) +

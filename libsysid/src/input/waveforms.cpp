@@ -11,6 +11,7 @@
 
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 namespace {
@@ -63,6 +64,14 @@ PiecewiseConstantInput MakePulseTrain(const PulseTrainSpec& spec) {
   Require(std::isfinite(spec.off_s) && spec.off_s >= 0, "PulseTrainSpec::off_s", spec.off_s,
           "off_s >= 0");
   Require(spec.repeats >= 1, "PulseTrainSpec::repeats", spec.repeats, "repeats >= 1");
+  // The table has (1 or 2) x repeats x amplitudes rows: bounded by the signal limit before it is
+  // allocated (repeats = 2e9 is a typo, not a request for 32 GB), as every generated signal is.
+  const double rows =
+      (spec.off_s > 0 ? 2.0 : 1.0) * spec.repeats * static_cast<double>(spec.amplitudes_v.size());
+  Require(rows <= kMaxSignalSamples, "PulseTrainSpec::repeats", spec.repeats,
+          fmt::format("repeats x amplitudes x (2 with off_s > 0, else 1) <= {:.0f} table rows "
+                      "(sysid::kMaxSignalSamples; asked for {:.0f})",
+                      kMaxSignalSamples, rows));
   Require(std::isfinite(spec.start_s), "PulseTrainSpec::start_s", spec.start_s, "finite");
   const double period = spec.on_s + spec.off_s;
   // A zero row before the start makes u = 0 there (a table holds its first value backwards).

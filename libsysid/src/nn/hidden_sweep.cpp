@@ -45,7 +45,7 @@ std::vector<int> ParseHiddenSizes(const std::string& spec) {
     }
     if (used != s.size()) throw bad("'" + s + "' is not an integer");
     if (v < 1) throw bad("sizes must be >= 1");
-    if (v > 100000) throw bad("sizes must be <= 100000");
+    if (v > kMaxHiddenUnits) throw bad("sizes must be <= " + std::to_string(kMaxHiddenUnits));
     return v;
   };
   std::vector<int> out;

@@ -13,10 +13,6 @@
 namespace sysid {
 namespace {
 
-// Largest hidden layer a file may declare: the bound `train --hidden` enforces, so that a typo
-// cannot make the reader allocate gigabytes.
-constexpr long kMaxHidden = 100000;
-
 ScaledVariable ReadVariable(const internal::JsonNode& v) {
   v.ExpectObject({"name", "unit", "min", "max"});
   ScaledVariable s;
@@ -47,7 +43,7 @@ NeuralNetwork internal::NeuralNetworkFromJson(const JsonNode& root) {
   std::vector<ScaledVariable> inputs;
   for (size_t i = 0; i < jin.Size(); ++i) inputs.push_back(ReadVariable(jin.Element(i)));
   const ScaledVariable output = ReadVariable(root.Get("output"));
-  const int H = static_cast<int>(root.Get("hidden").Integer(1, kMaxHidden));
+  const int H = static_cast<int>(root.Get("hidden").Integer(1, kMaxHiddenUnits));
   const int n = static_cast<int>(inputs.size());
   const internal::JsonNode jw1 = root.Get("W1");
   jw1.ExpectArray(static_cast<size_t>(H));

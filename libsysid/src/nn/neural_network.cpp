@@ -34,9 +34,12 @@ NeuralNetwork::NeuralNetwork(std::vector<ScaledVariable> inputs, ScaledVariable 
     throw OptionsError(
         "NeuralNetwork: inputs is empty. Violated constraint: "
         "at least one input");
-  if (hidden < 1)
+  // Checked before the weights are allocated (H x n, 2 H): hidden = 10^9 is a typo, not a
+  // request for gigabytes.
+  if (hidden < 1 || hidden > kMaxHiddenUnits)
     throw OptionsError("NeuralNetwork: hidden = " + std::to_string(hidden) +
-                       ". Violated constraint: hidden >= 1");
+                       ". Violated constraint: 1 <= hidden <= " + std::to_string(kMaxHiddenUnits) +
+                       " (sysid::kMaxHiddenUnits)");
   for (const auto& in : inputs_)
     CheckRange("NeuralNetwork input '" + in.name + "' range", in.min, in.max);
   CheckRange("NeuralNetwork output '" + output_.name + "' range", output_.min, output_.max);

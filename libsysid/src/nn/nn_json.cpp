@@ -84,7 +84,7 @@ NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
   constexpr long kMaxEpochs = std::numeric_limits<int>::max();
   // The options part is read (and checked) always, stored only when asked for.
   NeuralTrainingOptions o;
-  o.hidden = static_cast<int>(root.Get("hidden").Integer(1, 100000));
+  o.hidden = static_cast<int>(root.Get("hidden").Integer(1, kMaxHiddenUnits));
   // The weights live in the network file; the report's P = H n + 2 H + 1 must still fit some
   // n >= 1 inputs.
   const long p = root.Get("parameters").Integer(1, std::numeric_limits<int>::max());

@@ -129,7 +129,8 @@ void NeuralTrainingOptions::Validate() const {
     s << "NeuralTrainingOptions::" << field << " = " << value << ". Violated constraint: " << rule;
     throw OptionsError(s.str());
   };
-  if (hidden < 1 || hidden > 100000) fail("hidden", hidden, "1 <= hidden <= 100000");
+  if (hidden < 1 || hidden > kMaxHiddenUnits)
+    fail("hidden", hidden, "1 <= hidden <= " + std::to_string(kMaxHiddenUnits));
   if (!(momentum >= 0 && momentum < 1)) fail("momentum", momentum, "0 <= momentum < 1");
   if (!(mu_initial > 0 && std::isfinite(mu_initial)))
     fail("mu_initial", mu_initial, "mu_initial > 0");
