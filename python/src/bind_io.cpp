@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <cmath>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -38,6 +39,11 @@ Recording RecordingFromArrays(const py::dict& columns, const std::string& source
     else
       first = name;
     rows = values.size();
+    // The reader's rule, said here: the CSV text below cannot carry inf or NaN.
+    for (Eigen::Index k = 0; k < values.size(); ++k)
+      if (!std::isfinite(values[k]))
+        throw InputError(fmt::format("{}: column '{}'[{}]: expected a finite number, found {}",
+                                     source, name, k, values[k]));
     r.SetColumn(name, values);
   }
   if (rows < 0) throw InputError(source + ": no columns");

@@ -1,5 +1,8 @@
 #include "identify/linear_fit.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -19,6 +22,14 @@ LinearFitOutcome SolveLinearFit(const Eigen::MatrixXd& X, const Eigen::VectorXd&
   SYSID_CHECK(static_cast<size_t>(X.cols()) == names.size() && X.rows() == y.size(),
               "regressor shape");
   const Eigen::Index n = X.rows(), p = X.cols();
+  // Finite data can still overflow (a gain of 1e308 times a voltage): said, never solved into
+  // NaN parameters that a report would print and a model file could not hold.
+  if (!X.allFinite() || !y.allFinite())
+    throw NumericalError(fmt::format(
+        "least squares for {}: the {} holds inf or NaN (a value or gain out of range; largest "
+        "finite |target| {:.3g})",
+        fmt::join(names, ", "), X.allFinite() ? "target" : "regressor",
+        y.unaryExpr([](double v) { return std::isfinite(v) ? std::abs(v) : 0.0; }).maxCoeff()));
   LinearFitOutcome out;
   LinearFit& f = out.fit;
   f.names = names;
@@ -49,6 +60,11 @@ LinearFitOutcome SolveLinearFit(const Eigen::MatrixXd& X, const Eigen::VectorXd&
     return out;
   }
   f.theta = scale.asDiagonal() * qr.solve(y);
+  for (Eigen::Index j = 0; j < p; ++j)
+    if (!std::isfinite(f.theta[j]))
+      throw NumericalError(fmt::format("least squares: {} = {} (the solution overflowed: values "
+                                       "or gains out of range)",
+                                       names[static_cast<size_t>(j)], f.theta[j]));
   f.residuals = y - X * f.theta;
   f.dof = static_cast<int>(n - p);
   const double rss = f.residuals.squaredNorm();

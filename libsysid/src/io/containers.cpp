@@ -118,6 +118,16 @@ void CheckFinite(const Eigen::VectorXd& v, const std::string& where) {
           fmt::format("{}[{}]: expected a finite number, found {}", where, i + 1, Num(v[i])));
 }
 
+void RequireFiniteToWrite(const Recording& rec, const std::string& path) {
+  for (Eigen::Index c = 0; c < rec.data.cols(); ++c)
+    for (Eigen::Index r = 0; r < rec.data.rows(); ++r)
+      if (!std::isfinite(rec.data(r, c)))
+        throw NumericalError(fmt::format(
+            "{}: column '{}', row {} is {}: not written (sysid writes no recording it would "
+            "refuse to read; the computation that gave it overflowed or failed)",
+            path, rec.names[static_cast<size_t>(c)], r + 1, Num(rec.data(r, c))));
+}
+
 void SetRange(VariableInfo& info, const Eigen::VectorXd& values) {
   info.numeric_vector = true;
   info.length = static_cast<std::uint64_t>(values.size());
@@ -153,6 +163,13 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
       throw InputError(fmt::format("{}: --scale {}: no column '{}' (columns: {})", rec.source,
                                    column, column, columns()));
     rec.data.col(i) *= factor;
+    for (Eigen::Index k = 0; k < rec.data.rows(); ++k)
+      if (!std::isfinite(rec.data(k, i)))
+        throw OptionsError(fmt::format("--scale {}={}: {}[{}] becomes {}: expected a factor "
+                                       "that keeps every value finite",
+                                       column, Num(factor), origin(column), k + 1,
+                                       Num(rec.data(k, i))),
+                           "scales");
   }
   if (m.rate_hz != 0) {
     if (!std::isfinite(m.rate_hz) || m.rate_hz <= 0)

@@ -75,6 +75,9 @@ double ElementCount(const std::vector<std::uint64_t>& dims);
 /// Throws InputError "where: expected a finite number, found NaN" at the first bad value,
 /// `where` followed by [i] with i 1-based.
 void CheckFinite(const Eigen::VectorXd& v, const std::string& where);
+/// Throws NumericalError naming `path`, the column and the row of the first inf or NaN in
+/// `rec`: every recording writer calls it first, since the readers refuse such values.
+void RequireFiniteToWrite(const Recording& rec, const std::string& path);
 /// Fills numeric_vector, length, min, max of `info` from `values`.
 void SetRange(VariableInfo& info, const Eigen::VectorXd& values);
 /// Comma-separated names, shortened after 20.

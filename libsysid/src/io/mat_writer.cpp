@@ -26,6 +26,7 @@ void WriteRecordingMat(const std::string& path, const Recording& recording,
                       "then letters, digits or '_', at most 63)",
                       path, name));
   }
+  internal::RequireFiniteToWrite(recording, path);
   internal::WriteThroughTempFile(path, [&](int, const std::string& tmp) {
     const auto fail = [&](const std::string& why) {
       throw InputError(path + ": cannot write: " + why);

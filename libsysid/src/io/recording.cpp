@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/json_text.hpp"
+#include "io/containers.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
@@ -64,7 +65,11 @@ void Recording::SetColumn(const std::string& name, const Eigen::VectorXd& values
   data.col(data.cols() - 1) = values;
 }
 
-std::string FormatRecording(const Recording& recording) {
+namespace {
+
+// The CSV text of `recording`; `where` names the destination in the error for an inf or NaN.
+std::string FormatChecked(const Recording& recording, const std::string& where) {
+  internal::RequireFiniteToWrite(recording, where);
   std::string out;
   const auto rows = recording.data.rows(), cols = recording.data.cols();
   out.reserve(static_cast<size_t>(rows * cols) * 16 + 256);
@@ -88,8 +93,14 @@ std::string FormatRecording(const Recording& recording) {
   return out;
 }
 
+}  // namespace
+
+std::string FormatRecording(const Recording& recording) {
+  return FormatChecked(recording, "CSV output");
+}
+
 void WriteRecording(const std::string& path, const Recording& recording) {
-  WriteFileAtomically(path, FormatRecording(recording));
+  WriteFileAtomically(path, FormatChecked(recording, path));
 }
 
 }  // namespace sysid

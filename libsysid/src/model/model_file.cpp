@@ -1,3 +1,5 @@
+#include <cmath>
+#include <utility>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -53,6 +55,16 @@ std::string ModelToJson(const FrictionModel& m, int indent) {
 }
 
 void WriteModel(const std::string& path, const FrictionModel& model) {
+  // JSON has no inf or NaN (nlohmann writes null) and ReadModel refuses both.
+  for (const auto& [name, v] : {std::pair<const char*, double>{"a1p", model.a1p},
+                                {"a1n", model.a1n},
+                                {"a2p", model.a2p},
+                                {"a2n", model.a2n},
+                                {"a3", model.a3},
+                                {"tau", model.tau_s}})
+    if (!std::isfinite(v))
+      throw NumericalError(path + ": " + name + " = " + std::to_string(v) +
+                           ": not written (a model file holds finite parameters)");
   WriteFileAtomically(path, ModelToJson(model));
 }
 

@@ -1,4 +1,5 @@
 // JSON model files of neural networks (format in sysid/nn.hpp).
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,8 +22,8 @@ ScaledVariable ReadVariable(const internal::JsonNode& v) {
   s.min = v.Get("min").Number();
   const internal::JsonNode max = v.Get("max");
   s.max = max.Number();
-  if (!(s.min < s.max))
-    max.Expected("a number > min (" + nlohmann::json(s.min).dump() + ")");
+  if (!(s.min < s.max) || !std::isfinite(s.max - s.min))  // the scaling divides by max - min
+    max.Expected("a number > min (" + nlohmann::json(s.min).dump() + "), max - min finite");
   return s;
 }
 
@@ -100,6 +101,11 @@ std::string NeuralNetworkToJson(const NeuralNetwork& net, int indent,
 
 void WriteNeuralNetwork(const std::string& path, const NeuralNetwork& net,
                         const std::string& extra_json) {
+  // JSON has no inf or NaN (nlohmann writes null) and ReadNeuralNetwork refuses both.
+  if (!net.W1().allFinite() || !net.b1().allFinite() || !net.w2().allFinite() ||
+      !std::isfinite(net.b2()))
+    throw NumericalError(path + ": the network's weights hold inf or NaN: not written (the "
+                         "training diverged)");
   WriteFileAtomically(path, NeuralNetworkToJson(net, 2, extra_json));
 }
 

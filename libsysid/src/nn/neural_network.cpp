@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -12,9 +14,11 @@ namespace sysid {
 namespace {
 
 void CheckRange(const std::string& what, double min, double max) {
-  if (!std::isfinite(min) || !std::isfinite(max) || !(min < max))
-    throw OptionsError(what + " = [" + std::to_string(min) + ", " + std::to_string(max) +
-                       "]. Violated constraint: finite min < max");
+  // max - min finite too: the scaling divides by it (-1e308..1e308 made every value 0 or NaN).
+  if (!std::isfinite(min) || !std::isfinite(max) || !(min < max) || !std::isfinite(max - min))
+    throw OptionsError(fmt::format("{} = [{:.17g}, {:.17g}]. Violated constraint: finite min < "
+                                   "max, max - min finite",
+                                   what, min, max));
 }
 
 }  // namespace

@@ -151,14 +151,17 @@ void NeuralTrainingOptions::Validate() const {
   if (solve_output_layer && trainer == NeuralTrainer::kCeres)
     fail("solve_output_layer", 1,
          "solve_output_layer needs trainer = lm (the Ceres trainer has no output-layer step)");
+  // max - min finite too: the scaling divides by it (-1e308..1e308 made every value 0 or NaN).
+  const auto range_ok = [](const std::pair<double, double>& r) {
+    return r.first < r.second && std::isfinite(r.first) && std::isfinite(r.second) &&
+           std::isfinite(r.second - r.first);
+  };
   for (size_t i = 0; i < input_ranges.size(); ++i)
-    if (!(input_ranges[i].first < input_ranges[i].second) ||
-        !std::isfinite(input_ranges[i].first) || !std::isfinite(input_ranges[i].second))
+    if (!range_ok(input_ranges[i]))
       fail("input_ranges[" + std::to_string(i) + "].max", input_ranges[i].second,
-           "finite min < max");
-  if (output_range && (!(output_range->first < output_range->second) ||
-                       !std::isfinite(output_range->first) || !std::isfinite(output_range->second)))
-    fail("output_range.max", output_range->second, "finite min < max");
+           "finite min < max, max - min finite");
+  if (output_range && !range_ok(*output_range))
+    fail("output_range.max", output_range->second, "finite min < max, max - min finite");
   if (initial_parameters && !initial_parameters->allFinite())
     throw OptionsError(
         "NeuralTrainingOptions::initial_parameters contains NaN or Inf. "
