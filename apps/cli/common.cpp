@@ -155,6 +155,18 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI:
   return alias;
 }
 
+CLI::Option* AddSeedOption(CLI::App* cmd, std::uint64_t& seed, const std::string& what) {
+  return cmd->add_option("--seed", seed, what)
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
+      ->capture_default_str();
+}
+
+CLI::Option* AddThreadsOption(CLI::App* cmd, int& threads, const std::string& what) {
+  return cmd->add_option("--threads", threads, what)
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+}
+
 CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose) {
   return cmd->add_flag("-v,--verbose", verbose,
                        "print the full report (every diagnostic) instead of the brief one");

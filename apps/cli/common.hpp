@@ -8,6 +8,7 @@
 #define SYSID_APPS_CLI_COMMON_HPP_
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <map>
 #include <string>
@@ -104,6 +105,12 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI:
 /// -v,--verbose: the table output becomes the result's FullReport() (every diagnostic) instead
 /// of its BriefReport(); --json is unaffected.
 CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose);
+
+/// "--seed" into `seed` with the range every seed has, [0, 2^62]: CLI11 would read -1 into a
+/// uint64 as 2^64 - 1. `what` is the help text.
+CLI::Option* AddSeedOption(CLI::App* cmd, std::uint64_t& seed, const std::string& what);
+/// "--threads" into `threads`, [0, 1024] (0 = all cores). `what` is the help text.
+CLI::Option* AddThreadsOption(CLI::App* cmd, int& threads, const std::string& what);
 
 }  // namespace sysid::cli
 

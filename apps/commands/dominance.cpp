@@ -98,9 +98,8 @@ void AddDominanceCommand(CLI::App& app) {
   cmd->add_option("--negligible", o->options.negligible_ratio,
                   "a variable with rms <= this x the top's is negligible [dimensionless]")
       ->capture_default_str();
-  cmd->add_option("--threads", o->options.threads,
-                  "recordings analysed in parallel [count]; 0 = all cores")
-      ->capture_default_str();
+  AddThreadsOption(cmd, o->options.threads,
+                   "recordings analysed in parallel [count]; 0 = all cores");
   AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "

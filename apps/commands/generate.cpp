@@ -178,10 +178,7 @@ void AddGenerateCommand(CLI::App& app) {
                   std::string("stage parameter file (JSON, SI units in the keys) or a preset: ") +
                       cli::kStagePresets + "; datasets/virtual/stage.json is the default's file")
       ->type_name("STAGE.json|PRESET");
-  cmd->add_option("--seed", o->seed,
-                  "noise seed [integer]; the same seed gives byte-identical files")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
+  AddSeedOption(cmd, o->seed, "noise seed [integer]; the same seed gives byte-identical files");
   cmd->add_option("-o,--output", o->out_dir,
                   "output folder, created if missing; files of the same names are replaced only "
                   "when generate wrote them (their '#' metadata or MAT header says so) or with "

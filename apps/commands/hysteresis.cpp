@@ -224,8 +224,7 @@ void AddHysteresisCommand(CLI::App& app) {
       ->capture_default_str();
   fit->add_option("--epochs", o->options.network.max_epochs, "nn-operators: LM epochs per network")
       ->capture_default_str();
-  fit->add_option("--seed", o->options.network.seed, "nn-operators: initialisation seed")
-      ->capture_default_str();
+  AddSeedOption(fit, o->options.network.seed, "nn-operators: initialisation seed");
   fit->add_option("--integrator", o->integrator,
                   "bouc-wen, bouc-wen-piezo: how the fit simulates: cvode, or benchmark-chain "
                   "(bouc-wen only: the Bouc-Wen benchmark's own generator, docs/hysteresis.md)")
@@ -239,10 +238,9 @@ void AddHysteresisCommand(CLI::App& app) {
   fit->add_option("--starts", o->options.bouc_wen.starts,
                   "bouc-wen, bouc-wen-piezo: starting points (1..64)")
       ->capture_default_str();
-  fit->add_option("--threads", o->options.bouc_wen.threads,
-                  "bouc-wen, bouc-wen-piezo: simulations in parallel for the Jacobian; 0 = all cores")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(fit, o->options.bouc_wen.threads,
+                   "bouc-wen, bouc-wen-piezo: simulations in parallel for the Jacobian; 0 = all "
+                   "cores");
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");

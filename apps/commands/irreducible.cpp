@@ -119,8 +119,7 @@ void AddIrreducibleCommand(CLI::App& app) {
                   "the output varies fast, more variance)")
       ->check(CLI::Range(2, 1000))
       ->capture_default_str();
-  cmd->add_option("--seed", o->options.seed, "seed of the tie-breaking perturbation")
-      ->capture_default_str();
+  AddSeedOption(cmd, o->options.seed, "seed of the tie-breaking perturbation");
   cmd->add_flag("--json", o->json,
                 "print {\"unit\", \"rows\": [{\"file\", \"inputs\", \"output\", \"rows\", "
                 "\"neighbours\", \"output_variance\", \"irreducible_mse\", "

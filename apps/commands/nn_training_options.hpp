@@ -93,9 +93,7 @@ inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
   cmd->add_option("--momentum", o.training.momentum,
                   "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm")
       ->capture_default_str();
-  cmd->add_option("--seed", o.training.seed, "initialisation seed; restart r uses seed + r")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
+  AddSeedOption(cmd, o.training.seed, "initialisation seed; restart r uses seed + r");
   cmd->add_option("--restarts", o.training.restarts,
                   "random initialisations, best kept (by validation MSE, else training MSE)")
       ->capture_default_str();

@@ -174,13 +174,9 @@ void AddPipelineCommand(CLI::App& app) {
                 "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");
   AddPiGainOptions(cmd, p.pi, "PI ");
-  cmd->add_option("--seed", p.training.seed, "seed of the network initialisations")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
-  cmd->add_option("--threads", p.threads,
-                  "threads for every long step; 0 = all cores; results do not depend on it")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddSeedOption(cmd, p.training.seed, "seed of the network initialisations");
+  AddThreadsOption(cmd, p.threads,
+                   "threads for every long step; 0 = all cores; results do not depend on it");
   cmd->add_option("--reference", p.reference_path,
                   "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
       ->check(CLI::ExistingFile);

@@ -71,8 +71,7 @@ void AddRefineCommand(CLI::App& app) {
   cmd->add_option("--max-iterations", r.max_iterations,
                   "Levenberg-Marquardt iterations [count]")
       ->capture_default_str();
-  cmd->add_option("--threads", r.threads, "simulation threads [count]; 0 = all cores")
-      ->capture_default_str();
+  AddThreadsOption(cmd, r.threads, "simulation threads [count]; 0 = all cores");
   cmd->add_option("--min-duration", r.detection.min_duration_s,
                   "pulses (cut points) last at least this long [s]")
       ->capture_default_str();

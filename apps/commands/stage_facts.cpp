@@ -105,19 +105,15 @@ void AddStageCommand(CLI::App& app) {
       ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"}))
       ->type_name("ID,...");
   auto* seed =
-      cmd->add_option("--seed", o->options.seed, "noise seed of every experiment [integer]")
-          ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
-          ->capture_default_str();
+      AddSeedOption(cmd, o->options.seed, "noise seed of every experiment [integer]");
   cmd->add_option("--seeds", o->seeds,
                   "run the facts at each of these seeds (A-B or A,B,...; at most 1000) and "
                   "print, per fact, the seeds at which it is met (Markdown, or --json)")
       ->excludes(seed)
       ->type_name("A-B|A,B,...");
-  cmd->add_option("--threads", o->options.threads,
-                  "threads for delay tuning; 0 = all cores (the networks train on one thread: "
-                  "repeatable)")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(cmd, o->options.threads,
+                   "threads for delay tuning; 0 = all cores (the networks train on one thread: "
+                   "repeatable)");
   cmd->add_option("--nn-inits", o->options.network_initializations,
                   "F5: also train the dominant network from this many initial weights and "
                   "report each one's tracking error and how many beat the analytic inverse "

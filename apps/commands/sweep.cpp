@@ -91,9 +91,7 @@ void AddSweepCommand(CLI::App& app) {
   o->threads = defaults.threads;
   cmd->add_option("--hidden", o->hidden, "hidden sizes FIRST:LAST:STEP or a list H1,H2,...")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "worker threads; 0 = all cores")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(cmd, o->threads, "worker threads; 0 = all cores");
   cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
       ->type_name("NN.json");
   GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});

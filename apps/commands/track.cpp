@@ -264,9 +264,7 @@ void AddTrackCommand(CLI::App& app) {
                              "end; its gains default to StackPiOptions, docs/piezo_stack.md)")
                  ->check(PositiveNumber())
                  ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "seed of the stage's encoder noise")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
+  AddSeedOption(cmd, o->seed, "seed of the stage's encoder noise");
   AddOutputOption(cmd, o->out_dir,
                   "new folder for track_<ff>.csv traces, plots and summary.json")
       ->type_name("DIR");

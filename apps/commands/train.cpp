@@ -97,11 +97,9 @@ void AddTrainCommand(CLI::App& app) {
   cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H")
       ->check(CLI::Range(1, kMaxHiddenUnits))
       ->capture_default_str();
-  cmd->add_option("--threads", o->nn.training.threads,
-                  "threads for each epoch (lm trainer); 0 = all cores; results do not depend "
-                  "on it")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(cmd, o->nn.training.threads,
+                   "threads for each epoch (lm trainer); 0 = all cores; results do not depend on "
+                   "it");
   cmd->add_option("-o", o->nn.model_path, "network model file (JSON, written atomically)")
       ->type_name("NN.json");
   GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});

@@ -78,9 +78,7 @@ void AddTuneDelayCommand(CLI::App& app) {
                               DelayTuningOptions::kMaxCurvePoints))
       ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
       ->capture_default_str();
-  cmd->add_option("--threads", d.threads, "simulation threads [count]; 0 = all cores")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  AddThreadsOption(cmd, d.threads, "simulation threads [count]; 0 = all cores");
   AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");

@@ -6,6 +6,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "support/test_support.hpp"
@@ -180,4 +181,49 @@ TEST_CASE("every option that takes a stage preset lists every preset", "[cli]") 
       CHECK(std::regex_search(help, word));
     }
   }
+}
+
+TEST_CASE("every --seed and --threads has its range, whichever command it is on", "[cli]") {
+  // Commands and subcommands from the help: CLI11 reads -1 into a uint64 seed as 2^64 - 1 and
+  // takes any int as a thread count unless the option checks its range (three did not).
+  std::vector<std::vector<std::string>> commands = {{"stage", "facts"}};
+  auto subcommands = [](const std::string& help) {
+    std::vector<std::string> names;
+    std::istringstream lines(help);
+    bool in_list = false;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("Subcommands:", 0) == 0) {
+        in_list = true;
+        continue;
+      }
+      std::istringstream words(line);
+      std::string name;
+      if (in_list && (words >> name)) names.push_back(name);
+    }
+    return names;
+  };
+  for (const auto& name : subcommands(Help({}))) {
+    const auto nested = subcommands(Help({name}));
+    if (nested.empty()) commands.push_back({name});
+    for (const auto& sub : nested) commands.push_back({name, sub});
+  }
+  int seeds = 0, threads = 0;
+  for (const auto& command : commands) {
+    const std::string help = Help(command);
+    for (const auto& [flag, bad, rule] :
+         {std::tuple<std::string, std::string, std::string>{"--seed", "-1", "not in range 0 to"},
+          {"--threads", "1025", "not in range 0 to 1024"}}) {
+      if (help.find("  " + flag + " ") == std::string::npos) continue;
+      (flag == "--seed" ? seeds : threads) += 1;
+      std::vector<std::string> args = command;
+      args.insert(args.end(), {flag, bad});
+      const auto r = RunCli(args);
+      INFO("sysid " << command[0] << (command.size() > 1 ? " " + command[1] : "") << " " << flag
+                    << " " << bad << ": " << r.err);
+      CHECK(r.exit_code == 1);
+      CHECK_THAT(r.err, Catch::Contains(flag + ": Value " + bad + " " + rule));
+    }
+  }
+  CHECK(seeds >= 8);  // the walk found the options (generate, train, sweep, pipeline, ...)
+  CHECK(threads >= 8);
 }
