@@ -2,6 +2,8 @@
 // zero-phase forward-backward filtering. Debian ships no maintained C++ IIR design library
 // (no libiir/DSPFilters package in bookworm), so the design is written out here and tested
 // against the closed-form |H|^2 and SciPy's coefficients.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -127,7 +129,16 @@ Eigen::VectorXd ButterworthFiltFilt(const Eigen::VectorXd& y, double dt_s, doubl
   internal::CheckLength(
       kWhere, y.size(), internal::FiltFiltPadLength(sections) + 1,
       "the order-" + std::to_string(order) + " forward-backward Butterworth (its end padding)");
-  return internal::FiltFilt(sections, y);
+  Eigen::VectorXd out = internal::FiltFilt(sections, y);
+  // A cut-off far below the sample rate (1e-10 Hz at 1 kHz) leaves sections whose poles round
+  // to 1 and whose gains underflow: the output is NaN. Said here, with the cure, rather than as
+  // a NaN sample in whatever differentiates the output next.
+  if (!out.allFinite())
+    throw NumericalError(fmt::format(
+        "{}: cutoff_hz = {:g} Hz is {:.3g} of the Nyquist frequency {:g} Hz: the order-{} "
+        "filter is numerically unstable there (its output is not finite); raise the cut-off",
+        kWhere, cutoff_hz, cutoff_hz * 2 * dt_s, 0.5 / dt_s, order));
+  return out;
 }
 
 }  // namespace sysid
