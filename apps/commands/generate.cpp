@@ -62,6 +62,11 @@ bool WrittenByGenerate(const std::filesystem::path& path) {
 // Refuses (exit 1) before any work when a file generate would replace in `dir` is not one it
 // wrote: a user's own recording kept in the folder is never clobbered without --force.
 void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::string>& names) {
+  std::error_code ec;
+  if (std::filesystem::exists(o.out_dir, ec) && !std::filesystem::is_directory(o.out_dir, ec))
+    throw OptionsError(fmt::format("-o {}: exists and is not a folder: generate writes a folder "
+                                   "of recordings; choose a folder name",
+                                   o.out_dir));
   if (o.force) return;
   for (const auto& name : names) {
     const std::filesystem::path path = std::filesystem::path(o.out_dir) / name;

@@ -17,6 +17,10 @@ cmp -s mylab/pulses.csv mine.csv || fail "generate all replaced the user's mylab
 expect 0 "" generate pulses -o mylab --force
 head -1 mylab/pulses.csv | grep -q '^# stage: ' || fail "generate --force did not write"
 expect 0 "" generate pulses --seed 2 -o mylab   # its own file: replaced without --force
+echo "my notes" > plain
+expect 1 "-o plain: exists and is not a folder" generate pulses -o plain
+expect 1 "-o plain: exists and is not a folder" generate pulses -o plain --force
+[ "$(cat plain)" = "my notes" ] || fail "generate -o plain changed the file"
 
 # -o FILE replaces only a file sysid wrote (its metadata lines or keys), others with --force.
 printf 't,u,x\n0,0,0\n0.001,1,0\n' > notes.csv

@@ -25,6 +25,14 @@ TEST_CASE("pulse excitation timing", "[stage][procedure]") {
   CHECK(u[1200] == 0.0);
   p.on_s = 0;
   CHECK_THROWS_WITH(p.Voltage(1000), Catch::Contains("Violated constraint: on_s > 0"));
+  // A pulse shorter than half a sample rounds to none; one sample is the shortest pulse.
+  p.on_s = 0.4e-3;
+  CHECK_THROWS_WITH(p.Voltage(1000), Catch::Contains("on_s >= one sample interval"));
+  p.on_s = 1e-3;
+  CHECK(p.Voltage(1000).cwiseAbs().maxCoeff() == 2.0);
+  // A rate that leaves the whole test a single sample.
+  p.on_s = 0.4;
+  CHECK_THROWS_WITH(p.Voltage(1e-300), Catch::Contains("Violated constraint"));
 }
 
 TEST_CASE("the paper's waveforms integrate to their position references", "[stage][procedure]") {

@@ -99,7 +99,15 @@ double PulseProcedure::PulseStart(std::size_t i) const {
 Eigen::VectorXd PulseProcedure::Voltage(double rate) const {
   Validate();
   if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  // A pulse shorter than a sample, or a whole test of one sample, is no pulse test (excite
+  // --rate 1e-300 wrote a header and no row, --on 1e-300 a file of zeros).
+  if (Samples(on_s, rate) < 1)
+    Violated("PulseProcedure::on_s", on_s,
+             "on_s >= one sample interval 1 / sample_rate_hz = " + Fmt(1 / rate) + " s");
   const long n = Samples(PulseStart(amplitudes_v.size()), rate);
+  if (n < 2)
+    Violated("sample_rate_hz", rate, "at least two samples over the test (" +
+                                         Fmt(PulseStart(amplitudes_v.size())) + " s)");
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
   for (size_t i = 0; i < amplitudes_v.size(); ++i) {
     const long k0 = Samples(PulseStart(i), rate);
