@@ -120,6 +120,16 @@ TEST_CASE("bouc-wen: fit options are checked", "[hysteresis][bouc-wen][fit]") {
   o.starts = 0;
   CHECK_THROWS_WITH(o.Validate(), Catch::Contains("starts"));
   CHECK_THROWS_AS(FitBoucWen(BoucWenForm::kPiezo, {}, BoucWenFitOptions{}), OptionsError);
+  // A constant input: refused before Ceres (whose failing starts wrote to stderr).
+  sysid::Recording flat;
+  flat.source = "flat.csv";
+  flat.names = {"t", "u", "x"};
+  flat.data = Eigen::MatrixXd::Zero(50, 3);
+  for (Eigen::Index k = 0; k < 50; ++k) flat.data(k, 0) = 1e-3 * static_cast<double>(k);
+  flat.data.col(1).setConstant(1.0);
+  for (const auto form : {BoucWenForm::kMechanical, BoucWenForm::kPiezo})
+    CHECK_THROWS_WITH(FitBoucWen(form, {flat}, BoucWenFitOptions{}),
+                      Catch::Contains("flat.csv: column 'u' is constant (1 V)"));
 }
 
 TEST_CASE("bouc-wen: model files round-trip", "[hysteresis][bouc-wen][json]") {

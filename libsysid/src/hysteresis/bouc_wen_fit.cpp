@@ -409,6 +409,16 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     n += s.u.size();
     data.push_back(std::move(s));
   }
+  // A constant input excites no hysteresis (and makes every start's residuals fail, which
+  // Ceres writes to stderr): refused with the reason, as the Prandtl-Ishlinskii fit does.
+  double u_min = HUGE_VAL, u_max = -HUGE_VAL;
+  for (const Series& s : data) {
+    u_min = std::min(u_min, s.u.minCoeff());
+    u_max = std::max(u_max, s.u.maxCoeff());
+  }
+  if (!(u_max > u_min))
+    throw InputError(fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
+                                 recordings.front().source, u_min));
   const Layout layout = MakeLayout(form, data, options);
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
