@@ -117,8 +117,9 @@ void RunCompare(const CompareCliOptions& o) {
       results.push_back(
           CompareInverseModels(rec, model ? &*model : nullptr, nn ? &*nn : nullptr, named, co));
     } catch (const NumericalError& e) {
-      // A model that refuses this recording's reference is the input's problem (exit 2).
-      throw InputError(std::string("--hysteresis: ") + e.what());
+      // A model that refuses or overflows on this recording's reference is the input's
+      // problem (exit 2); the message names the model.
+      throw InputError(o.files[i] + ": " + e.what());
     }
   }
   ProgressDone();

@@ -83,6 +83,20 @@ TEST_CASE("the inverses refuse v and a of different lengths (issue 29)", "[compa
   bad.a1p = std::nan("");
   CHECK_THROWS_WITH(sysid::AnalyticInverse(bad, 1e-3, v, a),
                     Catch::Matchers::Contains("a1p = nan. Violated constraint: finite"));
+  // Finite, valid parameters that overflow (a3 = 1e-308 divides) are a numerical error, not
+  // an inf that a comparison would score.
+  bad = m;
+  bad.a3 = 1e-308;
+  CHECK_THROWS_AS(sysid::AnalyticInverse(bad, 1e-3, v, a), sysid::NumericalError);
+  CHECK_THROWS_WITH(sysid::AnalyticInverse(bad, 1e-3, v, a),
+                    Catch::Matchers::Contains("at sample 0") &&
+                        Catch::Matchers::Contains("overflows"));
+  sysid::NeuralNetwork huge({{"v", "m/s", -0.1, 0.1}}, {"u", "V", -2.0, 2.0}, 2);
+  Eigen::VectorXd theta = Eigen::VectorXd::Constant(huge.parameter_count(), 1e308);
+  huge.set_parameters(theta);
+  CHECK_THROWS_WITH(sysid::NetworkInverse(huge, v, a),
+                    Catch::Matchers::Contains("NetworkInverse: u = ") &&
+                        Catch::Matchers::Contains("overflows"));
   // Equal lengths still work, and a steady slide needs u = (a1 v + a2) / a3 (a = 0, v const).
   const Eigen::VectorXd u = sysid::AnalyticInverse(m, 1e-3, v, a);
   CHECK(u[9] == Approx((m.a1p * 0.01 + m.a2p) / m.a3).epsilon(1e-12));  // closed form

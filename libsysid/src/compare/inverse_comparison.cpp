@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -48,10 +50,32 @@ Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
                        ". Violated constraint: 0 < dt_s < infinity");
   const Eigen::VectorXd v_delayed = DelaySignal(v_mps, dt_s, model.tau_s);
   Eigen::VectorXd u(v_mps.size());
-  for (Eigen::Index k = 0; k < u.size(); ++k)
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
     u[k] = model.InverseVoltage(a_mps2[k], v_delayed[k], v_mps[k]);
+    // Finite parameters can still overflow (a3 = 1e-308 divides): said, never scored as inf.
+    if (!std::isfinite(u[k]))
+      throw NumericalError(fmt::format(
+          "AnalyticInverse: u = {} V at sample {} (v = {:g} m/s, a = {:g} m/s^2): the model "
+          "(a1p {:g}, a1n {:g}, a2p {:g}, a2n {:g}, a3 {:g}) overflows there",
+          u[k], k, v_mps[k], a_mps2[k], model.a1p, model.a1n, model.a2p, model.a2n, model.a3));
+  }
   return u;
 }
+
+namespace {
+
+// The network's outputs, checked: weights of 1e308 in a file are finite, their sums are not.
+Eigen::VectorXd CheckedNetworkOutput(Eigen::VectorXd u) {
+  for (Eigen::Index k = 0; k < u.size(); ++k)
+    if (!std::isfinite(u[k]))
+      throw NumericalError(fmt::format(
+          "NetworkInverse: u = {} V at sample {}: the network's output overflows (weights or "
+          "ranges out of range)",
+          u[k], k));
+  return u;
+}
+
+}  // namespace
 
 Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::VectorXd& v_mps,
                                const Eigen::VectorXd& a_mps2, const Recording* recording) {
@@ -71,7 +95,7 @@ Eigen::VectorXd NetworkInverse(const NeuralNetwork& network, const Eigen::Vector
                        "the velocity and/or acceleration");
     }
   }
-  return network.EvaluateBatch(X);
+  return CheckedNetworkOutput(network.EvaluateBatch(X));
 }
 
 Eigen::VectorXd HysteresisInverse(const HysteresisModel& model, const Recording& recording) {
