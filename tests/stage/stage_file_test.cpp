@@ -297,4 +297,17 @@ TEST_CASE("stage file value errors are positioned: key, rule, found value", "[st
                     Catch::Equals("s.json:" + At(text, "\"coulomb_mps2\"") +
                                   ": friction.forward.coulomb_mps2: expected coulomb_mps2 > 0, "
                                   "found -1"));
+  // The encoder's resolution and the noise are bounded on both sides (1e-320 m made every
+  // recorded position inf, noise of 1e308 m every tracking error).
+  const std::string tiny = R"({"preset": "virtual", "rig": {"encoder_resolution_m": 1e-320}})";
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(tiny, "e.json"),
+                    Catch::StartsWith("e.json:1:31: rig.encoder_resolution_m: expected 1e-15 <= "
+                                      "encoder_resolution_m <= the travel"));
+  const std::string loud = R"({"preset": "virtual", "rig": {"position_noise_m": 1e308}})";
+  CHECK_THROWS_WITH(sysid::ParseStageParameters(loud, "n.json"),
+                    Catch::StartsWith("n.json:1:31: rig.position_noise_m: expected 0 <= "
+                                      "position_noise_m <= the travel"));
+  CHECK_NOTHROW(sysid::ParseStageParameters(
+      R"({"preset": "virtual", "rig": {"encoder_resolution_m": 1e-9, "position_noise_m": 1e-6}})",
+      "ok.json"));
 }

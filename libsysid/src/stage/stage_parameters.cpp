@@ -349,11 +349,15 @@ void StageParameters::Validate() const {
           static_cast<double>(max_steps_per_sample), "10 <= max_steps_per_sample <= 1e8");
   Require(dac_bits >= 1 && dac_bits <= 32, "dac_bits", dac_bits, "1 <= dac_bits <= 32");
   Require(dac_range_v > 0, "dac_range_v", dac_range_v, "dac_range_v > 0");
-  Require(encoder_resolution_m > 0, "encoder_resolution_m", encoder_resolution_m,
-          "encoder_resolution_m > 0");
-  Require(position_noise_m >= 0, "position_noise_m", position_noise_m, "position_noise_m >= 0");
   Require(travel_max_m > travel_min_m, "travel_max_m", travel_max_m,
           "travel_max_m > travel_min_m (" + Fmt(travel_min_m) + ")");
+  // Bounded on both sides: the encoder divides by its resolution (1e-320 m made every position
+  // inf) and noise beyond the travel is no stage; 1 fm is below any encoder made.
+  const double span = travel_max_m - travel_min_m;
+  Require(encoder_resolution_m >= 1e-15 && encoder_resolution_m <= span, "encoder_resolution_m",
+          encoder_resolution_m, "1e-15 <= encoder_resolution_m <= the travel (" + Fmt(span) + ")");
+  Require(position_noise_m >= 0 && position_noise_m <= span, "position_noise_m",
+          position_noise_m, "0 <= position_noise_m <= the travel (" + Fmt(span) + ")");
   Require(initial_position_m >= travel_min_m && initial_position_m <= travel_max_m,
           "initial_position_m", initial_position_m,
           "travel_min_m <= initial_position_m <= travel_max_m");
