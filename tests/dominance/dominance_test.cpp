@@ -113,6 +113,13 @@ TEST_CASE("batch dominance keeps input order, counts winners and names bad input
   o.candidates.push_back({"jerk", "j", 1.0});
   CHECK_THROWS_WITH(sysid::AnalyzeDominanceBatch(m, recs, o),
                     Catch::Contains("rec0: candidate 'jerk' needs column 'j'"));
+  // A candidate whose gain overflows its term: an error, not an inf RMS ranked first.
+  sysid::DominanceOptions huge;
+  huge.candidates.push_back({"voltage", "u", 1e308});
+  CHECK_THROWS_WITH(sysid::AnalyzeDominance(m, recs[0], huge),
+                    Catch::Contains("term 'voltage' is not finite"));
+  huge.candidates.front().gain = 1.0;
+  CHECK_NOTHROW(sysid::AnalyzeDominance(m, recs[0], huge));
   sysid::DominanceOptions bad;
   bad.negligible_ratio = 2;
   CHECK_THROWS_WITH(sysid::AnalyzeDominance(m, recs[0], bad),

@@ -120,4 +120,10 @@ TEST_CASE("irreducible error: bad data and options are refused by name", "[nn][i
   x(3, 0) = std::nan("");
   CHECK_THROWS_WITH(sysid::EstimateIrreducibleError(Dataset(x, y), o),
                     Catch::Contains("row 4") && Catch::Contains("x0"));
+  // Finite outputs whose squares overflow: an error, not inf and NaN in the table.
+  x(3, 0) = 4;
+  y << 1e308, -1e308, 1e308, -1e308, 1e308;
+  CHECK_THROWS_AS(sysid::EstimateIrreducibleError(Dataset(x, y), o), sysid::NumericalError);
+  y *= 1e-300;  // the same data, rescaled: finite
+  CHECK(std::isfinite(sysid::EstimateIrreducibleError(Dataset(x, y), o).mse));
 }

@@ -72,6 +72,12 @@ TermStats Stats(const std::string& name, const ConstVectorRef& term) {
   s.name = name;
   s.rms = std::sqrt(term.squaredNorm() / static_cast<double>(term.size()));
   s.peak = term.cwiseAbs().maxCoeff();
+  // A term of finite factors can overflow (a candidate gain of 1e308 times u), and an inf RMS
+  // would rank first: said instead.
+  if (!std::isfinite(s.rms))
+    throw NumericalError(fmt::format("dominance: term '{}' is not finite (rms {}, peak {}): a "
+                                     "gain or signal out of range overflows it",
+                                     name, s.rms, s.peak));
   return s;
 }
 

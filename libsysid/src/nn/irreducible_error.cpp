@@ -74,6 +74,12 @@ IrreducibleError EstimateIrreducibleError(const NeuralDataset& data,
   e.mse = sum / static_cast<double>(n);
   const double mean = data.targets.mean();
   e.output_variance = (data.targets.array() - mean).square().sum() / static_cast<double>(n);
+  // Finite outputs near the largest double square to inf: said, not printed as inf and NaN.
+  if (!std::isfinite(e.mse) || !std::isfinite(e.output_variance))
+    throw NumericalError(fmt::format(
+        "irreducible error of '{}': the variance overflows (mse {}, output variance {}); the "
+        "output's values reach {:g}: rescale it",
+        data.output_name, e.mse, e.output_variance, data.targets.cwiseAbs().maxCoeff()));
   return e;
 }
 
