@@ -127,3 +127,19 @@ TEST_CASE("delay tuning accepts a measured velocity column", "[identify][delay][
   const auto r = sysid::TuneDelay(c.truth, {vrec}, o);
   CHECK(r.tau_s == Approx(c.truth.tau_s).margin(1e-4));  // the issue's 0.1 ms
 }
+
+TEST_CASE("delay tuning says when the recordings do not determine tau", "[identify][delay][sim]") {
+  // u = 0 throughout: the stage and the model rest at every tau, the cost is 0 everywhere, and
+  // the search used to report its stopping point as "converged".
+  const auto& c = kStages[0];
+  sysid::Recording rest = PulseRecording(c, 301);
+  rest.data.col(1).setZero();  // u [V]
+  rest.data.col(2).setZero();  // x [m]
+  sysid::DelayTuningOptions o;
+  o.tau_max_s = 0.01;
+  CHECK_THROWS_AS(sysid::TuneDelay(c.truth, {rest}, o), sysid::NumericalError);
+  CHECK_THROWS_WITH(sysid::TuneDelay(c.truth, {rest}, o),
+                    Catch::Contains("do not determine tau"));
+  // The moving recording next to it is determined (the reference above).
+  CHECK_NOTHROW(sysid::TuneDelay(c.truth, {PulseRecording(c, 301)}, o));
+}

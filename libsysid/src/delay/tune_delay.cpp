@@ -99,6 +99,17 @@ DelayTuningResult TuneDelay(const FrictionModel& model, const std::vector<Record
     result.message = "every simulation failed; first failure: " + first_failure;
     throw NumericalError("delay tuning: " + result.message);
   }
+  // A cost that does not change with tau (a stage at rest, a model that never slides on these
+  // recordings) determines no delay: the search's "optimum" is wherever it stopped.
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const auto& [tau, c] : result.curve)
+    if (std::isfinite(c)) lo = std::min(lo, c), hi = std::max(hi, c);
+  if (!(hi - lo > 1e-12 * hi))
+    throw NumericalError(fmt::format(
+        "delay tuning: the cost is {:.6g} m^2/s^2 at every tau tried in [{:.6g}, {:.6g}] s: "
+        "these recordings do not determine tau (does the stage move in them? does the model "
+        "slide at their voltages?)",
+        hi, options.tau_min_s, options.tau_max_s));
   result.rms_error_mps = std::sqrt(result.cost / static_cast<double>(result.samples));
   result.termination =
       search.converged ? Termination::kConverged : Termination::kBudgetExhausted;
