@@ -46,4 +46,11 @@ TEST_CASE("output-error refinement recovers a stage whose pulses never settle",
   CHECK(r.model.tau_s == Approx(truth.tau_s).margin(1e-4));
   REQUIRE(r.std_error.size() == 6);
   for (Eigen::Index i = 0; i < 6; ++i) CHECK(std::isfinite(r.std_error[i]));
+  // A budget of 2: two iterations reported, as Ceres' own message counts them (the start,
+  // iteration 0, was counted as a third).
+  ro.max_iterations = 2;
+  const auto short_run = sysid::RefineOutputError(steady.model, {rec}, ro);
+  CHECK(short_run.termination == sysid::Termination::kBudgetExhausted);
+  CHECK(short_run.iterations == 2);
+  CHECK_THAT(short_run.message, Catch::Contains("Number of iterations: 2."));
 }

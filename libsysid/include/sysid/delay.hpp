@@ -115,7 +115,7 @@ struct RefineResult {
   double initial_cost = 0;         ///< [m^2/s^2] sum of squared velocity errors
   double final_cost = 0;           ///< [m^2/s^2]
   double rms_error_mps = 0;        ///< [m/s] at the optimum
-  int iterations = 0;
+  int iterations = 0;  ///< Ceres iterations after the start: at most RefineOptions::max_iterations
   long simulations = 0;
   /// Ceres' CONVERGENCE, NO_CONVERGENCE (iterations) and FAILURE.
   Termination termination = Termination::kFailure;

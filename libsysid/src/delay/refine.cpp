@@ -195,7 +195,8 @@ RefineResult RefineOutputError(const FrictionModel& initial,
   r.initial_cost = 2 * summary.initial_cost;  // Ceres' cost is half the sum of squares
   r.final_cost = 2 * summary.final_cost;
   r.rms_error_mps = std::sqrt(r.final_cost / static_cast<double>(n));
-  r.iterations = static_cast<int>(summary.iterations.size());
+  // Ceres lists iteration 0 (the starting point) too; its own count, like the budget, does not.
+  r.iterations = static_cast<int>(summary.iterations.size()) - 1;
   r.termination = summary.termination_type == ceres::CONVERGENCE ? Termination::kConverged
                   : summary.termination_type == ceres::NO_CONVERGENCE
                       ? Termination::kBudgetExhausted

@@ -495,7 +495,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
             fixed.empty() ? "" : "; ", layout.all[4]);
     }
     summary->message = fmt::format("{} ({} Ceres iterations, {} simulations, {} starts){}{}",
-                                   s.summary.message, s.summary.iterations.size(), simulations,
+                                   s.summary.message, s.summary.iterations.size() - 1, simulations,
                                    options.starts, fixed.empty() ? "" : "; ", fixed);
     summary->fit_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
