@@ -107,7 +107,8 @@ TEST_CASE("model file errors name the place and the rule", "[nn][file]") {
     std::string bad = good;
     bad.replace(bad.find("\"max\": 2.0"), 10, "\"max\": -4.0");
     CHECK_THROWS_WITH(sysid::ParseNeuralNetwork(bad, "net.json"),
-                      Contains(": output.max: expected a number > min (-3.0), max - min finite, found -4.0"));
+                      Contains(": output.max: expected a number > min (-3.0), max - min finite, "
+                               "found -4.0"));
   }
   SECTION("not a number") {
     std::string bad = good;

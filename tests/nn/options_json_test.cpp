@@ -84,7 +84,8 @@ TEST_CASE("training options JSON: bad input names the place", "[nn][json]") {
   CHECK_THROWS_WITH(sysid::NeuralTrainingOptionsFromJson("{\"output_range\": [1]}", "t.json"),
                     Contains("output_range: expected an array of 2 values"));
   CHECK_THROWS_WITH(sysid::NeuralTrainingOptionsFromJson("{\"output_range\": [1, -1]}", "t.json"),
-                    Contains("t.json:1:2: output_range: expected finite min < max, max - min finite, found -1"));
+                    Contains("t.json:1:2: output_range: expected finite min < max, max - min "
+                             "finite, found -1"));
   CHECK_THROWS_WITH(sysid::HiddenSweepOptionsFromJson("{\"hidden_sizes\": [8, 0]}", "s.json"),
                     Contains("s.json:1:1: HiddenSweepOptions::hidden_sizes contains 0"));
   CHECK_THROWS_WITH(sysid::HiddenSweepOptionsFromJson("{\"training\": {\"hiden\": 3}}", "s.json"),

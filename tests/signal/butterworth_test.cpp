@@ -186,6 +186,7 @@ TEST_CASE("Butterworth options are checked", "[signal][butter]") {
   // A cut-off 2e-13 of Nyquist: the sections round to a NaN output, reported with the cure.
   const Eigen::VectorXd ramp = Eigen::VectorXd::LinSpaced(100, 0.0, 1e-3);
   CHECK_THROWS_WITH(ButterworthFiltFilt(ramp, 1e-3, 1e-10, 4),
-                    Catch::Contains("numerically unstable") && Catch::Contains("raise the cut-off"));
+                    Catch::Contains("numerically unstable") &&
+                        Catch::Contains("raise the cut-off"));
   CHECK(ButterworthFiltFilt(ramp, 1e-3, 1.0, 4).allFinite());
 }

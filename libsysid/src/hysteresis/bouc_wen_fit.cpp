@@ -417,8 +417,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     u_max = std::max(u_max, s.u.maxCoeff());
   }
   if (!(u_max > u_min))
-    throw InputError(fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
-                                 recordings.front().source, u_min));
+    throw InputError(
+        fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
+                    recordings.front().source, u_min));
   const Layout layout = MakeLayout(form, data, options);
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
