@@ -56,3 +56,20 @@ TEST_CASE("candidate ranking refuses a recording without x", "[dominance]") {
   rec.data = Eigen::MatrixXd::Random(10, 3);
   CHECK_THROWS_WITH(sysid::RankCandidates(rec), Catch::Contains("nox.csv") && Catch::Contains("'x'"));
 }
+
+TEST_CASE("candidate ranking refuses data that cannot rank: constant u or x, overflow",
+          "[dominance]") {
+  // Before: a stage at rest gave "dominant x (margin inf); R^2 -nan", exit 0.
+  const Eigen::Index n = 400;
+  Eigen::VectorXd u(n), x(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    u[k] = std::sin(0.05 * static_cast<double>(k));
+    x[k] = 1e-6 * u[k];
+  }
+  CHECK_NOTHROW(sysid::RankCandidates(Make(u, x, 1e-3)));
+  CHECK_THROWS_WITH(sysid::RankCandidates(Make(u, Eigen::VectorXd::Zero(n), 1e-3)),
+                    Catch::Contains("r.csv: column 'x' is constant (0 m)"));
+  CHECK_THROWS_WITH(sysid::RankCandidates(Make(Eigen::VectorXd::Constant(n, 2), x, 1e-3)),
+                    Catch::Contains("r.csv: column 'u' is constant (2 V)"));
+  CHECK_THROWS_AS(sysid::RankCandidates(Make(1e300 * u, 1e296 * u, 1e-3)), sysid::NumericalError);
+}

@@ -32,6 +32,15 @@ CandidateRanking RankCandidates(const Recording& recording, const CandidateRanki
   const MotionSignals s = ExtractMotion(recording, motion);
   const Eigen::Index n = s.u_v.size();
   const int m = o.operators;
+  // Nothing to rank when either side does not vary: the fit would divide by zero (R^2 NaN) and
+  // still name a winner.
+  if (!(s.u_v.maxCoeff() > s.u_v.minCoeff()))
+    throw InputError(fmt::format("{}: column 'u' is constant ({} V): no input to explain",
+                                 recording.source, s.u_v[0]));
+  if (!(s.x_m.maxCoeff() > s.x_m.minCoeff()))
+    throw InputError(fmt::format("{}: column 'x' is constant ({} m): the stage does not move, "
+                                 "so x, v and a explain nothing",
+                                 recording.source, s.x_m[0]));
   // Columns: x, F1..Fm, v, a (centred: the offset c takes the means).
   Eigen::MatrixXd X(n, 3 + m);
   std::vector<std::string> names{"x"};
@@ -61,6 +70,13 @@ CandidateRanking RankCandidates(const Recording& recording, const CandidateRanki
   const Eigen::VectorXd fit = X * theta;
   out.residual_rms_v = std::sqrt((u - fit).squaredNorm() / static_cast<double>(n));
   out.r2 = 1 - (u - fit).squaredNorm() / u.squaredNorm();
+  // Finite data can still overflow (values near 1e300 square to inf): said, not ranked.
+  if (!theta.allFinite() || !std::isfinite(out.r2) || !std::isfinite(out.residual_rms_v))
+    throw NumericalError(fmt::format(
+        "{}: the linear inverse model's fit is not finite (R^2 {}, residual {} V): values out "
+        "of range (u up to {:g} V, x up to {:g} m)",
+        recording.source, out.r2, out.residual_rms_v, s.u_v.cwiseAbs().maxCoeff(),
+        s.x_m.cwiseAbs().maxCoeff()));
   auto stats = [&](const std::string& name, const Eigen::VectorXd& term) {
     TermStats t;
     t.name = name;
