@@ -6,6 +6,7 @@
 // "plant": "piezo-stack") with optional feedforward; tracking-error table.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -96,8 +97,23 @@ void RunStackTrack(const TrackCliOptions& o) {
     if (Given(o.amplitude)) ro.stroke_m = o.profile.amplitude_m;
     ro.cycles = o.profile.cycles;
     ro.sample_rate_hz = stack.rig.control_rate_hz;
-    ref = o.reference_path.empty() ? MakeStackReference(ro)
-                                   : ReadPositionReference(o.reference_path, o.recording.Mapping());
+    // The stack reaches at most its steepest static slope times the amplifier's range: a
+    // generous envelope that still refuses a 1 m stroke on a 30 um stack.
+    const double reach_min = stack.MaxStaticGain() * std::min(stack.rig.voltage_min_v, 0.0),
+                 reach_max = stack.MaxStaticGain() * stack.rig.voltage_max_v;
+    if (o.reference_path.empty()) {
+      if (!(ro.stroke_m <= reach_max))
+        throw OptionsError(fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
+                                       "stack's reach, {:g} m (its steepest slope {:g} m/V at "
+                                       "{:g} V)",
+                                       ro.stroke_m, reach_max, stack.MaxStaticGain(),
+                                       stack.rig.voltage_max_v),
+                           "stroke_m");
+      ref = MakeStackReference(ro);
+    } else {
+      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
+      CheckReferenceForPlant(ref, stack.rig.control_rate_hz, reach_min, reach_max);
+    }
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"schemes", "--ff"},
                         {"waveform", "--waveform"},
@@ -166,8 +182,12 @@ void RunTrack(const TrackCliOptions& o) {
   PositionReference ref;
   try {
     schemes = ParseFeedforwardSchemes(o.ff);
-    ref = o.reference_path.empty() ? MakeStageProfile(stage, o.profile)
-                                   : ReadPositionReference(o.reference_path, o.recording.Mapping());
+    if (o.reference_path.empty()) {
+      ref = MakeStageProfile(stage, o.profile);
+    } else {
+      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
+      CheckReferenceForPlant(ref, stage.sample_rate_hz, stage.travel_min_m, stage.travel_max_m);
+    }
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"schemes", "--ff"}, {"amplitude_m", "--amplitude"}});
   }

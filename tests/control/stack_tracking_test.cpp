@@ -108,6 +108,11 @@ TEST_CASE("stack references: sine and triangle from 0 to the stroke", "[control]
   CHECK_THROWS_AS(sysid::ParseStackWaveform("square"), sysid::OptionsError);
   o.frequency_hz = 1e-6;
   CHECK_THROWS_WITH(sysid::MakeStackReference(o), Catch::Contains("samples"));
+  // 20 samples a period at least (1 MHz at 1 kHz was a one-sample trace with 0 error).
+  o.frequency_hz = 50;
+  CHECK_NOTHROW(sysid::MakeStackReference(o));
+  o.frequency_hz = 51;
+  CHECK_THROWS_WITH(sysid::MakeStackReference(o), Catch::Contains("sample_rate_hz / 20 = 50 Hz"));
 }
 
 TEST_CASE("stack: the stage's schemes are refused, the hysteresis scheme needs its model",

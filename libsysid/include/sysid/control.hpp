@@ -169,6 +169,12 @@ PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen
 /// Throws InputError as ReadRecording.
 PositionReference ReadPositionReference(const std::string& path,
                                         const SourceMapping& mapping = {});
+/// Checks a reference read from a file against the plant that will track it, before any run:
+/// sampled uniformly at the plant's control rate `control_rate_hz` [Hz] (the loop takes one
+/// reference sample per control period), and every x_ref inside [x_min_m, x_max_m] [m] (the
+/// plant's travel). Throws InputError naming ref.description, the sample and the rule.
+void CheckReferenceForPlant(const PositionReference& ref, double control_rate_hz, double x_min_m,
+                            double x_max_m);
 
 /// Traces and metrics of a closed-loop run; row k is sample k.
 struct TrackingResult {

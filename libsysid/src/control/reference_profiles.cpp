@@ -129,4 +129,25 @@ PositionReference ReadPositionReference(const std::string& path, const SourceMap
   return ref;
 }
 
+void CheckReferenceForPlant(const PositionReference& ref, double control_rate_hz, double x_min_m,
+                            double x_max_m) {
+  const Eigen::Index n = ref.t_s.size();
+  const double dt = 1.0 / control_rate_hz;
+  for (Eigen::Index k = 1; k < n; ++k) {
+    const double step = ref.t_s[k] - ref.t_s[k - 1];
+    if (std::abs(step - dt) > 1e-6 * dt)
+      throw InputError(fmt::format(
+          "{}: reference sample {} (t = {:.9g} s) comes {:.9g} s after the one before; the plant "
+          "takes one reference sample per control period, 1 / {:g} Hz = {:.9g} s: give the "
+          "reference at {:g} Hz",
+          ref.description, k + 1, ref.t_s[k], step, control_rate_hz, dt, control_rate_hz));
+  }
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (!(ref.x_m[k] >= x_min_m && ref.x_m[k] <= x_max_m))
+      throw InputError(fmt::format(
+          "{}: reference sample {} (t = {:.9g} s): x_ref = {:g} m is outside the plant's travel "
+          "[{:g}, {:g}] m",
+          ref.description, k + 1, ref.t_s[k], ref.x_m[k], x_min_m, x_max_m));
+}
+
 }  // namespace sysid

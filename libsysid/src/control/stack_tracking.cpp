@@ -38,6 +38,12 @@ void StackReferenceOptions::Validate() const {
   if (cycles < 1) Violated("cycles", cycles, "cycles >= 1");
   if (!std::isfinite(sample_rate_hz) || !(sample_rate_hz > 0))
     Violated("sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
+  // As the stage's profile: a period needs samples to be a waveform at all (1 MHz gave a
+  // one-sample "trace" and a tracking error of 0).
+  if (!(frequency_hz <= sample_rate_hz / 20))
+    Violated("frequency_hz", frequency_hz,
+             fmt::format("frequency_hz <= sample_rate_hz / 20 = {:g} Hz (20 samples a period)",
+                         sample_rate_hz / 20));
   const double samples = cycles * sample_rate_hz / frequency_hz;
   if (!(samples <= kMaxStackReferenceSamples))
     Violated("cycles", cycles,
