@@ -97,16 +97,16 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return CheckStdout(code == 0 ? kSuccess : kUsage);
   } catch (const sysid::OptionsError& e) {
-    std::cerr << "sysid: error: " << e.what() << '\n';
+    std::cerr << "sysid: error: " << ForTerminal(e.what()) << '\n';
     return kUsage;
   } catch (const sysid::InputError& e) {
-    std::cerr << "sysid: error: " << e.what() << '\n';
+    std::cerr << "sysid: error: " << ForTerminal(e.what()) << '\n';
     return kBadInput;
   } catch (const sysid::NumericalError& e) {
-    std::cerr << "sysid: numerical failure: " << e.what() << '\n';
+    std::cerr << "sysid: numerical failure: " << ForTerminal(e.what()) << '\n';
     return kNumerical;
   } catch (const std::exception& e) {
-    std::cerr << "sysid: internal error: " << e.what() << '\n';
+    std::cerr << "sysid: internal error: " << ForTerminal(e.what()) << '\n';
     return 4;
   }
   return CheckStdout(kSuccess);

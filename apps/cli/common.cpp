@@ -155,6 +155,26 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI:
   return alias;
 }
 
+std::string ForTerminal(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    // C0 controls and DEL, and the C1 controls U+0080..U+009F (UTF-8 C2 80..C2 9F: CSI among
+    // them); line breaks stay, multi-line messages keep their lines.
+    const bool c1 = c == 0xC2 && i + 1 < text.size() &&
+                    static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
+                    static_cast<unsigned char>(text[i + 1]) <= 0x9F;
+    if ((c < 0x20 && c != '\n') || c == 0x7F || c1) {
+      const auto byte = c1 ? static_cast<unsigned char>(text[++i]) : c;
+      out += fmt::format("\\x{:02X}", byte);
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
 CLI::Option* AddSeedOption(CLI::App* cmd, std::uint64_t& seed, const std::string& what) {
   return cmd->add_option("--seed", seed, what)
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))

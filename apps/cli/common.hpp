@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sysid {
@@ -105,6 +106,11 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI:
 /// -v,--verbose: the table output becomes the result's FullReport() (every diagnostic) instead
 /// of its BriefReport(); --json is unaffected.
 CLI::Option* AddVerboseFlag(CLI::App* cmd, bool& verbose);
+
+/// `text` safe for a terminal: control bytes other than line breaks as \xHH. Every error
+/// message goes through it, since messages quote file names, and a name may hold an escape
+/// sequence (a title change, a screen clear).
+std::string ForTerminal(std::string_view text);
 
 /// "--seed" into `seed` with the range every seed has, [0, 2^62]: CLI11 would read -1 into a
 /// uint64 as 2^64 - 1. `what` is the help text.

@@ -110,6 +110,11 @@ TEST_CASE("batch dominance keeps input order, counts winners and names bad input
   o.threads = 2;
   CHECK(sysid::DominanceTableCsv(sysid::AnalyzeDominanceBatch(m, recs, o)) == csv1);
   CHECK(csv1 == csv);
+  // A source with a comma, a quote and a line break stays one CSV field (RFC 4180 quoting).
+  auto odd = s;
+  odd.results.front().source = "run \"a\",1\nb.csv";
+  const std::string odd_csv = sysid::DominanceTableCsv(odd);
+  CHECK_THAT(odd_csv, Catch::Contains("\n\"run \"\"a\"\",1\nb.csv\",1,"));
   o.candidates.push_back({"jerk", "j", 1.0});
   CHECK_THROWS_WITH(sysid::AnalyzeDominanceBatch(m, recs, o),
                     Catch::Contains("rec0: candidate 'jerk' needs column 'j'"));

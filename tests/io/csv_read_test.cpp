@@ -58,6 +58,17 @@ TEST_CASE("control bytes in metadata and names never reach a terminal or break a
   CHECK(back.names == out.names);
 }
 
+TEST_CASE("a file name with an escape sequence reaches the terminal as text", "[io][cli]") {
+  TempDir dir;
+  const std::string name = dir / "e\x1b[2J\x1b]0;t\x07\xc2\x9bx.csv";
+  sysid::test::WriteText(name, "t,u,x\n0,1,zz\n");
+  const auto r = RunCli({"info", name});
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Catch::Contains("e\\x1B[2J\\x1B]0;t\\x07\\x9Bx.csv:2:5: column 'x'"));
+  CHECK(r.err.find('\x1b') == std::string::npos);
+  CHECK(r.err.find('\x07') == std::string::npos);
+}
+
 TEST_CASE("numbers parse exactly as strtod does, signs and exponents included", "[io]") {
   const std::string text = "t,u,v\n0,+1.5,-2.5e-3\n1e-3, 2 ,.5\n2E-3,-0,1.7976931348623157e308\n";
   const auto rec = sysid::ParseRecording(text, "mem");

@@ -87,10 +87,11 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {
   std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
   for (const auto& c : comparisons) {
-    const std::string name = std::filesystem::path(c.source).stem().string();
+    // A file name may hold a comma or a line break: quoted, the row stays one row.
+    const std::string name = internal::CsvField(std::filesystem::path(c.source).stem().string());
     auto row = [&](const std::string& which, const PredictionErrors& e) {
-      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, which, e.rmse_v,
-                         e.peak_error_v, e.nrmse, e.r2);
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, internal::CsvField(which),
+                         e.rmse_v, e.peak_error_v, e.nrmse, e.r2);
     };
     if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);

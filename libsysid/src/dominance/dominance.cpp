@@ -11,6 +11,7 @@
 #include <map>
 #include <thread>
 
+#include "core/json_text.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {
@@ -234,8 +235,9 @@ std::string DominanceTableCsv(const DominanceSummary& summary) {
       "margin,moving_samples\n";
   for (const auto& r : summary.results) {
     int rank = 0;
+    const std::string source = internal::CsvField(r.source);  // a file name may hold a comma
     for (const auto& s : r.ranking)
-      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.9g},{}\n", r.source,
+      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.9g},{}\n", source,
                          ++rank, s.name, s.rms, s.peak, s.ratio_to_top, s.ratio_bound, s.ratio_max,
                          s.negligible ? 1 : 0, r.dominant == s.name ? 1 : 0, r.margin,
                          r.moving_samples);

@@ -330,8 +330,9 @@ class ReportWriter {
       rows.push_back({name, F(c.analytic.rmse_v, 4), F(c.nn.rmse_v, 4),
                       F(c.analytic.peak_error_v, 4), F(c.nn.peak_error_v, 4),
                       F(c.analytic.nrmse, 3), F(c.nn.nrmse, 3)});
-      csv += fmt::format("{},analytic,{:.9g},{:.9g},{:.9g}\n{},nn,{:.9g},{:.9g},{:.9g}\n", name,
-                         c.analytic.rmse_v, c.analytic.peak_error_v, c.analytic.nrmse, name,
+      const std::string field = internal::CsvField(name);  // one row, whatever the name holds
+      csv += fmt::format("{},analytic,{:.9g},{:.9g},{:.9g}\n{},nn,{:.9g},{:.9g},{:.9g}\n", field,
+                         c.analytic.rmse_v, c.analytic.peak_error_v, c.analytic.nrmse, field,
                          c.nn.rmse_v, c.nn.peak_error_v, c.nn.nrmse);
       WriteRecording(Path("compare_" + name + ".csv"), c.AsRecording());
     }
