@@ -118,3 +118,20 @@ def test_hysteresis_fit_sizes_are_bounded_before_allocation(tmp_path):
     long = sysid.recording(t=t, u=np.zeros(n), x=np.zeros(n))
     with pytest.raises(sysid.OptionsError, match=r"operators = 200\. .*1000000 samples .*GB"):
         hy.fit([long], model="nn-operators", operators=200, hidden=1)
+
+
+def test_hysteresis_invert_far_reference_names_the_reach_not_nan():
+    # y = 0.25 u + F_1[u] (r = 1 V, w = 1) on [0, 2] V + 5 %: at x = 1e308 m the inverse's sum
+    # overflows (inf - inf) and the message said "it needs u = -nan V". By hand the model
+    # reaches 0.25 * 2.1 + (2.1 - 1) = 1.625 m at u = 2.1 V from rest after u_0 = 0.
+    import sysid.hysteresis as hy
+    model = sysid._sysid.hysteresis_model_from_json(
+        '{"kind": "pi", "thresholds": [1.0], "weights": [1.0], "polynomial": [0.25], '
+        '"offset_m": 0.0, "initial_input_v": 0.0, "initial_state": [0.0], '
+        '"input_min_v": 0.0, "input_max_v": 2.0, "range_margin": 0.05}')
+    with pytest.raises(sysid.DataError) as info:
+        hy.invert(model, [0.0, 1e308, 0.0], dt_s=0.1)
+    message = str(info.value)
+    assert "reference sample 1 (t = 0.1 s): x = 1e+308 m" in message
+    assert "above the output 1.625 m at u = 2.1 V" in message
+    assert "nan" not in message and "inf" not in message

@@ -72,6 +72,9 @@ TEST_CASE("play-operator inputs let the network learn a loop the static network 
   Eigen::VectorXd far = x;
   far[7] = 1.0;  // 1 m, far outside the training range
   CHECK_THROWS_WITH(loop->Invert(far, 5e-3), Catch::Contains("reference sample 7"));
+  far[7] = NAN;  // not "outside the range": not a number (Python can pass one)
+  CHECK_THROWS_WITH(loop->Invert(far, 5e-3), Catch::Contains("reference sample 7: x = nan: "
+                                                             "expected a finite number"));
 }
 
 TEST_CASE("operator network options name the field", "[nn]") {

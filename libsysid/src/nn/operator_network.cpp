@@ -166,12 +166,18 @@ Eigen::VectorXd OperatorNetworkModel::Simulate(const Eigen::VectorXd& u, double)
 Eigen::VectorXd OperatorNetworkModel::Invert(const Eigen::VectorXd& y, double dt_s) const {
   const ScaledVariable& range = inverse_.network.inputs()[0];
   const double half = 0.5 * (range.max - range.min);
-  for (Eigen::Index k = 0; k < y.size(); ++k)
+  for (Eigen::Index k = 0; k < y.size(); ++k) {
+    // A NaN or inf reference (Python passes them; files cannot hold them) is not a value
+    // "outside the range": say so, as the PI models do.
+    if (!std::isfinite(y[k]))
+      throw InputError(fmt::format("reference sample {}: x = {}: expected a finite number [m]", k,
+                                   y[k]));
     if (!(y[k] >= range.min - half && y[k] <= range.max + half))
       throw InputError(fmt::format(
           "reference sample {} (t = {:.6g} s): x = {:.9g} m is outside the nn-operators model's "
           "range [{:.6g}, {:.6g}] m (the inverse network's training range widened by half its "
           "span)", k, static_cast<double>(k) * dt_s, y[k], range.min - half, range.max + half));
+  }
   return inverse_.Evaluate(y);
 }
 
