@@ -76,7 +76,8 @@ void RunFit(const HysteresisCli& o) {
   try {
     options.Validate(o.kind);
   } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"}});
+    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"},
+                        {"hidden", "--hidden"}, {"max_epochs", "--epochs"}});
   }
   try {
     options.pi.Validate();
@@ -90,7 +91,7 @@ void RunFit(const HysteresisCli& o) {
     model = FitHysteresis(o.kind, recs, options, &s);
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"},
-                        {"starts", "--starts"}, {"threads", "--threads"}});
+                        {"hidden", "--hidden"}, {"starts", "--starts"}, {"threads", "--threads"}});
   }
   const std::string summary_json = HysteresisFitSummaryJson(s, *model, 2);
   nlohmann::ordered_json file = nlohmann::ordered_json::parse(model->ToJson(2));

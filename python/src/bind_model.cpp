@@ -41,15 +41,23 @@ void BindModel(py::module_& m) {
       .def_readwrite("tau_s", &FrictionModel::tau_s)
       .def("validate", &FrictionModel::Validate)
       .def_static("paper", &FrictionModel::Paper, "The paper's identified model.")
+      // Both methods check the model once per call, here and not in FrictionModel's methods:
+      // those run per sample in C++ loops (AnalyticInverse, the comparisons), whose callers
+      // validate once. Without it a3 = 0 gave inf and a NaN field NaN, as answers (OptionsError
+      // now, as analytic_inverse and every other consumer of a model).
       .def("steady_velocity",
            [](const FrictionModel& f, const py::object& u) {
+             f.Validate();
              return RealElementwise(u, "u_v", [&f](double x) { return f.SteadyVelocity(x); });
            },
            py::arg("u_v"),
-           "Steady sliding velocity [m/s] under constant voltage(s) u_v [V].")
+           "Steady sliding velocity [m/s] under constant voltage(s) u_v [V] (+-inf where the "
+           "force wins and that direction's a1 is 0). OptionsError for a model failing "
+           "validate().")
       .def("inverse_voltage",
            [](const FrictionModel& f, const py::object& a, const py::object& vd,
               const py::object& v) {
+             f.Validate();
              const auto a_ = RealArray(a, "a_mps2"), vd_ = RealArray(vd, "v_delayed_mps"),
                         v_ = RealArray(v, "v_mps");
              try {  // NumPy's broadcasting rule, with the library's error when it fails
@@ -66,7 +74,8 @@ void BindModel(py::module_& m) {
              })(a_, vd_, v_);
            },
            py::arg("a_mps2"),
-           py::arg("v_delayed_mps"), py::arg("v_mps"), "The analytic inverse u [V].")
+           py::arg("v_delayed_mps"), py::arg("v_mps"),
+           "The analytic inverse u [V]. OptionsError for a model failing validate().")
       .def_static("load", &ReadModel, py::arg("path"), "Reads a model JSON file (the CLI's).")
       .def("save", [](const FrictionModel& f, const std::string& path) { WriteModel(path, f); },
            py::arg("path"), "Writes the model JSON file atomically.")

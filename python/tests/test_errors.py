@@ -93,3 +93,45 @@ def test_sizes_are_bounded_before_allocation():
     with pytest.raises(sysid.OptionsError, match=r"hidden = 1000000000\. .*1 <= hidden <= 100000"):
         sysid.Network([sysid.ScaledVariable("v")], sysid.ScaledVariable("u"), 10**9)
     assert sysid.Network([sysid.ScaledVariable("v")], sysid.ScaledVariable("u"), 2).hidden_size == 2
+
+
+def test_hysteresis_fit_sizes_are_bounded_before_allocation(tmp_path):
+    # nn-operators: the operator count and the hidden units are refused by their bounds, and a
+    # fit whose feature matrices pass the 4 GB training limit (200 operators on 1e6 samples,
+    # about 4.8 GB) is an OptionsError before allocating, not a MemoryError (std::bad_alloc).
+    import numpy as np
+    import sysid.hysteresis as hy
+    t = np.arange(400) * 5e-3
+    u = np.sin(2 * np.pi * t)
+    rec = sysid.recording(t=t, u=u, x=1e-6 * u)
+    path = tmp_path / "h.csv"
+    rec.save(str(path))
+    for kw, flag, match in [({"operators": 10**9}, "--operators", r"operators = 1000000000\. .*<= 200"),
+                            ({"hidden": 10**9}, "--hidden", r"hidden = 1000000000\. .*<= 200")]:
+        with pytest.raises(sysid.OptionsError, match=match) as info:
+            hy.fit([rec], model="nn-operators", **kw)
+        # The CLI gives the same limit and text, after the flag's name.
+        assert cli_error("hysteresis", "fit", "--model", "nn-operators", flag, "1000000000",
+                         path, "-o", tmp_path / "m.json", expect=1) == f"{flag}: {info.value}"
+    n = 1_000_000
+    t = np.arange(n) * 1e-3
+    long = sysid.recording(t=t, u=np.zeros(n), x=np.zeros(n))
+    with pytest.raises(sysid.OptionsError, match=r"operators = 200\. .*1000000 samples .*GB"):
+        hy.fit([long], model="nn-operators", operators=200, hidden=1)
+
+
+def test_hysteresis_invert_far_reference_names_the_reach_not_nan():
+    # y = 0.25 u + F_1[u] (r = 1 V, w = 1) on [0, 2] V + 5 %: at x = 1e308 m the inverse's sum
+    # overflows (inf - inf) and the message said "it needs u = -nan V". By hand the model
+    # reaches 0.25 * 2.1 + (2.1 - 1) = 1.625 m at u = 2.1 V from rest after u_0 = 0.
+    import sysid.hysteresis as hy
+    model = sysid._sysid.hysteresis_model_from_json(
+        '{"kind": "pi", "thresholds": [1.0], "weights": [1.0], "polynomial": [0.25], '
+        '"offset_m": 0.0, "initial_input_v": 0.0, "initial_state": [0.0], '
+        '"input_min_v": 0.0, "input_max_v": 2.0, "range_margin": 0.05}')
+    with pytest.raises(sysid.DataError) as info:
+        hy.invert(model, [0.0, 1e308, 0.0], dt_s=0.1)
+    message = str(info.value)
+    assert "reference sample 1 (t = 0.1 s): x = 1e+308 m" in message
+    assert "above the output 1.625 m at u = 2.1 V" in message
+    assert "nan" not in message and "inf" not in message

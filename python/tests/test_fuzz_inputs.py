@@ -175,6 +175,18 @@ def test_audit_cases():
                                **bad})
         with pytest.raises(sysid.OptionsError, match=rule):
             sysid.analytic_inverse(model, 1e-3, v, np.zeros(5))
+        # The Model's own elementwise methods refuse it too (they returned inf / NaN).
+        with pytest.raises(sysid.OptionsError, match=rule):
+            model.steady_velocity([1.0, 2.0])
+        with pytest.raises(sysid.OptionsError, match=rule):
+            model.inverse_voltage(1.0, 0.1, 0.1)
+    # A valid model still answers, against the closed forms by hand (a1p = 2, a2p = 1, a3 = 6):
+    # v = (6 u - 1) / 2 at u = 1 V; u = (a + a1p v_d + a2p) / a3 = (3 + 2 * 0.5 + 1) / 6.
+    good = sysid.Model(a1p=2.0, a1n=4.0, a2p=1.0, a2n=1.0, a3=6.0, tau_s=0.0)
+    assert good.steady_velocity(1.0) == pytest.approx(2.5, rel=1e-15)
+    assert good.inverse_voltage(3.0, 0.5, 0.5) == pytest.approx(5.0 / 6.0, rel=1e-15)
+    # a1 = 0 is valid (pure Coulomb): the unbalanced force has no steady state, +inf.
+    assert sysid.Model(a1p=0.0, a1n=1.0, a2p=1.0, a2n=1.0, a3=6.0).steady_velocity(1.0) == np.inf
 
 
 def sysid_virtual():

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <tuple>
 
 #include "support/known_pi.hpp"
 #include "support/test_support.hpp"
@@ -62,6 +64,21 @@ TEST_CASE("sysid hysteresis refuses bad input naming the field, writing nothing"
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Catch::Contains("--operators"));
     CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+  }
+  SECTION("nn-operators --operators or --hidden past its bound: usage error before reading") {
+    // The recording does not exist: an exit-1 message naming the flag shows the option was
+    // refused before any file was read (else: exit 2 naming the missing file).
+    for (const auto& [flag, value, field] :
+         {std::tuple{"--operators", "1000000000", "operators = 1000000000"},
+          std::tuple{"--hidden", "1000000000", "hidden = 1000000000"},
+          std::tuple{"--epochs", "0", "max_epochs = 0"}}) {
+      INFO(flag);
+      auto r = RunCli({"hysteresis", "fit", "--model", "nn-operators", flag, value,
+                       dir / "missing.csv", "-o", dir / "h.json"});
+      CHECK(r.exit_code == 1);
+      CHECK_THAT(r.err, Catch::Contains(std::string(flag) + ": ") && Catch::Contains(field));
+      CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
+    }
   }
   SECTION("negative or unsorted thresholds on the command line: usage error") {
     for (const char* list : {"0.5,0.2", "-0.1,0.5"}) {

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <string>
+#include <utility>
 
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -261,6 +263,35 @@ TEST_CASE("a reference outside the model's range is refused naming the sample", 
     Eigen::VectorXd y(4);
     y << 0.0, 1.0, 50.0, 1.0;
     CHECK_THROWS_WITH(m.Invert(y, 0.1), Catch::Contains("reference sample 2") && Catch::Contains("range"));
+  }
+}
+
+TEST_CASE("a reference so far out that the inverse overflows names the model's reach, not NaN",
+          "[hysteresis]") {
+  // y = 0.25 u + F_1[u] (r = 1 V, w = 1), inputs [0, 2] V widened by 5 %: [-0.1, 2.1] V. Its
+  // inverse (Kuhnen) is u = 4 y - 3.2 F'_1[y]: at y = +-1e308 both terms overflow, inf - inf,
+  // and the message printed "it needs u = -nan V". By hand, from rest after u_0 = 0 the model
+  // reaches 0.25 * 2.1 + (2.1 - 1) = 1.625 m at 2.1 V and 0.25 * -0.1 + 0 = -0.025 m at -0.1 V.
+  sysid::PiParameters p = Classical({1.0}, {1.0}, 0.25);
+  p.input_min_v = 0;
+  p.input_max_v = 2;
+  const sysid::PrandtlIshlinskiiModel m(p);
+  REQUIRE(m.InverseParameters().weights[0] == Approx(-3.2));
+  for (const auto& [x, reach] : {std::pair{1e308, std::string("above the output 1.625 m at u = 2.1 V")},
+                                 std::pair{-1e308, std::string("below the output -0.025 m at u = -0.1 V")}}) {
+    Eigen::VectorXd y(3);
+    y << 0.0, x, 0.0;
+    try {
+      m.Invert(y, 0.1);
+      FAIL("expected an InputError");
+    } catch (const sysid::InputError& e) {
+      const std::string what = e.what();
+      INFO(what);
+      CHECK_THAT(what, Catch::Contains("reference sample 1 (t = 0.1 s)") &&
+                           Catch::Contains(reach) && Catch::Contains("overflows"));
+      CHECK(what.find("nan") == std::string::npos);
+      CHECK(what.find("inf") == std::string::npos);
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "sysid/compare_hysteresis.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/nn_operators.hpp"
@@ -71,6 +72,9 @@ TEST_CASE("play-operator inputs let the network learn a loop the static network 
   Eigen::VectorXd far = x;
   far[7] = 1.0;  // 1 m, far outside the training range
   CHECK_THROWS_WITH(loop->Invert(far, 5e-3), Catch::Contains("reference sample 7"));
+  far[7] = NAN;  // not "outside the range": not a number (Python can pass one)
+  CHECK_THROWS_WITH(loop->Invert(far, 5e-3), Catch::Contains("reference sample 7: x = nan: "
+                                                             "expected a finite number"));
 }
 
 TEST_CASE("operator network options name the field", "[nn]") {
@@ -80,4 +84,48 @@ TEST_CASE("operator network options name the field", "[nn]") {
   o.operators = 2;
   o.hidden = 0;
   CHECK_THROWS_WITH(o.Validate(), Catch::Contains("hidden"));
+}
+
+TEST_CASE("an nn-operators fit past the memory limit is refused before it allocates", "[nn]") {
+  // Both options within their own bounds, but 200 operators on 1e6 samples need two
+  // 1e6 x 201 feature matrices (3.2 GB, the dataset and its normalised copy) plus one being
+  // copied in: about 4.8 GB, past kTrainingMemoryLimitBytes (4 GB). It used to end in
+  // std::bad_alloc (or take the memory); now it is an OptionsError naming `operators`.
+  sysid::Recording rec;
+  rec.source = "long.csv";
+  rec.names = {"t", "u", "x"};
+  rec.data.setZero(1000000, 3);
+  sysid::OperatorNetworkOptions o;
+  o.operators = sysid::kMaxPlayOperators;
+  o.hidden = 1;
+  try {
+    sysid::FitOperatorNetwork({rec}, o);
+    FAIL("expected an OptionsError");
+  } catch (const sysid::OptionsError& e) {
+    CHECK(e.field() == "operators");
+    CHECK_THAT(e.what(), Catch::Contains("OperatorNetworkOptions::operators = 200") &&
+                             Catch::Contains("1000000 samples") && Catch::Contains("GB"));
+  }
+  // 200 hidden units on 201 inputs: 40601 weights a network, so LM's two P x P matrices alone
+  // are 16 * 40601^2 B = 26 GB whatever the length; the dominant term names `hidden`.
+  rec.data.conservativeResize(50, 3);
+  o.hidden = 200;
+  try {
+    sysid::FitOperatorNetwork({rec}, o);
+    FAIL("expected an OptionsError");
+  } catch (const sysid::OptionsError& e) {
+    CHECK(e.field() == "hidden");
+    CHECK_THAT(e.what(), Catch::Contains("40601 weights"));
+  }
+}
+
+TEST_CASE("HysteresisFitOptions::Validate checks the nn-operators network's fields", "[nn]") {
+  // So a caller validating before reading recordings (the CLI) refuses --hidden at once.
+  sysid::HysteresisFitOptions o;
+  o.network.hidden = 1000000000;
+  CHECK_THROWS_WITH(o.Validate("nn-operators"), Catch::Contains("hidden = 1000000000"));
+  CHECK_NOTHROW(o.Validate("pi"));  // the PI family ignores the network's options
+  o.network.hidden = 10;
+  o.operators = 1000000000;
+  CHECK_THROWS_WITH(o.Validate("nn-operators"), Catch::Contains("operators = 1000000000"));
 }

@@ -28,7 +28,8 @@ struct HysteresisFitOptions {
   PiFitOptions pi;                  ///< pi, gpi, rdpi (its form and operators are set by kind)
   OperatorNetworkOptions network;   ///< nn-operators (its operators are set from `operators`)
   BoucWenFitOptions bouc_wen;       ///< bouc-wen, bouc-wen-piezo (operators unused)
-  /// Throws OptionsError naming the field ("operators") and the rule.
+  /// Throws OptionsError naming the field ("operators"; for nn-operators also `network`'s
+  /// fields: "hidden", "max_epochs") and the rule.
   void Validate(const std::string& kind) const;
 };
 

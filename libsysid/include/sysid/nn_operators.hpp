@@ -64,7 +64,9 @@ class OperatorNetworkModel : public HysteresisModel {
   OperatorNetworkSide forward_, inverse_;
 };
 
-/// Trains both networks on the recordings (columns t, u [V], x [m]).
+/// Trains both networks on the recordings (columns t, u [V], x [m]). OptionsError, before
+/// anything is allocated, when the fit's memory (features of N samples x (1 + operators), the
+/// training's 16 P^2 + 8 N H bytes) passes kTrainingMemoryLimitBytes.
 std::unique_ptr<OperatorNetworkModel> FitOperatorNetwork(const std::vector<Recording>& recordings,
                                                          const OperatorNetworkOptions& options = {},
                                                          HysteresisFitSummary* summary = nullptr);

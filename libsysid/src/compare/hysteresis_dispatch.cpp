@@ -33,6 +33,13 @@ void HysteresisFitOptions::Validate(const std::string& kind) const {
                                    "{} <= operators <= {} (kMaxPlayOperators) for {}",
                                    operators, lo, kMaxPlayOperators, kind),
                        "operators");
+  // The kind's own options too, so a caller validating before it reads recordings (the CLI)
+  // refuses --hidden 1e9 at once, naming the field, as it does --operators.
+  if (kind == "nn-operators") {
+    OperatorNetworkOptions o = network;
+    o.operators = operators;
+    o.Validate();
+  }
 }
 
 std::unique_ptr<HysteresisModel> FitHysteresis(const std::string& kind,

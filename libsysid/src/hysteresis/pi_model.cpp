@@ -254,9 +254,27 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Invert(const Eigen::VectorXd& y_desired,
   if (p_.form == PiForm::kClassical) {
     const PrandtlIshlinskiiModel inverse(InverseParameters());
     u = inverse.Simulate(y_desired.array() - p_.offset_m, dt_s);
-    for (Eigen::Index k = 0; k < u.size(); ++k)
-      if (!(u[k] >= lo && u[k] <= hi))
-        throw out_of_range(k, fmt::format("it needs u = {:.6g} V", u[k]));
+    for (Eigen::Index k = 0; k < u.size(); ++k) {
+      if (u[k] >= lo && u[k] <= hi) continue;
+      if (std::isfinite(u[k])) throw out_of_range(k, fmt::format("it needs u = {:.6g} V", u[k]));
+      // A reference near the largest double (1e308 m) overflows the inverse's sum (inf - inf):
+      // its "u" is NaN or inf, no input to print ("it needs u = -nan V" said nothing). Say
+      // which side of the model's reach x is instead: the forward model's output at the range's
+      // ends from its state at sample k (u before k is in range: this is the first bad sample).
+      // Only on this error path, so the cost of two simulations of k + 1 samples is no matter.
+      auto reach = [&](double end) {
+        Eigen::VectorXd path(k + 1);
+        path.head(k) = u.head(k);
+        path[k] = end;
+        return Simulate(path, dt_s)[k];
+      };
+      const double y_hi = reach(hi), y_lo = reach(lo);
+      const std::string side =
+          y_desired[k] > y_hi   ? fmt::format("above the output {:.9g} m at u = {:.6g} V", y_hi, hi)
+          : y_desired[k] < y_lo ? fmt::format("below the output {:.9g} m at u = {:.6g} V", y_lo, lo)
+                                : std::string("no input in the range gives it");
+      throw out_of_range(k, side + "; the input it needs overflows a double");
+    }
     return u;
   }
   if (p_.form == PiForm::kRateDependent && (!(dt_s > 0) || !std::isfinite(dt_s)))

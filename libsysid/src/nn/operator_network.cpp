@@ -2,6 +2,7 @@
 // directly identified inverse network (sysid/nn_operators.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -63,6 +64,40 @@ OperatorNetworkSide TrainSide(const std::vector<Eigen::VectorXd>& inputs,
   net.set_parameters(side.network.parameters());
   side.network = net;
   return side;
+}
+
+// Refuses, before anything is allocated, a fit whose memory passes kTrainingMemoryLimitBytes.
+// The options' own bounds (operators <= kMaxPlayOperators, hidden <= 200) are not enough: the
+// feature matrix grows with samples x operators and TrainNeuralNetwork's own limit is checked
+// only after TrainSide has built it, so 200 operators on 2e6 samples asked for two 3.2 GB
+// matrices and ended in std::bad_alloc (Python: MemoryError) instead of an OptionsError.
+// Per side, sequentially: the dataset's N x (1 + m) features and its normalised copy, one
+// recording's features while they are copied in, targets (twice), and TrainNeuralNetwork's
+// estimate 16 P^2 + 8 N H; plus the u and x copies (2 N) held for both sides.
+void CheckFitMemory(const std::vector<Recording>& recordings, const OperatorNetworkOptions& o) {
+  Eigen::Index rows = 0, longest_rows = 0;
+  for (const Recording& rec : recordings) {
+    rows += rec.rows();
+    longest_rows = std::max(longest_rows, rec.rows());
+  }
+  const double n = static_cast<double>(rows), longest = static_cast<double>(longest_rows);
+  const double inputs = 1.0 + o.operators, hidden = o.hidden;
+  const double weights = hidden * (inputs + 2) + 1;
+  const double features = 8.0 * inputs * (2 * n + longest) + 16.0 * n;
+  const double training = 16.0 * weights * weights + 8.0 * n * hidden;
+  const double bytes = features + training + 16.0 * n;
+  if (bytes <= kTrainingMemoryLimitBytes) return;
+  // Name the option whose term dominates, so the CLI points at the flag to lower.
+  const char* field = features >= training ? "operators" : "hidden";
+  throw OptionsError(
+      fmt::format("OperatorNetworkOptions::{} = {}. Violated constraint: the nn-operators fit "
+                  "with {} operators and {} hidden units ({} weights per network) on {} samples "
+                  "needs about {:.3g} GB, above the limit of {:.3g} GB; use fewer operators, "
+                  "hidden units or samples",
+                  field, field[0] == 'o' ? o.operators : o.hidden, o.operators, o.hidden,
+                  static_cast<long long>(weights), rows, bytes * 1e-9,
+                  kTrainingMemoryLimitBytes * 1e-9),
+      field);
 }
 
 }  // namespace
@@ -131,12 +166,18 @@ Eigen::VectorXd OperatorNetworkModel::Simulate(const Eigen::VectorXd& u, double)
 Eigen::VectorXd OperatorNetworkModel::Invert(const Eigen::VectorXd& y, double dt_s) const {
   const ScaledVariable& range = inverse_.network.inputs()[0];
   const double half = 0.5 * (range.max - range.min);
-  for (Eigen::Index k = 0; k < y.size(); ++k)
+  for (Eigen::Index k = 0; k < y.size(); ++k) {
+    // A NaN or inf reference (Python passes them; files cannot hold them) is not a value
+    // "outside the range": say so, as the PI models do.
+    if (!std::isfinite(y[k]))
+      throw InputError(fmt::format("reference sample {}: x = {}: expected a finite number [m]", k,
+                                   y[k]));
     if (!(y[k] >= range.min - half && y[k] <= range.max + half))
       throw InputError(fmt::format(
           "reference sample {} (t = {:.6g} s): x = {:.9g} m is outside the nn-operators model's "
           "range [{:.6g}, {:.6g}] m (the inverse network's training range widened by half its "
           "span)", k, static_cast<double>(k) * dt_s, y[k], range.min - half, range.max + half));
+  }
   return inverse_.Evaluate(y);
 }
 
@@ -197,6 +238,7 @@ std::unique_ptr<OperatorNetworkModel> FitOperatorNetwork(const std::vector<Recor
   options.Validate();
   const auto start = std::chrono::steady_clock::now();
   if (recordings.empty()) throw InputError("nn-operators fit: no recordings");
+  CheckFitMemory(recordings, options);
   std::vector<Eigen::VectorXd> u, x;
   for (const Recording& rec : recordings) {
     u.emplace_back(rec.column("u"));
