@@ -45,6 +45,20 @@ void WriteH5Odd(const std::string& path);
 /// but holds one value (a hostile header: the reader must refuse it before allocating).
 void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols);
 
+/// One double row vector of a MAT v5 file written byte by byte (WriteRawMat): it declares
+/// 1 x `declared` elements and its data element stores `stored` (fewer or more for a corrupt
+/// file; the data element's byte count is 8 x stored.size(), as a writer that lost values would
+/// leave it).
+struct RawMatVariable {
+  std::string name;
+  std::uint32_t declared = 0;
+  std::vector<double> stored;
+};
+/// Writes `vars` in order, each in its own zlib-compressed element when `compressed` (as MATLAB
+/// -v7 does). Independent of matio: the bytes are the MAT v5 format's, little-endian.
+void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& vars,
+                 bool compressed);
+
 }  // namespace sysid::test
 
 #endif  // SYSID_TESTS_IO_CONTAINER_FIXTURES_HPP_

@@ -149,8 +149,10 @@ TEST_CASE("a dSPACE ControlDesk export is read by naming its signals", "[io][mat
   for (size_t i = 0; i < t.size(); ++i) t[i] = 0.01 * static_cast<double>(i);
   const auto volts = Ramp(30, 3), pos = Ramp(30, 2e-3);
   // Uncompressed v5 and v7.3. matio 1.5.23 does not read back the compressed nested struct
-  // arrays it writes in this layout ("fields[1], Uncompressed type not MAT_T_MATRIX"): that file
-  // is refused as malformed (checked below), never misread.
+  // arrays it writes in this layout ("fields[1], Uncompressed type not MAT_T_MATRIX": it sizes
+  // Y.Name's element for 2-byte characters and writes UTF-8, so Y.Type starts inside it): that
+  // file is refused as malformed (checked below), never misread. The layout check
+  // (mat_layout.cpp) finds it before matio does.
   for (const auto version : {MatVersion::kV5, MatVersion::kV73}) {
     const std::string p = dir / "capture.mat";
     WriteControlDesk(p, version, "capture_001", t, {"Model Root/u_out", "Model Root/encoder"},
@@ -174,7 +176,8 @@ TEST_CASE("a dSPACE ControlDesk export is read by naming its signals", "[io][mat
   WriteControlDesk(dir / "z.mat", MatVersion::kV5Compressed, "capture_001", t,
                    {"Model Root/u_out"}, {volts});
   CHECK_THAT(Message([&] { ReadRecording(dir / "z.mat", Map({{"u", "Model Root/u_out"}})); }),
-             Catch::StartsWith(dir / "z.mat: malformed or truncated MAT file (matio: "));
+             Catch::StartsWith(dir / "z.mat:capture_001.Y.Type: malformed or truncated MAT file: "
+                                     "an element of MAT data type 4, expected a matrix"));
 }
 
 TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing ones listed",
@@ -280,6 +283,48 @@ TEST_CASE("truncated files, wrong magic and huge declared sizes are refused", "[
              }),
              Catch::Contains("huge.h5:/u: declares double 4000000000x1") &&
                  Catch::Contains("more than the 20000000"));
+}
+
+TEST_CASE("MAT v5: data holding another number of values than the dims declare are refused",
+          "[io][mat][robustness]") {
+  // libmatio 1.5.23 sizes a variable's buffer from its dims and reads what the data element
+  // holds without comparing the two: x declaring 1x8 and storing 3 values came back with 5
+  // values of uninitialised memory (valgrind), or the next variable's bytes, and exit 0.
+  TempDir dir;
+  std::vector<double> t(8), u(8, 1.0), x(8);
+  for (size_t i = 0; i < t.size(); ++i) {
+    t[i] = 0.001 * static_cast<double>(i);
+    x[i] = 1e-6 * static_cast<double>(i);
+  }
+  const std::vector<double> x3(x.begin(), x.begin() + 3);
+  for (const bool compressed : {false, true}) {
+    INFO("compressed: " << compressed);
+    const std::string p = dir / "short_x.mat";
+    // The reference: the same bytes with every value stored read back bit for bit.
+    WriteRawMat(p, {{"t", 8, t}, {"u", 8, u}, {"x", 8, x}}, compressed);
+    const Recording r = ReadRecording(p);
+    CheckColumn(r, "t", t);
+    CheckColumn(r, "u", u);
+    CheckColumn(r, "x", x);
+    // x stores 3 of its 8 values: refused by name, whichever variable is asked for (the file is
+    // corrupt), and by `sysid info` (ListVariables) too.
+    WriteRawMat(p, {{"t", 8, t}, {"u", 8, u}, {"x", 8, x3}}, compressed);
+    const std::string want =
+        p + ":x: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3";
+    CHECK(Message([&] { ReadRecording(p); }) == want);
+    CHECK(Message([&] { ListVariables(p); }) == want);
+    CHECK(Message([&] { ReadSignal(p, "t"); }) == want);
+    // First in the file: matio would have taken the next variable's bytes as x's values.
+    WriteRawMat(p, {{"x", 8, x3}, {"t", 8, t}, {"u", 8, u}}, compressed);
+    CHECK(Message([&] { ReadRecording(p); }) == want);
+    WriteRawMat(p, {{"u", 5000, x3}}, compressed);
+    CHECK(Message([&] { ListVariables(p); }) ==
+          p + ":u: malformed or truncated MAT file: declares 1x5000 (5000 elements), holds 3");
+    // More values than declared is as corrupt.
+    WriteRawMat(p, {{"u", 2, x3}}, compressed);
+    CHECK(Message([&] { ListVariables(p); }) ==
+          p + ":u: malformed or truncated MAT file: declares 1x2 (2 elements), holds 3");
+  }
 }
 
 TEST_CASE("the mapping renames CSV columns, scales them and adds t from a rate", "[io][csv]") {

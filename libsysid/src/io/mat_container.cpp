@@ -154,6 +154,8 @@ class MatContainer : public SignalContainer {
  public:
   explicit MatContainer(const std::string& path) : path_(path) {
     InitMatio();
+    // Before matio: it trusts the declared dims over the stored data (mat_layout.cpp).
+    CheckMatLayout(path);
     mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     if (!mat_)
       throw InputError(path + ": not a readable MAT file (bad header, or truncated)" +
