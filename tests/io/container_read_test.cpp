@@ -327,6 +327,47 @@ TEST_CASE("MAT v5: data holding another number of values than the dims declare a
   }
 }
 
+TEST_CASE("a MAT file whose variables matio cannot all list is refused, a file of none is not",
+          "[io][mat][robustness]") {
+  TempDir dir;
+  const auto slurp = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  // A valid v5 header, then 200 bytes of 0xFF: matio stopped there silently and the file was a
+  // MAT file of 0 variables, exit 0.
+  WriteRawMat(dir / "garbage.mat", {}, false);
+  std::ofstream(dir / "garbage.mat", std::ios::binary | std::ios::app) << std::string(200, '\xff');
+  CHECK(Message([&] { ListVariables(dir / "garbage.mat"); }) ==
+        dir / "garbage.mat: malformed or truncated MAT file: at byte 128: an element of MAT data "
+              "type 4294967295 where a variable belongs (garbage, or a damaged file)");
+  // A few bytes after the last variable: a cut tag.
+  WriteRawMat(dir / "tail.mat", {{"u", 2, {1, 2}}}, true);
+  std::ofstream(dir / "tail.mat", std::ios::binary | std::ios::app) << std::string(3, '\0');
+  CHECK_THAT(Message([&] { ListVariables(dir / "tail.mat"); }),
+             Catch::EndsWith("3 stray bytes where a variable's tag belongs"));
+  // MAT v7.3 cut anywhere (the HDF5 part begins at byte 512): matio opened it and listed no
+  // variables, exit 0. HDF5 refuses it (its superblock records the file's end).
+  const std::vector<double> v = Ramp(16, 1);
+  WriteMat(dir / "whole73.mat", MatVersion::kV73, {{"t", 16, 1, v}, {"u", 1, 16, v}});
+  const std::string bytes = slurp(dir / "whole73.mat");
+  for (size_t n = 128; n < bytes.size(); n += 97) {
+    INFO("cut to " << n << " of " << bytes.size() << " bytes");
+    std::ofstream(dir / "cut73.mat", std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
+    CHECK(Message([&] { ListVariables(dir / "cut73.mat"); }) ==
+          dir / "cut73.mat: malformed or truncated MAT file: a MAT v7.3 file that HDF5 cannot "
+                "open (truncated, or no HDF5 data after the 512-byte MAT header)");
+  }
+  CHECK(ListVariables(dir / "whole73.mat").size() == 2);
+  // Files that really hold no variables stay legal, v5 (the 128-byte header alone) and v7.3.
+  WriteRawMat(dir / "none.mat", {}, false);
+  CHECK(ListVariables(dir / "none.mat").empty());
+  WriteMat(dir / "none73.mat", MatVersion::kV73, {});
+  CHECK(ListVariables(dir / "none73.mat").empty());
+  CHECK_THAT(Message([&] { ReadRecording(dir / "none73.mat"); }),
+             Catch::EndsWith("none73.mat: holds no variables (an empty or truncated file)"));
+}
+
 TEST_CASE("the mapping renames CSV columns, scales them and adds t from a rate", "[io][csv]") {
   const std::string csv = "# unit: test\nvolts,um\n1,10\n2,20\n3,30\n";
   ReadOptions o = Map({{"u", "volts"}, {"x", "um"}}, 4);

@@ -1,4 +1,5 @@
-// CheckMatLayout: a MAT v5 file walked element by element before libmatio reads it.
+// CheckMatLayout: a MAT v5 file walked element by element before libmatio reads it; a MAT v7.3
+// file opened by HDF5 first.
 //
 // Why: libmatio 1.5.23 sizes a variable's buffer from the dims the file declares and then reads
 // whatever the data element holds, without comparing the two. A variable declaring 1x8 doubles
@@ -9,12 +10,14 @@
 // stored element count must equal the product of its dims. Zero-filling matio's buffer would
 // hide the corruption, not fix it.
 #include <fmt/format.h>
+#include <hdf5.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -186,7 +189,7 @@ class LayoutChecker {
   }
 
   // "a.mat:x: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3"; before a
-  // variable's name is read, "a.mat: malformed ...: the variable at byte 128: ..." (prefix_).
+  // variable's name is read, "a.mat: malformed ...: at byte 128: ..." (prefix_).
   [[noreturn]] void Fail(const std::string& where, const std::string& detail) const {
     throw InputError(where + ": malformed or truncated MAT file: " + prefix_ + detail);
   }
@@ -406,36 +409,90 @@ struct FileCloser {
 
 }  // namespace
 
-void CheckMatLayout(const std::string& path) {
+namespace {
+
+// Root links matio 1.5.23 lists as variables (Mat_VarReadNextInfoIterate): datasets and groups,
+// except its own "#refs#" and "#subsystem#". External links are not followed (nor counted).
+herr_t CountMat73Variable(hid_t group, const char* name, const H5L_info_t* info, void* data) {
+  if (info->type != H5L_TYPE_HARD && info->type != H5L_TYPE_SOFT) return 0;
+  if (std::string(name) == "#refs#" || std::string(name) == "#subsystem#") return 0;
+  H5O_info_t object;
+  if (H5Oget_info_by_name(group, name, &object, H5P_DEFAULT) < 0) return -1;
+  if (object.type == H5O_TYPE_DATASET || object.type == H5O_TYPE_GROUP)
+    ++*static_cast<std::size_t*>(data);
+  return 0;
+}
+
+// A MAT v7.3 file is HDF5 behind a 512-byte MAT header. matio opens it without complaint even
+// when HDF5 cannot (a truncated file: HDF5 checks the superblock's end-of-file address against
+// the file's size) and then lists no variables, exit 0: so HDF5 opens it here first, and lists
+// the root's variables as matio would, for the caller to compare with what matio listed.
+std::size_t CheckMat73(const std::string& path) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0)
+    throw InputError(path +
+                     ": malformed or truncated MAT file: a MAT v7.3 file that HDF5 "
+                     "cannot open (truncated, or no HDF5 data after the 512-byte MAT "
+                     "header)");
+  std::size_t count = 0;
+  hsize_t index = 0;
+  const herr_t listed =
+      H5Literate(file, H5_INDEX_NAME, H5_ITER_INC, &index, &CountMat73Variable, &count);
+  H5Fclose(file);
+  if (listed < 0)
+    throw InputError(path +
+                     ": malformed or truncated MAT file: HDF5 cannot list the MAT v7.3 "
+                     "file's variables");
+  return count;
+}
+
+}  // namespace
+
+std::optional<std::size_t> CheckMatLayout(const std::string& path) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) return;  // matio reports why it cannot open it
+  if (!file) return std::nullopt;  // matio reports why it cannot open it
   std::FILE* f = file.get();
   unsigned char header[128];
-  if (std::fread(header, 1, sizeof header, f) != sizeof header) return;  // not v5: matio decides
+  if (std::fread(header, 1, sizeof header, f) != sizeof header) return std::nullopt;  // v4
   const bool little = header[126] == 'I' && header[127] == 'M';
-  if (!little && !(header[126] == 'M' && header[127] == 'I')) return;  // MAT v4
+  if (!little && !(header[126] == 'M' && header[127] == 'I')) return std::nullopt;  // MAT v4
   const unsigned version =
       little ? header[124] | (header[125] << 8u) : header[125] | (header[124] << 8u);
-  if (version != 0x0100) return;  // v7.3 (HDF5) or unknown: matio decides
-  if (fseeko(f, 0, SEEK_END) != 0) return;
+  if (version == 0x0200) {
+    file.reset();
+    return CheckMat73(path);
+  }
+  if (version != 0x0100) return std::nullopt;  // unknown: matio decides
+  if (fseeko(f, 0, SEEK_END) != 0) return std::nullopt;
   const std::uint64_t size = static_cast<std::uint64_t>(ftello(f));
   LayoutChecker check(path, little);
+  std::size_t variables = 0;
   std::uint64_t pos = 128;
-  while (pos + 8 <= size) {
+  while (pos < size) {
+    check.SetPrefix(fmt::format("at byte {}: ", pos));
     unsigned char tag[8];
-    if (fseeko(f, static_cast<off_t>(pos), SEEK_SET) != 0 || std::fread(tag, 1, 8, f) != 8) return;
+    // A cut file, or bytes after the last variable: matio stops there (with a warning when it
+    // notices), so the variables it lists would not be all the file was meant to hold.
+    if (size - pos < 8)
+      check.Fail(path, fmt::format("{} stray bytes where a variable's tag belongs", size - pos));
+    if (fseeko(f, static_cast<off_t>(pos), SEEK_SET) != 0 || std::fread(tag, 1, 8, f) != 8)
+      check.Fail(path, "cannot read the file");
     const std::uint32_t type = check.U32(tag);
     const std::uint64_t bytes = check.U32(tag + 4);
-    check.SetPrefix(fmt::format("the variable at byte {}: ", pos));
-    if (bytes > size - pos - 8) {
-      if (type != kMiMatrix && type != kMiCompressed) return;  // left to matio (not a variable)
-      check.Fail(path,
-                 fmt::format("declares {} bytes, the file has {} left", bytes, size - pos - 8));
-    }
+    // Only matrices (plain or compressed) belong at the top level of a MAT v5 file; matio stops
+    // at anything else, silently for some (200 bytes of 0xFF after a valid header were listed
+    // as a file of 0 variables, exit 0).
+    if (type != kMiMatrix && type != kMiCompressed)
+      check.Fail(path, fmt::format("an element of MAT data type {} where a variable belongs "
+                                   "(garbage, or a damaged file)",
+                                   type));
+    if (bytes > size - pos - 8)
+      check.Fail(
+          path, fmt::format("a variable of {} bytes, the file has {} left", bytes, size - pos - 8));
     if (type == kMiMatrix) {
       FileSpan span(f);
       check.Matrix(span, bytes, path, true, 0);
-    } else if (type == kMiCompressed) {
+    } else {
       InflatedSpan span(f, bytes);
       try {
         unsigned char inner[8];
@@ -450,8 +507,10 @@ void CheckMatLayout(const std::string& path) {
         // Past what the reader would read; see kMaxInflated.
       }
     }
+    ++variables;  // an empty miMATRIX too: matio lists it (without a name)
     pos += 8 + bytes;
   }
+  return variables;
 }
 
 }  // namespace sysid::internal
