@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace sysid::test {
@@ -161,6 +162,30 @@ void WriteH5(const std::string& path, const std::vector<H5Array>& arrays) {
     H5Sclose(space);
   }
   H5Fclose(file);
+}
+
+void WriteH5PatchedDims(const std::string& path, const std::vector<H5Array>& arrays,
+                        std::uint64_t rows, std::uint64_t from_cols, std::uint64_t to_cols) {
+  WriteH5(path, arrays);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // The version-1 dataspace message (HDF5's default file format) stores the dims and then the
+  // maximum dims as 8-byte little-endian integers.
+  const auto le64 = [](std::uint64_t v) {
+    std::string b(8, '\0');
+    for (int i = 0; i < 8; ++i)
+      b[static_cast<size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
+    return b;
+  };
+  const std::string pattern = le64(rows) + le64(from_cols) + le64(rows) + le64(from_cols);
+  const size_t at = bytes.find(pattern);
+  if (at == std::string::npos || bytes.find(pattern, at + 1) != std::string::npos)
+    throw std::runtime_error("fixture: the dataspace's bytes do not occur exactly once");
+  bytes.replace(at, pattern.size(), le64(rows) + le64(to_cols) + le64(rows) + le64(to_cols));
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
 void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows) {

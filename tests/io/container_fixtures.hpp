@@ -38,6 +38,12 @@ struct H5Array {
 void WriteH5(const std::string& path, const std::vector<H5Array>& arrays);
 /// A dataset declaring `rows` x 1 doubles (chunked, nothing written: no storage allocated).
 void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows);
+/// `arrays` written by WriteH5, then the dataspace of the one 2-D dataset of dims
+/// {rows, from_cols} patched in the file's bytes to declare rows x `to_cols` (dims and maximum
+/// dims): its contiguous storage still holds rows x from_cols values. Throws unless the
+/// dataspace's bytes occur exactly once.
+void WriteH5PatchedDims(const std::string& path, const std::vector<H5Array>& arrays,
+                        std::uint64_t rows, std::uint64_t from_cols, std::uint64_t to_cols);
 /// An integer (int32) dataset and a compound (complex-like) dataset.
 void WriteH5Odd(const std::string& path);
 

@@ -221,6 +221,32 @@ TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing o
   CHECK_THAT(Message([&] { ReadSignal(p, "/z"); }), Catch::Contains("train.h5:/z: is a compound"));
 }
 
+TEST_CASE("HDF5: a dataspace declaring more than the dataset's storage holds is refused",
+          "[io][hdf5][robustness]") {
+  // HDF5 1.10 reads a contiguous dataset at the offsets its dataspace gives: /rec/u patched from
+  // 16x1 to 16x17 over storage for 16 doubles read u[:,2] from the bytes after it, exit 0.
+  TempDir dir;
+  const std::string p = dir / "h_dimB_17.h5";
+  const auto u = Ramp(16, 1), x = Ramp(16, 1e-3), t = Ramp(16, 0.1, 1);
+  const std::vector<H5Array> arrays{{"/t", {16}, t}, {"/rec/u", {16, 1}, u}, {"/rec/x", {16}, x}};
+  // The reference: unpatched (16 -> 1), the values come back bit for bit.
+  WriteH5PatchedDims(p, arrays, 16, 1, 1);
+  CHECK(ReadSignal(p, "/rec/u") == Eigen::Map<const Eigen::VectorXd>(u.data(), 16));
+  WriteH5PatchedDims(p, arrays, 16, 1, 17);
+  const std::string detail =
+      ": malformed HDF5 dataset: its dataspace declares 272 elements (2176 bytes), its "
+      "contiguous storage holds 128 bytes";
+  CHECK(Message([&] {
+          ReadRecording(p, Map({{"u", "/rec/u[:,2]"}, {"x", "/rec/x"}}, 10));
+        }) == p + ":/rec/u[:,2]" + detail);
+  CHECK(Message([&] { ReadSignal(p, "/rec/u[:,1]"); }) == p + ":/rec/u[:,1]" + detail);
+  CHECK(Message([&] { ListVariables(p); }) == p + ":/rec/u" + detail);  // sysid info
+  // A dataset created and never written has no storage: HDF5 defines its values as the fill
+  // value (0), a legal file.
+  WriteH5(dir / "unwritten.h5", {{"/u", {3}, {}}});
+  CHECK(ReadSignal(dir / "unwritten.h5", "/u") == Eigen::Vector3d::Zero());
+}
+
 TEST_CASE("MAT: a non-finite value is named with its variable and 1-based index", "[io][mat]") {
   TempDir dir;
   auto u = Ramp(100, 1);
