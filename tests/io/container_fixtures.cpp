@@ -130,6 +130,24 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
   Mat_Close(mat);
 }
 
+void WriteRawMat4(const std::string& path, const std::string& name, std::int32_t rows,
+                  std::int32_t cols, const std::vector<double>& stored, std::int32_t name_length) {
+  std::string bytes;
+  const auto i32 = [&](std::int32_t v) {
+    for (int i = 0; i < 4; ++i)
+      bytes += static_cast<char>((static_cast<std::uint32_t>(v) >> (8 * i)) & 0xff);
+  };
+  i32(0);  // MOPT 0000: little-endian, double, full matrix
+  i32(rows);
+  i32(cols);
+  i32(0);  // real
+  i32(name_length != 0 ? name_length : static_cast<std::int32_t>(name.size() + 1));
+  bytes += name;
+  bytes += '\0';
+  for (const double d : stored) bytes.append(reinterpret_cast<const char*>(&d), 8);
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
 namespace {
 hid_t EnsureGroups(hid_t file, const std::string& path) {
   size_t pos = 1;

@@ -29,6 +29,13 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
                       const std::vector<double>& t, const std::vector<std::string>& signal_names,
                       const std::vector<std::vector<double>>& signals);
 
+/// A MAT v4 file of one double matrix, written byte by byte (little-endian, type 0): a header
+/// declaring `rows` x `cols` values and a name of `name_length` bytes (0: the name's length + 1
+/// for its NUL), then the name with its NUL and `stored` (fewer values for a corrupt file).
+void WriteRawMat4(const std::string& path, const std::string& name, std::int32_t rows,
+                  std::int32_t cols, const std::vector<double>& stored,
+                  std::int32_t name_length = 0);
+
 /// One HDF5 dataset: a path such as "/multisine/u" (groups created), dims, values (row-major).
 struct H5Array {
   std::string path;

@@ -221,6 +221,33 @@ TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing o
   CHECK_THAT(Message([&] { ReadSignal(p, "/z"); }), Catch::Contains("train.h5:/z: is a compound"));
 }
 
+TEST_CASE("MAT v4: a header declaring a name or data past the file's end is refused first",
+          "[io][mat][robustness]") {
+  // matio allocates what a v4 header declares before reading it: a 54-byte file declaring a
+  // 0x7fffffff-byte name made it allocate 2.1 GB, then fail on the short read.
+  TempDir dir;
+  const std::string p = dir / "v4.mat";
+  const std::vector<double> t{0, 0.001, 0.002, 0.003};
+  // The reference: a well-formed header reads back bit for bit.
+  WriteRawMat4(p, "t", 1, 4, t);
+  CHECK(ReadSignal(p, "t") == Eigen::Map<const Eigen::VectorXd>(t.data(), 4));
+  WriteRawMat4(p, "t", 1, 4, t, 0x7fffffff);  // 20 + 2 + 32 = 54 bytes
+  CHECK(Message([&] { ListVariables(p); }) ==
+        p + ": malformed or truncated MAT file: at byte 0: a MAT v4 variable with a "
+            "2147483647-byte name, the file has 34 bytes left");
+  WriteRawMat4(p, "t", 1, 2000000000, t);
+  CHECK(Message([&] { ListVariables(p); }) ==
+        p + ":t: malformed or truncated MAT file: declares 1x2000000000 (2000000000 elements, "
+            "16000000000 bytes), the file has 32 bytes left");
+  WriteRawMat4(p, "t", 1, 8, t);  // 4 of 8 values
+  CHECK(Message([&] { ReadSignal(p, "t"); }) ==
+        p + ":t: malformed or truncated MAT file: declares 1x8 (8 elements, 64 bytes), the file "
+            "has 32 bytes left");
+  WriteRawMat4(p, "t", -5, 4, t);
+  CHECK_THAT(Message([&] { ListVariables(p); }),
+             Catch::EndsWith("a MAT v4 header declaring -5 rows, 4 columns, a 2-byte name"));
+}
+
 TEST_CASE("HDF5: a dataspace declaring more than the dataset's storage holds is refused",
           "[io][hdf5][robustness]") {
   // HDF5 1.10 reads a contiguous dataset at the offsets its dataspace gives: /rec/u patched from

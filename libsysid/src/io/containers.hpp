@@ -56,7 +56,8 @@ std::unique_ptr<SignalContainer> OpenMatContainer(const std::string& path);
 /// InputError "path:VAR: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3"
 /// when a variable's data hold another number of values than its dims declare (matio would
 /// read past them), when an element's size runs past the file, or when something other than a
-/// variable sits where one belongs. A MAT v7.3 file must open in HDF5. Returns how many
+/// variable sits where one belongs. A MAT v7.3 file must open in HDF5; a MAT v4 header may not
+/// declare a name or data past the file's end (matio allocates them first). Returns how many
 /// variables matio must list (fewer means it stopped at an error); nullopt when unchecked.
 std::optional<std::size_t> CheckMatLayout(const std::string& path);
 std::unique_ptr<SignalContainer> OpenHdf5Container(const std::string& path);

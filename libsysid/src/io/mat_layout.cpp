@@ -1,5 +1,5 @@
 // CheckMatLayout: a MAT v5 file walked element by element before libmatio reads it; a MAT v7.3
-// file opened by HDF5 first.
+// file opened by HDF5 first; a MAT v4 file's headers compared with its size.
 //
 // Why: libmatio 1.5.23 sizes a variable's buffer from the dims the file declares and then reads
 // whatever the data element holds, without comparing the two. A variable declaring 1x8 doubles
@@ -446,25 +446,97 @@ std::size_t CheckMat73(const std::string& path) {
   return count;
 }
 
+// A MAT v4 file: matrices one after the other, each a 20-byte header (type MOPT, rows, columns,
+// imaginary flag, name length: int32s in the byte order the type's M digit names), the name,
+// then rows x columns values (twice with the imaginary flag). matio allocates the name length
+// and the data a header declares before reading them: a 54-byte file declaring a name of
+// 0x7fffffff bytes made it allocate 2.1 GB (refused only after that, by the short read). Every
+// header is compared with the bytes the file has left first.
+std::size_t CheckMat4(const std::string& path, std::FILE* f, std::uint64_t size) {
+  std::size_t variables = 0;
+  std::uint64_t pos = 0;
+  const auto fail = [&](const std::string& where, const std::string& detail) {
+    throw InputError(where + ": malformed or truncated MAT file: " + detail);
+  };
+  while (pos < size) {
+    const std::string at = fmt::format("at byte {}: ", pos);
+    unsigned char h[20];
+    if (size - pos < 20)
+      fail(path,
+           at + fmt::format("{} stray bytes where a MAT v4 header (20 bytes) belongs", size - pos));
+    if (fseeko(f, static_cast<off_t>(pos), SEEK_SET) != 0 || std::fread(h, 1, 20, f) != 20)
+      fail(path, at + "cannot read the file");
+    const auto word = [&](int i, bool little) {
+      const unsigned char* b = h + 4 * i;
+      return static_cast<std::int32_t>(
+          little ? (std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 |
+                    std::uint32_t{b[3]} << 24)
+                 : (std::uint32_t{b[3]} | std::uint32_t{b[2]} << 8 | std::uint32_t{b[1]} << 16 |
+                    std::uint32_t{b[0]} << 24));
+    };
+    // The byte order: the one in which the type is a valid MOPT (at most 4052), as matio tries.
+    bool little = true;
+    if (word(0, true) < 0 || word(0, true) > 4052) little = false;
+    const std::int32_t type = word(0, little);
+    if (type < 0 || type > 4052)
+      fail(path, at + "not a MAT v4 header (its type is no MOPT code in either byte order)");
+    static constexpr int kSize[] = {8, 4, 4, 2, 2, 1};  // P: double, single, int32, int16, ...
+    const int p = (type / 10) % 10;
+    if ((type / 100) % 10 != 0 || p > 5 || type % 10 > 2)
+      fail(path, at + fmt::format("MAT v4 type {} is not a known MOPT code", type));
+    const std::int32_t rows = word(1, little), cols = word(2, little), imag = word(3, little),
+                       namelen = word(4, little);
+    if (rows < 0 || cols < 0 || namelen < 0)
+      fail(path, at + fmt::format("a MAT v4 header declaring {} rows, {} columns, a {}-byte name",
+                                  rows, cols, namelen));
+    std::uint64_t left = size - pos - 20;
+    if (static_cast<std::uint64_t>(namelen) > left)
+      fail(path, at + fmt::format("a MAT v4 variable with a {}-byte name, the file has {} bytes "
+                                  "left",
+                                  namelen, left));
+    std::string name(static_cast<std::size_t>(std::min(namelen, 256)), '\0');
+    if (!name.empty() && std::fread(name.data(), 1, name.size(), f) != name.size())
+      fail(path, at + "cannot read the file");
+    name = name.substr(0, name.find('\0'));
+    left -= static_cast<std::uint64_t>(namelen);
+    // In double: rows x cols x 8 x 2 may pass 2^64; the comparison only needs to be exact
+    // below the file's size.
+    const double declared = static_cast<double>(rows) * static_cast<double>(cols);
+    const double bytes = declared * kSize[p] * (imag != 0 ? 2 : 1);
+    if (bytes > static_cast<double>(left))
+      fail(path + ":" + name,
+           fmt::format("declares {}x{} ({:.0f} elements, {:.0f} bytes), the file has {} bytes "
+                       "left",
+                       rows, cols, declared, bytes, left));
+    ++variables;
+    pos = size - left + static_cast<std::uint64_t>(bytes);
+  }
+  return variables;
+}
+
 }  // namespace
 
 std::optional<std::size_t> CheckMatLayout(const std::string& path) {
   std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
   if (!file) return std::nullopt;  // matio reports why it cannot open it
   std::FILE* f = file.get();
+  if (fseeko(f, 0, SEEK_END) != 0) return std::nullopt;
+  const std::uint64_t size = static_cast<std::uint64_t>(ftello(f));
   unsigned char header[128];
-  if (std::fread(header, 1, sizeof header, f) != sizeof header) return std::nullopt;  // v4
-  const bool little = header[126] == 'I' && header[127] == 'M';
-  if (!little && !(header[126] == 'M' && header[127] == 'I')) return std::nullopt;  // MAT v4
-  const unsigned version =
-      little ? header[124] | (header[125] << 8u) : header[125] | (header[124] << 8u);
+  const bool magic =
+      size >= 128 && fseeko(f, 0, SEEK_SET) == 0 &&
+      std::fread(header, 1, sizeof header, f) == sizeof header &&
+      ((header[126] == 'I' && header[127] == 'M') || (header[126] == 'M' && header[127] == 'I'));
+  const bool little = magic && header[126] == 'I';
+  const unsigned version = !magic   ? 0
+                           : little ? header[124] | (header[125] << 8u)
+                                    : header[125] | (header[124] << 8u);
   if (version == 0x0200) {
     file.reset();
     return CheckMat73(path);
   }
-  if (version != 0x0100) return std::nullopt;  // unknown: matio decides
-  if (fseeko(f, 0, SEEK_END) != 0) return std::nullopt;
-  const std::uint64_t size = static_cast<std::uint64_t>(ftello(f));
+  // Neither v5 nor v7.3: matio tries MAT v4, which has no magic.
+  if (version != 0x0100) return CheckMat4(path, f, size);
   LayoutChecker check(path, little);
   std::size_t variables = 0;
   std::uint64_t pos = 128;
