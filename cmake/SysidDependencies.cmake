@@ -14,6 +14,8 @@ find_package(nanoflann 1.3 REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(SYSID_MATIO REQUIRED IMPORTED_TARGET GLOBAL matio)
 pkg_check_modules(SYSID_HDF5 REQUIRED IMPORTED_TARGET GLOBAL hdf5-serial)
+# zlib (zlib1g-dev): the MAT v5 layout check inflates compressed variables itself.
+find_package(ZLIB REQUIRED)
 # Boost.Math headers (libboost-dev): the signal tests cross-check Savitzky-Golay against
 # boost::math::differentiation::discrete_lanczos_derivative. Tests only: not a library dependency.
 if(SYSID_BUILD_TESTS)

@@ -2,10 +2,12 @@
 
 #include <hdf5.h>
 #include <matio.h>
+#include <zlib.h>
 
 #include <complex>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace sysid::test {
@@ -128,6 +130,24 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
   Mat_Close(mat);
 }
 
+void WriteRawMat4(const std::string& path, const std::string& name, std::int32_t rows,
+                  std::int32_t cols, const std::vector<double>& stored, std::int32_t name_length) {
+  std::string bytes;
+  const auto i32 = [&](std::int32_t v) {
+    for (int i = 0; i < 4; ++i)
+      bytes += static_cast<char>((static_cast<std::uint32_t>(v) >> (8 * i)) & 0xff);
+  };
+  i32(0);  // MOPT 0000: little-endian, double, full matrix
+  i32(rows);
+  i32(cols);
+  i32(0);  // real
+  i32(name_length != 0 ? name_length : static_cast<std::int32_t>(name.size() + 1));
+  bytes += name;
+  bytes += '\0';
+  for (const double d : stored) bytes.append(reinterpret_cast<const char*>(&d), 8);
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
 namespace {
 hid_t EnsureGroups(hid_t file, const std::string& path) {
   size_t pos = 1;
@@ -160,6 +180,30 @@ void WriteH5(const std::string& path, const std::vector<H5Array>& arrays) {
     H5Sclose(space);
   }
   H5Fclose(file);
+}
+
+void WriteH5PatchedDims(const std::string& path, const std::vector<H5Array>& arrays,
+                        std::uint64_t rows, std::uint64_t from_cols, std::uint64_t to_cols) {
+  WriteH5(path, arrays);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // The version-1 dataspace message (HDF5's default file format) stores the dims and then the
+  // maximum dims as 8-byte little-endian integers.
+  const auto le64 = [](std::uint64_t v) {
+    std::string b(8, '\0');
+    for (int i = 0; i < 8; ++i)
+      b[static_cast<size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
+    return b;
+  };
+  const std::string pattern = le64(rows) + le64(from_cols) + le64(rows) + le64(from_cols);
+  const size_t at = bytes.find(pattern);
+  if (at == std::string::npos || bytes.find(pattern, at + 1) != std::string::npos)
+    throw std::runtime_error("fixture: the dataspace's bytes do not occur exactly once");
+  bytes.replace(at, pattern.size(), le64(rows) + le64(to_cols) + le64(rows) + le64(to_cols));
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
 void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows) {
@@ -199,33 +243,59 @@ void WriteH5Odd(const std::string& path) {
 }
 
 void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols) {
+  WriteRawMat(path, {{"u", cols, {1.0}}}, false);
+}
+
+namespace {
+void Append32(std::string& bytes, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) bytes += static_cast<char>((v >> (8 * i)) & 0xff);
+}
+}  // namespace
+
+void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& vars,
+                 bool compressed) {
   std::string header(116, ' ');
-  const char text[] = "MATLAB 5.0 MAT-file, written by a test with a hostile header";
+  const char text[] = "MATLAB 5.0 MAT-file, written byte by byte by a test";
   std::memcpy(header.data(), text, sizeof text - 1);
   std::string bytes = header;
   bytes.append(8, '\0');                // subsystem offset
   bytes += std::string("\x00\x01", 2);  // version 0x0100, little-endian
   bytes += "IM";
-  auto u32 = [&](std::uint32_t v) { bytes.append(reinterpret_cast<const char*>(&v), 4); };
-  auto i32 = [&](std::int32_t v) { bytes.append(reinterpret_cast<const char*>(&v), 4); };
-  // miMATRIX: flags (16) + dims (16) + name (8, small element) + real part (8 + 8).
-  u32(14);
-  u32(16 + 16 + 8 + 16);
-  u32(6);  // miUINT32
-  u32(8);
-  u32(6);  // class mxDOUBLE_CLASS
-  u32(0);
-  u32(5);  // miINT32 dims
-  u32(8);
-  i32(1);
-  i32(static_cast<std::int32_t>(cols));
-  u32((1u << 16) | 1u);  // small data element: miINT8, 1 byte: the name "u"
-  bytes += "u";
-  bytes.append(3, '\0');
-  u32(9);  // miDOUBLE
-  u32(8);
-  const double one = 1.0;
-  bytes.append(reinterpret_cast<const char*>(&one), 8);
+  for (const auto& v : vars) {
+    // miMATRIX: array flags (8 + 8), dims (8 + 8), name (8 + padded), real part (8 + 8 n).
+    std::string name = v.name;
+    name.resize((name.size() + 7) / 8 * 8, '\0');
+    const std::uint32_t data_bytes = static_cast<std::uint32_t>(8 * v.stored.size());
+    std::string m;
+    Append32(m, 14);  // miMATRIX
+    Append32(m, static_cast<std::uint32_t>(16 + 16 + 8 + name.size() + 8 + data_bytes));
+    Append32(m, 6);  // miUINT32 array flags
+    Append32(m, 8);
+    Append32(m, 6);  // mxDOUBLE_CLASS
+    Append32(m, 0);
+    Append32(m, 5);  // miINT32 dims: 1 x declared
+    Append32(m, 8);
+    Append32(m, 1);
+    Append32(m, v.declared);
+    Append32(m, 1);  // miINT8 name
+    Append32(m, static_cast<std::uint32_t>(v.name.size()));
+    m += name;
+    Append32(m, 9);  // miDOUBLE
+    Append32(m, data_bytes);
+    for (const double d : v.stored) m.append(reinterpret_cast<const char*>(&d), 8);
+    if (!compressed) {
+      bytes += m;
+      continue;
+    }
+    uLongf size = compressBound(static_cast<uLong>(m.size()));
+    std::string z(size, '\0');
+    if (compress(reinterpret_cast<Bytef*>(z.data()), &size,
+                 reinterpret_cast<const Bytef*>(m.data()), static_cast<uLong>(m.size())) != Z_OK)
+      throw std::runtime_error("fixture: zlib compress failed");
+    Append32(bytes, 15);  // miCOMPRESSED
+    Append32(bytes, static_cast<std::uint32_t>(size));
+    bytes.append(z.data(), size);
+  }
   std::ofstream(path, std::ios::binary) << bytes;
 }
 

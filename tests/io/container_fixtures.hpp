@@ -29,6 +29,13 @@ void WriteControlDesk(const std::string& path, MatVersion version, const std::st
                       const std::vector<double>& t, const std::vector<std::string>& signal_names,
                       const std::vector<std::vector<double>>& signals);
 
+/// A MAT v4 file of one double matrix, written byte by byte (little-endian, type 0): a header
+/// declaring `rows` x `cols` values and a name of `name_length` bytes (0: the name's length + 1
+/// for its NUL), then the name with its NUL and `stored` (fewer values for a corrupt file).
+void WriteRawMat4(const std::string& path, const std::string& name, std::int32_t rows,
+                  std::int32_t cols, const std::vector<double>& stored,
+                  std::int32_t name_length = 0);
+
 /// One HDF5 dataset: a path such as "/multisine/u" (groups created), dims, values (row-major).
 struct H5Array {
   std::string path;
@@ -38,12 +45,32 @@ struct H5Array {
 void WriteH5(const std::string& path, const std::vector<H5Array>& arrays);
 /// A dataset declaring `rows` x 1 doubles (chunked, nothing written: no storage allocated).
 void WriteH5Huge(const std::string& path, const std::string& dataset, std::uint64_t rows);
+/// `arrays` written by WriteH5, then the dataspace of the one 2-D dataset of dims
+/// {rows, from_cols} patched in the file's bytes to declare rows x `to_cols` (dims and maximum
+/// dims): its contiguous storage still holds rows x from_cols values. Throws unless the
+/// dataspace's bytes occur exactly once.
+void WriteH5PatchedDims(const std::string& path, const std::vector<H5Array>& arrays,
+                        std::uint64_t rows, std::uint64_t from_cols, std::uint64_t to_cols);
 /// An integer (int32) dataset and a compound (complex-like) dataset.
 void WriteH5Odd(const std::string& path);
 
 /// A MAT v5 file, written byte by byte, whose double variable `u` declares 1 x `cols` elements
 /// but holds one value (a hostile header: the reader must refuse it before allocating).
 void WriteMatHugeDeclaration(const std::string& path, std::uint32_t cols);
+
+/// One double row vector of a MAT v5 file written byte by byte (WriteRawMat): it declares
+/// 1 x `declared` elements and its data element stores `stored` (fewer or more for a corrupt
+/// file; the data element's byte count is 8 x stored.size(), as a writer that lost values would
+/// leave it).
+struct RawMatVariable {
+  std::string name;
+  std::uint32_t declared = 0;
+  std::vector<double> stored;
+};
+/// Writes `vars` in order, each in its own zlib-compressed element when `compressed` (as MATLAB
+/// -v7 does). Independent of matio: the bytes are the MAT v5 format's, little-endian.
+void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& vars,
+                 bool compressed);
 
 }  // namespace sysid::test
 

@@ -149,8 +149,10 @@ TEST_CASE("a dSPACE ControlDesk export is read by naming its signals", "[io][mat
   for (size_t i = 0; i < t.size(); ++i) t[i] = 0.01 * static_cast<double>(i);
   const auto volts = Ramp(30, 3), pos = Ramp(30, 2e-3);
   // Uncompressed v5 and v7.3. matio 1.5.23 does not read back the compressed nested struct
-  // arrays it writes in this layout ("fields[1], Uncompressed type not MAT_T_MATRIX"): that file
-  // is refused as malformed (checked below), never misread.
+  // arrays it writes in this layout ("fields[1], Uncompressed type not MAT_T_MATRIX": it sizes
+  // Y.Name's element for 2-byte characters and writes UTF-8, so Y.Type starts inside it): that
+  // file is refused as malformed (checked below), never misread. The layout check
+  // (mat_layout.cpp) finds it before matio does.
   for (const auto version : {MatVersion::kV5, MatVersion::kV73}) {
     const std::string p = dir / "capture.mat";
     WriteControlDesk(p, version, "capture_001", t, {"Model Root/u_out", "Model Root/encoder"},
@@ -174,7 +176,8 @@ TEST_CASE("a dSPACE ControlDesk export is read by naming its signals", "[io][mat
   WriteControlDesk(dir / "z.mat", MatVersion::kV5Compressed, "capture_001", t,
                    {"Model Root/u_out"}, {volts});
   CHECK_THAT(Message([&] { ReadRecording(dir / "z.mat", Map({{"u", "Model Root/u_out"}})); }),
-             Catch::StartsWith(dir / "z.mat: malformed or truncated MAT file (matio: "));
+             Catch::StartsWith(dir / "z.mat:capture_001.Y.Type: malformed or truncated MAT file: "
+                                     "an element of MAT data type 4, expected a matrix"));
 }
 
 TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing ones listed",
@@ -216,6 +219,59 @@ TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing o
   WriteH5Odd(p);
   CHECK(ReadSignal(p, "counts") == Eigen::Vector3d(4, -5, 6));
   CHECK_THAT(Message([&] { ReadSignal(p, "/z"); }), Catch::Contains("train.h5:/z: is a compound"));
+}
+
+TEST_CASE("MAT v4: a header declaring a name or data past the file's end is refused first",
+          "[io][mat][robustness]") {
+  // matio allocates what a v4 header declares before reading it: a 54-byte file declaring a
+  // 0x7fffffff-byte name made it allocate 2.1 GB, then fail on the short read.
+  TempDir dir;
+  const std::string p = dir / "v4.mat";
+  const std::vector<double> t{0, 0.001, 0.002, 0.003};
+  // The reference: a well-formed header reads back bit for bit.
+  WriteRawMat4(p, "t", 1, 4, t);
+  CHECK(ReadSignal(p, "t") == Eigen::Map<const Eigen::VectorXd>(t.data(), 4));
+  WriteRawMat4(p, "t", 1, 4, t, 0x7fffffff);  // 20 + 2 + 32 = 54 bytes
+  CHECK(Message([&] { ListVariables(p); }) ==
+        p + ": malformed or truncated MAT file: at byte 0: a MAT v4 variable with a "
+            "2147483647-byte name, the file has 34 bytes left");
+  WriteRawMat4(p, "t", 1, 2000000000, t);
+  CHECK(Message([&] { ListVariables(p); }) ==
+        p + ":t: malformed or truncated MAT file: declares 1x2000000000 (2000000000 elements, "
+            "16000000000 bytes), the file has 32 bytes left");
+  WriteRawMat4(p, "t", 1, 8, t);  // 4 of 8 values
+  CHECK(Message([&] { ReadSignal(p, "t"); }) ==
+        p + ":t: malformed or truncated MAT file: declares 1x8 (8 elements, 64 bytes), the file "
+            "has 32 bytes left");
+  WriteRawMat4(p, "t", -5, 4, t);
+  CHECK_THAT(Message([&] { ListVariables(p); }),
+             Catch::EndsWith("a MAT v4 header declaring -5 rows, 4 columns, a 2-byte name"));
+}
+
+TEST_CASE("HDF5: a dataspace declaring more than the dataset's storage holds is refused",
+          "[io][hdf5][robustness]") {
+  // HDF5 1.10 reads a contiguous dataset at the offsets its dataspace gives: /rec/u patched from
+  // 16x1 to 16x17 over storage for 16 doubles read u[:,2] from the bytes after it, exit 0.
+  TempDir dir;
+  const std::string p = dir / "h_dimB_17.h5";
+  const auto u = Ramp(16, 1), x = Ramp(16, 1e-3), t = Ramp(16, 0.1, 1);
+  const std::vector<H5Array> arrays{{"/t", {16}, t}, {"/rec/u", {16, 1}, u}, {"/rec/x", {16}, x}};
+  // The reference: unpatched (16 -> 1), the values come back bit for bit.
+  WriteH5PatchedDims(p, arrays, 16, 1, 1);
+  CHECK(ReadSignal(p, "/rec/u") == Eigen::Map<const Eigen::VectorXd>(u.data(), 16));
+  WriteH5PatchedDims(p, arrays, 16, 1, 17);
+  const std::string detail =
+      ": malformed HDF5 dataset: its dataspace declares 272 elements (2176 bytes), its "
+      "contiguous storage holds 128 bytes";
+  CHECK(Message([&] {
+          ReadRecording(p, Map({{"u", "/rec/u[:,2]"}, {"x", "/rec/x"}}, 10));
+        }) == p + ":/rec/u[:,2]" + detail);
+  CHECK(Message([&] { ReadSignal(p, "/rec/u[:,1]"); }) == p + ":/rec/u[:,1]" + detail);
+  CHECK(Message([&] { ListVariables(p); }) == p + ":/rec/u" + detail);  // sysid info
+  // A dataset created and never written has no storage: HDF5 defines its values as the fill
+  // value (0), a legal file.
+  WriteH5(dir / "unwritten.h5", {{"/u", {3}, {}}});
+  CHECK(ReadSignal(dir / "unwritten.h5", "/u") == Eigen::Vector3d::Zero());
 }
 
 TEST_CASE("MAT: a non-finite value is named with its variable and 1-based index", "[io][mat]") {
@@ -280,6 +336,89 @@ TEST_CASE("truncated files, wrong magic and huge declared sizes are refused", "[
              }),
              Catch::Contains("huge.h5:/u: declares double 4000000000x1") &&
                  Catch::Contains("more than the 20000000"));
+}
+
+TEST_CASE("MAT v5: data holding another number of values than the dims declare are refused",
+          "[io][mat][robustness]") {
+  // libmatio 1.5.23 sizes a variable's buffer from its dims and reads what the data element
+  // holds without comparing the two: x declaring 1x8 and storing 3 values came back with 5
+  // values of uninitialised memory (valgrind), or the next variable's bytes, and exit 0.
+  TempDir dir;
+  std::vector<double> t(8), u(8, 1.0), x(8);
+  for (size_t i = 0; i < t.size(); ++i) {
+    t[i] = 0.001 * static_cast<double>(i);
+    x[i] = 1e-6 * static_cast<double>(i);
+  }
+  const std::vector<double> x3(x.begin(), x.begin() + 3);
+  for (const bool compressed : {false, true}) {
+    INFO("compressed: " << compressed);
+    const std::string p = dir / "short_x.mat";
+    // The reference: the same bytes with every value stored read back bit for bit.
+    WriteRawMat(p, {{"t", 8, t}, {"u", 8, u}, {"x", 8, x}}, compressed);
+    const Recording r = ReadRecording(p);
+    CheckColumn(r, "t", t);
+    CheckColumn(r, "u", u);
+    CheckColumn(r, "x", x);
+    // x stores 3 of its 8 values: refused by name, whichever variable is asked for (the file is
+    // corrupt), and by `sysid info` (ListVariables) too.
+    WriteRawMat(p, {{"t", 8, t}, {"u", 8, u}, {"x", 8, x3}}, compressed);
+    const std::string want =
+        p + ":x: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3";
+    CHECK(Message([&] { ReadRecording(p); }) == want);
+    CHECK(Message([&] { ListVariables(p); }) == want);
+    CHECK(Message([&] { ReadSignal(p, "t"); }) == want);
+    // First in the file: matio would have taken the next variable's bytes as x's values.
+    WriteRawMat(p, {{"x", 8, x3}, {"t", 8, t}, {"u", 8, u}}, compressed);
+    CHECK(Message([&] { ReadRecording(p); }) == want);
+    WriteRawMat(p, {{"u", 5000, x3}}, compressed);
+    CHECK(Message([&] { ListVariables(p); }) ==
+          p + ":u: malformed or truncated MAT file: declares 1x5000 (5000 elements), holds 3");
+    // More values than declared is as corrupt.
+    WriteRawMat(p, {{"u", 2, x3}}, compressed);
+    CHECK(Message([&] { ListVariables(p); }) ==
+          p + ":u: malformed or truncated MAT file: declares 1x2 (2 elements), holds 3");
+  }
+}
+
+TEST_CASE("a MAT file whose variables matio cannot all list is refused, a file of none is not",
+          "[io][mat][robustness]") {
+  TempDir dir;
+  const auto slurp = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  // A valid v5 header, then 200 bytes of 0xFF: matio stopped there silently and the file was a
+  // MAT file of 0 variables, exit 0.
+  WriteRawMat(dir / "garbage.mat", {}, false);
+  std::ofstream(dir / "garbage.mat", std::ios::binary | std::ios::app) << std::string(200, '\xff');
+  CHECK(Message([&] { ListVariables(dir / "garbage.mat"); }) ==
+        dir / "garbage.mat: malformed or truncated MAT file: at byte 128: an element of MAT data "
+              "type 4294967295 where a variable belongs (garbage, or a damaged file)");
+  // A few bytes after the last variable: a cut tag.
+  WriteRawMat(dir / "tail.mat", {{"u", 2, {1, 2}}}, true);
+  std::ofstream(dir / "tail.mat", std::ios::binary | std::ios::app) << std::string(3, '\0');
+  CHECK_THAT(Message([&] { ListVariables(dir / "tail.mat"); }),
+             Catch::EndsWith("3 stray bytes where a variable's tag belongs"));
+  // MAT v7.3 cut anywhere (the HDF5 part begins at byte 512): matio opened it and listed no
+  // variables, exit 0. HDF5 refuses it (its superblock records the file's end).
+  const std::vector<double> v = Ramp(16, 1);
+  WriteMat(dir / "whole73.mat", MatVersion::kV73, {{"t", 16, 1, v}, {"u", 1, 16, v}});
+  const std::string bytes = slurp(dir / "whole73.mat");
+  for (size_t n = 128; n < bytes.size(); n += 97) {
+    INFO("cut to " << n << " of " << bytes.size() << " bytes");
+    std::ofstream(dir / "cut73.mat", std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
+    CHECK(Message([&] { ListVariables(dir / "cut73.mat"); }) ==
+          dir / "cut73.mat: malformed or truncated MAT file: a MAT v7.3 file that HDF5 cannot "
+                "open (truncated, or no HDF5 data after the 512-byte MAT header)");
+  }
+  CHECK(ListVariables(dir / "whole73.mat").size() == 2);
+  // Files that really hold no variables stay legal, v5 (the 128-byte header alone) and v7.3.
+  WriteRawMat(dir / "none.mat", {}, false);
+  CHECK(ListVariables(dir / "none.mat").empty());
+  WriteMat(dir / "none73.mat", MatVersion::kV73, {});
+  CHECK(ListVariables(dir / "none73.mat").empty());
+  CHECK_THAT(Message([&] { ReadRecording(dir / "none73.mat"); }),
+             Catch::EndsWith("none73.mat: holds no variables (an empty or truncated file)"));
 }
 
 TEST_CASE("the mapping renames CSV columns, scales them and adds t from a rate", "[io][csv]") {

@@ -76,6 +76,29 @@ std::string TypeName(hid_t type) {
   }
 }
 
+// Throws InputError "where: malformed HDF5 dataset: ..." when a contiguous or compact dataset's
+// storage holds fewer bytes than its dataspace declares (`count` elements of the file type).
+// HDF5 1.10 reads such a dataset at the offsets the dataspace gives without comparing the two:
+// a dataspace patched from 16x1 to 16x17 over storage for 16 doubles read [:,2] from whatever
+// follows in the file (other datasets, metadata, zeros), exit 0.
+// Not checked: storage never allocated (size 0: HDF5 defines the values as the fill value, as
+// for a dataset created and never written); chunked layouts, whose storage size is the sum of
+// the allocated, possibly compressed chunks (unallocated chunks read as the fill value, by
+// design: an extendible dataset), so it cannot be compared with the dataspace; virtual ones.
+void CheckStorage(hid_t ds, hid_t type, double count, const std::string& where) {
+  Handle dcpl(H5Dget_create_plist(ds), H5Pclose);
+  if (!dcpl.ok()) throw InputError(where + ": malformed HDF5 dataset: cannot read its layout");
+  const H5D_layout_t layout = H5Pget_layout(dcpl.get());
+  if (layout != H5D_CONTIGUOUS && layout != H5D_COMPACT) return;
+  const hsize_t stored = H5Dget_storage_size(ds);
+  const double needed = count * static_cast<double>(H5Tget_size(type));
+  if (stored != 0 && static_cast<double>(stored) < needed)
+    throw InputError(fmt::format(
+        "{}: malformed HDF5 dataset: its dataspace declares {:.0f} "
+        "elements ({:.0f} bytes), its {} storage holds {} bytes",
+        where, count, needed, layout == H5D_CONTIGUOUS ? "contiguous" : "compact", stored));
+}
+
 class Hdf5Container : public SignalContainer {
  public:
   explicit Hdf5Container(const std::string& path) : path_(path), file_(Open(path), H5Fclose) {
@@ -102,6 +125,8 @@ class Hdf5Container : public SignalContainer {
       info.complex = info.type == "compound";
       info.dims = Shape(ds.get());
       const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
+      if (cls == H5T_FLOAT || cls == H5T_INTEGER)  // before a range is read from the storage
+        CheckStorage(ds.get(), type.get(), ElementCount(info.dims), path_ + ":" + name);
       if ((cls == H5T_FLOAT || cls == H5T_INTEGER) &&
           std::count_if(info.dims.begin(), info.dims.end(), [](auto d) { return d != 1; }) <= 1) {
         info.numeric_vector = true;
@@ -141,6 +166,7 @@ class Hdf5Container : public SignalContainer {
     Handle file_space(H5Dget_space(ds.get()), H5Sclose);
     if (!file_space.ok()) throw InputError(where + ": cannot read the dataset's shape");
     const std::uint64_t n = PickedLength(spec, dims, shape, "dataset", where);
+    CheckStorage(ds.get(), type.get(), count, where);
     if (spec.pick != VariableSpec::Pick::kWhole) {
       const bool column = spec.pick == VariableSpec::Pick::kColumn;
       hsize_t start[2] = {column ? 0 : spec.index - 1, column ? spec.index - 1 : 0};

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,8 @@ class MatContainer : public SignalContainer {
  public:
   explicit MatContainer(const std::string& path) : path_(path) {
     InitMatio();
+    // Before matio: it trusts the declared dims over the stored data (mat_layout.cpp).
+    const std::optional<std::size_t> expected = CheckMatLayout(path);
     mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
     if (!mat_)
       throw InputError(path + ": not a readable MAT file (bad header, or truncated)" +
@@ -167,6 +170,13 @@ class MatContainer : public SignalContainer {
     }
     if (!g_matio_message.empty())
       throw InputError(path + ": malformed or truncated MAT file" + MatioDetail());
+    // Mat_VarReadNextInfo returns NULL both at the end and at an error it does not always log:
+    // fewer variables than the file holds means it stopped early (a damaged file), not that
+    // the file ends there. A file of no variables, as counted independently, stays legal.
+    if (expected && infos_.size() < *expected)
+      throw InputError(fmt::format("{}: malformed or truncated MAT file: matio read {} of its "
+                                   "{} variables",
+                                   path, infos_.size(), *expected));
     for (const auto& v : infos_)
       if (v->class_type == MAT_C_STRUCT && v->name && ControlDeskShape(v.get()))
         controldesk_ = v->name;
