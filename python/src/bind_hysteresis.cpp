@@ -9,6 +9,21 @@
 #include "sysid/hysteresis_model.hpp"
 
 namespace sysid::python {
+namespace {
+
+using SignalMap = Eigen::VectorXd (HysteresisModel::*)(const Eigen::VectorXd&, double) const;
+
+// simulate and invert: one signal through the package's conversion, dt_s checked, the GIL
+// released for the model's work.
+Eigen::VectorXd MapSignal(const HysteresisModel& model, SignalMap map, const py::object& values,
+                          const char* arg, double dt_s, const char* where) {
+  const Eigen::VectorXd v = RealVector(values, arg);
+  CheckTimeStep(where, dt_s);
+  py::gil_scoped_release release;
+  return (model.*map)(v, dt_s);
+}
+
+}  // namespace
 
 void BindHysteresis(py::module_& m) {
   py::class_<HysteresisParameter>(m, "HysteresisParameter")
@@ -32,10 +47,8 @@ void BindHysteresis(py::module_& m) {
       .def(
           "simulate",
           [](const HysteresisModel& model, const py::object& u_v, double dt_s) {
-            const Eigen::VectorXd u = RealVector(u_v, "u_v");
-            CheckTimeStep("HysteresisModel.simulate", dt_s);
-            py::gil_scoped_release release;
-            return model.Simulate(u, dt_s);
+            return MapSignal(model, &HysteresisModel::Simulate, u_v, "u_v", dt_s,
+                             "HysteresisModel.simulate");
           },
           py::arg("u_v"), py::arg("dt_s"), "x [m] for the inputs u [V] spaced dt_s [s].")
       .def(
@@ -53,10 +66,8 @@ void BindHysteresis(py::module_& m) {
       .def(
           "invert",
           [](const HysteresisModel& model, const py::object& x_m, double dt_s) {
-            const Eigen::VectorXd x = RealVector(x_m, "x_m");
-            CheckTimeStep("HysteresisModel.invert", dt_s);
-            py::gil_scoped_release release;
-            return model.Invert(x, dt_s);
+            return MapSignal(model, &HysteresisModel::Invert, x_m, "x_m", dt_s,
+                             "HysteresisModel.invert");
           },
           py::arg("x_m"), py::arg("dt_s"), "u [V] that makes the model follow x [m].")
       .def_property_readonly("parameters", &HysteresisModel::parameters)

@@ -34,6 +34,35 @@ std::string Help(const std::vector<std::string>& command) {
   return r.out;
 }
 
+// The subcommands a help text lists under "Subcommands:".
+std::vector<std::string> Subcommands(const std::string& help) {
+  std::vector<std::string> names;
+  std::istringstream lines(help);
+  bool in_list = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("Subcommands:", 0) == 0) {
+      in_list = true;
+      continue;
+    }
+    std::istringstream words(line);
+    std::string name;
+    if (in_list && (words >> name)) names.push_back(name);
+  }
+  return names;
+}
+
+// Every command the help lists, with their subcommands in place of those that have some
+// (`hysteresis fit`, `stage facts`, ...).
+std::vector<std::vector<std::string>> AllCommands() {
+  std::vector<std::vector<std::string>> commands;
+  for (const auto& name : Subcommands(Help({}))) {
+    const auto nested = Subcommands(Help({name}));
+    if (nested.empty()) commands.push_back({name});
+    for (const auto& sub : nested) commands.push_back({name, sub});
+  }
+  return commands;
+}
+
 // The default shown for `flag`: CLI11 writes "  --flag TYPE=VALUE  description"; the option
 // column ends at the first run of two blanks. Empty when no default is shown.
 std::string ShownDefault(const std::string& help, const std::string& flag) {
@@ -147,18 +176,7 @@ TEST_CASE("no help text carries a hand-written default number", "[cli]") {
   // literal. Descriptions such as "default: the training data's min/max" stay allowed.
   const std::regex literal(R"(default[s]?\s*[:=]?\s*(is\s+)?(the paper's\s+)?[-+.]?[0-9])",
                            std::regex::icase);
-  std::vector<std::vector<std::string>> commands = {{"stage", "facts"}};
-  std::istringstream top(Help({}));
-  bool in_list = false;
-  for (std::string line; std::getline(top, line);) {
-    if (line.rfind("Subcommands:", 0) == 0) {
-      in_list = true;
-      continue;
-    }
-    std::istringstream words(line);
-    std::string name;
-    if (in_list && (words >> name)) commands.push_back({name});
-  }
+  const auto commands = AllCommands();
   REQUIRE(commands.size() > 10);
   for (const auto& command : commands) {
     std::istringstream lines(Help(command));
@@ -186,27 +204,7 @@ TEST_CASE("every option that takes a stage preset lists every preset", "[cli]") 
 TEST_CASE("every --seed and --threads has its range, whichever command it is on", "[cli]") {
   // Commands and subcommands from the help: CLI11 reads -1 into a uint64 seed as 2^64 - 1 and
   // takes any int as a thread count unless the option checks its range (three did not).
-  std::vector<std::vector<std::string>> commands = {{"stage", "facts"}};
-  auto subcommands = [](const std::string& help) {
-    std::vector<std::string> names;
-    std::istringstream lines(help);
-    bool in_list = false;
-    for (std::string line; std::getline(lines, line);) {
-      if (line.rfind("Subcommands:", 0) == 0) {
-        in_list = true;
-        continue;
-      }
-      std::istringstream words(line);
-      std::string name;
-      if (in_list && (words >> name)) names.push_back(name);
-    }
-    return names;
-  };
-  for (const auto& name : subcommands(Help({}))) {
-    const auto nested = subcommands(Help({name}));
-    if (nested.empty()) commands.push_back({name});
-    for (const auto& sub : nested) commands.push_back({name, sub});
-  }
+  const auto commands = AllCommands();
   int seeds = 0, threads = 0;
   for (const auto& command : commands) {
     const std::string help = Help(command);
