@@ -7,6 +7,7 @@ the executor is concurrent.futures or Dask. The result is one pandas.DataFrame i
 """
 
 import concurrent.futures as _futures
+import numbers as _numbers
 import os as _os
 import sys as _sys
 
@@ -136,6 +137,54 @@ def _guarded_read(path, mapping, errors):
             raise
         return {"source": _os.fspath(path), "error": f"{type(e).__name__}: {e}"}
 
+# The CLI's bounds on --threads (0: all cores).
+_MAX_THREADS = 1024
+
+
+def _check_run_args(client, threads, chunksize, **lists):
+    """Checks the arguments that say how a batch runs, before any work: client (None or a
+    dask.distributed.Client), threads (None or an integer in [0, 1024], as the CLI), chunksize
+    (None or an integer >= 1), and each of `lists` (name -> value) non-empty. OptionsError
+    naming the argument, the rule and the value."""
+    import sysid
+
+    def integer(v):
+        return isinstance(v, _numbers.Integral) and not isinstance(v, bool)
+
+    if threads is not None and not (integer(threads) and 0 <= threads <= _MAX_THREADS):
+        raise sysid.OptionsError(f"threads: expected an integer in [0, {_MAX_THREADS}] "
+                                 f"(0: all cores) or None, found {threads!r}")
+    if chunksize is not None and not (integer(chunksize) and chunksize >= 1):
+        raise sysid.OptionsError(f"chunksize: expected an integer >= 1 or None (the default), "
+                                 f"found {chunksize!r}")
+    if client is not None:
+        try:
+            from distributed import Client
+        except ImportError:
+            Client = ()
+        if not isinstance(client, Client):
+            raise sysid.OptionsError(f"client: expected a dask.distributed.Client or None, "
+                                     f"found {type(client).__name__}")
+    for name, value in lists.items():
+        if isinstance(value, (list, tuple)) and not value:
+            raise sysid.OptionsError(f"{name}: expected a non-empty list, found {value!r}")
+
+
+def _recording_items(recordings):
+    """Paths (str), glob patterns and Recordings, or a list of them -> the items in order, each
+    a path (globs expanded: a pattern matching nothing is a DataError naming it) or a Recording;
+    DataError when there are none."""
+    import sysid
+    if isinstance(recordings, (str, _os.PathLike, sysid.Recording)):
+        recordings = [recordings]
+    items = []
+    for r in recordings:
+        items.extend([r] if isinstance(r, sysid.Recording) else sysid.expand_paths(r))
+    if not items:
+        raise sysid.DataError("recordings: no recordings; expected a Recording, a path, a glob "
+                              "or a non-empty list of them")
+    return items
+
 
 def _map(fn, items, client, threads, chunksize=None, progress=None, **kw):
     """fn(item, **kw) for every item, in order: on the Dask client's workers, else on a local
@@ -246,16 +295,14 @@ def hysteresis_batch(recordings, models=None, client=None, threads=None, train_f
     """
     import pandas
     import sysid
+    _check_run_args(client, threads, chunksize, models=models)
     if errors not in ("raise", "record"):
         raise sysid.OptionsError("batch: errors must be 'raise' or 'record'")
-    items = recordings
-    if isinstance(recordings, (str, _os.PathLike)):
-        items = sysid.expand_paths(recordings)
-    items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
+    items = _recording_items(recordings)
     specs = _hysteresis_specs(models)
     pairs = [(item, spec) for item in items for spec in specs]
     mapping = sysid._mapping(var, rate, scale) if (var or rate or scale) else None
-    rows = _map(_hysteresis_one, pairs, client, threads, chunksize, progress,
+    rows = _map(_hysteresis_one, pairs, client, threads, chunksize or 1, progress,
                 train_fraction=train_fraction, errors=errors, mapping=mapping)
     return pandas.DataFrame.from_records(rows)
 
@@ -277,11 +324,13 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
                 neighbours=10, seed=1).
     model:      sysid.Model or a model JSON path.
     client:     a dask.distributed.Client: tasks run on its workers; None: a local thread pool
-                of `threads` (default: all cores).
+                of `threads` (None or 0: all cores; at most 1024, as the CLI).
     options:    the task's option struct; keywords set its fields (e.g. min_speed_mps=2e-3).
     errors:     'raise' (a failing recording raises its sysid.Error) or 'record' (the
                 row gets an 'error' column with the message and the batch goes on).
-    chunksize:  recordings per task (default: about 4 tasks per worker thread).
+    chunksize:  recordings per task, an integer >= 1 (None: about 4 tasks per worker thread).
+                A bad client, threads or chunksize is an OptionsError before any work; no
+                recordings (or a pattern matching no file) a DataError.
     progress:   print "k/n" to stderr as tasks finish (default: when stderr is a terminal).
     var, rate, scale: how files are read, as in sysid.read_recording (MAT and HDF5 files, or
                 renamed CSV columns; e.g. var={"u": "/multisine/u", "x": "/multisine/y"},
@@ -291,19 +340,17 @@ def batch(recordings, task="dominance", model=None, client=None, threads=None, o
     import sysid
     if task not in TASKS:
         raise sysid.OptionsError(f"batch: task '{task}': expected one of {', '.join(TASKS)}")
+    _check_run_args(client, threads, chunksize)
     if task == "hysteresis":
         return hysteresis_batch(recordings, models, client, threads, train_fraction, errors,
-                                chunksize or 1, progress, var, rate, scale)
+                                chunksize, progress, var, rate, scale)
     if errors not in ("raise", "record"):
         raise sysid.OptionsError("batch: errors must be 'raise' or 'record'")
     if task in ("dominance", "tune_delay"):
         if model is None:
             raise sysid.OptionsError(f"batch: task '{task}' needs a model")
         model = sysid._as_model(model)
-    items = recordings
-    if isinstance(recordings, (str, _os.PathLike)):
-        items = sysid.expand_paths(recordings)
-    items = [i if isinstance(i, sysid.Recording) else _os.fspath(i) for i in items]
+    items = _recording_items(recordings)
     opts = _default_options(task, options, kwargs)
     mapping = sysid._mapping(var, rate, scale) if (var or rate or scale) else None
     rows = _map(_guarded, items, client, threads, chunksize, progress, task=task, model=model,
@@ -337,6 +384,8 @@ def sweep_grid(train, hidden_sizes, seeds=(1,), validation=None, test=None, inpu
     import sysid
     if isinstance(hidden_sizes, str):
         hidden_sizes = sysid.parse_hidden_sizes(hidden_sizes)
+    hidden_sizes, seeds = list(hidden_sizes), list(seeds)
+    _check_run_args(client, threads, chunksize, hidden_sizes=hidden_sizes, seeds=seeds)
     if isinstance(inputs, str):
         inputs = inputs.split(",")
     opts = sysid._options(sysid.TrainingOptions, options, kwargs)

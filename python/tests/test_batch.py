@@ -138,3 +138,56 @@ def test_batch_irreducible_row_per_recording_equals_single_calls():
         assert row["output_variance"] == single.output_variance
     with pytest.raises(sysid.OptionsError, match="takes inputs"):
         sysid.batch(paths, task="irreducible", k=3)
+
+
+TRAINING = str(VIRTUAL / "training.csv")
+
+
+@pytest.mark.parametrize("run", ["batch", "sweep_grid", "hysteresis"])
+@pytest.mark.parametrize("kw, message", [
+    ({"chunksize": -1}, "chunksize: expected an integer >= 1 or None (the default), found -1"),
+    ({"chunksize": -3}, "chunksize: expected an integer >= 1 or None (the default), found -3"),
+    ({"chunksize": 0}, "chunksize: expected an integer >= 1 or None (the default), found 0"),
+    ({"chunksize": 1.5}, "found 1.5"),
+    ({"threads": -1}, "threads: expected an integer in [0, 1024] (0: all cores) or None, "
+                      "found -1"),
+    ({"threads": 10**9}, f"found {10**9}"),
+    ({"threads": 1.5}, "found 1.5"),
+    ({"threads": "2"}, "threads: expected an integer in [0, 1024] (0: all cores) or None, "
+                       "found '2'"),
+    ({"threads": True}, "found True"),
+    ({"client": "tcp://localhost:8786"}, "client: expected a dask.distributed.Client or None, "
+                                         "found str"),
+    ({"client": object()}, "client: expected a dask.distributed.Client or None, found object"),
+])
+def test_run_arguments_are_checked_before_any_work(model, run, kw, message):
+    calls = {"batch": lambda: sysid.batch(WAVEFORMS, model=model, **kw),
+             "hysteresis": lambda: sysid.batch(WAVEFORMS, task="hysteresis", models=["pi"], **kw),
+             "sweep_grid": lambda: sysid.sweep_grid(TRAINING, hidden_sizes=[2], max_epochs=2,
+                                                    **kw)}
+    with pytest.raises(sysid.OptionsError) as e:
+        calls[run]()
+    assert message in str(e.value)
+
+
+def test_threads_bounds_and_chunksize_none_are_accepted(model):
+    serial = sysid.batch(WAVEFORMS, model=model, threads=1)
+    for kw in ({"threads": 0}, {"threads": 1024}, {"chunksize": None}, {"chunksize": 100}):
+        pandas.testing.assert_frame_equal(sysid.batch(WAVEFORMS, model=model, **kw), serial)
+
+
+def test_empty_inputs_are_errors_not_empty_tables(model, tmp_path):
+    with pytest.raises(sysid.DataError, match="recordings: no recordings"):
+        sysid.batch([], model=model)
+    with pytest.raises(sysid.DataError, match="recordings: no recordings"):
+        sysid.batch([], task="hysteresis")
+    for pattern in (str(tmp_path / "*.csv"), [str(tmp_path / "*.csv")]):
+        with pytest.raises(sysid.DataError) as e:
+            sysid.batch(pattern, model=model)
+        assert str(e.value) == f"{tmp_path / '*.csv'}: no file matches the pattern"
+    with pytest.raises(sysid.OptionsError, match=r"^models: expected a non-empty list, found \[\]"):
+        sysid.batch(WAVEFORMS, task="hysteresis", models=[])
+    with pytest.raises(sysid.OptionsError, match=r"^hidden_sizes: expected a non-empty list"):
+        sysid.sweep_grid(TRAINING, hidden_sizes=[])
+    with pytest.raises(sysid.OptionsError, match=r"^seeds: expected a non-empty list"):
+        sysid.sweep_grid(TRAINING, hidden_sizes=[2], seeds=[])
