@@ -144,27 +144,34 @@ _MAX_THREADS = 1024
 def _check_run_args(client, threads, chunksize, **lists):
     """Checks the arguments that say how a batch runs, before any work: client (None or a
     dask.distributed.Client), threads (None or an integer in [0, 1024], as the CLI), chunksize
-    (None or an integer >= 1), and each of `lists` (name -> value) non-empty. OptionsError
-    naming the argument, the rule and the value."""
+    (None or an integer >= 1), and each of `lists` (name -> value) non-empty. TypeError for
+    the wrong kind, OptionsError for a value breaking the rule, each naming the argument, the
+    rule and the value."""
     import sysid
 
     def integer(v):
         return isinstance(v, _numbers.Integral) and not isinstance(v, bool)
 
-    if threads is not None and not (integer(threads) and 0 <= threads <= _MAX_THREADS):
-        raise sysid.OptionsError(f"threads: expected an integer in [0, {_MAX_THREADS}] "
-                                 f"(0: all cores) or None, found {threads!r}")
-    if chunksize is not None and not (integer(chunksize) and chunksize >= 1):
-        raise sysid.OptionsError(f"chunksize: expected an integer >= 1 or None (the default), "
-                                 f"found {chunksize!r}")
+    # The package's convention (docs/python.md): the wrong Python kind is a TypeError, a value
+    # of the right kind breaking the rule an OptionsError.
+    for name, value, rule, ok in (
+            ("threads", threads, f"an integer in [0, {_MAX_THREADS}] (0: all cores) or None",
+             lambda v: 0 <= v <= _MAX_THREADS),
+            ("chunksize", chunksize, "an integer >= 1 or None (the default)", lambda v: v >= 1)):
+        if value is None:
+            continue
+        if not integer(value):
+            raise TypeError(f"{name}: expected {rule}, found {value!r}")
+        if not ok(value):
+            raise sysid.OptionsError(f"{name}: expected {rule}, found {value!r}")
     if client is not None:
         try:
             from distributed import Client
         except ImportError:
             Client = ()
         if not isinstance(client, Client):
-            raise sysid.OptionsError(f"client: expected a dask.distributed.Client or None, "
-                                     f"found {type(client).__name__}")
+            raise TypeError(f"client: expected a dask.distributed.Client or None, "
+                            f"found {type(client).__name__}")
     for name, value in lists.items():
         if isinstance(value, (list, tuple)) and not value:
             raise sysid.OptionsError(f"{name}: expected a non-empty list, found {value!r}")

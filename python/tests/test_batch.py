@@ -165,7 +165,11 @@ def test_run_arguments_are_checked_before_any_work(model, run, kw, message):
              "hysteresis": lambda: sysid.batch(WAVEFORMS, task="hysteresis", models=["pi"], **kw),
              "sweep_grid": lambda: sysid.sweep_grid(TRAINING, hidden_sizes=[2], max_epochs=2,
                                                     **kw)}
-    with pytest.raises(sysid.OptionsError) as e:
+    # The wrong Python kind (a float, a string, a bool, not a Client) is a TypeError, a value
+    # out of range an OptionsError (docs/python.md, "Conventions").
+    wrong_kind = any(isinstance(v, (float, str, bool)) or
+                     (k == "client" and v is not None) for k, v in kw.items())
+    with pytest.raises(TypeError if wrong_kind else sysid.OptionsError) as e:
         calls[run]()
     assert message in str(e.value)
 
