@@ -98,21 +98,25 @@ CLI::Validator FiniteRange(double lo, double hi) {
 }
 
 namespace {
-// `base` with NaN refused first (its name and description kept, so the help text is the same).
-CLI::Validator RefusingNan(const CLI::Validator& base) {
-  CLI::Validator v = base;
-  v.operation([base](std::string& input) -> std::string {
+// CLI11's PositiveNumber / NonNegativeNumber print their upper end, the largest double, as a
+// 309-digit number ("Value 0 not in range 0.000000 to 17976931348623157...").
+CLI::Validator NumberAbove(bool strict) {
+  CLI::Validator v(strict ? "POSITIVE" : "NONNEGATIVE");
+  v.operation([strict](std::string& input) -> std::string {
     double x = 0;
-    if (CLI::detail::lexical_cast(input, x) && std::isnan(x))
+    if (!CLI::detail::lexical_cast(input, x) || std::isnan(x))
       return "Value " + input + " is not a number";
-    return base(input);
+    if (!std::isfinite(x)) return "Value " + input + " is not a finite number";
+    if (strict ? !(x > 0) : !(x >= 0))
+      return "Value " + input + ": expected a number " + (strict ? "> 0" : ">= 0");
+    return {};
   });
   return v;
 }
 }  // namespace
 
-CLI::Validator PositiveNumber() { return RefusingNan(CLI::PositiveNumber); }
-CLI::Validator NonNegativeNumber() { return RefusingNan(CLI::NonNegativeNumber); }
+CLI::Validator PositiveNumber() { return NumberAbove(true); }
+CLI::Validator NonNegativeNumber() { return NumberAbove(false); }
 
 bool EndsWithCsv(const std::string& path) {
   return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".csv") == 0 ||

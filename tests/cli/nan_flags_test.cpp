@@ -27,9 +27,20 @@ TEST_CASE("a real-valued flag given nan or inf is refused by the flag's name", "
       const auto r = RunCli(a);
       CHECK(r.exit_code == 1);
       CHECK(r.out.empty());
-      CHECK(r.err.find(flag + ": Value " + value + " is not") != std::string::npos);
+      // A number's validators say "not a number", a finite range's "not a finite number".
+      const bool ranged = flag == "--kp" || flag == "--collect-kp";
+      CHECK(r.err.find(flag + ": Value " + value +
+                       (ranged ? " is not a finite number" : " is not a number")) !=
+            std::string::npos);
     }
   }
+  // A positive number is finite too, and its message does not print the largest double.
+  const auto zero = RunCli({"track", "--freq", "0"});
+  CHECK(zero.exit_code == 1);
+  CHECK(zero.err.find("--freq: Value 0: expected a number > 0") != std::string::npos);
+  CHECK(zero.err.size() < 200);
+  const auto big = RunCli({"simulate", "--pulse-on", "1e400"});
+  CHECK(big.err.find("--pulse-on: Value 1e400 is not a finite number") != std::string::npos);
   const auto inf = RunCli({"track", "--ki", "inf"});
   CHECK(inf.exit_code == 1);
   CHECK(inf.err.find("--ki: Value inf is not a finite number") != std::string::npos);

@@ -34,14 +34,16 @@ TEST_CASE("ParseFactsSeeds: ranges, lists and their bounds", "[stage][facts]") {
   CHECK(ParseFactsSeeds("1-3") == Seeds{1, 2, 3});
   CHECK(ParseFactsSeeds("7") == Seeds{7});
   CHECK(ParseFactsSeeds("7-7") == Seeds{7});
-  CHECK(ParseFactsSeeds("5,2,5") == Seeds{5, 2, 5});
+  CHECK(ParseFactsSeeds("5,2,7") == Seeds{5, 2, 7});
+  // A repeated seed would count one seed's run as several ("3 of 3" over 1,1,1).
+  CHECK(SeedsError("5,2,5").find("seed 5 is given twice") != std::string::npos);
   CHECK(ParseFactsSeeds("0-999").size() == sysid::kMaxFactsSeeds);
   CHECK(ParseFactsSeeds("4611686018427387904") == Seeds{std::uint64_t{1} << 62});
   CHECK(SeedsError("3-1").find("runs backwards") != std::string::npos);
   CHECK(SeedsError("0-1000").find("at most 1000") != std::string::npos);
   CHECK(SeedsError("0-18446744073709551615").find("above 2^62") != std::string::npos);
-  std::string many = "1";
-  for (int k = 0; k < 1000; ++k) many += ",1";
+  std::string many = "0";
+  for (int k = 1; k <= 1000; ++k) many += "," + std::to_string(k);
   CHECK(SeedsError(many).find("at most 1000") != std::string::npos);
   for (const char* bad : {"", "a", "1,,2", "1-", "-1", "1-2-3", "+1", "1.5", "1,"})
     CHECK(SeedsError(bad).find("expected 'A-B' or 'A,B,...'") != std::string::npos);

@@ -56,7 +56,12 @@ std::vector<std::uint64_t> ParseFactsSeeds(const std::string& text) {
     const std::size_t comma = text.find(',', start);
     if (seeds.size() == kMaxFactsSeeds)
       BadSeeds(text, fmt::format("at most {} seeds per sweep", kMaxFactsSeeds));
-    seeds.push_back(ParseSeed(text, text.substr(start, comma - start)));
+    const std::uint64_t seed = ParseSeed(text, text.substr(start, comma - start));
+    // A repeated seed reruns the same experiments: "3 of 3" over 1,1,1 would count one seed
+    // three times.
+    if (std::find(seeds.begin(), seeds.end(), seed) != seeds.end())
+      BadSeeds(text, fmt::format("seed {} is given twice", seed));
+    seeds.push_back(seed);
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
