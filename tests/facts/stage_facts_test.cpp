@@ -377,6 +377,25 @@ TEST_CASE("stage facts options are validated before any experiment", "[stage][fa
   }
 }
 
+TEST_CASE("F7 at a collection gain too weak to move the stage: moving-row MSEs are null",
+          "[stage][facts]") {
+  // --collect-kp 1 failed with "training: no data rows" (the MSE over no moving rows).
+  FactsOptions o = Only({"F7"});
+  o.collection_kp_v_per_m = 1;
+  const sysid::StageFacts r = sysid::RunStageFacts(StageParameters::Default(), o);
+  REQUIRE(r.facts.size() == 1);
+  int moving = 0;
+  for (const auto& [name, value] : r.facts[0].values)
+    if (name.find("_moving_mse_v2") != std::string::npos) {
+      ++moving;
+      CHECK(std::isnan(value));
+    } else if (name == "training_rest_fraction") {
+      CHECK(value == 1.0);  // the stage never left rest
+    }
+  CHECK(moving == 4);
+  CHECK_FALSE(r.facts[0].met);
+}
+
 TEST_CASE("F5 over initial weights: each network's row is a separate run's NN row",
           "[stage][facts]") {
   const StageParameters stage = StageParameters::Default();

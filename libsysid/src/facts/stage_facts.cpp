@@ -42,6 +42,14 @@ NeuralDataset MovingRows(const NeuralDataset& data) {
   out.targets.conservativeResize(n);
   return out;
 }
+
+// The MSE of `net` on the moving rows of `data` [V^2]; NaN (null in JSON) when the stage never
+// moved (a collection gain too weak to move it: --collect-kp 1 failed with "no data rows").
+double MovingMse(const NeuralNetwork& net, const NeuralDataset& data) {
+  const NeuralDataset moving = MovingRows(data);
+  return moving.size() > 0 ? MeanSquaredError(net, moving) : std::nan("");
+}
+
 const std::vector<std::string> kIds{"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"};
 
 std::string Mm(double m) { return fmt::format("{:.4g}", 1e3 * m); }
@@ -133,8 +141,8 @@ class FactsRun {
     network_ = TrainNeuralNetwork(train_v_, nullptr, t).network;
     r_.dominant_train_mse = MeanSquaredError(*network_, train_v_);
     r_.dominant_test_mse = MeanSquaredError(*network_, test_v);
-    moving_ = {{"dominant_train_moving_mse_v2", MeanSquaredError(*network_, MovingRows(train_v_))},
-               {"dominant_test_moving_mse_v2", MeanSquaredError(*network_, MovingRows(test_v))}};
+    moving_ = {{"dominant_train_moving_mse_v2", MovingMse(*network_, train_v_)},
+               {"dominant_test_moving_mse_v2", MovingMse(*network_, test_v)}};
     if (!want_typical_) return;
     Step(fmt::format("typical network (v, a, {} units)", o_.typical_hidden));
     const NeuralDataset train_va = MakeNeuralDataset(training, {"v", "a"}, "u");
@@ -145,10 +153,8 @@ class FactsRun {
         TrainNeuralNetwork(SubsampleRows(train_va, o_.typical_stride), nullptr, t).network;
     r_.typical_train_mse = MeanSquaredError(typical, train_va);
     r_.typical_test_mse = MeanSquaredError(typical, test_va);
-    moving_.emplace_back("typical_train_moving_mse_v2",
-                         MeanSquaredError(typical, MovingRows(train_va)));
-    moving_.emplace_back("typical_test_moving_mse_v2",
-                         MeanSquaredError(typical, MovingRows(test_va)));
+    moving_.emplace_back("typical_train_moving_mse_v2", MovingMse(typical, train_va));
+    moving_.emplace_back("typical_test_moving_mse_v2", MovingMse(typical, test_va));
     // What no network on these inputs could do better than, from the data alone: tells the
     // networks' training apart from what v (or v and a) determine on each set.
     floors_ = {{"train_irreducible_mse_v_v2", EstimateIrreducibleError(train_v_).mse},
