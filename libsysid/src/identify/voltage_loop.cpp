@@ -119,6 +119,11 @@ VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOpti
   const Eigen::VectorXd u = recording.column("u");
   const Eigen::VectorXd& v = m.v_mps;
   const Eigen::Index n = u.size();
+  // A window wider than the recording averages the same samples at every level (width 0).
+  if (2 * static_cast<Eigen::Index>(options.half_window) + 1 > n)
+    throw InputError(fmt::format("{}: half_window = {} samples: the window (2 x {} + 1) is wider "
+                                 "than the recording's {} samples",
+                                 recording.source, options.half_window, options.half_window, n));
   VoltageLoop loop;
   loop.source = recording.source;
   loop.peak_forward_v = std::max(u.maxCoeff(), 0.0);
@@ -150,6 +155,14 @@ VoltageLoop AnalyzeVoltageLoop(const Recording& recording, const VoltageLoopOpti
     l.falling_crossings = static_cast<int>(down.size());
     loop.levels.push_back(l);
   }
+  // The areas are per cycle: more cycles than the sweep crosses any level would divide them by
+  // cycles that are not there (--cycles 10000 on one period).
+  int most = 0;
+  for (const auto& l : loop.levels) most = std::max({most, l.rising_crossings, l.falling_crossings});
+  if (most > 0 && options.cycles > most)
+    throw InputError(fmt::format("{}: cycles = {}, but the sweep crosses each level at most {} "
+                                 "time(s) in one direction: it holds {} cycle(s)",
+                                 recording.source, options.cycles, most, most));
   loop.u_v = u;
   loop.v_mps = v;
   return loop;
