@@ -1,7 +1,7 @@
 #!/bin/sh
 # Fuzzing of the CSV and JSON readers with libFuzzer (Debian's clang), under ASan/UBSan, seeded
-# with the bundled files (issue #14). CI's third step runs `scripts/fuzz.sh 15` (a minute for the
-# four readers); the default is the longer run (150 s per target: ten minutes in all).
+# with the bundled files. CI's third stage runs `scripts/fuzz.sh 15 build-asan` (a minute for
+# the four readers); the default is the longer run (150 s per target: ten minutes in all).
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [BUILD_DIR]     (BUILD_DIR default: build-fuzz)
 # Exits non-zero when a target crashes, leaks, hits undefined behaviour or hangs (> 10 s on one
 # input); libFuzzer then writes the input as crash-*/leak-*/timeout-* in BUILD_DIR.
@@ -13,9 +13,14 @@ case $seconds in ''|*[!0-9]*) echo "fuzz.sh: SECONDS must be a whole number, got
 command -v clang++ >/dev/null || { echo "fuzz.sh: needs clang++ (scripts/setup.sh installs it)" >&2; exit 1; }
 # -fno-sanitize-recover: undefined behaviour aborts (and so fails the run) instead of printing.
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DSYSID_FUZZ=ON -DSYSID_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="$flags" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+# A build folder already configured for fuzzing (CI's sanitizer pass, `scripts/test.sh
+# --sanitize`: clang, ASan + UBSan, libFuzzer's coverage hooks) is used as it is: one build
+# serves both.
+if ! grep -q '^SYSID_FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSYSID_FUZZ=ON -DSYSID_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS="$flags" \
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+fi
 # The MAT and HDF5 targets are not in the default list: libhdf5 (behind HDF5 and MAT v7.3 files)
 # allocates and fills sizes a file declares before sysid can bound them (4 GB of RSS from a 64 KB
 # input, inside H5C_protect), so libFuzzer's RSS limit stops a run there at random. Their

@@ -42,6 +42,9 @@ fi
 
 BUILD_DIR="${1:-build}"
 shift || true
+# ccache keys on paths relative to this clone: another clone or build folder on the machine
+# reuses its objects (a user's own CCACHE_BASEDIR wins).
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
 jobs="${SYSID_JOBS:-$(nproc)}"
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@" >&2
 cmake --build "$BUILD_DIR" -j "$jobs" >&2
