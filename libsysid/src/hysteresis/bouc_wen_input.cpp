@@ -25,6 +25,7 @@ SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpola
     : u_(u), dt_(dt_s), how_(how) {
   if (how_ != InputInterpolation::kBandLimited || u.size() < 2) return;
   const Eigen::Index n = u.size();
+  CheckBandLimitedWork(n, "bouc-wen");
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> in(static_cast<size_t>(n)), x;
   for (Eigen::Index i = 0; i < n; ++i) in[static_cast<size_t>(i)] = u[i];
