@@ -94,12 +94,20 @@ head -20 cmp/piezo_traces.csv | grep -v '^#' | head -1 | grep -q 'u_pi_a_b,u_pi_
   fail "compare: a model's trace column was dropped ($(grep -v '^#' cmp/piezo_traces.csv | head -1))"
 
 # The stack's sensor and damping are bounded (were inf in the table, "gain nan").
-timed 10 2 "rig.sensor_resolution_m: expected 1e-15 <= sensor_resolution_m <= 1e-3, found 9.99" \
+timed 10 2 "rig.sensor_resolution_m: expected 1e-20 <= sensor_resolution_m <= 1e-3, found 9.99" \
   track --plant "$(printf '{"plant": "piezo-stack", "rig": {"sensor_resolution_m": 1e-320}}' > s1.json; echo s1.json)" --cycles 1
 timed 10 2 "rig.sensor_noise_m: expected 0 <= sensor_noise_m <= 1e-3, found 1e+300" \
   track --plant "$(printf '{"plant": "piezo-stack", "rig": {"sensor_noise_m": 1e300}}' > s2.json; echo s2.json)" --cycles 1
 timed 10 2 "mechanics.damping_ratio: expected damping_ratio in \[1e-4, 2\], found 1e-300" \
   track --plant "$(printf '{"plant": "piezo-stack", "mechanics": {"damping_ratio": 1e-300}}' > s3.json; echo s3.json)" --cycles 1
+
+# A stack folder whose u, x are near 1e150 (was exit 0, "inf %" and a Ceres dump in report.md).
+mkdir sf
+awk 'BEGIN { print "t,u,x"; for (k = 0; k < 2000; k++) printf "%g,%.17g,%.17g\n", k / 1000, 1e150 * sin(k * 0.01), 1e150 * sin(k * 0.01 - 0.3) }' > sf/stack.csv
+timed 30 2 "sf/stack.csv: column 'x' spans 2e+150 m, more than the 10 m" pipeline sf -o sfo
+[ ! -e sfo ] || fail "pipeline wrote sfo after refusing the recording"
+awk 'BEGIN { print "t,u,x"; for (k = 0; k < 2000; k++) printf "%g,%.17g,%.17g\n", k / 1000, 1e150 * sin(k * 0.01), 1e-6 * sin(k * 0.01 - 0.3) }' > sf/stack.csv
+timed 30 2 "sf/stack.csv: column 'u' reaches 1e+150 V, more than the 100000 V" pipeline sf -o sfo
 
 # irreducible: one answer at every scale of an input (+-1.7e308 gave MSE 0, +-1 0.485).
 awk 'BEGIN { print "t,u,v"; s = 1; for (k = 0; k < 400; k++) { printf "%g,%.17g,%g\n", k / 1000, sin(k * 0.37), s; s = -s } }' > one.csv

@@ -69,7 +69,7 @@ struct StackRig {
   double voltage_min_v = -20;          ///< [V] amplifier range, lower end
   double voltage_max_v = 120;          ///< [V] amplifier range, upper end, > voltage_min_v
   int dac_bits = 16;                   ///< DAC resolution over the amplifier range, 1..32
-  double sensor_resolution_m = 1e-10;  ///< [m] q in [1e-15, 1e-3] (capacitive sensor)
+  double sensor_resolution_m = 1e-10;  ///< [m] q in [1e-20, 1e-3] (capacitive sensor)
   double sensor_noise_m = 1e-9;        ///< [m] standard deviation of the reading noise, [0, 1e-3]
 };
 

@@ -128,13 +128,14 @@ void StackParameters::Validate() const {
              "voltage_max_v > voltage_min_v = " + G(rig.voltage_min_v));
   if (rig.dac_bits < 1 || rig.dac_bits > 32)
     Violated("rig.dac_bits", rig.dac_bits, "dac_bits in 1..32");
-  // The reading is round((x + n) / q) q: a q below 1 fm makes the count overflow into inf,
+  // The reading is round((x + n) / q) q: a q near 1e-320 made the count overflow into inf
+  // (1e-20, far below any sensor, reads effectively unquantised);
   // noise past 1 mm (a stack moves tens of um) makes the readings meaningless and, near
   // 1e300, inf.
-  if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m >= 1e-15) ||
+  if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m >= 1e-20) ||
       rig.sensor_resolution_m > 1e-3)
     Violated("rig.sensor_resolution_m", rig.sensor_resolution_m,
-             "1e-15 <= sensor_resolution_m <= 1e-3");
+             "1e-20 <= sensor_resolution_m <= 1e-3");
   if (!std::isfinite(rig.sensor_noise_m) || rig.sensor_noise_m < 0 || rig.sensor_noise_m > 1e-3)
     Violated("rig.sensor_noise_m", rig.sensor_noise_m, "0 <= sensor_noise_m <= 1e-3");
   if (!std::isfinite(integrator.relative_tolerance) || integrator.relative_tolerance < 1e-14 ||
