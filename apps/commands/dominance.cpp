@@ -16,7 +16,6 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
-#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -64,7 +63,7 @@ void RunDominance(const DominanceCli& o) {
   for (const auto& c : o.candidates) d.candidates.push_back(ParseCandidate(c));
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DominanceSummary s = AnalyzeDominanceBatch(model, recs, d);
-  if (!o.output.empty()) WriteFileAtomically(o.output, GeneratorLine() + DominanceTableCsv(s));
+  if (!o.output.empty()) WriteFileAtomically(o.output, DominanceTableCsv(s));
   if (o.json) {
     std::cout << ToJson(s);
     return;
