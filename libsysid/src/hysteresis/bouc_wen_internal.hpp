@@ -94,6 +94,10 @@ Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::V
 /// 2e9 is a few seconds: n = 2e7 = 2^8 5^7 costs 1e9.
 inline constexpr double kMaxFftWork = 2e9;
 
+/// The most (spectral lines kept) x (samples) a band-limited input may have: each of CVODE's
+/// evaluations of u(t) sums every line (SampledInput throws InputError past it).
+inline constexpr double kMaxBandLimitedWork = 2e7;
+
 /// n x (the sum of n's prime factors, with multiplicity): the work of a length-n FFT.
 double FftWork(Eigen::Index n);
 
