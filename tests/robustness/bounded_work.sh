@@ -100,6 +100,15 @@ timed 60 0 "" compare --hysteresis a-b.json --hysteresis a_b.json --no-plots -o 
 head -20 cmp/piezo_traces.csv | grep -v '^#' | head -1 | grep -q 'u_pi_a_b,u_pi_a_b_2' ||
   fail "compare: a model's trace column was dropped ($(grep -v '^#' cmp/piezo_traces.csv | head -1))"
 
+# An error while a -o DIR command writes names DIR, not its hidden staging folder (a label too
+# long for a MATLAB variable name fails the MAT traces file inside the staging folder).
+long_label=$(printf 'm%.0s' $(seq 1 70))
+cp a-b.json "$long_label.json"
+timed 60 2 "cmpm/piezo_traces.mat: column 'u_pi_mmm" \
+  compare --hysteresis "$long_label.json" --traces mat --no-plots -o cmpm "$pz"
+grep -q "\.cmpm\.tmp" err.txt && fail "compare -o: the error names the staging folder"
+[ ! -e cmpm ] || fail "compare -o cmpm published a folder after failing"
+
 # The stack's sensor and damping are bounded (were inf in the table, "gain nan").
 timed 10 2 "rig.sensor_resolution_m: expected 1e-20 <= sensor_resolution_m <= 1e-3, found 9.99" \
   track --plant "$(printf '{"plant": "piezo-stack", "rig": {"sensor_resolution_m": 1e-320}}' > s1.json; echo s1.json)" --cycles 1
