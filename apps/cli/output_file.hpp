@@ -1,6 +1,6 @@
 // The rule for every "-o FILE" of the CLI (issue #29): a command replaces only files it can
-// prove sysid wrote, told by the generator mark every writer puts first; --force replaces any other regular
-// file. A FIFO or a device is written through and a symbolic link is followed
+// prove sysid wrote, told by the generator mark every writer puts first; --force replaces any
+// other regular file. A FIFO or a device is written through and a symbolic link is followed
 // (WriteFileAtomically), so neither is ever replaced.
 #ifndef SYSID_APPS_CLI_OUTPUT_FILE_HPP_
 #define SYSID_APPS_CLI_OUTPUT_FILE_HPP_

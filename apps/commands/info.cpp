@@ -49,7 +49,8 @@ void ListFileVariables(const InfoOptions& o) {
     for (const auto d : v.dims) dims += (dims.empty() ? "" : " x ") + std::to_string(d);
     if (v.complex) dims += " complex";
     const bool range = v.numeric_vector && v.length > 0;
-    table.AddRow({Cell(v.name), Cell(v.type), dims, v.numeric_vector ? std::to_string(v.length) : "",
+    table.AddRow({Cell(v.name), Cell(v.type), dims,
+                  v.numeric_vector ? std::to_string(v.length) : "",
                   range ? Num(v.min) : "", range ? Num(v.max) : ""});
   }
   std::cout << table.Render();
@@ -86,7 +87,8 @@ void RunInfo(const InfoOptions& o) {
   Table table({"column", "min", "max", "mean"});
   for (const auto& name : rec.names) {
     const auto& c = j["column_stats"][name];
-    table.AddRow({Cell(name), Num(number(c["min"])), Num(number(c["max"])), Num(number(c["mean"]))});
+    table.AddRow({Cell(name), Num(number(c["min"])), Num(number(c["max"])),
+                  Num(number(c["mean"]))});
   }
   std::cout << '\n' << table.Render();
 }

@@ -221,7 +221,8 @@ PiParameters PrandtlIshlinskiiModel::InverseParameters() const {
   for (size_t i = 0; i < n; ++i) {
     if (!std::isfinite(inv.thresholds[i])) throw overflow("thresholds", i, inv.thresholds[i]);
     if (!std::isfinite(inv.weights[i])) throw overflow("weights", i, inv.weights[i]);
-    if (!std::isfinite(inv.initial_state[i])) throw overflow("initial_state", i, inv.initial_state[i]);
+    if (!std::isfinite(inv.initial_state[i]))
+      throw overflow("initial_state", i, inv.initial_state[i]);
   }
   if (!std::isfinite(inv.initial_input_v)) throw overflow("initial_input", 0, inv.initial_input_v);
   return inv;

@@ -80,7 +80,8 @@ std::string FormatChecked(const Recording& recording, const std::string& where) 
   // recording read from one of sysid's files keeps no generator of its own.
   out += GeneratorLine();
   for (const auto& [k, v] : recording.metadata)
-    if (k != "generator" || v.rfind("sysid ", 0) != 0) out += "# " + internal::OneLine(k) + ": " + internal::OneLine(v) + "\n";
+    if (k != "generator" || v.rfind("sysid ", 0) != 0)
+      out += "# " + internal::OneLine(k) + ": " + internal::OneLine(v) + "\n";
   for (Eigen::Index c = 0; c < cols; ++c) {
     out += recording.names[static_cast<size_t>(c)];
     out += c + 1 < cols ? ',' : '\n';
