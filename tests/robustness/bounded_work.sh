@@ -50,7 +50,7 @@ timed 10 2 "bwp.json: on rnd.csv: bouc-wen: the band-limited input of 8000 sampl
 printf '{"kind": "bouc-wen", "parameters": {%s}, "simulation": {"integrator": "cvode"}}\n' \
   "$(echo "$bw" | sed 's/"c": 10/"c": 0/')" > bwc0.json
 awk 'BEGIN { print "t,u"; for (k = 0; k < 200; k++) printf "%.17g,%.17g\n", k / 750, 10 * sin(2 * 3.141592653589793 * k / 200) }' > period.csv
-timed 20 3 "bwc0.json: on period.csv: bouc-wen: no periodic steady state within .* at most 1e+06" \
+timed 60 3 "bwc0.json: on period.csv: bouc-wen: no periodic steady state within .* at most 1e+06" \
   hysteresis simulate --periodic --model bwc0.json period.csv -o o.csv
 rows 500001 long.csv
 timed 10 2 "bwc0.json: on long.csv: bouc-wen: a periodic simulation of 2 periods of 500001 samples exceeds" \
