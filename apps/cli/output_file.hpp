@@ -1,6 +1,6 @@
 // The rule for every "-o FILE" of the CLI (issue #29): a command replaces only files it can
-// prove sysid wrote, told by what sysid writes into them; --force replaces any other regular
-// file. A FIFO or a device is written through and a symbolic link is followed
+// prove sysid wrote, told by the generator mark every writer puts first; --force replaces any
+// other regular file. A FIFO or a device is written through and a symbolic link is followed
 // (WriteFileAtomically), so neither is ever replaced.
 #ifndef SYSID_APPS_CLI_OUTPUT_FILE_HPP_
 #define SYSID_APPS_CLI_OUTPUT_FILE_HPP_
@@ -13,12 +13,10 @@
 
 namespace sysid::cli {
 
-/// True when the first 64 KB of the regular file `path` carry sysid's writing: a CSV whose
-/// leading '#' metadata holds a key only sysid writes (stage, procedure, derive, model,
-/// content, ff, waveform_name, resampled), a CSV table with the comment or header sysid gives
-/// it (the dominance table, simulation events), or a JSON object with sysid's unit block
-/// ("units": {"a1p": "1/s", ...}), its network type ("tanh-mlp"), its stage note or the fit
-/// block of a hysteresis model ("fit_time_s").
+/// True when the regular file `path` starts with the generator mark every sysid writer puts
+/// first (sysid::HasGeneratorMark: "# generator: sysid ..." in a CSV, a first key "_generator":
+/// "sysid ..." in a JSON file, a MAT header naming sysid). Keys or metadata a user's own file
+/// may hold ("stage", "fit_time_s", units) prove nothing.
 bool WrittenBySysid(const std::filesystem::path& path);
 
 /// Checks "FLAG PATH" before any work (throws OptionsError, exit 1): nothing there, not a

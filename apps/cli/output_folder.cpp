@@ -108,7 +108,26 @@ void OutputFolder::Write(const std::function<void(const fs::path&)>& write) cons
   const StagingFolder staging(out_);  // removed on error, Ctrl-C, or left empty once renamed
   WriteFileAtomically((staging.path() / kOutputMarker).string(),
                       "written by sysid " + command_ + " (run " + staging.run_id() + ")\n");
-  write(staging.path());
+  // An error names the folder the user gave, not the hidden staging folder it was written in.
+  const auto named = [&](const std::string& what) {
+    std::string text = what;
+    const std::string hidden = staging.path().string();
+    std::string shown = given_;
+    while (shown.size() > 1 && shown.back() == '/') shown.pop_back();
+    for (size_t at = text.find(hidden); at != std::string::npos;
+         at = text.find(hidden, at + shown.size()))
+      text.replace(at, hidden.size(), shown);
+    return text;
+  };
+  try {
+    write(staging.path());
+  } catch (const InputError& e) {
+    throw InputError(named(e.what()));
+  } catch (const NumericalError& e) {
+    throw NumericalError(named(e.what()));
+  } catch (const OptionsError& e) {
+    throw OptionsError(named(e.what()), e.field());
+  }
   const auto changed = [&] {
     return InputError("-o " + given_ +
                       ": changed while this run worked (another run or program wrote it); "

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -32,33 +33,6 @@ struct GenerateOptions {
   bool force = false;
 };
 
-// What a MAT recording's text header starts with when generate wrote it (WriteRecordingMat's
-// description): MAT files have no '#' metadata to tell.
-constexpr const char* kMatHeaderLead = "MATLAB 5.0 MAT-file, sysid generate: ";
-
-// True when `path` holds what generate writes, told by its metadata: a recording whose first
-// line is "# stage: " and whose metadata names the "# procedure: ", or a stage file carrying
-// the writer's note. Only the first 64 KB are read.
-bool WrittenByGenerate(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(64 * 1024, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  if (path.extension() == ".mat") return head.rfind(kMatHeaderLead, 0) == 0;
-  if (path.filename() == "stage.json")
-    return head.find("\"note\": \"Virtual piezo stage for libsysid") != std::string::npos;
-  if (head.rfind("# stage: ", 0) != 0) return false;
-  // The metadata block: the leading lines that start with '#'.
-  size_t pos = 0;
-  while (pos < head.size() && head[pos] == '#') {
-    if (head.compare(pos, 13, "# procedure: ") == 0) return true;
-    const auto end = head.find('\n', pos);
-    if (end == std::string::npos) break;
-    pos = end + 1;
-  }
-  return false;
-}
-
 // Refuses (exit 1) before any work when a file generate would replace in `dir` is not one it
 // wrote: a user's own recording kept in the folder is never clobbered without --force.
 void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::string>& names) {
@@ -71,15 +45,12 @@ void CheckGenerateTargets(const GenerateOptions& o, const std::vector<std::strin
   for (const auto& name : names) {
     const std::filesystem::path path = std::filesystem::path(o.out_dir) / name;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec) || WrittenByGenerate(path)) continue;
-    const bool mat = path.extension() == ".mat";
+    if (!std::filesystem::is_regular_file(path, ec) || WrittenBySysid(path)) continue;
     throw OptionsError(fmt::format(
-        "-o {}: {} exists and was not written by sysid generate ({}{}); refusing to replace "
-        "it: choose another folder, move the file, or pass --force",
-        o.out_dir, path.string(),
-        mat ? "its MAT header does not name sysid generate"
-            : "no '# stage:' and '# procedure:' metadata",
-        name == "stage.json" ? ", no stage note" : ""));
+        "-o {}: {} exists and was not written by sysid (it does not start with sysid's "
+        "generator mark); refusing to replace it: choose another folder, move the file, or "
+        "pass --force",
+        o.out_dir, path.string()));
   }
 }
 

@@ -16,6 +16,7 @@
 #include "sysid/dominance_candidates.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -99,7 +100,7 @@ void RunFit(const HysteresisCli& o) {
   fit.erase("parameters");  // the model file holds them already
   fit["recordings"] = o.recordings;
   file["fit"] = fit;
-  WriteFileAtomically(o.output, file.dump(2) + "\n");
+  WriteFileAtomically(o.output, WithGeneratorKey(file.dump(2) + "\n"));
   if (o.json) {
     std::cout << summary_json;
     return;
@@ -116,7 +117,16 @@ void RunSimulate(const HysteresisCli& o) {
   const Recording rec = ReadRecording(o.input, ro);
   const double dt = RecordingStep(rec);
   const Eigen::VectorXd u = rec.column("u");
-  const Eigen::VectorXd y = o.periodic ? model->SimulatePeriodic(u, dt) : model->Simulate(u, dt);
+  Eigen::VectorXd y;
+  try {
+    y = o.periodic ? model->SimulatePeriodic(u, dt) : model->Simulate(u, dt);
+  } catch (const InputError& e) {
+    // The model's work on this recording is bounded (rows x upsampling, periods): the limit
+    // belongs to the model file's settings.
+    throw InputError(o.model_path + ": on " + o.input + ": " + e.what());
+  } catch (const NumericalError& e) {
+    throw NumericalError(o.model_path + ": on " + o.input + ": " + e.what());
+  }
   Recording out;
   out.source = o.output;
   out.names = {"t", "u", "x_model"};
@@ -150,6 +160,8 @@ void RunInvert(const HysteresisCli& o) {
     u = model->Invert(ref.column("x"), dt);
   } catch (const InputError& e) {
     throw InputError(o.input + ": " + e.what());
+  } catch (const NumericalError& e) {
+    throw NumericalError(o.model_path + ": " + e.what());
   }
   Recording out;
   out.source = o.output;

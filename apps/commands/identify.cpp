@@ -18,6 +18,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -72,7 +73,7 @@ void RunIdentify(const IdentifyCli& o) {
     rendered = ToJson(r);
     text = o.verbose ? r.FullReport() : r.BriefReport();
   }
-  if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
+  if (!o.output.empty()) WriteFileAtomically(o.output, WithGeneratorKey(rendered));
   if (o.json)
     std::cout << rendered;
   else

@@ -5,13 +5,13 @@
 #include <fmt/ranges.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/output_file.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -20,10 +20,6 @@
 
 namespace sysid::cli {
 namespace {
-
-/// First metadata line of every file `sysid import` writes: an existing -o file without it was
-/// not written by sysid and is never replaced.
-constexpr const char* kImportMarker = "# generator: sysid import";
 
 struct ImportCliOptions {
   std::vector<std::string> columns;  // NAME=FILE[:VARIABLE]
@@ -61,21 +57,15 @@ ImportColumn ParseColumn(const std::string& text) {
   return c;
 }
 
-void CheckOutput(const ImportCliOptions& o, const ImportOptions& io) {
+// An input named as -o is refused; whether an existing -o may be replaced is the rule of every
+// command (cli::CheckOutputFile, run before this): a FIFO or a device is written through and
+// never read.
+void CheckOutputIsNoInput(const ImportCliOptions& o, const ImportOptions& io) {
   namespace fs = std::filesystem;
   std::error_code ec;
   for (const auto& c : io.columns)
     if (fs::exists(c.file, ec) && fs::exists(o.output, ec) && fs::equivalent(c.file, o.output, ec))
       throw OptionsError(fmt::format("-o {}: is an input (--column {})", o.output, c.column), "-o");
-  if (!fs::exists(o.output, ec)) return;
-  std::ifstream in(o.output);
-  std::string first;
-  std::getline(in, first);
-  if (!fs::is_regular_file(o.output, ec) || first.rfind(kImportMarker, 0) != 0)
-    throw OptionsError(fmt::format("-o {}: exists and was not written by sysid import (its first "
-                                   "line is not '{}'); remove it or choose another name",
-                                   o.output, kImportMarker),
-                       "-o");
 }
 
 void RunImport(const ImportCliOptions& o) {
@@ -88,9 +78,8 @@ void RunImport(const ImportCliOptions& o) {
     io.scales.emplace_back(column, f);
   }
   io.units = ParseAssignments(o.units, "--unit");
-  if (!o.output.empty()) CheckOutput(o, io);
+  if (!o.output.empty()) CheckOutputIsNoInput(o, io);
   Recording rec = ImportRecording(io);
-  rec.metadata.insert(rec.metadata.begin(), {"generator", "sysid import"});
   if (o.output.empty()) {
     std::cout << FormatRecording(rec);
     return;
@@ -123,6 +112,7 @@ void AddImportCommand(CLI::App& app) {
                   "u=N for a force input)")
       ->type_name("MAP");
   AddOutputOption(cmd, o->output, "recording CSV (or .mat) to write; stdout when absent");
+  GuardOutputFiles(cmd, {{&o->output, "-o"}});
   cmd->callback([o] { RunImport(*o); });
 }
 

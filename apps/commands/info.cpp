@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "cli/common.hpp"
 #include "cli/recording_flags.hpp"
@@ -24,6 +26,14 @@ struct InfoOptions {
   RecordingFlags recording;
 };
 
+// One table cell or line from file data: ForTerminal's escapes, and line breaks too (a MAT or
+// HDF5 variable name may hold an escape sequence or a newline).
+std::string Cell(std::string_view s) {
+  std::string out;
+  for (const char c : ForTerminal(s)) out += c == '\n' ? std::string("\\x0A") : std::string(1, c);
+  return out;
+}
+
 // A MAT/HDF5 file without a mapping: its variables, so the user can write one.
 void ListFileVariables(const InfoOptions& o) {
   const std::vector<VariableInfo> vars = ListVariables(o.path);
@@ -31,7 +41,7 @@ void ListFileVariables(const InfoOptions& o) {
     std::cout << VariableListToJson(o.path, vars);
     return;
   }
-  std::cout << fmt::format("file        {} ({})\nvariables   {}\n\n", o.path,
+  std::cout << fmt::format("file        {} ({})\nvariables   {}\n\n", Cell(o.path),
                            DescribeFileFormat(o.path), vars.size());
   Table table({"variable", "class", "dims", "length", "min", "max"});
   for (const auto& v : vars) {
@@ -39,7 +49,8 @@ void ListFileVariables(const InfoOptions& o) {
     for (const auto d : v.dims) dims += (dims.empty() ? "" : " x ") + std::to_string(d);
     if (v.complex) dims += " complex";
     const bool range = v.numeric_vector && v.length > 0;
-    table.AddRow({v.name, v.type, dims, v.numeric_vector ? std::to_string(v.length) : "",
+    table.AddRow({Cell(v.name), Cell(v.type), dims,
+                  v.numeric_vector ? std::to_string(v.length) : "",
                   range ? Num(v.min) : "", range ? Num(v.max) : ""});
   }
   std::cout << table.Render();
@@ -59,21 +70,25 @@ void RunInfo(const InfoOptions& o) {
     return;
   }
   const auto j = nlohmann::json::parse(text);
-  std::cout << fmt::format("file        {}\nrows        {}\nduration    {:.6g} s\n", o.path,
-                           rec.rows(), j["duration_s"].get<double>());
+  // JSON writes a number that is not finite as null: printed as "-", never a type error.
+  const auto number = [](const nlohmann::json& v) {
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  std::cout << fmt::format("file        {}\nrows        {}\nduration    {:.6g} s\n", Cell(o.path),
+                           rec.rows(), number(j["duration_s"]));
   if (j.contains("sampling")) {
     const auto& s = j["sampling"];
     std::cout << fmt::format("sample rate {:.6g} Hz (max jitter {:.3g} s, {:.3g} %)\n",
-                             j["sample_rate_hz"].get<double>(), s["max_jitter_s"].get<double>(),
-                             100 * s["max_relative_jitter"].get<double>());
+                             number(j["sample_rate_hz"]), number(s["max_jitter_s"]),
+                             100 * number(s["max_relative_jitter"]));
     if (s.contains("warning")) std::cout << "warning     " << s["warning"].get<std::string>() << '\n';
   }
   for (const auto& [k, v] : rec.metadata) std::cout << fmt::format("# {}: {}\n", k, v);
   Table table({"column", "min", "max", "mean"});
   for (const auto& name : rec.names) {
     const auto& c = j["column_stats"][name];
-    table.AddRow({name, Num(c["min"].get<double>()), Num(c["max"].get<double>()),
-                  Num(c["mean"].get<double>())});
+    table.AddRow({Cell(name), Num(number(c["min"])), Num(number(c["max"])),
+                  Num(number(c["mean"]))});
   }
   std::cout << '\n' << table.Render();
 }

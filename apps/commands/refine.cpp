@@ -14,6 +14,7 @@
 #include "sysid/delay.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -40,7 +41,7 @@ void RunRefine(const RefineCli& o) {
   const RefineResult res = RefineOutputError(initial, recs, r);
   for (const auto& w : res.warnings) std::cerr << "sysid refine: warning: " << w << '\n';
   const std::string rendered = ToJson(res);
-  if (!o.output.empty()) WriteFileAtomically(o.output, rendered);
+  if (!o.output.empty()) WriteFileAtomically(o.output, WithGeneratorKey(rendered));
   if (o.json)
     std::cout << rendered;
   else

@@ -21,6 +21,7 @@
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
 #include "sysid/model.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -58,7 +59,8 @@ void RunSimulate(SimulateCliOptions o) {
   Recording out = TrajectoryRecording(r, model, input.description, sim);
   out.source = o.output.empty() ? "stdout" : o.output;
   // Everything is computed before anything is written: no partial output on error.
-  if (!o.events_path.empty()) WriteFileAtomically(o.events_path, EventsToCsv(r.events));
+  if (!o.events_path.empty())
+    WriteFileAtomically(o.events_path, GeneratorLine() + EventsToCsv(r.events));
   if (!o.output.empty()) WriteRecordingByExtension(o.output, out);
 
   if (o.json) {

@@ -15,6 +15,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -36,7 +37,8 @@ void RunTuneDelay(const TuneDelayCli& o) {
   const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
   const DelayTuningResult r = TuneDelay(model, recs, d);
   for (const auto& w : r.warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
-  if (!o.output.empty()) WriteFileAtomically(o.output, ModelToJson(r.model) + "\n");
+  if (!o.output.empty())
+    WriteFileAtomically(o.output, WithGeneratorKey(ModelToJson(r.model) + "\n"));
   std::cout << (o.json ? ToJson(r) : o.verbose ? r.FullReport() : r.BriefReport());
 }
 

@@ -2,8 +2,10 @@
 // sysid/identify.hpp).
 #include <fmt/format.h>
 
-#include <memory>
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -13,10 +15,43 @@
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
+#include "sysid/io_output.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid::python {
 namespace {
+
+/// set_column keeps a recording that `save` can write and every reader takes back: the CSV
+/// reader's rules for a column name (printable, no comma, not starting like a number, no
+/// surrounding blanks) and its values (finite; t strictly increasing by at least
+/// kMinTimeStep_s, with a finite duration).
+void CheckColumnForFile(const Recording& r, const std::string& name, const Eigen::VectorXd& v) {
+  const std::string where = (r.source.empty() ? "recording" : r.source) + ": set_column";
+  const bool printable = std::none_of(name.begin(), name.end(), [](char c) {
+    const auto b = static_cast<unsigned char>(c);
+    return b < 0x20 || b == 0x7F || c == ',';
+  });
+  const auto numeric_start = [](const std::string& s) {
+    return std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '-' || s[0] == '.';
+  };
+  if (name.empty() || !printable || numeric_start(name) || name.front() == ' ' ||
+      name.back() == ' ' || name.front() == '#')
+    throw InputError(fmt::format(
+        "{}: column name {}: expected a name of printable characters without ',', not starting "
+        "like a number, '#' or a blank (the CSV reader's rule for a header)",
+        where, py::repr(py::str(name)).cast<std::string>()));
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    if (!std::isfinite(v[k]))
+      throw InputError(fmt::format("{}: column '{}'[{}]: expected a finite number, found {}",
+                                   where, name, k, v[k]));
+  if (name != "t") return;
+  for (Eigen::Index k = 1; k < v.size(); ++k)
+    if (!(v[k] - v[k - 1] >= kMinTimeStep_s) || !std::isfinite(v[k] - v[0]))
+      throw InputError(fmt::format(
+          "{}: column 't'[{}]: time must be strictly increasing by at least {:g} s with a "
+          "finite duration, found {} after {}",
+          where, k, kMinTimeStep_s, v[k], v[k - 1]));
+}
 
 /// A recording from named 1-D arrays. The columns go through the strict reader's rules (the
 /// same checks and messages as a file: finite numbers, strictly increasing t, required columns)
@@ -181,6 +216,7 @@ void BindIo(py::module_& m) {
           "set_column",
           [](Recording& r, const std::string& name, const py::object& values) {
             const Eigen::VectorXd v = RealVector(values, "set_column: values", true);
+            CheckColumnForFile(r, name, v);
             if (!r.names.empty())
               CheckSameLength((r.source.empty() ? "recording" : r.source) + ": set_column",
                               "values", v.size(), "the recording", r.rows());

@@ -61,19 +61,27 @@ def read(path):
     return _sysid.read_hysteresis_model(str(path))
 
 
+def _model(model, function):
+    """A HysteresisModel from a model or a model file's path; TypeError for anything else."""
+    import os
+    if isinstance(model, (str, os.PathLike)):
+        return read(model)
+    if not isinstance(model, _sysid.HysteresisModel):
+        raise TypeError(f"hysteresis.{function}: model: expected a HysteresisModel (from fit or "
+                        f"read) or a model file's path, got {type(model).__name__}")
+    return model
+
+
 def simulate(model, u_v, dt_s, periodic=False):
     """x [m] for the input samples u [V] spaced dt_s [s]; `periodic`: u is one period, the
     result the periodic steady state's last period."""
-    if isinstance(model, str):
-        model = read(model)
+    model = _model(model, "simulate")
     return model.simulate_periodic(u_v, dt_s) if periodic else model.simulate(u_v, dt_s)
 
 
 def invert(model, x_m, dt_s):
     """The input u [V] that makes the model follow x [m]."""
-    if isinstance(model, str):
-        model = read(model)
-    return model.invert(x_m, dt_s)
+    return _model(model, "invert").invert(x_m, dt_s)
 
 
 def compare(models, recordings, trim_samples=5):

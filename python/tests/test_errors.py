@@ -135,3 +135,32 @@ def test_hysteresis_invert_far_reference_names_the_reach_not_nan():
     assert "reference sample 1 (t = 0.1 s): x = 1e+308 m" in message
     assert "above the output 1.625 m at u = 2.1 V" in message
     assert "nan" not in message and "inf" not in message
+
+
+def test_set_column_keeps_a_recording_save_can_write(tmp_path):
+    """Issue 38: set_column took NaN, a decreasing t and names with ',', ESC, a newline or
+    nothing; `save` then wrote a CSV that sysid refuses. The reader's rules now apply here."""
+    rec = sysid.recording(t=[0.0, 0.001, 0.002], u=[0, 1, 1], x=[0.0, 1e-6, 3e-6])
+    for name in ["a,b", "e\x1b[2J", "a\nb", "", "1x", " x", "#x"]:
+        with pytest.raises(sysid.DataError, match="column name"):
+            rec.set_column(name, [1.0, 2.0, 3.0])
+    with pytest.raises(sysid.DataError, match=r"'v'\[1\]: expected a finite number, found nan"):
+        rec.set_column("v", [0.0, float("nan"), 0.0])
+    with pytest.raises(sysid.DataError, match="time must be strictly increasing"):
+        rec.set_column("t", [0.0, 0.002, 0.001])
+    with pytest.raises(sysid.DataError, match="time must be strictly increasing"):
+        rec.set_column("t", [0.0, 1e-320, 2e-320])
+    assert rec.names == ["t", "u", "x"]  # nothing was added by the refused calls
+    rec.set_column("v", [0.0, 1e-3, 2e-3])
+    path = tmp_path / "ok.csv"
+    rec.save(str(path))
+    back = sysid.read_recording(path)
+    assert back.names == ["t", "u", "x", "v"]
+
+
+def test_hysteresis_simulate_of_none_is_a_type_error():
+    import sysid.hysteresis as hy
+    for call in (lambda: hy.simulate(None, [0.0, 1.0], 1e-3), lambda: hy.invert(None, [0.0], 1e-3),
+                 lambda: hy.simulate(3, [0.0, 1.0], 1e-3)):
+        with pytest.raises(TypeError, match="expected a HysteresisModel"):
+            call()

@@ -96,6 +96,22 @@ TEST_CASE("sysid info lists a MAT file's variables, text and JSON", "[io][info][
   CHECK(nlohmann::json::parse(r.out)["sample_rate_hz"].get<double>() == Approx(750));
 }
 
+TEST_CASE("sysid info escapes control bytes and line breaks in MAT and HDF5 variable names",
+          "[io][info][cli][errors]") {
+  // Issue 38: an HDF5 dataset or MAT v7.3 variable name may hold an escape sequence or a
+  // newline; info printed them raw to the terminal.
+  TempDir dir;
+  const std::string h5 = dir / "names.h5";
+  WriteH5(h5, {{"/u\x1B[2Jx", {3}, {1, 2, 3}}, {"/a\nb", {3}, {4, 5, 6}}});
+  const CliResult r = RunCli({"info", h5});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find('\x1B') == std::string::npos);
+  CHECK_THAT(r.out, Catch::Contains("/u\\x1B[2Jx") && Catch::Contains("/a\\x0Ab"));
+  // Every line of the table is one variable or the table's frame: the newline did not split one.
+  CHECK(r.out.find("\nb ") == std::string::npos);
+}
+
 TEST_CASE("sysid import: bad input exits 2 with the file and variable, nothing written",
           "[io][import][errors]") {
   TempDir dir;
@@ -148,7 +164,7 @@ TEST_CASE("sysid import -o never replaces a file it did not write", "[io][import
   args.push_back(dir / "mine.csv");
   CliResult r = RunCli(args);
   CHECK(r.exit_code == 1);
-  CHECK_THAT(r.err, Catch::Contains("mine.csv: exists and was not written by sysid import"));
+  CHECK_THAT(r.err, Catch::Contains("mine.csv: exists and was not written by sysid ("));
   CHECK(ReadText(dir / "mine.csv") == "t,u\n0,1\n");
   args = base;
   args.push_back(dir / "new.csv");
@@ -156,7 +172,8 @@ TEST_CASE("sysid import -o never replaces a file it did not write", "[io][import
   const std::string first = ReadText(dir / "new.csv");
   CHECK(RunCli(args).exit_code == 0);  // its own file: replaced
   CHECK(ReadText(dir / "new.csv") == first);
-  CHECK_THAT(first, Catch::StartsWith("# generator: sysid import\n# source.u: "));
+  CHECK_THAT(first, Catch::StartsWith("# generator: sysid "));
+  CHECK_THAT(first, Catch::Contains("\n# source.u: "));
 }
 
 }  // namespace

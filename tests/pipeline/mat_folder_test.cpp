@@ -87,11 +87,12 @@ TEST_CASE("generate --format mat writes the CSV folder's recordings as MAT files
   own.names = {"t", "u", "x"};
   own.data = Eigen::MatrixXd::Zero(3, 3);
   own.data.col(0) << 0, 1e-3, 2e-3;
-  sysid::WriteRecordingMat(In(dir, "mat", "pulses.mat"), own);
+  // A header that does not name sysid, as a lab's own MAT export has.
+  sysid::WriteRecordingMat(In(dir, "mat", "pulses.mat"), own, "exported by the lab's rig");
   const auto refused = RunCli({"generate", "pulses", "--format", "mat", "-o", dir / "mat"});
   CHECK(refused.exit_code == 1);
-  CHECK_THAT(refused.err, Catch::Contains("pulses.mat exists and was not written by sysid "
-                                          "generate (its MAT header does not name"));
+  CHECK_THAT(refused.err, Catch::Contains("pulses.mat exists and was not written by sysid (it "
+                                          "does not start with sysid's generator mark)"));
   CHECK(sysid::ReadRecording(In(dir, "mat", "pulses.mat")).rows() == 3);
   CHECK(RunCli({"generate", "pulses", "--format", "mat", "--force", "-o", dir / "mat"})
             .exit_code == 0);

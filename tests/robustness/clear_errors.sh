@@ -16,13 +16,14 @@ ln -s loopdir loopdir
 expect 1 "loopdir" pipeline loopdir -o rep
 [ ! -e rep ] || fail "a refused pipeline wrote rep"
 
-# Irregular sampling names the file line (12 metadata lines, control_rate_hz among them, and the
-# header come first): a 1 s jump after data row 3000 (0-based) is the interval ending at line 3014.
+# Irregular sampling names the file line (the generator mark, 12 metadata lines, control_rate_hz
+# among them, and the header come first): a 1 s jump after data row 3000 (0-based) is the
+# interval ending at line 3015.
 awk -F, 'BEGIN{OFS=","} /^[0-9-]/{n++; if (n > 3000) $1 = $1 + 1} {print}' "$v/pulses.csv" \
   > r_gap.csv
-expect 2 "r_gap.csv:3014: irregular sampling" derive r_gap.csv
+expect 2 "r_gap.csv:3015: irregular sampling" derive r_gap.csv
 "$sysid" info r_gap.csv > info.txt 2>&1
-grep -q "interval ending at r_gap.csv:3014" info.txt || fail "info: no file line in the warning"
+grep -q "interval ending at r_gap.csv:3015" info.txt || fail "info: no file line in the warning"
 
 # Duplicate keys: an error naming both positions (nlohmann keeps the last one silently).
 printf '{"a1p": 104, "a1n": 117, "a2p": 3.1, "a2n": 6.8, "a3": 6,\n "a1p": 1, "tau": 0}\n' > dup.json

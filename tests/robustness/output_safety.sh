@@ -7,22 +7,22 @@ set -u
 . "$(dirname "$0")/common.sh"
 v="$src/datasets/virtual"
 
-# generate -o DIR replaces only the files generate wrote (its '# stage:'/'# procedure:' lines).
+# generate -o DIR replaces only the files sysid wrote (the generator mark, first line).
 mkdir mylab && printf 't,u,x\n0,0,0\n0.001,1,0\n' > mylab/pulses.csv
 cp mylab/pulses.csv mine.csv
-expect 1 "mylab/pulses.csv exists and was not written by sysid generate" generate pulses -o mylab
+expect 1 "mylab/pulses.csv exists and was not written by sysid" generate pulses -o mylab
 cmp -s mylab/pulses.csv mine.csv || fail "generate replaced the user's mylab/pulses.csv"
-expect 1 "was not written by sysid generate" generate all --seed 1 -o mylab
+expect 1 "was not written by sysid" generate all --seed 1 -o mylab
 cmp -s mylab/pulses.csv mine.csv || fail "generate all replaced the user's mylab/pulses.csv"
 expect 0 "" generate pulses -o mylab --force
-head -1 mylab/pulses.csv | grep -q '^# stage: ' || fail "generate --force did not write"
+head -1 mylab/pulses.csv | grep -q '^# generator: sysid ' || fail "generate --force did not write"
 expect 0 "" generate pulses --seed 2 -o mylab   # its own file: replaced without --force
 echo "my notes" > plain
 expect 1 "-o plain: exists and is not a folder" generate pulses -o plain
 expect 1 "-o plain: exists and is not a folder" generate pulses -o plain --force
 [ "$(cat plain)" = "my notes" ] || fail "generate -o plain changed the file"
 
-# -o FILE replaces only a file sysid wrote (its metadata lines or keys), others with --force.
+# -o FILE replaces only a file sysid wrote (its generator mark), others with --force.
 printf 't,u,x\n0,0,0\n0.001,1,0\n' > notes.csv
 expect 1 "-o notes.csv: exists and was not written by sysid" excite pulses -o notes.csv
 cmp -s notes.csv mine.csv || fail "excite replaced the user's notes.csv"

@@ -69,7 +69,7 @@ TEST_CASE("sysid track: a bad stack file is a positioned error, exit 2, nothing 
   const auto r = RunCli({"track", "--plant", dir / "bad.json", "-o", dir / "out"});
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Contains("bad.json:2:16: mechanics.damping_ratio: expected damping_ratio in "
-                             "(0, 2], found -0.1"));
+                             "[1e-4, 2], found -0.1"));
   CHECK_FALSE(std::filesystem::exists(dir / "out"));
   // The bundled file is the preset.
   const auto a = RunCli({"track", "--plant", SourcePath("datasets/piezo_stack/stack.json"),

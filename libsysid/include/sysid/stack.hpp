@@ -60,7 +60,7 @@ struct StackCreep {
 /// The stack's second-order mechanics (file section "mechanics").
 struct StackMechanics {
   double resonance_hz = 1000;   ///< [Hz] f_n > 0, below the control rate's Nyquist frequency
-  double damping_ratio = 0.05;  ///< [1] zeta in (0, 2]
+  double damping_ratio = 0.05;  ///< [1] zeta in [1e-4, 2]
 };
 
 /// The rig around the stack (file section "rig").
@@ -69,8 +69,8 @@ struct StackRig {
   double voltage_min_v = -20;          ///< [V] amplifier range, lower end
   double voltage_max_v = 120;          ///< [V] amplifier range, upper end, > voltage_min_v
   int dac_bits = 16;                   ///< DAC resolution over the amplifier range, 1..32
-  double sensor_resolution_m = 1e-10;  ///< [m] q > 0 (capacitive sensor)
-  double sensor_noise_m = 1e-9;        ///< [m] standard deviation of the reading noise, >= 0
+  double sensor_resolution_m = 1e-10;  ///< [m] q in [1e-20, 1e-3] (capacitive sensor)
+  double sensor_noise_m = 1e-9;        ///< [m] standard deviation of the reading noise, [0, 1e-3]
 };
 
 /// How the linear ODE is advanced over a sample (file section "integrator").

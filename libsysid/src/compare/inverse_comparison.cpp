@@ -125,7 +125,13 @@ Recording InverseComparison::AsRecording() const {
   rec.SetColumn("u", u_measured_v);
   if (has_analytic) rec.SetColumn("u_analytic", u_analytic_v);
   if (has_nn) rec.SetColumn("u_nn", u_nn_v);
-  for (const auto& h : hysteresis) rec.SetColumn(h.TraceColumn(), h.u_v);
+  // Labels differ, but "pi:a-b" and "pi:a_b" give one column name: a later one gets a
+  // suffix instead of replacing the first one's trace.
+  for (const auto& h : hysteresis) {
+    std::string name = h.TraceColumn();
+    for (int k = 2; rec.has(name); ++k) name = h.TraceColumn() + "_" + std::to_string(k);
+    rec.SetColumn(name, h.u_v);
+  }
   rec.SetColumn("v", v_mps);
   rec.SetColumn("a", a_mps2);
   return rec;

@@ -13,6 +13,7 @@
 
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 
@@ -229,7 +230,8 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
 }
 
 std::string DominanceTableCsv(const DominanceSummary& summary) {
-  std::string out =
+  // First the mark of a file sysid wrote (a later -o replaces only such files).
+  std::string out = GeneratorLine() +
       "# dominance of the inverse-model terms; rms and peak in [m/s^2], ratios dimensionless\n"
       "source,rank,variable,rms,peak,ratio_to_top,ratio_bound,ratio_max,negligible,dominant,"
       "margin,moving_samples\n";

@@ -10,6 +10,7 @@
 
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 
@@ -24,6 +25,47 @@ std::vector<int> PrimeFactors(int r) {
     }
   if (r > 1) f.push_back(r);
   return f;
+}
+
+double FftWork(Eigen::Index n) {
+  double sum = 0;
+  Eigen::Index r = n;
+  for (Eigen::Index p = 2; p * p <= r; ++p)
+    while (r % p == 0) {
+      sum += static_cast<double>(p);
+      r /= p;
+    }
+  if (r > 1) sum += static_cast<double>(r);
+  return static_cast<double>(n) * sum;
+}
+
+void CheckChainWork(Eigen::Index rows, int upsampling, double periods, const char* kind) {
+  const double fine = static_cast<double>(rows) * upsampling;
+  if (fine * periods > kMaxSignalSamples)
+    throw InputError(fmt::format(
+        "{}: the benchmark chain on {} samples x upsampling {}{} = {:.4g} fine samples, more "
+        "than the {:.0e} it may integrate (sysid::kMaxSignalSamples); lower the upsampling or "
+        "shorten the recording",
+        kind, rows, upsampling, periods > 1 ? fmt::format(" x {:g} periods", periods) : "",
+        fine * periods, kMaxSignalSamples));
+  const double work = FftWork(rows * upsampling);
+  if (work > kMaxFftWork)
+    throw InputError(fmt::format(
+        "{}: the benchmark chain's FFT upsampling of {} samples x upsampling {} = {} fine "
+        "samples costs {:.3g} operations (the length times the sum of its prime factors), more "
+        "than the {:.0e} allowed (kMaxFftWork); choose an upsampling and a length with small "
+        "prime factors (the benchmark: 20 = 2 x 2 x 5)",
+        kind, rows, upsampling, rows * upsampling, work, kMaxFftWork));
+}
+
+void CheckBandLimitedWork(Eigen::Index rows, const char* kind) {
+  const double work = FftWork(rows);
+  if (work > kMaxFftWork)
+    throw InputError(fmt::format(
+        "{}: the band-limited input's FFT of {} samples costs {:.3g} operations (the length "
+        "times the sum of its prime factors), more than the {:.0e} allowed (kMaxFftWork); use "
+        "the linear or held input, or a length with small prime factors",
+        kind, rows, work, kMaxFftWork));
 }
 
 void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen::Index n, double h,

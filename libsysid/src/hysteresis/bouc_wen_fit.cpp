@@ -404,8 +404,14 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         throw InputError(fmt::format("{}:{}: column '{}': expected a finite number", r.source,
                                      i + 2, std::isfinite(s.u[i]) ? "x" : "u"));
     if (form == BoucWenForm::kMechanical &&
-        options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain)
+        options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain) {
+      try {
+        internal::CheckChainWork(s.u.size(), options.simulation.upsampling, 1, "bouc-wen");
+      } catch (const InputError& e) {
+        throw InputError(r.source + ": " + e.what());
+      }
       s.chain_u = internal::ChainInput(s.u, options.simulation.upsampling);
+    }
     n += s.u.size();
     data.push_back(std::move(s));
   }

@@ -88,6 +88,29 @@ Eigen::VectorXd ChainInput(const Eigen::VectorXd& u, int upsampling);
 Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
                             Eigen::Index n, double dt_s, int upsampling);
 
+/// The most operations an FFT of the benchmark chain or of a band-limited input may cost: Eigen's
+/// FFT (kissfft) spends about n x (the sum of n's prime factors) on a length n, so a length with
+/// a large prime factor (a recording of a prime number of rows, upsampling 997) costs up to n^2.
+/// 2e9 is a few seconds: n = 2e7 = 2^8 5^7 costs 1e9.
+inline constexpr double kMaxFftWork = 2e9;
+
+/// The most (spectral lines kept) x (samples) a band-limited input may have: each of CVODE's
+/// evaluations of u(t) sums every line (SampledInput throws InputError past it).
+inline constexpr double kMaxBandLimitedWork = 2e7;
+
+/// n x (the sum of n's prime factors, with multiplicity): the work of a length-n FFT.
+double FftWork(Eigen::Index n);
+
+/// Throws InputError, before any allocation, when the benchmark chain over `periods` periods of
+/// `rows` samples would integrate more than kMaxSignalSamples fine samples (rows x upsampling x
+/// periods), or when its FFT upsampling would cost more than kMaxFftWork. `kind` starts the
+/// message.
+void CheckChainWork(Eigen::Index rows, int upsampling, double periods, const char* kind);
+
+/// Throws InputError when the band-limited interpolant's FFT of `rows` samples would cost more
+/// than kMaxFftWork.
+void CheckBandLimitedWork(Eigen::Index rows, const char* kind);
+
 /// The piezo form's exact step: h after u moves in a straight line from u0 to u1, from h0.
 double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h0);
 

@@ -8,6 +8,7 @@
 #include "core/cvode_solver.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 
@@ -48,6 +49,7 @@ Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_
   Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
   if (n == 0) return y;
   if (options_.integrator == BoucWenIntegrator::kBenchmarkChain) {
+    internal::CheckChainWork(n, options_.upsampling, 1, "bouc-wen");
     return internal::ChainOutput(p_, internal::ChainInput(u, options_.upsampling), n, dt_s,
                                  options_.upsampling);
   }
@@ -89,6 +91,9 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
                        "tolerance");
   const Eigen::Index n = u_period.size();
   const int up = options_.upsampling;
+  // Three periods at least; past kMaxSignalSamples fine samples in all the search stops.
+  internal::CheckChainWork(n, up, 3, "bouc-wen");
+  max_periods = std::min<double>(max_periods, std::floor(kMaxSignalSamples / (double(n) * up)));
   const std::vector<int> factors = internal::PrimeFactors(up);
   const Eigen::VectorXd uf = UpsampleBandLimited(u_period, up);
   const Eigen::Index nf = uf.size();
@@ -111,9 +116,10 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
   }
   if (!(change <= tolerance))
     throw NumericalError(fmt::format(
-        "bouc-wen: no periodic steady state within {} periods: the last two periods still "
-        "differ by {:.3g} m (tolerance {:.3g} m)",
-        max_periods, change, tolerance));
+        "bouc-wen: no periodic steady state within {} periods (at most {:.0e} fine samples "
+        "in all, sysid::kMaxSignalSamples): the last two periods still differ by {:.3g} m "
+        "(tolerance {:.3g} m)",
+        max_periods, kMaxSignalSamples, change, tolerance));
   const Eigen::VectorXd yd = internal::DecimateChain(yf, factors);
   return yd.segment(n, n);
 }

@@ -210,6 +210,21 @@ PiParameters PrandtlIshlinskiiModel::InverseParameters() const {
   inv.input_min_v = -std::numeric_limits<double>::max() / 4;
   inv.input_max_v = std::numeric_limits<double>::max() / 4;
   // r'_i - r'_{i-1} = S_{i-1} (r_i - r_{i-1}) > 0: the inverse's thresholds increase too.
+  // Weights near the largest double (1e308) overflow these sums: said as the model's failure,
+  // not as an invalid field of parameters the user never wrote.
+  const auto overflow = [&](const char* what, size_t i, double v) {
+    return NumericalError(fmt::format(
+        "pi model not invertible: its inverse's {}[{}] = {} overflows a double (the model's "
+        "weights sum to {:.3g} m/V with p0 = {:.3g} m/V): rescale the model",
+        what, i, v, partial, w0));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(inv.thresholds[i])) throw overflow("thresholds", i, inv.thresholds[i]);
+    if (!std::isfinite(inv.weights[i])) throw overflow("weights", i, inv.weights[i]);
+    if (!std::isfinite(inv.initial_state[i]))
+      throw overflow("initial_state", i, inv.initial_state[i]);
+  }
+  if (!std::isfinite(inv.initial_input_v)) throw overflow("initial_input", 0, inv.initial_input_v);
   return inv;
 }
 

@@ -15,6 +15,7 @@
 
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 namespace internal {
@@ -187,6 +188,17 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
     with_t.names.push_back("t");
     with_t.names.insert(with_t.names.end(), rec.names.begin(), rec.names.end());
     with_t.data.resize(n, rec.data.cols() + 1);
+    // t = k / rate: every step and the span must stay finite numbers (--rate 1e-320 made t inf,
+    // --rate 1e308 a subnormal step whose rate is inf).
+    const double last_t = static_cast<double>(n > 0 ? n - 1 : 0) / m.rate_hz;
+    if (!(1 / m.rate_hz >= kMinTimeStep_s) || !std::isfinite(last_t))
+      throw OptionsError(
+          fmt::format("--rate {}: t = k / rate over {} samples {}: expected a rate whose step "
+                      "1/rate is at least {} s and whose duration is a finite number",
+                      Num(m.rate_hz), n,
+                      std::isfinite(last_t) ? "steps by a subnormal number" : "reaches inf",
+                      Num(kMinTimeStep_s)),
+          "rate_hz");
     for (Eigen::Index k = 0; k < n; ++k) with_t.data(k, 0) = static_cast<double>(k) / m.rate_hz;
     with_t.data.rightCols(rec.data.cols()) = rec.data;
     rec = std::move(with_t);
@@ -220,6 +232,14 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
       if (!(t[k] > t[k - 1]))
         throw InputError(fmt::format("{}[{}]: time must be strictly increasing, found {} after {}",
                                      origin("t"), k + 1, Num(t[k]), Num(t[k - 1])));
+    // A subnormal step has an infinite rate, a span past the largest double an infinite
+    // duration (--scale t=1e-320 gave the first).
+    for (Eigen::Index k = 1; k < t.size(); ++k)
+      if (!(t[k] - t[k - 1] >= kMinTimeStep_s) || !std::isfinite(t[k] - t[0]))
+        throw InputError(fmt::format(
+            "{}[{}]: t = {} after {}: expected a step of at least {} s (a finite sample rate) "
+            "and a duration that is a finite number",
+            origin("t"), k + 1, Num(t[k]), Num(t[k - 1]), Num(kMinTimeStep_s)));
   }
 }
 

@@ -15,6 +15,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 namespace {
@@ -85,6 +86,10 @@ class Parser {
              c == ' ';
     });
     if (!keyish) return;
+    // The file's mark of who wrote it (sysid/io_output.hpp), not a fact about the data: a
+    // recording written again gets its writer's own.
+    const std::string_view value = Trim(comment.substr(colon + 1));
+    if (key == "generator" && value.substr(0, 6) == "sysid ") return;
     // A comment is the user's free text, kept; its control bytes (an escape sequence would
     // reach the terminal through `sysid info` and every file that copies metadata) as \xHH.
     rec.metadata.emplace_back(std::string(key), internal::OneLine(Trim(comment.substr(colon + 1))));
@@ -147,7 +152,7 @@ class Parser {
       values.reserve(std::min(max_rows, kMaxRows + 1) * ncol);
     }
     const int t_index = options_.require_increasing_time ? rec.index_of("t") : -1;
-    double t_prev = 0;
+    double t_prev = 0, t_first = 0;
     long t_prev_line = 0;
     size_t rows = 0;
     std::string_view line;
@@ -188,6 +193,18 @@ class Parser {
           Fail(line_no_, FieldColumn(line, static_cast<size_t>(t_index)),
                "column 't': time must be strictly increasing, found " + Num(t) + " after " +
                    Num(t_prev) + " (line " + std::to_string(t_prev_line) + ")");
+        // Every step must have a finite rate 1/step, and the span a finite duration: a
+        // subnormal step or a span past the largest double makes both inf.
+        if (rows > 0 && !(t - t_prev >= kMinTimeStep_s))
+          Fail(line_no_, FieldColumn(line, static_cast<size_t>(t_index)),
+               "column 't': a step of " + Num(t - t_prev) + " s after " + Num(t_prev) +
+                   " (line " + std::to_string(t_prev_line) + "): expected a step of at least " +
+                   Num(kMinTimeStep_s) + " s, whose sample rate 1/step is a finite number");
+        if (rows == 0) t_first = t;
+        if (!std::isfinite(t - t_first))
+          Fail(line_no_, FieldColumn(line, static_cast<size_t>(t_index)),
+               "column 't': " + Num(t) + " is more than the largest double after the first "
+               "time, " + Num(t_first) + ": expected a duration that is a finite number");
         t_prev = t;
         t_prev_line = line_no_;
       }

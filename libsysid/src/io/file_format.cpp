@@ -1,4 +1,6 @@
 // DetectFileFormat: the file's first bytes decide how it is read.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -22,6 +24,11 @@ struct Probe {
 
 Probe ProbeFile(const std::string& path) {
   Probe p;
+  // A pipe (`cat rec.csv | sysid derive /dev/stdin`) can be read once: probing it here would
+  // eat its first bytes before the reader gets them. MAT and HDF5 readers need a regular
+  // file, so anything else is text, read whole by ReadFile (bounded by kMaxInputFileBytes).
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return p;
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return p;
   p.opened = true;

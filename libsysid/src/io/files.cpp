@@ -158,7 +158,11 @@ void WriteThroughTempFile(const std::string& path,
   }
   const fs::path target(file);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
+  // ".NAME.tmp.XXXXXX" says what is being written; past the 255 bytes a name may have (a legal
+  // 240-byte NAME) the fixed ".sysid.tmp.XXXXXX" does, so any legal name can be written.
+  std::string name = "." + target.filename().string() + ".tmp.XXXXXX";
+  if (name.size() > 255) name = ".sysid.tmp.XXXXXX";
+  std::string tmpl = (dir / name).string();
   std::optional<InterruptsBlocked> blocked(std::in_place);  // until registered
   const int fd = mkstemp(tmpl.data());
   if (fd < 0) throw InputError(path + ": cannot write: " + std::strerror(errno));

@@ -10,6 +10,7 @@
 #include "io/containers.hpp"
 #include "io/temp_files.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 
@@ -31,9 +32,11 @@ void WriteRecordingMat(const std::string& path, const Recording& recording,
     const auto fail = [&](const std::string& why) {
       throw InputError(path + ": cannot write: " + why);
     };
-    const std::string header = ("MATLAB 5.0 MAT-file, " + description).substr(0, 116);
-    mat_t* mat =
-        Mat_CreateVer(tmp.c_str(), description.empty() ? nullptr : header.c_str(), MAT_FT_MAT5);
+    // The header names sysid (the mark a later -o looks for, sysid/io_output.hpp).
+    const std::string header =
+        ("MATLAB 5.0 MAT-file, " + (description.empty() ? GeneratorName() : description))
+            .substr(0, 116);
+    mat_t* mat = Mat_CreateVer(tmp.c_str(), header.c_str(), MAT_FT_MAT5);
     if (!mat) fail("matio cannot create the file");
     Eigen::VectorXd column;
     for (size_t c = 0; c < recording.names.size(); ++c) {

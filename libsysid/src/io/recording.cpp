@@ -5,6 +5,7 @@
 #include "core/json_text.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io_output.hpp"
 #include "sysid/io.hpp"
 
 namespace sysid {
@@ -75,8 +76,12 @@ std::string FormatChecked(const Recording& recording, const std::string& where) 
   out.reserve(static_cast<size_t>(rows * cols) * 16 + 256);
   // Metadata values may come from users (file names, comments): one line each, whatever they
   // hold, so the file reads back and prints safely.
+  // The first line says sysid wrote the file (a later -o replaces only such files); a
+  // recording read from one of sysid's files keeps no generator of its own.
+  out += GeneratorLine();
   for (const auto& [k, v] : recording.metadata)
-    out += "# " + internal::OneLine(k) + ": " + internal::OneLine(v) + "\n";
+    if (k != "generator" || v.rfind("sysid ", 0) != 0)
+      out += "# " + internal::OneLine(k) + ": " + internal::OneLine(v) + "\n";
   for (Eigen::Index c = 0; c < cols; ++c) {
     out += recording.names[static_cast<size_t>(c)];
     out += c + 1 < cols ? ',' : '\n';

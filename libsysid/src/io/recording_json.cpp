@@ -2,6 +2,7 @@
 // per-column ranges, metadata) as JSON.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -59,7 +60,10 @@ std::string RecordingSummaryToJson(const Recording& r, double jitter_tolerance, 
   nlohmann::ordered_json stats = nlohmann::ordered_json::object();
   for (size_t c = 0; c < r.names.size() && r.rows() > 0; ++c) {
     const auto col = r.data.col(static_cast<Eigen::Index>(c));
-    stats[r.names[c]] = {{"min", col.minCoeff()}, {"max", col.maxCoeff()}, {"mean", col.mean()}};
+    double mean = col.mean();
+    // Values near the largest double overflow the sum; each divided by n first cannot.
+    if (!std::isfinite(mean)) mean = (col / static_cast<double>(col.size())).sum();
+    stats[r.names[c]] = {{"min", col.minCoeff()}, {"max", col.maxCoeff()}, {"mean", mean}};
   }
   j["column_stats"] = stats;
   nlohmann::ordered_json meta = nlohmann::ordered_json::object();

@@ -30,16 +30,21 @@ SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
   SamplingReport r;
   r.nominal_dt_s = sorted[n / 2];
   r.sample_rate_hz = 1.0 / r.nominal_dt_s;
-  double sum2 = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
     const double d = std::abs((t[k + 1] - t[k]) - r.nominal_dt_s);
-    sum2 += d * d;
     if (d > r.max_jitter_s) {
       r.max_jitter_s = d;
       r.worst_index = k;
     }
   }
-  r.rms_jitter_s = std::sqrt(sum2 / static_cast<double>(n));
+  // Relative to the largest deviation: squares of steps near 1e200 s do not overflow.
+  double sum2 = 0;
+  if (r.max_jitter_s > 0)
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double d = std::abs((t[k + 1] - t[k]) - r.nominal_dt_s) / r.max_jitter_s;
+      sum2 += d * d;
+    }
+  r.rms_jitter_s = r.max_jitter_s * std::sqrt(sum2 / static_cast<double>(n));
   r.max_relative_jitter = r.max_jitter_s / r.nominal_dt_s;
   r.irregular = r.max_relative_jitter > tolerance;
   return r;

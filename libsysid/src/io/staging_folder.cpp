@@ -21,7 +21,9 @@ StagingFolder::StagingFolder(const std::filesystem::path& target) {
   namespace fs = std::filesystem;
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   const std::string pid = std::to_string(::getpid());
-  const std::string prefix = "." + target.filename().string() + ".tmp." + pid + ".";
+  std::string prefix = "." + target.filename().string() + ".tmp." + pid + ".";
+  // Past the 255 bytes a name may have (a legal 240-byte folder name): a fixed prefix.
+  if (prefix.size() + 6 > 255) prefix = ".sysid.tmp." + pid + ".";
   // The name is registered before the folder exists, so that a signal to any thread finds it
   // (mkdtemp would leave a gap). Names carrying this process id are this run's, or a dead
   // process's leftovers: removing either on a signal harms no one.

@@ -2,6 +2,7 @@
 // '#' comment lines. As strict as the CSV reader: every cell is a whole finite number.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -54,6 +55,16 @@ bool ParseDouble(std::string_view s, double* v) {
   return !s.empty() && ec == std::errc() && ptr == e;
 }
 
+// Starts like a number: a digit, or a sign or point before a digit or point.
+bool LooksNumeric(std::string_view s) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (s.empty()) return false;
+  if (digit(s[0])) return true;
+  if (s[0] == '+' || s[0] == '-') s.remove_prefix(1);
+  if (!s.empty() && s[0] == '.') s.remove_prefix(1);
+  return !s.empty() && digit(s[0]);
+}
+
 }  // namespace
 
 TextTable ReadTextTable(const std::string& path) {
@@ -82,8 +93,11 @@ TextTable ReadTextTable(const std::string& path) {
       if (ncol > 4096)
         throw InputError(fmt::format("{}:{}: {} columns: at most 4096", path, line_no, ncol));
       table.columns.resize(ncol);
-      double v;
-      if (!ParseDouble(fields[0].first, &v)) {  // a header line of names
+      // A header line is one whose cells are all names: a cell that starts like a number
+      // ("1.2.3", "1e400", "0x10") makes the line a row, so a malformed first number is an
+      // error with its line and column instead of a header that drops the row.
+      if (std::none_of(fields.begin(), fields.end(),
+                       [](const auto& f) { return LooksNumeric(f.first); })) {
         for (const auto& f : fields) {
           if (f.first.empty())
             throw InputError(

@@ -8,6 +8,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 namespace internal {
@@ -65,7 +66,7 @@ void WriteModel(const std::string& path, const FrictionModel& model) {
     if (!std::isfinite(v))
       throw NumericalError(path + ": " + name + " = " + std::to_string(v) +
                            ": not written (a model file holds finite parameters)");
-  WriteFileAtomically(path, ModelToJson(model));
+  WriteFileAtomically(path, WithGeneratorKey(ModelToJson(model)));
 }
 
 }  // namespace sysid

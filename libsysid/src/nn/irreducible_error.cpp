@@ -39,6 +39,10 @@ IrreducibleError EstimateIrreducibleError(const NeuralDataset& data,
 
   Eigen::MatrixXd points = data.inputs;
   for (Eigen::Index c = 0; c < dims; ++c) {
+    // Divided by max|x| first: the mean and the squares of values near the largest double
+    // stay finite, so an input gives one answer at every scale (+-1.7e308 as +-1).
+    const double scale = points.col(c).cwiseAbs().maxCoeff();
+    if (scale > 0) points.col(c) /= scale;
     const double mean = points.col(c).mean();
     const double sd = std::sqrt((points.col(c).array() - mean).square().sum() /
                                 static_cast<double>(n));

@@ -10,6 +10,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 namespace {
@@ -106,7 +107,7 @@ void WriteNeuralNetwork(const std::string& path, const NeuralNetwork& net,
       !std::isfinite(net.b2()))
     throw NumericalError(path + ": the network's weights hold inf or NaN: not written (the "
                          "training diverged)");
-  WriteFileAtomically(path, NeuralNetworkToJson(net, 2, extra_json));
+  WriteFileAtomically(path, WithGeneratorKey(NeuralNetworkToJson(net, 2, extra_json)));
 }
 
 }  // namespace sysid

@@ -13,6 +13,32 @@
 #include "sysid/pipeline.hpp"
 
 namespace sysid {
+namespace {
+
+/// [V] The most a stack recording's |u| may reach: no piezo amplifier gives more.
+constexpr double kMaxStackVoltage_v = 1e5;
+
+// The hysteresis fits take powers and products of u and x (a polynomial of degree 3, Ceres'
+// Jacobians): values near 1e150 overflowed into inf scores and a solver's failure dump in the
+// report. A stack moves micrometres on at most a few hundred volts; far past that the
+// recording is in another unit, or not a stack's.
+void CheckStackRanges(const Recording& rec) {
+  const Eigen::VectorXd x = rec.column("x"), u = rec.column("u");
+  const double span = x.maxCoeff() - x.minCoeff(), peak = u.cwiseAbs().maxCoeff();
+  if (!(span <= kMaxPlausibleTravel_m))
+    throw InputError(fmt::format(
+        "{}: column 'x' spans {:.6g} m, more than the {:g} m any stage or stack moves "
+        "(sysid::kMaxPlausibleTravel_m): if x is in another unit, declare it with a "
+        "'# units: x=um' line",
+        rec.source, span, kMaxPlausibleTravel_m));
+  if (!(peak <= kMaxStackVoltage_v))
+    throw InputError(fmt::format(
+        "{}: column 'u' reaches {:.6g} V, more than the {:g} V a piezo amplifier gives: "
+        "expected the drive voltage in V",
+        rec.source, peak, kMaxStackVoltage_v));
+}
+
+}  // namespace
 
 PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
                                 const PipelineProgress& progress) {
@@ -32,6 +58,7 @@ PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOpti
     for (const auto& path : inputs.stack) {
       recs.push_back(ReadRecording(path, ro));
       TrainingPart(recs.back(), kStackTrainFraction);  // InputError now if too short to split
+      CheckStackRanges(recs.back());
     }
   });
   step("dominance of x, v, a (training parts)", [&] {

@@ -117,19 +117,27 @@ void StackParameters::Validate() const {
       !(mechanics.resonance_hz < nyquist))
     Violated("mechanics.resonance_hz", mechanics.resonance_hz,
              "0 < resonance_hz < control_rate_hz / 2 = " + G(nyquist));
-  if (!std::isfinite(mechanics.damping_ratio) || !(mechanics.damping_ratio > 0) ||
+  // Below 1e-4 the resonance peak 1/(2 zeta) passes 5000 and the loop's margins are not
+  // finite numbers (1e-300 printed "gain nan").
+  if (!std::isfinite(mechanics.damping_ratio) || !(mechanics.damping_ratio >= 1e-4) ||
       mechanics.damping_ratio > 2)
-    Violated("mechanics.damping_ratio", mechanics.damping_ratio, "damping_ratio in (0, 2]");
+    Violated("mechanics.damping_ratio", mechanics.damping_ratio, "damping_ratio in [1e-4, 2]");
   if (!std::isfinite(rig.voltage_min_v)) Violated("rig.voltage_min_v", rig.voltage_min_v, "finite");
   if (!std::isfinite(rig.voltage_max_v) || !(rig.voltage_max_v > rig.voltage_min_v))
     Violated("rig.voltage_max_v", rig.voltage_max_v,
              "voltage_max_v > voltage_min_v = " + G(rig.voltage_min_v));
   if (rig.dac_bits < 1 || rig.dac_bits > 32)
     Violated("rig.dac_bits", rig.dac_bits, "dac_bits in 1..32");
-  if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m > 0))
-    Violated("rig.sensor_resolution_m", rig.sensor_resolution_m, "sensor_resolution_m > 0");
-  if (!std::isfinite(rig.sensor_noise_m) || rig.sensor_noise_m < 0)
-    Violated("rig.sensor_noise_m", rig.sensor_noise_m, "sensor_noise_m >= 0 and finite");
+  // The reading is round((x + n) / q) q: a q near 1e-320 made the count overflow into inf
+  // (1e-20, far below any sensor, reads effectively unquantised);
+  // noise past 1 mm (a stack moves tens of um) makes the readings meaningless and, near
+  // 1e300, inf.
+  if (!std::isfinite(rig.sensor_resolution_m) || !(rig.sensor_resolution_m >= 1e-20) ||
+      rig.sensor_resolution_m > 1e-3)
+    Violated("rig.sensor_resolution_m", rig.sensor_resolution_m,
+             "1e-20 <= sensor_resolution_m <= 1e-3");
+  if (!std::isfinite(rig.sensor_noise_m) || rig.sensor_noise_m < 0 || rig.sensor_noise_m > 1e-3)
+    Violated("rig.sensor_noise_m", rig.sensor_noise_m, "0 <= sensor_noise_m <= 1e-3");
   if (!std::isfinite(integrator.relative_tolerance) || integrator.relative_tolerance < 1e-14 ||
       integrator.relative_tolerance > 1e-2)
     Violated("integrator.relative_tolerance", integrator.relative_tolerance,

@@ -11,6 +11,7 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/stage.hpp"
+#include "sysid/io_output.hpp"
 
 namespace sysid {
 namespace {
@@ -403,7 +404,7 @@ StageParameters LoadStage(const std::string& preset_or_path) {
 }
 
 void WriteStageParameters(const std::string& path, const StageParameters& parameters) {
-  WriteFileAtomically(path, StageParametersToJson(parameters));
+  WriteFileAtomically(path, WithGeneratorKey(StageParametersToJson(parameters)));
 }
 
 }  // namespace sysid
