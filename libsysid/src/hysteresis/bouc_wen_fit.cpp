@@ -1,5 +1,6 @@
-// Output-error fit of the Bouc–Wen models (Ceres, central differences through the simulator,
-// the Jacobian's columns simulated in parallel).
+// Output-error fit of the Bouc–Wen models (Ceres; the Jacobian by the benchmark chain's forward
+// sensitivities, or by central differences through the simulator, its columns simulated in
+// parallel).
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 
@@ -41,6 +42,8 @@ void BoucWenFitOptions::Validate() const {
   if (max_iterations < 1 || max_iterations > 10000)
     rule("max_iterations", max_iterations, "1 <= max_iterations <= 10000");
   if (threads < 0) rule("threads", threads, "threads >= 0");
+  if (!(max_time_s >= 0) || !std::isfinite(max_time_s))
+    rule("max_time_s", max_time_s, "max_time_s >= 0 and finite (0: no bound)");
 }
 
 namespace {
@@ -124,8 +127,11 @@ bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x
 class OutputError : public ceres::CostFunction {
  public:
   OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
-              long* simulations)
+              BoucWenJacobian jacobian, long* simulations)
       : l_(l), data_(data), threads_(threads), simulations_(simulations) {
+    sensitivities_ = jacobian == BoucWenJacobian::kSensitivities &&
+                     l->form == BoucWenForm::kMechanical && !data->empty();
+    for (const auto& s : *data) sensitivities_ = sensitivities_ && s.chain_u.size() > 0;
     mutable_parameter_block_sizes()->push_back(static_cast<int>(l->free.size()));
     set_num_residuals(static_cast<int>(n));
   }
@@ -148,6 +154,15 @@ class OutputError : public ceres::CostFunction {
       last_ok_ = Residuals(*l_, *data_, x[0], residuals);
       last_r_ = Eigen::Map<const Eigen::VectorXd>(residuals, n);
       return last_ok_;
+    }
+    if (sensitivities_) {
+      ++*simulations_;
+      last_ok_ = ResidualsAndSensitivities(x[0], residuals, jacobians[0]);
+      if (!last_ok_) return false;
+      last_r_ = Eigen::Map<const Eigen::VectorXd>(residuals, n);
+      last_j_ = Jacobian(jacobians[0], n, np);
+      last_has_jacobian_ = true;
+      return true;
     }
     // Residuals (unless kept) and 2 np perturbed simulations, in parallel.
     std::vector<Eigen::VectorXd> r(static_cast<size_t>(2 * np + 1), Eigen::VectorXd(n));
@@ -203,8 +218,53 @@ class OutputError : public ceres::CostFunction {
     return Eigen::Map<RowMajor>(j, n, np);
   }
 
+  // The chain's residuals and their exact Jacobian (ChainOutputSensitivity), the recordings in
+  // parallel; false when the parameters are invalid or a simulation fails.
+  bool ResidualsAndSensitivities(const double* x, double* residuals, double* jacobian) const {
+    const int np = static_cast<int>(l_->free.size());
+    const Eigen::VectorXd p = l_->Full(x);
+    MechanicalBoucWenParameters m;
+    m.m_kg = p[0];
+    m.c_n_s_per_m = p[1];
+    m.k_n_per_m = p[2];
+    m.alpha_n_per_m = p[3];
+    m.beta_per_m = p[4];
+    m.gamma = p[5];
+    m.delta = p[6];
+    m.nu = p[7];
+    try {
+      m.Validate();
+    } catch (const Error&) {
+      return false;
+    }
+    const bool with_nu = std::find(l_->free.begin(), l_->free.end(), 7) != l_->free.end();
+    auto J = Jacobian(jacobian, num_residuals(), np);
+    std::vector<Eigen::Index> first(data_->size() + 1, 0);
+    for (size_t k = 0; k < data_->size(); ++k) first[k + 1] = first[k] + (*data_)[k].x.size();
+    std::vector<char> ok(data_->size(), 0);
+    internal::ParallelFor(static_cast<long>(data_->size()), threads_, [&](long job) {
+      const Series& s = (*data_)[static_cast<size_t>(job)];
+      const Eigen::Index at = first[static_cast<size_t>(job)], len = s.x.size();
+      Eigen::VectorXd y;
+      Eigen::MatrixXd dy;
+      try {
+        internal::ChainOutputSensitivity(m, s.chain_u, len, s.dt_s, l_->sim.upsampling, with_nu, &y,
+                                         &dy);
+      } catch (const Error&) {
+        return;
+      }
+      Eigen::Map<Eigen::VectorXd>(residuals + at, len) = y - s.x;
+      for (int i = 0; i < np; ++i)
+        J.col(i).segment(at, len) =
+            dy.col(l_->free[static_cast<size_t>(i)]) * l_->scale[static_cast<size_t>(i)];
+      ok[static_cast<size_t>(job)] = y.allFinite() && dy.allFinite();
+    });
+    return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+  }
+
   const Layout* l_;
   const std::vector<Series>* data_;
+  bool sensitivities_ = false;
   int threads_;
   long* simulations_;
   // The last point evaluated and what was computed there (Ceres evaluates serially).
@@ -347,16 +407,50 @@ Layout MakeLayout(BoucWenForm form, const std::vector<Series>& data, const BoucW
 struct Solved {
   std::vector<double> x;
   ceres::Solver::Summary summary;
+  bool timed_out = false;  // stopped by BoucWenFitOptions::max_time_s
+};
+
+// The fit's clock and its bound, shared by the starts and the final fit.
+struct FitClock {
+  std::chrono::steady_clock::time_point start;
+  double max_time_s = 0;  // 0: none
+  double Elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  bool Bounded() const { return max_time_s > 0; }
+  double Remaining() const { return std::max(0.0, max_time_s - Elapsed()); }
+};
+
+class ProgressCallback final : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const BoucWenFitOptions& o, const FitClock& clock, int start, Eigen::Index n)
+      : o_(o), clock_(clock), start_(start), n_(n) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    BoucWenFitProgress p;
+    p.start = start_;
+    p.starts = o_.starts;
+    p.iteration = s.iteration;
+    p.rms_m = std::sqrt(2 * s.cost / static_cast<double>(n_));  // Ceres' cost is sse / 2
+    p.elapsed_s = clock_.Elapsed();
+    o_.on_iteration(p);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const BoucWenFitOptions& o_;
+  const FitClock& clock_;
+  int start_;
+  Eigen::Index n_;
 };
 
 Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
-             std::vector<double> x, int iterations, int threads, long* simulations,
-             ceres::Problem** keep = nullptr) {
+             std::vector<double> x, int iterations, const BoucWenFitOptions& o,
+             const FitClock& clock, int start, long* simulations, ceres::Problem** keep = nullptr) {
   Solved s;
   s.x = std::move(x);
   auto* problem = new ceres::Problem;
-  problem->AddResidualBlock(new OutputError(&l, &data, n, threads, simulations), nullptr,
-                            s.x.data());
+  problem->AddResidualBlock(new OutputError(&l, &data, n, o.threads, o.jacobian, simulations),
+                            nullptr, s.x.data());
   for (size_t i = 0; i < l.free.size(); ++i) {
     if (std::isfinite(l.lower[i]))
       problem->SetParameterLowerBound(s.x.data(), static_cast<int>(i), l.lower[i]);
@@ -370,7 +464,14 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   so.parameter_tolerance = 1e-12;
   so.gradient_tolerance = 1e-14;
   so.logging_type = ceres::SILENT;
+  if (clock.Bounded()) so.max_solver_time_in_seconds = clock.Remaining();
+  ProgressCallback progress(o, clock, start, n);
+  if (o.on_iteration) so.callbacks.push_back(&progress);
   ceres::Solve(so, problem, &s.summary);
+  // Ceres says NO_CONVERGENCE for both of its limits: short of the iteration limit, the clock.
+  s.timed_out = clock.Bounded() && s.summary.termination_type == ceres::NO_CONVERGENCE &&
+                static_cast<int>(s.summary.iterations.size()) - 1 < iterations &&
+                clock.Remaining() == 0;
   if (keep != nullptr)
     *keep = problem;
   else
@@ -384,7 +485,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                                             const std::vector<Recording>& recordings,
                                             const BoucWenFitOptions& options,
                                             HysteresisFitSummary* summary) {
-  const auto start = std::chrono::steady_clock::now();
+  FitClock clock{std::chrono::steady_clock::now(), options.max_time_s};
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
   if (form == BoucWenForm::kPiezo &&
@@ -427,6 +528,11 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
                     recordings.front().source, u_min));
   const Layout layout = MakeLayout(form, data, options);
+  const char* jacobian_how =
+      options.jacobian == BoucWenJacobian::kSensitivities && form == BoucWenForm::kMechanical &&
+              options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain
+          ? "forward sensitivities"
+          : "central differences";
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
     throw InputError(fmt::format("FitBoucWen: {} samples for {} free parameters", n, np));
@@ -442,6 +548,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     double best_cost = std::numeric_limits<double>::infinity();
     const std::vector<double> x0 = best;
     for (int k = 0; k < options.starts; ++k) {
+      if (clock.Bounded() && clock.Remaining() == 0) break;  // the final fit says so
       std::vector<double> x = x0;
       if (k > 0)
         for (int i = 0; i < np; ++i) {
@@ -451,7 +558,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                          layout.upper[static_cast<size_t>(i)]);
         }
       const Solved s =
-          Solve(layout, data, n, x, options.start_iterations, options.threads, &simulations);
+          Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1, &simulations);
       if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
         best_cost = s.summary.final_cost;
         best = s.x;
@@ -459,8 +566,8 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     }
   }
   ceres::Problem* problem = nullptr;
-  Solved s =
-      Solve(layout, data, n, best, options.max_iterations, options.threads, &simulations, &problem);
+  Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &simulations,
+                   &problem);
   std::unique_ptr<ceres::Problem> owner(problem);
   if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
     throw NumericalError("bouc-wen fit failed: " + s.summary.message);
@@ -473,7 +580,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(n, np);
     double* jac[] = {J.data()};
     const double* xs[] = {s.x.data()};
-    OutputError cost(&layout, &data, n, options.threads, &simulations);
+    OutputError cost(&layout, &data, n, options.threads, options.jacobian, &simulations);
     if (cost.Evaluate(xs, r.data(), jac)) {
       const Eigen::MatrixXd JtJ = J.transpose() * J;
       Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
@@ -501,11 +608,17 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
             "beta*delta are identifiable)",
             fixed.empty() ? "" : "; ", layout.all[4]);
     }
-    summary->message = fmt::format("{} ({} Ceres iterations, {} simulations, {} starts){}{}",
-                                   s.summary.message, s.summary.iterations.size() - 1, simulations,
-                                   options.starts, fixed.empty() ? "" : "; ", fixed);
-    summary->fit_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string why = s.timed_out
+                                ? fmt::format(
+                                      "stopped at the time bound max_time_s = {:g} s with the best "
+                                      "parameters so far (not converged)",
+                                      options.max_time_s)
+                                : s.summary.message;
+    summary->message =
+        fmt::format("{} ({} Ceres iterations, {} simulations, {} starts, Jacobian by {}){}{}", why,
+                    s.summary.iterations.size() - 1, simulations, options.starts, jacobian_how,
+                    fixed.empty() ? "" : "; ", fixed);
+    summary->fit_time_s = clock.Elapsed();
   }
   return model;
 }
