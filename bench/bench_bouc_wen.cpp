@@ -7,11 +7,15 @@
 //     "fit ..." (parameters, standard errors, fit time, training rms), "score model=... e_rms=..."
 //     for the fitted model (chain, and CVODE with band-limited input) and the true system.
 //   bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats R]
+//                  [--jacobian sensitivities|central-differences] [--integrator chain|cvode]
+//                  [--max-time S]
 //     What the benchmark fit costs: one chain simulation of TRAIN's u (true parameters) as the
 //     fit ran it before (Simulate: the input upsampled on every call) against the fit's path now
 //     (the upsampled input computed once, internal::ChainOutput), best CPU time of R, the outputs
-//     compared bit for bit; then the fit itself: CPU [s] (user + system of every thread), wall
-//     [s], simulations. Prints "simulation ..." and "fit ..." lines.
+//     compared bit for bit; one exact Jacobian (internal::ChainOutputSensitivity) against one
+//     simulation, CPU; then the fit itself: CPU [s] (user + system of every thread), wall
+//     [s], simulations. Prints "simulation ...", "jacobian ..." and "fit ..." lines. The
+//     options after --repeats are this build's (a baseline binary is run without them).
 //   bench_bouc_wen throughput REC.csv [--repeats R]
 //     Samples per second of Simulate on REC's u (true parameters): the chain, CVODE with linear
 //     and band-limited input, and the piezo form. Prints "throughput method=... samples_per_s=...".
@@ -116,6 +120,14 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
       o.starts = std::atoi(args[++i].c_str());
     else if (args[i] == "--repeats" && i + 1 < args.size())
       repeats = std::max(1, std::atoi(args[++i].c_str()));
+    else if (args[i] == "--jacobian" && i + 1 < args.size())
+      o.jacobian = args[++i] == "central-differences" ? sysid::BoucWenJacobian::kCentralDifferences
+                                                      : sysid::BoucWenJacobian::kSensitivities;
+    else if (args[i] == "--integrator" && i + 1 < args.size())
+      o.simulation.integrator =
+          args[++i] == "cvode" ? BoucWenIntegrator::kCvode : BoucWenIntegrator::kBenchmarkChain;
+    else if (args[i] == "--max-time" && i + 1 < args.size())
+      o.max_time_s = std::atof(args[++i].c_str());
     else
       train = args[i];
   }
@@ -128,7 +140,9 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   const sysid::Recording tr = sysid::ReadRecording(train);
   const Eigen::VectorXd u = tr.column("u");
   const double dt = tr.column("t")[1] - tr.column("t")[0];
-  const sysid::MechanicalBoucWen truth({}, o.simulation);
+  sysid::BoucWenSimulationOptions chain_options = o.simulation;
+  chain_options.integrator = BoucWenIntegrator::kBenchmarkChain;
+  const sysid::MechanicalBoucWen truth({}, chain_options);
   const Eigen::VectorXd chain_u = sysid::internal::ChainInput(u, o.simulation.upsampling);
   auto best_of = [&](auto&& simulate, Eigen::VectorXd* y) {
     double best = 1e300;
@@ -151,6 +165,21 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   fmt::print(
       "simulation samples={} before_cpu_s={:.4f} now_cpu_s={:.4f} ratio={:.2f} identical={}\n",
       u.size(), t_old, t_new, t_old / t_new, y_old == y_new);
+  {
+    Eigen::VectorXd y;
+    Eigen::MatrixXd dy;
+    const double t_jac = best_of(
+        [&] {
+          sysid::internal::ChainOutputSensitivity(truth.values(), chain_u, u.size(), dt,
+                                                  o.simulation.upsampling, false, &y, &dy);
+          return y;
+        },
+        &y);
+    fmt::print(
+        "jacobian samples={} sensitivities_cpu_s={:.4f} simulation_cpu_s={:.4f} "
+        "in_simulations={:.2f} central_differences_in_simulations=13\n",
+        u.size(), t_jac, t_new, t_jac / t_new);
+  }
   sysid::HysteresisFitSummary summary;
   const std::clock_t cpu0 = std::clock();
   const auto model = sysid::FitBoucWen(sysid::BoucWenForm::kMechanical, {tr}, o, &summary);
