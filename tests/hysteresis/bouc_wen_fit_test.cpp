@@ -168,8 +168,7 @@ TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same
           "[hysteresis][bouc-wen][fit]") {
   ChainFitCase c = MakeChainFitCase();
   HysteresisFitSummary exact_summary, fd_summary;
-  const auto exact = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options,
-                                &exact_summary);
+  const auto exact = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &exact_summary);
   c.options.jacobian = BoucWenJacobian::kCentralDifferences;
   const auto fd = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &fd_summary);
   CHECK(exact_summary.message.find("Jacobian by forward sensitivities") != std::string::npos);

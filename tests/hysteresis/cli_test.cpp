@@ -237,8 +237,8 @@ TEST_CASE("sysid hysteresis fit: the Bouc-Wen simulation flags reach the model f
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("--starts"));
   CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
-  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--max-time", "-1",
-              dir / "rec.csv", "-o", dir / "pi.json"});
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--max-time", "-1", dir / "rec.csv",
+              "-o", dir / "pi.json"});
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("--max-time"));
   CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
@@ -248,8 +248,8 @@ TEST_CASE("sysid hysteresis fit: --progress reports the Bouc-Wen fit, --max-time
           "[hysteresis][cli]") {
   TempDir dir;
   sysid::WriteRecording(dir / "rec.csv", PiRecording(600));
-  auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--starts", "2",
-                   "--threads", "1", "--progress", dir / "rec.csv", "-o", dir / "bw.json"});
+  auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--starts", "2", "--threads",
+                   "1", "--progress", dir / "rec.csv", "-o", dir / "bw.json"});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.err, Catch::Contains("fitting bouc-wen-piezo to 600 samples (2 starts)"));
