@@ -408,6 +408,9 @@ struct Solved {
   std::vector<double> x;
   ceres::Solver::Summary summary;
   bool timed_out = false;  // stopped by BoucWenFitOptions::max_time_s
+  // The problem's cost function while the problem is kept (Solve's `keep`): its last
+  // evaluation answers the standard errors' Jacobian at the optimum when it was there.
+  const OutputError* cost = nullptr;
 };
 
 // The fit's clock and its bound, shared by the starts and the final fit.
@@ -449,8 +452,8 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   Solved s;
   s.x = std::move(x);
   auto* problem = new ceres::Problem;
-  problem->AddResidualBlock(new OutputError(&l, &data, n, o.threads, o.jacobian, simulations),
-                            nullptr, s.x.data());
+  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, simulations);
+  problem->AddResidualBlock(cost, nullptr, s.x.data());
   for (size_t i = 0; i < l.free.size(); ++i) {
     if (std::isfinite(l.lower[i]))
       problem->SetParameterLowerBound(s.x.data(), static_cast<int>(i), l.lower[i]);
@@ -472,8 +475,10 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   s.timed_out = clock.Bounded() && s.summary.termination_type == ceres::NO_CONVERGENCE &&
                 static_cast<int>(s.summary.iterations.size()) - 1 < iterations &&
                 clock.Remaining() == 0;
-  if (keep != nullptr)
+  if (keep != nullptr) {
     *keep = problem;
+    s.cost = cost;
+  }
   else
     delete problem;
   return s;
@@ -580,8 +585,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(n, np);
     double* jac[] = {J.data()};
     const double* xs[] = {s.x.data()};
-    OutputError cost(&layout, &data, n, options.threads, options.jacobian, &simulations);
-    if (cost.Evaluate(xs, r.data(), jac)) {
+    if (s.cost->Evaluate(xs, r.data(), jac)) {
       const Eigen::MatrixXd JtJ = J.transpose() * J;
       Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
       if (lu.isInvertible()) {
