@@ -478,9 +478,9 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   if (keep != nullptr) {
     *keep = problem;
     s.cost = cost;
-  }
-  else
+  } else {
     delete problem;
+  }
   return s;
 }
 
@@ -552,8 +552,13 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     internal::PortableRandom random(options.seed);
     double best_cost = std::numeric_limits<double>::infinity();
     const std::vector<double> x0 = best;
+    double iterations_so_far = 0;  // Ceres' iterations 0 included: each evaluates a Jacobian
     for (int k = 0; k < options.starts; ++k) {
-      if (clock.Bounded() && clock.Remaining() == 0) break;  // the final fit says so
+      // A start begins only with one iteration's time (the mean so far) left: Ceres checks the
+      // bound between iterations, so a start begun later overruns it by its first Jacobian.
+      if (clock.Bounded() &&
+          clock.Remaining() <= (iterations_so_far > 0 ? clock.Elapsed() / iterations_so_far : 0))
+        break;  // the final fit says so
       std::vector<double> x = x0;
       if (k > 0)
         for (int i = 0; i < np; ++i) {
@@ -564,6 +569,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         }
       const Solved s =
           Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1, &simulations);
+      iterations_so_far += static_cast<double>(s.summary.iterations.size());
       if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
         best_cost = s.summary.final_cost;
         best = s.x;
