@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <unsupported/Eigen/FFT>
 
 #include "core/parallel_for.hpp"
@@ -123,12 +124,23 @@ bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x
 // a projected line search, which asks for the gradient (the Jacobian) at the full step, then the
 // candidate's cost, then — the step accepted — residuals and Jacobian there again. The last
 // evaluation is kept and answered from: 13 simulations per iteration instead of 27, with
-// identical numbers (a simulation is a deterministic function of the parameters).
+// identical numbers (a simulation is a deterministic function of the parameters). The cache can
+// outlive its cost function: the final fit starts with the best start's, whose last evaluation
+// is usually its last point.
+struct EvaluationCache {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::vector<double> x;
+  Eigen::VectorXd r;
+  RowMajor j;
+  bool ok = false;
+  bool has_jacobian = false;
+};
+
 class OutputError : public ceres::CostFunction {
  public:
   OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
-              BoucWenJacobian jacobian, long* simulations)
-      : l_(l), data_(data), threads_(threads), simulations_(simulations) {
+              BoucWenJacobian jacobian, long* simulations, std::shared_ptr<EvaluationCache> cache)
+      : l_(l), data_(data), threads_(threads), simulations_(simulations), c_(std::move(cache)) {
     sensitivities_ = jacobian == BoucWenJacobian::kSensitivities &&
                      l->form == BoucWenForm::kMechanical && !data->empty();
     for (const auto& s : *data) sensitivities_ = sensitivities_ && s.chain_u.size() > 0;
@@ -139,36 +151,36 @@ class OutputError : public ceres::CostFunction {
     const int np = static_cast<int>(l_->free.size());
     const Eigen::Index n = num_residuals();
     const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-    const bool same = last_x_.size() == static_cast<size_t>(np) &&
-                      std::equal(last_x_.begin(), last_x_.end(), x[0]);
-    if (same && (!last_ok_ || !want_jacobian || last_has_jacobian_)) {
-      if (!last_ok_) return false;
-      Eigen::Map<Eigen::VectorXd>(residuals, n) = last_r_;
-      if (want_jacobian) Jacobian(jacobians[0], n, np) = last_j_;
+    const bool same =
+        c_->x.size() == static_cast<size_t>(np) && std::equal(c_->x.begin(), c_->x.end(), x[0]);
+    if (same && (!c_->ok || !want_jacobian || c_->has_jacobian)) {
+      if (!c_->ok) return false;
+      Eigen::Map<Eigen::VectorXd>(residuals, n) = c_->r;
+      if (want_jacobian) Jacobian(jacobians[0], n, np) = c_->j;
       return true;
     }
-    last_x_.assign(x[0], x[0] + np);
-    last_has_jacobian_ = false;
+    c_->x.assign(x[0], x[0] + np);
+    c_->has_jacobian = false;
     if (!want_jacobian) {
       ++*simulations_;
-      last_ok_ = Residuals(*l_, *data_, x[0], residuals);
-      last_r_ = Eigen::Map<const Eigen::VectorXd>(residuals, n);
-      return last_ok_;
+      c_->ok = Residuals(*l_, *data_, x[0], residuals);
+      c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
+      return c_->ok;
     }
     if (sensitivities_) {
       ++*simulations_;
-      last_ok_ = ResidualsAndSensitivities(x[0], residuals, jacobians[0]);
-      if (!last_ok_) return false;
-      last_r_ = Eigen::Map<const Eigen::VectorXd>(residuals, n);
-      last_j_ = Jacobian(jacobians[0], n, np);
-      last_has_jacobian_ = true;
+      c_->ok = ResidualsAndSensitivities(x[0], residuals, jacobians[0]);
+      if (!c_->ok) return false;
+      c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
+      c_->j = Jacobian(jacobians[0], n, np);
+      c_->has_jacobian = true;
       return true;
     }
     // Residuals (unless kept) and 2 np perturbed simulations, in parallel.
     std::vector<Eigen::VectorXd> r(static_cast<size_t>(2 * np + 1), Eigen::VectorXd(n));
     std::vector<char> ok(r.size(), 0);
     if (same) {
-      r[0] = last_r_;
+      r[0] = c_->r;
       ok[0] = 1;
     }
     std::vector<double> step(static_cast<size_t>(np));
@@ -188,9 +200,9 @@ class OutputError : public ceres::CostFunction {
           Residuals(*l_, *data_, xj.data(), r[static_cast<size_t>(j)].data());
     });
     *simulations_ += static_cast<long>(r.size()) - first;
-    last_ok_ = ok[0] != 0;
-    if (!last_ok_) return false;
-    last_r_ = r[0];
+    c_->ok = ok[0] != 0;
+    if (!c_->ok) return false;
+    c_->r = r[0];
     Eigen::Map<Eigen::VectorXd>(residuals, n) = r[0];
     auto J = Jacobian(jacobians[0], n, np);
     for (int i = 0; i < np; ++i) {
@@ -207,8 +219,8 @@ class OutputError : public ceres::CostFunction {
       else
         return false;
     }
-    last_j_ = J;
-    last_has_jacobian_ = true;
+    c_->j = J;
+    c_->has_jacobian = true;
     return true;
   }
 
@@ -268,11 +280,7 @@ class OutputError : public ceres::CostFunction {
   int threads_;
   long* simulations_;
   // The last point evaluated and what was computed there (Ceres evaluates serially).
-  mutable std::vector<double> last_x_;
-  mutable Eigen::VectorXd last_r_;
-  mutable RowMajor last_j_;
-  mutable bool last_ok_ = false;
-  mutable bool last_has_jacobian_ = false;
+  std::shared_ptr<EvaluationCache> c_;
 };
 
 // The best linear approximation m s^2 + c s + K of U / Y by least squares over the lines where
@@ -411,6 +419,7 @@ struct Solved {
   // The problem's cost function while the problem is kept (Solve's `keep`): its last
   // evaluation answers the standard errors' Jacobian at the optimum when it was there.
   const OutputError* cost = nullptr;
+  std::shared_ptr<EvaluationCache> cache;  // the cost function's, kept after the problem
 };
 
 // The fit's clock and its bound, shared by the starts and the final fit.
@@ -448,11 +457,13 @@ class ProgressCallback final : public ceres::IterationCallback {
 
 Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
              std::vector<double> x, int iterations, const BoucWenFitOptions& o,
-             const FitClock& clock, int start, long* simulations, ceres::Problem** keep = nullptr) {
+             const FitClock& clock, int start, long* simulations,
+             std::shared_ptr<EvaluationCache> cache, ceres::Problem** keep = nullptr) {
   Solved s;
   s.x = std::move(x);
+  s.cache = cache;
   auto* problem = new ceres::Problem;
-  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, simulations);
+  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, simulations, cache);
   problem->AddResidualBlock(cost, nullptr, s.x.data());
   for (size_t i = 0; i < l.free.size(); ++i) {
     if (std::isfinite(l.lower[i]))
@@ -545,6 +556,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   // Starting points: the initial values, then perturbed copies; each gets a few iterations and
   // the cheapest continues.
   std::vector<double> best(static_cast<size_t>(np), 1.0);
+  auto best_cache = std::make_shared<EvaluationCache>();
   for (int i = 0; i < np; ++i)
     best[static_cast<size_t>(i)] =
         layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
@@ -567,18 +579,19 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
           v = std::clamp(v, layout.lower[static_cast<size_t>(i)],
                          layout.upper[static_cast<size_t>(i)]);
         }
-      const Solved s =
-          Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1, &simulations);
+      const Solved s = Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1,
+                             &simulations, std::make_shared<EvaluationCache>());
       iterations_so_far += static_cast<double>(s.summary.iterations.size());
       if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
         best_cost = s.summary.final_cost;
         best = s.x;
+        best_cache = s.cache;
       }
     }
   }
   ceres::Problem* problem = nullptr;
   Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &simulations,
-                   &problem);
+                   best_cache, &problem);
   std::unique_ptr<ceres::Problem> owner(problem);
   if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
     throw NumericalError("bouc-wen fit failed: " + s.summary.message);
