@@ -183,8 +183,8 @@ struct BoucWenFitOptions {
   BoucWenJacobian jacobian = BoucWenJacobian::kSensitivities;
   /// [s] wall-time bound of the whole fit (starts included), >= 0; 0: none. Past it the fit
   /// stops with the best parameters so far (the summary: not converged, the message says the
-  /// bound stopped it). Ceres checks it between iterations, so the iteration under way and the
-  /// standard errors' Jacobian still run after it.
+  /// bound stopped it). Ceres checks it between iterations, so the iteration under way still
+  /// runs after it; a start begins only while one iteration's time (the mean so far) is left.
   double max_time_s = 0;
   /// Called after every Ceres iteration of every start, on the calling thread (progress
   /// reports; it must not throw). Does not change the result.
