@@ -127,6 +127,12 @@ bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x
 // identical numbers (a simulation is a deterministic function of the parameters). The cache can
 // outlive its cost function: the final fit starts with the best start's, whose last evaluation
 // is usually its last point.
+// What the fit computed: plain simulations, and passes of the chain with its sensitivities.
+struct Work {
+  long simulations = 0;
+  long sensitivity_passes = 0;
+};
+
 struct EvaluationCache {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::vector<double> x;
@@ -139,8 +145,8 @@ struct EvaluationCache {
 class OutputError : public ceres::CostFunction {
  public:
   OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
-              BoucWenJacobian jacobian, long* simulations, std::shared_ptr<EvaluationCache> cache)
-      : l_(l), data_(data), threads_(threads), simulations_(simulations), c_(std::move(cache)) {
+              BoucWenJacobian jacobian, Work* work, std::shared_ptr<EvaluationCache> cache)
+      : l_(l), data_(data), threads_(threads), work_(work), c_(std::move(cache)) {
     sensitivities_ = jacobian == BoucWenJacobian::kSensitivities &&
                      l->form == BoucWenForm::kMechanical && !data->empty();
     for (const auto& s : *data) sensitivities_ = sensitivities_ && s.chain_u.size() > 0;
@@ -162,13 +168,13 @@ class OutputError : public ceres::CostFunction {
     c_->x.assign(x[0], x[0] + np);
     c_->has_jacobian = false;
     if (!want_jacobian) {
-      ++*simulations_;
+      ++work_->simulations;
       c_->ok = Residuals(*l_, *data_, x[0], residuals);
       c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
       return c_->ok;
     }
     if (sensitivities_) {
-      ++*simulations_;
+      ++work_->sensitivity_passes;
       c_->ok = ResidualsAndSensitivities(x[0], residuals, jacobians[0]);
       if (!c_->ok) return false;
       c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
@@ -199,7 +205,7 @@ class OutputError : public ceres::CostFunction {
       ok[static_cast<size_t>(j)] =
           Residuals(*l_, *data_, xj.data(), r[static_cast<size_t>(j)].data());
     });
-    *simulations_ += static_cast<long>(r.size()) - first;
+    work_->simulations += static_cast<long>(r.size()) - first;
     c_->ok = ok[0] != 0;
     if (!c_->ok) return false;
     c_->r = r[0];
@@ -278,7 +284,7 @@ class OutputError : public ceres::CostFunction {
   const std::vector<Series>* data_;
   bool sensitivities_ = false;
   int threads_;
-  long* simulations_;
+  Work* work_;
   // The last point evaluated and what was computed there (Ceres evaluates serially).
   std::shared_ptr<EvaluationCache> c_;
 };
@@ -457,13 +463,13 @@ class ProgressCallback final : public ceres::IterationCallback {
 
 Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
              std::vector<double> x, int iterations, const BoucWenFitOptions& o,
-             const FitClock& clock, int start, long* simulations,
-             std::shared_ptr<EvaluationCache> cache, ceres::Problem** keep = nullptr) {
+             const FitClock& clock, int start, Work* work, std::shared_ptr<EvaluationCache> cache,
+             ceres::Problem** keep = nullptr) {
   Solved s;
   s.x = std::move(x);
   s.cache = cache;
   auto* problem = new ceres::Problem;
-  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, simulations, cache);
+  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, work, cache);
   problem->AddResidualBlock(cost, nullptr, s.x.data());
   for (size_t i = 0; i < l.free.size(); ++i) {
     if (std::isfinite(l.lower[i]))
@@ -552,7 +558,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
     throw InputError(fmt::format("FitBoucWen: {} samples for {} free parameters", n, np));
-  long simulations = 0;
+  Work work;
   // Starting points: the initial values, then perturbed copies; each gets a few iterations and
   // the cheapest continues.
   std::vector<double> best(static_cast<size_t>(np), 1.0);
@@ -580,7 +586,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                          layout.upper[static_cast<size_t>(i)]);
         }
       const Solved s = Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1,
-                             &simulations, std::make_shared<EvaluationCache>());
+                             &work, std::make_shared<EvaluationCache>());
       iterations_so_far += static_cast<double>(s.summary.iterations.size());
       if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
         best_cost = s.summary.final_cost;
@@ -590,7 +596,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     }
   }
   ceres::Problem* problem = nullptr;
-  Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &simulations,
+  Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &work,
                    best_cache, &problem);
   std::unique_ptr<ceres::Problem> owner(problem);
   if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
@@ -638,9 +644,12 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                                       options.max_time_s)
                                 : s.summary.message;
     summary->message =
-        fmt::format("{} ({} Ceres iterations, {} simulations, {} starts, Jacobian by {}){}{}", why,
-                    s.summary.iterations.size() - 1, simulations, options.starts, jacobian_how,
-                    fixed.empty() ? "" : "; ", fixed);
+        fmt::format("{} ({} Ceres iterations, {} simulations{}, {} starts, Jacobian by {}){}{}",
+                    why, s.summary.iterations.size() - 1, work.simulations,
+                    work.sensitivity_passes > 0
+                        ? fmt::format(" and {} with sensitivities", work.sensitivity_passes)
+                        : std::string(),
+                    options.starts, jacobian_how, fixed.empty() ? "" : "; ", fixed);
     summary->fit_time_s = clock.Elapsed();
   }
   return model;
