@@ -300,8 +300,8 @@ void AddHysteresisCommand(CLI::App& app) {
       ->type_name("SECONDS")
       ->capture_default_str();
   AddThreadsOption(fit, o->options.bouc_wen.threads,
-                   "bouc-wen, bouc-wen-piezo: simulations in parallel for the Jacobian; 0 = all "
-                   "cores");
+                   "bouc-wen, bouc-wen-piezo: the Jacobian's simulations (central differences) "
+                   "or the recordings' sensitivity passes in parallel; 0 = all cores");
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");

@@ -179,7 +179,9 @@ struct BoucWenFitOptions {
   int start_iterations = 3;   ///< Ceres iterations per start before the best continues
   int max_iterations = 100;   ///< Ceres iterations of the final fit, in [1, 10000]
   std::uint64_t seed = 1;     ///< for the perturbed starts
-  int threads = 0;            ///< simulations in parallel for the Jacobian (0: all cores)
+  /// Threads (0: all cores): the central-difference Jacobian's simulations, or the recordings'
+  /// sensitivity passes, in parallel.
+  int threads = 0;
   BoucWenJacobian jacobian = BoucWenJacobian::kSensitivities;
   /// [s] wall-time bound of the whole fit (starts included), >= 0; 0: none. Past it the fit
   /// stops with the best parameters so far (the summary: not converged, the message says the
