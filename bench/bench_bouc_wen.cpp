@@ -16,6 +16,10 @@
 //     simulation, CPU; then the fit itself: CPU [s] (user + system of every thread), wall
 //     [s], simulations. Prints "simulation ...", "jacobian ..." and "fit ..." lines. The
 //     options after --repeats are this build's (a baseline binary is run without them).
+//   bench_bouc_wen fixed-step REC.csv
+//     The Newmark/trapezoidal step (the chain's) on the input linear between samples, 5 to 80
+//     substeps per sample, against CVODE at rtol 1e-12 on REC's u (true parameters): max and
+//     RMS error [m], CPU [s]; CVODE at the fit's rtol 1e-9 beside. Prints "fixed-step ..." lines.
 //   bench_bouc_wen throughput REC.csv [--repeats R]
 //     Samples per second of Simulate on REC's u (true parameters): the chain, CVODE with linear
 //     and band-limited input, and the piezo form. Prints "throughput method=... samples_per_s=...".
@@ -192,6 +196,51 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+// The Newmark/trapezoidal step on the linearly interpolated input, m substeps per sample and no
+// decimation, against CVODE at rtol 1e-12 (the reference) and at the fit's 1e-9: error and CPU.
+int FixedStepCommand(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    fmt::print(stderr, "usage: bench_bouc_wen fixed-step REC.csv\n");
+    return 1;
+  }
+  const sysid::Recording rec = sysid::ReadRecording(args[0]);
+  const Eigen::VectorXd u = rec.column("u");
+  const double dt = rec.column("t")[1] - rec.column("t")[0];
+  const sysid::MechanicalBoucWenParameters p;  // the benchmark's true system
+  sysid::BoucWenSimulationOptions o;
+  o.input = InputInterpolation::kLinear;
+  auto cpu = [](std::clock_t t0) {
+    return static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+  };
+  o.rtol = 1e-12;
+  std::clock_t t0 = std::clock();
+  const Eigen::VectorXd ref = sysid::MechanicalBoucWen(p, o).Simulate(u, dt);
+  fmt::print("fixed-step method=cvode-rtol1e-12 cpu_s={:.3f} rms_y_m={:.4g} (the reference)\n",
+             cpu(t0), std::sqrt(ref.squaredNorm() / static_cast<double>(ref.size())));
+  auto report = [&](const std::string& name, double cpu_s, const Eigen::VectorXd& y) {
+    fmt::print("fixed-step method={} cpu_s={:.3f} max_error_m={:.3g} rms_error_m={:.3g}\n", name,
+               cpu_s, (y - ref).cwiseAbs().maxCoeff(),
+               std::sqrt((y - ref).squaredNorm() / static_cast<double>(y.size())));
+  };
+  o.rtol = 1e-9;
+  t0 = std::clock();
+  const Eigen::VectorXd cv = sysid::MechanicalBoucWen(p, o).Simulate(u, dt);
+  report("cvode-rtol1e-9", cpu(t0), cv);
+  const Eigen::Index n = u.size();
+  for (int m : {5, 10, 20, 40, 80}) {
+    t0 = std::clock();
+    Eigen::VectorXd uf((n - 1) * m + 1), yf((n - 1) * m + 1), y(n);
+    for (Eigen::Index k = 0; k + 1 < n; ++k)
+      for (int j = 0; j < m; ++j) uf[k * m + j] = u[k] + (u[k + 1] - u[k]) * j / double(m);
+    uf[(n - 1) * m] = u[n - 1];
+    sysid::internal::NewmarkState state;
+    sysid::internal::NewmarkBoucWen(p, uf.data(), uf.size(), dt / m, &state, yf.data());
+    for (Eigen::Index k = 0; k < n; ++k) y[k] = yf[k * m];
+    report(fmt::format("newmark-linear-x{}", m), cpu(t0), y);
+  }
+  return 0;
+}
+
 int ThroughputCommand(const std::vector<std::string>& args) {
   std::string path;
   int repeats = 3;
@@ -246,10 +295,11 @@ int main(int argc, char** argv) {
     if (command == "score") return ScoreCommand(args);
     if (command == "throughput") return ThroughputCommand(args);
     if (command == "fit-speed") return FitSpeedCommand(args);
+    if (command == "fixed-step") return FixedStepCommand(args);
   } catch (const sysid::Error& e) {
     fmt::print(stderr, "bench_bouc_wen: {}\n", e.what());
     return 2;
   }
-  fmt::print(stderr, "usage: bench_bouc_wen score|fit-speed|throughput ...\n");
+  fmt::print(stderr, "usage: bench_bouc_wen score|fit-speed|fixed-step|throughput ...\n");
   return 1;
 }
