@@ -474,6 +474,13 @@ void WriteMat73Hostile(const std::string& path, Mat73Hostile kind, const std::st
     const hid_t ds = H5Dopen2(file, "/c", H5P_DEFAULT);
     H5Dwrite(ds, H5T_STD_REF_OBJ, H5S_ALL, H5S_ALL, H5P_DEFAULT, &self);
     H5Dclose(ds);
+  } else if (kind == Mat73Hostile::kNull) {
+    const hid_t space = H5Screate(H5S_NULL);
+    const hid_t ds =
+        H5Dcreate2(file, "/e", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    SetMatlabClass(ds, "double");
+    H5Dclose(ds);
+    H5Sclose(space);
   } else {
     const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     hsize_t dims[1] = {9};

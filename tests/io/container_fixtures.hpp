@@ -90,8 +90,9 @@ void WriteH5Null(const std::string& path);
 
 /// MAT v7.3 files matio writes (t: 9 doubles, and a 1x1 cell c holding [1 2 3]) and HDF5 then
 /// changes: c{1} made a reference to c itself; a double variable u added whose values are
-/// external storage in `other` or a virtual dataset mapped from `other`:/t.
-enum class Mat73Hostile { kSelfReference, kExternal, kVirtual };
+/// external storage in `other` or a virtual dataset mapped from `other`:/t; or a double variable
+/// e added with a null dataspace.
+enum class Mat73Hostile { kSelfReference, kExternal, kVirtual, kNull };
 void WriteMat73Hostile(const std::string& path, Mat73Hostile kind, const std::string& other = "");
 /// A struct nested `depth` levels (s.a.a...a = [1 2 3]).
 void WriteMatNestedStructs(const std::string& path, MatVersion version, int depth);

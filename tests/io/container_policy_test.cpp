@@ -209,7 +209,8 @@ TEST_CASE("HDF5 and MAT: nesting past 32 levels is refused before it is walked",
   Expect(2, "nested more than 32 levels deep", {"info", dir / "s5.mat"});
 }
 
-TEST_CASE("HDF5: a null dataspace is an empty dataset, listed without a range", "[io][policy]") {
+TEST_CASE("HDF5 and MAT v7.3: a null dataspace is an empty variable, listed without a range",
+          "[io][policy]") {
   TempDir dir;
   const std::string n = dir / "n.h5";
   WriteH5Null(n);
@@ -219,6 +220,18 @@ TEST_CASE("HDF5: a null dataspace is an empty dataset, listed without a range", 
   CHECK(vars[0].dims == std::vector<std::uint64_t>{0});
   CHECK(vars[0].length == 0);
   Expect(2, "n.h5:e: is empty (double 0)", {"info", n, "--var", "u=e", "--rate", "1"});
+  // The same in a MAT v7.3 file: matio reads it as rank 0, one value it never fills.
+  const std::string m = dir / "n.mat";
+  WriteMat73Hostile(m, Mat73Hostile::kNull);
+  int listed = 0;
+  for (const auto& v : ListVariables(m))
+    if (v.name == "e") {
+      ++listed;
+      CHECK(v.dims == std::vector<std::uint64_t>{0});
+      CHECK(v.length == 0);
+    }
+  CHECK(listed == 1);
+  Expect(2, "n.mat:e: is empty", {"info", m, "--var", "u=e", "--rate", "1"});
   const Bounded r = RunBounded({"info", n, "--json"});
   INFO(Describe({"info", n, "--json"}, r));
   CHECK(r.exit_code == 0);
