@@ -142,7 +142,7 @@ TEST_CASE("HDF5: a virtual dataset is refused before a value is read, also throu
   Expect(2, "refused: a virtual dataset", {"info", dir / "f.h5"});
 }
 
-TEST_CASE("HDF5: external storage is refused naming the other file; a FIFO there never blocks",
+TEST_CASE("HDF5: external storage is refused naming the other file, and a FIFO there never blocks",
           "[io][policy]") {
   TempDir dir;
   const std::string e = dir / "e.h5";
