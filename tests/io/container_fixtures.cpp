@@ -395,14 +395,22 @@ std::string Compressed(std::vector<std::pair<std::string, std::uint64_t>> parts,
 }  // namespace
 
 void WriteH5Virtual(const std::string& path, const std::string& source_file,
-                    const std::string& source_dataset) {
+                    const std::string& source_dataset, bool unlimited) {
   const hid_t file = CreateH5(path);
-  hsize_t dims[1] = {9};
-  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  hsize_t dims[1] = {9}, max[1] = {H5S_UNLIMITED};
+  const hid_t space = H5Screate_simple(1, dims, unlimited ? max : nullptr);
+  const hid_t source = H5Screate_simple(1, dims, nullptr);
+  if (unlimited) {
+    hsize_t start[1] = {0}, stride[1] = {9}, count[1] = {H5S_UNLIMITED}, block[1] = {9};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, count, block);
+  }
   const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  H5Pset_virtual(dcpl, space, source_file.c_str(), source_dataset.c_str(), space);
-  H5Doubles(file, "/u", dcpl, nullptr);
+  H5Pset_virtual(dcpl, space, source_file.c_str(), source_dataset.c_str(), source);
+  const hid_t ds = H5Dcreate2(file, "/u", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (ds < 0) throw std::runtime_error("fixture: cannot create the virtual dataset");
+  H5Dclose(ds);
   H5Pclose(dcpl);
+  H5Sclose(source);
   H5Sclose(space);
   H5Fclose(file);
 }

@@ -75,9 +75,10 @@ void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& var
 // write them, built with the HDF5 C API, matio and zlib.
 
 /// "/t" (9 doubles) and "/u", a virtual dataset of 9 doubles mapped from
-/// `source_file`:`source_dataset`.
+/// `source_file`:`source_dataset`; `unlimited`: u is extendible, mapped block by block from the
+/// files `source_file` names with "%b" (the block's number), which HDF5 opens to learn u's size.
 void WriteH5Virtual(const std::string& path, const std::string& source_file,
-                    const std::string& source_dataset);
+                    const std::string& source_dataset, bool unlimited = false);
 /// "/t" and "/u", 9 doubles kept in bytes 0..71 of `external_file` (external storage).
 void WriteH5External(const std::string& path, const std::string& external_file);
 /// "/t" and "/d", `rows` doubles in chunks of 10 (deflated), and `links` more hard links to

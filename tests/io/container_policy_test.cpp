@@ -140,6 +140,10 @@ TEST_CASE("HDF5: a virtual dataset is refused before a value is read, also throu
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
   WriteH5Virtual(dir / "f.h5", fifo, "u");
   Expect(2, "refused: a virtual dataset", {"info", dir / "f.h5"});
+  // Extendible, its sources fifo0, fifo1, ...: HDF5 opens them to learn its size.
+  REQUIRE(mkfifo((dir / "fifo0").c_str(), 0600) == 0);
+  WriteH5Virtual(dir / "x.h5", dir / "fifo%b", "u", true);
+  Expect(2, "x.h5:/u: refused: a virtual dataset", {"info", dir / "x.h5"});
 }
 
 TEST_CASE("HDF5: external storage is refused naming the other file, and a FIFO there never blocks",
