@@ -68,7 +68,7 @@ Bounded RunBounded(const std::vector<std::string>& args) {
       setrlimit(RLIMIT_AS, &limit);
     }
     std::vector<std::string> copy = args;
-    std::string exe = SYSID_EXE;
+    std::string exe = SysidExe();
     std::vector<char*> argv{exe.data()};
     for (auto& a : copy) argv.push_back(a.data());
     argv.push_back(nullptr);
