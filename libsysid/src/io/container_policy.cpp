@@ -6,9 +6,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/json_text.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
 
@@ -19,19 +21,10 @@ constexpr const char* kSeeDocs = "docs/robustness.md, \"Files from elsewhere\"";
 
 }  // namespace
 
-std::string Printable(const std::string& text) {
-  std::string out = text;
-  for (char& c : out) {
-    const auto b = static_cast<unsigned char>(c);
-    if (b < 0x20 || b == 0x7f) c = '?';
-  }
-  return out;
-}
-
 // A path 32 groups deep can run to kilobytes: its end says where.
 std::string Shown(const std::string& where) {
   constexpr std::size_t kKeep = 160;
-  const std::string s = Printable(where);
+  const std::string s = Printable(where, std::numeric_limits<std::size_t>::max());
   return s.size() <= kKeep ? s : "..." + s.substr(s.size() - kKeep);
 }
 

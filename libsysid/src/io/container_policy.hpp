@@ -60,9 +60,8 @@ class WalkBudget {
   std::uint64_t count_ = 0;
 };
 
-/// `text` with every control byte shown as '?' (names from a file in messages).
-std::string Printable(const std::string& text);
-/// A name inside a file as messages show it: Printable, and only its end when it is long.
+/// A name inside a file as messages show it: printable (core/json_text.hpp's Printable), and
+/// only its end when it is long.
 std::string Shown(const std::string& where);
 
 /// Closes an HDF5 handle with its own close function.

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_text.hpp"
 #include "io/container_policy.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
