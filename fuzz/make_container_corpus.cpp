@@ -27,5 +27,16 @@ int main(int argc, char** argv) {
   WriteMat(dir + "/small_v73.mat", MatVersion::kV73, arrays);
   WriteControlDesk(dir + "/controldesk.mat", MatVersion::kV5, "capture", t, {"u", "x"}, {u, x});
   WriteH5(dir + "/small.h5", {{"/t", {16}, t}, {"/rec/u", {16, 1}, u}, {"/rec/x", {16}, x}});
+  // Structure-aware seeds: the layouts the container policy refuses or bounds
+  // (libsysid/src/io/container_policy.hpp), small enough to mutate quickly.
+  WriteH5Virtual(dir + "/virtual.h5", "virtual.h5", "u");
+  WriteH5External(dir + "/external.h5", "/etc/passwd");
+  WriteH5HardLinks(dir + "/links.h5", 100, 20);
+  WriteH5DeepGroups(dir + "/deep.h5", 40);
+  WriteH5Null(dir + "/null.h5");
+  WriteMat73Hostile(dir + "/selfref_v73.mat", Mat73Hostile::kSelfReference);
+  WriteMatNestedStructs(dir + "/deep_v73.mat", MatVersion::kV73, 40);
+  WriteMatNestedStructs(dir + "/deep_v5.mat", MatVersion::kV5, 40);
+  WriteMatEmptyCells(dir + "/cells_v5z.mat", 200000);
   return 0;
 }

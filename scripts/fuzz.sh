@@ -39,7 +39,7 @@ for target in $targets; do
     network) cp "$d/paper/nn24.json" "$corpus/" ;;
     stage) cp "$d/virtual/stage.json" "$corpus/" ;;
     mat) cp "$root"/fuzz/corpus/*.mat "$corpus/" ;;
-    hdf5) cp "$root/fuzz/corpus/small.h5" "$corpus/" ;;
+    hdf5) cp "$root"/fuzz/corpus/*.h5 "$corpus/" ;;
   esac
   echo "fuzz.sh: $target for $seconds s (log: $build/fuzz_$target.log)"
   # A crash, leak, UB report, hang or memory blow-up makes libFuzzer exit non-zero: the log's

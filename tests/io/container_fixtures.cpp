@@ -300,3 +300,273 @@ void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& var
 }
 
 }  // namespace sysid::test
+
+namespace sysid::test {
+namespace {
+
+void H5Doubles(hid_t file, const char* name, hid_t dcpl, const double* values) {
+  hsize_t dims[1] = {9};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t ds = H5Dcreate2(file, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (ds < 0) throw std::runtime_error(std::string("fixture: cannot create ") + name);
+  if (values) H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  H5Dclose(ds);
+  H5Sclose(space);
+}
+
+const double kNine[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+
+hid_t CreateH5(const std::string& path) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file < 0) throw std::runtime_error("fixture: cannot create " + path);
+  H5Doubles(file, "/t", H5P_DEFAULT, kNine);
+  return file;
+}
+
+void SetMatlabClass(hid_t object, const char* cls) {
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, std::strlen(cls));
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t attr = H5Acreate2(object, "MATLAB_class", type, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attr, type, cls);
+  H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+// zlib's stream over `parts`, each a byte string repeated a number of times (gigabytes of
+// zeros are never held in memory).
+std::string DeflateRepeated(const std::vector<std::pair<std::string, std::uint64_t>>& parts,
+                            int level) {
+  z_stream z{};
+  if (deflateInit(&z, level) != Z_OK) throw std::runtime_error("fixture: deflateInit");
+  std::string out, in;
+  std::vector<unsigned char> buffer(1 << 20);
+  const auto pump = [&](int flush) {
+    z.next_in = reinterpret_cast<Bytef*>(in.data());
+    z.avail_in = static_cast<uInt>(in.size());
+    do {
+      z.next_out = buffer.data();
+      z.avail_out = static_cast<uInt>(buffer.size());
+      deflate(&z, flush);
+      out.append(reinterpret_cast<char*>(buffer.data()), buffer.size() - z.avail_out);
+    } while (z.avail_out == 0);
+    in.clear();
+  };
+  for (const auto& [bytes, times] : parts)
+    for (std::uint64_t i = 0; i < times; ++i) {
+      in += bytes;
+      if (in.size() >= (1u << 20)) pump(Z_NO_FLUSH);
+    }
+  pump(Z_FINISH);
+  deflateEnd(&z);
+  return out;
+}
+
+std::string MatHeader() {
+  std::string header(116, ' ');
+  const char text[] = "MATLAB 5.0 MAT-file, written byte by byte by a test";
+  std::memcpy(header.data(), text, sizeof text - 1);
+  header.append(8, '\0');
+  header += std::string("\x00\x01", 2);
+  header += "IM";
+  return header;
+}
+
+std::string U32(std::uint32_t v) {
+  std::string b;
+  Append32(b, v);
+  return b;
+}
+
+// A double row vector's miMATRIX up to its name tag: flags, dims 1 x `declared`.
+std::string DoubleMatrixStart(std::uint32_t declared) {
+  return U32(6) + U32(8) + U32(6) + U32(0) + U32(5) + U32(8) + U32(1) + U32(declared);
+}
+
+// One compressed element (miCOMPRESSED) holding a miMATRIX of `content_bytes` bytes.
+std::string Compressed(std::vector<std::pair<std::string, std::uint64_t>> parts,
+                       std::uint64_t content_bytes, int level = Z_BEST_SPEED) {
+  parts.insert(parts.begin(), {U32(14) + U32(static_cast<std::uint32_t>(content_bytes)), 1});
+  const std::string z = DeflateRepeated(parts, level);
+  return U32(15) + U32(static_cast<std::uint32_t>(z.size())) + z;
+}
+
+}  // namespace
+
+void WriteH5Virtual(const std::string& path, const std::string& source_file,
+                    const std::string& source_dataset, bool unlimited) {
+  const hid_t file = CreateH5(path);
+  hsize_t dims[1] = {9}, max[1] = {H5S_UNLIMITED};
+  const hid_t space = H5Screate_simple(1, dims, unlimited ? max : nullptr);
+  const hid_t source = H5Screate_simple(1, dims, nullptr);
+  if (unlimited) {
+    hsize_t start[1] = {0}, stride[1] = {9}, count[1] = {H5S_UNLIMITED}, block[1] = {9};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, stride, count, block);
+  }
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_virtual(dcpl, space, source_file.c_str(), source_dataset.c_str(), source);
+  const hid_t ds = H5Dcreate2(file, "/u", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (ds < 0) throw std::runtime_error("fixture: cannot create the virtual dataset");
+  H5Dclose(ds);
+  H5Pclose(dcpl);
+  H5Sclose(source);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+void WriteH5External(const std::string& path, const std::string& external_file) {
+  const hid_t file = CreateH5(path);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_external(dcpl, external_file.c_str(), 0, 72);
+  H5Doubles(file, "/u", dcpl, nullptr);
+  H5Pclose(dcpl);
+  H5Fclose(file);
+}
+
+void WriteH5HardLinks(const std::string& path, std::uint64_t rows, int links) {
+  const hid_t file = CreateH5(path);
+  hsize_t dims[1] = {rows}, chunk[1] = {10};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 1, chunk);
+  H5Pset_deflate(dcpl, 1);
+  const hid_t ds = H5Dcreate2(file, "/d", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  const std::vector<double> values(rows, 0.5);
+  H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  for (int i = 1; i <= links; ++i)
+    H5Lcreate_hard(ds, ".", file, ("/l" + std::to_string(i)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  H5Dclose(ds);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+void WriteH5DeepGroups(const std::string& path, int depth) {
+  const hid_t file = CreateH5(path);
+  hid_t parent = file;
+  for (int i = 0; i < depth; ++i) {
+    const hid_t g = H5Gcreate2(parent, "g", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (parent != file) H5Gclose(parent);
+    parent = g;
+  }
+  if (parent != file) H5Gclose(parent);
+  H5Fclose(file);
+}
+
+void WriteH5Null(const std::string& path) {
+  const hid_t file = CreateH5(path);
+  const hid_t space = H5Screate(H5S_NULL);
+  const hid_t ds =
+      H5Dcreate2(file, "/e", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dclose(ds);
+  H5Sclose(space);
+  H5Fclose(file);
+}
+
+void WriteMat73Hostile(const std::string& path, Mat73Hostile kind, const std::string& other) {
+  {
+    mat_t* mat = Create(path, MatVersion::kV73);
+    Write(mat, DoubleVar("t", std::vector<double>(kNine, kNine + 9), 1, 9), MatVersion::kV73);
+    size_t cdims[2] = {1, 1};
+    matvar_t* c = Mat_VarCreate("c", MAT_C_CELL, MAT_T_CELL, 2, cdims, nullptr, 0);
+    Mat_VarSetCell(c, 0, DoubleVar(nullptr, {1, 2, 3}, 1, 3));
+    Write(mat, c, MatVersion::kV73);
+    Mat_Close(mat);
+  }
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (file < 0) throw std::runtime_error("fixture: HDF5 cannot open " + path);
+  if (kind == Mat73Hostile::kSelfReference) {
+    hobj_ref_t self;
+    H5Rcreate(&self, file, "/c", H5R_OBJECT, -1);
+    const hid_t ds = H5Dopen2(file, "/c", H5P_DEFAULT);
+    H5Dwrite(ds, H5T_STD_REF_OBJ, H5S_ALL, H5S_ALL, H5P_DEFAULT, &self);
+    H5Dclose(ds);
+  } else if (kind == Mat73Hostile::kNull) {
+    const hid_t space = H5Screate(H5S_NULL);
+    const hid_t ds =
+        H5Dcreate2(file, "/e", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    SetMatlabClass(ds, "double");
+    H5Dclose(ds);
+    H5Sclose(space);
+  } else {
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    hsize_t dims[1] = {9};
+    const hid_t space = H5Screate_simple(1, dims, nullptr);
+    if (kind == Mat73Hostile::kExternal)
+      H5Pset_external(dcpl, other.c_str(), 0, 72);
+    else
+      H5Pset_virtual(dcpl, space, other.c_str(), "/t", space);
+    const hid_t ds = H5Dcreate2(file, "/u", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    SetMatlabClass(ds, "double");
+    H5Dclose(ds);
+    H5Sclose(space);
+    H5Pclose(dcpl);
+  }
+  H5Fclose(file);
+}
+
+void WriteMatNestedStructs(const std::string& path, MatVersion version, int depth) {
+  mat_t* mat = Create(path, version);
+  size_t one[2] = {1, 1};
+  const char* fields[] = {"a", nullptr};
+  matvar_t* inner = DoubleVar("a", {1, 2, 3}, 1, 3);
+  for (int level = depth - 1; level >= 0; --level) {
+    matvar_t* s = Mat_VarCreateStruct2(level == 0 ? "s" : "a", 2, one, fields);
+    Mat_VarSetStructFieldByName(s, "a", 0, inner);
+    inner = s;
+  }
+  Write(mat, inner, version);
+  Mat_Close(mat);
+}
+
+void WriteMatEmptyCells(const std::string& path, std::uint32_t cells) {
+  // Cell flags, dims 1 x cells, name "c", then `cells` empty miMATRIX tags.
+  const std::string start = U32(6) + U32(8) + U32(1) + U32(0) + U32(5) + U32(8) + U32(1) +
+                            U32(cells) + U32(1) + U32(1) + std::string("c\0\0\0\0\0\0\0", 8);
+  const std::uint64_t content = start.size() + 8ull * cells;
+  std::ofstream(path, std::ios::binary)
+      << MatHeader()
+      << Compressed({{start, 1}, {U32(14) + U32(0), cells}}, content, Z_DEFAULT_COMPRESSION);
+}
+
+void WriteMatPaddedName(const std::string& path, std::uint64_t name_bytes) {
+  std::string t = DoubleMatrixStart(100) + U32(1) + U32(1) + std::string("t\0\0\0\0\0\0\0", 8) +
+                  U32(9) + U32(800);
+  for (int i = 0; i < 100; ++i) {
+    const double v = 0.01 * i;
+    t.append(reinterpret_cast<const char*>(&v), 8);
+  }
+  const std::uint64_t padded = (name_bytes + 7) / 8 * 8;
+  std::string tail = U32(9) + U32(24);
+  for (const double v : {1.0, 2.0, 3.0}) tail.append(reinterpret_cast<const char*>(&v), 8);
+  const std::string u_start =
+      DoubleMatrixStart(100) + U32(1) + U32(static_cast<std::uint32_t>(name_bytes)) + "u";
+  const std::uint64_t content = u_start.size() + (padded - 1) + tail.size();
+  const std::string zeros(1 << 16, '\0');
+  std::ofstream(path, std::ios::binary)
+      << MatHeader() << Compressed({{t, 1}}, t.size())
+      << Compressed({{u_start, 1},
+                     {zeros, (padded - 1) / zeros.size()},
+                     {std::string((padded - 1) % zeros.size(), '\0'), 1},
+                     {tail, 1}},
+                    content);
+}
+
+void WriteMatZeros(const std::string& path, int variables, std::uint64_t values) {
+  // One variable deflated once and written `variables` times (all named a): the file is what
+  // matters, and deflating gigabytes takes seconds.
+  const std::string start = DoubleMatrixStart(static_cast<std::uint32_t>(values)) + U32(1) +
+                            U32(1) + std::string("a\0\0\0\0\0\0\0", 8) + U32(9) +
+                            U32(static_cast<std::uint32_t>(8 * values));
+  const std::uint64_t bytes = 8 * values;
+  const std::string zeros(1 << 16, '\0');
+  const std::string one = Compressed(
+      {{start, 1}, {zeros, bytes / zeros.size()}, {std::string(bytes % zeros.size(), '\0'), 1}},
+      start.size() + bytes);
+  std::ofstream out(path, std::ios::binary);
+  out << MatHeader();
+  for (int v = 0; v < variables; ++v) out << one;
+}
+
+}  // namespace sysid::test

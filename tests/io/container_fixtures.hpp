@@ -69,8 +69,44 @@ struct RawMatVariable {
 };
 /// Writes `vars` in order, each in its own zlib-compressed element when `compressed` (as MATLAB
 /// -v7 does). Independent of matio: the bytes are the MAT v5 format's, little-endian.
-void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& vars,
-                 bool compressed);
+void WriteRawMat(const std::string& path, const std::vector<RawMatVariable>& vars, bool compressed);
+
+// Hostile layouts (the container policy, container_policy.hpp): files as another program could
+// write them, built with the HDF5 C API, matio and zlib.
+
+/// "/t" (9 doubles) and "/u", a virtual dataset of 9 doubles mapped from
+/// `source_file`:`source_dataset`; `unlimited`: u is extendible, mapped block by block from the
+/// files `source_file` names with "%b" (the block's number), which HDF5 opens to learn u's size.
+void WriteH5Virtual(const std::string& path, const std::string& source_file,
+                    const std::string& source_dataset, bool unlimited = false);
+/// "/t" and "/u", 9 doubles kept in bytes 0..71 of `external_file` (external storage).
+void WriteH5External(const std::string& path, const std::string& external_file);
+/// "/t" and "/d", `rows` doubles in chunks of 10 (deflated), and `links` more hard links to
+/// "/d": "/l1", "/l2", ...
+void WriteH5HardLinks(const std::string& path, std::uint64_t rows, int links);
+/// "/t" and `depth` nested groups "/g/g/.../g".
+void WriteH5DeepGroups(const std::string& path, int depth);
+/// "/t" and "/e", a double dataset with a null dataspace (H5S_NULL: no elements at all).
+void WriteH5Null(const std::string& path);
+
+/// MAT v7.3 files matio writes (t: 9 doubles, and a 1x1 cell c holding [1 2 3]) and HDF5 then
+/// changes: c{1} made a reference to c itself; a double variable u added whose values are
+/// external storage in `other` or a virtual dataset mapped from `other`:/t; or a double variable
+/// e added with a null dataspace.
+enum class Mat73Hostile { kSelfReference, kExternal, kVirtual, kNull };
+void WriteMat73Hostile(const std::string& path, Mat73Hostile kind, const std::string& other = "");
+/// A struct nested `depth` levels (s.a.a...a = [1 2 3]).
+void WriteMatNestedStructs(const std::string& path, MatVersion version, int depth);
+
+/// MAT v5, compressed and written byte by byte: a 1 x `cells` cell c of empty elements (each an
+/// 8-byte tag: 2e7 of them deflate to about 233 KB).
+void WriteMatEmptyCells(const std::string& path, std::uint32_t cells);
+/// MAT v5, compressed, byte by byte: t (1x100 doubles), then u declaring 1x100 doubles and
+/// holding 3, its name element "u" padded with NULs to `name_bytes`.
+void WriteMatPaddedName(const std::string& path, std::uint64_t name_bytes);
+/// MAT v5, compressed, byte by byte: `variables` variables, all named a, each declaring and
+/// holding 1 x `values` zeros (each inflates to 8 x values bytes and more).
+void WriteMatZeros(const std::string& path, int variables, std::uint64_t values);
 
 }  // namespace sysid::test
 

@@ -57,6 +57,8 @@ CliResult RunCli(const std::vector<std::string>& args) {
   return r;
 }
 
+std::string SysidExe() { return SYSID_EXE; }
+
 TempDir::TempDir() {
   std::random_device rd;
   std::mt19937_64 gen(rd());

@@ -16,6 +16,8 @@ struct CliResult {
 
 /// Runs the sysid program with `args` (no shell: arguments are passed as they are).
 CliResult RunCli(const std::vector<std::string>& args);
+/// The sysid program's path (for tests that run it under their own limits).
+std::string SysidExe();
 
 /// A fresh, empty folder under the system temp dir, removed when the object dies.
 class TempDir {

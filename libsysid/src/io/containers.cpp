@@ -366,8 +366,10 @@ std::string VariableListToJson(const std::string& path, const std::vector<Variab
     e["sparse"] = v.sparse;
     if (v.numeric_vector) {
       e["length"] = v.length;
-      e["min"] = std::isfinite(v.min) ? nlohmann::ordered_json(v.min) : nullptr;
-      e["max"] = std::isfinite(v.max) ? nlohmann::ordered_json(v.max) : nullptr;
+      // An empty variable has no range; a NaN one is a range not read or not finite.
+      const bool range = v.length > 0;
+      e["min"] = range && std::isfinite(v.min) ? nlohmann::ordered_json(v.min) : nullptr;
+      e["max"] = range && std::isfinite(v.max) ? nlohmann::ordered_json(v.max) : nullptr;
     }
     j["variables"].push_back(e);
   }

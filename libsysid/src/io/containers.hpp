@@ -56,9 +56,10 @@ std::unique_ptr<SignalContainer> OpenMatContainer(const std::string& path);
 /// InputError "path:VAR: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3"
 /// when a variable's data hold another number of values than its dims declare (matio would
 /// read past them), when an element's size runs past the file, or when something other than a
-/// variable sits where one belongs. A MAT v7.3 file must open in HDF5; a MAT v4 header may not
-/// declare a name or data past the file's end (matio allocates them first). Returns how many
-/// variables matio must list (fewer means it stopped at an error); nullopt when unchecked.
+/// variable sits where one belongs. A MAT v7.3 file must open in HDF5 and pass the container
+/// policy's walk (container_policy.hpp); a MAT v4 header may not declare a name or data past the
+/// file's end (matio allocates them first). Every walk is bounded as the policy says. Returns how
+/// many variables matio must list (fewer means it stopped at an error); nullopt when unchecked.
 std::optional<std::size_t> CheckMatLayout(const std::string& path);
 std::unique_ptr<SignalContainer> OpenHdf5Container(const std::string& path);
 /// By DetectFileFormat; throws InputError for a text file.

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
+#include "io/container_policy.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
 
@@ -17,33 +20,6 @@ namespace sysid::internal {
 void SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 namespace {
-
-// Closes an HDF5 handle with its own close function.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-herr_t CollectDataset(hid_t group, const char* name, const H5L_info_t* info, void* data) {
-  auto* out = static_cast<std::vector<std::string>*>(data);
-  if (info->type != H5L_TYPE_HARD) return 0;  // soft and external links are not followed
-  H5O_info_t oinfo;
-  if (H5Oget_info_by_name(group, name, &oinfo, H5P_DEFAULT) < 0) return 0;
-  if (oinfo.type == H5O_TYPE_DATASET) out->push_back(std::string("/") + name);
-  if (out->size() > 100000) return 1;  // stop: too many
-  return 0;
-}
 
 std::string TypeName(hid_t type) {
   const H5T_class_t cls = H5Tget_class(type);
@@ -84,9 +60,10 @@ std::string TypeName(hid_t type) {
 // Not checked: storage never allocated (size 0: HDF5 defines the values as the fill value, as
 // for a dataset created and never written); chunked layouts, whose storage size is the sum of
 // the allocated, possibly compressed chunks (unallocated chunks read as the fill value, by
-// design: an extendible dataset), so it cannot be compared with the dataspace; virtual ones.
+// design: an extendible dataset), so it cannot be compared with the dataspace. Virtual datasets
+// and external storage never get here: the walk refuses them (container_policy.hpp).
 void CheckStorage(hid_t ds, hid_t type, double count, const std::string& where) {
-  Handle dcpl(H5Dget_create_plist(ds), H5Pclose);
+  Hdf5Handle dcpl(H5Dget_create_plist(ds), H5Pclose);
   if (!dcpl.ok()) throw InputError(where + ": malformed HDF5 dataset: cannot read its layout");
   const H5D_layout_t layout = H5Pget_layout(dcpl.get());
   if (layout != H5D_CONTIGUOUS && layout != H5D_COMPACT) return;
@@ -104,39 +81,37 @@ class Hdf5Container : public SignalContainer {
   explicit Hdf5Container(const std::string& path) : path_(path), file_(Open(path), H5Fclose) {
     if (!file_.ok())
       throw InputError(path + ": not a readable HDF5 file (bad superblock, or truncated)");
-    if (H5Lvisit(file_.get(), H5_INDEX_NAME, H5_ITER_INC, &CollectDataset, &datasets_) < 0)
-      throw InputError(path + ": malformed HDF5 file: cannot list its groups");
-    if (datasets_.size() > 100000) throw InputError(path + ": more than 100000 datasets");
+    datasets_ = WalkHdf5(file_.get(), path, Hdf5Walk::kDatasets).datasets;
   }
 
+  // Every dataset with its range. A dataset's values are read once however many links name it,
+  // and no more than kMaxRangeValues values in all: past them, and for storage never allocated
+  // (every value the fill value), a dataset is listed without its range.
   std::vector<VariableInfo> List() override {
     std::vector<VariableInfo> out;
-    for (const auto& name : datasets_) {
-      VariableInfo info;
-      info.name = name;
-      Handle ds(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
-      if (!ds.ok()) {
-        info.type = "unreadable";
-        out.push_back(info);
+    std::unordered_map<haddr_t, VariableInfo> described;
+    double budget = kMaxRangeValues;
+    for (const auto& d : datasets_) {
+      const auto known = described.find(d.address);
+      if (known != described.end()) {
+        out.push_back(known->second);
+        out.back().name = d.path;
         continue;
       }
-      Handle type(H5Dget_type(ds.get()), H5Tclose);
-      info.type = type.ok() ? TypeName(type.get()) : "unreadable";
-      info.complex = info.type == "compound";
-      info.dims = Shape(ds.get());
-      const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
-      if (cls == H5T_FLOAT || cls == H5T_INTEGER)  // before a range is read from the storage
-        CheckStorage(ds.get(), type.get(), ElementCount(info.dims), path_ + ":" + name);
-      if ((cls == H5T_FLOAT || cls == H5T_INTEGER) &&
-          std::count_if(info.dims.begin(), info.dims.end(), [](auto d) { return d != 1; }) <= 1) {
-        info.numeric_vector = true;
-        info.length = static_cast<std::uint64_t>(ElementCount(info.dims));
-        if (info.length > 0 && ElementCount(info.dims) <= kMaxVariableElements) {
+      VariableInfo info = Describe(d.path, true);
+      if (info.numeric_vector && info.length > 0) {
+        info.min = info.max = std::numeric_limits<double>::quiet_NaN();
+        const double n = static_cast<double>(info.length);
+        if (n <= kMaxVariableElements && n <= budget) {
+          budget -= n;
+          Hdf5Handle ds(H5Dopen2(file_.get(), d.path.c_str(), H5P_DEFAULT), H5Dclose);
           Eigen::VectorXd v(static_cast<Eigen::Index>(info.length));
-          if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) >= 0)
+          if (ds.ok() && H5Dget_storage_size(ds.get()) > 0 &&
+              H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) >= 0)
             SetRange(info, v);
         }
       }
+      described.emplace(d.address, info);
       out.push_back(info);
     }
     return out;
@@ -145,12 +120,16 @@ class Hdf5Container : public SignalContainer {
   Eigen::VectorXd Read(const VariableSpec& spec) override {
     const std::string where = path_ + ":" + spec.text;
     const std::string name = spec.name.front() == '/' ? spec.name : "/" + spec.name;
-    if (std::find(datasets_.begin(), datasets_.end(), name) == datasets_.end())
+    if (std::none_of(datasets_.begin(), datasets_.end(),
+                     [&](const Hdf5Dataset& d) { return d.path == name; })) {
+      std::vector<std::string> names;
+      for (const auto& d : datasets_) names.push_back(d.path);
       throw InputError(
-          fmt::format("{}: no dataset '{}' (datasets: {})", path_, name, JoinList(datasets_)));
-    Handle ds(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+          fmt::format("{}: no dataset '{}' (datasets: {})", path_, name, JoinList(names)));
+    }
+    Hdf5Handle ds(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     if (!ds.ok()) throw InputError(where + ": cannot open the dataset (corrupt file)");
-    Handle type(H5Dget_type(ds.get()), H5Tclose);
+    Hdf5Handle type(H5Dget_type(ds.get()), H5Tclose);
     if (!type.ok()) throw InputError(where + ": cannot read the dataset's type (corrupt file)");
     const H5T_class_t cls = H5Tget_class(type.get());
     const auto dims = Shape(ds.get());
@@ -163,7 +142,7 @@ class Hdf5Container : public SignalContainer {
                        "); expected a real numeric vector");
     const double count = ElementCount(dims);
     if (count == 0) throw InputError(where + ": is empty (" + shape + ")");
-    Handle file_space(H5Dget_space(ds.get()), H5Sclose);
+    Hdf5Handle file_space(H5Dget_space(ds.get()), H5Sclose);
     if (!file_space.ok()) throw InputError(where + ": cannot read the dataset's shape");
     const std::uint64_t n = PickedLength(spec, dims, shape, "dataset", where);
     CheckStorage(ds.get(), type.get(), count, where);
@@ -176,7 +155,7 @@ class Hdf5Container : public SignalContainer {
     }
     Eigen::VectorXd v(static_cast<Eigen::Index>(n));
     hsize_t mem_dims[1] = {n};
-    Handle mem_space(H5Screate_simple(1, mem_dims, nullptr), H5Sclose);
+    Hdf5Handle mem_space(H5Screate_simple(1, mem_dims, nullptr), H5Sclose);
     if (H5Dread(ds.get(), H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), H5P_DEFAULT,
                 v.data()) < 0)
       throw InputError(where + ": cannot read the dataset's data (truncated or corrupt file)");
@@ -184,12 +163,15 @@ class Hdf5Container : public SignalContainer {
     return v;
   }
 
+  // From the datasets' types and shapes only: reading a file without a mapping reads the values
+  // of the columns it takes and no others.
   std::vector<std::string> DefaultColumns() override {
     std::vector<std::string> out;
-    for (const auto& v : List()) {
-      const std::string bare = v.name.substr(1);
-      if (!v.numeric_vector || v.length < 2 || bare.find('/') != std::string::npos) continue;
-      out.push_back(bare);
+    for (const auto& d : datasets_) {
+      const std::string bare = d.path.substr(1);
+      if (bare.find('/') != std::string::npos) continue;
+      const VariableInfo v = Describe(d.path, false);
+      if (v.numeric_vector && v.length >= 2) out.push_back(bare);
     }
     return out;
   }
@@ -197,26 +179,53 @@ class Hdf5Container : public SignalContainer {
  private:
   static hid_t Open(const std::string& path) {
     SilenceHdf5Errors();
-    // Refuse external links and keep the library from opening other files on our behalf.
+    // No other file is opened through this one: the walk follows no external link and refuses
+    // datasets whose values live elsewhere (container_policy.hpp).
     return H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   }
 
   static std::vector<std::uint64_t> Shape(hid_t ds) {
-    Handle space(H5Dget_space(ds), H5Sclose);
+    Hdf5Handle space(H5Dget_space(ds), H5Sclose);
     std::vector<std::uint64_t> dims;
     if (!space.ok()) return dims;
+    // A null dataspace holds nothing (and has rank 0, like a scalar): reading one fills nothing.
+    if (H5Sget_simple_extent_type(space.get()) == H5S_NULL) return {0};
     const int rank = H5Sget_simple_extent_ndims(space.get());
-    if (rank == 0) return {1};              // a scalar
-    if (rank < 0 || rank > 32) return {0};  // a null dataspace holds nothing
+    if (rank == 0) return {1};  // a scalar
+    if (rank < 0 || rank > 32) return {0};
     std::vector<hsize_t> d(static_cast<size_t>(rank));
     H5Sget_simple_extent_dims(space.get(), d.data(), nullptr);
     for (const auto x : d) dims.push_back(x);
     return dims;
   }
 
+  // A dataset's type and shape, without its values; `check` compares a numeric dataset's
+  // storage with its dataspace (CheckStorage) before anything may read it.
+  VariableInfo Describe(const std::string& name, bool check) const {
+    VariableInfo info;
+    info.name = name;
+    Hdf5Handle ds(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!ds.ok()) {
+      info.type = "unreadable";
+      return info;
+    }
+    Hdf5Handle type(H5Dget_type(ds.get()), H5Tclose);
+    info.type = type.ok() ? TypeName(type.get()) : "unreadable";
+    info.complex = info.type == "compound";
+    info.dims = Shape(ds.get());
+    const H5T_class_t cls = type.ok() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) return info;
+    if (check) CheckStorage(ds.get(), type.get(), ElementCount(info.dims), path_ + ":" + name);
+    if (std::count_if(info.dims.begin(), info.dims.end(), [](auto d) { return d != 1; }) <= 1) {
+      info.numeric_vector = true;
+      info.length = static_cast<std::uint64_t>(ElementCount(info.dims));
+    }
+    return info;
+  }
+
   std::string path_;
-  Handle file_;
-  std::vector<std::string> datasets_;
+  Hdf5Handle file_;
+  std::vector<Hdf5Dataset> datasets_;
 };
 
 }  // namespace

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "io/container_policy.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
 
@@ -105,6 +107,9 @@ bool IsNumericClass(const matvar_t* v) {
 
 std::vector<std::uint64_t> Dims(const matvar_t* v) {
   std::vector<std::uint64_t> d;
+  // Rank 0 is no MATLAB array: in a MAT v7.3 file, an HDF5 scalar or null dataspace, which
+  // matio reads as one value it never fills.
+  if (v->rank == 0) return {0};
   if (!v->dims || v->rank < 0 || v->rank > 32) return d;
   for (int i = 0; i < v->rank; ++i) d.push_back(v->dims[i]);
   return d;
@@ -116,7 +121,7 @@ int NonSingleton(const std::vector<std::uint64_t>& dims) {
 
 // Elements a variable declares, struct and cell leaves included (bounded before reading data).
 double TreeElements(const matvar_t* v, int depth = 0) {
-  if (depth > 16) return kElementCountCap;
+  if (depth > kMaxContainerDepth) return kElementCountCap;
   const double own = ElementCount(Dims(v));
   if (own > kMaxVariableElements) return own;
   if ((v->class_type != MAT_C_STRUCT && v->class_type != MAT_C_CELL) || !v->data) return own;
@@ -182,11 +187,18 @@ class MatContainer : public SignalContainer {
         controldesk_ = v->name;
   }
 
+  // Every variable, with the ranges of numeric vectors: no more than kMaxRangeValues values
+  // read in all; past them a variable is listed without its range.
   std::vector<VariableInfo> List() override {
     std::vector<VariableInfo> out;
+    double budget = kMaxRangeValues;
     for (const auto& v : infos_) {
       VariableInfo info = Describe(v.get(), v->name ? v->name : "");
-      if (info.numeric_vector && info.length > 0 && TreeElements(v.get()) <= kMaxVariableElements) {
+      if (info.numeric_vector && info.length > 0)
+        info.min = info.max = std::numeric_limits<double>::quiet_NaN();
+      const double n = TreeElements(v.get());
+      if (info.numeric_vector && info.length > 0 && n <= kMaxVariableElements && n <= budget) {
+        budget -= n;
         g_matio_message.clear();
         VarPtr full(Mat_VarRead(mat_.get(), v->name));
         if (full) {

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "core/json_text.hpp"
+#include "io/container_policy.hpp"
 #include "io/containers.hpp"
 #include "sysid/error.hpp"
 
@@ -35,15 +37,6 @@ constexpr std::uint32_t kMiInt8 = 1, kMiUint8 = 2, kMiInt16 = 3, kMiUint16 = 4, 
 constexpr std::uint32_t kCell = 1, kStruct = 2, kObject = 3, kChar = 4, kFirstNumeric = 6,
                         kLastNumeric = 15;
 constexpr std::uint32_t kComplexFlag = 0x0800;
-// Nested cells and structs deeper than this are not checked: the reader never reads them
-// (TreeElements in mat_container.cpp counts them past kMaxVariableElements).
-constexpr int kMaxDepth = 16;
-// Bytes a compressed variable may inflate to while it is checked. Past it the variable is left
-// unchecked: its data would exceed what the reader reads at all (kMaxVariableElements values of
-// at most 16 bytes, a complex 8-byte pair), so matio never fills a buffer from it.
-constexpr std::uint64_t kMaxInflated =
-    static_cast<std::uint64_t>(16 * kMaxVariableElements) + (64u << 20);
-
 // Bytes of one element of a numeric MAT data type, 0 for any other type.
 std::uint64_t NumericSize(std::uint32_t type) {
   switch (type) {
@@ -66,8 +59,11 @@ std::uint64_t NumericSize(std::uint32_t type) {
   }
 }
 
-// Thrown by a source that reached its inflate budget: the variable stays unchecked.
-struct TooLargeToCheck {};
+// Thrown by a source that reached an inflate bound (container_policy.hpp): the file is refused,
+// never left unchecked.
+struct InflateBound {
+  bool whole_file = false;
+};
 
 // The bytes of one variable: a span of the file, or the inflated stream of a compressed one.
 class ByteSource {
@@ -95,10 +91,11 @@ class FileSpan : public ByteSource {
 };
 
 // zlib's stream over the compressed element's bytes (`in_left` of them from the file's current
-// position), inflated on demand.
+// position), inflated on demand; `*file_total` counts the bytes inflated from the whole file.
 class InflatedSpan : public ByteSource {
  public:
-  InflatedSpan(std::FILE* f, std::uint64_t in_left) : f_(f), in_left_(in_left) {
+  InflatedSpan(std::FILE* f, std::uint64_t in_left, std::uint64_t* file_total)
+      : f_(f), in_left_(in_left), file_total_(file_total) {
     if (inflateInit(&z_) != Z_OK)
       problem_ = "zlib cannot start";
     else
@@ -113,7 +110,9 @@ class InflatedSpan : public ByteSource {
   bool Read(unsigned char* out, std::size_t n) override {
     if (!started_) return false;
     total_ += n;
-    if (total_ > kMaxInflated) throw TooLargeToCheck{};
+    *file_total_ += n;
+    if (total_ > kMaxInflatedVariableBytes) throw InflateBound{false};
+    if (*file_total_ > kMaxInflatedFileBytes) throw InflateBound{true};
     z_.next_out = out;
     z_.avail_out = static_cast<uInt>(n);
     while (z_.avail_out > 0) {
@@ -160,6 +159,7 @@ class InflatedSpan : public ByteSource {
  private:
   std::FILE* f_;
   std::uint64_t in_left_;
+  std::uint64_t* file_total_;
   z_stream z_{};
   unsigned char in_[16384];
   bool started_ = false, ended_ = false;
@@ -193,13 +193,20 @@ class LayoutChecker {
   [[noreturn]] void Fail(const std::string& where, const std::string& detail) const {
     throw InputError(where + ": malformed or truncated MAT file: " + prefix_ + detail);
   }
-  void SetPrefix(std::string prefix) { prefix_ = std::move(prefix); }
+  void SetPrefix(std::string prefix) {
+    prefix_ = std::move(prefix);
+    current_ = path_;
+  }
+  /// The variable being checked, as messages name it ("a.mat:u"; the file before its name).
+  const std::string& current() const { return current_; }
 
   // One miMATRIX element's content (`avail` bytes, its tag already read), consumed whole.
   // `where` names it in messages until its name is known ("a.mat:x", "a.mat:s.Y(2).Data").
   void Matrix(ByteSource& src, std::uint64_t avail, std::string where, bool top, int depth) {
+    // Before anything of it is read: matio allocates a variable for each, [] included.
+    budget_.Count(where);
+    budget_.Depth(depth, where);
     if (avail == 0) return;  // an empty placeholder (a cell or field holding [])
-    if (depth > kMaxDepth) return Discard(src, avail, where);
     // Array flags: class, complex bit.
     unsigned char flags[8] = {};
     Tag t = Sub(src, avail, where, "the array flags");
@@ -222,12 +229,17 @@ class LayoutChecker {
     // Name (empty inside cells and structs).
     t = Sub(src, avail, where, "the name");
     if (t.type != kMiInt8) Fail(where, "no name where it belongs");
+    // matio allocates the whole name element; a NUL-padded one could be hundreds of megabytes.
+    if (t.bytes > kMaxNameBytes)
+      Fail(where, fmt::format("a name element of {} bytes, more than the {} a name may take",
+                              t.bytes, kMaxNameBytes));
     std::string name(static_cast<std::size_t>(std::min<std::uint64_t>(t.bytes, 256)), '\0');
     Content(src, t, avail, where, reinterpret_cast<unsigned char*>(name.data()), name.size());
     name = name.substr(0, name.find('\0'));
     if (top) {
-      where = path_ + ":" + name;
+      where = path_ + ":" + Printable(name);
       prefix_.clear();
+      current_ = where;
     }
     if (rank == 0) Fail(where, "an array without dimensions");
     // A negative size is left to the reader's own refusal (matio: "Integer multiplication
@@ -248,12 +260,16 @@ class LayoutChecker {
       if (t.type != kMiInt32 || t.bytes != 4) Fail(where, "no field name length where it belongs");
       Content(src, t, avail, where, len_bytes, 4);
       const std::uint32_t len = U32(len_bytes);
+      if (len > kMaxNameBytes)
+        Fail(where, fmt::format("field names of {} bytes each, more than the {} a name may take",
+                                len, kMaxNameBytes));
       t = Sub(src, avail, where, "the field names");
       if (t.type != kMiInt8 || (len == 0 ? t.bytes != 0 : t.bytes % len != 0))
         Fail(where, "field names that do not fit their length");
       std::vector<std::string> fields;
       if (len != 0) {
         const std::uint64_t n = t.bytes / len;
+        budget_.Reserve(static_cast<double>(n), where);
         std::string all(static_cast<std::size_t>(std::min<std::uint64_t>(t.bytes, 1u << 20)), '\0');
         Content(src, t, avail, where, reinterpret_cast<unsigned char*>(all.data()), all.size());
         for (std::uint64_t i = 0; i < n; ++i) {
@@ -378,9 +394,10 @@ class LayoutChecker {
   void Children(ByteSource& src, std::uint64_t& avail, const std::string& where,
                 const std::string& shape, double declared, const std::vector<std::string>& fields,
                 int depth) {
-    if (declared > kMaxVariableElements) return;  // refused by its declaration before reading
-    const std::uint64_t n = static_cast<std::uint64_t>(declared);
     const std::uint64_t per = fields.empty() ? 1 : fields.size();
+    // Before the first element: matio allocates every one it is told of.
+    budget_.Reserve(declared * static_cast<double>(per), where);
+    const std::uint64_t n = static_cast<std::uint64_t>(declared);
     for (std::uint64_t i = 0; i < n; ++i)
       for (std::uint64_t f = 0; f < per; ++f) {
         std::string child =
@@ -401,6 +418,8 @@ class LayoutChecker {
   std::string path_;
   bool little_;
   std::string prefix_;
+  std::string current_;
+  WalkBudget budget_;
 };
 
 struct FileCloser {
@@ -411,39 +430,20 @@ struct FileCloser {
 
 namespace {
 
-// Root links matio 1.5.23 lists as variables (Mat_VarReadNextInfoIterate): datasets and groups,
-// except its own "#refs#" and "#subsystem#". External links are not followed (nor counted).
-herr_t CountMat73Variable(hid_t group, const char* name, const H5L_info_t* info, void* data) {
-  if (info->type != H5L_TYPE_HARD && info->type != H5L_TYPE_SOFT) return 0;
-  if (std::string(name) == "#refs#" || std::string(name) == "#subsystem#") return 0;
-  H5O_info_t object;
-  if (H5Oget_info_by_name(group, name, &object, H5P_DEFAULT) < 0) return -1;
-  if (object.type == H5O_TYPE_DATASET || object.type == H5O_TYPE_GROUP)
-    ++*static_cast<std::size_t*>(data);
-  return 0;
-}
-
 // A MAT v7.3 file is HDF5 behind a 512-byte MAT header. matio opens it without complaint even
 // when HDF5 cannot (a truncated file: HDF5 checks the superblock's end-of-file address against
-// the file's size) and then lists no variables, exit 0: so HDF5 opens it here first, and lists
-// the root's variables as matio would, for the caller to compare with what matio listed.
+// the file's size) and then lists no variables, exit 0: so HDF5 opens it here first, walks it
+// as matio will under the container policy (no value outside the file, no cycle, bounded), and
+// counts the root's variables as matio lists them, for the caller to compare.
 std::size_t CheckMat73(const std::string& path) {
-  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0)
+  SilenceHdf5Errors();
+  const Hdf5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.ok())
     throw InputError(path +
                      ": malformed or truncated MAT file: a MAT v7.3 file that HDF5 "
                      "cannot open (truncated, or no HDF5 data after the 512-byte MAT "
                      "header)");
-  std::size_t count = 0;
-  hsize_t index = 0;
-  const herr_t listed =
-      H5Literate(file, H5_INDEX_NAME, H5_ITER_INC, &index, &CountMat73Variable, &count);
-  H5Fclose(file);
-  if (listed < 0)
-    throw InputError(path +
-                     ": malformed or truncated MAT file: HDF5 cannot list the MAT v7.3 "
-                     "file's variables");
-  return count;
+  return WalkHdf5(file.get(), path, Hdf5Walk::kMat73).root_variables;
 }
 
 // A MAT v4 file: matrices one after the other, each a 20-byte header (type MOPT, rows, columns,
@@ -455,6 +455,7 @@ std::size_t CheckMat73(const std::string& path) {
 std::size_t CheckMat4(const std::string& path, std::FILE* f, std::uint64_t size) {
   std::size_t variables = 0;
   std::uint64_t pos = 0;
+  WalkBudget budget;
   const auto fail = [&](const std::string& where, const std::string& detail) {
     throw InputError(where + ": malformed or truncated MAT file: " + detail);
   };
@@ -508,6 +509,7 @@ std::size_t CheckMat4(const std::string& path, std::FILE* f, std::uint64_t size)
            fmt::format("declares {}x{} ({:.0f} elements, {:.0f} bytes), the file has {} bytes "
                        "left",
                        rows, cols, declared, bytes, left));
+    budget.Count(path + ":" + Printable(name));
     ++variables;
     pos = size - left + static_cast<std::uint64_t>(bytes);
   }
@@ -540,6 +542,7 @@ std::optional<std::size_t> CheckMatLayout(const std::string& path) {
   LayoutChecker check(path, little);
   std::size_t variables = 0;
   std::uint64_t pos = 128;
+  std::uint64_t inflated = 0;
   while (pos < size) {
     check.SetPrefix(fmt::format("at byte {}: ", pos));
     unsigned char tag[8];
@@ -565,7 +568,7 @@ std::optional<std::size_t> CheckMatLayout(const std::string& path) {
       FileSpan span(f);
       check.Matrix(span, bytes, path, true, 0);
     } else {
-      InflatedSpan span(f, bytes);
+      InflatedSpan span(f, bytes, &inflated);
       try {
         unsigned char inner[8];
         if (!span.Read(inner, 8))
@@ -575,8 +578,17 @@ std::optional<std::size_t> CheckMatLayout(const std::string& path) {
                                        "matrix",
                                        check.U32(inner)));
         check.Matrix(span, check.U32(inner + 4), path, true, 0);
-      } catch (const TooLargeToCheck&) {
-        // Past what the reader would read; see kMaxInflated.
+      } catch (const InflateBound& bound) {
+        // Refused, not skipped: an unchecked variable is one matio may misread.
+        if (bound.whole_file)
+          throw InputError(fmt::format(
+              "{}: refused: its compressed variables inflate past {} bytes in all, the bound on "
+              "one file (docs/robustness.md, \"Files from elsewhere\")",
+              path, kMaxInflatedFileBytes));
+        throw InputError(fmt::format(
+            "{}: refused: a compressed variable inflating past {} bytes, the bound on one "
+            "variable (docs/robustness.md, \"Files from elsewhere\")",
+            check.current(), kMaxInflatedVariableBytes));
       }
     }
     ++variables;  // an empty miMATRIX too: matio lists it (without a name)
