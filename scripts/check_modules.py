@@ -31,7 +31,7 @@ LAYERS = [
     ["dominance"],
     ["nn"],
     ["compare"],
-    ["stage", "stack"],
+    ["stage", "stack", "deploy"],
     ["control"],
     ["facts"],
     ["pipeline"],
