@@ -32,7 +32,12 @@ struct ExportCli {
 
 // The vectors' columns by the step's input names (pi also takes a recording's "x").
 ExportVectors ReadVectors(const std::string& path, const std::vector<std::string>& names) {
-  const Recording rec = ReadRecording(path);
+  ReadOptions read;
+  read.required_columns = names;  // the reader names the first one missing
+  if (read.required_columns.front() == "x_ref") read.required_columns.clear();
+  read.any_of_columns = names.front() == "x_ref" ? std::vector<std::string>{"x_ref", "x"}
+                                                 : std::vector<std::string>{};
+  const Recording rec = ReadRecording(path, read);
   ExportVectors v;
   v.source = path;
   v.inputs.resize(rec.rows(), static_cast<Eigen::Index>(names.size()));
