@@ -80,7 +80,7 @@ void RunExport(const ExportCli& o) {
     const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get());
     if (pi == nullptr)
       throw OptionsError(path + ": a " + h->kind() + " model; this version exports the "
-                         "classical PI inverse of the hysteresis models only",
+                         "PI family's inverses (pi, gpi, rdpi) of the hysteresis models only",
                          "hysteresis");
     const ExportVectors v = o.vectors_path.empty() ? DefaultPiVectors(*pi, o.dt_s)
                                                    : ReadVectors(o.vectors_path, {"x_ref"});
@@ -113,7 +113,7 @@ void AddExportCommand(CLI::App& app) {
   cmd->add_option("--nn", o->nn_path, "tanh network JSON")
       ->check(CLI::ExistingFile)
       ->type_name("NN.json");
-  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi)")
+  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi; gpi, rdpi in double)")
       ->check(CLI::ExistingFile)
       ->type_name("H.json");
   cmd->add_option("--dt", o->dt_s, "sample time of the exported step [s] (--model, --hysteresis)")

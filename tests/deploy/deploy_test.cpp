@@ -61,8 +61,10 @@ TEST_CASE("export refuses what it cannot generate", "[deploy]") {
   g.form = sysid::PiForm::kPolynomial;
   g.polynomial = {4e-6, 0.0, 2e-8};
   const sysid::PrandtlIshlinskiiModel gpi(g);
+  o.precision = sysid::ExportPrecision::kFloat;
   CHECK_THROWS_WITH(sysid::ExportPiInverse(gpi, 5e-3, sysid::DefaultPiVectors(gpi, 5e-3), o, prov),
-                    Contains("classical PI inverse only"));
+                    Contains("double only"));
+  o.precision = sysid::ExportPrecision::kDouble;
   sysid::PiParameters bad = sysid::test::KnownPiParameters();
   bad.polynomial = {-1e-6};  // p0 < 0: no inverse
   const sysid::PrandtlIshlinskiiModel none(bad);

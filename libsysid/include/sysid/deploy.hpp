@@ -6,8 +6,8 @@
 // bound stated in the header, and a README fragment.
 //
 // Kinds this version exports: the analytic friction inverse, the tanh network (any number of
-// inputs) and the classical PI inverse. gpi, rdpi, Bouc–Wen and the operator-input network are
-// refused with a reason (OptionsError).
+// inputs) and the PI inverses (pi in double and float; gpi and rdpi in double). Bouc–Wen and the
+// operator-input network are refused with a reason (OptionsError).
 #ifndef SYSID_DEPLOY_HPP_
 #define SYSID_DEPLOY_HPP_
 
@@ -69,7 +69,8 @@ ExportResult ExportFrictionInverse(const FrictionModel& model, double dt_s,
 ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVectors& vectors,
                                   const ExportOptions& options,
                                   const ExportProvenance& provenance);
-/// The classical PI inverse at sample time dt_s [s]; `vectors` column: x_ref [m].
+/// A PI-family inverse at sample time dt_s [s] (pi: the closed form; gpi, rdpi: the stepper's
+/// bisection, double only); `vectors` column: x_ref [m].
 ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
                              const ExportVectors& vectors, const ExportOptions& options,
                              const ExportProvenance& provenance);
