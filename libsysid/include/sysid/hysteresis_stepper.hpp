@@ -3,13 +3,16 @@
 // reference position at sample k and the play operators' state. pi: the closed-form inverse, a
 // classical PI model of x - c (Kuhnen 2003); gpi, rdpi: a bisection to adjacent doubles on the
 // step's monotone output (rdpi's rate is that of the inverse's own last two outputs).
-// PrandtlIshlinskiiModel::Invert is a loop over this stepper.
+// PrandtlIshlinskiiModel::Invert is a loop over this stepper. The piezo Bouc–Wen inverse
+// (BoucWenInverseStepper) solves the model's exact step per sample; PiezoBoucWen::Invert loops
+// over it.
 #ifndef SYSID_HYSTERESIS_STEPPER_HPP_
 #define SYSID_HYSTERESIS_STEPPER_HPP_
 
 #include <vector>
 
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
 
 namespace sysid {
 
@@ -51,6 +54,26 @@ class PiInverseStepper {
   double u1_ = 0, u2_ = 0;  // rdpi: u_{k-1}, u_{k-2}
   long long k_ = 0;
   PiInverseSaturation saturation_;
+};
+
+/// The piezo Bouc–Wen inverse (kind "bouc-wen-piezo", rate-independent): u_0 = (x_0 - c) / d
+/// from h = 0, then per sample the u_k whose exact step from (u_{k-1}, h) gives x_ref,k: the
+/// root bracketed by doubling a step from u_{k-1}, then bisected to adjacent doubles.
+class BoucWenInverseStepper {
+ public:
+  /// Throws NumericalError when the model is not invertible (its loop is not monotone).
+  explicit BoucWenInverseStepper(const PiezoBoucWen& model);
+  void Reset();
+  /// u_k [V]. No allocation, no exception: a reference out of the model's reach (no bracket
+  /// in 200 doublings) holds u_{k-1} and out_of_reach() says so.
+  double Step(double x_ref_m);
+  bool out_of_reach() const { return out_of_reach_; }
+
+ private:
+  PiezoBoucWenParameters p_;
+  double u_prev_ = 0, h_ = 0;
+  long long k_ = 0;
+  bool out_of_reach_ = false;
 };
 
 }  // namespace sysid
