@@ -34,6 +34,12 @@ TEST_CASE("streaming inverses do not allocate inside Step", "[deploy][stream]") 
   sysid::NetworkStepper network(net);
   const sysid::PrandtlIshlinskiiModel pi(sysid::test::KnownPiParameters());
   sysid::PiInverseStepper inverse(pi, 5e-3);
+  sysid::PiezoBoucWenParameters bw;
+  bw.d_m_per_v = 1e-6;
+  bw.alpha = 0.3;
+  bw.beta_per_v = 0.05;
+  bw.gamma_per_v = 0.02;
+  sysid::BoucWenInverseStepper bouc_wen{sysid::PiezoBoucWen(bw)};
   const long before = g_allocations.load();
   double sum = 0;
   for (int k = 0; k < kSteps; ++k) {
@@ -42,6 +48,7 @@ TEST_CASE("streaming inverses do not allocate inside Step", "[deploy][stream]") 
     const double x[2] = {v, a};
     sum += network.Step(x);
     sum += inverse.Step(-1e-4 + 5e-6 * (1 + std::sin(3 * t)));
+    sum += bouc_wen.Step(5e-6 * std::sin(3 * t));
   }
   friction.Reset();
   inverse.Reset();

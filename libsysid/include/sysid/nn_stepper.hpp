@@ -8,7 +8,10 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 #include "sysid/nn.hpp"
+#include "sysid/nn_operators.hpp"
 
 namespace sysid {
 
@@ -31,6 +34,31 @@ class NetworkStepper {
  private:
   NeuralNetwork network_;
   Eigen::VectorXd x_;
+};
+
+/// The operator-input network's inverse (kind "nn-operators") one sample at a time: the
+/// inverse side's play operators on x_ref (from its initial input), then its network on
+/// [x_ref, F_r1, ..., F_rm] through NeuralNetwork::Evaluate. OperatorNetworkModel::Invert
+/// evaluates the same features with EvaluateBatch (a few ulp apart; not a loop over this).
+class OperatorNetworkInverseStepper {
+ public:
+  /// Throws OptionsError for an invalid network.
+  explicit OperatorNetworkInverseStepper(const OperatorNetworkModel& model);
+  void Reset();
+  /// u_k [V] from x_ref,k [m]. No allocation and no exception: a reference outside the model's
+  /// range (the inverse network's training range widened by half its span; Invert refuses
+  /// it) is clamped to it, and saturated() says so.
+  double Step(double x_ref_m);
+  bool saturated() const { return saturated_; }
+  double x_min_m() const { return lo_; }  ///< [m] lower end of the accepted range
+  double x_max_m() const { return hi_; }  ///< [m] upper end
+
+ private:
+  OperatorNetworkSide side_;
+  std::vector<double> z_;
+  Eigen::VectorXd features_;
+  double lo_ = 0, hi_ = 0;
+  bool saturated_ = false;
 };
 
 }  // namespace sysid
