@@ -78,13 +78,21 @@ void RunExport(const ExportCli& o) {
   } else {
     const auto h = ReadHysteresisModel(path);
     const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get());
-    if (pi == nullptr)
+    const auto* ops = dynamic_cast<const OperatorNetworkModel*>(h.get());
+    if (ops != nullptr) {
+      const ExportVectors v = o.vectors_path.empty() ? DefaultOperatorNetworkVectors(*ops)
+                                                     : ReadVectors(o.vectors_path, {"x_ref"});
+      r = ExportOperatorNetworkInverse(*ops, v, options, provenance);
+    } else if (pi == nullptr) {
       throw OptionsError(path + ": a " + h->kind() + " model; this version exports the "
-                         "PI family's inverses (pi, gpi, rdpi) of the hysteresis models only",
+                         "PI family's (pi, gpi, rdpi) and the operator-input network's "
+                         "inverses of the hysteresis models only",
                          "hysteresis");
-    const ExportVectors v = o.vectors_path.empty() ? DefaultPiVectors(*pi, o.dt_s)
-                                                   : ReadVectors(o.vectors_path, {"x_ref"});
-    r = ExportPiInverse(*pi, o.dt_s, v, options, provenance);
+    } else {
+      const ExportVectors v = o.vectors_path.empty() ? DefaultPiVectors(*pi, o.dt_s)
+                                                     : ReadVectors(o.vectors_path, {"x_ref"});
+      r = ExportPiInverse(*pi, o.dt_s, v, options, provenance);
+    }
   }
   const std::string& p = options.prefix;
   folder.Write([&](const fs::path& dir) {
@@ -113,7 +121,7 @@ void AddExportCommand(CLI::App& app) {
   cmd->add_option("--nn", o->nn_path, "tanh network JSON")
       ->check(CLI::ExistingFile)
       ->type_name("NN.json");
-  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi; gpi, rdpi in double)")
+  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi; gpi, rdpi, nn-operators in double)")
       ->check(CLI::ExistingFile)
       ->type_name("H.json");
   cmd->add_option("--dt", o->dt_s, "sample time of the exported step [s] (--model, --hysteresis)")

@@ -4,8 +4,8 @@
 # vectors (exit 0: every output within the header's bound), and again built by clang -O3
 # -march=native where clang is installed; no allocator and no stdio in the
 # model's object; and a planted bug in the generated code that the check must catch.
-# Usage: export_compile.sh SYSID SOURCE_DIR KIND   (KIND: friction, nn, pi, gpi, rdpi; gpi
-# and rdpi export in double only, and their float export must be refused)
+# Usage: export_compile.sh SYSID SOURCE_DIR KIND   (KIND: friction, nn, pi, gpi, rdpi,
+# nn-operators; the last three export in double only, and their float export must be refused)
 set -u
 SYSID=$1
 SRC=$2
@@ -44,6 +44,12 @@ case $KIND in
     MODEL="--hysteresis gpi.json --dt 5e-3"
     PRECS=double
     MUTANT=$SWAP ;;
+  nn-operators)
+    "$SYSID" hysteresis fit --model nn-operators --operators 3 --hidden 5 --epochs 30 \
+      "$SRC/datasets/piezo_aye_ang/piezo.csv" -o ops.json >/dev/null || fail "hysteresis fit"
+    MODEL="--hysteresis ops.json --dt 5e-3"
+    PRECS=double
+    MUTANT=$SWAP ;;
   rdpi)
     # The fitted rdpi's rate weights make its inverse unstable at 200 Hz (the library refuses
     # it): a model with a stable inverse, error gain 0.76.
@@ -66,10 +72,10 @@ for PREC in $PRECS; do
   EXTRA=""
   [ "$PREC" = float ] && EXTRA="-Wdouble-promotion"
   OUT=out_$PREC
+  N=ff_$(printf '%s' "$KIND" | tr - _)
   # shellcheck disable=SC2086
-  "$SYSID" export $MODEL --precision "$PREC" --prefix ff_$KIND -o "$OUT" >/dev/null \
+  "$SYSID" export $MODEL --precision "$PREC" --prefix "$N" -o "$OUT" >/dev/null \
     || fail "$PREC: sysid export"
-  N=ff_$KIND
   for f in "$N.h" "$N.c" "${N}_check.c" "${N}_vectors.csv" "${N}_README.md"; do
     [ -f "$OUT/$f" ] || fail "$PREC: $f not written"
   done

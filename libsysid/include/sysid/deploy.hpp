@@ -6,8 +6,8 @@
 // bound stated in the header, and a README fragment.
 //
 // Kinds this version exports: the analytic friction inverse, the tanh network (any number of
-// inputs) and the PI inverses (pi in double and float; gpi and rdpi in double). Bouc–Wen and the
-// operator-input network are refused with a reason (OptionsError).
+// inputs), the PI inverses (pi in double and float; gpi and rdpi in double) and the
+// operator-input network's inverse (double). Bouc–Wen is refused with a reason (OptionsError).
 #ifndef SYSID_DEPLOY_HPP_
 #define SYSID_DEPLOY_HPP_
 
@@ -18,6 +18,7 @@
 #include "sysid/hysteresis.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/nn_operators.hpp"
 
 namespace sysid {
 
@@ -69,6 +70,11 @@ ExportResult ExportFrictionInverse(const FrictionModel& model, double dt_s,
 ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVectors& vectors,
                                   const ExportOptions& options,
                                   const ExportProvenance& provenance);
+/// The operator-input network's inverse (double only); `vectors` column: x_ref [m].
+ExportResult ExportOperatorNetworkInverse(const OperatorNetworkModel& model,
+                                          const ExportVectors& vectors,
+                                          const ExportOptions& options,
+                                          const ExportProvenance& provenance);
 /// A PI-family inverse at sample time dt_s [s] (pi: the closed form; gpi, rdpi: the stepper's
 /// bisection, double only); `vectors` column: x_ref [m].
 ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
@@ -78,10 +84,12 @@ ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
 /// Default test inputs: friction: v, a of three sines (2, 4, 8 periods over the samples; 2 mm/s)
 /// with a rest over the middle tenth, so both directions, reversals and v = 0 are in them; nn: each input swept over 1.2x its training range at
 /// incommensurate rates; pi: x of the forward model driven by decaying loops over its input
-/// range, so every operator reverses. 2000 samples.
+/// range, so every operator reverses (nn-operators: 1.2x the inverse network's x range). 2000
+/// samples.
 ExportVectors DefaultFrictionVectors(double dt_s);
 ExportVectors DefaultNetworkVectors(const NeuralNetwork& network);
 ExportVectors DefaultPiVectors(const PrandtlIshlinskiiModel& model, double dt_s);
+ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model);
 
 /// The lower-case hex SHA-256 (FIPS 180-4) of `bytes`.
 std::string Sha256Hex(const std::string& bytes);

@@ -397,17 +397,26 @@ static @T@ @P@_past(const @P@_state* state, int back) {
   return r;
 }
 
-ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVectors& v,
-                                  const ExportOptions& o, const ExportProvenance& provenance) {
+namespace {
+
+// The tanh network's step; with `ops`, the operator-input network's inverse: the inverse side's
+// play operators on the clamped x_ref feed the same network code.
+ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors& v,
+                               const ExportOptions& o, const ExportProvenance& provenance,
+                               const OperatorNetworkModel* ops) {
   o.Validate();
   NetworkStepper stepper(network);  // validates: finite weights, ranges
   const int n = network.input_count(), H = network.hidden_size();
-  CheckVectors(v, n, "nn");
+  if (ops != nullptr && o.precision != ExportPrecision::kDouble)
+    throw OptionsError("nn-operators: exported in double only (no float bound derived for the "
+                       "play operators feeding the network yet)",
+                       "precision");
+  CheckVectors(v, ops != nullptr ? 1 : n, ops != nullptr ? "nn-operators" : "nn");
   ExportResult r;
-  r.kind = "nn";
+  r.kind = ops != nullptr ? "nn-operators" : "nn";
   std::string args, arg_names, inputs_text, copy;
   std::vector<std::string> readme_args;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < n && ops == nullptr; ++i) {
     const ScaledVariable& in = network.inputs()[static_cast<size_t>(i)];
     for (char c : in.name)
       if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
@@ -422,10 +431,36 @@ ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVect
     inputs_text += fmt::format(" *   {} [{}], fitted range [{:.9g}, {:.9g}]\n", in.name, in.unit,
                                in.min, in.max);
   }
+  const size_t m = ops != nullptr ? ops->inverse().thresholds.size() : 0;
+  if (ops != nullptr) {
+    r.input_names = {"x_ref"};
+    r.input_units = {"m"};
+    args = ", " + CType(o.precision) + " x_ref_m";
+    readme_args = {"x_ref_m"};
+    // The stepper's features, in its operations: x clamped to the range, then each operator.
+    copy = Fill(R"(  x[0] = x_ref_m >= @P@_kXLo && x_ref_m <= @P@_kXHi ? x_ref_m
+                                                  : (x_ref_m > @P@_kXHi ? @P@_kXHi : @P@_kXLo);
+  for (i = 0; i < @P@_M; ++i) {
+    const @T@ lo = x[0] - @P@_kR[i], hi = x[0] + @P@_kR[i];
+    const @T@ zi = state->z[i];
+    state->z[i] = zi < lo ? lo : (zi > hi ? hi : zi);
+    x[i + 1] = state->z[i];
+  }
+)",
+                {{"M", std::to_string(m)}, {"T", CType(o.precision)}});
+    inputs_text = fmt::format(" *   x_ref [m]: the reference position; the network's inputs are "
+                              "x_ref and {} play operators of it\n", m);
+  }
   r.u_expected_v.resize(v.inputs.rows());
-  for (Eigen::Index k = 0; k < v.inputs.rows(); ++k) {
-    const Eigen::VectorXd row = v.inputs.row(k).transpose();
-    r.u_expected_v[k] = stepper.Step(row.data());
+  if (ops != nullptr) {
+    OperatorNetworkInverseStepper op_stepper(*ops);
+    for (Eigen::Index k = 0; k < v.inputs.rows(); ++k)
+      r.u_expected_v[k] = op_stepper.Step(v.inputs(k, 0));
+  } else {
+    for (Eigen::Index k = 0; k < v.inputs.rows(); ++k) {
+      const Eigen::VectorXd row = v.inputs.row(k).transpose();
+      r.u_expected_v[k] = stepper.Step(row.data());
+    }
   }
   const ExportPrecision p = o.precision;
   const double eps = Epsilon(p);
@@ -505,19 +540,62 @@ ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVect
   auto vec = [](const Eigen::VectorXd& x) { return std::vector<double>(x.data(), x.data() + x.size()); };
   const std::string T = CType(p);
   const std::string comment =
+      (ops != nullptr
+           ? fmt::format(" * Model: the operator-input network's inverse (kind nn-operators, "
+                         "sysid/nn_operators.hpp): x clamped to [{:.9g}, {:.9g}] m,\n"
+                         " *   play operators F_ri[x] (r = {} m, from {:.9g} m), then the "
+                         "network below on [x, F_r1, ..., F_rm]\n",
+                         ops->inverse().network.inputs()[0].min -
+                             0.5 * (ops->inverse().network.inputs()[0].max -
+                                    ops->inverse().network.inputs()[0].min),
+                         ops->inverse().network.inputs()[0].max +
+                             0.5 * (ops->inverse().network.inputs()[0].max -
+                                    ops->inverse().network.inputs()[0].min),
+                         fmt::join(ops->inverse().thresholds, ", "),
+                         ops->inverse().initial_input)
+           : std::string()) +
       fmt::format(" * Model: the tanh inverse network, {} input(s), {} hidden units "
                   "(sysid/nn.hpp):\n"
                   " *   z_i = 2 (x_i - min_i) / (max_i - min_i) - 1, y = b2 + sum_h w2_h "
                   "tanh(b1_h + sum_i W1_hi z_i),\n"
                   " *   u = u_min + (y + 1) (u_max - u_min) / 2\n"
-                  " * Inputs (sample k), in this order (the stepper is static: no history):\n{}"
-                  " * Output {} [{}], range [{:.9g}, {:.9g}]. Sample time: any (no state).\n",
-                  n, H, inputs_text, out.name, out.unit, out.min, out.max) +
+                  " * Inputs (sample k), in this order:\n{}"
+                  " * Output {} [{}], range [{:.9g}, {:.9g}]. Sample time: any ({}).\n",
+                  n, H, inputs_text, out.name, out.unit, out.min, out.max,
+                  ops != nullptr ? "rate-independent" : "no state") +
       internal::Provenance(provenance, p, r.bound_v, r.bound_reason);
   const std::string state =
-      "/* A static map: no state (C99 forbids an empty struct). */\n"
-      "typedef struct {\n  int unused;\n} @P@_state;\n";
-  r.header = Fill(Header(o, comment, state, args, n, r.bound_v), {{"P", o.prefix}});
+      ops != nullptr
+          ? Fill("typedef struct {\n  @T@ z[@S@]; /* the play operators' outputs [m] */\n} "
+                 "@P@_state;\n",
+                 {{"T", CType(p)}, {"S", std::to_string(std::max<size_t>(m, 1))}})
+          : "/* A static map: no state (C99 forbids an empty struct). */\n"
+            "typedef struct {\n  int unused;\n} @P@_state;\n";
+  r.header = Fill(Header(o, comment, state, args, ops != nullptr ? 1 : n, r.bound_v), {{"P", o.prefix}});
+  std::string ops_text = "void @P@_init(@P@_state* state) { state->unused = 0; }\n";
+  if (ops != nullptr) {
+    OperatorNetworkInverseStepper limits(*ops);
+    std::vector<double> r_pad = ops->inverse().thresholds;
+    r_pad.resize(std::max<size_t>(m, 1), 0.0);
+    ops_text = Fill(R"(#define @P@_M @M@
+static const @T@ @P@_kR[@S@] = @R@;
+static const @T@ @P@_kZ0 = @Z0@;
+static const @T@ @P@_kXLo = @LO@;
+static const @T@ @P@_kXHi = @HI@;
+
+void @P@_init(@P@_state* state) {
+  int i;
+  for (i = 0; i < @S@; ++i) state->z[i] = @P@_kZ0;
+}
+)",
+                    {{"M", std::to_string(m)},
+                     {"S", std::to_string(std::max<size_t>(m, 1))},
+                     {"T", CType(p)},
+                     {"R", CArray(r_pad, p)},
+                     {"Z0", CLiteral(ops->inverse().initial_input, p)},
+                     {"LO", CLiteral(limits.x_min_m(), p)},
+                     {"HI", CLiteral(limits.x_max_m(), p)}});
+  }
   r.source = Fill(R"(/* @P@.c -- generated by sysid export; see @P@.h. */
 #include "@P@.h"
 
@@ -534,8 +612,7 @@ static const @T@ @P@_kOutMin = @OUTMIN@;
 static const @T@ @P@_kOutMax = @OUTMAX@;
 
 @TANH@
-void @P@_init(@P@_state* state) { state->unused = 0; }
-
+@OPS@
 @T@ @P@_step(@P@_state* state@ARGS@) {
   @T@ x[@P@_N], z[@P@_N];
   @T@ y = @P@_kB2;
@@ -552,6 +629,8 @@ void @P@_init(@P@_state* state) { state->unused = 0; }
 }
 )",
                   {{"TANH", internal::CTanh(o.prefix, p)},
+                   {"OPS", ops_text},
+                   {"COPY", copy},
                    {"P", o.prefix},
                    {"T", T},
                    {"N", std::to_string(n)},
@@ -565,12 +644,25 @@ void @P@_init(@P@_state* state) { state->unused = 0; }
                    {"OUTMIN", CLiteral(out.min, p)},
                    {"OUTMAX", CLiteral(out.max, p)},
                    {"ARGS", args},
-                   {"COPY", copy},
                    {"TWO", CLiteral(2.0, p)},
                    {"ONE", CLiteral(1.0, p)},
                    {"HALF", CLiteral(0.5, p)}});
-  Finish(&r, o, v, "tanh network", readme_args, "sample");
+  Finish(&r, o, v, ops != nullptr ? "operator-input network inverse" : "tanh network",
+         readme_args, ops != nullptr ? "sample, in order" : "sample");
   return r;
+}
+
+}  // namespace
+
+ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVectors& v,
+                                  const ExportOptions& o, const ExportProvenance& provenance) {
+  return ExportNetworkCore(network, v, o, provenance, nullptr);
+}
+
+ExportResult ExportOperatorNetworkInverse(const OperatorNetworkModel& model,
+                                          const ExportVectors& v, const ExportOptions& o,
+                                          const ExportProvenance& provenance) {
+  return ExportNetworkCore(model.inverse().network, v, o, provenance, &model);
 }
 
 ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
@@ -735,6 +827,18 @@ ExportVectors DefaultPiVectors(const PrandtlIshlinskiiModel& model, double dt_s)
   ExportVectors v;
   v.source = "default waveform";
   v.inputs = model.Simulate(u, dt_s);
+  return v;
+}
+
+ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model) {
+  const int n = 2000;
+  const ScaledVariable& in = model.inverse().network.inputs()[0];
+  const double mid = 0.5 * (in.min + in.max), half = 0.6 * (in.max - in.min);
+  ExportVectors v;
+  v.source = "default waveform";
+  v.inputs.resize(n, 1);
+  for (int k = 0; k < n; ++k)
+    v.inputs(k, 0) = mid + half * std::sin(2 * M_PI * k / 400.0) * (0.6 + 0.4 * std::cos(k / 300.0));
   return v;
 }
 
