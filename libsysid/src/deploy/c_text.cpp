@@ -43,33 +43,30 @@ std::string CArray(const std::vector<double>& values, ExportPrecision precision)
 
 std::string CTanh(const std::string& prefix, ExportPrecision precision) {
   const bool dbl = precision == ExportPrecision::kDouble;
-  // Taylor terms of expm1 on |r| <= 1.1: 1.1^n / n! below 2^-60 (double) or 2^-27 (float).
-  const int terms = dbl ? 22 : 13;
-  std::vector<double> inverse;
-  for (int n = 0; n <= terms; ++n) inverse.push_back(n == 0 ? 0.0 : 1.0 / n);
+  // Taylor terms of expm1 on |r| <= 0.35: the first left out, 0.35^n / n!, is below 2^-56
+  // (double, n = 14) or 2^-27 (float, n = 9) of r.
+  const int terms = dbl ? 13 : 8;
+  std::vector<double> coefficient{0.0};
+  double factorial = 1;
+  for (int n = 1; n <= terms; ++n) coefficient.push_back(1.0 / (factorial *= n));
+  std::vector<double> pow2;
+  for (int k = 0; k <= 58; ++k) pow2.push_back(std::ldexp(1.0, k));
   // Cody–Waite ln 2 split: k ln2_hi is exact for k < 64 (fdlibm's hi; float's has 9 zero bits).
   const std::string ln2_hi = dbl ? "6.93147180369123816490e-01" : "0.693145751953125f";
   const std::string ln2_lo = dbl ? "1.90821492927058770002e-10" : "1.42860677e-06f";
   return Fill(R"(/* tanh without the platform's libm, so every IEEE-754 target computes the same
- * values: expm1 by its Taylor series on |r| <= 1.1, exp by Cody-Waite reduction to that
- * series and exact doublings, tanh = e / (e + 2) with e = expm1(2|x|) below 0.55 and
- * 1 - 2 / (exp(2|x|) + 1) above; |x| > 20 (and NaN) give +-1. */
-static const @T@ @P@_kInverse[@N1@] = @INV@;
+ * values. expm1(r) = sum r^n / n! on |r| <= 0.35 (Horner). Below |x| = 0.55: e = expm1(2|x|)
+ * from expm1(|x| / 2) by two doublings, e' = e (e + 2), and tanh = e / (e + 2); above:
+ * exp(2|x|) = 2^k (1 + expm1(r)) with 2|x| = k ln2 + r (Cody-Waite), tanh = 1 - 2 / (exp + 1);
+ * |x| > 20 (and NaN) give +-1. No loop depends on the data. */
+static const @T@ @P@_kExpm1[@N1@] = @COEF@;
+static const @T@ @P@_kPow2[59] = @POW2@;
 
 static @T@ @P@_expm1_series(@T@ r) {
-  @T@ s = @ONE@;
+  @T@ s = @P@_kExpm1[@N@];
   int n;
-  for (n = @N@; n >= 2; --n) s = @ONE@ + r * s * @P@_kInverse[n];
-  return r * s;
-}
-
-static @T@ @P@_exp_positive(@T@ x) {
-  const int k = (int)(x * @INV_LN2@ + @HALF@);
-  const @T@ r = (x - (@T@)k * @LN2_HI@) - (@T@)k * @LN2_LO@;
-  @T@ p = @P@_expm1_series(r) + @ONE@;
-  int i;
-  for (i = 0; i < k; ++i) p *= @TWO@;
-  return p;
+  for (n = @N@ - 1; n >= 1; --n) s = s * r + @P@_kExpm1[n];
+  return s * r;
 }
 
 static @T@ @P@_tanh(@T@ x) {
@@ -78,10 +75,16 @@ static @T@ @P@_tanh(@T@ x) {
   if (!(ax <= @TWENTY@)) {
     t = @ONE@;
   } else if (ax < @SMALL@) {
-    const @T@ e = @P@_expm1_series(@TWO@ * ax);
+    @T@ e = @P@_expm1_series(@HALF@ * ax);
+    e = e * (e + @TWO@);
+    e = e * (e + @TWO@);
     t = e / (e + @TWO@);
   } else {
-    t = @ONE@ - @TWO@ / (@P@_exp_positive(@TWO@ * ax) + @ONE@);
+    const @T@ y = @TWO@ * ax;
+    const int k = (int)(y * @INV_LN2@ + @HALF@);
+    const @T@ r = (y - (@T@)k * @LN2_HI@) - (@T@)k * @LN2_LO@;
+    const @T@ e = (@P@_expm1_series(r) + @ONE@) * @P@_kPow2[k];
+    t = @ONE@ - @TWO@ / (e + @ONE@);
   }
   return x < @ZERO@ ? -t : t;
 }
@@ -90,7 +93,8 @@ static @T@ @P@_tanh(@T@ x) {
                {"T", CType(precision)},
                {"N1", std::to_string(terms + 1)},
                {"N", std::to_string(terms)},
-               {"INV", CArray(inverse, precision)},
+               {"COEF", CArray(coefficient, precision)},
+               {"POW2", CArray(pow2, precision)},
                {"INV_LN2", CLiteral(1.0 / std::log(2.0), precision)},
                {"LN2_HI", ln2_hi},
                {"LN2_LO", ln2_lo},
@@ -303,7 +307,7 @@ its worst-case run time is bounded@LOOPS@.
                {"ARGS", arg_list},
                {"DT", dt_text},
                {"T", CType(precision)},
-               {"LOOPS", kind == "tanh network" ? " (its tanh doubles at most 58 times)" : ""}});
+               {"LOOPS", ""}});
 }
 
 }  // namespace sysid::internal

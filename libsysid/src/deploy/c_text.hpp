@@ -21,7 +21,7 @@ std::string CLiteral(double value, ExportPrecision precision);
 std::string CType(ExportPrecision precision);
 /// "{a, b, ...}" of CLiteral, wrapped at 4 values a line.
 std::string CArray(const std::vector<double>& values, ExportPrecision precision);
-/// The file-local exp and tanh in C (PREFIX_tanh), the same on every IEEE-754 target.
+/// The file-local expm1 series and tanh in C (PREFIX_tanh), the same on every IEEE-754 target.
 std::string CTanh(const std::string& prefix, ExportPrecision precision);
 /// NAME_check.c for a step taking `inputs` (CSV column names) in that order.
 std::string CheckProgram(const std::string& prefix, const std::vector<std::string>& inputs,
