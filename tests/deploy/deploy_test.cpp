@@ -72,6 +72,16 @@ TEST_CASE("export refuses what it cannot generate", "[deploy]") {
                   sysid::NumericalError);
 }
 
+TEST_CASE("a file name holding the comment's end cannot end the header's comment", "[deploy]") {
+  const sysid::ExportProvenance prov{"evil*/ int x; /*.json", std::string(64, '0')};
+  const sysid::ExportResult r = sysid::ExportFrictionInverse(
+      sysid::FrictionModel::Paper(), 1e-3, sysid::DefaultFrictionVectors(1e-3), {}, prov);
+  const size_t end = r.header.find("*/");
+  REQUIRE(end != std::string::npos);
+  // The first comment ends after the provenance line: the name's "*/" was defused.
+  CHECK(r.header.find("evil* / int x;") < end);
+}
+
 TEST_CASE("sysid export: a usage error exits 1 and bad data 2 with nothing written", "[deploy]") {
   sysid::test::TempDir dir;
   sysid::test::WriteText(dir / "m.json", R"({"a1p":100,"a1n":120,"a2p":3,"a2n":7,"a3":5,"tau":0.002})");
