@@ -1,5 +1,5 @@
-// Private: the C99 text shared by every exported kind (literals, the own tanh, the check
-// program, the README fragment, the vectors file).
+// Private: the C99 text shared by every exported kind (literals, the own tanh, the header, the
+// check program, the README fragment, the vectors file).
 #ifndef SYSID_SRC_DEPLOY_C_TEXT_HPP_
 #define SYSID_SRC_DEPLOY_C_TEXT_HPP_
 
@@ -36,6 +36,22 @@ std::string Readme(const std::string& prefix, const std::string& kind,
 /// The header comment's common lines (precision, bound, provenance).
 std::string Provenance(const ExportProvenance& provenance, ExportPrecision precision,
                        double bound_v, const std::string& bound_reason);
+
+/// Unit roundoff of the exported arithmetic: 2^-53 (double) or 2^-24 (float).
+double Epsilon(ExportPrecision precision);
+/// InputError unless the vectors have `inputs` columns, a row, and finite values.
+void CheckVectors(const ExportVectors& vectors, int inputs, const char* kind);
+/// NAME.h: the comment (a "*/" in it defused), NAME_INPUTS, NAME_BOUND_V, the state struct and
+/// the prototypes of NAME_init and NAME_step (`args` after the state pointer).
+std::string Header(const ExportOptions& options, const std::string& comment,
+                   const std::string& state, const std::string& args, int inputs, double bound_v);
+/// "[min, max]" of x, 6 digits.
+std::string Range(const Eigen::VectorXd& x);
+/// The check program, the vectors file and the README of `result`; NumericalError when the
+/// stepper's outputs are not finite (nothing is exported then).
+void Finish(ExportResult* result, const ExportOptions& options, const ExportVectors& vectors,
+            const std::string& kind_text, const std::vector<std::string>& args,
+            const std::string& dt_text);
 
 }  // namespace sysid::internal
 
