@@ -95,13 +95,7 @@ void RunExport(const ExportCli& o) {
     }
   }
   const std::string& p = options.prefix;
-  folder.Write([&](const fs::path& dir) {
-    WriteFileAtomically((dir / (p + ".h")).string(), r.header);
-    WriteFileAtomically((dir / (p + ".c")).string(), r.source);
-    WriteFileAtomically((dir / (p + "_check.c")).string(), r.check);
-    WriteFileAtomically((dir / (p + "_vectors.csv")).string(), r.vectors_csv);
-    WriteFileAtomically((dir / (p + "_README.md")).string(), r.readme);
-  });
+  folder.Write([&](const fs::path& dir) { WriteExportFiles(r, p, dir.string()); });
   std::cout << fmt::format("{}: {} inverse, {} in {}, {} vectors, bound {:.3g} V\n",
                            folder.path().string(), r.kind, options.precision ==
                            ExportPrecision::kDouble ? "double" : "float", p + ".c",

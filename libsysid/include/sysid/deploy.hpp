@@ -91,6 +91,12 @@ ExportVectors DefaultNetworkVectors(const NeuralNetwork& network);
 ExportVectors DefaultPiVectors(const PrandtlIshlinskiiModel& model, double dt_s);
 ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model);
 
+/// Writes NAME.h, NAME.c, NAME_check.c, NAME_vectors.csv and NAME_README.md of `result` into
+/// the folder `dir` (created when missing), each atomically; returns their paths. The CLI calls
+/// it inside its staged -o folder; Python (sysid.export) on the folder it is given.
+std::vector<std::string> WriteExportFiles(const ExportResult& result, const std::string& prefix,
+                                          const std::string& dir);
+
 /// The lower-case hex SHA-256 (FIPS 180-4) of `bytes`.
 std::string Sha256Hex(const std::string& bytes);
 

@@ -4,12 +4,17 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
 
 #include "c_text.hpp"
 #include "sysid/deploy.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 
@@ -117,6 +122,26 @@ ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model) {
   for (int k = 0; k < n; ++k)
     v.inputs(k, 0) = mid + half * std::sin(2 * M_PI * k / 400.0) * (0.6 + 0.4 * std::cos(k / 300.0));
   return v;
+}
+
+std::vector<std::string> WriteExportFiles(const ExportResult& result, const std::string& prefix,
+                                          const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError(dir + ": cannot create the folder: " + error.message());
+  const std::filesystem::path folder(dir);
+  const std::pair<std::string, const std::string*> files[] = {
+      {prefix + ".h", &result.header},
+      {prefix + ".c", &result.source},
+      {prefix + "_check.c", &result.check},
+      {prefix + "_vectors.csv", &result.vectors_csv},
+      {prefix + "_README.md", &result.readme}};
+  std::vector<std::string> written;
+  for (const auto& [name, text] : files) {
+    written.push_back((folder / name).string());
+    WriteFileAtomically(written.back(), *text);
+  }
+  return written;
 }
 
 }  // namespace sysid
