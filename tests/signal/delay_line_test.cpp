@@ -21,12 +21,15 @@ TEST_CASE("DelayLine: a hand-worked table at 2.5 samples", "[signal][delay][stre
   CHECK(line.Push(20) == 10);
 }
 
-TEST_CASE("DelayLine follows the interpolation rule at any delay", "[signal][delay][stream]") {
+TEST_CASE("DelayLine follows the interpolation rule and DelaySignal at any delay", "[signal][delay][stream]") {
   const double dt = 1e-3;
   std::vector<double> y(300);
   for (size_t k = 0; k < y.size(); ++k) y[k] = std::sin(0.05 * static_cast<double>(k)) + 0.01 * k;
   for (double tau : {0.0, 0.4e-3, 1e-3, 3.5e-3, 37.25e-3, 0.5}) {
     sysid::DelayLine line(dt, tau);
+    Eigen::VectorXd signal(static_cast<Eigen::Index>(y.size()));
+    for (size_t k = 0; k < y.size(); ++k) signal[static_cast<Eigen::Index>(k)] = y[k];
+    const Eigen::VectorXd batch = sysid::DelaySignal(signal, dt, tau);
     const double shift = tau / dt;
     const auto w = static_cast<long long>(std::floor(shift));
     const double f = shift - static_cast<double>(w);
@@ -34,7 +37,9 @@ TEST_CASE("DelayLine follows the interpolation rule at any delay", "[signal][del
     for (long long k = 0; k < static_cast<long long>(y.size()); ++k) {
       INFO("tau = " << tau << ", k = " << k);
       // Same expression as the rule: bit-identical.
-      CHECK(line.Push(y[static_cast<size_t>(k)]) == (1 - f) * at(k - w) + f * at(k - w - 1));
+      const double pushed = line.Push(y[static_cast<size_t>(k)]);
+      CHECK(pushed == (1 - f) * at(k - w) + f * at(k - w - 1));
+      CHECK(pushed == batch[static_cast<Eigen::Index>(k)]);  // the batch form, bit for bit
     }
   }
 }

@@ -109,7 +109,7 @@ enum class DelayStart {
 /// delay line is a few hundred samples; a longer one is a unit mistake (tau in ms, dt in s).
 inline constexpr long long kMaxDelayLineSamples = 1LL << 22;
 
-/// The causal, streaming form of DelaySignal(kHoldFirst): pushed y_k one sample at a time, it
+/// The causal, streaming form of DelaySignal(kHoldFirst) (the same rule, bit for bit): pushed y_k one sample at a time, it
 /// returns y(t_k - tau) = (1 - f) y_{k-w} + f y_{k-w-1}, w = floor(tau / dt), f = tau / dt - w,
 /// with y_j = y_0 for j < 0 (the signal constant before its first sample). The ring of w + 2
 /// samples is allocated at construction; Push neither allocates nor throws.
