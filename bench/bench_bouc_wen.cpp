@@ -7,11 +7,19 @@
 //     "fit ..." (parameters, standard errors, fit time, training rms), "score model=... e_rms=..."
 //     for the fitted model (chain, and CVODE with band-limited input) and the true system.
 //   bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats R]
+//                  [--jacobian sensitivities|central-differences] [--integrator chain|cvode]
+//                  [--max-time S]
 //     What the benchmark fit costs: one chain simulation of TRAIN's u (true parameters) as the
 //     fit ran it before (Simulate: the input upsampled on every call) against the fit's path now
 //     (the upsampled input computed once, internal::ChainOutput), best CPU time of R, the outputs
-//     compared bit for bit; then the fit itself: CPU [s] (user + system of every thread), wall
-//     [s], simulations. Prints "simulation ..." and "fit ..." lines.
+//     compared bit for bit; one exact Jacobian (internal::ChainOutputSensitivity) against one
+//     simulation, CPU; then the fit itself: CPU [s] (user + system of every thread), wall
+//     [s], simulations. Prints "simulation ...", "jacobian ..." and "fit ..." lines. The
+//     options after --repeats are this build's (a baseline binary is run without them).
+//   bench_bouc_wen fixed-step REC.csv
+//     The Newmark/trapezoidal step (the chain's) on the input linear between samples, 5 to 80
+//     substeps per sample, against CVODE at rtol 1e-12 on REC's u (true parameters): max and
+//     RMS error [m], CPU [s]; CVODE at the fit's rtol 1e-9 beside. Prints "fixed-step ..." lines.
 //   bench_bouc_wen throughput REC.csv [--repeats R]
 //     Samples per second of Simulate on REC's u (true parameters): the chain, CVODE with linear
 //     and band-limited input, and the piezo form. Prints "throughput method=... samples_per_s=...".
@@ -116,6 +124,14 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
       o.starts = std::atoi(args[++i].c_str());
     else if (args[i] == "--repeats" && i + 1 < args.size())
       repeats = std::max(1, std::atoi(args[++i].c_str()));
+    else if (args[i] == "--jacobian" && i + 1 < args.size())
+      o.jacobian = args[++i] == "central-differences" ? sysid::BoucWenJacobian::kCentralDifferences
+                                                      : sysid::BoucWenJacobian::kSensitivities;
+    else if (args[i] == "--integrator" && i + 1 < args.size())
+      o.simulation.integrator =
+          args[++i] == "cvode" ? BoucWenIntegrator::kCvode : BoucWenIntegrator::kBenchmarkChain;
+    else if (args[i] == "--max-time" && i + 1 < args.size())
+      o.max_time_s = std::atof(args[++i].c_str());
     else
       train = args[i];
   }
@@ -128,7 +144,9 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   const sysid::Recording tr = sysid::ReadRecording(train);
   const Eigen::VectorXd u = tr.column("u");
   const double dt = tr.column("t")[1] - tr.column("t")[0];
-  const sysid::MechanicalBoucWen truth({}, o.simulation);
+  sysid::BoucWenSimulationOptions chain_options = o.simulation;
+  chain_options.integrator = BoucWenIntegrator::kBenchmarkChain;
+  const sysid::MechanicalBoucWen truth({}, chain_options);
   const Eigen::VectorXd chain_u = sysid::internal::ChainInput(u, o.simulation.upsampling);
   auto best_of = [&](auto&& simulate, Eigen::VectorXd* y) {
     double best = 1e300;
@@ -151,6 +169,21 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   fmt::print(
       "simulation samples={} before_cpu_s={:.4f} now_cpu_s={:.4f} ratio={:.2f} identical={}\n",
       u.size(), t_old, t_new, t_old / t_new, y_old == y_new);
+  {
+    Eigen::VectorXd y;
+    Eigen::MatrixXd dy;
+    const double t_jac = best_of(
+        [&] {
+          sysid::internal::ChainOutputSensitivity(truth.values(), chain_u, u.size(), dt,
+                                                  o.simulation.upsampling, false, &y, &dy);
+          return y;
+        },
+        &y);
+    fmt::print(
+        "jacobian samples={} sensitivities_cpu_s={:.4f} simulation_cpu_s={:.4f} "
+        "in_simulations={:.2f} central_differences_in_simulations=13\n",
+        u.size(), t_jac, t_new, t_jac / t_new);
+  }
   sysid::HysteresisFitSummary summary;
   const std::clock_t cpu0 = std::clock();
   const auto model = sysid::FitBoucWen(sysid::BoucWenForm::kMechanical, {tr}, o, &summary);
@@ -160,6 +193,51 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   fmt::print("fit_message {}\n", summary.message);
   for (const auto& p : model->parameters())
     fmt::print("parameter name={} value={:.10g} std_error={:.3g}\n", p.name, p.value, p.std_error);
+  return 0;
+}
+
+// The Newmark/trapezoidal step on the linearly interpolated input, m substeps per sample and no
+// decimation, against CVODE at rtol 1e-12 (the reference) and at the fit's 1e-9: error and CPU.
+int FixedStepCommand(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    fmt::print(stderr, "usage: bench_bouc_wen fixed-step REC.csv\n");
+    return 1;
+  }
+  const sysid::Recording rec = sysid::ReadRecording(args[0]);
+  const Eigen::VectorXd u = rec.column("u");
+  const double dt = rec.column("t")[1] - rec.column("t")[0];
+  const sysid::MechanicalBoucWenParameters p;  // the benchmark's true system
+  sysid::BoucWenSimulationOptions o;
+  o.input = InputInterpolation::kLinear;
+  auto cpu = [](std::clock_t t0) {
+    return static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+  };
+  o.rtol = 1e-12;
+  std::clock_t t0 = std::clock();
+  const Eigen::VectorXd ref = sysid::MechanicalBoucWen(p, o).Simulate(u, dt);
+  fmt::print("fixed-step method=cvode-rtol1e-12 cpu_s={:.3f} rms_y_m={:.4g} (the reference)\n",
+             cpu(t0), std::sqrt(ref.squaredNorm() / static_cast<double>(ref.size())));
+  auto report = [&](const std::string& name, double cpu_s, const Eigen::VectorXd& y) {
+    fmt::print("fixed-step method={} cpu_s={:.3f} max_error_m={:.3g} rms_error_m={:.3g}\n", name,
+               cpu_s, (y - ref).cwiseAbs().maxCoeff(),
+               std::sqrt((y - ref).squaredNorm() / static_cast<double>(y.size())));
+  };
+  o.rtol = 1e-9;
+  t0 = std::clock();
+  const Eigen::VectorXd cv = sysid::MechanicalBoucWen(p, o).Simulate(u, dt);
+  report("cvode-rtol1e-9", cpu(t0), cv);
+  const Eigen::Index n = u.size();
+  for (int m : {5, 10, 20, 40, 80}) {
+    t0 = std::clock();
+    Eigen::VectorXd uf((n - 1) * m + 1), yf((n - 1) * m + 1), y(n);
+    for (Eigen::Index k = 0; k + 1 < n; ++k)
+      for (int j = 0; j < m; ++j) uf[k * m + j] = u[k] + (u[k + 1] - u[k]) * j / double(m);
+    uf[(n - 1) * m] = u[n - 1];
+    sysid::internal::NewmarkState state;
+    sysid::internal::NewmarkBoucWen(p, uf.data(), uf.size(), dt / m, &state, yf.data());
+    for (Eigen::Index k = 0; k < n; ++k) y[k] = yf[k * m];
+    report(fmt::format("newmark-linear-x{}", m), cpu(t0), y);
+  }
   return 0;
 }
 
@@ -217,10 +295,11 @@ int main(int argc, char** argv) {
     if (command == "score") return ScoreCommand(args);
     if (command == "throughput") return ThroughputCommand(args);
     if (command == "fit-speed") return FitSpeedCommand(args);
+    if (command == "fixed-step") return FixedStepCommand(args);
   } catch (const sysid::Error& e) {
     fmt::print(stderr, "bench_bouc_wen: {}\n", e.what());
     return 2;
   }
-  fmt::print(stderr, "usage: bench_bouc_wen score|fit-speed|throughput ...\n");
+  fmt::print(stderr, "usage: bench_bouc_wen score|fit-speed|fixed-step|throughput ...\n");
   return 1;
 }

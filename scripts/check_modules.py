@@ -11,6 +11,10 @@ a violation.
   scripts/check_modules.py            check; exit 1 on a violation
   scripts/check_modules.py --graph    print the module graph as markdown (for the docs)
   scripts/check_modules.py --root DIR check another source tree (the check's own test)
+
+The check also reads docs/architecture.md: its layer line (the code block under "## Layers")
+must list LAYERS in order, and its graph table must be the one --graph prints, so the
+architecture doc cannot drift from the sources.
 """
 import pathlib
 import re
@@ -49,6 +53,50 @@ def module_of_header(name, modules):
         return name
     prefix = name.split("_")[0]
     return prefix if prefix in modules else None
+
+
+def graph_table(edges, rank):
+    """The module graph as markdown table lines, modules in layer order."""
+    lines = ["| module | depends on |", "|---|---|"]
+    for layer in LAYERS:
+        for m in layer:
+            deps = sorted({n for (a, n) in edges if a == m}, key=lambda n: (rank.get(n, 99), n))
+            lines.append(f"| {m} | {', '.join(deps) or '—'} |")
+    return lines
+
+
+def doc_problems(doc, table, root):
+    """Where docs/architecture.md's layer line or graph table differ from the sources."""
+    if not doc.exists():
+        return []
+    where = doc.relative_to(root)
+    text = doc.read_text(encoding="utf-8").splitlines()
+    problems = []
+    try:
+        start = text.index("## Layers")
+        fence = text.index("```", start)
+        end = text.index("```", fence + 1)
+    except ValueError:
+        return [f"{where}: no '## Layers' section with the layer line in a code block"]
+    line = " ".join(text[fence + 1:end])
+    written = [[m.strip() for m in layer.split(",")] for layer in line.split("→")]
+    if written != LAYERS:
+        problems.append(
+            f"{where}:{fence + 2}: the layer line reads {' → '.join(', '.join(l) for l in written)}; "
+            f"the layers are {' → '.join(', '.join(l) for l in LAYERS)}")
+    try:
+        first = text.index(table[0])
+    except ValueError:
+        return problems + [f"{where}: no module graph table ('{table[0]}')"]
+    for i, expected in enumerate(table):
+        found = text[first + i] if first + i < len(text) else ""
+        if found != expected:
+            problems.append(f"{where}:{first + i + 1}: the graph table reads '{found}', "
+                            f"the sources give '{expected}' (scripts/check_modules.py --graph)")
+    after = first + len(table)
+    if after < len(text) and text[after].startswith("|"):
+        problems.append(f"{where}:{after + 1}: the graph table has a row no module has")
+    return problems
 
 
 def main():
@@ -99,16 +147,14 @@ def main():
                     f"{where}: module '{m}' includes {target} of module '{n}', which is "
                     f"{'in the same layer' if rank[n] == rank[m] else 'above it'}")
 
+    table = graph_table(edges, rank)
     if "--graph" in sys.argv:
-        print("| module | depends on |\n|---|---|")
-        for layer in LAYERS:
-            for m in layer:
-                deps = sorted({n for (a, n) in edges if a == m}, key=lambda n: rank.get(n, 99))
-                print(f"| {m} | {', '.join(deps) or '—'} |")
+        print("\n".join(table))
+    problems += doc_problems(root / "docs" / "architecture.md", table, root)
     for p in problems:
         print(p, file=sys.stderr)
     if problems:
-        print(f"check_modules: {len(problems)} violation(s) of the one-way module graph",
+        print(f"check_modules: {len(problems)} problem(s): module graph or its doc",
               file=sys.stderr)
         return 1
     if "--graph" not in sys.argv:

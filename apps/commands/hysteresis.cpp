@@ -35,7 +35,29 @@ struct HysteresisCli {
   bool no_offset = false;
   std::string integrator = "cvode";  // Bouc–Wen fits: cvode | benchmark-chain
   std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
+  std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
 };
+
+// Bouc–Wen fits: the start, then one line per start (rewritten at each iteration) with its
+// iteration, training RMS and elapsed time.
+void AttachBoucWenProgress(HysteresisFitOptions& options, const std::string& kind,
+                           const std::vector<Recording>& recs) {
+  if (!ProgressEnabled() || (kind != "bouc-wen" && kind != "bouc-wen-piezo")) return;
+  Eigen::Index rows = 0;
+  for (const auto& r : recs) rows += r.rows();
+  Progress(
+      fmt::format("fitting {} to {} samples ({} starts)", kind, rows, options.bouc_wen.starts));
+  ProgressDone();
+  auto last_start = std::make_shared<int>(-1);
+  options.bouc_wen.on_iteration = [=](const BoucWenFitProgress& p) {
+    if (p.start != *last_start) ProgressDone();
+    *last_start = p.start;
+    const std::string which =
+        p.start > 0 ? fmt::format("start {}/{}", p.start, p.starts) : std::string("final fit");
+    Progress(fmt::format("{} {}: iteration {}, training RMS {:.6g} m, {:.1f} s", kind, which,
+                         p.iteration, p.rms_m, p.elapsed_s));
+  };
+}
 
 std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
   ReadOptions ro;
@@ -85,14 +107,28 @@ void RunFit(const HysteresisCli& o) {
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"polynomial_degree", "--degree"}}, "--thresholds");
   }
+  options.bouc_wen.jacobian = o.jacobian == "central-differences"
+                                  ? BoucWenJacobian::kCentralDifferences
+                                  : BoucWenJacobian::kSensitivities;
   const std::vector<Recording> recs = ReadAll(o.recordings);
+  AttachBoucWenProgress(options, o.kind, recs);
   HysteresisFitSummary s;
   std::unique_ptr<HysteresisModel> model;
-  try {
-    model = FitHysteresis(o.kind, recs, options, &s);
-  } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"operators", "--operators"}, {"kind", "--model"},
-                        {"hidden", "--hidden"}, {"starts", "--starts"}, {"threads", "--threads"}});
+  {
+    // The progress line ends before the summary or the error is printed.
+    struct EndProgress {
+      ~EndProgress() { ProgressDone(); }
+    } end_progress;
+    try {
+      model = FitHysteresis(o.kind, recs, options, &s);
+    } catch (const OptionsError& e) {
+      RethrowWithFlag(e, {{"operators", "--operators"},
+                          {"kind", "--model"},
+                          {"hidden", "--hidden"},
+                          {"starts", "--starts"},
+                          {"threads", "--threads"},
+                          {"max_time_s", "--max-time"}});
+    }
   }
   const std::string summary_json = HysteresisFitSummaryJson(s, *model, 2);
   nlohmann::ordered_json file = nlohmann::ordered_json::parse(model->ToJson(2));
@@ -251,9 +287,21 @@ void AddHysteresisCommand(CLI::App& app) {
   fit->add_option("--starts", o->options.bouc_wen.starts,
                   "bouc-wen, bouc-wen-piezo: starting points (1..64)")
       ->capture_default_str();
+  fit->add_option("--jacobian", o->jacobian,
+                  "bouc-wen with benchmark-chain: how the fit differentiates the simulation: "
+                  "sensitivities (exact, the chain's step differentiated) or central-differences "
+                  "(2p+1 simulations); elsewhere central differences")
+      ->check(CLI::IsMember({"sensitivities", "central-differences"}))
+      ->capture_default_str();
+  fit->add_option("--max-time", o->options.bouc_wen.max_time_s,
+                  "bouc-wen, bouc-wen-piezo: stop after SECONDS [s] of wall time with the best "
+                  "parameters so far (the summary says so; not an error); 0 = no bound")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("SECONDS")
+      ->capture_default_str();
   AddThreadsOption(fit, o->options.bouc_wen.threads,
-                   "bouc-wen, bouc-wen-piezo: simulations in parallel for the Jacobian; 0 = all "
-                   "cores");
+                   "bouc-wen, bouc-wen-piezo: the Jacobian's simulations (central differences) "
+                   "or the recordings' sensitivity passes in parallel; 0 = all cores");
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");

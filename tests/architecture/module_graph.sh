@@ -1,6 +1,7 @@
 #!/bin/sh
-# The module graph check passes on the tree and fails, naming file and line, on a seeded cycle
-# (a copy of the tree where signal includes identification, which includes signal).
+# The module graph check passes on the tree (sources and docs/architecture.md) and fails, naming
+# file and line, on a seeded cycle (a copy of the tree where signal includes identification,
+# which includes signal).
 # Usage: module_graph.sh SOURCE_DIR
 set -eu
 src=$1
@@ -16,3 +17,15 @@ fi
 grep -q "libsysid/src/signal/checks.cpp:[0-9]*: module 'signal' includes sysid/identify.hpp of module 'identify', which is above it" "$tmp/err" \
   || { echo "FAIL: the violation does not name file, line and modules:"; cat "$tmp/err"; exit 1; }
 echo "ok: the seeded cycle is reported"
+
+# The architecture doc is checked against the sources: a graph row edited by hand fails, naming
+# the doc's line.
+rm -rf "$tmp/libsysid" && mkdir -p "$tmp/libsysid" "$tmp/docs"
+cp -R "$src/libsysid/src" "$src/libsysid/include" "$tmp/libsysid/"
+sed 's/^| nn | \(.*\) |$/| nn | \1, stage |/' "$src/docs/architecture.md" > "$tmp/docs/architecture.md"
+if python3 "$src/scripts/check_modules.py" --root "$tmp" 2> "$tmp/err"; then
+  echo "FAIL: a graph table that differs from the sources passed the check"; exit 1
+fi
+grep -q "docs/architecture.md:[0-9]*: the graph table reads '| nn | .*, stage |'" "$tmp/err" \
+  || { echo "FAIL: the doc drift is not named with its line:"; cat "$tmp/err"; exit 1; }
+echo "ok: a drifted architecture doc is reported"

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/portable_random.hpp"
+#include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
@@ -83,6 +84,153 @@ TEST_CASE("bouc-wen: the mechanical fit recovers the benchmark's system from noi
   CheckWithin3Sigma(*model, {truth.m_kg, truth.c_n_s_per_m, truth.k_n_per_m, truth.alpha_n_per_m,
                              truth.beta_per_m, truth.gamma, truth.delta, truth.nu});
   CHECK(summary.message.find("beta fixed") != std::string::npos);
+}
+
+TEST_CASE("bouc-wen: the chain's forward sensitivities agree with central differences",
+          "[hysteresis][bouc-wen][fit]") {
+  // Random parameters around the benchmark's system (nu in [1, 1.3] so its column and the pow
+  // branch are exercised), 300 samples of a multisine at 4x upsampling.
+  const double dt = 1.0 / 750;
+  const int up = 4;
+  const Eigen::VectorXd u = Multisine(300, dt, 3, 60, 8.0);
+  const Eigen::VectorXd ufx = internal::ChainInput(u, up);
+  internal::PortableRandom random(11);
+  for (int draw = 0; draw < 3; ++draw) {
+    MechanicalBoucWenParameters p;
+    double* fields[] = {&p.m_kg,       &p.c_n_s_per_m, &p.k_n_per_m, &p.alpha_n_per_m,
+                        &p.beta_per_m, &p.gamma,       &p.delta,     &p.nu};
+    for (int j = 0; j < 7; ++j) *fields[j] *= std::exp(0.2 * random.Symmetric());
+    p.nu = draw == 0 ? 1.0 : 1 + 0.3 * random.Uniform();
+    Eigen::VectorXd y;
+    Eigen::MatrixXd dy;
+    internal::ChainOutputSensitivity(p, ufx, u.size(), dt, up, true, &y, &dy);
+    // The same steps as the simulation: the residuals do not change with the Jacobian's method.
+    CHECK(y == internal::ChainOutput(p, ufx, u.size(), dt, up));
+    for (int j = 0; j < internal::kMechanicalParameters; ++j) {
+      const double value = *fields[j];
+      const double h = 1e-6 * std::abs(value);
+      auto at = [&](double offset) {
+        MechanicalBoucWenParameters q = p;
+        *(&q.m_kg + (fields[j] - &p.m_kg)) = value + offset;
+        return internal::ChainOutput(q, ufx, u.size(), dt, up);
+      };
+      // nu = 1 is its lower bound: the one-sided second-order difference there.
+      const Eigen::VectorXd fd = j == 7 && p.nu == 1
+                                     ? Eigen::VectorXd((4 * at(h) - at(2 * h) - 3 * y) / (2 * h))
+                                     : Eigen::VectorXd((at(h) - at(-h)) / (2 * h));
+      const double scale = fd.cwiseAbs().maxCoeff();
+      INFO("draw " << draw << ", parameter " << j << ", nu " << p.nu << ", max |dy/dp| " << scale
+                   << ", max difference " << (dy.col(j) - fd).cwiseAbs().maxCoeff());
+      REQUIRE(scale > 0);
+      // Central differences at 1e-6 relative: the Newton solve's rounding (1e-15 y / h) is
+      // 1e-9 of the column, truncation (h^2 times the third derivative) 1e-10 at nu = 1 and up
+      // to 1e-7 at nu > 1 (|z|^(nu-1) is not smooth where z crosses 0; measured 9e-8, and it
+      // falls 100x with h 10x smaller): 1e-6 of the column.
+      CHECK((dy.col(j) - fd).cwiseAbs().maxCoeff() <= 1e-6 * scale);
+    }
+  }
+  // Without nu the nu column is left at 0 and the others are unchanged.
+  const MechanicalBoucWenParameters p;
+  Eigen::VectorXd y1, y2;
+  Eigen::MatrixXd d1, d2;
+  internal::ChainOutputSensitivity(p, ufx, u.size(), dt, up, true, &y1, &d1);
+  internal::ChainOutputSensitivity(p, ufx, u.size(), dt, up, false, &y2, &d2);
+  CHECK(d2.col(7).isZero(0));
+  CHECK(d1.leftCols(7) == d2.leftCols(7));
+}
+
+// The benchmark's system on a short multisine at 4x upsampling (as the recovery test), started
+// 25 % off.
+struct ChainFitCase {
+  Recording recording;
+  BoucWenFitOptions options;
+};
+ChainFitCase MakeChainFitCase() {
+  const MechanicalBoucWenParameters truth;
+  BoucWenSimulationOptions sim;
+  sim.integrator = BoucWenIntegrator::kBenchmarkChain;
+  sim.upsampling = 4;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0).replicate(2, 1);
+  const Eigen::VectorXd y = MechanicalBoucWen(truth, sim).Simulate(u, dt);
+  ChainFitCase c{MakeRecording(u, y + Noise(y.size(), 7.4e-6, 42), dt), {}};
+  c.options.simulation = sim;
+  c.options.mechanical_initial = truth;
+  c.options.mechanical_initial.m_kg *= 1.25;
+  c.options.mechanical_initial.k_n_per_m *= 0.75;
+  c.options.mechanical_initial.gamma *= 0.75;
+  c.options.mechanical_initial_given = true;
+  c.options.starts = 2;
+  return c;
+}
+
+TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same fit",
+          "[hysteresis][bouc-wen][fit]") {
+  ChainFitCase c = MakeChainFitCase();
+  HysteresisFitSummary exact_summary, fd_summary;
+  const auto exact = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &exact_summary);
+  c.options.jacobian = BoucWenJacobian::kCentralDifferences;
+  const auto fd = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &fd_summary);
+  CHECK(exact_summary.message.find("Jacobian by forward sensitivities") != std::string::npos);
+  CHECK(fd_summary.message.find("Jacobian by central differences") != std::string::npos);
+  const auto pe = exact->parameters(), pf = fd->parameters();
+  for (size_t i = 0; i < pe.size(); ++i) {
+    INFO(pe[i].name << ": " << pe[i].value << " +- " << pe[i].std_error << " against "
+                    << pf[i].value << " +- " << pf[i].std_error);
+    if (std::isnan(pe[i].std_error)) {  // fixed
+      CHECK(std::isnan(pf[i].std_error));
+      continue;
+    }
+    // Both converge to the same minimum to Ceres' tolerances (1e-12 in the cost): far inside
+    // a standard error. The standard errors agree to the differences' error (1e-7 relative,
+    // the sensitivity test) and the two optima's distance.
+    CHECK(std::abs(pe[i].value - pf[i].value) <= 1e-3 * pe[i].std_error);
+    CHECK(pe[i].std_error == Approx(pf[i].std_error).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("bouc-wen: progress reports every iteration, a time bound stops the fit cleanly",
+          "[hysteresis][bouc-wen][fit]") {
+  ChainFitCase c = MakeChainFitCase();
+  std::vector<BoucWenFitProgress> seen;
+  c.options.on_iteration = [&](const BoucWenFitProgress& p) { seen.push_back(p); };
+  HysteresisFitSummary full;
+  FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &full);
+  REQUIRE(seen.size() >= 4);
+  // Starts 1 and 2, then the final fit (0), each from its iteration 0; the clock runs on.
+  CHECK(seen.front().start == 1);
+  CHECK(seen.front().iteration == 0);
+  CHECK(seen.back().start == 0);
+  for (size_t i = 1; i < seen.size(); ++i) {
+    INFO("report " << i);
+    CHECK(seen[i].elapsed_s >= seen[i - 1].elapsed_s);
+    CHECK(seen[i].starts == 2);
+    if (seen[i].start == seen[i - 1].start)
+      CHECK(seen[i].iteration == seen[i - 1].iteration + 1);
+    else
+      CHECK(seen[i].iteration == 0);
+  }
+  // The final fit's last report is the summary's training RMS (Ceres' cost is sse / 2).
+  CHECK(seen.back().rms_m == Approx(full.training_rms).epsilon(1e-12));
+  CHECK(full.converged);
+
+  // A bound already past when the fit starts: no start runs, the final fit stops at its
+  // starting point, and the fit returns it with the reason instead of throwing.
+  seen.clear();
+  c.options.max_time_s = 1e-9;
+  HysteresisFitSummary bounded;
+  const auto model = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &bounded);
+  CHECK_FALSE(bounded.converged);
+  CHECK(bounded.message.find("stopped at the time bound max_time_s = 1e-09 s with the best "
+                             "parameters so far") != std::string::npos);
+  REQUIRE(seen.size() == 1);
+  CHECK(seen[0].start == 0);
+  CHECK(seen[0].iteration == 0);
+  CHECK(bounded.training_rms == Approx(seen[0].rms_m).epsilon(1e-12));
+  CHECK(bounded.training_rms > full.training_rms);
+  CHECK(model->parameters()[0].value == c.options.mechanical_initial.m_kg);
+  c.options.max_time_s = -1;
+  CHECK_THROWS_WITH(c.options.Validate(), Catch::Contains("max_time_s"));
 }
 
 TEST_CASE("bouc-wen-piezo: the fit recovers d, alpha, beta, gamma and the offset",

@@ -237,4 +237,35 @@ TEST_CASE("sysid hysteresis fit: the Bouc-Wen simulation flags reach the model f
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("--starts"));
   CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--max-time", "-1", dir / "rec.csv",
+              "-o", dir / "pi.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--max-time"));
+  CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
+}
+
+TEST_CASE("sysid hysteresis fit: --progress reports the Bouc-Wen fit, --max-time stops it",
+          "[hysteresis][cli]") {
+  TempDir dir;
+  sysid::WriteRecording(dir / "rec.csv", PiRecording(600));
+  auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--starts", "2", "--threads",
+                   "1", "--progress", dir / "rec.csv", "-o", dir / "bw.json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.err, Catch::Contains("fitting bouc-wen-piezo to 600 samples (2 starts)"));
+  CHECK_THAT(r.err, Catch::Contains("bouc-wen-piezo start 2/2: iteration 1, training RMS "));
+  CHECK_THAT(r.err, Catch::Contains("bouc-wen-piezo final fit: iteration 0, training RMS "));
+  // Without --progress (stderr is not a terminal here) nothing is reported.
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--starts", "2", "--threads", "1",
+              dir / "rec.csv", "-o", dir / "bw2.json"});
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.empty());
+  // A bound of 1 ns: a model file all the same, with the reason; exit 0.
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--max-time", "1e-9", "--json",
+              dir / "rec.csv", "-o", dir / "bw3.json"});
+  CHECK(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "bw3.json"));
+  CHECK(j["fit"]["converged"] == false);
+  CHECK_THAT(j["fit"]["message"].get<std::string>(),
+             Catch::Contains("stopped at the time bound max_time_s = 1e-09 s"));
 }

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -140,6 +141,26 @@ class PiezoBoucWen : public HysteresisModel {
   std::vector<double> std_errors_;
 };
 
+/// How the fit gets the Jacobian of the residuals in the parameters.
+enum class BoucWenJacobian {
+  /// Forward sensitivities of the simulator's own discrete recursion where it has them (the
+  /// benchmark chain: the Newmark/trapezoidal step differentiated, then the linear FIR
+  /// decimation): exact to rounding, one pass. Elsewhere (CVODE, the piezo form) central
+  /// differences.
+  kSensitivities,
+  /// Central differences, 2 p + 1 simulations per Jacobian (p free parameters), in parallel.
+  kCentralDifferences,
+};
+
+/// One Ceres iteration of a Bouc–Wen fit, for progress reports.
+struct BoucWenFitProgress {
+  int start = 0;         ///< 1..starts: the perturbed starts; 0: the final fit from the best
+  int starts = 0;        ///< BoucWenFitOptions::starts
+  int iteration = 0;     ///< Ceres' iteration number within this start (0: the initial point)
+  double rms_m = 0;      ///< [m] sqrt(sum (y_model - x)^2 / samples) at the iteration's point
+  double elapsed_s = 0;  ///< [s] wall time since the fit began
+};
+
 struct BoucWenFitOptions {
   /// How the fit simulates (the benchmark's data: the benchmark chain).
   BoucWenSimulationOptions simulation;
@@ -158,7 +179,18 @@ struct BoucWenFitOptions {
   int start_iterations = 3;   ///< Ceres iterations per start before the best continues
   int max_iterations = 100;   ///< Ceres iterations of the final fit, in [1, 10000]
   std::uint64_t seed = 1;     ///< for the perturbed starts
-  int threads = 0;            ///< simulations in parallel for the Jacobian (0: all cores)
+  /// Threads (0: all cores): the central-difference Jacobian's simulations, or the recordings'
+  /// sensitivity passes, in parallel.
+  int threads = 0;
+  BoucWenJacobian jacobian = BoucWenJacobian::kSensitivities;
+  /// [s] wall-time bound of the whole fit (starts included), >= 0; 0: none. Past it the fit
+  /// stops with the best parameters so far (the summary: not converged, the message says the
+  /// bound stopped it). Ceres checks it between iterations, so the iteration under way still
+  /// runs after it; a start begins only while one iteration's time (the mean so far) is left.
+  double max_time_s = 0;
+  /// Called after every Ceres iteration of every start, on the calling thread (progress
+  /// reports; it must not throw). Does not change the result.
+  std::function<void(const BoucWenFitProgress&)> on_iteration;
   void Validate() const;      ///< throws OptionsError naming the field and the rule
 };
 

@@ -78,35 +78,13 @@ void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen
     y_out[0] = s->y;
     k0 = 1;
   }
-  const double m = p.m_kg, c = p.c_n_s_per_m, k = p.k_n_per_m;
   for (Eigen::Index i = k0; i < n; ++i) {
     const double y0 = s->y, v0 = s->v, a0 = s->a, z0 = s->z;
     const double f0 = MechanicalRate(p, v0, z0).f;
-    // Unknowns (y1, z1); v1 = 2 (y1 - y0) / h - v0, a1 = 4 (y1 - y0 - h v0) / h^2 - a0.
-    double y1 = y0 + h * v0 + 0.5 * h * h * a0;  // constant-acceleration predictor
-    double z1 = z0 + h * f0;
-    double v1 = 0, a1 = 0;
-    for (int it = 0; it < 50; ++it) {
-      v1 = 2 * (y1 - y0) / h - v0;
-      a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
-      const BoucWenRate r = MechanicalRate(p, v1, z1);
-      const double r1 = m * a1 + c * v1 + k * y1 + z1 - u[i];
-      const double r2 = z1 - z0 - 0.5 * h * (f0 + r.f);
-      // d/dy1: a1' = 4/h^2, v1' = 2/h.
-      const double j11 = 4 * m / (h * h) + 2 * c / h + k, j12 = 1;
-      const double j21 = -0.5 * h * r.df_dv * 2 / h, j22 = 1 - 0.5 * h * r.df_dz;
-      const double det = j11 * j22 - j12 * j21;
-      const double dy = (r1 * j22 - j12 * r2) / det;
-      const double dz = (j11 * r2 - j21 * r1) / det;
-      y1 -= dy;
-      z1 -= dz;
-      // Converged to rounding: the correction is a few ulps of the step's own scale.
-      if (std::abs(dy) <= 1e-15 * (std::abs(y1) + h * std::abs(v1)) &&
-          std::abs(dz) <= 1e-15 * (std::abs(z1) + h * std::abs(r.f)))
-        break;
-    }
-    v1 = 2 * (y1 - y0) / h - v0;
-    a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
+    double y1 = 0, z1 = 0;
+    NewmarkNewton(p, u[i], h, y0, v0, a0, z0, f0, &y1, &z1);
+    const double v1 = 2 * (y1 - y0) / h - v0;
+    const double a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
     if (!std::isfinite(y1) || !std::isfinite(z1))
       throw NumericalError(fmt::format(
           "bouc-wen: the Newmark step {} diverged (y = {}, z = {}): check the parameters", i, y1,

@@ -1,5 +1,6 @@
-// Output-error fit of the Bouc–Wen models (Ceres, central differences through the simulator,
-// the Jacobian's columns simulated in parallel).
+// Output-error fit of the Bouc–Wen models (Ceres; the Jacobian by the benchmark chain's forward
+// sensitivities, or by central differences through the simulator, its columns simulated in
+// parallel).
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <unsupported/Eigen/FFT>
 
 #include "core/parallel_for.hpp"
@@ -41,6 +43,8 @@ void BoucWenFitOptions::Validate() const {
   if (max_iterations < 1 || max_iterations > 10000)
     rule("max_iterations", max_iterations, "1 <= max_iterations <= 10000");
   if (threads < 0) rule("threads", threads, "threads >= 0");
+  if (!(max_time_s >= 0) || !std::isfinite(max_time_s))
+    rule("max_time_s", max_time_s, "max_time_s >= 0 and finite (0: no bound)");
 }
 
 namespace {
@@ -120,12 +124,32 @@ bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x
 // a projected line search, which asks for the gradient (the Jacobian) at the full step, then the
 // candidate's cost, then — the step accepted — residuals and Jacobian there again. The last
 // evaluation is kept and answered from: 13 simulations per iteration instead of 27, with
-// identical numbers (a simulation is a deterministic function of the parameters).
+// identical numbers (a simulation is a deterministic function of the parameters). The cache can
+// outlive its cost function: the final fit starts with the best start's, whose last evaluation
+// is usually its last point.
+// What the fit computed: plain simulations, and passes of the chain with its sensitivities.
+struct Work {
+  long simulations = 0;
+  long sensitivity_passes = 0;
+};
+
+struct EvaluationCache {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::vector<double> x;
+  Eigen::VectorXd r;
+  RowMajor j;
+  bool ok = false;
+  bool has_jacobian = false;
+};
+
 class OutputError : public ceres::CostFunction {
  public:
   OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
-              long* simulations)
-      : l_(l), data_(data), threads_(threads), simulations_(simulations) {
+              BoucWenJacobian jacobian, Work* work, std::shared_ptr<EvaluationCache> cache)
+      : l_(l), data_(data), threads_(threads), work_(work), c_(std::move(cache)) {
+    sensitivities_ = jacobian == BoucWenJacobian::kSensitivities &&
+                     l->form == BoucWenForm::kMechanical && !data->empty();
+    for (const auto& s : *data) sensitivities_ = sensitivities_ && s.chain_u.size() > 0;
     mutable_parameter_block_sizes()->push_back(static_cast<int>(l->free.size()));
     set_num_residuals(static_cast<int>(n));
   }
@@ -133,27 +157,36 @@ class OutputError : public ceres::CostFunction {
     const int np = static_cast<int>(l_->free.size());
     const Eigen::Index n = num_residuals();
     const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-    const bool same = last_x_.size() == static_cast<size_t>(np) &&
-                      std::equal(last_x_.begin(), last_x_.end(), x[0]);
-    if (same && (!last_ok_ || !want_jacobian || last_has_jacobian_)) {
-      if (!last_ok_) return false;
-      Eigen::Map<Eigen::VectorXd>(residuals, n) = last_r_;
-      if (want_jacobian) Jacobian(jacobians[0], n, np) = last_j_;
+    const bool same =
+        c_->x.size() == static_cast<size_t>(np) && std::equal(c_->x.begin(), c_->x.end(), x[0]);
+    if (same && (!c_->ok || !want_jacobian || c_->has_jacobian)) {
+      if (!c_->ok) return false;
+      Eigen::Map<Eigen::VectorXd>(residuals, n) = c_->r;
+      if (want_jacobian) Jacobian(jacobians[0], n, np) = c_->j;
       return true;
     }
-    last_x_.assign(x[0], x[0] + np);
-    last_has_jacobian_ = false;
+    c_->x.assign(x[0], x[0] + np);
+    c_->has_jacobian = false;
     if (!want_jacobian) {
-      ++*simulations_;
-      last_ok_ = Residuals(*l_, *data_, x[0], residuals);
-      last_r_ = Eigen::Map<const Eigen::VectorXd>(residuals, n);
-      return last_ok_;
+      ++work_->simulations;
+      c_->ok = Residuals(*l_, *data_, x[0], residuals);
+      c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
+      return c_->ok;
+    }
+    if (sensitivities_) {
+      ++work_->sensitivity_passes;
+      c_->ok = ResidualsAndSensitivities(x[0], residuals, jacobians[0]);
+      if (!c_->ok) return false;
+      c_->r = Eigen::Map<const Eigen::VectorXd>(residuals, n);
+      c_->j = Jacobian(jacobians[0], n, np);
+      c_->has_jacobian = true;
+      return true;
     }
     // Residuals (unless kept) and 2 np perturbed simulations, in parallel.
     std::vector<Eigen::VectorXd> r(static_cast<size_t>(2 * np + 1), Eigen::VectorXd(n));
     std::vector<char> ok(r.size(), 0);
     if (same) {
-      r[0] = last_r_;
+      r[0] = c_->r;
       ok[0] = 1;
     }
     std::vector<double> step(static_cast<size_t>(np));
@@ -172,10 +205,10 @@ class OutputError : public ceres::CostFunction {
       ok[static_cast<size_t>(j)] =
           Residuals(*l_, *data_, xj.data(), r[static_cast<size_t>(j)].data());
     });
-    *simulations_ += static_cast<long>(r.size()) - first;
-    last_ok_ = ok[0] != 0;
-    if (!last_ok_) return false;
-    last_r_ = r[0];
+    work_->simulations += static_cast<long>(r.size()) - first;
+    c_->ok = ok[0] != 0;
+    if (!c_->ok) return false;
+    c_->r = r[0];
     Eigen::Map<Eigen::VectorXd>(residuals, n) = r[0];
     auto J = Jacobian(jacobians[0], n, np);
     for (int i = 0; i < np; ++i) {
@@ -192,8 +225,8 @@ class OutputError : public ceres::CostFunction {
       else
         return false;
     }
-    last_j_ = J;
-    last_has_jacobian_ = true;
+    c_->j = J;
+    c_->has_jacobian = true;
     return true;
   }
 
@@ -203,16 +236,57 @@ class OutputError : public ceres::CostFunction {
     return Eigen::Map<RowMajor>(j, n, np);
   }
 
+  // The chain's residuals and their exact Jacobian (ChainOutputSensitivity), the recordings in
+  // parallel; false when the parameters are invalid or a simulation fails.
+  bool ResidualsAndSensitivities(const double* x, double* residuals, double* jacobian) const {
+    const int np = static_cast<int>(l_->free.size());
+    const Eigen::VectorXd p = l_->Full(x);
+    MechanicalBoucWenParameters m;
+    m.m_kg = p[0];
+    m.c_n_s_per_m = p[1];
+    m.k_n_per_m = p[2];
+    m.alpha_n_per_m = p[3];
+    m.beta_per_m = p[4];
+    m.gamma = p[5];
+    m.delta = p[6];
+    m.nu = p[7];
+    try {
+      m.Validate();
+    } catch (const Error&) {
+      return false;
+    }
+    const bool with_nu = std::find(l_->free.begin(), l_->free.end(), 7) != l_->free.end();
+    auto J = Jacobian(jacobian, num_residuals(), np);
+    std::vector<Eigen::Index> first(data_->size() + 1, 0);
+    for (size_t k = 0; k < data_->size(); ++k) first[k + 1] = first[k] + (*data_)[k].x.size();
+    std::vector<char> ok(data_->size(), 0);
+    internal::ParallelFor(static_cast<long>(data_->size()), threads_, [&](long job) {
+      const Series& s = (*data_)[static_cast<size_t>(job)];
+      const Eigen::Index at = first[static_cast<size_t>(job)], len = s.x.size();
+      Eigen::VectorXd y;
+      Eigen::MatrixXd dy;
+      try {
+        internal::ChainOutputSensitivity(m, s.chain_u, len, s.dt_s, l_->sim.upsampling, with_nu, &y,
+                                         &dy);
+      } catch (const Error&) {
+        return;
+      }
+      Eigen::Map<Eigen::VectorXd>(residuals + at, len) = y - s.x;
+      for (int i = 0; i < np; ++i)
+        J.col(i).segment(at, len) =
+            dy.col(l_->free[static_cast<size_t>(i)]) * l_->scale[static_cast<size_t>(i)];
+      ok[static_cast<size_t>(job)] = y.allFinite() && dy.allFinite();
+    });
+    return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+  }
+
   const Layout* l_;
   const std::vector<Series>* data_;
+  bool sensitivities_ = false;
   int threads_;
-  long* simulations_;
+  Work* work_;
   // The last point evaluated and what was computed there (Ceres evaluates serially).
-  mutable std::vector<double> last_x_;
-  mutable Eigen::VectorXd last_r_;
-  mutable RowMajor last_j_;
-  mutable bool last_ok_ = false;
-  mutable bool last_has_jacobian_ = false;
+  std::shared_ptr<EvaluationCache> c_;
 };
 
 // The best linear approximation m s^2 + c s + K of U / Y by least squares over the lines where
@@ -347,16 +421,56 @@ Layout MakeLayout(BoucWenForm form, const std::vector<Series>& data, const BoucW
 struct Solved {
   std::vector<double> x;
   ceres::Solver::Summary summary;
+  bool timed_out = false;  // stopped by BoucWenFitOptions::max_time_s
+  // The problem's cost function while the problem is kept (Solve's `keep`): its last
+  // evaluation answers the standard errors' Jacobian at the optimum when it was there.
+  const OutputError* cost = nullptr;
+  std::shared_ptr<EvaluationCache> cache;  // the cost function's, kept after the problem
+};
+
+// The fit's clock and its bound, shared by the starts and the final fit.
+struct FitClock {
+  std::chrono::steady_clock::time_point start;
+  double max_time_s = 0;  // 0: none
+  double Elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  bool Bounded() const { return max_time_s > 0; }
+  double Remaining() const { return std::max(0.0, max_time_s - Elapsed()); }
+};
+
+class ProgressCallback final : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const BoucWenFitOptions& o, const FitClock& clock, int start, Eigen::Index n)
+      : o_(o), clock_(clock), start_(start), n_(n) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    BoucWenFitProgress p;
+    p.start = start_;
+    p.starts = o_.starts;
+    p.iteration = s.iteration;
+    p.rms_m = std::sqrt(2 * s.cost / static_cast<double>(n_));  // Ceres' cost is sse / 2
+    p.elapsed_s = clock_.Elapsed();
+    o_.on_iteration(p);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const BoucWenFitOptions& o_;
+  const FitClock& clock_;
+  int start_;
+  Eigen::Index n_;
 };
 
 Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
-             std::vector<double> x, int iterations, int threads, long* simulations,
+             std::vector<double> x, int iterations, const BoucWenFitOptions& o,
+             const FitClock& clock, int start, Work* work, std::shared_ptr<EvaluationCache> cache,
              ceres::Problem** keep = nullptr) {
   Solved s;
   s.x = std::move(x);
+  s.cache = cache;
   auto* problem = new ceres::Problem;
-  problem->AddResidualBlock(new OutputError(&l, &data, n, threads, simulations), nullptr,
-                            s.x.data());
+  auto* cost = new OutputError(&l, &data, n, o.threads, o.jacobian, work, cache);
+  problem->AddResidualBlock(cost, nullptr, s.x.data());
   for (size_t i = 0; i < l.free.size(); ++i) {
     if (std::isfinite(l.lower[i]))
       problem->SetParameterLowerBound(s.x.data(), static_cast<int>(i), l.lower[i]);
@@ -370,11 +484,20 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   so.parameter_tolerance = 1e-12;
   so.gradient_tolerance = 1e-14;
   so.logging_type = ceres::SILENT;
+  if (clock.Bounded()) so.max_solver_time_in_seconds = clock.Remaining();
+  ProgressCallback progress(o, clock, start, n);
+  if (o.on_iteration) so.callbacks.push_back(&progress);
   ceres::Solve(so, problem, &s.summary);
-  if (keep != nullptr)
+  // Ceres says NO_CONVERGENCE for both of its limits: short of the iteration limit, the clock.
+  s.timed_out = clock.Bounded() && s.summary.termination_type == ceres::NO_CONVERGENCE &&
+                static_cast<int>(s.summary.iterations.size()) - 1 < iterations &&
+                clock.Remaining() == 0;
+  if (keep != nullptr) {
     *keep = problem;
-  else
+    s.cost = cost;
+  } else {
     delete problem;
+  }
   return s;
 }
 
@@ -384,7 +507,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                                             const std::vector<Recording>& recordings,
                                             const BoucWenFitOptions& options,
                                             HysteresisFitSummary* summary) {
-  const auto start = std::chrono::steady_clock::now();
+  FitClock clock{std::chrono::steady_clock::now(), options.max_time_s};
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
   if (form == BoucWenForm::kPiezo &&
@@ -427,13 +550,19 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
                     recordings.front().source, u_min));
   const Layout layout = MakeLayout(form, data, options);
+  const char* jacobian_how =
+      options.jacobian == BoucWenJacobian::kSensitivities && form == BoucWenForm::kMechanical &&
+              options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain
+          ? "forward sensitivities"
+          : "central differences";
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
     throw InputError(fmt::format("FitBoucWen: {} samples for {} free parameters", n, np));
-  long simulations = 0;
+  Work work;
   // Starting points: the initial values, then perturbed copies; each gets a few iterations and
   // the cheapest continues.
   std::vector<double> best(static_cast<size_t>(np), 1.0);
+  auto best_cache = std::make_shared<EvaluationCache>();
   for (int i = 0; i < np; ++i)
     best[static_cast<size_t>(i)] =
         layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
@@ -441,7 +570,13 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     internal::PortableRandom random(options.seed);
     double best_cost = std::numeric_limits<double>::infinity();
     const std::vector<double> x0 = best;
+    double iterations_so_far = 0;  // Ceres' iterations 0 included: each evaluates a Jacobian
     for (int k = 0; k < options.starts; ++k) {
+      // A start begins only with one iteration's time (the mean so far) left: Ceres checks the
+      // bound between iterations, so a start begun later overruns it by its first Jacobian.
+      if (clock.Bounded() &&
+          clock.Remaining() <= (iterations_so_far > 0 ? clock.Elapsed() / iterations_so_far : 0))
+        break;  // the final fit says so
       std::vector<double> x = x0;
       if (k > 0)
         for (int i = 0; i < np; ++i) {
@@ -450,17 +585,19 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
           v = std::clamp(v, layout.lower[static_cast<size_t>(i)],
                          layout.upper[static_cast<size_t>(i)]);
         }
-      const Solved s =
-          Solve(layout, data, n, x, options.start_iterations, options.threads, &simulations);
+      const Solved s = Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1,
+                             &work, std::make_shared<EvaluationCache>());
+      iterations_so_far += static_cast<double>(s.summary.iterations.size());
       if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
         best_cost = s.summary.final_cost;
         best = s.x;
+        best_cache = s.cache;
       }
     }
   }
   ceres::Problem* problem = nullptr;
-  Solved s =
-      Solve(layout, data, n, best, options.max_iterations, options.threads, &simulations, &problem);
+  Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &work,
+                   best_cache, &problem);
   std::unique_ptr<ceres::Problem> owner(problem);
   if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
     throw NumericalError("bouc-wen fit failed: " + s.summary.message);
@@ -473,8 +610,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(n, np);
     double* jac[] = {J.data()};
     const double* xs[] = {s.x.data()};
-    OutputError cost(&layout, &data, n, options.threads, &simulations);
-    if (cost.Evaluate(xs, r.data(), jac)) {
+    if (s.cost->Evaluate(xs, r.data(), jac)) {
       const Eigen::MatrixXd JtJ = J.transpose() * J;
       Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
       if (lu.isInvertible()) {
@@ -501,11 +637,20 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
             "beta*delta are identifiable)",
             fixed.empty() ? "" : "; ", layout.all[4]);
     }
-    summary->message = fmt::format("{} ({} Ceres iterations, {} simulations, {} starts){}{}",
-                                   s.summary.message, s.summary.iterations.size() - 1, simulations,
-                                   options.starts, fixed.empty() ? "" : "; ", fixed);
-    summary->fit_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string why = s.timed_out
+                                ? fmt::format(
+                                      "stopped at the time bound max_time_s = {:g} s with the best "
+                                      "parameters so far (not converged)",
+                                      options.max_time_s)
+                                : s.summary.message;
+    summary->message =
+        fmt::format("{} ({} Ceres iterations, {} simulations{}, {} starts, Jacobian by {}){}{}",
+                    why, s.summary.iterations.size() - 1, work.simulations,
+                    work.sensitivity_passes > 0
+                        ? fmt::format(" and {} with sensitivities", work.sensitivity_passes)
+                        : std::string(),
+                    options.starts, jacobian_how, fixed.empty() ? "" : "; ", fixed);
+    summary->fit_time_s = clock.Elapsed();
   }
   return model;
 }

@@ -60,6 +60,40 @@ inline BoucWenRate MechanicalRate(const MechanicalBoucWenParameters& p, double v
           -p.beta_per_m * p.nu * pow1 * (p.gamma * av + p.delta * v * sz)};
 }
 
+/// One Newmark/trapezoidal step's implicit equations solved by Newton (see NewmarkBoucWen): from
+/// (y0, v0, a0, z0) with f0 = z'(v0, z0), the input u1 [N] at the step's end, step h [s]; returns
+/// y1 and z1 (v1 and a1 follow from y1 by the Newmark formulas). Shared by the simulation and its
+/// sensitivities, so both take the same steps to the last bit.
+inline void NewmarkNewton(const MechanicalBoucWenParameters& p, double u1, double h, double y0,
+                          double v0, double a0, double z0, double f0, double* y1_out,
+                          double* z1_out) {
+  const double m = p.m_kg, c = p.c_n_s_per_m, k = p.k_n_per_m;
+  // Unknowns (y1, z1); v1 = 2 (y1 - y0) / h - v0, a1 = 4 (y1 - y0 - h v0) / h^2 - a0.
+  double y1 = y0 + h * v0 + 0.5 * h * h * a0;  // constant-acceleration predictor
+  double z1 = z0 + h * f0;
+  for (int it = 0; it < 50; ++it) {
+    const double v1 = 2 * (y1 - y0) / h - v0;
+    const double a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
+    const BoucWenRate r = MechanicalRate(p, v1, z1);
+    const double r1 = m * a1 + c * v1 + k * y1 + z1 - u1;
+    const double r2 = z1 - z0 - 0.5 * h * (f0 + r.f);
+    // d/dy1: a1' = 4/h^2, v1' = 2/h.
+    const double j11 = 4 * m / (h * h) + 2 * c / h + k, j12 = 1;
+    const double j21 = -0.5 * h * r.df_dv * 2 / h, j22 = 1 - 0.5 * h * r.df_dz;
+    const double det = j11 * j22 - j12 * j21;
+    const double dy = (r1 * j22 - j12 * r2) / det;
+    const double dz = (j11 * r2 - j21 * r1) / det;
+    y1 -= dy;
+    z1 -= dz;
+    // Converged to rounding: the correction is a few ulps of the step's own scale.
+    if (std::abs(dy) <= 1e-15 * (std::abs(y1) + h * std::abs(v1)) &&
+        std::abs(dz) <= 1e-15 * (std::abs(z1) + h * std::abs(r.f)))
+      break;
+  }
+  *y1_out = y1;
+  *z1_out = z1;
+}
+
 /// Newmark average acceleration (gamma = 1/2, beta = 1/4) on y with the trapezoidal rule on z,
 /// the implicit step solved by Newton on (y, z), at step h_s over the samples u (already at the
 /// integration rate), from the state (y, v, z); the state is updated. Returns y at every sample
@@ -87,6 +121,19 @@ Eigen::VectorXd DecimateChain(Eigen::VectorXd y, const std::vector<int>& factors
 Eigen::VectorXd ChainInput(const Eigen::VectorXd& u, int upsampling);
 Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
                             Eigen::Index n, double dt_s, int upsampling);
+
+/// The mechanical parameters in the order of the sensitivities: m, c, k, alpha, beta, gamma,
+/// delta, nu.
+inline constexpr int kMechanicalParameters = 8;
+
+/// ChainOutput and its exact Jacobian: y [m] at the n coarse samples and dy/dp (n x 8, columns in
+/// kMechanicalParameters' order, each in m per the parameter's unit), by forward sensitivities of
+/// the Newmark/trapezoidal recursion (the implicit step differentiated at its Newton solution)
+/// and the same (linear) FIR decimation. `with_nu` false leaves the nu column at 0 (it costs a
+/// logarithm per step). y is ChainOutput's to the last bit.
+void ChainOutputSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
+                            Eigen::Index n, double dt_s, int upsampling, bool with_nu,
+                            Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
 
 /// The most operations an FFT of the benchmark chain or of a band-limited input may cost: Eigen's
 /// FFT (kissfft) spends about n x (the sum of n's prime factors) on a length n, so a length with
