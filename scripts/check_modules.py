@@ -35,7 +35,7 @@ LAYERS = [
     ["dominance"],
     ["nn"],
     ["compare"],
-    ["stage", "stack"],
+    ["stage", "stack", "deploy"],
     ["control"],
     ["facts"],
     ["pipeline"],

@@ -61,6 +61,7 @@ PYBIND11_MODULE(_sysid, m) {
   BindStage(m);
   BindControl(m);
   BindHysteresis(m);
+  BindDeploy(m);
 }
 
 }  // namespace sysid::python

@@ -33,7 +33,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
     IrreducibleError,
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
     SweepResult, parse_hidden_sizes, PipelineResult,
-    stage, analytic_inverse, network_inverse, unit_warnings,
+    stage, analytic_inverse, network_inverse, unit_warnings, export,
 )
 
 __version__ = "0.1.0"

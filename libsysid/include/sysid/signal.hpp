@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "sysid/io.hpp"
 
@@ -102,6 +103,37 @@ Recording DecimateRecording(const Recording& recording, double dt_s, int factor)
 enum class DelayStart {
   kHoldFirst,  ///< y[0]: the signal is taken as constant before the record (a stage at rest)
   kNaN,        ///< NaN: unknown, so a caller can drop those samples (regressions)
+};
+
+/// The most samples a DelayLine holds (tau / dt + 2): 2^22 doubles, 32 MiB. A real-time loop's
+/// delay line is a few hundred samples; a longer one is a unit mistake (tau in ms, dt in s).
+inline constexpr long long kMaxDelayLineSamples = 1LL << 22;
+
+/// The causal, streaming form of DelaySignal(kHoldFirst) (the same rule, bit for bit): pushed y_k one sample at a time, it
+/// returns y(t_k - tau) = (1 - f) y_{k-w} + f y_{k-w-1}, w = floor(tau / dt), f = tau / dt - w,
+/// with y_j = y_0 for j < 0 (the signal constant before its first sample). The ring of w + 2
+/// samples is allocated at construction; Push neither allocates nor throws.
+class DelayLine {
+ public:
+  /// Throws OptionsError unless dt_s > 0 and 0 <= tau_s < infinity, or when the line would hold
+  /// more than kMaxDelayLineSamples. `max_pushes` >= 0 promises at most that many pushes between
+  /// resets (a batch over n samples): the ring is then no longer than they need, so any finite
+  /// tau is accepted (samples older than the first are the first sample anyway).
+  DelayLine(double dt_s, double tau_s, long long max_pushes = -1);
+  /// Forgets the history: the next push is the first sample again.
+  void Reset();
+  /// y_k in, y(t_k - tau) out.
+  double Push(double y_k);
+  long long whole_samples() const { return whole_; }  ///< w = floor(tau / dt)
+  double fraction() const { return frac_; }           ///< f = tau / dt - w, in [0, 1)
+
+ private:
+  long long whole_ = 0;
+  double frac_ = 0;
+  std::vector<double> ring_;
+  long long head_ = 0;   // slot of the next sample
+  long long count_ = 0;  // samples pushed since reset, saturating at whole_ + 2
+  double first_ = 0;
 };
 
 /// `y` delayed by tau_s >= 0 on its uniform grid dt_s > 0: y(t_k - tau) by linear

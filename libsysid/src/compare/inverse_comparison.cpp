@@ -8,6 +8,7 @@
 #include "sysid/compare.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
+#include "sysid/model_stepper.hpp"
 #include "sysid/motion.hpp"
 
 namespace sysid {
@@ -48,10 +49,10 @@ Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
   if (!(dt_s > 0) || !std::isfinite(dt_s))
     throw OptionsError("AnalyticInverse: dt_s = " + std::to_string(dt_s) +
                        ". Violated constraint: 0 < dt_s < infinity");
-  const Eigen::VectorXd v_delayed = DelaySignal(v_mps, dt_s, model.tau_s);
+  FrictionInverseStepper stepper(model, dt_s, static_cast<long long>(v_mps.size()));
   Eigen::VectorXd u(v_mps.size());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
-    u[k] = model.InverseVoltage(a_mps2[k], v_delayed[k], v_mps[k]);
+    u[k] = stepper.Step(v_mps[k], a_mps2[k]);
     // Finite parameters can still overflow (a3 = 1e-308 divides): said, never scored as inf.
     if (!std::isfinite(u[k]))
       throw NumericalError(fmt::format(

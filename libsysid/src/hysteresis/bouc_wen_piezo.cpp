@@ -8,6 +8,7 @@
 #include "core/cvode_solver.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis_stepper.hpp"
 
 namespace sysid {
 
@@ -132,61 +133,81 @@ bool PiezoBoucWen::invertible() const {
   return d * (1 - a) - std::max(b - g, 0.0) * std::abs(a) * d / (b + g) > 0;
 }
 
-Eigen::VectorXd PiezoBoucWen::Invert(const Eigen::VectorXd& y_desired, double dt_s) const {
-  internal::CheckSamples(y_desired, dt_s, "bouc-wen-piezo", "y_desired");
-  if (!invertible())
+BoucWenInverseStepper::BoucWenInverseStepper(const PiezoBoucWen& model) : p_(model.values()) {
+  if (!model.invertible())
     throw NumericalError(fmt::format(
         "bouc-wen-piezo: not invertible with d = {:.6g} m/V, alpha = {:.6g}, beta = {:.6g} 1/V, "
         "gamma = {:.6g} 1/V: y is not monotone in u (needs d > 0, beta + gamma > 0 and "
         "(1 - alpha)(beta + gamma) > |alpha| max(beta - gamma, 0))",
         p_.d_m_per_v, p_.alpha, p_.beta_per_v, p_.gamma_per_v));
+}
+
+void BoucWenInverseStepper::Reset() {
+  u_prev_ = h_ = 0;
+  k_ = 0;
+  out_of_reach_ = false;
+}
+
+double BoucWenInverseStepper::Step(double x_ref_m) {
+  const double d = p_.d_m_per_v;
+  out_of_reach_ = false;
+  if (k_++ == 0) {
+    u_prev_ = (x_ref_m - p_.offset_m) / d;  // h = 0 at the start
+    return u_prev_;
+  }
+  const double target = x_ref_m, u0 = u_prev_, h = h_;
+  auto g = [&](double v) { return d * v - internal::PiezoStep(p_, u0, v, h) + p_.offset_m - target; };
+  // y rises with u: bracket the root by doubling the step from u_{k-1}.
+  const double g0 = g(u0);
+  double lo = u0, hi = u0;
+  const double dir = g0 < 0 ? 1.0 : -1.0;
+  double step = std::max(std::abs(g0) / (d * std::max(1 - p_.alpha, 1e-3)), 1e-300);
+  double far = u0;
+  int expansions = 0;
+  for (; expansions < 200; ++expansions) {
+    far = u0 + dir * step;
+    if ((g(far) < 0) != (g0 < 0) || g(far) == 0) break;
+    step *= 2;
+  }
+  if (expansions == 200) {
+    out_of_reach_ = true;
+    return u0;
+  }
+  lo = std::min(u0, far);
+  hi = std::max(u0, far);
+  // Bisection on the monotone g to the last bit: the inverse is then exact to rounding.
+  double glo = g(lo);
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const double gm = g(mid);
+    if (gm == 0) {
+      lo = hi = mid;
+      break;
+    }
+    if ((gm < 0) == (glo < 0)) {
+      lo = mid;
+      glo = gm;
+    } else {
+      hi = mid;
+    }
+  }
+  const double u = std::abs(g(lo)) <= std::abs(g(hi)) ? lo : hi;
+  h_ = internal::PiezoStep(p_, u0, u, h);
+  u_prev_ = u;
+  return u;
+}
+
+Eigen::VectorXd PiezoBoucWen::Invert(const Eigen::VectorXd& y_desired, double dt_s) const {
+  internal::CheckSamples(y_desired, dt_s, "bouc-wen-piezo", "y_desired");
+  BoucWenInverseStepper stepper(*this);  // NumericalError when not invertible
   const Eigen::Index n = y_desired.size();
   Eigen::VectorXd u(n);
-  if (n == 0) return u;
-  const double d = p_.d_m_per_v;
-  u[0] = (y_desired[0] - p_.offset_m) / d;  // h = 0 at the start
-  double h = 0;
-  for (Eigen::Index k = 1; k < n; ++k) {
-    const double target = y_desired[k];
-    auto g = [&](double v) {
-      return d * v - internal::PiezoStep(p_, u[k - 1], v, h) + p_.offset_m - target;
-    };
-    // y rises with u: bracket the root by doubling the step from u[k-1].
-    const double g0 = g(u[k - 1]);
-    double lo = u[k - 1], hi = u[k - 1];
-    const double dir = g0 < 0 ? 1.0 : -1.0;
-    double step = std::max(std::abs(g0) / (d * std::max(1 - p_.alpha, 1e-3)), 1e-300);
-    double far = u[k - 1];
-    int expansions = 0;
-    for (; expansions < 200; ++expansions) {
-      far = u[k - 1] + dir * step;
-      if ((g(far) < 0) != (g0 < 0) || g(far) == 0) break;
-      step *= 2;
-    }
-    if (expansions == 200)
+  for (Eigen::Index k = 0; k < n; ++k) {
+    u[k] = stepper.Step(y_desired[k]);
+    if (stepper.out_of_reach())
       throw InputError(fmt::format(
-          "bouc-wen-piezo: y_desired[{}] = {:.6g} m is out of the model's reach", k, target));
-    lo = std::min(u[k - 1], far);
-    hi = std::max(u[k - 1], far);
-    // Bisection on the monotone g to the last bit: the inverse is then exact to rounding.
-    double glo = g(lo);
-    for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      if (mid <= lo || mid >= hi) break;
-      const double gm = g(mid);
-      if (gm == 0) {
-        lo = hi = mid;
-        break;
-      }
-      if ((gm < 0) == (glo < 0)) {
-        lo = mid;
-        glo = gm;
-      } else {
-        hi = mid;
-      }
-    }
-    u[k] = std::abs(g(lo)) <= std::abs(g(hi)) ? lo : hi;
-    h = internal::PiezoStep(p_, u[k - 1], u[k], h);
+          "bouc-wen-piezo: y_desired[{}] = {:.6g} m is out of the model's reach", k, y_desired[k]));
   }
   return u;
 }

@@ -9,6 +9,7 @@
 #include "pi_terms.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_stepper.hpp"
 
 namespace sysid {
 namespace {
@@ -148,19 +149,11 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Simulate(const Eigen::VectorXd& u, doubl
                        "dt_s");
   const internal::PiLayout l = internal::LayoutOf(p_);
   std::vector<double> z = internal::InitialState(p_);
-  const double q0 = l.rate() ? p_.rate_weights[0] : 0.0;
   Eigen::VectorXd y(u.size());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
-    const double uk = u[k];
     // The input's rate over the previous step (sysid/hysteresis.hpp).
     const double rho = l.rate() && k >= 2 ? std::abs(u[k - 1] - u[k - 2]) / dt_s : 0.0;
-    double sum = p_.offset_m + q0 * rho * uk, power = uk;
-    for (int j = 0; j < l.m; ++j, power *= uk) sum += p_.polynomial[static_cast<size_t>(j)] * power;
-    for (size_t i = 0; i < z.size(); ++i) {
-      z[i] = PlayStep(uk, p_.thresholds[i], z[i]);
-      sum += (p_.weights[i] + (l.rate() ? p_.rate_weights[i + 1] * rho : 0.0)) * z[i];
-    }
-    y[k] = sum;
+    y[k] = internal::PiOutputStep(p_, l, u[k], rho, z.data());
   }
   return y;
 }
@@ -266,80 +259,35 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Invert(const Eigen::VectorXd& y_desired,
         100 * range_margin_));
   };
   Eigen::VectorXd u(y_desired.size());
-  if (p_.form == PiForm::kClassical) {
-    const PrandtlIshlinskiiModel inverse(InverseParameters());
-    u = inverse.Simulate(y_desired.array() - p_.offset_m, dt_s);
-    for (Eigen::Index k = 0; k < u.size(); ++k) {
-      if (u[k] >= lo && u[k] <= hi) continue;
-      if (std::isfinite(u[k])) throw out_of_range(k, fmt::format("it needs u = {:.6g} V", u[k]));
-      // A reference near the largest double (1e308 m) overflows the inverse's sum (inf - inf):
-      // its "u" is NaN or inf, no input to print ("it needs u = -nan V" said nothing). Say
-      // which side of the model's reach x is instead: the forward model's output at the range's
-      // ends from its state at sample k (u before k is in range: this is the first bad sample).
-      // Only on this error path, so the cost of two simulations of k + 1 samples is no matter.
-      auto reach = [&](double end) {
-        Eigen::VectorXd path(k + 1);
-        path.head(k) = u.head(k);
-        path[k] = end;
-        return Simulate(path, dt_s)[k];
-      };
-      const double y_hi = reach(hi), y_lo = reach(lo);
-      const std::string side =
-          y_desired[k] > y_hi   ? fmt::format("above the output {:.9g} m at u = {:.6g} V", y_hi, hi)
-          : y_desired[k] < y_lo ? fmt::format("below the output {:.9g} m at u = {:.6g} V", y_lo, lo)
-                                : std::string("no input in the range gives it");
-      throw out_of_range(k, side + "; the input it needs overflows a double");
-    }
-    return u;
-  }
-  if (p_.form == PiForm::kRateDependent && (!(dt_s > 0) || !std::isfinite(dt_s)))
-    throw OptionsError(fmt::format("Invert: dt_s = {}. Violated constraint: dt_s > 0", dt_s),
-                       "dt_s");
-  const internal::PiLayout l = internal::LayoutOf(p_);
-  std::vector<double> z = internal::InitialState(p_);
-  const double q0 = l.rate() ? p_.rate_weights[0] : 0.0;
-  if (l.rate()) {
-    // An error e in u_{k-1} moves the next step's rate by e/dt and its output by up to
-    // (q0 |u| + sum q_i |z_i|) e / dt, which u_k undoes at the slope p0: the inverse's errors
-    // grow by that gain per step. Refuse when it reaches 1 on the input range.
-    const double level = std::max(std::abs(lo), std::abs(hi));
-    double q_sum = q0;
-    for (size_t i = 1; i < p_.rate_weights.size(); ++i) q_sum += p_.rate_weights[i];
-    const double gain = q_sum * level / (dt_s * p_.polynomial[0]);
-    if (!(gain < 1))
-      throw NumericalError(fmt::format(
-          "rdpi model not invertible at dt = {:.6g} s: rate_weights: the inverse's error gain "
-          "(q_0 + ... + q_n) max|u| / (dt p0) = {:.3g} >= 1 (an error in one step's input "
-          "feeds the next step's rate and grows); sample slower or fit with smaller rate weights",
-          dt_s, gain));
-  }
-  for (Eigen::Index k = 0; k < y_desired.size(); ++k) {
-    // The solved input's rate over the previous step (checked stable above).
-    const double rho = l.rate() && k >= 2 ? std::abs(u[k - 1] - u[k - 2]) / dt_s : 0.0;
-    // The step's output as a function of u_k: non-decreasing (every term is, given the states).
-    auto output = [&](double uk) {
-      double sum = p_.offset_m + q0 * rho * uk, power = uk;
-      for (int j = 0; j < l.m; ++j, power *= uk) sum += p_.polynomial[static_cast<size_t>(j)] * power;
-      for (size_t i = 0; i < z.size(); ++i)
-        sum += (p_.weights[i] + (l.rate() ? p_.rate_weights[i + 1] * rho : 0.0)) *
-               PlayStep(uk, p_.thresholds[i], z[i]);
-      return sum;
+  PiInverseStepper stepper(*this, dt_s);  // rdpi: dt_s and the error gain checked here
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
+    u[k] = stepper.Step(y_desired[k]);
+    const PiInverseSaturation& s = stepper.saturation();
+    if (!s.saturated) continue;
+    if (p_.form != PiForm::kClassical)
+      throw out_of_range(k, s.above ? fmt::format("above the output {:.9g} m at u = {:.6g} V",
+                                                  s.bound_output_m, hi)
+                                    : fmt::format("below the output {:.9g} m at u = {:.6g} V",
+                                                  s.bound_output_m, lo));
+    if (std::isfinite(s.needed_u_v))
+      throw out_of_range(k, fmt::format("it needs u = {:.6g} V", s.needed_u_v));
+    // A reference near the largest double (1e308 m) overflows the inverse's sum (inf - inf):
+    // its "u" is NaN or inf, no input to print ("it needs u = -nan V" said nothing). Say
+    // which side of the model's reach x is instead: the forward model's output at the range's
+    // ends from its state at sample k (u before k is in range: this is the first bad sample).
+    // Only on this error path, so the cost of two simulations of k + 1 samples is no matter.
+    auto reach = [&](double end) {
+      Eigen::VectorXd path(k + 1);
+      path.head(k) = u.head(k);
+      path[k] = end;
+      return Simulate(path, dt_s)[k];
     };
-    const double y = y_desired[k];
-    double a = lo, b = hi;
-    if (output(a) > y) throw out_of_range(k, fmt::format("below the output {:.9g} m at u = {:.6g} V", output(a), a));
-    if (output(b) < y) throw out_of_range(k, fmt::format("above the output {:.9g} m at u = {:.6g} V", output(b), b));
-    // Bisection on the bracket to adjacent doubles: the function is monotone but only piecewise
-    // smooth (kinks where operators start or stop moving), and 64 halvings of a finite bracket
-    // reach the last bit.
-    for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (a + b);
-      if (mid <= a || mid >= b) break;
-      (output(mid) < y ? a : b) = mid;
-    }
-    const double ua = output(a), ub = output(b);
-    u[k] = (y - ua <= ub - y) ? a : b;
-    for (size_t i = 0; i < z.size(); ++i) z[i] = PlayStep(u[k], p_.thresholds[i], z[i]);
+    const double y_hi = reach(hi), y_lo = reach(lo);
+    const std::string side =
+        y_desired[k] > y_hi   ? fmt::format("above the output {:.9g} m at u = {:.6g} V", y_hi, hi)
+        : y_desired[k] < y_lo ? fmt::format("below the output {:.9g} m at u = {:.6g} V", y_lo, lo)
+                              : std::string("no input in the range gives it");
+    throw out_of_range(k, side + "; the input it needs overflows a double");
   }
   return u;
 }

@@ -41,6 +41,36 @@ void Unpack(const Eigen::VectorXd& theta, PiParameters* p);
 /// The initial play states z_i(-1) [V] of p.
 std::vector<double> InitialState(const PiParameters& p);
 
+/// One sample of the forward model: moves the play states z (one per threshold) with the input
+/// u_k [V] and returns y_k [m]; rho [V/s] is the previous step's input rate (rdpi; 0 otherwise).
+/// Simulate and the inverse's stepper share it, so their sums run in one order.
+inline double PiOutputStep(const PiParameters& p, const PiLayout& l, double uk, double rho,
+                           double* z) {
+  const double q0 = l.rate() ? p.rate_weights[0] : 0.0;
+  double sum = p.offset_m + q0 * rho * uk, power = uk;
+  for (int j = 0; j < l.m; ++j, power *= uk) sum += p.polynomial[static_cast<size_t>(j)] * power;
+  for (int i = 0; i < l.n; ++i) {
+    const size_t s = static_cast<size_t>(i);
+    z[s] = PlayStep(uk, p.thresholds[s], z[s]);
+    sum += (p.weights[s] + (l.rate() ? p.rate_weights[s + 1] * rho : 0.0)) * z[s];
+  }
+  return sum;
+}
+
+/// PiOutputStep's y_k for a trial input u_k, leaving the states z as they are.
+inline double PiTrialOutput(const PiParameters& p, const PiLayout& l, double uk, double rho,
+                            const double* z) {
+  const double q0 = l.rate() ? p.rate_weights[0] : 0.0;
+  double sum = p.offset_m + q0 * rho * uk, power = uk;
+  for (int j = 0; j < l.m; ++j, power *= uk) sum += p.polynomial[static_cast<size_t>(j)] * power;
+  for (int i = 0; i < l.n; ++i) {
+    const size_t s = static_cast<size_t>(i);
+    sum += (p.weights[s] + (l.rate() ? p.rate_weights[s + 1] * rho : 0.0)) *
+           PlayStep(uk, p.thresholds[s], z[s]);
+  }
+  return sum;
+}
+
 /// Fills rows [row0, row0 + u.size()) of `terms` (layout columns) for the input u with step
 /// dt_s, from p's initial state (p's thresholds; coefficients are not used).
 void FillTerms(const PiParameters& p, const Eigen::VectorXd& u, double dt_s, Eigen::Index row0,

@@ -1,5 +1,6 @@
-// The one fractional-sample delay of the library (analytic inverse, trajectory regressors,
-// dominance terms): y(t_k - tau) on the signal's own grid.
+// The one fractional-sample delay of the library (analytic inverse and its streaming stepper,
+// trajectory regressors, dominance terms): y(t_k - tau) on the signal's own grid, as a batch
+// (DelaySignal) and streaming (DelayLine), both through one split of tau and one interpolation.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,69 @@
 #include "sysid/signal.hpp"
 
 namespace sysid {
+
+namespace {
+
+// The rule both forms share: tau / dt = w + f samples, and y(t_k - tau) = (1 - f) y_{k-w} +
+// f y_{k-w-1}.
+struct DelaySplit {
+  double whole = 0;  // w, as a double (it may exceed any integer type)
+  double frac = 0;   // f in [0, 1)
+};
+DelaySplit SplitDelay(double dt_s, double tau_s) {
+  const double shift = tau_s / dt_s;  // delay in samples, possibly fractional
+  const double whole = std::floor(shift);
+  return {whole, shift - whole};
+}
+double Interpolate(double y_hi, double y_lo, double frac) {
+  return (1 - frac) * y_hi + frac * y_lo;
+}
+
+void CheckDelay(double dt_s, double tau_s) {
+  if (!(dt_s > 0) || !(tau_s >= 0) || !std::isfinite(tau_s))
+    throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
+                       std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
+}
+
+}  // namespace
+
+DelayLine::DelayLine(double dt_s, double tau_s, long long max_pushes) {
+  CheckDelay(dt_s, tau_s);
+  const DelaySplit split = SplitDelay(dt_s, tau_s);
+  const double whole = split.whole;
+  frac_ = split.frac;
+  // Past max_pushes every read is before the first sample: a shorter line gives the same values.
+  const double cap = max_pushes >= 0 ? static_cast<double>(max_pushes) : whole;
+  const double used = std::min(whole, cap);
+  if (used + 2 > static_cast<double>(kMaxDelayLineSamples))
+    throw OptionsError("DelayLine: tau_s / dt_s = " + std::to_string(tau_s / dt_s) +
+                       " samples. Violated constraint: tau_s / dt_s + 2 <= " +
+                       std::to_string(kMaxDelayLineSamples) + " (kMaxDelayLineSamples)");
+  whole_ = static_cast<long long>(used);
+  ring_.assign(static_cast<size_t>(whole_ + 2), 0.0);
+}
+
+void DelayLine::Reset() {
+  head_ = 0;
+  count_ = 0;
+}
+
+double DelayLine::Push(double y_k) {
+  const long long size = static_cast<long long>(ring_.size());
+  if (count_ == 0) first_ = y_k;
+  ring_[static_cast<size_t>(head_)] = y_k;
+  // y_{k-w} and y_{k-w-1}: w and w + 1 slots behind the newest (k = count_).
+  auto at = [&](long long back) {
+    if (count_ < back) return first_;
+    long long slot = head_ - back;
+    if (slot < 0) slot += size;
+    return ring_[static_cast<size_t>(slot)];
+  };
+  const double y_hi = at(whole_), y_lo = at(whole_ + 1);
+  if (++head_ == size) head_ = 0;
+  if (count_ < whole_ + 2) ++count_;
+  return Interpolate(y_hi, y_lo, frac_);
+}
 
 Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
                             DelayStart start) {
@@ -20,13 +84,13 @@ Eigen::VectorXd DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s,
 void DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s, DelayStart start,
                  Eigen::VectorXd* result) {
   SYSID_CHECK(result != &y, "DelaySignal: out must not alias y");
-  if (!(dt_s > 0) || !(tau_s >= 0) || !std::isfinite(tau_s))
-    throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
-                       std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
-  const double shift = tau_s / dt_s;  // delay in samples, possibly fractional
-  const auto whole = static_cast<Eigen::Index>(std::floor(shift));
-  const double frac = shift - static_cast<double>(whole);
+  CheckDelay(dt_s, tau_s);
+  // DelayLine's rule on the whole signal at once (random access: no ring, no allocation beyond
+  // `out`); the tests hold the two forms equal bit for bit.
+  const DelaySplit split = SplitDelay(dt_s, tau_s);
   const Eigen::Index n = y.size();
+  const auto whole = static_cast<Eigen::Index>(std::min(split.whole, static_cast<double>(n)));
+  const double frac = split.frac;
   Eigen::VectorXd& out = *result;
   out.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -36,9 +100,7 @@ void DelaySignal(const Eigen::VectorXd& y, double dt_s, double tau_s, DelayStart
       out[k] = std::numeric_limits<double>::quiet_NaN();
       continue;
     }
-    const double y_hi = y[std::clamp<Eigen::Index>(hi, 0, n - 1)];
-    const double y_lo = y[std::clamp<Eigen::Index>(lo, 0, n - 1)];
-    out[k] = (1 - frac) * y_hi + frac * y_lo;
+    out[k] = Interpolate(y[std::max<Eigen::Index>(hi, 0)], y[std::max<Eigen::Index>(lo, 0)], frac);
   }
 }
 

@@ -1,0 +1,31 @@
+#include <cmath>
+#include <string>
+
+#include "sysid/error.hpp"
+#include "sysid/model_stepper.hpp"
+
+namespace sysid {
+
+namespace {
+
+double CheckedStep(double dt_s) {
+  if (!(dt_s > 0) || !std::isfinite(dt_s))
+    throw OptionsError("FrictionInverseStepper: dt_s = " + std::to_string(dt_s) +
+                       ". Violated constraint: 0 < dt_s < infinity");
+  return dt_s;
+}
+
+const FrictionModel& Validated(const FrictionModel& model) {
+  model.Validate();
+  return model;
+}
+
+}  // namespace
+
+FrictionInverseStepper::FrictionInverseStepper(const FrictionModel& model, double dt_s,
+                                               long long max_steps)
+    : model_(Validated(model)),
+      dt_s_(CheckedStep(dt_s)),
+      line_(dt_s, model.tau_s, max_steps) {}
+
+}  // namespace sysid
