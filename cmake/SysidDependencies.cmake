@@ -16,6 +16,8 @@ pkg_check_modules(SYSID_MATIO REQUIRED IMPORTED_TARGET GLOBAL matio)
 pkg_check_modules(SYSID_HDF5 REQUIRED IMPORTED_TARGET GLOBAL hdf5-serial)
 # zlib (zlib1g-dev): the MAT v5 layout check inflates compressed variables itself.
 find_package(ZLIB REQUIRED)
+# libcrypto (libssl-dev): the SHA-256 of a model file in an export's provenance.
+find_package(OpenSSL 3 REQUIRED COMPONENTS Crypto)
 # Boost.Math headers (libboost-dev): the signal tests cross-check Savitzky-Golay against
 # boost::math::differentiation::discrete_lanczos_derivative. Tests only: not a library dependency.
 if(SYSID_BUILD_TESTS)

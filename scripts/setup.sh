@@ -18,6 +18,7 @@ PACKAGES=(
   libnanoflann-dev                     # k-d tree: the irreducible-error estimate (nn module)
   libboost-dev                         # Boost.Math (test cross-check of the smoothing derivative)
   libmatio-dev libhdf5-dev zlib1g-dev  # MATLAB MAT (v4, v5, v7.3) and HDF5 recordings
+  libssl-dev                           # libcrypto: SHA-256 of a model in an export's provenance
   pkgconf                              # finds matio and the serial HDF5 (cmake/SysidDependencies.cmake)
   python3-numpy python3-scipy          # the Python peers that benchmarks run side by side
   pybind11-dev python3-pybind11        # the Python package sysid (python/)
