@@ -1,11 +1,15 @@
 // The pipeline's report: report.md with tables and plots, the model files and CSV tables.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -67,6 +71,7 @@ class ReportWriter {
     Facts();
     Loops();
     Timing();
+    DrawPlots();
     WriteFileAtomically(Path("report.md"), md_);
     return notes_;
   }
@@ -74,13 +79,43 @@ class ReportWriter {
  private:
   std::string Path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
 
+  // Plots are queued and drawn together at the end (DrawPlots): each is a gnuplot process, and
+  // drawn one after another they were most of the report's time. report.md keeps a marker where
+  // each plot's line goes.
   void Plot(const std::string& file, const PlotSpec& spec, const std::string& caption) {
-    const PlotOutcome p = WritePlot(Path(file), spec);
-    if (p.written) {
-      md_ += "\n![" + caption + "](" + file + ")\n";
-    } else {
-      md_ += "\n*(plot `" + file + "` not drawn: " + p.message + ")*\n";
-      notes_.push_back(p.message);
+    md_ += PlotMarker(plots_.size());
+    plots_.push_back({file, spec, caption, {}});
+  }
+
+  static std::string PlotMarker(std::size_t i) { return fmt::format("\x1f{}\x1f", i); }
+
+  void DrawPlots() {
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t i = next++; i < plots_.size(); i = next++) {
+        try {
+          plots_[i].outcome = WritePlot(Path(plots_[i].file), plots_[i].spec);
+        } catch (const std::exception& e) {  // a worker thread must not throw
+          plots_[i].outcome = {false, "plot " + plots_[i].file + " failed: " + e.what()};
+        }
+      }
+    };
+    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+    const std::size_t n = std::min<std::size_t>(
+        plots_.size(), r_.options.threads > 0 ? static_cast<unsigned>(r_.options.threads) : cores);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+      const PendingPlot& p = plots_[i];
+      const std::string line = p.outcome.written
+                                   ? "\n![" + p.caption + "](" + p.file + ")\n"
+                                   : "\n*(plot `" + p.file + "` not drawn: " +
+                                         p.outcome.message + ")*\n";
+      if (!p.outcome.written) notes_.push_back(p.outcome.message);
+      const std::string marker = PlotMarker(i);
+      md_.replace(md_.find(marker), marker.size(), line);
     }
   }
 
@@ -557,8 +592,16 @@ class ReportWriter {
     return s;
   }
 
+  struct PendingPlot {
+    std::string file;
+    PlotSpec spec;
+    std::string caption;
+    PlotOutcome outcome;
+  };
+
   const PipelineResult& r_;
   std::string dir_;
+  std::vector<PendingPlot> plots_;
   std::optional<Reference> ref_;
   std::string md_;
   std::vector<std::string> notes_;
