@@ -201,18 +201,12 @@ class ReportWriter {
 
   // Measured velocity of the first pulse recording beside the model with tau = 0 and tuned.
   void VelocityPlot() {
-    const Recording rec = ReadRecording(r_.inputs.pulses.front(), r_.inputs.Read());
-    const MotionSignals m = ExtractMotion(rec);
-    const auto t = m.t_s;
-    std::vector<double> tt(t.data(), t.data() + t.size()),
-        uu(m.u_v.data(), m.u_v.data() + m.u_v.size());
-    const PiecewiseConstantInput input(tt, uu);
-    SimulationOptions so;
-    so.t0_s = t[0];
-    so.t_end_s = t[t.size() - 1];
-    so.output_times_s = tt;
-    so.rtol = 1e-8;
-    so.atol = 1e-10;
+    const auto& f = r_.figures;
+    if (!f.pulse_velocity_note.empty()) {
+      notes_.push_back(f.pulse_velocity_note);
+      return;
+    }
+    if (f.pulse_velocity.empty()) return;
     PlotSpec spec{"pulse response: measured and simulated velocity",
                   "t [s]",
                   "v [m/s]",
@@ -220,19 +214,7 @@ class ReportWriter {
                   false,
                   1100,
                   500};
-    spec.series.push_back({"measured", t, m.v_mps, "lines"});
-    FrictionModel no_delay = r_.model;
-    no_delay.tau_s = 0;
-    for (const auto& [label, model] :
-         {std::pair<std::string, FrictionModel>{"model, tau = 0", no_delay},
-          {fmt::format("model, tau = {:.3g} ms", 1e3 * r_.model.tau_s), r_.model}}) {
-      const SimulationResult s = Simulate(model, input, so);
-      if (!s.summary.IsSolutionUsable()) {
-        notes_.push_back("velocity plot: simulation failed: " + s.summary.message);
-        return;
-      }
-      spec.series.push_back({label, s.trajectory.t_s, s.trajectory.v_mps, "lines"});
-    }
+    for (const auto& t : f.pulse_velocity) spec.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("pulse_velocity.png", spec, "measured vs simulated velocity");
   }
 
@@ -263,20 +245,11 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    const Recording rec = ReadRecording(r_.inputs.training, r_.inputs.Read());
-    const MotionSignals m = ExtractMotion(rec);
-    const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, r_.model.tau_s);
-    Eigen::VectorXd viscous(vd.size());
-    for (Eigen::Index k = 0; k < vd.size(); ++k)
-      viscous[k] = (vd[k] > 0 ? r_.model.a1p : r_.model.a1n) * vd[k];
+    PlotSpec terms{"inverse-model terms on the training set", "t [s]", "term [m/s^2]", {}, false,
+                   1100, 500};
+    for (const auto& t : r_.figures.dominance_terms) terms.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("dominance_terms.png",
-         {"inverse-model terms on the training set",
-          "t [s]",
-          "term [m/s^2]",
-          {{"a1 v(t - tau)", m.t_s, viscous, "lines"}, {"x''", m.t_s, m.a_mps2, "lines"}},
-          false,
-          1100,
-          500},
+         terms,
          "acceleration term vs viscous term");
   }
 
