@@ -4,8 +4,8 @@
 # alternated N times. Per binary: the median wall and CPU time (user + system, children
 # included: gnuplot) and the median of each step's wall time from --json; the load average
 # before and after (the machine may be shared: CPU-s says more than wall then). Then whether the
-# outputs agree: every file but the PNG plots byte for byte (report.md but its line naming the
-# steps), and the --json summaries but their step times.
+# outputs agree: every file but the PNG plots and the folder's marker byte for byte (report.md
+# but its line naming the steps), and the --json summaries but their step times.
 #   bench/run_pipeline.sh [BUILD_DIR] [THREADS] [N]   (THREADS: 0 = all cores; N: 5)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -60,7 +60,7 @@ if baseline:
     bwall, bcpu = summary("baseline " + baseline, base)
     print("ratio baseline / ours: wall %.2fx, CPU %.2fx" % (bwall / wall, bcpu / cpu))
     a, b = os.path.join(tmp, "report_baseline_1"), os.path.join(tmp, "report_ours_1")
-    files = sorted(f for f in os.listdir(a) if not f.endswith(".png"))
+    files = sorted(f for f in os.listdir(a) if not f.endswith(".png") and not f.startswith("."))
     _, mismatch, errors = filecmp.cmpfiles(a, b, files, shallow=False)
     # report.md names the steps run; a step added or renamed is not a changed number.
     unsteps = lambda p: [l for l in open(p) if not l.startswith("Steps:")]
