@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -75,14 +76,22 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   PipelineOptions opt = o.options;
   opt.hidden_sizes = ParseHiddenSizes(o.hidden);
   if (!o.inputs.empty()) opt.nn_inputs = CLI::detail::split(o.inputs, ',');
-  const PipelineResult r = RunPipeline(inputs, opt, [](const std::string& step) {
+  PipelineResult r = RunPipeline(inputs, opt, [](const std::string& step) {
     Progress("pipeline: " + step + " ...");
     ProgressDone();
   });
   // The report is written into a temporary sibling folder and renamed into place: a failure
   // never leaves a half-written report behind, and a previous one is replaced whole.
   std::vector<std::string> notes;
+  // The report's own time (tables, model files, plots) is a step of the job like the others;
+  // it is appended after the report is written, so report.md's step list never depends on it.
+  Progress("pipeline: write report ...");
+  ProgressDone();
+  const auto report_t0 = std::chrono::steady_clock::now();
   folder.Write([&](const fs::path& dir) { notes = WritePipelineReport(r, dir.string()); });
+  r.step_seconds.emplace_back(
+      "write report (tables, plots)",
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - report_t0).count());
   for (const auto& n : notes) std::cerr << "sysid pipeline: " << n << '\n';
   {
     // Timing goes to stderr (and --json), not into the report, which stays reproducible.

@@ -119,6 +119,31 @@ struct TrackingRow {
   TrackingResult result;
 };
 
+/// The traces behind the report's figures, computed by RunPipeline from the data and models it
+/// holds, so that the report draws what the pipeline computed and reads or simulates nothing.
+struct PipelineFigures {
+  struct Trace {
+    std::string label;
+    Eigen::VectorXd x, y;
+  };
+  /// The first pulse recording: measured velocity [m/s] against t [s], then the final model
+  /// simulated with tau = 0 and with its tau, at the delay fit's tolerances (options.delay).
+  std::vector<Trace> pulse_velocity;
+  std::string pulse_velocity_note;  ///< why a simulation is missing; empty when both ran
+  /// The training set against t [s]: a1 v(t - tau) and x'' [m/s^2] (the dominance figure).
+  std::vector<Trace> dominance_terms;
+  /// With a typical network, per set (training, then test): the data u, the typical and the
+  /// dominant network's outputs [V] on every row, their MSEs and the least MSE their inputs
+  /// allow (EstimateIrreducibleError) [V^2].
+  struct NetworkSet {
+    std::string set;
+    Eigen::VectorXd targets_v, typical_v, dominant_v;
+    double typical_mse = 0, dominant_mse = 0;
+    double typical_floor_mse = 0, dominant_floor_mse = 0;
+  };
+  std::vector<NetworkSet> networks;
+};
+
 struct PipelineResult {
   PipelineInputs inputs;
   PipelineOptions options;
@@ -146,6 +171,7 @@ struct PipelineResult {
   /// recording (which variable carries the input).
   std::vector<HysteresisSplitScore> stack_models;
   std::vector<CandidateRanking> stack_dominance;
+  PipelineFigures figures;  ///< the stage pipeline's; empty for a stack data set
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report
 };

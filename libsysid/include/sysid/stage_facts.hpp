@@ -220,7 +220,8 @@ double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p
 /// reference leaving a dwell to `window_s` after the largest |e| in the stroke's first half:
 /// the onset error F5 measures), and the frequency [Hz] of the largest peak of that
 /// residual's Hann-windowed periodogram, the left-out samples as 0 (0 when there are fewer
-/// than 4 samples).
+/// than 4 samples). Without `ringing_frequency` the periodogram, most of the cost, is skipped
+/// and ringing_hz stays 0.
 struct MotionRipple {
   double rms_m = 0;      ///< [m]
   double ringing_hz = 0;  ///< [Hz]
@@ -228,7 +229,7 @@ struct MotionRipple {
   long breakaway_samples = 0;  ///< samples after cycle 1 left out as breakaway transients
 };
 MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile,
-                            double window_s = 0.05);
+                            double window_s = 0.05, bool ringing_frequency = true);
 /// F5: none > analytic > nn, and each within a factor 3 of the paper's (both ways).
 bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,
                       double paper_analytic_m, double paper_nn_m);

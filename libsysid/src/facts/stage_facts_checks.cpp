@@ -88,7 +88,7 @@ double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p
 }
 
 MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p,
-                            double window_s) {
+                            double window_s, bool ringing_frequency) {
   if (!(window_s > 0) || !std::isfinite(window_s))
     throw OptionsError(fmt::format(
         "MotionRippleOf: window_s = {:g}. Violated constraint: window_s > 0", window_s));
@@ -141,7 +141,7 @@ MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptio
   }
   if (out.samples < 1) return out;
   out.rms_m = std::sqrt(sum2 / static_cast<double>(out.samples));
-  if (residual.size() < 4) return out;
+  if (!ringing_frequency || residual.size() < 4) return out;
   // The ringing frequency: the largest bin of the Hann-windowed periodogram (DC left out).
   const std::size_t m = residual.size();
   for (std::size_t k = 0; k < m; ++k)

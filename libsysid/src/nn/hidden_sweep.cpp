@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <numeric>
 #include <string>
 #include <thread>
 #include <vector>
@@ -89,13 +90,21 @@ HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDatase
                                            : std::max(1u, std::thread::hardware_concurrency());
   const unsigned threads = std::max(1u, std::min<unsigned>(all, static_cast<unsigned>(count)));
   const int inner = static_cast<int>(std::max(1u, all / threads));
+  // Largest networks first: an LM epoch grows with the square of the parameter count, and the
+  // largest size started last leaves the other threads idle while it finishes.
+  std::vector<size_t> order(count);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return options.hidden_sizes[a] > options.hidden_sizes[b];
+  });
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   std::mutex progress_mutex;
   size_t done = 0;  // networks finished, under progress_mutex
   auto worker = [&] {
-    for (size_t k; (k = next++) < count;) {
+    for (size_t i; (i = next++) < count;) {
+      const size_t k = order[i];
       try {
         NeuralTrainingOptions o = options.training;
         o.hidden = options.hidden_sizes[k];

@@ -7,7 +7,10 @@
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "pipeline/timed_step.hpp"
+#include "sysid/nn_irreducible.hpp"
 #include "sysid/pipeline.hpp"
+#include "sysid/signal.hpp"
+#include "sysid/simulate.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -36,6 +39,65 @@ Recording WithDerivatives(const Recording& rec) {
   out.SetColumn("v", m.v_mps);
   out.SetColumn("a", m.a_mps2);
   return out;
+}
+
+// The first pulse recording's measured velocity beside the model simulated with tau = 0 and
+// with its tau, at the tolerances the delay was fitted with.
+void PulseVelocityTraces(const Recording& pulse, const FrictionModel& model,
+                         const DelayTuningOptions& delay, PipelineFigures& f) {
+  const MotionSignals m = ExtractMotion(pulse);
+  const auto& t = m.t_s;
+  std::vector<double> tt(t.data(), t.data() + t.size()),
+      uu(m.u_v.data(), m.u_v.data() + m.u_v.size());
+  const PiecewiseConstantInput input(tt, uu);
+  SimulationOptions so;
+  so.t0_s = t[0];
+  so.t_end_s = t[t.size() - 1];
+  so.output_times_s = tt;
+  so.rtol = delay.sim_rtol;
+  so.atol = delay.sim_atol;
+  f.pulse_velocity.push_back({"measured", t, m.v_mps});
+  FrictionModel no_delay = model;
+  no_delay.tau_s = 0;
+  for (const auto& [label, mdl] :
+       {std::pair<std::string, FrictionModel>{"model, tau = 0", no_delay},
+        {fmt::format("model, tau = {:.3g} ms", 1e3 * model.tau_s), model}}) {
+    const SimulationResult sim = Simulate(mdl, input, so);
+    if (!sim.summary.IsSolutionUsable()) {
+      f.pulse_velocity_note = "velocity plot: simulation failed: " + sim.summary.message;
+      return;
+    }
+    f.pulse_velocity.push_back({label, sim.trajectory.t_s, sim.trajectory.v_mps});
+  }
+}
+
+// The paper's dominance figure: the acceleration term against the viscous term over time.
+void DominanceTraces(const Recording& training, const FrictionModel& model, PipelineFigures& f) {
+  const MotionSignals m = ExtractMotion(training);
+  const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, model.tau_s);
+  Eigen::VectorXd viscous(vd.size());
+  for (Eigen::Index k = 0; k < vd.size(); ++k)
+    viscous[k] = (vd[k] > 0 ? model.a1p : model.a1n) * vd[k];
+  f.dominance_terms.push_back({"a1 v(t - tau)", m.t_s, viscous});
+  f.dominance_terms.push_back({"x''", m.t_s, m.a_mps2});
+}
+
+PipelineFigures::NetworkSet NetworkTraces(const std::string& set, const Recording& rec,
+                                          const NeuralNetwork& typical,
+                                          const NeuralNetwork& dominant,
+                                          const std::vector<std::string>& dominant_inputs) {
+  const NeuralDataset va = MakeNeuralDataset(rec, {"v", "a"}, "u");
+  const NeuralDataset dv = MakeNeuralDataset(rec, dominant_inputs, "u");
+  PipelineFigures::NetworkSet s;
+  s.set = set;
+  s.targets_v = va.targets;
+  s.typical_v = typical.EvaluateBatch(va.inputs);
+  s.dominant_v = dominant.EvaluateBatch(dv.inputs);
+  s.typical_mse = MeanSquaredError(typical, va);
+  s.dominant_mse = MeanSquaredError(dominant, dv);
+  s.typical_floor_mse = EstimateIrreducibleError(va).mse;
+  s.dominant_floor_mse = EstimateIrreducibleError(dv).mse;
+  return s;
 }
 
 }  // namespace
@@ -141,6 +203,16 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
     for (const auto& w : waveforms)
       r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
+  });
+
+  step("figure traces (pulse simulation, network outputs)", [&] {
+    PulseVelocityTraces(pulses.front(), r.model, options.delay, r.figures);
+    DominanceTraces(training, r.model, r.figures);
+    if (r.typical)
+      for (const auto& [set, rec] : {std::pair<std::string, const Recording*>{"training", &training},
+                                     {"test", &test}})
+        r.figures.networks.push_back(
+            NetworkTraces(set, *rec, r.typical->network, r.network, r.nn_inputs));
   });
 
   if (!inputs.loops.empty()) {

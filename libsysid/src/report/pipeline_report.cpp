@@ -1,11 +1,15 @@
 // The pipeline's report: report.md with tables and plots, the model files and CSV tables.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -67,6 +71,7 @@ class ReportWriter {
     Facts();
     Loops();
     Timing();
+    DrawPlots();
     WriteFileAtomically(Path("report.md"), md_);
     return notes_;
   }
@@ -74,13 +79,43 @@ class ReportWriter {
  private:
   std::string Path(const std::string& name) const { return (fs::path(dir_) / name).string(); }
 
+  // Plots are queued and drawn together at the end (DrawPlots): each is a gnuplot process, and
+  // drawn one after another they were most of the report's time. report.md keeps a marker where
+  // each plot's line goes.
   void Plot(const std::string& file, const PlotSpec& spec, const std::string& caption) {
-    const PlotOutcome p = WritePlot(Path(file), spec);
-    if (p.written) {
-      md_ += "\n![" + caption + "](" + file + ")\n";
-    } else {
-      md_ += "\n*(plot `" + file + "` not drawn: " + p.message + ")*\n";
-      notes_.push_back(p.message);
+    md_ += PlotMarker(plots_.size());
+    plots_.push_back({file, spec, caption, {}});
+  }
+
+  static std::string PlotMarker(std::size_t i) { return fmt::format("\x1f{}\x1f", i); }
+
+  void DrawPlots() {
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t i = next++; i < plots_.size(); i = next++) {
+        try {
+          plots_[i].outcome = WritePlot(Path(plots_[i].file), plots_[i].spec);
+        } catch (const std::exception& e) {  // a worker thread must not throw
+          plots_[i].outcome = {false, "plot " + plots_[i].file + " failed: " + e.what()};
+        }
+      }
+    };
+    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+    const std::size_t n = std::min<std::size_t>(
+        plots_.size(), r_.options.threads > 0 ? static_cast<unsigned>(r_.options.threads) : cores);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    for (std::size_t i = 0; i < plots_.size(); ++i) {
+      const PendingPlot& p = plots_[i];
+      const std::string line = p.outcome.written
+                                   ? "\n![" + p.caption + "](" + p.file + ")\n"
+                                   : "\n*(plot `" + p.file + "` not drawn: " +
+                                         p.outcome.message + ")*\n";
+      if (!p.outcome.written) notes_.push_back(p.outcome.message);
+      const std::string marker = PlotMarker(i);
+      md_.replace(md_.find(marker), marker.size(), line);
     }
   }
 
@@ -166,18 +201,12 @@ class ReportWriter {
 
   // Measured velocity of the first pulse recording beside the model with tau = 0 and tuned.
   void VelocityPlot() {
-    const Recording rec = ReadRecording(r_.inputs.pulses.front(), r_.inputs.Read());
-    const MotionSignals m = ExtractMotion(rec);
-    const auto t = m.t_s;
-    std::vector<double> tt(t.data(), t.data() + t.size()),
-        uu(m.u_v.data(), m.u_v.data() + m.u_v.size());
-    const PiecewiseConstantInput input(tt, uu);
-    SimulationOptions so;
-    so.t0_s = t[0];
-    so.t_end_s = t[t.size() - 1];
-    so.output_times_s = tt;
-    so.rtol = 1e-8;
-    so.atol = 1e-10;
+    const auto& f = r_.figures;
+    if (!f.pulse_velocity_note.empty()) {
+      notes_.push_back(f.pulse_velocity_note);
+      return;
+    }
+    if (f.pulse_velocity.empty()) return;
     PlotSpec spec{"pulse response: measured and simulated velocity",
                   "t [s]",
                   "v [m/s]",
@@ -185,19 +214,7 @@ class ReportWriter {
                   false,
                   1100,
                   500};
-    spec.series.push_back({"measured", t, m.v_mps, "lines"});
-    FrictionModel no_delay = r_.model;
-    no_delay.tau_s = 0;
-    for (const auto& [label, model] :
-         {std::pair<std::string, FrictionModel>{"model, tau = 0", no_delay},
-          {fmt::format("model, tau = {:.3g} ms", 1e3 * r_.model.tau_s), r_.model}}) {
-      const SimulationResult s = Simulate(model, input, so);
-      if (!s.summary.IsSolutionUsable()) {
-        notes_.push_back("velocity plot: simulation failed: " + s.summary.message);
-        return;
-      }
-      spec.series.push_back({label, s.trajectory.t_s, s.trajectory.v_mps, "lines"});
-    }
+    for (const auto& t : f.pulse_velocity) spec.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("pulse_velocity.png", spec, "measured vs simulated velocity");
   }
 
@@ -228,20 +245,11 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    const Recording rec = ReadRecording(r_.inputs.training, r_.inputs.Read());
-    const MotionSignals m = ExtractMotion(rec);
-    const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, r_.model.tau_s);
-    Eigen::VectorXd viscous(vd.size());
-    for (Eigen::Index k = 0; k < vd.size(); ++k)
-      viscous[k] = (vd[k] > 0 ? r_.model.a1p : r_.model.a1n) * vd[k];
+    PlotSpec terms{"inverse-model terms on the training set", "t [s]", "term [m/s^2]", {}, false,
+                   1100, 500};
+    for (const auto& t : r_.figures.dominance_terms) terms.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("dominance_terms.png",
-         {"inverse-model terms on the training set",
-          "t [s]",
-          "term [m/s^2]",
-          {{"a1 v(t - tau)", m.t_s, viscous, "lines"}, {"x''", m.t_s, m.a_mps2, "lines"}},
-          false,
-          1100,
-          500},
+         terms,
          "acceleration term vs viscous term");
   }
 
@@ -422,9 +430,12 @@ class ReportWriter {
       p.cycles = static_cast<int>(std::lround(static_cast<double>(t.result.t_s.size() - 1) /
                                               p.sample_rate_hz * f));
       const FactsOptions limits;
+      // The ringing frequency (a long FFT) only when the sentence is written.
+      if (facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s, false).rms_m <=
+          limits.motion_ripple_tolerance_m)
+        return {};
       const facts::MotionRipple m =
           facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
-      if (m.rms_m <= limits.motion_ripple_tolerance_m) return {};
       // Below 10 kHz the loop rate is what rings it (docs/virtual_stage.md, "Loop rate": the
       // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz (candidate B).
       const char* cure = p.sample_rate_hz < 1e4
@@ -557,8 +568,16 @@ class ReportWriter {
     return s;
   }
 
+  struct PendingPlot {
+    std::string file;
+    PlotSpec spec;
+    std::string caption;
+    PlotOutcome outcome;
+  };
+
   const PipelineResult& r_;
   std::string dir_;
+  std::vector<PendingPlot> plots_;
   std::optional<Reference> ref_;
   std::string md_;
   std::vector<std::string> notes_;

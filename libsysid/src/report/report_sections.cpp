@@ -27,17 +27,6 @@ std::string Join(const std::vector<std::string>& v, const std::string& sep) {
   return out;
 }
 
-// The recording with v and a as the pipeline trains on them: its own columns when present,
-// else from x by the default filter (run_pipeline.cpp's rule).
-Recording WithDerivatives(const std::string& path, const ReadOptions& ro) {
-  Recording rec = ReadRecording(path, ro);
-  if (rec.has("v") && rec.has("a")) return rec;
-  const MotionSignals m = ExtractMotion(rec);
-  rec.SetColumn("v", m.v_mps);
-  rec.SetColumn("a", m.a_mps2);
-  return rec;
-}
-
 // F8's note without its "not met: " lead (the verdict is already in bold).
 std::string FailedParts(const std::string& note) {
   const std::string lead = "not met: ";
@@ -75,16 +64,10 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
   // Per set (training, test): the least MSE any model on (v, a) and on the dominant inputs can
   // reach there (sysid irreducible): what the networks' MSEs are to be read against.
   std::array<std::pair<double, double>, 2> floors{};
-  for (const auto& [set, path] : {std::pair<std::string, std::string>{"training", r.inputs.training},
-                                  {"test", r.inputs.test}}) {
-    const Recording rec = WithDerivatives(path, r.inputs.Read());
-    const NeuralDataset va = MakeNeuralDataset(rec, {"v", "a"}, "u");
-    const NeuralDataset dv = MakeNeuralDataset(rec, r.nn_inputs, "u");
-    const Eigen::VectorXd yt = typical.EvaluateBatch(va.inputs);
-    const Eigen::VectorXd yd = dominant.EvaluateBatch(dv.inputs);
-    const double mt = MeanSquaredError(typical, va), md = MeanSquaredError(dominant, dv);
-    floors[set == "training" ? 0 : 1] = {EstimateIrreducibleError(va).mse,
-                                         EstimateIrreducibleError(dv).mse};
+  for (const PipelineFigures::NetworkSet& n : r.figures.networks) {
+    const std::string& set = n.set;
+    const double mt = n.typical_mse, md = n.dominant_mse;
+    floors[set == "training" ? 0 : 1] = {n.typical_floor_mse, n.dominant_floor_mse};
     (set == "training" ? m.typical_train : m.typical_test) = mt;
     (set == "training" ? m.dominant_train : m.dominant_test) = md;
     csv += fmt::format("typical,v a,{},{},{:.9g}\n", typical.hidden_size(), set, mt);
@@ -92,22 +75,23 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
                        dominant.hidden_size(), set, md);
     // Against the row index, as the paper's figures: the set is segments in random order, and
     // the index keeps them side by side without the gaps a time axis could show.
-    Eigen::VectorXd k(va.size());
+    Eigen::VectorXd k(n.targets_v.size());
     for (Eigen::Index i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i);
     PlotSpec spec{fmt::format("networks against the {} set", set),
                   "sample",
                   "u [V]",
-                  {{"data u", k, va.targets, "lines"},
-                   {fmt::format("typical (v, a), H = {}", typical.hidden_size()), k, yt, "lines"},
+                  {{"data u", k, n.targets_v, "lines"},
+                   {fmt::format("typical (v, a), H = {}", typical.hidden_size()), k, n.typical_v,
+                    "lines"},
                    {fmt::format("dominant ({}), H = {}", Join(r.nn_inputs, ", "),
                                 dominant.hidden_size()),
-                    k, yd, "lines"}},
+                    k, n.dominant_v, "lines"}},
                   false,
                   1400,
                   500};
     // The data's range plus a quarter each way: a network that strays far outside (a typical
     // network extrapolating in a) is cut at the frame instead of flattening the data.
-    const double lo = va.targets.minCoeff(), hi = va.targets.maxCoeff(), pad = 0.25 * (hi - lo);
+    const double lo = n.targets_v.minCoeff(), hi = n.targets_v.maxCoeff(), pad = 0.25 * (hi - lo);
     spec.y_min = lo - pad;
     spec.y_max = hi + pad;
     s.plots.push_back({fmt::format("network_{}.png", set), spec,
