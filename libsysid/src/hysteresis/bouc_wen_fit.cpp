@@ -49,6 +49,21 @@ void BoucWenFitOptions::Validate() const {
 
 namespace {
 
+// The mechanical form's parameters from the fit's full vector (m, c, k, alpha, beta, gamma,
+// delta, nu: the order of the layout's names).
+MechanicalBoucWenParameters MechanicalParameters(const Eigen::VectorXd& p) {
+  MechanicalBoucWenParameters m;
+  m.m_kg = p[0];
+  m.c_n_s_per_m = p[1];
+  m.k_n_per_m = p[2];
+  m.alpha_n_per_m = p[3];
+  m.beta_per_m = p[4];
+  m.gamma = p[5];
+  m.delta = p[6];
+  m.nu = p[7];
+  return m;
+}
+
 struct Series {
   Eigen::VectorXd u, x;
   double dt_s;
@@ -77,16 +92,7 @@ struct Layout {
   std::unique_ptr<HysteresisModel> Model(const Eigen::VectorXd& p,
                                          std::vector<double> errors = {}) const {
     if (form == BoucWenForm::kMechanical) {
-      MechanicalBoucWenParameters m;
-      m.m_kg = p[0];
-      m.c_n_s_per_m = p[1];
-      m.k_n_per_m = p[2];
-      m.alpha_n_per_m = p[3];
-      m.beta_per_m = p[4];
-      m.gamma = p[5];
-      m.delta = p[6];
-      m.nu = p[7];
-      return std::make_unique<MechanicalBoucWen>(m, sim, std::move(errors));
+      return std::make_unique<MechanicalBoucWen>(MechanicalParameters(p), sim, std::move(errors));
     }
     PiezoBoucWenParameters z;
     z.d_m_per_v = p[0];
@@ -241,15 +247,7 @@ class OutputError : public ceres::CostFunction {
   bool ResidualsAndSensitivities(const double* x, double* residuals, double* jacobian) const {
     const int np = static_cast<int>(l_->free.size());
     const Eigen::VectorXd p = l_->Full(x);
-    MechanicalBoucWenParameters m;
-    m.m_kg = p[0];
-    m.c_n_s_per_m = p[1];
-    m.k_n_per_m = p[2];
-    m.alpha_n_per_m = p[3];
-    m.beta_per_m = p[4];
-    m.gamma = p[5];
-    m.delta = p[6];
-    m.nu = p[7];
+    MechanicalBoucWenParameters m = MechanicalParameters(p);
     try {
       m.Validate();
     } catch (const Error&) {
