@@ -1,5 +1,5 @@
 // The streaming inverses allocate nothing per sample: a counting operator new (this test
-// executable's only replacement) and, where the linker wraps it, a counting malloc (Eigen's
+// executable's only replacement of the new and delete family) and, where the linker wraps it, a counting malloc (Eigen's
 // storage in libsysid.a) see no allocation over 10^5 steps of each.
 #include <atomic>
 #include <catch2/catch.hpp>
@@ -32,8 +32,22 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
+// Every form that pairs with the plain delete is replaced too: under AddressSanitizer an
+// unreplaced form keeps the sanitizer's allocator, and its memory freed here is a mismatch.
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  ++g_allocations;
+  return std::malloc(size == 0 ? 1 : size);
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept {
+  return operator new(size, tag);
+}
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 TEST_CASE("streaming inverses do not allocate inside Step", "[deploy][stream]") {
   constexpr int kSteps = 100000;
