@@ -20,6 +20,9 @@ if ((sanitize)); then
   # clang and the sanitizer runtimes come with setup.sh's package list.
   export CC=clang CXX=clang++
   # Line tables are all a sanitizer report needs for FILE:LINE, at a fraction of -g's cost.
+  # With debug information ccache would also key on the build folder's absolute path; without
+  # it another clone reuses these objects too (their line tables name files relative to it).
+  export CCACHE_NOHASHDIR=1
   set -- -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG" \
     -DSYSID_SANITIZE=ON -DSYSID_FUZZ=ON -DSYSID_BUILD_BENCH=OFF \
