@@ -112,16 +112,6 @@ void Expect(int code, const std::string& message, const std::vector<std::string>
   if (!message.empty()) CHECK(r.err.find(message) != std::string::npos);
 }
 
-std::string Message(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL("expected an InputError");
-  return {};
-}
-
 TEST_CASE("HDF5: a virtual dataset is refused before a value is read, also through ListVariables",
           "[io][policy]") {
   TempDir dir;
@@ -134,7 +124,7 @@ TEST_CASE("HDF5: a virtual dataset is refused before a value is read, also throu
   Expect(2, why, {"import", "--column", "u=" + s + ":t", "--rate", "1", "-o", dir / "o.csv"});
   CHECK(!std::filesystem::exists(dir / "o.csv"));
   // In the process itself (Python's sysid.list_variables): an exception, not a crash.
-  CHECK(Message([&] { ListVariables(s); }).find(why) != std::string::npos);
+  CHECK(InputErrorMessage([&] { ListVariables(s); }).find(why) != std::string::npos);
   // Mapped from a FIFO: a read would block for ever.
   const std::string fifo = dir / "fifo";
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
@@ -295,7 +285,7 @@ TEST_CASE("reading a file without a mapping touches only the datasets it takes",
                      16, 1, 17);
   const Recording rec = ReadRecording(h);
   CHECK(rec.names == std::vector<std::string>{"t", "u", "x"});
-  CHECK(Message([&] { ListVariables(h); }).find("m.h5:/g/m: malformed HDF5 dataset") !=
+  CHECK(InputErrorMessage([&] { ListVariables(h); }).find("m.h5:/g/m: malformed HDF5 dataset") !=
         std::string::npos);
 }
 

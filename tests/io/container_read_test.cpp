@@ -38,16 +38,6 @@ void CheckColumn(const Recording& r, const std::string& name, const std::vector<
   for (size_t i = 0; i < want.size(); ++i) REQUIRE(c[static_cast<Eigen::Index>(i)] == want[i]);
 }
 
-std::string Message(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL("expected an InputError");
-  return {};
-}
-
 TEST_CASE("MAT v4, v5, v5 compressed and v7.3: named variables are a recording, bit for bit",
           "[io][mat]") {
   TempDir dir;
@@ -91,21 +81,21 @@ TEST_CASE("a mapping picks variables, matrix columns (1-based) and derives t fro
   CHECK(row.rows() == 3);
   CHECK(row.column("u")[1] == Ramp(40, 2)[1]);
 
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(path, Map({{"u", "data[:,4]"}, {"x", "data[:,1]"}}, 1));
              }),
              Catch::Contains("m.mat:data[:,4]: column 4 out of range: the matrix is double 40x3 "
                              "(indices are 1-based, like MATLAB)"));
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(path, Map({{"u", "data[:,0]"}}, 1));
              }),
              Catch::Contains("index 0: indices start at 1"));
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(path, Map({{"u", "data"}, {"x", "data"}}, 1));
              }),
              Catch::Contains("m.mat:data: is a matrix (double 40x3); pick a column with "
                              "data[:,k] or a row with data[k,:] (k 1-based, like MATLAB)"));
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(path, Map({{"u", "data[:,1]"}, {"x", "data[:,2]"}}));
              }),
              Catch::Contains("no time column 't'") && Catch::Contains("--rate"));
@@ -127,7 +117,7 @@ TEST_CASE("complex, sparse, cell, char, struct and empty variables are refused b
   const std::string p = dir / "odd.mat";
   const auto message = [&](const std::string& kind, MatVersion v) {
     WriteMatOddVariable(p, v, "u", kind);
-    return Message([&] { ReadRecording(p, Map({{"u", "u"}, {"x", "u"}}, 10)); });
+    return InputErrorMessage([&] { ReadRecording(p, Map({{"u", "u"}, {"x", "u"}}, 10)); });
   };
   for (const auto v : {MatVersion::kV5, MatVersion::kV5Compressed}) {
     CHECK_THAT(message("complex", v), Catch::Contains("odd.mat:u: is complex (double 1x3)"));
@@ -139,7 +129,7 @@ TEST_CASE("complex, sparse, cell, char, struct and empty variables are refused b
   }
   // Without a mapping, a file of only a struct has nothing to read.
   WriteMatOddVariable(p, MatVersion::kV5, "s", "struct");
-  CHECK_THAT(Message([&] { ReadRecording(p); }),
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(p); }),
              Catch::Contains("no top-level numeric vectors") && Catch::Contains("s (struct 1x1)"));
 }
 
@@ -163,19 +153,21 @@ TEST_CASE("a dSPACE ControlDesk export is read by naming its signals", "[io][mat
     CheckColumn(r, "t", t);
     CheckColumn(r, "u", volts);
     CheckColumn(r, "x", pos);
-    CHECK_THAT(Message([&] { ReadRecording(p); }),
+    CHECK_THAT(InputErrorMessage([&] { ReadRecording(p); }),
                Catch::Contains("a dSPACE ControlDesk struct 'capture_001': name its signals with "
                                "--var u=NAME,x=NAME (signals: Model Root/u_out, "
                                "Model Root/encoder)"));
-    CHECK_THAT(Message([&] {
+    CHECK_THAT(InputErrorMessage([&] {
                  ReadRecording(p, Map({{"u", "speed"}, {"x", "Model Root/encoder"}}));
                }),
                Catch::Contains("no variable 'speed' (variables: capture_001, Model Root/u_out, "
                                "Model Root/encoder)"));
   }
-  WriteControlDesk(dir / "z.mat", MatVersion::kV5Compressed, "capture_001", t,
-                   {"Model Root/u_out"}, {volts});
-  CHECK_THAT(Message([&] { ReadRecording(dir / "z.mat", Map({{"u", "Model Root/u_out"}})); }),
+  WriteControlDesk(dir / "z.mat", MatVersion::kV5Compressed, "capture_001", t, {"Model Root/u_out"},
+                   {volts});
+  CHECK_THAT(InputErrorMessage([&] {
+               ReadRecording(dir / "z.mat", Map({{"u", "Model Root/u_out"}}));
+             }),
              Catch::StartsWith(dir / "z.mat:capture_001.Y.Type: malformed or truncated MAT file: "
                                      "an element of MAT data type 4, expected a matrix"));
 }
@@ -192,20 +184,20 @@ TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing o
   const Recording r = ReadRecording(p, Map({{"u", "/multisine/u"}, {"x", "/multisine/y"}}, 750));
   CheckColumn(r, "u", u);
   CheckColumn(r, "x", y);
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(p, Map({{"u", "/multisine/v"}, {"x", "/multisine/y"}}, 750));
              }),
              Catch::Contains("train.h5: no dataset '/multisine/v' (datasets: /multisine/fs, "
                              "/multisine/u, /multisine/y)"));
   u[1522] = std::numeric_limits<double>::quiet_NaN();
   WriteH5(p, {{"/multisine/u", {2000, 1}, u}, {"/multisine/y", {2000, 1}, y}});
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(p, Map({{"u", "/multisine/u"}, {"x", "/multisine/y"}}, 750));
              }),
              Catch::EndsWith("train.h5:/multisine/u[1523]: expected a finite number, found NaN"));
   // Lengths that differ.
   WriteH5(p, {{"/u", {20}, Ramp(20, 1)}, {"/x", {19}, Ramp(19, 1)}});
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(p, Map({{"u", "/u"}, {"x", "/x"}}, 10));
              }),
              Catch::Contains("train.h5:/x: 19 samples, but ") &&
@@ -215,10 +207,12 @@ TEST_CASE("HDF5: datasets in groups by path, NaN at its 1-based index, missing o
   CHECK(ReadRecording(p).names == std::vector<std::string>{"t", "u", "x"});
   // Empty, integer and compound datasets.
   WriteH5(p, {{"/u", {0}, {}}});
-  CHECK_THAT(Message([&] { ReadSignal(p, "/u"); }), Catch::Contains("train.h5:/u: is empty"));
+  CHECK_THAT(InputErrorMessage([&] { ReadSignal(p, "/u"); }),
+             Catch::Contains("train.h5:/u: is empty"));
   WriteH5Odd(p);
   CHECK(ReadSignal(p, "counts") == Eigen::Vector3d(4, -5, 6));
-  CHECK_THAT(Message([&] { ReadSignal(p, "/z"); }), Catch::Contains("train.h5:/z: is a compound"));
+  CHECK_THAT(InputErrorMessage([&] { ReadSignal(p, "/z"); }),
+             Catch::Contains("train.h5:/z: is a compound"));
 }
 
 TEST_CASE("MAT v4: a header declaring a name or data past the file's end is refused first",
@@ -232,19 +226,19 @@ TEST_CASE("MAT v4: a header declaring a name or data past the file's end is refu
   WriteRawMat4(p, "t", 1, 4, t);
   CHECK(ReadSignal(p, "t") == Eigen::Map<const Eigen::VectorXd>(t.data(), 4));
   WriteRawMat4(p, "t", 1, 4, t, 0x7fffffff);  // 20 + 2 + 32 = 54 bytes
-  CHECK(Message([&] { ListVariables(p); }) ==
+  CHECK(InputErrorMessage([&] { ListVariables(p); }) ==
         p + ": malformed or truncated MAT file: at byte 0: a MAT v4 variable with a "
             "2147483647-byte name, the file has 34 bytes left");
   WriteRawMat4(p, "t", 1, 2000000000, t);
-  CHECK(Message([&] { ListVariables(p); }) ==
+  CHECK(InputErrorMessage([&] { ListVariables(p); }) ==
         p + ":t: malformed or truncated MAT file: declares 1x2000000000 (2000000000 elements, "
             "16000000000 bytes), the file has 32 bytes left");
   WriteRawMat4(p, "t", 1, 8, t);  // 4 of 8 values
-  CHECK(Message([&] { ReadSignal(p, "t"); }) ==
+  CHECK(InputErrorMessage([&] { ReadSignal(p, "t"); }) ==
         p + ":t: malformed or truncated MAT file: declares 1x8 (8 elements, 64 bytes), the file "
             "has 32 bytes left");
   WriteRawMat4(p, "t", -5, 4, t);
-  CHECK_THAT(Message([&] { ListVariables(p); }),
+  CHECK_THAT(InputErrorMessage([&] { ListVariables(p); }),
              Catch::EndsWith("a MAT v4 header declaring -5 rows, 4 columns, a 2-byte name"));
 }
 
@@ -263,11 +257,11 @@ TEST_CASE("HDF5: a dataspace declaring more than the dataset's storage holds is 
   const std::string detail =
       ": malformed HDF5 dataset: its dataspace declares 272 elements (2176 bytes), its "
       "contiguous storage holds 128 bytes";
-  CHECK(Message([&] {
+  CHECK(InputErrorMessage([&] {
           ReadRecording(p, Map({{"u", "/rec/u[:,2]"}, {"x", "/rec/x"}}, 10));
         }) == p + ":/rec/u[:,2]" + detail);
-  CHECK(Message([&] { ReadSignal(p, "/rec/u[:,1]"); }) == p + ":/rec/u[:,1]" + detail);
-  CHECK(Message([&] { ListVariables(p); }) == p + ":/rec/u" + detail);  // sysid info
+  CHECK(InputErrorMessage([&] { ReadSignal(p, "/rec/u[:,1]"); }) == p + ":/rec/u[:,1]" + detail);
+  CHECK(InputErrorMessage([&] { ListVariables(p); }) == p + ":/rec/u" + detail);  // sysid info
   // A dataset created and never written has no storage: HDF5 defines its values as the fill
   // value (0), a legal file.
   WriteH5(dir / "unwritten.h5", {{"/u", {3}, {}}});
@@ -280,7 +274,7 @@ TEST_CASE("MAT: a non-finite value is named with its variable and 1-based index"
   u[41] = std::numeric_limits<double>::infinity();
   WriteMat(dir / "bad.mat", MatVersion::kV5Compressed,
            {{"u", 1, 100, u}, {"x", 1, 100, Ramp(100, 1)}});
-  CHECK_THAT(Message([&] { ReadRecording(dir / "bad.mat", Map({}, 100)); }),
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(dir / "bad.mat", Map({}, 100)); }),
              Catch::EndsWith("bad.mat:u[42]: expected a finite number, found Inf"));
 }
 
@@ -296,13 +290,13 @@ TEST_CASE("truncated files, wrong magic and huge declared sizes are refused", "[
   for (const auto version : {MatVersion::kV5, MatVersion::kV5Compressed, MatVersion::kV73}) {
     WriteMat(dir / "whole.mat", version, {{"u", 1, 4000, u}, {"x", 1, 4000, x}});
     truncate(dir / "whole.mat", dir / "cut.mat", 0.6);
-    const std::string m = Message([&] { ReadRecording(dir / "cut.mat", Map({}, 10)); });
+    const std::string m = InputErrorMessage([&] { ReadRecording(dir / "cut.mat", Map({}, 10)); });
     INFO(m);
     CHECK_THAT(m, Catch::StartsWith(dir / "cut.mat"));
   }
   WriteH5(dir / "whole.h5", {{"/u", {4000}, u}, {"/x", {4000}, x}});
   truncate(dir / "whole.h5", dir / "cut.h5", 0.5);
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(dir / "cut.h5", Map({{"u", "/u"}, {"x", "/x"}}, 10));
              }),
              Catch::StartsWith(dir / "cut.h5"));
@@ -315,23 +309,24 @@ TEST_CASE("truncated files, wrong magic and huge declared sizes are refused", "[
     bytes[125] = 1;
     bytes += std::string(64, '\x7f');
     std::ofstream(dir / "garbage.mat", std::ios::binary) << bytes;
-    const std::string m = Message([&] { ReadRecording(dir / "garbage.mat", Map({}, 10)); });
+    const std::string m =
+        InputErrorMessage([&] { ReadRecording(dir / "garbage.mat", Map({}, 10)); });
     CHECK_THAT(m, Catch::StartsWith(dir / "garbage.mat"));
   }
   // Not a MAT file at all, named .mat: read as text, and refused as text.
   WriteText(dir / "text.mat", "hello world\n");
   CHECK(DetectFileFormat(dir / "text.mat") == FileFormat::kText);
-  CHECK_THAT(Message([&] { ListVariables(dir / "text.mat"); }),
+  CHECK_THAT(InputErrorMessage([&] { ListVariables(dir / "text.mat"); }),
              Catch::Contains("text.mat: not a MAT or HDF5 file"));
   // Declared sizes beyond kMaxVariableElements, refused before allocation.
   WriteMatHugeDeclaration(dir / "huge.mat", 2000000000u);
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(dir / "huge.mat", Map({{"u", "u"}, {"x", "u"}}, 10));
              }),
              Catch::Contains("huge.mat:u: declares 1x2000000000") &&
                  Catch::Contains("more than the 20000000"));
   WriteH5Huge(dir / "huge.h5", "/u", 4000000000ull);
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ReadRecording(dir / "huge.h5", Map({{"u", "/u"}, {"x", "/u"}}, 10));
              }),
              Catch::Contains("huge.h5:/u: declares double 4000000000x1") &&
@@ -364,18 +359,18 @@ TEST_CASE("MAT v5: data holding another number of values than the dims declare a
     WriteRawMat(p, {{"t", 8, t}, {"u", 8, u}, {"x", 8, x3}}, compressed);
     const std::string want =
         p + ":x: malformed or truncated MAT file: declares 1x8 (8 elements), holds 3";
-    CHECK(Message([&] { ReadRecording(p); }) == want);
-    CHECK(Message([&] { ListVariables(p); }) == want);
-    CHECK(Message([&] { ReadSignal(p, "t"); }) == want);
+    CHECK(InputErrorMessage([&] { ReadRecording(p); }) == want);
+    CHECK(InputErrorMessage([&] { ListVariables(p); }) == want);
+    CHECK(InputErrorMessage([&] { ReadSignal(p, "t"); }) == want);
     // First in the file: matio would have taken the next variable's bytes as x's values.
     WriteRawMat(p, {{"x", 8, x3}, {"t", 8, t}, {"u", 8, u}}, compressed);
-    CHECK(Message([&] { ReadRecording(p); }) == want);
+    CHECK(InputErrorMessage([&] { ReadRecording(p); }) == want);
     WriteRawMat(p, {{"u", 5000, x3}}, compressed);
-    CHECK(Message([&] { ListVariables(p); }) ==
+    CHECK(InputErrorMessage([&] { ListVariables(p); }) ==
           p + ":u: malformed or truncated MAT file: declares 1x5000 (5000 elements), holds 3");
     // More values than declared is as corrupt.
     WriteRawMat(p, {{"u", 2, x3}}, compressed);
-    CHECK(Message([&] { ListVariables(p); }) ==
+    CHECK(InputErrorMessage([&] { ListVariables(p); }) ==
           p + ":u: malformed or truncated MAT file: declares 1x2 (2 elements), holds 3");
   }
 }
@@ -391,13 +386,13 @@ TEST_CASE("a MAT file whose variables matio cannot all list is refused, a file o
   // MAT file of 0 variables, exit 0.
   WriteRawMat(dir / "garbage.mat", {}, false);
   std::ofstream(dir / "garbage.mat", std::ios::binary | std::ios::app) << std::string(200, '\xff');
-  CHECK(Message([&] { ListVariables(dir / "garbage.mat"); }) ==
+  CHECK(InputErrorMessage([&] { ListVariables(dir / "garbage.mat"); }) ==
         dir / "garbage.mat: malformed or truncated MAT file: at byte 128: an element of MAT data "
               "type 4294967295 where a variable belongs (garbage, or a damaged file)");
   // A few bytes after the last variable: a cut tag.
   WriteRawMat(dir / "tail.mat", {{"u", 2, {1, 2}}}, true);
   std::ofstream(dir / "tail.mat", std::ios::binary | std::ios::app) << std::string(3, '\0');
-  CHECK_THAT(Message([&] { ListVariables(dir / "tail.mat"); }),
+  CHECK_THAT(InputErrorMessage([&] { ListVariables(dir / "tail.mat"); }),
              Catch::EndsWith("3 stray bytes where a variable's tag belongs"));
   // MAT v7.3 cut anywhere (the HDF5 part begins at byte 512): matio opened it and listed no
   // variables, exit 0. HDF5 refuses it (its superblock records the file's end).
@@ -407,7 +402,7 @@ TEST_CASE("a MAT file whose variables matio cannot all list is refused, a file o
   for (size_t n = 128; n < bytes.size(); n += 97) {
     INFO("cut to " << n << " of " << bytes.size() << " bytes");
     std::ofstream(dir / "cut73.mat", std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
-    CHECK(Message([&] { ListVariables(dir / "cut73.mat"); }) ==
+    CHECK(InputErrorMessage([&] { ListVariables(dir / "cut73.mat"); }) ==
           dir / "cut73.mat: malformed or truncated MAT file: a MAT v7.3 file that HDF5 cannot "
                 "open (truncated, or no HDF5 data after the 512-byte MAT header)");
   }
@@ -417,7 +412,7 @@ TEST_CASE("a MAT file whose variables matio cannot all list is refused, a file o
   CHECK(ListVariables(dir / "none.mat").empty());
   WriteMat(dir / "none73.mat", MatVersion::kV73, {});
   CHECK(ListVariables(dir / "none73.mat").empty());
-  CHECK_THAT(Message([&] { ReadRecording(dir / "none73.mat"); }),
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(dir / "none73.mat"); }),
              Catch::EndsWith("none73.mat: holds no variables (an empty or truncated file)"));
 }
 
@@ -432,19 +427,19 @@ TEST_CASE("the mapping renames CSV columns, scales them and adds t from a rate",
   CHECK(r.meta("unit") == "test");
   // The same flags on a CSV with a t column: --rate is refused, the other columns are kept.
   const std::string with_t = "t,volts,x\n0,1,2\n1,2,3\n";
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ParseRecording(with_t, "b.csv", Map({{"u", "volts"}}, 4));
              }),
              Catch::Contains("b.csv: has a time column 't'") &&
                  Catch::Contains("--rate applies only to recordings without one"));
   const Recording kept = ParseRecording(with_t, "b.csv", Map({{"u", "volts"}}));
   CHECK(kept.names == std::vector<std::string>{"t", "u", "x"});
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ParseRecording(with_t, "b.csv", Map({{"u", "volt"}}));
              }),
              Catch::Contains("b.csv: --var u=volt: no column 'volt' (columns: t, volts, x)"));
   // Time that does not increase, named by where it came from.
-  CHECK_THAT(Message([&] {
+  CHECK_THAT(InputErrorMessage([&] {
                ParseRecording("s,u,x\n0,1,1\n0,1,1\n", "c.csv", Map({{"t", "s"}}));
              }),
              Catch::Contains("c.csv: column 's'[2]: time must be strictly increasing, found 0 "
@@ -467,7 +462,7 @@ TEST_CASE("WriteRecordingMat writes a MAT v5 file that reads back bit for bit", 
   CHECK(back.names == r.names);
   CHECK(back.data == r.data);
   r.names[2] = "x.y";
-  CHECK_THAT(Message([&] { WriteRecordingMat(dir / "bad.mat", r); }),
+  CHECK_THAT(InputErrorMessage([&] { WriteRecordingMat(dir / "bad.mat", r); }),
              Catch::Contains("column 'x.y' is not a MATLAB variable name"));
   CHECK_FALSE(std::filesystem::exists(dir / "bad.mat"));
 }

@@ -1,5 +1,7 @@
 #include "support/test_support.hpp"
 
+#include <catch2/catch.hpp>
+
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -8,6 +10,8 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+#include "sysid/error.hpp"
 
 namespace sysid::test {
 namespace {
@@ -97,6 +101,16 @@ std::string SourcePath(const std::string& relative) {
 }
 std::string TestData(const std::string& relative) {
   return std::string(SYSID_TEST_DATA_DIR) + "/" + relative;
+}
+
+std::string InputErrorMessage(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  FAIL("expected an InputError");
+  return {};
 }
 
 }  // namespace sysid::test

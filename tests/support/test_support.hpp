@@ -3,6 +3,7 @@
 #define SYSID_TESTS_SUPPORT_TEST_SUPPORT_HPP_
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ class TempDir {
 /// Writes `content` to `path` (test fixtures; not atomic).
 void WriteText(const std::string& path, const std::string& content);
 std::string ReadText(const std::string& path);
+
+/// The message of the InputError that `f` throws; fails the test when it throws none.
+std::string InputErrorMessage(const std::function<void()>& f);
 
 /// Path of a file in the source tree, e.g. SourcePath("datasets/paper/pulse_table.csv").
 std::string SourcePath(const std::string& relative);
