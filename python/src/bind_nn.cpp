@@ -1,5 +1,8 @@
 // Neural inverse models (sysid/nn.hpp): the network and its JSON files, datasets, both trainers
 // and the hidden-size sweep.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -119,29 +122,37 @@ void BindNeural(py::module_& m) {
   m.def("mean_squared_error", &MeanSquaredError, py::arg("network"), py::arg("data"));
 
   py::class_<IrreducibleError>(m, "IrreducibleError",
-                               "The least MSE any model of the output on these inputs can reach "
-                               "on the data (k-NN estimate; docs/neural.md)")
+                               "An estimate of the least MSE any model of the output on these "
+                               "inputs can reach on the data (k-NN, biased upward; interval: 95 %, "
+                               "delete-a-group jackknife; docs/neural.md)")
       .def_readonly("input_names", &IrreducibleError::input_names)
       .def_readonly("output_name", &IrreducibleError::output_name)
       .def_readonly("rows", &IrreducibleError::rows)
       .def_readonly("neighbours", &IrreducibleError::neighbours)
       .def_readonly("output_variance", &IrreducibleError::output_variance)
       .def_readonly("mse", &IrreducibleError::mse)
+      .def_property_readonly(
+          "interval95",
+          [](const IrreducibleError& e) { return std::make_pair(e.mse_low, e.mse_high); })
       .def_property_readonly("unexplained_share", &IrreducibleError::unexplained_share)
       .def("__repr__", [](const IrreducibleError& e) {
-        return "IrreducibleError(mse=" + std::to_string(e.mse) +
-               ", output_variance=" + std::to_string(e.output_variance) +
-               ", rows=" + std::to_string(e.rows) + ")";
+        return fmt::format(
+            "IrreducibleError(inputs={}, mse_estimate={:.4g} [{:.4g}, {:.4g}], "
+            "output_variance={:.4g}, rows={})",
+            fmt::join(e.input_names, ","), e.mse, e.mse_low, e.mse_high, e.output_variance,
+            e.rows);
       });
   m.def(
       "estimate_irreducible_error",
-      [](const NeuralDataset& data, int neighbours, std::uint64_t seed) {
+      [](const NeuralDataset& data, int neighbours, std::uint64_t seed, int jackknife_groups) {
         IrreducibleErrorOptions o;
         o.neighbours = neighbours;
         o.seed = seed;
+        o.jackknife_groups = jackknife_groups;
         return EstimateIrreducibleError(data, o);
       },
-      py::arg("data"), py::arg("neighbours") = 10, py::arg("seed") = 1, ReleaseGil());
+      py::arg("data"), py::arg("neighbours") = 10, py::arg("seed") = 1,
+      py::arg("jackknife_groups") = 20, ReleaseGil());
 
   py::enum_<NeuralTrainer>(m, "Trainer")
       .value("lm", NeuralTrainer::kLevenbergMarquardt)

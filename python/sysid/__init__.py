@@ -367,14 +367,17 @@ def train(train, validation=None, inputs=("v",), output="u", options=None, **kwa
                                 _options(TrainingOptions, options, kwargs))
 
 
-def irreducible_error(data, inputs=("v",), output="u", neighbours=10, seed=1):
-    """The least MSE any model of `output` on `inputs` can reach on `data` (a CSV path,
-    Recording or NeuralDataset), estimated without a model: the output's variance among each
-    row's `neighbours` nearest rows in the standardised inputs, averaged (docs/neural.md,
-    "Irreducible error"). Returns an IrreducibleError (mse, output_variance, unexplained_share)."""
+def irreducible_error(data, inputs=("v",), output="u", neighbours=10, seed=1, jackknife_groups=20):
+    """An estimate of the least MSE any model of `output` on `inputs` can reach on `data` (a CSV
+    path, Recording or NeuralDataset), without a model: the output's variance among each row's
+    `neighbours` nearest rows in the standardised inputs, averaged (docs/neural.md,
+    "Irreducible error"). Biased upward. Returns an IrreducibleError (mse, interval95: the 95 %
+    interval from a delete-a-group jackknife over `jackknife_groups` row blocks, output_variance,
+    unexplained_share)."""
     if isinstance(inputs, str):
         inputs = inputs.split(",")
-    return _sysid.estimate_irreducible_error(_as_dataset(data, inputs, output), neighbours, seed)
+    return _sysid.estimate_irreducible_error(_as_dataset(data, inputs, output), neighbours, seed,
+                                             jackknife_groups)
 
 
 def sweep(train, validation=None, test=None, inputs=("v",), output="u", hidden_sizes=None,

@@ -29,7 +29,7 @@ def test_matches_scipy_and_the_cli(inputs):
     assert ours.rows == len(data)
     assert 0 < ours.unexplained_share < 1
     row = cli_json("irreducible", path, "--inputs", ",".join(inputs))["rows"][0]
-    assert row["irreducible_mse"] == pytest.approx(ours.mse, rel=1e-12)
+    assert row["irreducible_mse_estimate"] == pytest.approx(ours.mse, rel=1e-12)
 
 
 def test_closed_form_and_bad_input():

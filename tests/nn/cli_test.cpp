@@ -159,9 +159,16 @@ TEST_CASE("sysid irreducible: v determines u, a adds only noise, bad input is na
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["rows"].size() == 2);
-  CHECK(j["rows"][0]["irreducible_mse"].get<double>() == Approx(0.04 / 12).epsilon(0.08));
-  CHECK(j["rows"][1]["irreducible_mse"].get<double>() >
-        0.95 * j["rows"][0]["irreducible_mse"].get<double>());
+  const double v_only = j["rows"][0]["irreducible_mse_estimate"].get<double>();
+  const double both = j["rows"][1]["irreducible_mse_estimate"].get<double>();
+  CHECK(v_only == Approx(0.04 / 12).epsilon(0.08));
+  CHECK(both > 0.95 * v_only);
+  CHECK(j["rows"][0]["interval95"][0].get<double>() < v_only);
+  CHECK(j["rows"][0]["interval95"][1].get<double>() > v_only);
+  // An estimate above its subset's is marked as the estimate's bias, never left as a floor.
+  CHECK(j["rows"][1]["estimate_above_subset"] ==
+        (both > v_only ? nlohmann::json("v") : nlohmann::json(nullptr)));
+  CHECK(j["rows"][0]["estimate_above_subset"].is_null());
   CHECK(j["rows"][1]["inputs"] == nlohmann::json({"v", "a"}));
 
   const auto missing = RunCli({"irreducible", dir / "rec.csv", "--inputs", "v,x"});

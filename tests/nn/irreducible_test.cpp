@@ -127,3 +127,49 @@ TEST_CASE("irreducible error: bad data and options are refused by name", "[nn][i
   y *= 1e-300;  // the same data, rescaled: finite
   CHECK(std::isfinite(sysid::EstimateIrreducibleError(Dataset(x, y), o).mse));
 }
+
+TEST_CASE("irreducible error: the jackknife interval's width matches the estimate's spread over "
+          "independent recordings",
+          "[nn][irreducible]") {
+  // Second method: the sampling spread of the estimate measured directly, over 40 independent
+  // data sets of the same law; the jackknife sees one data set only. Its 95 % interval's
+  // half-width over 1.96 must match that spread's standard deviation.
+  const int n = 2000, sets = 40;
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  std::normal_distribution<double> noise(0, 0.1);
+  std::vector<double> estimates, half_widths;
+  for (int s = 0; s < sets; ++s) {
+    Eigen::MatrixXd x(n, 1);
+    Eigen::VectorXd y(n);
+    for (int r = 0; r < n; ++r) {
+      x(r, 0) = uni(rng);
+      y[r] = std::sin(3 * x(r, 0)) + noise(rng);
+    }
+    sysid::IrreducibleErrorOptions o;
+    o.jackknife_groups = 20;
+    o.seed = static_cast<std::uint64_t>(s + 1);
+    const auto e = sysid::EstimateIrreducibleError(Dataset(x, y), o);
+    CHECK(e.mse_low < e.mse);
+    CHECK(e.mse < e.mse_high);
+    estimates.push_back(e.mse);
+    half_widths.push_back((e.mse_high - e.mse_low) / 2);
+  }
+  const double mean = std::accumulate(estimates.begin(), estimates.end(), 0.0) / sets;
+  double var = 0;
+  for (const double e : estimates) var += (e - mean) * (e - mean) / (sets - 1);
+  const double jackknife_sd =
+      std::accumulate(half_widths.begin(), half_widths.end(), 0.0) / sets / 1.96;
+  INFO("jackknife " << jackknife_sd << ", over data sets " << std::sqrt(var));
+  CHECK(jackknife_sd == Approx(std::sqrt(var)).epsilon(0.35));
+
+  sysid::IrreducibleErrorOptions none;
+  none.jackknife_groups = 0;
+  Eigen::MatrixXd x = Eigen::MatrixXd::Random(100, 1);
+  const auto e = sysid::EstimateIrreducibleError(Dataset(x, x.col(0)), none);
+  CHECK(e.mse_low == e.mse);
+  CHECK(e.mse_high == e.mse);
+  none.jackknife_groups = 4;
+  CHECK_THROWS_AS(sysid::EstimateIrreducibleError(Dataset(x, x.col(0)), none),
+                  sysid::OptionsError);
+}

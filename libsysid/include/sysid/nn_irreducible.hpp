@@ -27,6 +27,11 @@ struct IrreducibleErrorOptions {
   /// 1e-9 of each standardised input, so that tied rows are neighbours in random, not time,
   /// order (time-adjacent rows share more than their inputs).
   std::uint64_t seed = 1;
+  /// Groups of the delete-a-group jackknife behind the 95 % interval, 0 (no interval) or
+  /// 5..100: contiguous blocks of rows, each left out in turn (the estimate is recomputed that
+  /// many times, so the default leaves it to callers that print the interval: `sysid
+  /// irreducible` and Python's irreducible_error use 20).
+  int jackknife_groups = 0;
   void Validate() const;  ///< OptionsError naming the field and the rule
 };
 
@@ -36,7 +41,14 @@ struct IrreducibleError {
   long rows = 0;
   int neighbours = 0;
   double output_variance = 0;  ///< [output unit^2] Var(y) over the rows
-  double mse = 0;              ///< [output unit^2] estimated E[Var(y | inputs)]
+  /// [output unit^2] the estimate of E[Var(y | inputs)]. Biased upward: where the function of
+  /// the inputs varies within a neighbourhood its spread adds to the noise's variance, and more
+  /// so with more inputs (neighbours lie farther apart), so an estimate for a set may exceed a
+  /// subset's although the true floor cannot (EstimateIrreducibleError's caller says so).
+  double mse = 0;
+  /// [output unit^2] the 95 % interval of `mse` from its jackknife standard error (its spread,
+  /// not its bias), clipped at 0; both equal to mse without groups.
+  double mse_low = 0, mse_high = 0;
   /// mse / output_variance: the share of the output's variance the inputs leave unexplained.
   double unexplained_share() const { return output_variance > 0 ? mse / output_variance : 0.0; }
 };

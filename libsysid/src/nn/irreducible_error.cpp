@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nanoflann.hpp>
 #include <random>
+#include <vector>
 
 #include "sysid/error.hpp"
 
@@ -15,7 +17,65 @@ void IrreducibleErrorOptions::Validate() const {
     throw OptionsError(fmt::format(
         "IrreducibleErrorOptions::neighbours is {}. Violated constraint: 2 <= neighbours <= 1000",
         neighbours));
+  if (jackknife_groups != 0 && (jackknife_groups < 5 || jackknife_groups > 100))
+    throw OptionsError(fmt::format(
+        "IrreducibleErrorOptions::jackknife_groups is {}. Violated constraint: 0 or "
+        "5 <= jackknife_groups <= 100",
+        jackknife_groups));
 }
+
+namespace {
+
+// The mean over the rows of the output's variance among each row's k nearest neighbours
+// (itself included) in `points`, which are standardised and tie-broken.
+double MeanNeighbourhoodVariance(const Eigen::MatrixXd& points, const Eigen::VectorXd& targets,
+                                 int k) {
+  using Tree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixXd>;
+  const Eigen::Index n = points.rows(), dims = points.cols();
+  const Tree tree(static_cast<Tree::Dimension>(dims), std::cref(points), 10);
+  std::vector<Eigen::Index> index(static_cast<size_t>(k));
+  std::vector<double> distance(static_cast<size_t>(k));
+  std::vector<double> query(static_cast<size_t>(dims));
+  double sum = 0;
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (Eigen::Index c = 0; c < dims; ++c) query[static_cast<size_t>(c)] = points(r, c);
+    tree.query(query.data(), static_cast<size_t>(k), index.data(), distance.data());
+    double mean = 0;
+    for (const Eigen::Index i : index) mean += targets[i];
+    mean /= k;
+    double ss = 0;
+    for (const Eigen::Index i : index) ss += std::pow(targets[i] - mean, 2);
+    sum += ss / (k - 1);
+  }
+  return sum / static_cast<double>(n);
+}
+
+// The delete-a-group jackknife's standard error of MeanNeighbourhoodVariance: the estimate
+// again without each of `groups` contiguous blocks of rows. A row's noise enters its
+// neighbours' terms too, so the terms are not independent and resampling them (a bootstrap)
+// misses most of the spread; deleting rows lets every neighbourhood re-form. Contiguous blocks
+// keep time-adjacent rows, which share their noise, together.
+double JackknifeStandardError(const Eigen::MatrixXd& points, const Eigen::VectorXd& targets,
+                              int k, int groups) {
+  const Eigen::Index n = points.rows();
+  std::vector<double> estimates;
+  for (int g = 0; g < groups; ++g) {
+    const Eigen::Index begin = n * g / groups, end = n * (g + 1) / groups;
+    const Eigen::Index kept = n - (end - begin);
+    Eigen::MatrixXd p(kept, points.cols());
+    Eigen::VectorXd y(kept);
+    p << points.topRows(begin), points.bottomRows(n - end);
+    y << targets.head(begin), targets.tail(n - end);
+    estimates.push_back(MeanNeighbourhoodVariance(p, y, k));
+  }
+  double mean = 0;
+  for (const double e : estimates) mean += e / groups;
+  double ss = 0;
+  for (const double e : estimates) ss += (e - mean) * (e - mean);
+  return std::sqrt(ss * (groups - 1) / groups);
+}
+
+}  // namespace
 
 IrreducibleError EstimateIrreducibleError(const NeuralDataset& data,
                                           const IrreducibleErrorOptions& options) {
@@ -53,29 +113,20 @@ IrreducibleError EstimateIrreducibleError(const NeuralDataset& data,
   for (Eigen::Index r = 0; r < n; ++r)
     for (Eigen::Index c = 0; c < dims; ++c) points(r, c) += tie(rng);
 
-  using Tree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixXd>;
-  const Tree tree(static_cast<Tree::Dimension>(dims), std::cref(points), 10);
-  std::vector<Eigen::Index> index(static_cast<size_t>(k));
-  std::vector<double> distance(static_cast<size_t>(k));
-  std::vector<double> query(static_cast<size_t>(dims));
-  double sum = 0;
-  for (Eigen::Index r = 0; r < n; ++r) {
-    for (Eigen::Index c = 0; c < dims; ++c) query[static_cast<size_t>(c)] = points(r, c);
-    tree.query(query.data(), static_cast<size_t>(k), index.data(), distance.data());
-    double mean = 0;
-    for (const Eigen::Index i : index) mean += data.targets[i];
-    mean /= k;
-    double ss = 0;
-    for (const Eigen::Index i : index) ss += std::pow(data.targets[i] - mean, 2);
-    sum += ss / (k - 1);
-  }
-
   IrreducibleError e;
   e.input_names = data.input_names;
   e.output_name = data.output_name;
   e.rows = static_cast<long>(n);
   e.neighbours = k;
-  e.mse = sum / static_cast<double>(n);
+  e.mse = MeanNeighbourhoodVariance(points, data.targets, k);
+  e.mse_low = e.mse_high = e.mse;
+  const int groups = options.jackknife_groups;
+  // Each group deleted must leave k rows to form a neighbourhood from.
+  if (groups > 0 && n - (n + groups - 1) / groups >= k) {
+    const double half = 1.96 * JackknifeStandardError(points, data.targets, k, groups);
+    e.mse_low = std::max(0.0, e.mse - half);
+    e.mse_high = e.mse + half;
+  }
   const double mean = data.targets.mean();
   e.output_variance = (data.targets.array() - mean).square().sum() / static_cast<double>(n);
   // Finite outputs near the largest double square to inf: said, not printed as inf and NaN.
