@@ -73,6 +73,12 @@ void RunDominance(const DominanceCli& o) {
     std::cout << fmt::format("\n{} recordings: dominant {} ", s.results.size(), s.dominant);
     for (const auto& [k, c] : s.dominant_counts) std::cout << fmt::format("[{}: {}] ", k, c);
     std::cout << fmt::format("margin min {:.3g}, median {:.3g}\n", s.min_margin, s.median_margin);
+    const auto unclear = std::count_if(s.results.begin(), s.results.end(), [](const auto& r) {
+      return r.margin < kClearDominanceMargin;
+    });
+    if (unclear > 0)
+      std::cout << fmt::format("{} of {} recordings have no clear dominant variable (margin < {:g})\n",
+                               unclear, s.results.size(), kClearDominanceMargin);
   }
 }
 

@@ -45,8 +45,9 @@ void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) 
     return;
   }
   for (const auto& d : r.stack_dominance)
-    std::cout << fmt::format("{}: dominant variable {} (margin {:.3g})\n",
-                             fs::path(d.source).filename().string(), d.dominant, d.margin);
+    std::cout << fmt::format(
+        "{}: {}\n", fs::path(d.source).filename().string(),
+        DominanceVerdict(d.dominant, d.ranking.size() > 1 ? d.ranking[1].name : "", d.margin));
   std::cout << fmt::format("stack data set: models fitted on the first {:g} % of each recording, "
                            "scored on the rest\n", 100 * kStackTrainFraction);
   Table t({"model", "params", "fit [s]", "fwd e_RMS [m]", "fwd NRMSE", "inv e_RMS [V]",

@@ -423,8 +423,9 @@ void BindIdentify(py::module_& m) {
       .def_property_readonly("termination", [](const DominanceResult&) { return "analysed"; })
       .def_property_readonly("message",
                              [](const DominanceResult& r) {
-                               return fmt::format("dominant variable {} (margin {:.3g})",
-                                                  r.dominant, r.margin);
+                               return DominanceVerdict(
+                                   r.dominant, r.ranking.size() > 1 ? r.ranking[1].name : "",
+                                   r.margin);
                              })
       .def("brief_report", &DominanceResult::BriefReport)
       .def(

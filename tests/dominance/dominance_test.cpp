@@ -66,6 +66,29 @@ TEST_CASE("dominance ranks the variables by closed-form term sizes", "[dominance
   }
 }
 
+TEST_CASE("terms of equal size make no clear dominant variable, in every report's words",
+          "[dominance]") {
+  // At w = a1 the acceleration and viscous terms have the same RMS, A w^2 / sqrt(2) (closed
+  // form above); the Coulomb term tips velocity ahead by a margin of 1.10 (A = 1 cm), below 2.
+  const auto m = MakeModel(50.0, 50.0, 2.0, 2.0, 6.0, 0.0);
+  sysid::DominanceOptions o;
+  o.min_speed_mps = 1e-9;
+  const double f = 50.0 / (2 * M_PI);
+  const auto rec = ClosedFormRecording(m, {{0.01, f, 0.0}}, 10.0 / f, 10000.0, 0, 0, 1);
+  const auto r = sysid::AnalyzeDominance(m, rec, o);
+  const Expected e = ClosedForm(50.0, 2.0, 0.01, 50.0);
+  CHECK(r.margin == Approx(e.vel / e.acc).epsilon(0.01));
+  CHECK(r.margin < sysid::kClearDominanceMargin);
+  CHECK_THAT(r.BriefReport(), Catch::Contains("no clear dominant variable: velocity leads "
+                                              "acceleration by a margin of 1.1"));
+  CHECK_THAT(sysid::DominanceVerdict("velocity", "acceleration", 2.0),
+             Catch::StartsWith("dominant variable velocity (margin 2)"));
+  CHECK_THAT(sysid::DominanceVerdict("velocity", "acceleration", 1.999),
+             Catch::StartsWith("no clear dominant variable"));
+  CHECK(sysid::DominanceVerdict("velocity", "", HUGE_VAL) ==
+        "dominant variable velocity (the only candidate)");
+}
+
 TEST_CASE("a paper-like stage under the paper's sine input is velocity-dominated",
           "[dominance][sim]") {
   // u = 1.5 sin(pi/2 t - pi/2) - 0.3 (the paper's dominance experiment), 8 s.

@@ -28,6 +28,15 @@
 
 namespace sysid {
 
+/// The least margin, rms(top) / rms(second), at which a variable is called dominant: the top's
+/// term then carries at least four times the second's power (the second at most a fifth of
+/// the two). Below it the ranking is reported as "no clear dominant variable" (docs/dominance.md).
+inline constexpr double kClearDominanceMargin = 2.0;
+
+/// "dominant variable v (margin 64.7)" or "no clear dominant variable: a leads v by a margin of
+/// 1.04 (< 2)": the one wording of a ranking's verdict, for every report.
+std::string DominanceVerdict(const std::string& top, const std::string& second, double margin);
+
 /// A user-named candidate: the term gain * column [m/s^2] of a recording column.
 struct CandidateTerm {
   std::string variable;  ///< name in the ranking

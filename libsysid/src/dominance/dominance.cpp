@@ -247,9 +247,19 @@ std::string DominanceTableCsv(const DominanceSummary& summary) {
   return out;
 }
 
+std::string DominanceVerdict(const std::string& top, const std::string& second, double margin) {
+  if (second.empty() || margin >= kClearDominanceMargin)
+    return std::isfinite(margin) ? fmt::format("dominant variable {} (margin {:.3g})", top, margin)
+                                 : fmt::format("dominant variable {} (the only candidate)", top);
+  return fmt::format("no clear dominant variable: {} leads {} by a margin of {:.3g} (< {:g})", top,
+                     second, margin, kClearDominanceMargin);
+}
+
 std::string DominanceResult::BriefReport() const {
-  std::string s = fmt::format("{}: dominant variable {} (margin {:.3g}), {} of {} samples moving\n",
-                              source, dominant, margin, moving_samples, samples);
+  std::string s = fmt::format("{}: {}, {} of {} samples moving\n", source,
+                              DominanceVerdict(dominant, ranking.size() > 1 ? ranking[1].name : "",
+                                               margin),
+                              moving_samples, samples);
   for (const auto& t : ranking)
     s += fmt::format("  {:<14} rms {:.4g} m/s^2  peak {:.4g} m/s^2  ratio {:.3g}{}\n", t.name,
                      t.rms, t.peak, t.ratio_to_top, t.negligible ? "  (negligible)" : "");

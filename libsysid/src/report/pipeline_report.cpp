@@ -229,7 +229,12 @@ class ReportWriter {
     md_ += MarkdownTable({"recording", "variable", "RMS term [m/s²]", "peak [m/s²]", "RMS / top",
                           "pointwise ratio to top (q99)", "negligible"},
                          rows);
-    md_ += "\nDominant variable: **" + d.dominant + "**; network inputs: ";
+    if (d.ranking.size() > 1)
+      md_ += fmt::format("\nPooled over the recordings: {}.",
+                         DominanceVerdict(d.ranking[0].name, d.ranking[1].name,
+                                          d.ranking[1].rms > 0 ? d.ranking[0].rms / d.ranking[1].rms
+                                                               : HUGE_VAL));
+    md_ += "\nTop-ranked in most recordings: **" + d.dominant + "**; network inputs: ";
     for (const auto& c : r_.nn_inputs) md_ += "`" + c + "` ";
     md_ += "\n";
     for (const auto& res : d.results)

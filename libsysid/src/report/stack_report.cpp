@@ -66,11 +66,15 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
   for (const auto& d : r.stack_dominance) {
     std::string terms;
     for (const auto& t : d.ranking) terms += (terms.empty() ? "" : ", ") + t.name + " " + G(t.rms, 3);
-    drows.push_back({fs::path(d.source).filename().string(), "**" + d.dominant + "**",
+    const bool clear = d.margin >= kClearDominanceMargin;
+    drows.push_back({fs::path(d.source).filename().string(),
+                     clear ? "**" + d.dominant + "**" : "none clear (" + d.dominant + " leads)",
                      G(d.margin, 3), terms, G(d.r2, 3)});
   }
   md += MarkdownTable({"recording", "dominant", "margin (top / second)", "term RMS [V]", "R²"},
                       drows);
+  md += fmt::format("\nA variable is called dominant at a margin of {:g} or more.\n",
+                    kClearDominanceMargin);
 
   md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
   std::vector<std::vector<std::string>> rows;
