@@ -142,12 +142,20 @@ CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string
       ->type_name("FILE");
 }
 
+CLI::Option* AddOffFlag(CLI::App* cmd, const std::string& name, bool& target,
+                        const std::string& what) {
+  return cmd->add_flag_callback(name, [&target] { target = false; }, what);
+}
+
 CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI::Option* current,
                                 double& target, const CLI::Validator& check) {
   const std::string current_name = current->get_name();
   CLI::Option* alias = cmd->add_option_function<double>(
       old_flag,
-      [&target, old_flag, current_name](const double& value) {
+      [&target, old_flag, current, current_name](const double& value) {
+        // Checked here, not by excludes(): that would list the hidden alias, nameless, under
+        // the current option's --help as "Excludes: ".
+        if (current->count() > 0) throw CLI::ExcludesError(old_flag, current_name);
         std::cerr << "sysid: note: " << old_flag << " is deprecated; use " << current_name
                   << " (the old spelling is kept for one release)\n";
         target = value;
@@ -155,7 +163,6 @@ CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI:
       "deprecated spelling of " + current_name);
   alias->check(check);
   alias->group("");  // hidden from --help
-  alias->excludes(current);
   return alias;
 }
 

@@ -100,6 +100,11 @@ CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string
 /// across commands): it sets `target` as `current` does, checked by `check` (give the same
 /// check as `current`), and prints "sysid: note: OLD is deprecated; use NEW" on stderr. The
 /// two exclude each other.
+/// A flag that switches `target` off (`--no-plots`): CLI11's "!--no-x" form prints the name as
+/// "--no-x{false}" in --help.
+CLI::Option* AddOffFlag(CLI::App* cmd, const std::string& name, bool& target,
+                        const std::string& what);
+
 CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI::Option* current,
                                 double& target, const CLI::Validator& check);
 

@@ -132,13 +132,13 @@ void RunCompare(const CompareCliOptions& o) {
       j["hysteresis"].push_back({{"label", h.label}, {"kind", h.model->kind()}, {"file", h.path}});
   }
   j["recordings"] = nlohmann::ordered_json::array();
-  Table table({"recording", "model", "RMSE [V]", "peak [V]", "NRMSE", "R^2"});
+  Table table({"recording", "model", "RMSE [V]", "peak [V]", "nrmse_range", "R^2"});
   for (const auto& c : results) {
     const std::string name = fs::path(c.source).stem().string();
     j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(c)));
     auto row = [&](const std::string& which, const PredictionErrors& e) {
       table.AddRow(
-          {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse, 4), Num(e.r2, 4)});
+          {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse_range, 4), Num(e.r2, 4)});
     };
     if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
@@ -183,7 +183,7 @@ void AddCompareCommand(CLI::App& app) {
       "compare",
       "Compare inverse models on recordings: measured u beside the analytic inverse "
       "(x'' + a1 v(t-tau) + a2 sgn v)/a3, the network's prediction and hysteresis models "
-      "inverted on the recorded x; RMSE, peak error, NRMSE (at least one of --model, --nn, "
+      "inverted on the recorded x; RMSE, peak error, nrmse_range = RMSE / (max u - min u) (at least one of --model, --nn, "
       "--hysteresis)");
   cmd->add_option("--model", o->model_path, "friction model JSON (a1p, a1n, a2p, a2n, a3, tau)")
       ->check(CLI::ExistingFile);
@@ -214,7 +214,7 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "replace a folder an earlier sysid compare wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object with the metrics per recording");
-  cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
+  AddOffFlag(cmd, "--no-plots", o->plots, "skip the PNG plots in the output folder");
   cmd->add_option("--traces", o->traces,
                   "format of the per-recording traces in the output folder: csv, or mat (MAT v5, "
                   "one variable per column)")

@@ -50,14 +50,14 @@ void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) 
         DominanceVerdict(d.dominant, d.ranking.size() > 1 ? d.ranking[1].name : "", d.margin));
   std::cout << fmt::format("stack data set: models fitted on the first {:g} % of each recording, "
                            "scored on the rest\n", 100 * kStackTrainFraction);
-  Table t({"model", "params", "fit [s]", "fwd e_RMS [m]", "fwd NRMSE", "inv e_RMS [V]",
-           "inv NRMSE"});
+  Table t({"model", "params", "fit [s]", "fwd e_RMS [m]", "fwd nrmse_std", "inv e_RMS [V]",
+           "inv nrmse_std"});
   auto pct = [](double v) { return std::isnan(v) ? std::string("-") : Num(100 * v, 3) + " %"; };
   auto num = [](double v) { return std::isnan(v) ? std::string("-") : Num(v, 4); };
   for (const auto& s : r.stack_models)
     t.AddRow({s.label, std::to_string(s.parameters), Num(s.fit_time_s, 3), num(s.forward_rms_m),
-              pct(s.forward_nrmse), s.inverse_error.empty() ? num(s.inverse_rms_v) : "refused",
-              pct(s.inverse_nrmse)});
+              pct(s.forward_nrmse_std), s.inverse_error.empty() ? num(s.inverse_rms_v) : "refused",
+              pct(s.inverse_nrmse_std)});
   std::cout << t.Render();
   for (const auto& s : r.stack_models) {
     if (!s.error.empty()) std::cout << s.label << ": no score: " << s.error << '\n';
@@ -176,10 +176,10 @@ void AddPipelineCommand(CLI::App& app) {
                   "train the typical network on every n-th training row")
       ->check(PositiveNumber())
       ->capture_default_str();
-  cmd->add_flag("!--no-typical", p.typical, "skip the typical (v, a) network");
-  cmd->add_flag("!--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");
+  AddOffFlag(cmd, "--no-typical", p.typical, "skip the typical (v, a) network");
+  AddOffFlag(cmd, "--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");
   cmd->add_flag("--refine", p.refine, "refine all parameters by output error (Ceres)");
-  cmd->add_flag("!--no-track", p.track, "skip the PI tracking experiment");
+  AddOffFlag(cmd, "--no-track", p.track, "skip the PI tracking experiment");
   cmd->add_flag("--facts", p.facts,
                 "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");

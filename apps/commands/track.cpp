@@ -291,7 +291,7 @@ void AddTrackCommand(CLI::App& app) {
   cmd->add_flag("--force",
                 o->force, "replace a folder an earlier sysid track wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object (max_error_m, rms_error_m, schemes)");
-  cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots");
+  AddOffFlag(cmd, "--no-plots", o->plots, "skip the PNG plots");
   o->recording.Add(cmd);
   cmd->callback([o] { RunTrack(*o); });
 }

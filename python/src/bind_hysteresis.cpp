@@ -117,7 +117,7 @@ void BindHysteresis(py::module_& m) {
           row["kind"] = h.kind;
           row["rmse_v"] = h.errors.rmse_v;
           row["peak_error_v"] = h.errors.peak_error_v;
-          row["nrmse"] = h.errors.nrmse;
+          row["nrmse_range"] = h.errors.nrmse_range;
           row["r2"] = h.errors.r2;
           row["u_v"] = h.u_v;
           rows.append(row);
@@ -167,9 +167,9 @@ void BindHysteresis(py::module_& m) {
         row["train_samples"] = s.train_samples;
         row["test_samples"] = s.test_samples;
         row["forward_rms_m"] = s.forward_rms_m;
-        row["forward_nrmse"] = s.forward_nrmse;
+        row["forward_nrmse_std"] = s.forward_nrmse_std;
         row["inverse_rms_v"] = s.inverse_rms_v;
-        row["inverse_nrmse"] = s.inverse_nrmse;
+        row["inverse_nrmse_std"] = s.inverse_nrmse_std;
         row["inverse_error"] = s.inverse_error;
         row["fit_error"] = s.error;
         return row;

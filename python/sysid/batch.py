@@ -292,7 +292,7 @@ def hysteresis_batch(recordings, models=None, client=None, threads=None, train_f
     in recordings-major order: each model fitted on the first `train_fraction` of the
     recording's rows and scored on the rest, as the pipeline's stack table (docs/hysteresis.md):
     recording, model (label), kind, parameters, fit_time_s [s], train_samples, test_samples,
-    forward_rms_m [m], forward_nrmse (/ std x), inverse_rms_v [V], inverse_nrmse (/ std u),
+    forward_rms_m [m], forward_nrmse_std (/ std x), inverse_rms_v [V], inverse_nrmse_std (/ std u),
     inverse_error (the model's reason when it cannot invert, else ''), fit_error.
 
     models: kinds ('pi', ...) or dicts {kind, label, operators, offset, degree, hidden, epochs,

@@ -87,7 +87,7 @@ def invert(model, x_m, dt_s):
 def compare(models, recordings, trim_samples=5):
     """Each model's inverse on each recording's x scored against its u, as `sysid compare
     --hysteresis` does: one pandas.DataFrame row per (recording, model) with recording (the
-    file stem), model (the label), kind, rmse_v [V], peak_error_v [V], nrmse (RMSE / range of
+    file stem), model (the label), kind, rmse_v [V], peak_error_v [V], nrmse_range (RMSE / range of
     u), r2, samples (scored, after dropping `trim_samples` at each end).
 
     models: model file paths (labelled KIND:FILE_STEM, as the CLI labels them), or a dict
@@ -110,5 +110,5 @@ def compare(models, recordings, trim_samples=5):
         for r in scored:
             rows.append({"recording": stem, "model": r["label"], "kind": r["kind"],
                          "rmse_v": r["rmse_v"], "peak_error_v": r["peak_error_v"],
-                         "nrmse": r["nrmse"], "r2": r["r2"], "samples": len(t)})
+                         "nrmse_range": r["nrmse_range"], "r2": r["r2"], "samples": len(t)})
     return pandas.DataFrame.from_records(rows)

@@ -100,8 +100,8 @@ def test_batch_models_by_recordings_equals_the_single_model_functions(tmp_path):
         fit = hy.fit([train], model=row["kind"], operators=4)
         assert row["parameters"] == len(fit.parameters)
         expected = _scores(fit.model, r, split)
-        got = (row["forward_rms_m"], row["forward_nrmse"], row["inverse_rms_v"],
-               row["inverse_nrmse"])
+        got = (row["forward_rms_m"], row["forward_nrmse_std"], row["inverse_rms_v"],
+               row["inverse_nrmse_std"])
         assert got == pytest.approx(expected, rel=1e-9, abs=0)
         assert row["inverse_error"] == "" and row["fit_error"] == ""
         assert row["fit_time_s"] >= 0

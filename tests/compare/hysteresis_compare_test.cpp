@@ -58,13 +58,13 @@ TEST_CASE("compare scores a hysteresis model's own inverse on the recording's x"
   const Eigen::VectorXd off = h.u_v.array() + 0.01;
   const auto e = sysid::ComputePredictionErrors(um, off);
   CHECK(e.rmse_v == Approx(0.01).epsilon(1e-6));
-  CHECK(e.nrmse == Approx(0.01 / (um.maxCoeff() - um.minCoeff())).epsilon(1e-6));
+  CHECK(e.nrmse_range == Approx(0.01 / (um.maxCoeff() - um.minCoeff())).epsilon(1e-6));
   // The traces carry the model's column under a MATLAB-safe name.
   const sysid::Recording traces = c.AsRecording();
   CHECK(traces.has("u_pi_truth"));
   CHECK_FALSE(traces.has("u_analytic"));
   const std::string csv = sysid::ComparisonTableCsv({c});
-  CHECK(csv.rfind("recording,model,rmse_v,peak_error_v,nrmse,r2\nrun,pi:truth,", 0) == 0);
+  CHECK(csv.rfind("recording,model,rmse_v,peak_error_v,nrmse_range,r2\nrun,pi:truth,", 0) == 0);
   const auto j = nlohmann::json::parse(sysid::ToJson(c));
   CHECK_FALSE(j.contains("analytic"));
   CHECK(j["hysteresis"][0]["label"] == "pi:truth");

@@ -19,7 +19,7 @@ TEST_CASE("prediction errors match hand computation", "[compare]") {
   const auto e = sysid::ComputePredictionErrors(u, p);
   CHECK(e.rmse_v == Approx(1.0));  // sqrt(4 / 4)
   CHECK(e.peak_error_v == 2.0);
-  CHECK(e.nrmse == Approx(1.0 / 3.0));
+  CHECK(e.nrmse_range == Approx(1.0 / 3.0));
   CHECK(e.r2 == Approx(1.0 - 4.0 / 5.0));  // SST = 2.25+0.25+0.25+2.25
 }
 
@@ -159,7 +159,7 @@ TEST_CASE("sysid compare reports per-recording errors and writes its folder", "[
                                                sysid::ReadModel(dir / "m.json"), nullptr);
     CHECK(sysid::test::ReadText(dir / "out/summary.csv") == sysid::ComparisonTableCsv({c}));
     const std::string csv = sysid::ComparisonTableCsv({c});
-    CHECK(csv.rfind("recording,model,rmse_v,peak_error_v,nrmse,r2\nrun,analytic,", 0) == 0);
+    CHECK(csv.rfind("recording,model,rmse_v,peak_error_v,nrmse_range,r2\nrun,analytic,", 0) == 0);
     CHECK(csv.find(",nn,") == std::string::npos);  // no network: no nn row
   }
   // A bad recording: exit 2, nothing written.

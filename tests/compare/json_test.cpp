@@ -18,7 +18,7 @@ TEST_CASE("comparison JSON: round trip and the CLI's recordings", "[compare][jso
   const auto back = sysid::PredictionErrorsFromJson(text, "e.json");
   CHECK(back.rmse_v == e.rmse_v);
   CHECK(back.peak_error_v == e.peak_error_v);
-  CHECK(back.nrmse == e.nrmse);
+  CHECK(back.nrmse_range == e.nrmse_range);
   CHECK(std::isnan(back.r2));
   CHECK_THROWS_WITH(sysid::PredictionErrorsFromJson("{\"rmse_v\": -1}", "e.json"),
                     Catch::Contains("e.json:1:2: rmse_v: expected a number >= 0"));

@@ -116,17 +116,17 @@ TEST_CASE("the stack pipeline scores each model as fitting and simulating it dir
     vu += std::pow(rec.data(k, 1) - mu, 2) / 1200;
   }
   CHECK(pi.forward_rms_m == Approx(std::sqrt(se)).epsilon(1e-10));
-  CHECK(pi.forward_nrmse == Approx(std::sqrt(se / vx)).epsilon(1e-8));
+  CHECK(pi.forward_nrmse_std == Approx(std::sqrt(se / vx)).epsilon(1e-8));
   CHECK(pi.inverse_rms_v == Approx(std::sqrt(su)).epsilon(1e-10));
-  CHECK(pi.inverse_nrmse == Approx(std::sqrt(su / vu)).epsilon(1e-8));
+  CHECK(pi.inverse_nrmse_std == Approx(std::sqrt(su / vu)).epsilon(1e-8));
   // 20 uniform operators approximate the 3-operator truth on data it never saw.
-  CHECK(pi.forward_nrmse < 0.02);
-  CHECK(pi.inverse_nrmse < 0.02);
+  CHECK(pi.forward_nrmse_std < 0.02);
+  CHECK(pi.inverse_nrmse_std < 0.02);
   for (const auto& s : r.stack_models) {
     INFO(s.label << ": " << s.error << s.inverse_error);
     CHECK(s.error.empty());
-    CHECK(s.forward_nrmse < 0.5);  // even the static network, a line through the loop
-    if (s.inverse_error.empty()) CHECK(s.inverse_nrmse < 0.5);
+    CHECK(s.forward_nrmse_std < 0.5);  // even the static network, a line through the loop
+    if (s.inverse_error.empty()) CHECK(s.inverse_nrmse_std < 0.5);
   }
   // The summary names the split and carries the table.
   const auto j = nlohmann::json::parse(sysid::StackSummaryJson(r));

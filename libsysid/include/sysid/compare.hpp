@@ -24,7 +24,7 @@ namespace sysid {
 struct PredictionErrors {
   double rmse_v = 0;        ///< [V] sqrt(mean (u_hat - u)^2)
   double peak_error_v = 0;  ///< [V] max |u_hat - u|
-  double nrmse = 0;         ///< rmse_v / (max u - min u) [dimensionless]
+  double nrmse_range = 0;         ///< rmse_v / (max u - min u) [dimensionless]
   double r2 = 0;            ///< 1 - SSE / SST (coefficient of determination)
 };
 
@@ -120,18 +120,18 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
 std::string ToJson(const CompareOptions& options, int indent = 2);
 CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name);
 
-/// {"rmse_v", "peak_error_v", "nrmse", "r2"} (null where not finite), and back: InputError
+/// {"rmse_v", "peak_error_v", "nrmse_range", "r2"} (null where not finite), and back: InputError
 /// "SOURCE:LINE:COL: NAME: expected ..., found ..." on bad text.
 std::string ToJson(const PredictionErrors& errors, int indent = 2);
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name);
 /// One recording as `sysid compare --json` lists it: file, samples, v_a_from (MotionSource),
 /// analytic errors (with a friction model), nn errors (with a network) and, with hysteresis
-/// models, "hysteresis": [{label, kind, rmse_v, peak_error_v, nrmse, r2}]. The traces are not
+/// models, "hysteresis": [{label, kind, rmse_v, peak_error_v, nrmse_range, r2}]. The traces are not
 /// included (AsRecording writes them).
 std::string ToJson(const InverseComparison& comparison, int indent = 2);
 /// The comparisons as CSV (`sysid compare -o`'s summary.csv): recording (the source's file
 /// stem), model ("analytic", "nn", or a hysteresis model's label), rmse_v, peak_error_v,
-/// nrmse, r2; one row per model.
+/// nrmse_range, r2; one row per model.
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons);
 
 }  // namespace sysid

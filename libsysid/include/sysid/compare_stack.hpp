@@ -50,11 +50,11 @@ struct HysteresisSplitScore {
   /// state runs through the training part), e = x_model - x over the scored rows of every
   /// recording; RMS [m] and NRMSE = RMS / std(x over the scored rows) [1].
   double forward_rms_m = std::numeric_limits<double>::quiet_NaN();
-  double forward_nrmse = std::numeric_limits<double>::quiet_NaN();
+  double forward_nrmse_std = std::numeric_limits<double>::quiet_NaN();
   /// Inverse: the model inverted on each recording's measured x (whole recording), e = u_model
   /// - u over the scored rows; RMS [V] and NRMSE = RMS / std(u over the scored rows) [1].
   double inverse_rms_v = std::numeric_limits<double>::quiet_NaN();
-  double inverse_nrmse = std::numeric_limits<double>::quiet_NaN();
+  double inverse_nrmse_std = std::numeric_limits<double>::quiet_NaN();
   std::string inverse_error;  ///< why there is no inverse score (the model's reason), else ""
   std::string error;          ///< why there is no score at all (the fit failed), else ""
   /// x_model over each whole recording and u_model (empty without an inverse), for plots.
@@ -71,7 +71,7 @@ HysteresisSplitScore FitAndScoreHysteresis(const HysteresisModelSpec& spec,
                                            double train_fraction = kStackTrainFraction);
 
 /// {label, kind, parameters, fit_time_s, train_samples, test_samples, forward_rms_m,
-/// forward_nrmse, inverse_rms_v, inverse_nrmse, inverse_error, error, converged, message}
+/// forward_nrmse_std, inverse_rms_v, inverse_nrmse_std, inverse_error, error, converged, message}
 /// (NaN as null).
 std::string ToJson(const HysteresisSplitScore& score, int indent = 2);
 

@@ -18,7 +18,7 @@ using Json = nlohmann::ordered_json;
 Json ErrorsJson(const PredictionErrors& e) {
   return {{"rmse_v", internal::NumberOrNull(e.rmse_v)},
           {"peak_error_v", internal::NumberOrNull(e.peak_error_v)},
-          {"nrmse", internal::NumberOrNull(e.nrmse)},
+          {"nrmse_range", internal::NumberOrNull(e.nrmse_range)},
           {"r2", internal::NumberOrNull(e.r2)}};
 }
 }  // namespace
@@ -30,12 +30,12 @@ std::string ToJson(const PredictionErrors& errors, int indent) {
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
   const internal::JsonNode root = doc.Root();
-  root.ExpectObject({"rmse_v", "peak_error_v", "nrmse", "r2"});
+  root.ExpectObject({"rmse_v", "peak_error_v", "nrmse_range", "r2"});
   using Rule = internal::NumberRule;
   PredictionErrors e;
   e.rmse_v = root.Get("rmse_v").NumberOrNaN(Rule::NonNegative());
   e.peak_error_v = root.Get("peak_error_v").NumberOrNaN(Rule::NonNegative());
-  e.nrmse = root.Get("nrmse").NumberOrNaN(Rule::NonNegative());
+  e.nrmse_range = root.Get("nrmse_range").NumberOrNaN(Rule::NonNegative());
   e.r2 = root.Get("r2").NumberOrNaN();
   return e;
 }
@@ -85,13 +85,13 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
 }
 
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {
-  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse,r2\n";
+  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse_range,r2\n";
   for (const auto& c : comparisons) {
     // A file name may hold a comma or a line break: quoted, the row stays one row.
     const std::string name = internal::CsvField(std::filesystem::path(c.source).stem().string());
     auto row = [&](const std::string& which, const PredictionErrors& e) {
       csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, internal::CsvField(which),
-                         e.rmse_v, e.peak_error_v, e.nrmse, e.r2);
+                         e.rmse_v, e.peak_error_v, e.nrmse_range, e.r2);
     };
     if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);

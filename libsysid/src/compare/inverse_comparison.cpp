@@ -22,7 +22,7 @@ PredictionErrors ComputePredictionErrors(const Eigen::VectorXd& measured,
   r.rmse_v = std::sqrt(e.squaredNorm() / static_cast<double>(e.size()));
   r.peak_error_v = e.cwiseAbs().maxCoeff();
   const double range = measured.maxCoeff() - measured.minCoeff();
-  r.nrmse = range > 0 ? r.rmse_v / range : std::numeric_limits<double>::quiet_NaN();
+  r.nrmse_range = range > 0 ? r.rmse_v / range : std::numeric_limits<double>::quiet_NaN();
   const double sst = (measured.array() - measured.mean()).square().sum();
   r.r2 = sst > 0 ? 1.0 - e.squaredNorm() / sst : std::numeric_limits<double>::quiet_NaN();
   return r;

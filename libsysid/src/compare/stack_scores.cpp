@@ -63,7 +63,7 @@ struct Pooled {
     n += measured.size();
   }
   double Rms() const { return std::sqrt(sum_e2 / static_cast<double>(n)); }
-  double Nrmse() const {
+  double NrmseStd() const {
     const double mean = sum / static_cast<double>(n);
     const double var = std::max(0.0, sum2 / static_cast<double>(n) - mean * mean);
     return var > 0 ? Rms() / std::sqrt(var) : std::numeric_limits<double>::quiet_NaN();
@@ -114,7 +114,7 @@ HysteresisSplitScore FitAndScoreHysteresis(const HysteresisModelSpec& spec,
     return s;
   }
   s.forward_rms_m = fwd.Rms();
-  s.forward_nrmse = fwd.Nrmse();
+  s.forward_nrmse_std = fwd.NrmseStd();
   try {
     for (size_t i = 0; i < recordings.size(); ++i) {
       const Recording& rec = recordings[i];
@@ -123,7 +123,7 @@ HysteresisSplitScore FitAndScoreHysteresis(const HysteresisModelSpec& spec,
       inv.Add(s.u_model.back().tail(m), rec.column("u").tail(m));
     }
     s.inverse_rms_v = inv.Rms();
-    s.inverse_nrmse = inv.Nrmse();
+    s.inverse_nrmse_std = inv.NrmseStd();
   } catch (const Error& e) {
     // Not invertible (NumericalError) or a measured x outside the model's range (InputError):
     // the model's reason, a row of the table rather than the end of the run.
@@ -146,9 +146,9 @@ std::string ToJson(const HysteresisSplitScore& s, int indent) {
   j["train_samples"] = s.train_samples;
   j["test_samples"] = s.test_samples;
   j["forward_rms_m"] = NumberOrNull(s.forward_rms_m);
-  j["forward_nrmse"] = NumberOrNull(s.forward_nrmse);
+  j["forward_nrmse_std"] = NumberOrNull(s.forward_nrmse_std);
   j["inverse_rms_v"] = NumberOrNull(s.inverse_rms_v);
-  j["inverse_nrmse"] = NumberOrNull(s.inverse_nrmse);
+  j["inverse_nrmse_std"] = NumberOrNull(s.inverse_nrmse_std);
   j["inverse_error"] = s.inverse_error;
   j["error"] = s.error;
   j["converged"] = s.summary.converged;

@@ -337,20 +337,20 @@ class ReportWriter {
   void Comparison() {
     md_ += "\n## 5. Analytic vs NN inverse model\n\n";
     std::vector<std::vector<std::string>> rows;
-    std::string csv = "recording,model,rmse_v,peak_error_v,nrmse\n";
+    std::string csv = "recording,model,rmse_v,peak_error_v,nrmse_range\n";
     for (const auto& c : r_.comparisons) {
       const std::string name = fs::path(c.source).stem().string();
       rows.push_back({name, F(c.analytic.rmse_v, 4), F(c.nn.rmse_v, 4),
                       F(c.analytic.peak_error_v, 4), F(c.nn.peak_error_v, 4),
-                      F(c.analytic.nrmse, 3), F(c.nn.nrmse, 3)});
+                      F(c.analytic.nrmse_range, 3), F(c.nn.nrmse_range, 3)});
       const std::string field = internal::CsvField(name);  // one row, whatever the name holds
       csv += fmt::format("{},analytic,{:.9g},{:.9g},{:.9g}\n{},nn,{:.9g},{:.9g},{:.9g}\n", field,
-                         c.analytic.rmse_v, c.analytic.peak_error_v, c.analytic.nrmse, field,
-                         c.nn.rmse_v, c.nn.peak_error_v, c.nn.nrmse);
+                         c.analytic.rmse_v, c.analytic.peak_error_v, c.analytic.nrmse_range, field,
+                         c.nn.rmse_v, c.nn.peak_error_v, c.nn.nrmse_range);
       WriteRecording(Path("compare_" + name + ".csv"), c.AsRecording());
     }
     md_ += MarkdownTable({"recording", "RMSE analytic [V]", "RMSE NN [V]", "peak analytic [V]",
-                          "peak NN [V]", "NRMSE analytic", "NRMSE NN"},
+                          "peak NN [V]", "nrmse_range analytic", "nrmse_range NN"},
                          rows);
     WriteFileAtomically(Path("comparison.csv"), csv);
     for (const auto& c : r_.comparisons) {

@@ -54,8 +54,8 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
       "scored on the remaining {1:g} %; nothing is chosen on the scored part (the models and "
       "their settings are fixed beforehand: docs/hysteresis.md). Forward: the model simulated "
       "from u alone over the whole recording (its state runs through the fitted part), e_RMS "
-      "[m] and NRMSE = e_RMS / std(x) over the scored rows. Inverse: the model inverted on the "
-      "measured x over the whole recording, e_RMS [V] and NRMSE = e_RMS / std(u) over the "
+      "[m] and nrmse_std = e_RMS / std(x) over the scored rows. Inverse: the model inverted on the "
+      "measured x over the whole recording, e_RMS [V] and nrmse_std = e_RMS / std(u) over the "
       "scored rows.\n",
       100 * kStackTrainFraction, 100 * (1 - kStackTrainFraction));
 
@@ -79,8 +79,8 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
   md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
   std::vector<std::vector<std::string>> rows;
   std::string csv =
-      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse,"
-      "inverse_rms_v,inverse_nrmse,inverse_error,error\n";
+      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse_std,"
+      "inverse_rms_v,inverse_nrmse_std,inverse_error,error\n";
   auto quoted = [](std::string s) {
     for (size_t i = 0; (i = s.find('"', i)) != std::string::npos; i += 2) s.insert(i, 1, '"');
     return "\"" + s + "\"";
@@ -91,17 +91,17 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
         s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
     rows.push_back({std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
                     s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")",
-                    G(s.forward_rms_m), Pct(s.forward_nrmse), inverse, Pct(s.inverse_nrmse)});
+                    G(s.forward_rms_m), Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
     csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
                        s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
-                       s.forward_rms_m, s.forward_nrmse, s.inverse_rms_v, s.inverse_nrmse,
+                       s.forward_rms_m, s.forward_nrmse_std, s.inverse_rms_v, s.inverse_nrmse_std,
                        quoted(s.inverse_error), quoted(s.error));
     if (s.model)
       WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
                           s.model->ToJson(2) + "\n");
   }
-  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward NRMSE",
-                       "inverse e_RMS [V]", "inverse NRMSE"},
+  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward nrmse_std",
+                       "inverse e_RMS [V]", "inverse nrmse_std"},
                       rows);
   md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
         "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
