@@ -1,7 +1,7 @@
 // sysid export --model M.json --dt S | --nn NN.json | --hysteresis H.json --dt S
 //              [--precision double|float] [--prefix NAME] [--vectors REC.csv] -o DIR [--force]:
 // an inverse model as allocation-free C99 with test vectors and a check program
-// (libsysid: sysid/deploy.hpp; docs/export.md).
+// (libsysid: sysid/deploy.hpp; docs/deploy.md).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -108,7 +108,7 @@ void AddExportCommand(CLI::App& app) {
       "export",
       "An inverse model as allocation-free C99 for a real-time target: NAME.h, NAME.c "
       "(NAME_init, NAME_step), NAME_vectors.csv (the library stepper's outputs), NAME_check.c "
-      "and NAME_README.md (docs/export.md)");
+      "and NAME_README.md (docs/deploy.md)");
   cmd->add_option("--model", o->model_path, "friction model JSON: the analytic inverse")
       ->check(CLI::ExistingFile)
       ->type_name("M.json");

@@ -1,4 +1,4 @@
-// sysid.export: an inverse model as allocation-free C99 (sysid/deploy.hpp, docs/export.md),
+// sysid.export: an inverse model as allocation-free C99 (sysid/deploy.hpp, docs/deploy.md),
 // the same files as `sysid export`.
 #include <memory>
 #include <optional>
@@ -71,7 +71,7 @@ void BindDeploy(py::module_& m) {
       py::arg("model"), py::arg("folder"), py::arg("precision") = "double",
       py::arg("prefix") = ExportOptions{}.prefix, py::arg("dt_s") = py::none(),
       "Writes the model's streaming inverse as C99 into `folder` (NAME.h, NAME.c, NAME_check.c, "
-      "NAME_vectors.csv, NAME_README.md; docs/export.md); dt_s [s] for a FrictionModel and a "
+      "NAME_vectors.csv, NAME_README.md; docs/deploy.md); dt_s [s] for a FrictionModel and a "
       "PI model. Returns {files, kind, bound_v, bound_reason, inputs}.");
 }
 

@@ -1,9 +1,11 @@
 # Sourced by the export tests (export_compile.sh, export_cortex_m.sh): the model of one KIND
 # written into the current folder. Needs SYSID, SRC, KIND and fail(); sets MODEL (the export's
-# model arguments), PRECS (the precisions it exports in) and MUTANT (a sed edit planting a bug
-# in the generated C that the check must catch).
+# model arguments), PRECS (the precisions it exports in), MUTANT (a sed edit planting a bug
+# in the generated C that the check must catch) and FLOAT_REFUSED (export arguments whose
+# float export must be refused, or empty).
 # shellcheck shell=sh
 PRECS="double float"
+FLOAT_REFUSED=""
 SWAP='s/_kR\[\([0-9]*\)\] = {\([^,]*\), \([^,]*\),/_kR[\1] = {\3, \2,/'
 case $KIND in
   friction)
@@ -26,22 +28,25 @@ case $KIND in
     "$SYSID" hysteresis fit --model gpi --operators 10 "$SRC/datasets/piezo_aye_ang/piezo.csv" \
       -o gpi.json >/dev/null || fail "hysteresis fit"
     MODEL="--hysteresis gpi.json --dt 5e-3"
-    PRECS=double
     MUTANT=$SWAP ;;
   nn-operators)
     "$SYSID" hysteresis fit --model nn-operators --operators 3 --hidden 5 --epochs 30 \
       "$SRC/datasets/piezo_aye_ang/piezo.csv" -o ops.json >/dev/null || fail "hysteresis fit"
     MODEL="--hysteresis ops.json --dt 5e-3"
-    PRECS=double
     MUTANT=$SWAP ;;
   rdpi)
     # The fitted rdpi's rate weights make its inverse unstable at 200 Hz (the library refuses
-    # it): a model with a stable inverse, error gain 0.76.
+    # it): a model with a stable inverse, the library's error gain 0.15 and the float bound's
+    # rate gain 0.61 (docs/deploy.md).
     printf '{"kind":"rdpi","thresholds":[0.5,1.0,1.5],"weights":[2e-6,1e-6,0.5e-6],%s}' \
-      '"polynomial":[4e-6],"rate_weights":[1e-9,2e-9,0,1e-9],"offset_m":-1e-4,"input_min_v":0,"input_max_v":3.6' \
+      '"polynomial":[4e-6],"rate_weights":[2e-10,4e-10,0,2e-10],"offset_m":-1e-4,"input_min_v":0,"input_max_v":3.6' \
       > rdpi.json
     MODEL="--hysteresis rdpi.json --dt 5e-3"
-    PRECS=double
+    # Five times the rate weights: the library's gain 0.76 (invertible), the float bound's 3.0.
+    printf '{"kind":"rdpi","thresholds":[0.5,1.0,1.5],"weights":[2e-6,1e-6,0.5e-6],%s}' \
+      '"polynomial":[4e-6],"rate_weights":[1e-9,2e-9,0,1e-9],"offset_m":-1e-4,"input_min_v":0,"input_max_v":3.6' \
+      > rdpi_fast.json
+    FLOAT_REFUSED="--hysteresis rdpi_fast.json --dt 5e-3"
     # the rate from the wrong samples: u_(k-2) never updated.
     MUTANT='s/  state->u2 = state->u1;//' ;;
   *) fail "unknown kind $KIND" ;;
