@@ -10,7 +10,8 @@
 # Usage: export_cortex_m.sh SYSID SOURCE_DIR KIND   (KIND as in export_models.sh)
 set -u
 SYSID=$1
-SRC=$2
+SRC=$2  # export_models.sh reads it
+export SRC
 KIND=$3
 CC=${CC:-cc}
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -21,6 +22,7 @@ for tool in arm-none-eabi-gcc arm-none-eabi-size qemu-system-arm "$CC"; do
   }
 done
 ARMFLAGS="-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16"
+# shellcheck disable=SC2086
 [ -f "$(arm-none-eabi-gcc $ARMFLAGS -print-file-name=rdimon-crt0.o)" ] || {
   echo "no newlib rdimon start-up: skipped (scripts/test.sh installs libnewlib-arm-none-eabi)"
   exit 77
@@ -31,24 +33,25 @@ cd "$WORK" || exit 1
 FLAGS="-std=c99 -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Wdouble-promotion -Werror -O2 -ffp-contract=off"
 fail() { echo "FAIL: $*"; exit 1; }
 
+# shellcheck source=export_models.sh
 . "$HERE/export_models.sh"
 
 N=ff_$(printf '%s' "$KIND" | tr - _)
 # shellcheck disable=SC2086
 "$SYSID" export $MODEL --precision float --prefix "$N" -o out >/dev/null || fail "sysid export"
 # shellcheck disable=SC2086
-"$CC" $FLAGS out/${N}_check.c out/$N.c -o check_x86 || fail "x86 build"
-./check_x86 out/${N}_vectors.csv > x86.txt 2>/dev/null || fail "x86 float check"
+"$CC" $FLAGS "out/${N}_check.c" "out/$N.c" -o check_x86 || fail "x86 build"
+./check_x86 "out/${N}_vectors.csv" > x86.txt 2>/dev/null || fail "x86 float check"
 
 # shellcheck disable=SC2086
-arm-none-eabi-gcc $ARMFLAGS $FLAGS -fstack-usage -c out/$N.c -o model.o \
+arm-none-eabi-gcc $ARMFLAGS $FLAGS -fstack-usage -c "out/$N.c" -o model.o \
   || fail "$N.c does not compile clean for the Cortex-M4F"
 # shellcheck disable=SC2086
 arm-none-eabi-gcc $ARMFLAGS -std=c99 -O2 -ffp-contract=off -Iout --specs=rdimon.specs \
-  -T "$HERE/cortex_m/mps2_an386.ld" "$HERE/cortex_m/start.c" out/${N}_check.c model.o \
+  -T "$HERE/cortex_m/mps2_an386.ld" "$HERE/cortex_m/start.c" "out/${N}_check.c" model.o \
   -o check.elf || fail "Cortex-M check does not link"
 # The vectors by a relative name: semihosting opens it in QEMU's working folder.
-cp out/${N}_vectors.csv vectors.csv
+cp "out/${N}_vectors.csv" vectors.csv
 timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none \
   -semihosting-config enable=on,target=native,arg=check,arg=vectors.csv -kernel check.elf \
   > arm.txt 2> arm_err.txt
@@ -57,7 +60,7 @@ cat arm_err.txt
 [ $RC -eq 0 ] || fail "the Cortex-M check exited $RC (1: beyond the bound; 124: timed out)"
 [ "$(wc -l < arm.txt)" -eq "$(wc -l < x86.txt)" ] || fail "not one Cortex-M output per row"
 
-BOUND=$(sed -n "s/^#define ${N}_BOUND_V //p" out/$N.h)
+BOUND=$(sed -n "s/^#define ${N}_BOUND_V //p" "out/$N.h")
 paste -d' ' arm.txt x86.txt | awk -v bound="$BOUND" -v kind="$KIND" '
   { d = $1 - $2; if (d < 0) d = -d; if (d > worst) worst = d; if ($1 != $2) differ++ }
   END {
@@ -67,15 +70,15 @@ paste -d' ' arm.txt x86.txt | awk -v bound="$BOUND" -v kind="$KIND" '
   }' || fail "Cortex-M outputs beyond the bound from the x86 float export"
 # The planted bug of export_models.sh: QEMU must pass the check's verdict (its exit status, by
 # semihosting) through as the x86 build gives it.
-sed "$MUTANT" out/$N.c > mutant.c
-cp out/$N.h .
-"$CC" -std=c99 -O2 -ffp-contract=off -Iout out/${N}_check.c mutant.c -o mutant_x86 \
+sed "$MUTANT" "out/$N.c" > mutant.c
+cp "out/$N.h" .
+"$CC" -std=c99 -O2 -ffp-contract=off -Iout "out/${N}_check.c" mutant.c -o mutant_x86 \
   || fail "x86 mutant does not build"
 ./mutant_x86 vectors.csv > /dev/null 2>&1
 X86_RC=$?
 # shellcheck disable=SC2086
 arm-none-eabi-gcc $ARMFLAGS -std=c99 -O2 -ffp-contract=off -Iout --specs=rdimon.specs \
-  -T "$HERE/cortex_m/mps2_an386.ld" "$HERE/cortex_m/start.c" out/${N}_check.c mutant.c \
+  -T "$HERE/cortex_m/mps2_an386.ld" "$HERE/cortex_m/start.c" "out/${N}_check.c" mutant.c \
   -o mutant.elf || fail "Cortex-M mutant does not link"
 timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none \
   -semihosting-config enable=on,target=native,arg=check,arg=vectors.csv -kernel mutant.elf \
