@@ -79,14 +79,19 @@ void RunExport(const ExportCli& o) {
     const auto h = ReadHysteresisModel(path);
     const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get());
     const auto* ops = dynamic_cast<const OperatorNetworkModel*>(h.get());
-    if (ops != nullptr) {
+    const auto* bw = dynamic_cast<const PiezoBoucWen*>(h.get());
+    if (bw != nullptr) {
+      const ExportVectors v = o.vectors_path.empty() ? DefaultBoucWenVectors(*bw)
+                                                     : ReadVectors(o.vectors_path, {"x_ref"});
+      r = ExportBoucWenInverse(*bw, v, options, provenance);
+    } else if (ops != nullptr) {
       const ExportVectors v = o.vectors_path.empty() ? DefaultOperatorNetworkVectors(*ops)
                                                      : ReadVectors(o.vectors_path, {"x_ref"});
       r = ExportOperatorNetworkInverse(*ops, v, options, provenance);
     } else if (pi == nullptr) {
       throw OptionsError(path + ": a " + h->kind() + " model; this version exports the "
-                         "PI family's (pi, gpi, rdpi) and the operator-input network's "
-                         "inverses of the hysteresis models only",
+                         "PI family's (pi, gpi, rdpi), the operator-input network's and the "
+                         "piezo Bouc-Wen's inverses of the hysteresis models only",
                          "hysteresis");
     } else {
       const ExportVectors v = o.vectors_path.empty() ? DefaultPiVectors(*pi, o.dt_s)
@@ -115,7 +120,7 @@ void AddExportCommand(CLI::App& app) {
   cmd->add_option("--nn", o->nn_path, "tanh network JSON")
       ->check(CLI::ExistingFile)
       ->type_name("NN.json");
-  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi; gpi, rdpi, nn-operators in double)")
+  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi, gpi, rdpi, nn-operators, bouc-wen-piezo)")
       ->check(CLI::ExistingFile)
       ->type_name("H.json");
   cmd->add_option("--dt", o->dt_s, "sample time of the exported step [s] (--model, --hysteresis)")

@@ -5,7 +5,7 @@
 # -O3 -march=native where clang is installed; no allocator and no stdio in the
 # model's object; and a planted bug in the generated code that the check must catch.
 # Usage: export_compile.sh SYSID SOURCE_DIR KIND   (KIND: friction, nn, pi, gpi, rdpi,
-# nn-operators; an rdpi whose rate feedback leaves float no bound must be refused in float)
+# nn-operators, bouc-wen; an rdpi whose rate feedback leaves float no bound must be refused in float)
 set -u
 SYSID=$1
 SRC=$2
@@ -55,7 +55,7 @@ for PREC in $PRECS; do
   fi
   ROWS=$(grep -vc '^#' "$OUT/${N}_vectors.csv")
   [ "$(wc -l < outputs.txt)" -eq $((ROWS - 1)) ] || fail "$PREC: one output per row expected"
-  if nm model.o | grep -Eq ' U (malloc|calloc|realloc|free|printf|puts|fprintf|tanh|exp)f?$'; then
+  if nm model.o | grep -Eq ' U (malloc|calloc|realloc|free|printf|puts|fprintf|tanh|exp|expm1|log)f?$'; then
     nm model.o | grep ' U '
     fail "$PREC: the model's object calls the allocator, stdio or libm"
   fi

@@ -69,21 +69,24 @@ paste -d' ' arm.txt x86.txt | awk -v bound="$BOUND" -v kind="$KIND" '
     exit !(worst <= bound)
   }' || fail "Cortex-M outputs beyond the bound from the x86 float export"
 # The planted bug of export_models.sh: QEMU must pass the check's verdict (its exit status, by
-# semihosting) through as the x86 build gives it.
+# semihosting) through as the x86 build gives it. The first 1000 rows suffice (and keep QEMU's
+# run short).
+grep -v '^#' vectors.csv | head -n 1001 > head.csv
 sed "$MUTANT" "out/$N.c" > mutant.c
 cp "out/$N.h" .
 "$CC" -std=c99 -O2 -ffp-contract=off -Iout "out/${N}_check.c" mutant.c -o mutant_x86 \
   || fail "x86 mutant does not build"
-./mutant_x86 vectors.csv > /dev/null 2>&1
+./mutant_x86 head.csv > /dev/null 2>&1
 X86_RC=$?
 # shellcheck disable=SC2086
 arm-none-eabi-gcc $ARMFLAGS -std=c99 -O2 -ffp-contract=off -Iout --specs=rdimon.specs \
   -T "$HERE/cortex_m/mps2_an386.ld" "$HERE/cortex_m/start.c" "out/${N}_check.c" mutant.c \
   -o mutant.elf || fail "Cortex-M mutant does not link"
 timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none \
-  -semihosting-config enable=on,target=native,arg=check,arg=vectors.csv -kernel mutant.elf \
+  -semihosting-config enable=on,target=native,arg=check,arg=head.csv -kernel mutant.elf \
   > /dev/null 2>&1
 ARM_RC=$?
+[ $X86_RC -eq 1 ] || fail "planted bug: the x86 check exited $X86_RC over the first 1000 rows, not 1"
 [ $ARM_RC -eq $X86_RC ] || fail "planted bug: the Cortex-M check exited $ARM_RC, x86's $X86_RC"
 echo "$KIND float, planted bug: both checks exit $ARM_RC"
 arm-none-eabi-size model.o | awk -v kind="$KIND" \

@@ -49,5 +49,12 @@ case $KIND in
     FLOAT_REFUSED="--hysteresis rdpi_fast.json --dt 5e-3"
     # the rate from the wrong samples: u_(k-2) never updated.
     MUTANT='s/  state->u2 = state->u1;//' ;;
+  bouc-wen)
+    "$SYSID" hysteresis fit --model bouc-wen-piezo "$SRC/datasets/piezo_aye_ang/piezo.csv" \
+      -o bw.json >/dev/null || fail "hysteresis fit"
+    # The piezo recording's x as the vectors (8027 samples).
+    MODEL="--hysteresis bw.json --dt 5e-3 --vectors $SRC/datasets/piezo_aye_ang/piezo.csv"
+    # gamma's sign flipped in the exact step.
+    MUTANT='s/b = \(.*\)_kBeta + s \* sigma \* \(.*\)_kGamma;/b = \1_kBeta - s * sigma * \2_kGamma;/' ;;
   *) fail "unknown kind $KIND" ;;
 esac

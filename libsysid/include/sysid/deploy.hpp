@@ -8,7 +8,7 @@
 // Kinds this version exports, in double and float: the analytic friction inverse, the tanh
 // network (any number of inputs), the PI inverses (pi, gpi, rdpi; an rdpi whose rate feedback
 // leaves float no bound is exported in double only) and the operator-input network's inverse.
-// Bouc–Wen is refused with a reason (OptionsError).
+// The piezo Bouc–Wen inverse too; the mechanical Bouc–Wen has no inverse.
 #ifndef SYSID_DEPLOY_HPP_
 #define SYSID_DEPLOY_HPP_
 
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/nn_operators.hpp"
@@ -76,6 +77,11 @@ ExportResult ExportOperatorNetworkInverse(const OperatorNetworkModel& model,
                                           const ExportVectors& vectors,
                                           const ExportOptions& options,
                                           const ExportProvenance& provenance);
+/// The piezo Bouc–Wen inverse (kind bouc-wen-piezo, rate-independent); `vectors` column:
+/// x_ref [m]. NumericalError when the model is not invertible.
+ExportResult ExportBoucWenInverse(const PiezoBoucWen& model, const ExportVectors& vectors,
+                                  const ExportOptions& options,
+                                  const ExportProvenance& provenance);
 /// A PI-family inverse at sample time dt_s [s] (pi: the closed form; gpi, rdpi: the stepper's
 /// bisection; float: OptionsError when rdpi's rate feedback leaves no bound, docs/deploy.md);
 /// `vectors` column: x_ref [m].
@@ -92,6 +98,8 @@ ExportVectors DefaultFrictionVectors(double dt_s);
 ExportVectors DefaultNetworkVectors(const NeuralNetwork& network);
 ExportVectors DefaultPiVectors(const PrandtlIshlinskiiModel& model, double dt_s);
 ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model);
+/// Bouc–Wen: x of decaying loops over 3 / (beta + gamma) volts times d, about the offset.
+ExportVectors DefaultBoucWenVectors(const PiezoBoucWen& model);
 
 /// Writes NAME.h, NAME.c, NAME_check.c, NAME_vectors.csv and NAME_README.md of `result` into
 /// the folder `dir` (created when missing), each atomically; returns their paths. The CLI calls
