@@ -50,9 +50,11 @@ void BindDeploy(py::module_& m) {
           } else if (const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get())) {
             const double dt = need_dt();
             r = ExportPiInverse(*pi, dt, DefaultPiVectors(*pi, dt), options, prov);
+          } else if (const auto* bw = dynamic_cast<const PiezoBoucWen*>(h.get())) {
+            r = ExportBoucWenInverse(*bw, DefaultBoucWenVectors(*bw), options, prov);
           } else {
-            throw OptionsError("sysid.export: a " + h->kind() + " model; the PI family and the "
-                               "operator-input network are exported",
+            throw OptionsError("sysid.export: a " + h->kind() + " model; the PI family, the "
+                               "operator-input network and the piezo Bouc-Wen are exported",
                                "model");
           }
         } else {

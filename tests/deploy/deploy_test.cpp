@@ -81,6 +81,13 @@ TEST_CASE("export refuses what it cannot generate", "[deploy]") {
   o.precision = sysid::ExportPrecision::kDouble;
   CHECK(sysid::ExportPiInverse(rdpi, 5e-3, sysid::DefaultPiVectors(rdpi, 5e-3), o, prov).bound_v ==
         0);
+  // A Bouc-Wen loop that is not monotone in u (alpha > 1): no inverse, nothing exported.
+  sysid::PiezoBoucWenParameters bw;
+  bw.alpha = 1.5;
+  const sysid::PiezoBoucWen folded(bw);
+  CHECK_THROWS_AS(sysid::ExportBoucWenInverse(folded, sysid::DefaultBoucWenVectors(folded), o,
+                                              prov),
+                  sysid::NumericalError);
   sysid::PiParameters bad = sysid::test::KnownPiParameters();
   bad.polynomial = {-1e-6};  // p0 < 0: no inverse
   const sysid::PrandtlIshlinskiiModel none(bad);
