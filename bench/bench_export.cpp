@@ -54,7 +54,6 @@ int main(int argc, char** argv) {
     for (long k = 0; k < steps; ++k) sum += stepper.Step(x[static_cast<size_t>(k % rows)]);
     t1 = sysid::bench::CpuSeconds();
   }
-  std::printf("%.2f ns/step (checksum %.6g)\n", 1e9 * (t1 - t0) / static_cast<double>(steps),
-              sum);
+  std::printf("%.2f ns/step (checksum %.6g)\n", 1e9 * (t1 - t0) / static_cast<double>(steps), sum);
   return 0;
 }

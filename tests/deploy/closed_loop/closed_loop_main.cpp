@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   if ((mode != "stage" && mode != "stack") || argc != 6) {
-    std::fprintf(stderr, "usage: %s stage|stack MODEL.json LIB.so PREFIX DT | stack-model OUT.json\n",
+    std::fprintf(stderr,
+                 "usage: %s stage|stack MODEL.json LIB.so PREFIX DT | stack-model OUT.json\n",
                  argv[0]);
     return 2;
   }
@@ -104,9 +105,9 @@ int main(int argc, char** argv) {
         [&](double v_mps, double a_mps2) { return step(state.data(), v_mps, a_mps2); });
     sysid::FrictionInverseStepper stepper(model, dt_s);
     sysid::VirtualStage library_stage(stage, 1);
-    library = sysid::RunClosedLoop(
-        library_stage, reference, pi,
-        [&](double v_mps, double a_mps2) { return stepper.Step(v_mps, a_mps2); });
+    library = sysid::RunClosedLoop(library_stage, reference, pi, [&](double v_mps, double a_mps2) {
+      return stepper.Step(v_mps, a_mps2);
+    });
     sysid::InverseModels models;
     models.model = &model;
     sysid::VirtualStage playback_stage(stage, 1);
@@ -147,11 +148,12 @@ int main(int argc, char** argv) {
         sysid::SchemeFeedforward(sysid::FeedforwardScheme::kHysteresis, reference, dt_s, models));
   }
   const double de = MaxAbsDiff(exported.e_m, library.e_m);
-  std::printf("%s closed loop, %ld samples at %g s: max |e| exported C %.6g m, library stepper "
-              "%.6g m, playback %.6g m; max |e_C - e_stepper| = %.3g m (bound 1e-12 m), "
-              "max |e_stepper - e_playback| = %.3g m\n",
-              mode.c_str(), samples, dt_s, exported.max_error_m, library.max_error_m,
-              playback.max_error_m, de, MaxAbsDiff(library.e_m, playback.e_m));
+  std::printf(
+      "%s closed loop, %ld samples at %g s: max |e| exported C %.6g m, library stepper "
+      "%.6g m, playback %.6g m; max |e_C - e_stepper| = %.3g m (bound 1e-12 m), "
+      "max |e_stepper - e_playback| = %.3g m\n",
+      mode.c_str(), samples, dt_s, exported.max_error_m, library.max_error_m, playback.max_error_m,
+      de, MaxAbsDiff(library.e_m, playback.e_m));
   dlclose(lib);
   return de <= 1e-12 ? 0 : 1;
 }
