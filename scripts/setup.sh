@@ -2,7 +2,11 @@
 # Set-up shared by the README's two commands: installs the Debian packages that are missing
 # (idempotent: does nothing when all are present), then configures and builds.
 #
-#   scripts/setup.sh [BUILD_DIR] [extra cmake arguments...]
+#   scripts/setup.sh [--test-tools] [BUILD_DIR] [extra cmake arguments...]
+#
+# --test-tools (the README's test command, scripts/test.sh): also the packages only tests use,
+# the Cortex-M cross toolchain and QEMU that run the exported C (docs/deploy.md); the demo
+# command does not download them.
 #
 # Environment: SYSID_JOBS (parallel build jobs, default: number of cores).
 set -euo pipefail
@@ -25,6 +29,13 @@ PACKAGES=(
   python3-pandas python3-dask python3-distributed python3-pytest python3-matplotlib
   python3-hypothesis                   # property-based tests of the Python bindings
 )
+
+# Only the tests need these: the exported C on an emulated Cortex-M4F.
+TEST_PACKAGES=(gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm)
+if [ "${1:-}" = --test-tools ]; then
+  PACKAGES+=("${TEST_PACKAGES[@]}")
+  shift
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's second command: set-up (scripts/setup.sh), then the whole test suite (CTest over
-# Catch2). Extra arguments go to cmake, e.g. -DSYSID_WERROR=ON.
+# Catch2). Extra arguments go to cmake, e.g. -DSYSID_WERROR=ON. The set-up also installs the
+# packages only tests use (setup.sh --test-tools: the Cortex-M cross toolchain and QEMU).
 #   scripts/test.sh [--sanitize] [BUILD_DIR] [cmake args...]
 # --sanitize is CI's second pass (docs/testing.md, "CI budget"): a clang build under
 # AddressSanitizer + UndefinedBehaviorSanitizer with libFuzzer's coverage hooks (so that
@@ -32,5 +33,5 @@ if ((sanitize)); then
   # the few single tests labelled long (tests/CMakeLists.txt says which and why).
   exclude=(-LE '^(slow|docs|tutorial|facts|long)$')
 fi
-scripts/setup.sh "$BUILD_DIR" "$@"
+scripts/setup.sh --test-tools "$BUILD_DIR" "$@"
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "${SYSID_JOBS:-$(nproc)}" ${exclude[@]+"${exclude[@]}"}

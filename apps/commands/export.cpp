@@ -1,7 +1,7 @@
 // sysid export --model M.json --dt S | --nn NN.json | --hysteresis H.json --dt S
 //              [--precision double|float] [--prefix NAME] [--vectors REC.csv] -o DIR [--force]:
 // an inverse model as allocation-free C99 with test vectors and a check program
-// (libsysid: sysid/deploy.hpp; docs/export.md).
+// (libsysid: sysid/deploy.hpp; docs/deploy.md).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -79,14 +79,19 @@ void RunExport(const ExportCli& o) {
     const auto h = ReadHysteresisModel(path);
     const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get());
     const auto* ops = dynamic_cast<const OperatorNetworkModel*>(h.get());
-    if (ops != nullptr) {
+    const auto* bw = dynamic_cast<const PiezoBoucWen*>(h.get());
+    if (bw != nullptr) {
+      const ExportVectors v = o.vectors_path.empty() ? DefaultBoucWenVectors(*bw)
+                                                     : ReadVectors(o.vectors_path, {"x_ref"});
+      r = ExportBoucWenInverse(*bw, v, options, provenance);
+    } else if (ops != nullptr) {
       const ExportVectors v = o.vectors_path.empty() ? DefaultOperatorNetworkVectors(*ops)
                                                      : ReadVectors(o.vectors_path, {"x_ref"});
       r = ExportOperatorNetworkInverse(*ops, v, options, provenance);
     } else if (pi == nullptr) {
       throw OptionsError(path + ": a " + h->kind() + " model; this version exports the "
-                         "PI family's (pi, gpi, rdpi) and the operator-input network's "
-                         "inverses of the hysteresis models only",
+                         "PI family's (pi, gpi, rdpi), the operator-input network's and the "
+                         "piezo Bouc-Wen's inverses of the hysteresis models only",
                          "hysteresis");
     } else {
       const ExportVectors v = o.vectors_path.empty() ? DefaultPiVectors(*pi, o.dt_s)
@@ -108,14 +113,14 @@ void AddExportCommand(CLI::App& app) {
       "export",
       "An inverse model as allocation-free C99 for a real-time target: NAME.h, NAME.c "
       "(NAME_init, NAME_step), NAME_vectors.csv (the library stepper's outputs), NAME_check.c "
-      "and NAME_README.md (docs/export.md)");
+      "and NAME_README.md (docs/deploy.md)");
   cmd->add_option("--model", o->model_path, "friction model JSON: the analytic inverse")
       ->check(CLI::ExistingFile)
       ->type_name("M.json");
   cmd->add_option("--nn", o->nn_path, "tanh network JSON")
       ->check(CLI::ExistingFile)
       ->type_name("NN.json");
-  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi; gpi, rdpi, nn-operators in double)")
+  cmd->add_option("--hysteresis", o->hysteresis_path, "hysteresis model JSON (kind pi, gpi, rdpi, nn-operators, bouc-wen-piezo)")
       ->check(CLI::ExistingFile)
       ->type_name("H.json");
   cmd->add_option("--dt", o->dt_s, "sample time of the exported step [s] (--model, --hysteresis)")

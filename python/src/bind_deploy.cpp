@@ -1,4 +1,4 @@
-// sysid.export: an inverse model as allocation-free C99 (sysid/deploy.hpp, docs/export.md),
+// sysid.export: an inverse model as allocation-free C99 (sysid/deploy.hpp, docs/deploy.md),
 // the same files as `sysid export`.
 #include <memory>
 #include <optional>
@@ -50,9 +50,11 @@ void BindDeploy(py::module_& m) {
           } else if (const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(h.get())) {
             const double dt = need_dt();
             r = ExportPiInverse(*pi, dt, DefaultPiVectors(*pi, dt), options, prov);
+          } else if (const auto* bw = dynamic_cast<const PiezoBoucWen*>(h.get())) {
+            r = ExportBoucWenInverse(*bw, DefaultBoucWenVectors(*bw), options, prov);
           } else {
-            throw OptionsError("sysid.export: a " + h->kind() + " model; the PI family and the "
-                               "operator-input network are exported",
+            throw OptionsError("sysid.export: a " + h->kind() + " model; the PI family, the "
+                               "operator-input network and the piezo Bouc-Wen are exported",
                                "model");
           }
         } else {
@@ -71,7 +73,7 @@ void BindDeploy(py::module_& m) {
       py::arg("model"), py::arg("folder"), py::arg("precision") = "double",
       py::arg("prefix") = ExportOptions{}.prefix, py::arg("dt_s") = py::none(),
       "Writes the model's streaming inverse as C99 into `folder` (NAME.h, NAME.c, NAME_check.c, "
-      "NAME_vectors.csv, NAME_README.md; docs/export.md); dt_s [s] for a FrictionModel and a "
+      "NAME_vectors.csv, NAME_README.md; docs/deploy.md); dt_s [s] for a FrictionModel and a "
       "PI model. Returns {files, kind, bound_v, bound_reason, inputs}.");
 }
 

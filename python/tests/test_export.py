@@ -34,3 +34,23 @@ def test_export_refuses_what_it_cannot_generate(tmp_path):
     with pytest.raises(Exception, match="C99 keyword"):
         sysid.export(model, str(tmp_path / "b"), prefix="int", dt_s=1e-3)
     assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
+
+
+BW_JSON = ('{"kind": "bouc-wen-piezo", "parameters": {"d": 1.87e-05, "alpha": 0.479, '
+           '"beta": 0.499, "gamma": 0.0938, "offset": -1.3e-04}}')
+
+
+def test_bouc_wen_export_matches_the_cli(tmp_path):
+    path = tmp_path / "bw.json"
+    path.write_text(BW_JSON)
+    model = sysid.hysteresis.read(path)
+    for precision in ("double", "float"):
+        out = sysid.export(model, str(tmp_path / ("py_" + precision)), precision=precision,
+                           prefix="bw")
+        assert out["kind"] == "bouc-wen-piezo" and out["inputs"] == ["x_ref"]
+        assert out["bound_v"] > 0
+        run_cli("export", "--hysteresis", path, "--dt", "1e-3", "--precision", precision,
+                "--prefix", "bw", "-o", tmp_path / ("cli_" + precision))
+        for name in ("bw.c", "bw_vectors.csv", "bw_check.c"):
+            assert ((tmp_path / ("py_" + precision) / name).read_text()
+                    == (tmp_path / ("cli_" + precision) / name).read_text())

@@ -62,9 +62,32 @@ TEST_CASE("export refuses what it cannot generate", "[deploy]") {
   g.polynomial = {4e-6, 0.0, 2e-8};
   const sysid::PrandtlIshlinskiiModel gpi(g);
   o.precision = sysid::ExportPrecision::kFloat;
-  CHECK_THROWS_WITH(sysid::ExportPiInverse(gpi, 5e-3, sysid::DefaultPiVectors(gpi, 5e-3), o, prov),
-                    Contains("double only"));
+  CHECK(sysid::ExportPiInverse(gpi, 5e-3, sysid::DefaultPiVectors(gpi, 5e-3), o, prov).bound_v > 0);
+  // An rdpi whose inverse the library runs (error gain 0.76 < 1) but whose rate feedback
+  // leaves the float bound no contraction (4 sum q max|u| / (dt s_min) = 3.0): double only.
+  sysid::PiParameters rd;
+  rd.form = sysid::PiForm::kRateDependent;
+  rd.thresholds = {0.5, 1.0, 1.5};
+  rd.weights = {2e-6, 1e-6, 0.5e-6};
+  rd.polynomial = {4e-6};
+  rd.rate_weights = {1e-9, 2e-9, 0, 1e-9};
+  rd.offset_m = -1e-4;
+  rd.input_min_v = 0;
+  rd.input_max_v = 3.6;
+  const sysid::PrandtlIshlinskiiModel rdpi(rd);
+  CHECK_THROWS_WITH(
+      sysid::ExportPiInverse(rdpi, 5e-3, sysid::DefaultPiVectors(rdpi, 5e-3), o, prov),
+      Contains("no float bound"));
   o.precision = sysid::ExportPrecision::kDouble;
+  CHECK(sysid::ExportPiInverse(rdpi, 5e-3, sysid::DefaultPiVectors(rdpi, 5e-3), o, prov).bound_v ==
+        0);
+  // A Bouc-Wen loop that is not monotone in u (alpha > 1): no inverse, nothing exported.
+  sysid::PiezoBoucWenParameters bw;
+  bw.alpha = 1.5;
+  const sysid::PiezoBoucWen folded(bw);
+  CHECK_THROWS_AS(sysid::ExportBoucWenInverse(folded, sysid::DefaultBoucWenVectors(folded), o,
+                                              prov),
+                  sysid::NumericalError);
   sysid::PiParameters bad = sysid::test::KnownPiParameters();
   bad.polynomial = {-1e-6};  // p0 < 0: no inverse
   const sysid::PrandtlIshlinskiiModel none(bad);

@@ -1,11 +1,11 @@
 #!/bin/sh
 # The exported C of one kind, in double and in float: sysid export; the generated sources
-# compiled by the system cc with the strict flags of docs/export.md; NAME_check over the
+# compiled by the system cc with the strict flags of docs/deploy.md; NAME_check over the
 # vectors (exit 0: every output within the header's bound), and again (double) built by clang
 # -O3 -march=native where clang is installed; no allocator and no stdio in the
 # model's object; and a planted bug in the generated code that the check must catch.
 # Usage: export_compile.sh SYSID SOURCE_DIR KIND   (KIND: friction, nn, pi, gpi, rdpi,
-# nn-operators; the last three export in double only, and their float export must be refused)
+# nn-operators, bouc-wen; an rdpi whose rate feedback leaves float no bound must be refused in float)
 set -u
 SYSID=$1
 SRC=$2
@@ -13,60 +13,22 @@ KIND=$3
 CC=${CC:-cc}
 command -v "$CC" >/dev/null 2>&1 || { echo "no C compiler ($CC): skipped"; exit 77; }
 command -v nm >/dev/null 2>&1 || { echo "no nm: skipped"; exit 77; }
+HERE=$(cd "$(dirname "$0")" && pwd)
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK" || exit 1
 FLAGS="-std=c99 -Wall -Wextra -Wpedantic -Wconversion -Wshadow -Werror -O2 -ffp-contract=off"
 fail() { echo "FAIL: $*"; exit 1; }
 
-PRECS="double float"
-SWAP='s/_kR\[\([0-9]*\)\] = {\([^,]*\), \([^,]*\),/_kR[\1] = {\3, \2,/'
-case $KIND in
-  friction)
-    printf '{"a1p":104.0154,"a1n":117.1441,"a2p":3.1023,"a2n":6.8216,"a3":6,"tau":0.00379}' \
-      > model.json
-    MODEL="--model model.json --dt 1e-4"
-    # tau one sample late: the delay line reads one slot further back.
-    MUTANT='s/_kWhole = \([0-9]*\);/_kWhole = \1 + 1;/' ;;
-  nn)
-    MODEL="--nn $SRC/datasets/paper/nn24.json"
-    # the output scaling dropped: y returned in normalised units.
-    MUTANT='s/return \(.*\)_kOutMin + .*;/return y;/' ;;
-  pi)
-    "$SYSID" hysteresis fit --model pi --operators 20 "$SRC/datasets/piezo_aye_ang/piezo.csv" \
-      -o pi.json >/dev/null || fail "hysteresis fit"
-    MODEL="--hysteresis pi.json --dt 5e-3"
-    # two operators' thresholds swapped (operators in another order).
-    MUTANT=$SWAP ;;
-  gpi)
-    "$SYSID" hysteresis fit --model gpi --operators 10 "$SRC/datasets/piezo_aye_ang/piezo.csv" \
-      -o gpi.json >/dev/null || fail "hysteresis fit"
-    MODEL="--hysteresis gpi.json --dt 5e-3"
-    PRECS=double
-    MUTANT=$SWAP ;;
-  nn-operators)
-    "$SYSID" hysteresis fit --model nn-operators --operators 3 --hidden 5 --epochs 30 \
-      "$SRC/datasets/piezo_aye_ang/piezo.csv" -o ops.json >/dev/null || fail "hysteresis fit"
-    MODEL="--hysteresis ops.json --dt 5e-3"
-    PRECS=double
-    MUTANT=$SWAP ;;
-  rdpi)
-    # The fitted rdpi's rate weights make its inverse unstable at 200 Hz (the library refuses
-    # it): a model with a stable inverse, error gain 0.76.
-    printf '{"kind":"rdpi","thresholds":[0.5,1.0,1.5],"weights":[2e-6,1e-6,0.5e-6],%s}' \
-      '"polynomial":[4e-6],"rate_weights":[1e-9,2e-9,0,1e-9],"offset_m":-1e-4,"input_min_v":0,"input_max_v":3.6' \
-      > rdpi.json
-    MODEL="--hysteresis rdpi.json --dt 5e-3"
-    PRECS=double
-    # the rate from the wrong samples: u_(k-2) never updated.
-    MUTANT='s/  state->u2 = state->u1;//' ;;
-  *) fail "unknown kind $KIND" ;;
-esac
+. "$HERE/export_models.sh"
 
-if [ "$PRECS" = double ]; then
+if [ -n "$FLOAT_REFUSED" ]; then
   # shellcheck disable=SC2086
-  "$SYSID" export $MODEL --precision float -o refused >/dev/null 2>&1
+  "$SYSID" export $FLOAT_REFUSED --precision float -o refused >/dev/null 2>&1
   [ $? -eq 1 ] && [ ! -e refused ] || fail "float export of $KIND: expected exit 1, nothing written"
+  # shellcheck disable=SC2086
+  "$SYSID" export $FLOAT_REFUSED --precision double -o accepted >/dev/null 2>&1 \
+    || fail "the model refused in float must export in double"
 fi
 for PREC in $PRECS; do
   EXTRA=""
@@ -93,7 +55,7 @@ for PREC in $PRECS; do
   fi
   ROWS=$(grep -vc '^#' "$OUT/${N}_vectors.csv")
   [ "$(wc -l < outputs.txt)" -eq $((ROWS - 1)) ] || fail "$PREC: one output per row expected"
-  if nm model.o | grep -Eq ' U (malloc|calloc|realloc|free|printf|puts|fprintf|tanh|exp)f?$'; then
+  if nm model.o | grep -Eq ' U (malloc|calloc|realloc|free|printf|puts|fprintf|tanh|exp|expm1|log)f?$'; then
     nm model.o | grep ' U '
     fail "$PREC: the model's object calls the allocator, stdio or libm"
   fi

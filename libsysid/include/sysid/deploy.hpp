@@ -1,13 +1,14 @@
 // Export of an inverse model to allocation-free C99 for a real-time target (`sysid export`,
-// docs/export.md): NAME.h and NAME.c hold the model's streaming inverse (the same arithmetic,
+// docs/deploy.md): NAME.h and NAME.c hold the model's streaming inverse (the same arithmetic,
 // in the same order, as the library's stepper: sysid/model_stepper.hpp, nn_stepper.hpp,
 // hysteresis_stepper.hpp), NAME_vectors.csv the stepper's own outputs on test inputs,
 // NAME_check.c a program that replays them through the generated step and fails beyond the
 // bound stated in the header, and a README fragment.
 //
-// Kinds this version exports: the analytic friction inverse, the tanh network (any number of
-// inputs), the PI inverses (pi in double and float; gpi and rdpi in double) and the
-// operator-input network's inverse (double). Bouc–Wen is refused with a reason (OptionsError).
+// Kinds this version exports, in double and float: the analytic friction inverse, the tanh
+// network (any number of inputs), the PI inverses (pi, gpi, rdpi; an rdpi whose rate feedback
+// leaves float no bound is exported in double only) and the operator-input network's inverse.
+// The piezo Bouc–Wen inverse too; the mechanical Bouc–Wen has no inverse.
 #ifndef SYSID_DEPLOY_HPP_
 #define SYSID_DEPLOY_HPP_
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/nn_operators.hpp"
@@ -70,13 +72,19 @@ ExportResult ExportFrictionInverse(const FrictionModel& model, double dt_s,
 ExportResult ExportNetworkInverse(const NeuralNetwork& network, const ExportVectors& vectors,
                                   const ExportOptions& options,
                                   const ExportProvenance& provenance);
-/// The operator-input network's inverse (double only); `vectors` column: x_ref [m].
+/// The operator-input network's inverse; `vectors` column: x_ref [m].
 ExportResult ExportOperatorNetworkInverse(const OperatorNetworkModel& model,
                                           const ExportVectors& vectors,
                                           const ExportOptions& options,
                                           const ExportProvenance& provenance);
+/// The piezo Bouc–Wen inverse (kind bouc-wen-piezo, rate-independent); `vectors` column:
+/// x_ref [m]. NumericalError when the model is not invertible.
+ExportResult ExportBoucWenInverse(const PiezoBoucWen& model, const ExportVectors& vectors,
+                                  const ExportOptions& options,
+                                  const ExportProvenance& provenance);
 /// A PI-family inverse at sample time dt_s [s] (pi: the closed form; gpi, rdpi: the stepper's
-/// bisection, double only); `vectors` column: x_ref [m].
+/// bisection; float: OptionsError when rdpi's rate feedback leaves no bound, docs/deploy.md);
+/// `vectors` column: x_ref [m].
 ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
                              const ExportVectors& vectors, const ExportOptions& options,
                              const ExportProvenance& provenance);
@@ -90,6 +98,8 @@ ExportVectors DefaultFrictionVectors(double dt_s);
 ExportVectors DefaultNetworkVectors(const NeuralNetwork& network);
 ExportVectors DefaultPiVectors(const PrandtlIshlinskiiModel& model, double dt_s);
 ExportVectors DefaultOperatorNetworkVectors(const OperatorNetworkModel& model);
+/// Bouc–Wen: x of decaying loops over 3 / (beta + gamma) volts times d, about the offset.
+ExportVectors DefaultBoucWenVectors(const PiezoBoucWen& model);
 
 /// Writes NAME.h, NAME.c, NAME_check.c, NAME_vectors.csv and NAME_README.md of `result` into
 /// the folder `dir` (created when missing), each atomically; returns their paths. The CLI calls

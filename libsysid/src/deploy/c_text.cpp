@@ -43,26 +43,15 @@ std::string CArray(const std::vector<double>& values, ExportPrecision precision)
   return out + "}";
 }
 
-std::string CTanh(const std::string& prefix, ExportPrecision precision) {
-  const bool dbl = precision == ExportPrecision::kDouble;
-  // Taylor terms of expm1 on |r| <= 0.35: the first left out, 0.35^n / n!, is below 2^-56
-  // (double, n = 14) or 2^-27 (float, n = 9) of r.
-  const int terms = dbl ? 13 : 8;
+// Taylor terms of expm1 on |r| <= 0.35: the first left out, 0.35^n / n!, is below 2^-56
+// (double, n = 14) or 2^-27 (float, n = 9) of r.
+std::string CExpm1Series(const std::string& prefix, ExportPrecision precision) {
+  const int terms = precision == ExportPrecision::kDouble ? 13 : 8;
   std::vector<double> coefficient{0.0};
   double factorial = 1;
   for (int n = 1; n <= terms; ++n) coefficient.push_back(1.0 / (factorial *= n));
-  std::vector<double> pow2;
-  for (int k = 0; k <= 58; ++k) pow2.push_back(std::ldexp(1.0, k));
-  // Cody–Waite ln 2 split: k ln2_hi is exact for k < 64 (fdlibm's hi; float's has 9 zero bits).
-  const std::string ln2_hi = dbl ? "6.93147180369123816490e-01" : "0.693145751953125f";
-  const std::string ln2_lo = dbl ? "1.90821492927058770002e-10" : "1.42860677e-06f";
-  return Fill(R"(/* tanh without the platform's libm, so every IEEE-754 target computes the same
- * values. expm1(r) = sum r^n / n! on |r| <= 0.35 (Horner). Below |x| = 0.55: e = expm1(2|x|)
- * from expm1(|x| / 2) by two doublings, e' = e (e + 2), and tanh = e / (e + 2); above:
- * exp(2|x|) = 2^k (1 + expm1(r)) with 2|x| = k ln2 + r (Cody-Waite), tanh = 1 - 2 / (exp + 1);
- * |x| > 20 (and NaN) give +-1. No loop depends on the data. */
+  return Fill(R"(/* expm1(r) = sum r^n / n! on |r| <= 0.35 (Horner), the same on every IEEE-754 target. */
 static const @T@ @P@_kExpm1[@N1@] = @COEF@;
-static const @T@ @P@_kPow2[59] = @POW2@;
 
 static @T@ @P@_expm1_series(@T@ r) {
   @T@ s = @P@_kExpm1[@N@];
@@ -70,6 +59,28 @@ static @T@ @P@_expm1_series(@T@ r) {
   for (n = @N@ - 1; n >= 1; --n) s = s * r + @P@_kExpm1[n];
   return s * r;
 }
+)",
+              {{"P", prefix},
+               {"T", CType(precision)},
+               {"N1", std::to_string(terms + 1)},
+               {"N", std::to_string(terms)},
+               {"COEF", CArray(coefficient, precision)}});
+}
+
+std::string CTanh(const std::string& prefix, ExportPrecision precision) {
+  const bool dbl = precision == ExportPrecision::kDouble;
+  std::vector<double> pow2;
+  for (int k = 0; k <= 58; ++k) pow2.push_back(std::ldexp(1.0, k));
+  // Cody–Waite ln 2 split: k ln2_hi is exact for k < 64 (fdlibm's hi; float's has 9 zero bits).
+  const std::string ln2_hi = dbl ? "6.93147180369123816490e-01" : "0.693145751953125f";
+  const std::string ln2_lo = dbl ? "1.90821492927058770002e-10" : "1.42860677e-06f";
+  return CExpm1Series(prefix, precision) + Fill(R"(
+/* tanh without the platform's libm, so every IEEE-754 target computes the same
+ * values. Below |x| = 0.55: e = expm1(2|x|)
+ * from expm1(|x| / 2) by two doublings, e' = e (e + 2), and tanh = e / (e + 2); above:
+ * exp(2|x|) = 2^k (1 + expm1(r)) with 2|x| = k ln2 + r (Cody-Waite), tanh = 1 - 2 / (exp + 1);
+ * |x| > 20 (and NaN) give +-1. No loop depends on the data. */
+static const @T@ @P@_kPow2[59] = @POW2@;
 
 static @T@ @P@_tanh(@T@ x) {
   const @T@ ax = x < @ZERO@ ? -x : x;
@@ -93,9 +104,6 @@ static @T@ @P@_tanh(@T@ x) {
 )",
               {{"P", prefix},
                {"T", CType(precision)},
-               {"N1", std::to_string(terms + 1)},
-               {"N", std::to_string(terms)},
-               {"COEF", CArray(coefficient, precision)},
                {"POW2", CArray(pow2, precision)},
                {"INV_LN2", CLiteral(1.0 / std::log(2.0), precision)},
                {"LN2_HI", ln2_hi},

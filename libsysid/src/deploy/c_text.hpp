@@ -21,6 +21,8 @@ std::string CLiteral(double value, ExportPrecision precision);
 std::string CType(ExportPrecision precision);
 /// "{a, b, ...}" of CLiteral, wrapped at 4 values a line.
 std::string CArray(const std::vector<double>& values, ExportPrecision precision);
+/// The file-local expm1 series in C (PREFIX_expm1_series, |r| <= 0.35).
+std::string CExpm1Series(const std::string& prefix, ExportPrecision precision);
 /// The file-local expm1 series and tanh in C (PREFIX_tanh), the same on every IEEE-754 target.
 std::string CTanh(const std::string& prefix, ExportPrecision precision);
 /// NAME_check.c for a step taking `inputs` (CSV column names) in that order.

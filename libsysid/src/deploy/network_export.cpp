@@ -34,10 +34,6 @@ ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors
   o.Validate();
   NetworkStepper stepper(network);  // validates: finite weights, ranges
   const int n = network.input_count(), H = network.hidden_size();
-  if (ops != nullptr && o.precision != ExportPrecision::kDouble)
-    throw OptionsError("nn-operators: exported in double only (no float bound derived for the "
-                       "play operators feeding the network yet)",
-                       "precision");
   CheckVectors(v, ops != nullptr ? 1 : n, ops != nullptr ? "nn-operators" : "nn");
   ExportResult r;
   r.kind = ops != nullptr ? "nn-operators" : "nn";
@@ -120,6 +116,18 @@ ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors
     // curvature) and errs by 8 eps itself; the output sum as in double. The largest over the
     // points, doubled, is the bound: saturated units (t near +-1) pass almost nothing on, so a
     // network with large weights is still checked closely where it is used.
+    // nn-operators: the network's inputs x, F_r1[x], ... are the play operators' outputs on
+    // the clamped x. A play step clamps its state to [x - r, x + r], whose ends round by
+    // eps (|x| + r); the clamp is non-expansive in the state and in both ends, so a state's
+    // error stays below that at every sample (it never accumulates): input i carries
+    // dx_i = 2 eps (X + r_i) more, X = max(|x_lo|, |x_hi|), through dz_i = 2 dx_i / (max - min).
+    Eigen::VectorXd dx = Eigen::VectorXd::Zero(n);
+    if (ops != nullptr) {
+      OperatorNetworkInverseStepper limits(*ops);
+      const double X = std::max(std::abs(limits.x_min_m()), std::abs(limits.x_max_m()));
+      for (size_t i = 0; i < m; ++i)
+        dx[static_cast<Eigen::Index>(i) + 1] = 2 * eps * (X + ops->inverse().thresholds[i]);
+    }
     auto at = [&](const Eigen::VectorXd& x) {
       double dy = 2.0 * (H + 2) * eps * (std::abs(network.b2()) + w2_sum + 1);
       for (int h = 0; h < H; ++h) {
@@ -128,7 +136,8 @@ ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors
           const ScaledVariable& in = network.inputs()[static_cast<size_t>(i)];
           const double z = in.Normalize(x[i]);
           const double dz = 6 * eps * (std::abs(z) + 2 * (std::abs(x[i]) + std::abs(in.min) +
-                                                          std::abs(in.max)) / (in.max - in.min));
+                                                          std::abs(in.max)) / (in.max - in.min)) +
+                            2 * dx[i] / (in.max - in.min);
           s += network.W1()(h, i) * z;
           level += std::abs(network.W1()(h, i)) * (std::abs(z) + 1);
           carried += std::abs(network.W1()(h, i)) * dz;
@@ -140,9 +149,25 @@ ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors
       return half_span * dy + 4 * eps * out_level;
     };
     double worst = 0;
-    for (Eigen::Index k = 0; k < v.inputs.rows(); ++k)
-      worst = std::max(worst, at(v.inputs.row(k).transpose()));
-    if (n <= 2) {
+    if (ops != nullptr) {
+      // The network's inputs over the vectors: the stepper's features (clamp, then plays).
+      OperatorNetworkInverseStepper limits(*ops);
+      std::vector<double> z(m, ops->inverse().initial_input);
+      Eigen::VectorXd features(n);
+      for (Eigen::Index k = 0; k < v.inputs.rows(); ++k) {
+        const double x = std::clamp(v.inputs(k, 0), limits.x_min_m(), limits.x_max_m());
+        features[0] = x;
+        for (size_t i = 0; i < m; ++i) {
+          z[i] = PlayStep(x, ops->inverse().thresholds[i], z[i]);
+          features[static_cast<Eigen::Index>(i) + 1] = z[i];
+        }
+        worst = std::max(worst, at(features));
+      }
+    } else {
+      for (Eigen::Index k = 0; k < v.inputs.rows(); ++k)
+        worst = std::max(worst, at(v.inputs.row(k).transpose()));
+    }
+    if (n <= 2 && ops == nullptr) {
       const int grid = n == 1 ? 4001 : 201;
       Eigen::VectorXd x(n);
       for (int g = 0; g < (n == 1 ? grid : grid * grid); ++g) {
@@ -159,7 +184,10 @@ ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors
     r.bound_reason =
         "float: twice the largest first-order propagation of eps = 2^-24 through the scaling, "
         "the hidden sums, tanh (at its slope there) and the output sum, over the vectors and a "
-        "grid over twice the fitted range (docs/export.md)";
+        "grid over twice the fitted range (docs/deploy.md)" +
+        std::string(ops != nullptr ? "; the play operators' states add 2 eps (X + r_i) to "
+                                     "their inputs, never accumulating"
+                                   : "");
   }
   std::vector<double> w1, in_min, in_max;
   for (int h = 0; h < H; ++h)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "c_text.hpp"
@@ -25,17 +26,79 @@ using internal::Range;
 
 namespace {
 
+// The float bound of a bisection inverse (gpi, rdpi), from the model's conditioning.
+// Backward error: the float run is the exact model driven by the float u~ up to an output
+// error eta per sample, because (i) a play state's error stays below eps (U + r_i) (the clamp
+// to [u - r, u + r] is non-expansive in the state and both ends, so errors never accumulate),
+// (ii) one trial output y(u) rounds by at most eta_y = (n + 2m + 10) eps L, L = |c| +
+// |q0| rho_max U + sum_j |a_j| U^j + sum_i (w_i + q_i rho_max)(U + r_i), and (iii) the bisection
+// ends on adjacent floats bracketing x_ref: eta = 3 eta_y + 2 eps U s_max + eps X (the last:
+// x_ref rounded to float), U = max(|lo|, |hi|), X twice the vectors' largest |x|, s_max the
+// largest slope of y in u. The exact inverse is Lipschitz in the sup norm: for a classical PI
+// with weights >= 0 its inverse's |p0'| + sum |w'_i| = 2/p0 - 1/(p0 + sum w) < 2/p0; here the
+// polynomial's least slope s_min on [lo, hi] (on the invertibility check's grid) takes p0's
+// place. rdpi: the rate is the inverse's own, so an error D in u moves the rate by up to
+// 2D/dt and the output by (|q0| + sum q_i) U 2D/dt, which the inverse passes on at 2/s_min:
+// a gain g = 4 sum q U / (dt s_min), and the bound holds for g < 1 (float refused otherwise).
+// |du| <= 2 eta / (s_min (1 - g)).
+double BisectionFloatBound(const PrandtlIshlinskiiModel& model, const PiInverseStepper& stepper,
+                           double dt_s, const ExportVectors& v, std::string* reason) {
+  const PiParameters& p = model.pi();
+  const bool rate = p.form == PiForm::kRateDependent;
+  const double eps = Epsilon(ExportPrecision::kFloat);
+  const double lo = stepper.input_min_v(), hi = stepper.input_max_v();
+  const double U = std::max(std::abs(lo), std::abs(hi));
+  const double rho_max = rate ? (hi - lo) / dt_s : 0.0;
+  const double X = 2 * v.inputs.col(0).cwiseAbs().maxCoeff();
+  const double q0 = rate ? p.rate_weights[0] : 0.0;
+  double level = std::abs(p.offset_m) + std::abs(q0) * rho_max * U, s_max = std::abs(q0) * rho_max;
+  double q_sum = std::abs(q0);
+  for (size_t j = 0; j < p.polynomial.size(); ++j) {
+    level += std::abs(p.polynomial[j]) * std::pow(U, static_cast<double>(j + 1));
+    s_max += static_cast<double>(j + 1) * std::abs(p.polynomial[j]) *
+             std::pow(U, static_cast<double>(j));
+  }
+  for (size_t i = 0; i < p.thresholds.size(); ++i) {
+    const double q = rate ? p.rate_weights[i + 1] : 0.0;
+    level += (p.weights[i] + q * rho_max) * (U + p.thresholds[i]);
+    s_max += p.weights[i] + q * rho_max;
+    q_sum += q;
+  }
+  // The least slope of the polynomial on [lo, hi], on the invertibility check's grid.
+  double s_min = std::numeric_limits<double>::infinity();
+  constexpr int kGrid = 1001;
+  for (int g = 0; g < kGrid; ++g) {
+    const double u = lo + (hi - lo) * g / (kGrid - 1);
+    double slope = 0, power = 1;
+    for (size_t j = 0; j < p.polynomial.size(); ++j, power *= u)
+      slope += static_cast<double>(j + 1) * p.polynomial[j] * power;
+    s_min = std::min(s_min, slope);
+  }
+  const double gain = rate ? 4 * q_sum * U / (dt_s * s_min) : 0.0;
+  if (!(s_min > 0) || !(gain < 1))
+    throw OptionsError(
+        fmt::format("{}: no float bound: {}; export in double", model.kind(),
+                    s_min > 0 ? fmt::format("the rate feedback's float error gain "
+                                            "4 (q0 + ... + qn) max|u| / (dt s_min) = {:.3g} >= 1",
+                                            gain)
+                              : fmt::format("the polynomial's least slope {:.3g} m/V", s_min)),
+        "precision");
+  const double n = static_cast<double>(p.thresholds.size());
+  const double m = static_cast<double>(p.polynomial.size());
+  const double eta = 3 * (n + 2 * m + 10) * eps * level + 2 * eps * U * s_max + eps * X;
+  *reason = fmt::format(
+      "float: 2 eta / (s_min (1 - g)), eta = 3 (n + 2m + 10) eps L + 2 eps U s_max + eps X = "
+      "{:.3g} m, s_min = {:.3g} m/V (the polynomial's least slope), g = {:.3g} (the rate "
+      "feedback), eps = 2^-24: the inverse's conditioning (docs/deploy.md)",
+      eta, s_min, gain);
+  return 2 * eta / (s_min * (1 - gain));
+}
+
 // gpi and rdpi: the stepper's bisection on the step's monotone output, in the stepper's
-// operations and order (bit-identical in double). Float is refused: the solve's error passes
-// through the operators' states and, for rdpi, the rate, and no bound for it is derived yet.
+// operations and order (bit-identical in double).
 ExportResult ExportPiBisection(const PrandtlIshlinskiiModel& model, double dt_s,
                                const ExportVectors& v, const ExportOptions& o,
                                const ExportProvenance& provenance) {
-  if (o.precision != ExportPrecision::kDouble)
-    throw OptionsError(model.kind() + ": exported in double only (the float error of a "
-                       "bisection inverse with operator and rate feedback has no derived bound "
-                       "yet)",
-                       "precision");
   PiInverseStepper stepper(model, dt_s);  // not invertible, rdpi's error gain: NumericalError
   CheckVectors(v, 1, model.kind().c_str());
   ExportResult r;
@@ -46,8 +109,12 @@ ExportResult ExportPiBisection(const PrandtlIshlinskiiModel& model, double dt_s,
   for (Eigen::Index k = 0; k < v.inputs.rows(); ++k)
     r.u_expected_v[k] = stepper.Step(v.inputs(k, 0));
   stepper.Reset();  // its state is now the initial one, which the C starts from
-  r.bound_v = 0;
-  r.bound_reason = "the stepper's operations in its order on the same doubles: bit-identical";
+  if (o.precision == ExportPrecision::kDouble) {
+    r.bound_v = 0;
+    r.bound_reason = "the stepper's operations in its order on the same doubles: bit-identical";
+  } else {
+    r.bound_v = BisectionFloatBound(model, stepper, dt_s, v, &r.bound_reason);
+  }
   const PiParameters& p = model.pi();
   const bool rate = p.form == PiForm::kRateDependent;
   const size_t n = p.thresholds.size(), slots = std::max<size_t>(n, 1);
@@ -61,7 +128,7 @@ ExportResult ExportPiBisection(const PrandtlIshlinskiiModel& model, double dt_s,
   const std::string comment =
       fmt::format(" * Model: the inverse of a {} Prandtl-Ishlinskii model with {} play operators "
                   "(sysid/hysteresis.hpp):\n"
-                  " *   u_k solves y(u_k) = x_ref by bisection to adjacent doubles on [lo, hi], "
+                  " *   u_k solves y(u_k) = x_ref by bisection to adjacent values on [lo, hi], "
                   "y(u) = c + q0 rho u\n"
                   " *   + sum_j a_j u^j + sum_i (w_i + q_i rho) F_ri[u] (monotone in u); rho = "
                   "|u_(k-1) - u_(k-2)| / dt (rdpi)\n"
@@ -76,67 +143,69 @@ ExportResult ExportPiBisection(const PrandtlIshlinskiiModel& model, double dt_s,
       internal::Provenance(provenance, prec, r.bound_v, r.bound_reason);
   const std::string state = Fill(R"(#define @P@_OPERATORS @N@
 typedef struct {
-  double z[@SLOTS@]; /* the play operators' outputs [V] */
-  double u1, u2;     /* u_(k-1), u_(k-2) [V] (the rate) */
-  int k;             /* samples since init, saturating at 2 */
+  @T@ z[@SLOTS@]; /* the play operators' outputs [V] */
+  @T@ u1, u2;     /* u_(k-1), u_(k-2) [V] (the rate) */
+  int k;          /* samples since init, saturating at 2 */
 } @P@_state;
 )",
-                                 {{"N", std::to_string(n)}, {"SLOTS", std::to_string(slots)}});
-  r.header = Fill(Header(o, comment, state, ", double x_ref_m", 1, r.bound_v), {{"P", o.prefix}});
+                                 {{"N", std::to_string(n)},
+                                  {"SLOTS", std::to_string(slots)},
+                                  {"T", CType(prec)}});
+  r.header = Fill(Header(o, comment, state, ", " + CType(prec) + " x_ref_m", 1, r.bound_v), {{"P", o.prefix}});
   r.source = Fill(R"(/* @P@.c -- generated by sysid export; see @P@.h. */
 #include "@P@.h"
 
 #define @P@_M @M@
-static const double @P@_kR[@SLOTS@] = @R@;
-static const double @P@_kW[@SLOTS@] = @W@;
-static const double @P@_kQ[@SLOTS@] = @Q@;
-static const double @P@_kZ0[@SLOTS@] = @Z0@;
-static const double @P@_kPoly[@P@_M] = @POLY@;
-static const double @P@_kQ0 = @Q0@;
-static const double @P@_kOffset = @C@;
-static const double @P@_kDt = @DT@;
-static const double @P@_kLo = @LO@;
-static const double @P@_kHi = @HI@;
+static const @T@ @P@_kR[@SLOTS@] = @R@;
+static const @T@ @P@_kW[@SLOTS@] = @W@;
+static const @T@ @P@_kQ[@SLOTS@] = @Q@;
+static const @T@ @P@_kZ0[@SLOTS@] = @Z0@;
+static const @T@ @P@_kPoly[@P@_M] = @POLY@;
+static const @T@ @P@_kQ0 = @Q0@;
+static const @T@ @P@_kOffset = @C@;
+static const @T@ @P@_kDt = @DT@;
+static const @T@ @P@_kLo = @LO@;
+static const @T@ @P@_kHi = @HI@;
 static const int @P@_kRate = @RATE@;
 
 void @P@_init(@P@_state* state) {
   int i;
   for (i = 0; i < @SLOTS@; ++i) state->z[i] = @P@_kZ0[i];
-  state->u1 = 0.0;
-  state->u2 = 0.0;
+  state->u1 = @ZERO@;
+  state->u2 = @ZERO@;
   state->k = 0;
 }
 
-static double @P@_play(double u, double r, double z) {
-  const double lo = u - r, hi = u + r;
+static @T@ @P@_play(@T@ u, @T@ r, @T@ z) {
+  const @T@ lo = u - r, hi = u + r;
   return z < lo ? lo : (z > hi ? hi : z);
 }
 
 /* The step's output for a trial input, the states left as they are. */
-static double @P@_output(const @P@_state* state, double uk, double rho) {
-  double sum = @P@_kOffset + @P@_kQ0 * rho * uk, power = uk;
+static @T@ @P@_output(const @P@_state* state, @T@ uk, @T@ rho) {
+  @T@ sum = @P@_kOffset + @P@_kQ0 * rho * uk, power = uk;
   int i, j;
   for (j = 0; j < @P@_M; ++j, power *= uk) sum += @P@_kPoly[j] * power;
   for (i = 0; i < @P@_OPERATORS; ++i)
-    sum += (@P@_kW[i] + (@P@_kRate ? @P@_kQ[i] * rho : 0.0)) *
+    sum += (@P@_kW[i] + (@P@_kRate ? @P@_kQ[i] * rho : @ZERO@)) *
            @P@_play(uk, @P@_kR[i], state->z[i]);
   return sum;
 }
 
-double @P@_step(@P@_state* state, double x_ref_m) {
-  const double d = state->u1 - state->u2;
-  const double rho = @P@_kRate && state->k >= 2 ? (d < 0.0 ? -d : d) / @P@_kDt : 0.0;
-  const double y = x_ref_m;
-  const double y_lo = @P@_output(state, @P@_kLo, rho), y_hi = @P@_output(state, @P@_kHi, rho);
-  double a = @P@_kLo, b = @P@_kHi, u;
+@T@ @P@_step(@P@_state* state, @T@ x_ref_m) {
+  const @T@ d = state->u1 - state->u2;
+  const @T@ rho = @P@_kRate && state->k >= 2 ? (d < @ZERO@ ? -d : d) / @P@_kDt : @ZERO@;
+  const @T@ y = x_ref_m;
+  const @T@ y_lo = @P@_output(state, @P@_kLo, rho), y_hi = @P@_output(state, @P@_kHi, rho);
+  @T@ a = @P@_kLo, b = @P@_kHi, u;
   int i;
   if (y_lo > y || y_hi < y || !(y == y)) {
     u = !(y_lo > y) ? b : a;
   } else {
     int it;
-    double ua, ub;
+    @T@ ua, ub;
     for (it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (a + b);
+      const @T@ mid = @HALF@ * (a + b);
       if (mid <= a || mid >= b) break;
       if (@P@_output(state, mid, rho) < y) a = mid; else b = mid;
     }
@@ -164,7 +233,10 @@ double @P@_step(@P@_state* state, double x_ref_m) {
                    {"DT", CLiteral(dt_s, prec)},
                    {"LO", CLiteral(stepper.input_min_v(), prec)},
                    {"HI", CLiteral(stepper.input_max_v(), prec)},
-                   {"RATE", rate ? "1" : "0"}});
+                   {"RATE", rate ? "1" : "0"},
+                   {"T", CType(prec)},
+                   {"ZERO", CLiteral(0.0, prec)},
+                   {"HALF", CLiteral(0.5, prec)}});
   Finish(&r, o, v, model.kind() + " inverse", {"x_ref_m"}, fmt::format("{:g} s", dt_s));
   return r;
 }
