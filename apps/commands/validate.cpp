@@ -50,7 +50,11 @@ void RunValidate(ValidateCliOptions o) {
   if (!o.model_path.empty()) friction = ReadModel(o.model_path);
   else hysteresis = ReadHysteresisModel(o.hysteresis_path);
   o.motion.ApplyTo(o.validation.motion);
-  const std::vector<Recording> recs = o.motion.ReadRecordings(o.files);
+  // Only the friction model needs v (and says where it came from); a hysteresis model needs x.
+  std::vector<Recording> recs;
+  if (friction) recs = o.motion.ReadRecordings(o.files);
+  else
+    for (const auto& f : o.files) recs.push_back(ReadRecording(f, o.motion.recording.Apply({})));
   // Everything is computed before anything is written: a bad file leaves no partial output.
   std::vector<Validation> results;
   for (size_t i = 0; i < recs.size(); ++i) {

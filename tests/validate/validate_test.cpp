@@ -276,3 +276,19 @@ TEST_CASE("a hysteresis model validated on its own recording with noise", "[vali
   CHECK(bad.outputs[0].scores.fit_percent < v.outputs[0].scores.fit_percent);
   CHECK_FALSE(bad.outputs[0].cross_correlation.pass);
 }
+
+TEST_CASE("a perfect model's constant residual is reported untested, not refused", "[validate]") {
+  PortableRandom rng(2);
+  const Eigen::VectorXd u = Gaussian(rng, 200);
+  const sysid::ResidualTestOptions o;
+  const sysid::CorrelationTest a = sysid::AutocorrelationTest(Eigen::VectorXd::Zero(200), o);
+  CHECK_FALSE(a.tested);
+  CHECK(a.pass);
+  CHECK(std::isnan(a.r[0]));
+  CHECK(a.bound == Approx(2.58 / std::sqrt(200.0)));
+  const sysid::CorrelationTest c =
+      sysid::CrossCorrelationTest(u, Eigen::VectorXd::Constant(200, 1.5), o);
+  CHECK_FALSE(c.tested);
+  CHECK(c.verdict == "not tested: u is constant");
+  CHECK(sysid::CrossCorrelationTest(u, u, o).tested);
+}

@@ -76,6 +76,9 @@ struct CorrelationTest {
   int outside = 0;               ///< lags with |r| > bound
   int allowed_outside = 0;       ///< rule (a): at most this many lags outside
   double max_abs_r = 0;          ///< max |r| over the lags
+  /// false when e or u is constant (a perfect model, a constant input): no correlation is
+  /// defined, r is NaN and pass is true.
+  bool tested = true;
   bool pass = false;
   std::string verdict;           ///< one sentence: "pass: 1 of 25 lags outside ±0.0816 ..."
 };
@@ -88,7 +91,7 @@ double NormalQuantile(double q);
 
 /// The whiteness test of e (lags 1..L) and the independence test of e and u (lags 0..L).
 /// Throws InputError for fewer than 4 (L + 1) samples (the correlations would rest on too few
-/// products) or a constant e or u.
+/// products); a constant e or u gives an untested (tested = false) result.
 CorrelationTest AutocorrelationTest(const Eigen::VectorXd& e, const ResidualTestOptions& options);
 CorrelationTest CrossCorrelationTest(const Eigen::VectorXd& e, const Eigen::VectorXd& u,
                                      const ResidualTestOptions& options);
@@ -136,8 +139,8 @@ Validation ValidateHysteresisModel(const Recording& recording, const HysteresisM
 
 /// {"source", "model", "samples", "outputs": [{"output", "unit", "fit_percent", "rmse",
 /// "nrmse_std", "nrmse_range", "autocorrelation": {...}, "cross_correlation": {...}}]}; each
-/// test {"lags", "r", "bound", "strong_bound", "outside", "allowed_outside", "max_abs_r",
-/// "pass", "verdict"}.
+/// test {"name", "lags", "r", "bound", "strong_bound", "outside", "allowed_outside",
+/// "max_abs_r", "tested", "pass", "verdict"}.
 std::string ToJson(const Validation& validation, int indent = 2);
 
 }  // namespace sysid

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "sysid/error.hpp"
 #include "sysid/validate.hpp"
@@ -35,6 +36,22 @@ CorrelationTest Judge(std::string name, int first_lag, const Eigen::VectorXd& r_
                           "{:.3g} (limit {:.3g})",
                           t.pass ? "pass" : "fail", t.outside, lags, t.bound, t.allowed_outside,
                           t.max_abs_r, t.strong_bound);
+  return t;
+}
+
+bool Constant(const Eigen::VectorXd& s) { return !((s.array() - s.mean()).matrix().squaredNorm() > 0); }
+
+// A constant residual (a perfect model) or input has no correlation to test: the test is
+// reported as not run, with NaN correlations, and does not fail the model.
+CorrelationTest Untested(std::string name, int first_lag, Eigen::Index samples,
+                         const ResidualTestOptions& o, const std::string& why) {
+  CorrelationTest t = Judge(std::move(name), first_lag,
+                            Eigen::VectorXd::Zero(o.max_lag + 1), samples, o);
+  t.r.setConstant(std::numeric_limits<double>::quiet_NaN());
+  t.max_abs_r = std::numeric_limits<double>::quiet_NaN();
+  t.tested = false;
+  t.pass = true;
+  t.verdict = "not tested: " + why;
   return t;
 }
 
@@ -91,6 +108,8 @@ int AllowedLagsOutside(int lags, double p, double level) {
 CorrelationTest AutocorrelationTest(const Eigen::VectorXd& e, const ResidualTestOptions& options) {
   options.Validate();
   CheckLength(e.size(), options);
+  if (e.allFinite() && Constant(e))
+    return Untested("autocorrelation", 1, e.size(), options, "the residual is constant");
   return Judge("autocorrelation", 1, NormalisedAutocorrelation(e, options.max_lag), e.size(),
                options);
 }
@@ -99,6 +118,9 @@ CorrelationTest CrossCorrelationTest(const Eigen::VectorXd& e, const Eigen::Vect
                                      const ResidualTestOptions& options) {
   options.Validate();
   CheckLength(e.size(), options);
+  if (e.allFinite() && u.allFinite() && e.size() == u.size() && (Constant(e) || Constant(u)))
+    return Untested("cross-correlation with u", 0, e.size(), options,
+                    Constant(e) ? "the residual is constant" : "u is constant");
   return Judge("cross-correlation with u", 0,
                NormalisedCrossCorrelation(e, u, options.max_lag), e.size(), options);
 }

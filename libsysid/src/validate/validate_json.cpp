@@ -20,6 +20,7 @@ Json TestJson(const CorrelationTest& t) {
           {"outside", t.outside},
           {"allowed_outside", t.allowed_outside},
           {"max_abs_r", internal::NumberOrNull(t.max_abs_r)},
+          {"tested", t.tested},
           {"pass", t.pass},
           {"verdict", t.verdict}};
 }
