@@ -10,17 +10,24 @@
 #include <complex>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/portable_random.hpp"
 #include "support/known_pi.hpp"
+#include "support/test_support.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/input.hpp"
+#include "sysid/io_output.hpp"
+#include "sysid/report.hpp"
 #include "sysid/simulate.hpp"
 #include "sysid/validate.hpp"
 
 namespace {
 
 using sysid::internal::PortableRandom;
+using sysid::test::RunCli;
+using sysid::test::TempDir;
 
 Eigen::VectorXd Gaussian(PortableRandom& rng, int n) {
   Eigen::VectorXd out(n);
@@ -291,4 +298,77 @@ TEST_CASE("a perfect model's constant residual is reported untested, not refused
   CHECK_FALSE(c.tested);
   CHECK(c.verdict == "not tested: u is constant");
   CHECK(sysid::CrossCorrelationTest(u, u, o).tested);
+}
+
+TEST_CASE("the validation plots: measured over simulated, both correlations and one band",
+          "[validate][report]") {
+  const sysid::FrictionModel truth = sysid::FrictionModel::Paper();
+  const sysid::Validation v = sysid::ValidateFrictionModel(FrictionRecording(truth, 5), truth);
+  const auto plots = sysid::ValidationPlots(v, "rec");
+  REQUIRE(plots.size() == 4);
+  CHECK(plots[0].first == "rec_v.png");
+  CHECK(plots[1].first == "rec_v_residual_tests.png");
+  CHECK(plots[2].first == "rec_x.png");
+  const sysid::PlotSpec& fit = plots[2].second;
+  REQUIRE(fit.series.size() == 2);
+  CHECK(fit.series[1].label == "measured");  // drawn last: on top
+  CHECK(fit.series[0].label == "friction model");
+  CHECK(fit.y_label == "x [mm]");
+  CHECK(fit.series[1].y == 1e3 * v.outputs[1].measured);
+  const sysid::PlotSpec& r = plots[3].second;
+  REQUIRE(r.series.size() == 3);
+  CHECK(r.series[0].y == v.outputs[1].autocorrelation.r);
+  CHECK(r.series[1].y == v.outputs[1].cross_correlation.r);
+  CHECK(r.series[2].label == "99 % band");
+  CHECK(r.series[2].y[0] == v.outputs[1].autocorrelation.bound);
+  CHECK(r.series[2].y[4] == -v.outputs[1].autocorrelation.bound);
+}
+
+TEST_CASE("sysid validate: the library's numbers, its flags' bounds and its refusals",
+          "[validate][cli]") {
+  TempDir dir;
+  const sysid::FrictionModel truth = sysid::FrictionModel::Paper();
+  const sysid::Recording rec = FrictionRecording(truth, 9);
+  sysid::WriteRecording(dir / "rec.csv", rec);
+  sysid::WriteModel(dir / "m.json", truth);
+  auto r = RunCli({"validate", "--model", dir / "m.json", "--lags", "10", "--json", "--no-plots",
+                   "-o", dir / "out", dir / "rec.csv"});
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  sysid::ValidationOptions o;
+  o.residual.max_lag = 10;
+  const sysid::Validation lib = sysid::ValidateFrictionModel(
+      sysid::ReadRecording(dir / "rec.csv"), sysid::ReadModel(dir / "m.json"), o);
+  auto expected = nlohmann::json::parse(sysid::ToJson(lib));
+  expected["source"] = dir / "rec.csv";
+  CHECK(j["recordings"][0] == expected);
+  CHECK(j["kind"] == "friction");
+  CHECK(std::filesystem::exists(dir / "out/summary.json"));
+  r = RunCli({"validate", "--model", dir / "m.json", dir / "rec.csv"});
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("nrmse_std") && Catch::Contains("nrmse_range") &&
+                        Catch::Contains("fit [%]"));
+  SECTION("--lags is bounded, by its name") {
+    for (const char* lags : {"0", "1001"}) {
+      r = RunCli({"validate", "--model", dir / "m.json", "--lags", lags, dir / "rec.csv"});
+      CHECK(r.exit_code == 1);
+      CHECK_THAT(r.err, Catch::Contains("--lags"));
+    }
+  }
+  SECTION("exactly one model") {
+    CHECK(RunCli({"validate", dir / "rec.csv"}).exit_code == 1);
+    sysid::WriteFileAtomically(dir / "h.json", sysid::PrandtlIshlinskiiModel(
+                                                   sysid::test::KnownPiParameters()).ToJson());
+    CHECK(RunCli({"validate", "--model", dir / "m.json", "--hysteresis", dir / "h.json",
+                  dir / "rec.csv"})
+              .exit_code == 1);
+  }
+  SECTION("a short recording: exit 2 naming it, nothing written") {
+    sysid::WriteFileAtomically(dir / "short.csv", "t,u,x\n0,0,0\n0.001,1,0\n0.002,1,0\n");
+    r = RunCli({"validate", "--model", dir / "m.json", "-o", dir / "bad", dir / "rec.csv",
+                dir / "short.csv"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("short.csv") && Catch::Contains("samples"));
+    CHECK_FALSE(std::filesystem::exists(dir / "bad"));
+  }
 }
