@@ -224,7 +224,8 @@ sysid::Recording FrictionRecording(const sysid::FrictionModel& model, std::uint6
   const double v_noise = 0.02 * r.trajectory.v_mps.cwiseAbs().maxCoeff();
   const double x_noise = 0.005 * r.trajectory.x_m.cwiseAbs().maxCoeff();
   rec.SetColumn("v", r.trajectory.v_mps + v_noise * Gaussian(rng, n));
-  rec.SetColumn("x", r.trajectory.x_m + x_noise * Gaussian(rng, n));
+  // An offset, so a simulation that ignored the measured start position would show.
+  rec.SetColumn("x", (r.trajectory.x_m + x_noise * Gaussian(rng, n)).array() + 5e-3);
   return rec;
 }
 
