@@ -47,12 +47,15 @@ void RunValidate(ValidateCliOptions o) {
   const auto folder = OptionalOutputFolder(o.out_dir, o.force, inputs, "validate");
   std::optional<FrictionModel> friction;
   std::unique_ptr<HysteresisModel> hysteresis;
-  if (!o.model_path.empty()) friction = ReadModel(o.model_path);
-  else hysteresis = ReadHysteresisModel(o.hysteresis_path);
+  if (!o.model_path.empty())
+    friction = ReadModel(o.model_path);
+  else
+    hysteresis = ReadHysteresisModel(o.hysteresis_path);
   o.motion.ApplyTo(o.validation.motion);
   // Only the friction model needs v (and says where it came from); a hysteresis model needs x.
   std::vector<Recording> recs;
-  if (friction) recs = o.motion.ReadRecordings(o.files);
+  if (friction)
+    recs = o.motion.ReadRecordings(o.files);
   else
     for (const auto& f : o.files) recs.push_back(ReadRecording(f, o.motion.recording.Apply({})));
   // Everything is computed before anything is written: a bad file leaves no partial output.
@@ -102,9 +105,10 @@ void RunValidate(ValidateCliOptions o) {
     std::cout << j.dump(2) << '\n';
   } else {
     std::cout << table.Render()
-              << fmt::format("residual tests: lags 1..{0} (autocorrelation), 0..{0} (with u), "
-                             "99 % band ±2.58/sqrt(N); docs/validation.md gives the verdict rule\n",
-                             o.validation.residual.max_lag);
+              << fmt::format(
+                     "residual tests: lags 1..{0} (autocorrelation), 0..{0} (with u), "
+                     "99 % band ±2.58/sqrt(N); docs/validation.md gives the verdict rule\n",
+                     o.validation.residual.max_lag);
   }
 }
 

@@ -60,8 +60,9 @@ void BindValidate(py::module_& m) {
       .def_readonly("autocorrelation", &OutputValidation::autocorrelation)
       .def_readonly("cross_correlation", &OutputValidation::cross_correlation)
       .def("__repr__", [](const OutputValidation& o) {
-        return py::str("<OutputValidation {}: fit {:.4g} %, autocorrelation {}, cross-correlation "
-                       "{}>")
+        return py::str(
+                   "<OutputValidation {}: fit {:.4g} %, autocorrelation {}, cross-correlation "
+                   "{}>")
             .format(o.output, o.scores.fit_percent, o.autocorrelation.pass ? "pass" : "fail",
                     o.cross_correlation.pass ? "pass" : "fail");
       });
@@ -71,8 +72,9 @@ void BindValidate(py::module_& m) {
       .def_readonly("t_s", &Validation::t_s)
       .def_readonly("u_v", &Validation::u_v)
       .def_readonly("outputs", &Validation::outputs)
-      .def("to_json", [](const Validation& v, int indent) { return ToJson(v, indent); },
-           py::arg("indent") = 2)
+      .def(
+          "to_json", [](const Validation& v, int indent) { return ToJson(v, indent); },
+          py::arg("indent") = 2)
       .def("__repr__", [](const Validation& v) {
         return "<Validation of a " + v.model_kind + " model on " + v.source + ", " +
                std::to_string(v.outputs.size()) + " output(s)>";

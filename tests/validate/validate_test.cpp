@@ -2,15 +2,14 @@
 // fit, the alternating sequence's closed-form correlations, an FFT correlation (Eigen's
 // kissfft), the binomial tail summed term by term, published normal quantiles, and the tests'
 // behaviour over seeds on white and on wrong-model residuals.
+#include "sysid/validate.hpp"
+
 #include <catch2/catch.hpp>
-
-#include <unsupported/Eigen/FFT>
-
 #include <cmath>
 #include <complex>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <unsupported/Eigen/FFT>
+#include <vector>
 
 #include "core/portable_random.hpp"
 #include "support/known_pi.hpp"
@@ -21,7 +20,6 @@
 #include "sysid/io_output.hpp"
 #include "sysid/report.hpp"
 #include "sysid/simulate.hpp"
-#include "sysid/validate.hpp"
 
 namespace {
 
@@ -43,8 +41,7 @@ Eigen::VectorXd Ar1(const Eigen::VectorXd& w, double phi) {
 }
 
 // sum_t a_t b_{t-k} for k = 0..max_lag by FFT: zero-padded to 2N, A(f) conj(B(f)).
-Eigen::VectorXd FftLaggedProducts(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
-                                  int max_lag) {
+Eigen::VectorXd FftLaggedProducts(const Eigen::VectorXd& a, const Eigen::VectorXd& b, int max_lag) {
   const auto n = static_cast<size_t>(a.size());
   std::vector<double> pa(2 * n, 0.0), pb(2 * n, 0.0);
   for (size_t i = 0; i < n; ++i) {
@@ -152,8 +149,7 @@ TEST_CASE("the bounds are 2.58/sqrt(N) and the verdict rules' constants", "[vali
   CHECK(a.max_abs_r == Approx(a.r.cwiseAbs().maxCoeff()));
 }
 
-TEST_CASE("white residuals pass in at least 95 % of 200 seeds, wrong models fail",
-          "[validate]") {
+TEST_CASE("white residuals pass in at least 95 % of 200 seeds, wrong models fail", "[validate]") {
   const int n = 1000, seeds = 200;
   const sysid::ResidualTestOptions o;
   int white_auto = 0, white_cross = 0, ar_fail = 0, gain_fail = 0, coloured_gain_fail = 0;
@@ -172,7 +168,7 @@ TEST_CASE("white residuals pass in at least 95 % of 200 seeds, wrong models fail
     coloured_gain_fail += !sysid::CrossCorrelationTest(0.1 * uc + w, uc, o).pass;
   }
   INFO("white " << white_auto << " " << white_cross << ", wrong " << ar_fail << " " << gain_fail
-                  << " " << coloured_gain_fail);
+                << " " << coloured_gain_fail);
   CHECK(white_auto >= 190);
   CHECK(white_cross >= 190);
   CHECK(ar_fail == seeds);
@@ -216,8 +212,7 @@ sysid::Recording FrictionRecording(const sysid::FrictionModel& model, std::uint6
   so.t0_s = 0;
   so.t_end_s = t.back();
   so.output_times_s = t;
-  const sysid::SimulationResult r =
-      sysid::Simulate(model, sysid::PiecewiseConstantInput(t, u), so);
+  const sysid::SimulationResult r = sysid::Simulate(model, sysid::PiecewiseConstantInput(t, u), so);
   REQUIRE(r.summary.IsSolutionUsable());
   PortableRandom rng(seed);
   sysid::Recording rec = sysid::TrajectoryRecording(r.trajectory, "friction.csv");
@@ -231,8 +226,7 @@ sysid::Recording FrictionRecording(const sysid::FrictionModel& model, std::uint6
 
 }  // namespace
 
-TEST_CASE("a friction model validated on its own noisy simulation, and a wrong one",
-          "[validate]") {
+TEST_CASE("a friction model validated on its own noisy simulation, and a wrong one", "[validate]") {
   const sysid::FrictionModel truth = sysid::FrictionModel::Paper();
   const sysid::Recording rec = FrictionRecording(truth, 11);
   const sysid::Validation good = sysid::ValidateFrictionModel(rec, truth);
@@ -255,11 +249,12 @@ TEST_CASE("a friction model validated on its own noisy simulation, and a wrong o
   CHECK(bad.outputs[0].scores.fit_percent < good.outputs[0].scores.fit_percent - 5);
   CHECK_FALSE(bad.outputs[0].cross_correlation.pass);
   CHECK_FALSE(bad.outputs[0].autocorrelation.pass);
-  CHECK_THROWS_AS(sysid::ValidateFrictionModel(rec, truth, [] {
-                    sysid::ValidationOptions o;
-                    o.residual.max_lag = 400;
-                    return o;
-                  }()),
+  CHECK_THROWS_AS(sysid::ValidateFrictionModel(rec, truth,
+                                               [] {
+                                                 sysid::ValidationOptions o;
+                                                 o.residual.max_lag = 400;
+                                                 return o;
+                                               }()),
                   sysid::InputError);
 }
 
@@ -338,8 +333,8 @@ TEST_CASE("sysid validate: the library's numbers, its flags' bounds and its refu
   const auto j = nlohmann::json::parse(r.out);
   sysid::ValidationOptions o;
   o.residual.max_lag = 10;
-  const sysid::Validation lib = sysid::ValidateFrictionModel(
-      sysid::ReadRecording(dir / "rec.csv"), sysid::ReadModel(dir / "m.json"), o);
+  const sysid::Validation lib = sysid::ValidateFrictionModel(sysid::ReadRecording(dir / "rec.csv"),
+                                                             sysid::ReadModel(dir / "m.json"), o);
   auto expected = nlohmann::json::parse(sysid::ToJson(lib));
   expected["source"] = dir / "rec.csv";
   CHECK(j["recordings"][0] == expected);
@@ -358,8 +353,8 @@ TEST_CASE("sysid validate: the library's numbers, its flags' bounds and its refu
   }
   SECTION("exactly one model") {
     CHECK(RunCli({"validate", dir / "rec.csv"}).exit_code == 1);
-    sysid::WriteFileAtomically(dir / "h.json", sysid::PrandtlIshlinskiiModel(
-                                                   sysid::test::KnownPiParameters()).ToJson());
+    sysid::WriteFileAtomically(
+        dir / "h.json", sysid::PrandtlIshlinskiiModel(sysid::test::KnownPiParameters()).ToJson());
     CHECK(RunCli({"validate", "--model", dir / "m.json", "--hysteresis", dir / "h.json",
                   dir / "rec.csv"})
               .exit_code == 1);

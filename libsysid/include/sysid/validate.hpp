@@ -59,28 +59,28 @@ Eigen::VectorXd NormalisedCrossCorrelation(const Eigen::VectorXd& e, const Eigen
                                            int max_lag);
 
 struct ResidualTestOptions {
-  int max_lag = 25;             ///< L [samples]: lags 1..L (autocorrelation), 0..L (cross); in [1, 1000]
-  double z = 2.58;              ///< band half-width in units of 1/sqrt(N) (99 %); in (0, 10]
+  int max_lag = 25;  ///< L [samples]: lags 1..L (autocorrelation), 0..L (cross); in [1, 1000]
+  double z = 2.58;   ///< band half-width in units of 1/sqrt(N) (99 %); in (0, 10]
   double lag_probability = 0.01;  ///< chance a white residual's lag leaves the band; (0, 0.5)
-  double test_level = 0.01;     ///< each verdict rule's false-alarm rate; in (0, 0.5)
-  void Validate() const;        ///< throws OptionsError naming the field and the rule
+  double test_level = 0.01;       ///< each verdict rule's false-alarm rate; in (0, 0.5)
+  void Validate() const;          ///< throws OptionsError naming the field and the rule
 };
 
 /// One correlation test with its bounds and verdict.
 struct CorrelationTest {
-  std::string name;              ///< "autocorrelation" or "cross-correlation with u"
-  std::vector<int> lags;         ///< [samples]
-  Eigen::VectorXd r;             ///< normalised correlation per lag [dimensionless]
-  double bound = 0;              ///< z / sqrt(N): the 99 % band is ±bound
-  double strong_bound = 0;       ///< Bonferroni bound over the lags / sqrt(N) (rule (b))
-  int outside = 0;               ///< lags with |r| > bound
-  int allowed_outside = 0;       ///< rule (a): at most this many lags outside
-  double max_abs_r = 0;          ///< max |r| over the lags
+  std::string name;         ///< "autocorrelation" or "cross-correlation with u"
+  std::vector<int> lags;    ///< [samples]
+  Eigen::VectorXd r;        ///< normalised correlation per lag [dimensionless]
+  double bound = 0;         ///< z / sqrt(N): the 99 % band is ±bound
+  double strong_bound = 0;  ///< Bonferroni bound over the lags / sqrt(N) (rule (b))
+  int outside = 0;          ///< lags with |r| > bound
+  int allowed_outside = 0;  ///< rule (a): at most this many lags outside
+  double max_abs_r = 0;     ///< max |r| over the lags
   /// false when e or u is constant (a perfect model, a constant input): no correlation is
   /// defined, r is NaN and pass is true.
   bool tested = true;
   bool pass = false;
-  std::string verdict;           ///< one sentence: "pass: 1 of 25 lags outside ±0.0816 ..."
+  std::string verdict;  ///< one sentence: "pass: 1 of 25 lags outside ±0.0816 ..."
 };
 
 /// Rule (a)'s allowance: the smallest k with P(Binomial(lags, p) > k) <= level. Throws
@@ -98,10 +98,10 @@ CorrelationTest CrossCorrelationTest(const Eigen::VectorXd& e, const Eigen::Vect
 
 /// One output of a model on one recording.
 struct OutputValidation {
-  std::string output;           ///< "v" or "x"
-  std::string unit;             ///< "m/s" or "m"
-  Eigen::VectorXd measured;     ///< y [unit]
-  Eigen::VectorXd simulated;    ///< ŷ [unit], free-run from u
+  std::string output;         ///< "v" or "x"
+  std::string unit;           ///< "m/s" or "m"
+  Eigen::VectorXd measured;   ///< y [unit]
+  Eigen::VectorXd simulated;  ///< ŷ [unit], free-run from u
   FitScores scores;
   CorrelationTest autocorrelation;
   CorrelationTest cross_correlation;
@@ -109,10 +109,10 @@ struct OutputValidation {
 
 /// A model validated on one recording.
 struct Validation {
-  std::string source;           ///< the recording's source
-  std::string model_kind;       ///< "friction" or the hysteresis model's kind()
-  Eigen::VectorXd t_s;          ///< [s]
-  Eigen::VectorXd u_v;          ///< [V] (or the input's unit)
+  std::string source;      ///< the recording's source
+  std::string model_kind;  ///< "friction" or the hysteresis model's kind()
+  Eigen::VectorXd t_s;     ///< [s]
+  Eigen::VectorXd u_v;     ///< [V] (or the input's unit)
   std::vector<OutputValidation> outputs;
 };
 
@@ -120,9 +120,9 @@ struct ValidationOptions {
   ResidualTestOptions residual;
   /// Measured v: the recording's v column when present, else derived from x (MotionOptions).
   MotionOptions motion;
-  double sim_rtol = 1e-8;       ///< CVODE relative tolerance of the friction simulation
-  double sim_atol = 1e-12;      ///< CVODE absolute tolerance [m, m/s]
-  void Validate() const;        ///< throws OptionsError naming the field and the rule
+  double sim_rtol = 1e-8;   ///< CVODE relative tolerance of the friction simulation
+  double sim_atol = 1e-12;  ///< CVODE absolute tolerance [m, m/s]
+  void Validate() const;    ///< throws OptionsError naming the field and the rule
 };
 
 /// The friction model simulated free-run from the recording's u (zero-order hold between

@@ -43,10 +43,10 @@ std::vector<std::pair<std::string, PlotSpec>> ValidationPlots(const Validation& 
     };
     const CorrelationTest& a = o.autocorrelation;
     const CorrelationTest& c = o.cross_correlation;
-    r.series.push_back({std::string("r_e ") + (a.pass ? "(pass)" : "(fail)"), lags(a), a.r,
+    r.series.push_back(
+        {std::string("r_e ") + (a.pass ? "(pass)" : "(fail)"), lags(a), a.r, "linespoints"});
+    r.series.push_back({std::string("r_eu with u ") + (c.pass ? "(pass)" : "(fail)"), lags(c), c.r,
                         "linespoints"});
-    r.series.push_back({std::string("r_eu with u ") + (c.pass ? "(pass)" : "(fail)"), lags(c),
-                        c.r, "linespoints"});
     // Both edges of the band as one series: the NaN row breaks gnuplot's line between them.
     const double last = std::max(a.lags.back(), c.lags.back());
     const double nan = std::numeric_limits<double>::quiet_NaN();

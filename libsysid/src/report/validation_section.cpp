@@ -51,8 +51,8 @@ ReportSection ValidationSection(const PipelineResult& result) {
           file.find("_v_residual_tests.png") != std::string::npos)
         s.plots.push_back({file, spec, name + ": " + spec.title});
   }
-  s.markdown += MarkdownTable({"recording", "output", "fit [%]", "RMSE", "nrmse_std",
-                               "nrmse_range", "autocorrelation", "cross-correlation u"},
+  s.markdown += MarkdownTable({"recording", "output", "fit [%]", "RMSE", "nrmse_std", "nrmse_range",
+                               "autocorrelation", "cross-correlation u"},
                               rows);
   s.files.push_back({"validation.json", j.dump(2) + "\n"});
   return s;

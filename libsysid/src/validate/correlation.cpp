@@ -12,17 +12,19 @@ namespace {
 
 void CheckLag(Eigen::Index n, int max_lag) {
   if (max_lag < 0 || max_lag >= n)
-    throw OptionsError(fmt::format("max_lag = {}. Violated constraint: 0 <= max_lag < N = {}",
-                                   max_lag, n),
-                       "max_lag");
+    throw OptionsError(
+        fmt::format("max_lag = {}. Violated constraint: 0 <= max_lag < N = {}", max_lag, n),
+        "max_lag");
 }
 
 Eigen::VectorXd Centred(const Eigen::VectorXd& s, const char* name) {
   if (!s.allFinite())
-    throw InputError(fmt::format("correlation: {} holds NaN or inf: expected finite samples", name));
+    throw InputError(
+        fmt::format("correlation: {} holds NaN or inf: expected finite samples", name));
   Eigen::VectorXd c = s.array() - s.mean();
   if (!(c.squaredNorm() > 0))
-    throw InputError(fmt::format("correlation: {} is constant: its correlation is undefined", name));
+    throw InputError(
+        fmt::format("correlation: {} is constant: its correlation is undefined", name));
   return c;
 }
 
@@ -45,9 +47,10 @@ Eigen::VectorXd NormalisedAutocorrelation(const Eigen::VectorXd& e, int max_lag)
 Eigen::VectorXd NormalisedCrossCorrelation(const Eigen::VectorXd& e, const Eigen::VectorXd& u,
                                            int max_lag) {
   if (e.size() != u.size())
-    throw InputError(fmt::format("correlation: the residual has {} samples, u {}: expected "
-                                 "equal lengths",
-                                 e.size(), u.size()));
+    throw InputError(
+        fmt::format("correlation: the residual has {} samples, u {}: expected "
+                    "equal lengths",
+                    e.size(), u.size()));
   CheckLag(e.size(), max_lag);
   const Eigen::VectorXd ce = Centred(e, "the residual"), cu = Centred(u, "u");
   return LaggedProducts(ce, cu, max_lag) / std::sqrt(ce.squaredNorm() * cu.squaredNorm());

@@ -11,9 +11,10 @@ namespace sysid {
 
 FitScores ScoreFit(const Eigen::VectorXd& measured, const Eigen::VectorXd& simulated) {
   if (measured.size() != simulated.size())
-    throw InputError(fmt::format("fit: measured has {} samples, simulated {}: expected equal "
-                                 "lengths",
-                                 measured.size(), simulated.size()));
+    throw InputError(
+        fmt::format("fit: measured has {} samples, simulated {}: expected equal "
+                    "lengths",
+                    measured.size(), simulated.size()));
   if (measured.size() < 2)
     throw InputError(fmt::format("fit: {} samples: expected at least 2", measured.size()));
   if (!measured.allFinite() || !simulated.allFinite())

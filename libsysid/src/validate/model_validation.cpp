@@ -31,17 +31,19 @@ OutputValidation ScoreOutput(std::string output, std::string unit, Eigen::Vector
 void RequireColumns(const Recording& rec, std::initializer_list<const char*> names) {
   for (const char* name : names)
     if (!rec.has(name))
-      throw InputError(fmt::format("{}: no column '{}': validation simulates the model from u "
-                                   "and scores it on the measured output",
-                                   rec.source, name));
+      throw InputError(
+          fmt::format("{}: no column '{}': validation simulates the model from u "
+                      "and scores it on the measured output",
+                      rec.source, name));
 }
 
 // Before the simulation, which may take seconds, and naming the recording.
 void RequireSamples(const std::string& source, Eigen::Index n, const ResidualTestOptions& o) {
   if (n < 4 * (static_cast<Eigen::Index>(o.max_lag) + 1))
-    throw InputError(fmt::format("{}: {} samples for {} lags: expected at least 4 (lags + 1) = "
-                                 "{} samples (give fewer lags)",
-                                 source, n, o.max_lag, 4 * (o.max_lag + 1)));
+    throw InputError(
+        fmt::format("{}: {} samples for {} lags: expected at least 4 (lags + 1) = "
+                    "{} samples (give fewer lags)",
+                    source, n, o.max_lag, 4 * (o.max_lag + 1)));
 }
 
 }  // namespace

@@ -32,21 +32,24 @@ CorrelationTest Judge(std::string name, int first_lag, const Eigen::VectorXd& r_
   const bool too_many = t.outside > t.allowed_outside;
   const bool too_far = t.max_abs_r > t.strong_bound;
   t.pass = !too_many && !too_far;
-  t.verdict = fmt::format("{}: {} of {} lags outside ±{:.3g} (at most {} allowed); max |r| = "
-                          "{:.3g} (limit {:.3g})",
-                          t.pass ? "pass" : "fail", t.outside, lags, t.bound, t.allowed_outside,
-                          t.max_abs_r, t.strong_bound);
+  t.verdict = fmt::format(
+      "{}: {} of {} lags outside ±{:.3g} (at most {} allowed); max |r| = "
+      "{:.3g} (limit {:.3g})",
+      t.pass ? "pass" : "fail", t.outside, lags, t.bound, t.allowed_outside, t.max_abs_r,
+      t.strong_bound);
   return t;
 }
 
-bool Constant(const Eigen::VectorXd& s) { return !((s.array() - s.mean()).matrix().squaredNorm() > 0); }
+bool Constant(const Eigen::VectorXd& s) {
+  return !((s.array() - s.mean()).matrix().squaredNorm() > 0);
+}
 
 // A constant residual (a perfect model) or input has no correlation to test: the test is
 // reported as not run, with NaN correlations, and does not fail the model.
 CorrelationTest Untested(std::string name, int first_lag, Eigen::Index samples,
                          const ResidualTestOptions& o, const std::string& why) {
-  CorrelationTest t = Judge(std::move(name), first_lag,
-                            Eigen::VectorXd::Zero(o.max_lag + 1), samples, o);
+  CorrelationTest t =
+      Judge(std::move(name), first_lag, Eigen::VectorXd::Zero(o.max_lag + 1), samples, o);
   t.r.setConstant(std::numeric_limits<double>::quiet_NaN());
   t.max_abs_r = std::numeric_limits<double>::quiet_NaN();
   t.tested = false;
@@ -57,9 +60,10 @@ CorrelationTest Untested(std::string name, int first_lag, Eigen::Index samples,
 
 void CheckLength(Eigen::Index n, const ResidualTestOptions& o) {
   if (n < 4 * (static_cast<Eigen::Index>(o.max_lag) + 1))
-    throw InputError(fmt::format("residual tests: {} samples for {} lags: expected at least "
-                                 "4 (lags + 1) = {} samples (give fewer lags)",
-                                 n, o.max_lag, 4 * (o.max_lag + 1)));
+    throw InputError(
+        fmt::format("residual tests: {} samples for {} lags: expected at least "
+                    "4 (lags + 1) = {} samples (give fewer lags)",
+                    n, o.max_lag, 4 * (o.max_lag + 1)));
 }
 
 }  // namespace
@@ -92,8 +96,8 @@ double NormalQuantile(double q) {
 int AllowedLagsOutside(int lags, double p, double level) {
   if (lags < 1) throw OptionsError(fmt::format("lags = {}. Violated constraint: lags >= 1", lags));
   if (!(p > 0 && p < 1) || !(level > 0 && level < 1))
-    throw OptionsError(fmt::format("p = {}, level = {}. Violated constraint: both in (0, 1)", p,
-                                   level));
+    throw OptionsError(
+        fmt::format("p = {}, level = {}. Violated constraint: both in (0, 1)", p, level));
   // P(X = j) by the recurrence P(j) = P(j - 1) (n - j + 1) / j p / (1 - p), from (1 - p)^n.
   double pj = std::pow(1.0 - p, lags), cdf = pj;
   int k = 0;
@@ -121,8 +125,8 @@ CorrelationTest CrossCorrelationTest(const Eigen::VectorXd& e, const Eigen::Vect
   if (e.allFinite() && u.allFinite() && e.size() == u.size() && (Constant(e) || Constant(u)))
     return Untested("cross-correlation with u", 0, e.size(), options,
                     Constant(e) ? "the residual is constant" : "u is constant");
-  return Judge("cross-correlation with u", 0,
-               NormalisedCrossCorrelation(e, u, options.max_lag), e.size(), options);
+  return Judge("cross-correlation with u", 0, NormalisedCrossCorrelation(e, u, options.max_lag),
+               e.size(), options);
 }
 
 }  // namespace sysid
