@@ -14,6 +14,7 @@
 #include "core/portable_random.hpp"
 #include "support/known_pi.hpp"
 #include "support/test_support.hpp"
+#include "sysid/compare_hysteresis.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/input.hpp"
@@ -367,4 +368,27 @@ TEST_CASE("sysid validate: the library's numbers, its flags' bounds and its refu
     CHECK_THAT(r.err, Catch::Contains("short.csv") && Catch::Contains("samples"));
     CHECK_FALSE(std::filesystem::exists(dir / "bad"));
   }
+}
+
+TEST_CASE("sysid validate --hysteresis: the library's numbers on x, no motion note",
+          "[validate][cli]") {
+  TempDir dir;
+  sysid::test::KnownPiDrive drive;
+  drive.noise_width_m = 0.2e-6;
+  drive.source = "pi.csv";
+  sysid::WriteRecording(
+      dir / "pi.csv", sysid::test::KnownPiRecording(sysid::test::KnownPiParameters(), 1500, drive));
+  const sysid::PrandtlIshlinskiiModel model(sysid::test::KnownPiParameters());
+  sysid::WriteFileAtomically(dir / "h.json", model.ToJson());
+  const auto r = RunCli({"validate", "--hysteresis", dir / "h.json", "--json", dir / "pi.csv"});
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("v, a:") == std::string::npos);  // x is scored; no velocity is derived
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["kind"] == "pi");
+  const sysid::Validation lib = sysid::ValidateHysteresisModel(
+      sysid::ReadRecording(dir / "pi.csv"), *sysid::ReadHysteresisModel(dir / "h.json"));
+  auto expected = nlohmann::json::parse(sysid::ToJson(lib));
+  expected["source"] = dir / "pi.csv";
+  CHECK(j["recordings"][0] == expected);
+  CHECK(j["recordings"][0]["outputs"].size() == 1);
 }
