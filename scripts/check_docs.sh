@@ -150,6 +150,17 @@ close("docs/tutorial.md", "a3's move [%]", 100 * abs(refined["a3"] / 6 - 1),
 claim("docs/tutorial.md", "refine gives no warning on the tutorial's chain",
       not refined["diagnostics"]["warnings"])
 
+# sysid validate on the tutorial's tuned model: the fits the tutorial quotes.
+val = json.loads(run(["sysid", "validate", "--model", "model.json", "--json",
+                      "data/waveform_square.csv", "data/waveform_sine_0.016625_1.9.csv"],
+                     tut).stdout)["recordings"]
+close_digits("docs/tutorial.md", "validate: the square wave's velocity fit [%]",
+             val[0]["outputs"][0]["fit_percent"], r"On the square wave the velocity fit is ([\d.]+) %")
+close_digits("docs/tutorial.md", "validate: the square wave's position fit [%]",
+             val[0]["outputs"][1]["fit_percent"], r"\(position ([\d.]+) %\)")
+close_digits("docs/tutorial.md", "validate: the slowest sine's velocity fit [%]",
+             val[1]["outputs"][0]["fit_percent"], r"on the slowest sine it is\s+(−[\d.]+) %")
+
 # ---- docs/robustness.md ------------------------------------------------------------------
 # "The tutorial's chain (identify with a3 = 6, tune-delay, refine) moves every parameter by
 # A–B %": the moves of the six parameters from the tuned model to the refined one.

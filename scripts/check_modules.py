@@ -35,6 +35,7 @@ LAYERS = [
     ["dominance"],
     ["nn"],
     ["compare"],
+    ["validate"],
     ["stage", "stack", "deploy"],
     ["control"],
     ["facts"],

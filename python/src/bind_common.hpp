@@ -165,6 +165,7 @@ void BindStage(py::module_& m);
 void BindControl(py::module_& m);  // after BindStage: adds to sysid.stage
 void BindHysteresis(py::module_& m);
 void BindDeploy(py::module_& m);
+void BindValidate(py::module_& m);
 
 }  // namespace sysid::python
 

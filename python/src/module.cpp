@@ -62,6 +62,7 @@ PYBIND11_MODULE(_sysid, m) {
   BindControl(m);
   BindHysteresis(m);
   BindDeploy(m);
+  BindValidate(m);
 }
 
 }  // namespace sysid::python

@@ -34,6 +34,8 @@ from ._sysid import (  # noqa: F401  (re-exported)
     Trainer, Init, TrainingOptions, TrainingResult, EpochRecord, SweepOptions, SweepRow,
     SweepResult, parse_hidden_sizes, PipelineResult,
     stage, analytic_inverse, network_inverse, unit_warnings, export,
+    FitScores, score_fit, normalised_autocorrelation, normalised_cross_correlation,
+    CorrelationTest, OutputValidation, Validation, ResidualTestOptions, ValidationOptions,
 )
 
 __version__ = "0.1.0"
@@ -45,7 +47,7 @@ OPTION_TYPES = (
     PulseDetectionOptions, PlateauOptions, PulseFitOptions, PulseIdentificationOptions,
     TrajectoryOptions, SegmentOptions, DelayTuningOptions, RefineOptions, DominanceOptions,
     TrainingOptions, SweepOptions, stage.PulseProcedure, stage.TrackingProcedure,
-    stage.PiOptions, stage.SmoothProfileOptions,
+    stage.PiOptions, stage.SmoothProfileOptions, ResidualTestOptions, ValidationOptions,
 )
 
 
@@ -444,6 +446,41 @@ def pi_margins(model, pi=None, extra_delay_s=0.0, **kwargs):
     import json as _json
     opts = _options(stage.PiOptions, pi, kwargs)
     return _json.loads(_sysid.pi_margins_json(_as_model(model), opts, float(extra_delay_s)))
+
+
+def validate(model, recordings, options=None, **kwargs):
+    """Validates a model on held-out recordings as ``sysid validate``: the model simulated
+    free-run from each recording's u and scored as MATLAB's compare and resid do. `model`: a
+    ``sysid.Model`` (or a friction model file, or a dict) simulated by the delayed stick-slip
+    simulator and scored on v and x, or a hysteresis model (``sysid.hysteresis.read``, or its
+    file: one with a "kind" key) scored on x. Keywords: ``max_lag`` (L, default 25), ``z``,
+    ``motion``, ``sim_rtol``, ``sim_atol`` (``ValidationOptions``). Returns one
+    ``Validation`` per recording: ``outputs[i].scores`` (fit_percent, rmse, nrmse_std,
+    nrmse_range), ``outputs[i].autocorrelation`` and ``.cross_correlation`` (r, bound,
+    passed, verdict); ``to_dict()`` gives the JSON of ``sysid validate --json``."""
+    import json as _json
+    residual = {k: kwargs.pop(k) for k in ("max_lag", "z", "lag_probability", "test_level")
+                if k in kwargs}
+    opts = _options(ValidationOptions, options, kwargs)
+    if residual:
+        opts.residual = _options(ResidualTestOptions, opts.residual, residual)
+    if isinstance(model, (str, _os.PathLike)):
+        with open(model, encoding="utf-8") as f:
+            is_hysteresis = "kind" in _json.load(f)
+        model = hysteresis.read(model) if is_hysteresis else _as_model(model)
+    if isinstance(model, _sysid.HysteresisModel):
+        run = _sysid.validate_hysteresis
+    else:
+        model, run = _as_model(model), _sysid.validate_friction
+    return [run(rec, model, opts) for rec in _as_recordings(recordings)]
+
+
+def _validation_to_dict(self):
+    import json as _json
+    return _json.loads(self.to_json())
+
+
+_sysid.Validation.to_dict = _validation_to_dict
 
 
 def _track(parameters=None, reference=None, feedforward="none", model=None, network=None,

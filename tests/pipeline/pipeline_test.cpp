@@ -1,6 +1,7 @@
 // The end-to-end pipeline and the tracking command: report presence and content, feedforward
 // paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
 #include "sysid/pipeline.hpp"
+#include "sysid/validate.hpp"
 #include "sysid/report.hpp"
 
 #include <algorithm>
@@ -204,6 +205,23 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
     CHECK(mse[static_cast<std::size_t>(row++)] == Approx(st / n).epsilon(1e-6));
     CHECK(mse[static_cast<std::size_t>(row++)] == Approx(sd / n).epsilon(1e-6));
   }
+  // Validation: every held-out recording (training, test, 6 waveforms), v and x, and the
+  // numbers are the library's ValidateFrictionModel of the written model on the same file.
+  CHECK(md.find("### The rough model simulated on held-out recordings (validation)") !=
+        std::string::npos);
+  const auto val = nlohmann::json::parse(sysid::test::ReadText(out + "/validation.json"));
+  REQUIRE(val["recordings"].size() == 8);
+  const std::string square = SourcePath("datasets/virtual/waveform_square.csv");
+  for (const auto& rec : val["recordings"]) {
+    CHECK(rec["outputs"].size() == 2);
+    if (rec["source"] != square) continue;
+    const sysid::Validation again = sysid::ValidateFrictionModel(
+        sysid::ReadRecording(square), sysid::ReadModel(out + "/model.json"));
+    CHECK(rec["outputs"][0]["fit_percent"].get<double>() ==
+          Approx(again.outputs[0].scores.fit_percent).epsilon(1e-9));
+  }
+  if (sysid::GnuplotAvailable())
+    CHECK(std::filesystem::exists(out + "/validate_waveform_square_v_residual_tests.png"));
   // The verdict follows the recomputed MSEs, and a missing contrast points at the search.
   const bool contrast = mse[2] >= 2 * mse[0] && mse[3] < mse[2];
   CHECK((md.find("**yes, as in the paper**") != std::string::npos) == contrast);

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Every "-o DIR" (excite, compare, track, pipeline, export) follows one rule: a new or empty folder, or
+# Every "-o DIR" (excite, compare, validate, track, pipeline, export) follows one rule: a new or empty folder, or
 # one sysid wrote (with --force); a user's folder is refused with exit 1 and nothing is deleted
 # (issue #14). Usage: output_folders.sh SYSID SOURCE_DIR
 set -u
@@ -28,11 +28,16 @@ expect 1 "contains the input" compare --model model.json --no-plots -o . "$data"
 expect 0 "" compare --model model.json --no-plots -o cmp "$data"
 [ -f cmp/summary.json ] && [ -f cmp/.sysid-output ] || fail "compare -o cmp wrote no summary"
 expect 1 "pass --force" compare --model model.json --no-plots -o cmp "$data"
+expect 1 "not written by sysid" validate --model model.json --no-plots -o thesis "$data"
+expect 1 "contains the input" validate --model model.json --no-plots -o . "$data" model.json
+expect 0 "" validate --model model.json --no-plots -o val "$data"
+[ -f val/summary.json ] && [ -f val/.sysid-output ] || fail "validate -o val wrote no summary"
+expect 1 "pass --force" validate --model model.json --no-plots -o val "$data"
 expect 1 "not written by sysid" export --model model.json --dt 1e-3 -o thesis
 expect 0 "" export --model model.json --dt 1e-3 -o c_export
 [ -f c_export/sysid_inverse.c ] && [ -f c_export/.sysid-output ] || fail "export -o c_export"
 expect 1 "pass --force" export --model model.json --dt 1e-3 -o c_export
 expect 1 "contains the input" export --model model.json --dt 1e-3 -o .
 [ -f thesis/thesis.tex ] && [ "$(ls -A thesis | wc -l)" -eq 1 ] || fail "thesis folder changed"
-ls -a | grep -q "^\.\(thesis\|refs\|cmp\)\.tmp" && fail "temporary folder left"
+ls -a | grep -q "^\.\(thesis\|refs\|cmp\|val\)\.tmp" && fail "temporary folder left"
 echo "ok: every -o DIR follows the folder rule"

@@ -27,6 +27,7 @@
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/stage_facts.hpp"
+#include "sysid/validate.hpp"
 
 namespace sysid {
 
@@ -159,6 +160,10 @@ struct PipelineResult {
   std::optional<NeuralTrainingResult> typical;
   double typical_test_mse = 0;                 ///< [V^2]
   std::vector<InverseComparison> comparisons;  ///< test set, then waveforms
+  /// The final model simulated free-run on every recording it was not fitted on (training,
+  /// test, then each waveform) and scored (ValidateFrictionModel); a recording whose
+  /// simulation fails is left out with a note.
+  std::vector<Validation> validations;
   std::vector<VoltageLoop> loops;  ///< AnalyzeVoltageLoop of each inputs.loops recording
   std::vector<TrackingRow> tracking;
   /// With options.track: options.pi's linear loop margins on `model` (AnalyzePiMargins), at

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sysid/pipeline.hpp"
+#include "sysid/validate.hpp"
 
 namespace sysid {
 
@@ -52,6 +53,12 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec);
 /// (e [mm] against t [s]) and "control_signal.png" (u [V]), one series per scheme
 /// (`sysid track -o`).
 std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<SchemeTracking>& runs);
+
+/// The plots of a validation, by file name, per output y: "STEM_y.png" (the simulated and the
+/// measured y against t, measured drawn last, on top; m and m/s shown as mm and mm/s) and
+/// "STEM_y_residual_tests.png" (r_e and r_eu against the lag with the ±z/sqrt(N) band).
+std::vector<std::pair<std::string, PlotSpec>> ValidationPlots(const Validation& validation,
+                                                              const std::string& stem);
 
 /// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
 /// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).

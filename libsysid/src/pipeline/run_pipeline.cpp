@@ -205,6 +205,18 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
       r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
   });
 
+  step("validate the model on held-out recordings", [&] {
+    std::vector<const Recording*> held_out{&training, &test};
+    for (const auto& w : waveforms) held_out.push_back(&w);
+    for (const Recording* rec : held_out) {
+      try {
+        r.validations.push_back(ValidateFrictionModel(*rec, r.model));
+      } catch (const NumericalError& e) {
+        r.notes.push_back("validation of " + rec->source + " skipped: " + e.what());
+      }
+    }
+  });
+
   step("figure traces (pulse simulation, network outputs)", [&] {
     PulseVelocityTraces(pulses.front(), r.model, options.delay, r.figures);
     DominanceTraces(training, r.model, r.figures);

@@ -66,6 +66,7 @@ class ReportWriter {
     Dominance();
     Neural();
     Comparison();
+    Render(internal::ValidationSection(r_));
     Tracking();
     Margins();
     Facts();

@@ -48,6 +48,12 @@ ReportSection NetworkFigurePair(const PipelineResult& result, NetworkMses* mses 
 /// by amplitude) as markdown tables, and loop_fact.csv; empty markdown without F8.
 ReportSection LoopFactSection(const StageFacts& facts);
 
+/// The final friction model validated on the held-out recordings (result.validations): a
+/// table per recording and output, validation.json, and each recording's velocity plots
+/// (ValidationPlots: validate_<name>_v.png, validate_<name>_v_residual_tests.png); empty
+/// without validations.
+ReportSection ValidationSection(const PipelineResult& result);
+
 }  // namespace sysid::internal
 
 #endif  // SYSID_SRC_REPORT_REPORT_SECTIONS_HPP_
