@@ -1,5 +1,8 @@
 // Hysteresis models (sysid/hysteresis_model.hpp, sysid/compare_hysteresis.hpp): fit by kind,
 // simulate, invert, read model files. python/sysid/hysteresis.py wraps them.
+#include <fmt/format.h>
+
+#include <cmath>
 #include <memory>
 
 #include "bind_common.hpp"
@@ -32,7 +35,10 @@ void BindHysteresis(py::module_& m) {
       .def_readonly("value", &HysteresisParameter::value)
       .def_readonly("std_error", &HysteresisParameter::std_error)
       .def("__repr__", [](const HysteresisParameter& p) {
-        return "HysteresisParameter(" + p.name + "=" + std::to_string(p.value) + " " + p.unit + ")";
+        // %.4g, not std::to_string's %f, which prints a 2.264e-6 m/V weight as 0.000002.
+        const std::string error =
+            std::isfinite(p.std_error) ? fmt::format(" ± {:.2g}", p.std_error) : "";
+        return fmt::format("HysteresisParameter({}={:.6g}{} {})", p.name, p.value, error, p.unit);
       });
   py::class_<HysteresisFitSummary>(m, "HysteresisFitSummary")
       .def_readonly("kind", &HysteresisFitSummary::kind)
@@ -71,7 +77,12 @@ void BindHysteresis(py::module_& m) {
           },
           py::arg("x_m"), py::arg("dt_s"), "u [V] that makes the model follow x [m].")
       .def_property_readonly("parameters", &HysteresisModel::parameters)
-      .def("to_json", &HysteresisModel::ToJson, py::arg("indent") = 2);
+      .def("to_json", &HysteresisModel::ToJson, py::arg("indent") = 2)
+      .def("__repr__", [](const HysteresisModel& model) {
+        const auto parameters = model.parameters();
+        return fmt::format("<HysteresisModel kind={}, {} parameters, {}invertible>", model.kind(),
+                           parameters.size(), model.invertible() ? "" : "not ");
+      });
   m.def("hysteresis_kinds", &HysteresisKinds);
   m.def(
       "fit_hysteresis",

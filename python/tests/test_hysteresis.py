@@ -34,6 +34,11 @@ def test_fit_simulate_invert_round_trip():
     # fit is close but not exact: 2 % of the 40 um stroke is a loose bound.
     assert fit.training_rms_m < 0.02 * (x.max() - x.min())
     assert all(not math.isnan(p.std_error) or p.value == 0 for p in fit.parameters)
+    # The reprs say the value to 6 significant digits with its standard error, and the kind.
+    p0 = fit.parameters[0]
+    assert repr(p0) == f"HysteresisParameter(p0={p0.value:.6g} ± {p0.std_error:.2g} m/V)"
+    assert "e-06" in repr(p0)  # a micrometre-per-volt weight is not printed as 0.000002
+    assert repr(fit.model) == "<HysteresisModel kind=pi, 4 parameters, invertible>"
     xm = hy.simulate(fit.model, u, dt)
     back = hy.invert(fit.model, xm, dt)
     assert np.max(np.abs(back - u)) < 1e-12  # the closed-form inverse
