@@ -176,6 +176,12 @@ TEST_CASE("tune-pi on the twin's identified model: no limit cycle, no saturation
     CHECK(t.saturated_samples == 0);
     CHECK_FALSE(c.limit_cycle);
     CHECK(t.rms_error_m < 1e-3);  // it tracks (a tenth of the 10 mm stroke)
+    // The same gains on the identified model as the plant (track --plant M.json).
+    const TrackingResult on_model = TrackModelSchemes(model, twin.sample_time_s(), ref, r.pi,
+                                                      {FeedforwardScheme::kNone}, {})[0].result;
+    const LimitCycleCheck cm = CheckLimitCycle(on_model, 0.5, 5e-6);
+    CHECK(on_model.saturated_samples == 0);
+    CHECK_FALSE(cm.limit_cycle);
   }
 }
 
