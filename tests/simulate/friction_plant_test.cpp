@@ -55,6 +55,35 @@ TEST_CASE("stepped plant equals Simulate on the zero-order hold of its voltages"
   }
 }
 
+TEST_CASE("stepped plant: a release at a sample edge happens at that edge", "[simulate][plant]") {
+  // At rest, pulses above and below the breakaway levels (a3 u vs a2p = 3.1, a2n = 6.8 m/s^2):
+  // the stick/slip decision at t_k must see u_k, not the voltage before it.
+  const FrictionModel model = FrictionModel::Paper();
+  const double ts = 1e-3;
+  std::vector<double> t, u;
+  // Each 60 samples: 0.8 V (slides), 0 V for 4 samples (stops within tau = 3.5 samples, so
+  // v(t - tau) is still moving when 1.5 V releases it), 0 V, then -1.5 V and -0.9 V from rest.
+  for (int k = 0; k < 300; ++k) {
+    t.push_back(k * ts);
+    const int j = k % 60;
+    u.push_back(j < 20 ? 0.8 : j < 24 ? 0.0 : j < 30 ? 1.5 : j < 40 ? 0.0 : j < 50 ? -1.5 : -0.9);
+  }
+  FrictionModelPlant plant(model, ts);
+  std::vector<double> x = {plant.position_m()};
+  for (double uk : u) x.push_back(plant.Step(uk));
+  SimulationOptions o;
+  o.t_end_s = 300 * ts;
+  o.dt_out_s = ts;
+  const SimulationResult r = Simulate(model, PiecewiseConstantInput(t, u), o);
+  REQUIRE(r.summary.IsSolutionUsable());
+  REQUIRE(r.events.size() >= 4);
+  double worst = 0;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    worst = std::max(worst, std::abs(x[k] - r.trajectory.x_m[static_cast<Eigen::Index>(k)]));
+  INFO("max |x_step - x_simulate| = " << worst << " m");
+  CHECK(worst < 1e-10);
+}
+
 TEST_CASE("stepped plant without friction or delay: the exact ZOH step", "[simulate][plant]") {
   FrictionModel m;
   m.a1p = m.a1n = 80;
