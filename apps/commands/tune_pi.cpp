@@ -43,7 +43,14 @@ void RunTunePi(const TunePiCli& o) {
                         {"crossover_per_integral_corner", "--corner-ratio"}});
   }
   Progress("tune-pi: step and sine on the model");
-  const PiBehaviour b = SimulatePiBehaviour(model, r.pi, o.behaviour);
+  PiBehaviour b;
+  try {
+    b = SimulatePiBehaviour(model, r.pi, o.behaviour);
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"step_m", "--step"},
+                        {"sine_amplitude_m", "--sine-amplitude"},
+                        {"sine_frequency_hz", "--sine-freq"}});
+  }
   ProgressDone();
   if (o.json) {
     std::cout << TunePiToJson(o.model_path, r, o.tuning, b) << '\n';
