@@ -3,6 +3,7 @@
 // sysid track --plant STACK.json|piezo-stack --ff none,hysteresis --hysteresis H.json
 //             [--waveform sine|triangle] (--freq F | --reference REF.csv) [--json] [-o DIR]
 // sysid track --plant M.json [--loop-rate HZ] --ff none|analytic|nn[,...] [--model FF.json] ...
+// sysid track --plant H.json --ff none,hysteresis --hysteresis H2.json ... (the stack's form)
 // PI position control on the virtual stage, the virtual piezo stack (a file naming
 // "plant": "piezo-stack") or an identified friction model simulated as the plant (a model
 // file), with optional feedforward; tracking-error table naming its plant.
@@ -25,6 +26,7 @@
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
@@ -53,13 +55,37 @@ struct TrackCliOptions {
 
 bool Given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
 
-// A stack preset, or a file that names "plant": "piezo-stack" (anything else is a stage).
+// A hysteresis model file ({"kind": ...}, sysid hysteresis fit -o): the model ahead of the
+// stack's mechanics.
+bool IsHysteresisPlant(const std::string& plant) {
+  if (IsStackPresetName(plant) || StageParameters::IsPresetName(plant)) return false;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(plant, ec)) return false;
+  const std::string text = ReadFile(plant);
+  return !IsStackFileText(text) && text.find("\"kind\"") != std::string::npos &&
+         text.find("\"a1p\"") == std::string::npos;
+}
+
+// A stack preset, a file that names "plant": "piezo-stack", or a hysteresis model (anything
+// else is a stage or a friction model).
 bool IsStackPlant(const std::string& plant) {
   if (IsStackPresetName(plant)) return true;
   if (StageParameters::IsPresetName(plant)) return false;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(plant, ec)) return false;
-  return IsStackFileText(ReadFile(plant));
+  return IsStackFileText(ReadFile(plant)) || IsHysteresisPlant(plant);
+}
+
+// The stack of --plant: a preset or stack file, or the bundled stack with H.json's hysteresis.
+StackParameters LoadStackPlant(const std::string& plant) {
+  if (!IsHysteresisPlant(plant)) return LoadStack(plant);
+  const std::unique_ptr<HysteresisModel> model = ReadHysteresisModel(plant);
+  const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(model.get());
+  if (pi == nullptr)
+    throw OptionsError(plant + ": a " + model->kind() +
+                       " model has no form in the stack's hysteresis (rate-dependent PI); give "
+                       "a pi or rdpi model as --plant (sysid hysteresis fit --model pi|rdpi)");
+  return StackWithHysteresis(StackParameters::Default(), pi->pi(), plant);
 }
 
 // A friction model file (sysid identify -o: the key "a1p") rather than a stage or stack file.
@@ -96,7 +122,7 @@ void RunStackTrack(const TrackCliOptions& o) {
     throw OptionsError(
         "--model and --nn are the stage's inverse models; the piezo stack takes --hysteresis "
         "H.json (--ff hysteresis)");
-  const StackParameters stack = LoadStack(o.plant);
+  const StackParameters stack = LoadStackPlant(o.plant);
   PiOptions pi = StackPiOptions(stack);
   if (Given(o.kp)) pi.kp_v_per_m = o.pi.kp_v_per_m;
   if (Given(o.ki)) pi.ki_v_per_m_s = o.pi.ki_v_per_m_s;
@@ -313,7 +339,9 @@ void AddTrackCommand(CLI::App& app) {
                       cli::kStagePresets +
                       "; or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
                   "preset 'piezo-stack' (docs/piezo_stack.md); or an identified friction model "
-                  "M.json (sysid identify -o), simulated with stick-slip as the plant");
+                  "M.json (sysid identify -o), simulated with stick-slip as the plant; or a pi or "
+                  "rdpi hysteresis model H.json (sysid hysteresis fit -o) ahead of the bundled "
+                  "stack's creep and mechanics");
   o->loop_rate = cmd->add_option("--loop-rate", o->loop_rate_hz,
                                  "control rate of a friction model plant [Hz] (the bundled "
                                  "stage's)")
