@@ -48,7 +48,7 @@ TEST_CASE("tune-pi: the margins it reports are those of sysid margins", "[contro
   CHECK(RunCli({"tune-pi", "--model", model, "--phase-margin", "95"}).exit_code == 1);
 }
 
-TEST_CASE("track --plant M.json: the model as plant, named; feedforward from another model",
+TEST_CASE("track --plant M.json: the model as plant, named, with feedforward from another model",
           "[control][cli]") {
   TempDir dir;
   const std::string model = TestData("control/twin_model.json");

@@ -140,6 +140,8 @@ class Simulator {
   }
   /// A jump of the stepped plant's input at t: its breakpoints t + k tau.
   void AddEdge(double t_s) { stops_.AddBreakpoints(t_s); }
+  /// The stepped plant never looks back beyond t - tau: the older history goes.
+  void ForgetBefore(double t_s) { p_.history.ForgetBefore(t_s); }
   double velocity_mps() const { return v_; }
   long events() const { return static_cast<long>(result_.events.size()); }
 
@@ -441,6 +443,15 @@ class GrowingHoldInput final : public InputSignal {
   }
   std::vector<double> Edges(double, double) const override { return {}; }
   bool ConstantBetweenEdges() const override { return true; }
+  /// Drops the rows before the one in force at t (nothing reads u before the current sample),
+  /// once they outnumber the kept ones.
+  void ForgetBefore(double t_s) {
+    const auto it = std::upper_bound(t_.begin(), t_.end(), t_s);
+    const std::size_t keep_from = it == t_.begin() ? 0 : static_cast<std::size_t>(it - t_.begin()) - 1;
+    if (keep_from < 1024 || 2 * keep_from < t_.size()) return;
+    t_.erase(t_.begin(), t_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+    u_.erase(u_.begin(), u_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+  }
 
  private:
   std::vector<double> t_, u_;
@@ -478,6 +489,9 @@ class FrictionModelPlant::Impl {
     last_u_ = u_v;
     ++k_;
     x_ = simulator_.Advance(time_s());
+    // Bounded memory on long runs: v(t - tau) is read at t_k - tau at the earliest.
+    simulator_.ForgetBefore(t_k - model_.tau_s - ts_);
+    input_.ForgetBefore(t_k);
     return x_;
   }
   double time_s() const { return options_.t0_s + static_cast<double>(k_) * ts_; }
