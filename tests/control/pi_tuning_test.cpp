@@ -3,10 +3,12 @@
 // no better gains on a brute-force grid of (Kp, Ki); its gains on the twin (no limit cycle, no
 // saturation); the limit-cycle check on a loop known to limit-cycle; tracking on a model plant
 // against the exact zero-order-hold plant.
+#include <Eigen/Dense>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
-#include <Eigen/Dense>
+#include <string>
 
 #include "support/test_support.hpp"
 #include "sysid/control.hpp"
