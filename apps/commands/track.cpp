@@ -2,13 +2,17 @@
 //             [--nn NN.json] (--freq F | --reference REF.csv) [--json] [-o DIR]
 // sysid track --plant STACK.json|piezo-stack --ff none,hysteresis --hysteresis H.json
 //             [--waveform sine|triangle] (--freq F | --reference REF.csv) [--json] [-o DIR]
-// PI position control on the virtual stage or the virtual piezo stack (a file naming
-// "plant": "piezo-stack") with optional feedforward; tracking-error table.
+// sysid track --plant M.json [--loop-rate HZ] --ff none|analytic|nn[,...] [--model FF.json] ...
+// sysid track --plant H.json --ff none,hysteresis --hysteresis H2.json ... (the stack's form)
+// PI position control on the virtual stage, the virtual piezo stack (a file naming
+// "plant": "piezo-stack") or an identified friction model simulated as the plant (a model
+// file), with optional feedforward; tracking-error table naming its plant.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +26,7 @@
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
+#include "sysid/hysteresis.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
@@ -44,17 +49,52 @@ struct TrackCliOptions {
   std::uint64_t seed = 1;
   bool json = false, plots = true, force = false;
   RecordingFlags recording;  // --var, --rate, --scale for --reference
+  double loop_rate_hz = StageParameters::Default().sample_rate_hz;  // a model plant's loop
+  const CLI::Option* loop_rate = nullptr;
 };
 
 bool Given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
 
-// A stack preset, or a file that names "plant": "piezo-stack" (anything else is a stage).
+// A hysteresis model file ({"kind": ...}, sysid hysteresis fit -o): the model ahead of the
+// stack's mechanics.
+bool IsHysteresisPlant(const std::string& plant) {
+  if (IsStackPresetName(plant) || StageParameters::IsPresetName(plant)) return false;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(plant, ec)) return false;
+  const std::string text = ReadFile(plant);
+  return !IsStackFileText(text) && text.find("\"kind\"") != std::string::npos &&
+         text.find("\"a1p\"") == std::string::npos;
+}
+
+// A stack preset, a file that names "plant": "piezo-stack", or a hysteresis model (anything
+// else is a stage or a friction model).
 bool IsStackPlant(const std::string& plant) {
   if (IsStackPresetName(plant)) return true;
   if (StageParameters::IsPresetName(plant)) return false;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(plant, ec)) return false;
-  return IsStackFileText(ReadFile(plant));
+  return IsStackFileText(ReadFile(plant)) || IsHysteresisPlant(plant);
+}
+
+// The stack of --plant: a preset or stack file, or the bundled stack with H.json's hysteresis.
+StackParameters LoadStackPlant(const std::string& plant) {
+  if (!IsHysteresisPlant(plant)) return LoadStack(plant);
+  const std::unique_ptr<HysteresisModel> model = ReadHysteresisModel(plant);
+  const auto* pi = dynamic_cast<const PrandtlIshlinskiiModel*>(model.get());
+  if (pi == nullptr)
+    throw OptionsError(plant + ": a " + model->kind() +
+                       " model has no form in the stack's hysteresis (rate-dependent PI); give "
+                       "a pi or rdpi model as --plant (sysid hysteresis fit --model pi|rdpi)");
+  return StackWithHysteresis(StackParameters::Default(), pi->pi(), plant);
+}
+
+// A friction model file (sysid identify -o: the key "a1p") rather than a stage or stack file.
+bool IsModelPlant(const std::string& plant) {
+  if (IsStackPresetName(plant) || StageParameters::IsPresetName(plant)) return false;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(plant, ec)) return false;
+  const std::string text = ReadFile(plant);
+  return !IsStackFileText(text) && text.find("\"a1p\"") != std::string::npos;
 }
 
 // -o DIR for stage and stack alike: a trace per scheme, the plots, the summary.
@@ -82,7 +122,7 @@ void RunStackTrack(const TrackCliOptions& o) {
     throw OptionsError(
         "--model and --nn are the stage's inverse models; the piezo stack takes --hysteresis "
         "H.json (--ff hysteresis)");
-  const StackParameters stack = LoadStack(o.plant);
+  const StackParameters stack = LoadStackPlant(o.plant);
   PiOptions pi = StackPiOptions(stack);
   if (Given(o.kp)) pi.kp_v_per_m = o.pi.kp_v_per_m;
   if (Given(o.ki)) pi.ki_v_per_m_s = o.pi.ki_v_per_m_s;
@@ -166,9 +206,74 @@ void RunStackTrack(const TrackCliOptions& o) {
             << table.Render();
 }
 
+// The identified model as the plant (FrictionModelPlant); --ff analytic defaults to the same
+// model, --model names another (the model error a user wants to see).
+void RunModelTrack(const TrackCliOptions& o) {
+  if (!o.hysteresis_path.empty() || Given(o.waveform_flag))
+    throw OptionsError("--hysteresis and --waveform are the piezo stack's; a friction model "
+                       "plant tracks the smooth profile (--freq, --amplitude) or --reference");
+  const auto folder = OptionalOutputFolder(
+      o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
+  const FrictionModel plant = ReadModel(o.plant);
+  std::vector<FeedforwardScheme> schemes;
+  PositionReference ref;
+  try {
+    schemes = ParseFeedforwardSchemes(o.ff);
+    if (o.reference_path.empty()) {
+      SmoothProfileOptions profile = o.profile;
+      profile.sample_rate_hz = o.loop_rate_hz;
+      ref = MakeSmoothProfile(profile);
+    } else {
+      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
+      CheckReferenceForPlant(ref, o.loop_rate_hz, -std::numeric_limits<double>::max(),
+                             std::numeric_limits<double>::max());
+    }
+  } catch (const OptionsError& e) {
+    RethrowWithFlag(e, {{"schemes", "--ff"},
+                        {"amplitude_m", "--amplitude"},
+                        {"frequency_hz", "--freq"},
+                        {"sample_rate_hz", "--loop-rate"}});
+  }
+  const FrictionModel ff_model = o.model_path.empty() ? plant : ReadModel(o.model_path);
+  std::optional<NeuralNetwork> nn;
+  if (Uses(schemes, FeedforwardScheme::kNetwork)) {
+    if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
+    nn = ReadNeuralNetwork(o.nn_path);
+  }
+  const std::vector<SchemeTracking> runs = TrackModelSchemes(
+      plant, 1 / o.loop_rate_hz, ref, o.pi, schemes, {&ff_model, nn ? &*nn : nullptr},
+      [&](FeedforwardScheme s, size_t i) {
+        Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1, schemes.size()));
+      });
+  ProgressDone();
+  const std::string summary = TrackingSummaryToJson(o.plant, ref, o.pi, runs);
+  Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
+               "plant"});
+  for (const auto& run : runs) {
+    const auto& r = run.result;
+    table.AddRow({ToString(run.scheme), Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
+                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
+                  run.stage_limits});
+  }
+  if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
+  if (o.json) {
+    std::cout << summary;
+    return;
+  }
+  std::cout << fmt::format("plant: {} (identified friction model, simulated at {:g} Hz); "
+                           "feedforward model: {}\n",
+                           o.plant, o.loop_rate_hz,
+                           o.model_path.empty() ? "the plant's" : o.model_path)
+            << table.Render();
+}
+
 void RunTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
   if (IsStackPlant(o.plant)) return RunStackTrack(o);
+  if (IsModelPlant(o.plant)) return RunModelTrack(o);
+  if (Given(o.loop_rate))
+    throw OptionsError("--loop-rate is a friction model plant's; a stage runs at its own control "
+                       "rate (rig.control_rate_hz)");
   if (!o.hysteresis_path.empty())
     throw OptionsError("--hysteresis is the piezo stack's feedforward model (--plant piezo-stack)");
   if (Given(o.waveform_flag))
@@ -219,7 +324,7 @@ void RunTrack(const TrackCliOptions& o) {
                   run.stage_limits});
   }
   if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
-  std::cout << (o.json ? summary : table.Render());
+  std::cout << (o.json ? summary : "plant: " + stage.name + "\n" + table.Render());
 }
 
 void AddTrackCommand(CLI::App& app) {
@@ -233,7 +338,15 @@ void AddTrackCommand(CLI::App& app) {
                   std::string("stage parameter file STAGE.json, or a stage preset: ") +
                       cli::kStagePresets +
                       "; or a piezo stack: a file naming \"plant\": \"piezo-stack\", or the "
-                  "preset 'piezo-stack' (docs/piezo_stack.md)");
+                  "preset 'piezo-stack' (docs/piezo_stack.md); or an identified friction model "
+                  "M.json (sysid identify -o), simulated with stick-slip as the plant; or a pi or "
+                  "rdpi hysteresis model H.json (sysid hysteresis fit -o) ahead of the bundled "
+                  "stack's creep and mechanics");
+  o->loop_rate = cmd->add_option("--loop-rate", o->loop_rate_hz,
+                                 "control rate of a friction model plant [Hz] (the bundled "
+                                 "stage's)")
+                     ->check(FiniteRange(1, 1e6))
+                     ->capture_default_str();
   cmd->add_option("--ff", o->ff,
                   "feedforward scheme(s), comma separated: none, analytic, nn (stage); none, "
                   "hysteresis (stack)")
@@ -248,7 +361,8 @@ void AddTrackCommand(CLI::App& app) {
                       "back")
           ->check(CLI::IsMember({"sine", "triangle"}))
           ->capture_default_str();
-  cmd->add_option("--model", o->model_path, "friction model JSON (for --ff analytic)")
+  cmd->add_option("--model", o->model_path,
+                  "friction model JSON (for --ff analytic; with a model plant, default the plant)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--nn", o->nn_path,
                   "neural inverse model JSON on v [m/s] (and a [m/s^2]) "

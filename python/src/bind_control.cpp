@@ -7,6 +7,7 @@
 #include "bind_common.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/stage.hpp"
@@ -167,6 +168,25 @@ void BindControl(py::module_& m) {
       py::arg("model"), py::arg("pi"), py::arg("extra_delay_s") = 0.0,
       "The PI loop's gain and phase margins on the model, per direction, as `sysid margins "
       "--json` prints them.");
+  m.def(
+      "tune_pi_json",
+      [](const FrictionModel& model, const std::string& plant, double loop_rate_hz,
+         double phase_margin_deg, double gain_margin_db, double corner_ratio,
+         double extra_delay_s, double u_max_v) {
+        PiTuningOptions o;
+        o.loop_rate_hz = loop_rate_hz;
+        o.phase_margin_deg = phase_margin_deg;
+        o.gain_margin_db = gain_margin_db;
+        o.crossover_per_integral_corner = corner_ratio;
+        o.extra_delay_s = extra_delay_s;
+        o.u_max_v = u_max_v;
+        const PiTuningResult r = TunePi(model, o);
+        return TunePiToJson(plant, r, o, SimulatePiBehaviour(model, r.pi));
+      },
+      py::arg("model"), py::arg("plant"), py::arg("loop_rate_hz"), py::arg("phase_margin_deg"),
+      py::arg("gain_margin_db"), py::arg("crossover_per_integral_corner"),
+      py::arg("extra_delay_s"), py::arg("u_max_v"),
+      "PI gains for the model meeting the margins, as `sysid tune-pi --json` prints them.");
   // The library checks that v and a are equally long (InputError naming v_mps and a_mps2).
   m.def(
       "analytic_inverse",

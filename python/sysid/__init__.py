@@ -483,6 +483,21 @@ def _validation_to_dict(self):
 _sysid.Validation.to_dict = _validation_to_dict
 
 
+def tune_pi(model, loop_rate_hz=1000.0, phase_margin_deg=45.0, gain_margin_db=6.0,
+            crossover_per_integral_corner=5.0, extra_delay_s=0.0, u_max_v=10.0):
+    """PI gains for a rough model, as a dict (the JSON of ``sysid tune-pi --json``): the highest
+    crossover at which both directions meet the phase margin [deg] and gain margin [dB] at the
+    loop rate [Hz], with Ki/Kp = crossover / ``crossover_per_integral_corner``; "tuning" holds
+    the gains and their margins (``pi_margins``' dict), "behaviour" their step and sine on the
+    model. ``model``: a Model or a model file's path."""
+    import json as _json
+    plant = _os.fspath(model) if isinstance(model, (str, _os.PathLike)) else "model"
+    return _json.loads(_sysid.tune_pi_json(
+        _as_model(model), str(plant), float(loop_rate_hz), float(phase_margin_deg),
+        float(gain_margin_db), float(crossover_per_integral_corner), float(extra_delay_s),
+        float(u_max_v)))
+
+
 def _track(parameters=None, reference=None, feedforward="none", model=None, network=None,
            pi=None, seed=1, **profile):
     """The tracking experiment of ``sysid track``: PI position control of the virtual stage

@@ -272,3 +272,18 @@ def test_voltage_loop_matches_cli_loop():
     with pytest.raises(sysid.DataError, match="cycles = 2, but the sweep crosses"):
         sysid.voltage_loop(path, cycles=2)
     assert "cycles = 2, but" in run_cli("loop", path, "--cycles", "2", expect=2).stderr
+
+
+def test_tune_pi_matches_cli_tune_pi_and_its_margins(tmp_path):
+    model = sysid.Model(a1p=104.0, a1n=117.1, a2p=3.10, a2n=6.82, a3=6, tau_s=0.00375)
+    path = tmp_path / "m.json"
+    model.save(str(path))
+    cli = cli_json("tune-pi", "--model", path, "--loop-rate", "2000")
+    py = sysid.tune_pi(path, loop_rate_hz=2000)
+    assert py == cli
+    t = py["tuning"]
+    margins = sysid.pi_margins(model, kp_v_per_m=t["kp_v_per_m"], ki_v_per_m_s=t["ki_v_per_m_s"],
+                               sample_time_s=t["sample_time_s"])
+    assert margins["directions"] == t["margins"]["directions"]
+    assert min(d["phase_margin_deg"] for d in margins["directions"]) >= 45 - 1e-6
+

@@ -11,6 +11,7 @@
 
 #include "support/test_support.hpp"
 #include "sysid/control.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/identify.hpp"
@@ -161,6 +162,20 @@ TEST_CASE("help defaults are the Options structs' defaults", "[cli]") {
     CHECK(same(ShownNumber(h, "--u-max"), sysid::PiOptions{}.u_max_v));
     CHECK(same(ShownNumber(h, "--amplitude"), sysid::SmoothProfileOptions{}.amplitude_m));
     CHECK(same(ShownNumber(h, "--freq"), sysid::SmoothProfileOptions{}.frequency_hz));
+  }
+  {
+    const std::string h = Help({"tune-pi"});
+    const sysid::PiTuningOptions t;
+    const sysid::PiBehaviourOptions b;
+    CHECK(same(ShownNumber(h, "--loop-rate"), t.loop_rate_hz));
+    CHECK(same(ShownNumber(h, "--phase-margin"), t.phase_margin_deg));
+    CHECK(same(ShownNumber(h, "--gain-margin"), t.gain_margin_db));
+    CHECK(same(ShownNumber(h, "--corner-ratio"), t.crossover_per_integral_corner));
+    CHECK(same(ShownNumber(h, "--u-max"), t.u_max_v));
+    CHECK(same(ShownNumber(h, "--step"), b.step_m));
+    CHECK(same(ShownNumber(h, "--sine-freq"), b.sine_frequency_hz));
+    CHECK(same(ShownNumber(Help({"track"}), "--loop-rate"),
+               sysid::StageParameters::Default().sample_rate_hz));
   }
   {
     const std::string h = Help({"excite"});

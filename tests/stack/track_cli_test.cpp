@@ -44,6 +44,19 @@ TEST_CASE("sysid track on the piezo stack: traces -> pi fit -> feedforward beats
   CHECK(ff < 0.05 * none);  // docs/piezo_stack.md: 2.195 um and 0.027 um
   CHECK(j["schemes"][1]["stage_limits"] == "none");
 
+  // The fitted model as the plant, ahead of the stack's mechanics: named in the JSON and the
+  // table; its own inverse as feedforward still wins.
+  const auto on_model = RunCli({"track", "--plant", dir / "pi.json", "--ff", "none,hysteresis",
+                                "--hysteresis", dir / "pi.json", "--freq", "10", "--json"});
+  REQUIRE(on_model.exit_code == 0);
+  const auto jm = nlohmann::json::parse(on_model.out);
+  CHECK(jm["plant"] == dir / "pi.json");
+  CHECK(jm["schemes"][1]["rms_error_m"].get<double>() <
+        0.05 * jm["schemes"][0]["rms_error_m"].get<double>());
+  const auto named = RunCli({"track", "--plant", dir / "pi.json", "--freq", "10"});
+  REQUIRE(named.exit_code == 0);
+  CHECK_THAT(named.out, Contains("piezo stack with the hysteresis of " + dir / "pi.json"));
+
   // Out of the model's range: a reference twice the training stroke.
   const auto far = RunCli({"track", "--plant", "piezo-stack", "--ff", "hysteresis", "--hysteresis",
                            dir / "pi.json", "--amplitude", "40e-6", "-o", dir / "far"});

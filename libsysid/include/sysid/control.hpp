@@ -284,6 +284,17 @@ std::vector<SchemeTracking> TrackSchemes(
     PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
     const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme = {});
 
+/// PI tracking of `reference` once per scheme, each on a fresh FrictionModelPlant(plant,
+/// sample_time_s) (sysid/simulate.hpp: the identified model simulated by the delayed
+/// stick-slip simulator, from rest at x = reference.x_m[0], exact x: no encoder). `sysid track
+/// --plant M.json`. pi.sample_time_s is sample_time_s; the reference must be sampled at it.
+/// stage_limits names the plant's events ("model plant: N stick/slip events"). The hysteresis
+/// scheme is the stack's (OptionsError).
+std::vector<SchemeTracking> TrackModelSchemes(
+    const FrictionModel& plant, double sample_time_s, const PositionReference& reference,
+    PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme = {});
+
 // ---- The piezo stack (sysid/stack.hpp; docs/piezo_stack.md) -------------------------------
 
 /// The stack's reference waveforms: x(t) from 0 up to `stroke_m` and back, `cycles` periods of

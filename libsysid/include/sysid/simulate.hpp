@@ -10,6 +10,7 @@
 #define SYSID_SIMULATE_HPP_
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -103,6 +104,38 @@ struct SimulationResult {
 /// invalid options or model.
 SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
                           const SimulationOptions& options);
+
+/// The delayed friction model as the plant of a sampled control loop: Step(u) holds u [V] for
+/// one period Ts (zero-order hold) and returns x [m] at the next sample. The same simulator as
+/// Simulate (stick-slip events, the dense delay history, CVODE restarted at each sample where u
+/// jumps), continued sample by sample: the input from t_k on is known only when Step gives it,
+/// so the stick/slip decision at t_k waits for it. Stepping u_0, u_1, ... gives the x of
+/// Simulate on the zero-order hold of those voltages. Uses options' x0_m, v0_mps, history_v_mps,
+/// t0_s, tolerances, method, breakpoint_order, max_order, max_steps (over the whole run);
+/// t_end_s, dt_out_s and output_times_s are not used. No encoder: x is exact.
+class FrictionModelPlant {
+ public:
+  /// Throws OptionsError for an invalid model or options, or sample_time_s not finite > 0.
+  FrictionModelPlant(const FrictionModel& model, double sample_time_s,
+                     const SimulationOptions& options = {});
+  ~FrictionModelPlant();
+  FrictionModelPlant(FrictionModelPlant&&) noexcept;
+  FrictionModelPlant& operator=(FrictionModelPlant&&) noexcept;
+  FrictionModelPlant(const FrictionModelPlant&) = delete;
+  FrictionModelPlant& operator=(const FrictionModelPlant&) = delete;
+
+  /// x(t_{k+1}) [m] after u_v [V] held over [t_k, t_{k+1}). Throws NumericalError (the
+  /// simulator's sentence) when the integration fails, OptionsError for a non-finite u.
+  double Step(double u_v);
+  double position_m() const;    ///< [m] x at time_s()
+  double velocity_mps() const;  ///< [m/s] v at time_s() (left limit)
+  double time_s() const;        ///< [s] t0 + k Ts
+  long events() const;          ///< stick/slip events so far
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// The options as JSON (every field; method as "adams"/"bdf").
 std::string ToJson(const SimulationOptions& options, int indent = 2);

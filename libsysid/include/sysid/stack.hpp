@@ -119,6 +119,16 @@ struct StackParameters {
   double MaxStaticGain() const;
 };
 
+/// `base` with its hysteresis replaced by an identified Prandtl–Ishlinskii model's (kind pi or
+/// rdpi: p0 = the model's a_1, its thresholds and weights, rdpi's rate weights; pi: rate
+/// weights 0), the creep, mechanics and rig kept: the model ahead of the stack's mechanics, the
+/// plant of `sysid track --plant H.json`. The stack starts at rest at 0 V with the operators
+/// at rest; the model's offset c (a sensor offset) and initial state are not the plant's.
+/// Throws OptionsError naming the kind for gpi (its input polynomial has no stack form) and
+/// naming the parameter when the model's values are not a stack's (e.g. a negative weight).
+StackParameters StackWithHysteresis(const StackParameters& base, const PiParameters& model,
+                                    const std::string& model_name);
+
 /// "piezo-stack" (and "stack"): the names `--plant` takes for StackParameters::Default().
 bool IsStackPresetName(const std::string& name);
 

@@ -6,6 +6,7 @@
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
 #include "sysid/control.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {
@@ -130,6 +131,63 @@ SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
                                                   const std::string& source_name) {
   return internal::OptionsFromJson<SmoothProfileOptions>(text, source_name,
                                                          ReadSmoothProfileOptions);
+}
+
+}  // namespace sysid
+
+namespace sysid {
+
+std::string ToJson(const PiTuningResult& r, const PiTuningOptions& o, int indent) {
+  nlohmann::ordered_json j;
+  j["kp_v_per_m"] = r.pi.kp_v_per_m;
+  j["ki_v_per_m_s"] = r.pi.ki_v_per_m_s;
+  j["sample_time_s"] = r.pi.sample_time_s;
+  j["u_max_v"] = r.pi.u_max_v;
+  j["targets"] = {{"phase_margin_deg", o.phase_margin_deg},
+                  {"gain_margin_db", o.gain_margin_db},
+                  {"crossover_per_integral_corner", o.crossover_per_integral_corner}};
+  j["design_crossover_rad_s"] = r.design_crossover_rad_s;
+  j["margins"] = nlohmann::ordered_json::parse(ToJson(r.margins));
+  return internal::DumpJson(j, indent);
+}
+
+std::string ToJson(const LimitCycleCheck& c, int indent) {
+  nlohmann::ordered_json j;
+  j["window_s"] = c.window_s;
+  j["threshold_m"] = c.threshold_m;
+  j["error_peak_to_peak_m"] = c.error_peak_to_peak_m;
+  j["control_peak_to_peak_v"] = c.control_peak_to_peak_v;
+  j["limit_cycle"] = c.limit_cycle;
+  return internal::DumpJson(j, indent);
+}
+
+std::string ToJson(const PiBehaviour& b, int indent) {
+  using internal::NumberOrNull;
+  nlohmann::ordered_json j;
+  j["step"] = {{"step_m", b.step_m},
+               {"overshoot", NumberOrNull(b.overshoot)},
+               {"rise_time_s", NumberOrNull(b.rise_time_s)},
+               {"settling_time_s", NumberOrNull(b.settling_time_s)},
+               {"final_error_m", b.step_final_error_m},
+               {"saturated_samples", b.step_saturated_samples},
+               {"max_abs_u_v", b.step_max_abs_u_v}};
+  nlohmann::ordered_json sine = {{"amplitude_m", b.sine_amplitude_m},
+                                 {"frequency_hz", b.sine_frequency_hz}};
+  const nlohmann::ordered_json metrics = nlohmann::ordered_json::parse(ToJson(b.sine));
+  for (auto it = metrics.begin(); it != metrics.end(); ++it) sine[it.key()] = it.value();
+  sine["limit_cycle"] = nlohmann::ordered_json::parse(ToJson(b.sine_hold));
+  j["sine"] = sine;
+  return internal::DumpJson(j, indent);
+}
+
+std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
+                         const PiTuningOptions& options, const PiBehaviour& behaviour,
+                         int indent) {
+  nlohmann::ordered_json j;
+  j["plant"] = plant;
+  j["tuning"] = nlohmann::ordered_json::parse(ToJson(result, options));
+  j["behaviour"] = nlohmann::ordered_json::parse(ToJson(behaviour));
+  return internal::DumpJson(j, indent);
 }
 
 }  // namespace sysid

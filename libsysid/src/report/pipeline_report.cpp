@@ -374,11 +374,11 @@ class ReportWriter {
     if (r_.tracking.empty()) return;
     md_ += "\n## 6. PI position control with feedforward\n\n";
     md_ += fmt::format(
-        "Discrete PI at the stage's sample rate, Kp = {} V/m, Ki = {} V/(m s), "
-        "saturation ±{} V with conditional-integration anti-windup; smooth "
+        "Plant: the virtual stage of `{}`. Discrete PI at the stage's sample rate, Kp = {} V/m, "
+        "Ki = {} V/(m s), saturation ±{} V with conditional-integration anti-windup; smooth "
         "back-and-forth profile of {} mm.\n\n",
-        r_.options.pi.kp_v_per_m, r_.options.pi.ki_v_per_m_s, r_.options.pi.u_max_v,
-        1e3 * r_.options.track_amplitude_m);
+        fs::path(r_.inputs.stage).filename().string(), r_.options.pi.kp_v_per_m,
+        r_.options.pi.ki_v_per_m_s, r_.options.pi.u_max_v, 1e3 * r_.options.track_amplitude_m);
     const bool paper = ref_ && ref_->has("tracking_max_error_mm");
     std::vector<std::string> header{"frequency [Hz]", "feedforward", "max \\|e\\| [mm]",
                                     "RMS e [mm]", "RMS u [V]"};

@@ -1,5 +1,7 @@
 #include "simulate/delay_history.hpp"
 
+#include <cstddef>
+
 namespace sysid::internal {
 
 DelayHistory::DelayHistory(double t0_s, double history_v_mps, double v0_mps)
@@ -16,6 +18,18 @@ void DelayHistory::AppendPolynomial(double t_right, double t_ref, double h, cons
 
 void DelayHistory::AppendConstant(double t_right, double value) {
   AppendPolynomial(t_right, t_right, 1.0, &value, 0);
+}
+
+void DelayHistory::ForgetBefore(double s) {
+  std::size_t first = 0;  // the first piece to keep
+  while (first + 1 < pieces_.size() && pieces_[first].t_right < s) ++first;
+  if (first < 1024 || 2 * first < pieces_.size()) return;
+  const std::size_t offset = pieces_[first].offset;
+  coefficients_.erase(coefficients_.begin(),
+                      coefficients_.begin() + static_cast<std::ptrdiff_t>(offset));
+  pieces_.erase(pieces_.begin(), pieces_.begin() + static_cast<std::ptrdiff_t>(first));
+  for (Piece& p : pieces_) p.offset -= offset;
+  cursor_ = cursor_ > first ? cursor_ - first : 0;
 }
 
 double DelayHistory::Value(double s) const {

@@ -31,6 +31,11 @@ class DelayHistory {
     coefficients_.reserve(7 * pieces);
   }
 
+  /// Forgets the pieces that end before `s` (a run that never looks back further: the stepped
+  /// plant, at t - tau), so that a long run's history stays bounded. Amortised O(1): it
+  /// compacts only once the forgotten pieces outnumber the kept ones.
+  void ForgetBefore(double s);
+
   /// Last time covered.
   double end() const { return end_; }
   /// v(s), right-continuous at piece boundaries; extrapolates the last piece past end() (only

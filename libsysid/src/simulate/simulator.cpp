@@ -21,12 +21,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/cvode_solver.hpp"
 #include "simulate/output_sampler.hpp"
 #include "simulate/segment_model.hpp"
 #include "simulate/timeline.hpp"
+#include "sysid/error.hpp"
 #include "sysid/simulate.hpp"
 
 namespace sysid {
@@ -71,7 +74,7 @@ class Simulator {
         v_(o.v0_mps),
         last_branch_(Sign(o.history_v_mps)) {
     // Steps are at most tau long and rarely shorter than tau / 4 on long runs.
-    if (tau_ > 0)
+    if (tau_ > 0 && std::isfinite(t_end_))
       p_.history.Reserve(static_cast<std::size_t>(std::min(1e6, 4 * (t_end_ - o.t0_s) / tau_)));
     ConfigureCvode();
   }
@@ -92,6 +95,55 @@ class Simulator {
     Finish();
     return std::move(result_);
   }
+
+  /// The stepped plant (FrictionModelPlant): the run continues to `t_target`, a hard stop
+  /// (the next sample), under the input known so far, and returns x there. The decision at
+  /// t_target (stick, slip, restart) needs the input from t_target on, which the next sample's
+  /// voltage sets: it is deferred to the next call. Throws NumericalError when the run stops.
+  double Advance(double t_target) {
+    stops_.AddHardStop(t_target);
+    t_end_ = t_target;
+    if (!started_) {
+      StartMode();
+      started_ = true;
+    } else if (pending_end_) {
+      EndSegment(*pending_end_);
+      pending_end_.reset();
+    } else if (pending_decision_) {
+      pending_decision_ = false;
+      ChangeMode(p_.Decide(p_.Force(t_, 0.0)));
+    }
+    while (usable()) {
+      SnapOntoStops();
+      if (!usable()) break;
+      BeginSegment();
+      EmitReached();
+      if (t_ >= t_end_ - TimeEps(t_end_)) break;
+      if (SkipStuckStretch()) {
+        if (pending_decision_) break;
+        continue;
+      }
+      const SegmentEnd end = IntegrateSegment();
+      if (!usable()) break;
+      if (end.t_s >= t_end_ - TimeEps(t_end_)) {
+        pending_end_ = end;
+        t_ = end.t_s;
+        x_ = cv_.state()[0];
+        v_ = p_.mode == 0 ? 0.0 : cv_.state()[1];
+        break;
+      }
+      EndSegment(end);
+    }
+    if (!usable())
+      throw NumericalError("the friction model plant: " + result_.summary.message);
+    return x_;
+  }
+  /// A jump of the stepped plant's input at t: its breakpoints t + k tau.
+  void AddEdge(double t_s) { stops_.AddBreakpoints(t_s); }
+  /// The stepped plant never looks back beyond t - tau: the older history goes.
+  void ForgetBefore(double t_s) { p_.history.ForgetBefore(t_s); }
+  double velocity_mps() const { return v_; }
+  long events() const { return static_cast<long>(result_.events.size()); }
 
  private:
   bool usable() const { return result_.summary.IsSolutionUsable(); }
@@ -170,7 +222,10 @@ class Simulator {
     while (out_.pending() && out_.next() < next_stop_) Emit(out_.next(), out_.next(), x_, 0.0);
     t_ = next_stop_;
     restart_ = true;
-    ChangeMode(p_.Decide(p_.Force(t_, 0.0)));
+    if (stepping_ && t_ >= t_end_ - TimeEps(t_end_))
+      pending_decision_ = true;  // the input from t_ on is the next sample's (Advance)
+    else
+      ChangeMode(p_.Decide(p_.Force(t_, 0.0)));
     return true;
   }
 
@@ -349,7 +404,8 @@ class Simulator {
 
   const SimulationOptions& o_;
   const InputSignal& input_;
-  const double tau_, t_end_;
+  const double tau_;
+  double t_end_;  // [s] the run's end; the stepped plant's next sample
   SimulationResult result_;
   OutputSampler out_;
   SegmentModel p_;
@@ -365,9 +421,114 @@ class Simulator {
   int events_here_ = 0;               // mode changes at one instant: guards against chattering
   double last_event_t_ = -std::numeric_limits<double>::infinity();
   long steps_ = 0;
+  // The stepped plant (Advance): its state between samples.
+  bool stepping_ = !std::isfinite(o_.t_end_s);
+  bool started_ = false;
+  bool pending_decision_ = false;
+  std::optional<SegmentEnd> pending_end_;
 };
 
+/// The stepped plant's input: a zero-order hold whose rows arrive one sample at a time.
+class GrowingHoldInput final : public InputSignal {
+ public:
+  void Append(double t_s, double u_v) {
+    t_.push_back(t_s);
+    u_.push_back(u_v);
+  }
+  double Value(double t_s) const override {
+    if (u_.empty()) return 0.0;
+    if (t_s >= t_.back()) return u_.back();
+    const auto it = std::upper_bound(t_.begin(), t_.end(), t_s);
+    return it == t_.begin() ? u_.front() : u_[static_cast<std::size_t>(it - t_.begin()) - 1];
+  }
+  std::vector<double> Edges(double, double) const override { return {}; }
+  bool ConstantBetweenEdges() const override { return true; }
+  /// Drops the rows before the one in force at t (nothing reads u before the current sample),
+  /// once they outnumber the kept ones.
+  void ForgetBefore(double t_s) {
+    const auto it = std::upper_bound(t_.begin(), t_.end(), t_s);
+    const std::size_t keep_from = it == t_.begin() ? 0 : static_cast<std::size_t>(it - t_.begin()) - 1;
+    if (keep_from < 1024 || 2 * keep_from < t_.size()) return;
+    t_.erase(t_.begin(), t_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+    u_.erase(u_.begin(), u_.begin() + static_cast<std::ptrdiff_t>(keep_from));
+  }
+
+ private:
+  std::vector<double> t_, u_;
+};
+
+/// The options of a stepped run: t_end = +inf marks it (the stops are added sample by sample),
+/// one output sample at t0 (the plant reads the state, not a trajectory).
+SimulationOptions SteppedOptions(SimulationOptions o) {
+  o.t_end_s = o.t0_s + 1;  // for Validate only
+  o.output_times_s.clear();
+  o.Validate();
+  o.t_end_s = std::numeric_limits<double>::infinity();
+  o.output_times_s = {o.t0_s};
+  return o;
+}
+
 }  // namespace
+
+class FrictionModelPlant::Impl {
+ public:
+  Impl(const FrictionModel& model, double sample_time_s, const SimulationOptions& options)
+      : model_(Checked(model, sample_time_s)),
+        options_(SteppedOptions(options)),
+        ts_(sample_time_s),
+        simulator_(model_, input_, options_),
+        x_(options.x0_m) {}
+
+  double Step(double u_v) {
+    if (!std::isfinite(u_v))
+      throw OptionsError("FrictionModelPlant::Step: u = " + std::to_string(u_v) +
+                         " V is not finite");
+    const double t_k = time_s();
+    if (k_ > 0 && u_v != last_u_) simulator_.AddEdge(t_k);
+    input_.Append(t_k, u_v);
+    last_u_ = u_v;
+    ++k_;
+    x_ = simulator_.Advance(time_s());
+    // Bounded memory on long runs: v(t - tau) is read at t_k - tau at the earliest.
+    simulator_.ForgetBefore(t_k - model_.tau_s - ts_);
+    input_.ForgetBefore(t_k);
+    return x_;
+  }
+  double time_s() const { return options_.t0_s + static_cast<double>(k_) * ts_; }
+  double position_m() const { return x_; }
+  double velocity_mps() const { return simulator_.velocity_mps(); }
+  long events() const { return simulator_.events(); }
+
+ private:
+  static const FrictionModel& Checked(const FrictionModel& model, double sample_time_s) {
+    model.Validate();
+    if (!(sample_time_s > 0) || !std::isfinite(sample_time_s))
+      throw OptionsError("FrictionModelPlant: sample_time_s = " + std::to_string(sample_time_s) +
+                             " s. Violated constraint: finite, > 0",
+                         "sample_time_s");
+    return model;
+  }
+
+  FrictionModel model_;
+  SimulationOptions options_;
+  double ts_;
+  GrowingHoldInput input_;
+  Simulator simulator_;
+  long k_ = 0;
+  double x_ = 0, last_u_ = 0;
+};
+
+FrictionModelPlant::FrictionModelPlant(const FrictionModel& model, double sample_time_s,
+                                       const SimulationOptions& options)
+    : impl_(std::make_unique<Impl>(model, sample_time_s, options)) {}
+FrictionModelPlant::~FrictionModelPlant() = default;
+FrictionModelPlant::FrictionModelPlant(FrictionModelPlant&&) noexcept = default;
+FrictionModelPlant& FrictionModelPlant::operator=(FrictionModelPlant&&) noexcept = default;
+double FrictionModelPlant::Step(double u_v) { return impl_->Step(u_v); }
+double FrictionModelPlant::position_m() const { return impl_->position_m(); }
+double FrictionModelPlant::velocity_mps() const { return impl_->velocity_mps(); }
+double FrictionModelPlant::time_s() const { return impl_->time_s(); }
+long FrictionModelPlant::events() const { return impl_->events(); }
 
 SimulationResult Simulate(const FrictionModel& model, const InputSignal& input,
                           const SimulationOptions& options) {

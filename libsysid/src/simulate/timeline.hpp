@@ -47,6 +47,13 @@ class StopTimes {
       for (int k = 1; k <= order_; ++k)
         if (te + k * tau_ < t_end_) dynamic_.push(te + k * tau_);
   }
+  /// A hard stop at t >= every time reached so far (an input edge decided on the way: the
+  /// stepped plant's next sample).
+  void AddHardStop(double t) {
+    hard_.insert(std::upper_bound(hard_.begin() + static_cast<std::ptrdiff_t>(next_hard_),
+                                  hard_.end(), t),
+                 t);
+  }
   bool IsHard(double t) const { return std::binary_search(hard_.begin(), hard_.end(), t); }
   /// Smallest stop time > t (+inf when none is left).
   double Next(double t) {

@@ -161,6 +161,27 @@ PiParameters StackParameters::HysteresisPi() const {
   return p;
 }
 
+StackParameters StackWithHysteresis(const StackParameters& base, const PiParameters& model,
+                                    const std::string& model_name) {
+  if (model.form == PiForm::kPolynomial)
+    throw OptionsError(model_name + ": a gpi model's input polynomial has no form in the stack's "
+                       "hysteresis (rate-dependent PI: p0 u + sum w_i F_ri[u]); fit pi or rdpi");
+  StackParameters s = base;
+  s.name = "piezo stack with the hysteresis of " + model_name;
+  s.hysteresis.linear_gain_m_per_v = model.polynomial.empty() ? 0.0 : model.polynomial[0];
+  s.hysteresis.thresholds_v = model.thresholds;
+  s.hysteresis.weights_m_per_v = model.weights;
+  s.hysteresis.rate_weights_m_s_per_v2 = model.form == PiForm::kRateDependent
+                                             ? model.rate_weights
+                                             : std::vector<double>(model.thresholds.size() + 1, 0.0);
+  try {
+    s.Validate();
+  } catch (const OptionsError& e) {
+    throw OptionsError(model_name + " is not a stack's hysteresis: " + e.what());
+  }
+  return s;
+}
+
 double StackParameters::MaxStaticGain() const {
   double g = hysteresis.linear_gain_m_per_v;
   for (double w : hysteresis.weights_m_per_v) g += w;

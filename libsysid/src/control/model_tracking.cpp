@@ -1,0 +1,41 @@
+// The tracking experiment on an identified friction model as the plant (`sysid track --plant
+// M.json`): the same schemes and loop as on the virtual stage, the plant the model itself.
+#include <string>
+
+#include "sysid/control.hpp"
+#include "sysid/error.hpp"
+#include "sysid/simulate.hpp"
+
+namespace sysid {
+
+std::vector<SchemeTracking> TrackModelSchemes(
+    const FrictionModel& plant, double sample_time_s, const PositionReference& reference,
+    PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme) {
+  pi.sample_time_s = sample_time_s;
+  pi.Validate();
+  plant.Validate();
+  for (auto s : schemes)
+    if (s == FeedforwardScheme::kHysteresis)
+      throw OptionsError(
+          "the hysteresis scheme inverts a voltage-to-position model: it is for the piezo stack "
+          "(--plant piezo-stack), not a friction model",
+          "schemes");
+  std::vector<SchemeTracking> runs;
+  for (std::size_t i = 0; i < schemes.size(); ++i) {
+    if (on_scheme) on_scheme(schemes[i], i);
+    SchemeTracking run;
+    run.scheme = schemes[i];
+    const Feedforward ff = SchemeFeedforward(schemes[i], reference, sample_time_s, models);
+    SimulationOptions start;
+    start.x0_m = reference.x_m.size() > 0 ? reference.x_m[0] : 0.0;
+    FrictionModelPlant model_plant(plant, sample_time_s, start);
+    run.result = RunClosedLoop([&model_plant](double u) { return model_plant.Step(u); },
+                               model_plant.position_m(), reference, pi, ff);
+    run.stage_limits = "model plant: " + std::to_string(model_plant.events()) + " stick/slip events";
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace sysid
