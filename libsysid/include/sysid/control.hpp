@@ -251,10 +251,12 @@ struct InverseModels {
   const HysteresisModel* hysteresis = nullptr;  ///< for kHysteresis
 };
 
-/// The feedforward of `scheme` over `reference` sampled every `dt_s` [s]: empty for kNone,
-/// else the inverse model's voltages computed over the whole reference first (the analytic
-/// inverse uses the delayed velocity v_ref(t - tau); the hysteresis inverse u = H^-1[x_ref])
-/// and played back (SampledFeedforward).
+/// The feedforward of `scheme` over `reference` sampled every `dt_s` [s]: empty for kNone;
+/// the analytic inverse (FrictionInverseStepper: the delayed velocity v_ref(t - tau) from its
+/// delay line) and the network (NetworkStepper) stepped inside the loop, one sample per call,
+/// as a real-time controller runs them; the hysteresis inverse u = H^-1[x_ref] computed over
+/// the whole reference first and played back (SampledFeedforward: the loop passes v and a, not
+/// x_ref). Model errors (OptionsError, InputError) are thrown here, before the loop runs.
 /// Throws OptionsError when the scheme's model is missing.
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
                               double dt_s, const InverseModels& models);

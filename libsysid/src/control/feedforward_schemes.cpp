@@ -1,14 +1,18 @@
 // The tracking experiment's feedforward schemes, run on the virtual stage (one loop for
 // `sysid track`, the pipeline and the stage facts).
 #include <algorithm>
+#include <memory>
 #include <sstream>
+#include <utility>
 
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_model.hpp"
 #include "sysid/model.hpp"
+#include "sysid/model_stepper.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/nn_stepper.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -51,6 +55,37 @@ bool Uses(const std::vector<FeedforwardScheme>& schemes, FeedforwardScheme schem
   return std::find(schemes.begin(), schemes.end(), scheme) != schemes.end();
 }
 
+namespace {
+
+// A stepper run inside the loop: RunClosedLoop calls the feedforward once per sample, in order,
+// with the reference's v and a at that sample, so each call is the stepper's next Step, as on a
+// real-time target (RunClosedLoop refuses a non-finite u, naming the sample).
+Feedforward AnalyticStepperFeedforward(const FrictionModel& model, double dt_s,
+                                       Eigen::Index samples) {
+  auto stepper = std::make_shared<FrictionInverseStepper>(model, dt_s, samples);
+  return [stepper](double v_mps, double a_mps2) { return stepper->Step(v_mps, a_mps2); };
+}
+
+Feedforward NetworkStepperFeedforward(const NeuralNetwork& network) {
+  // Which of (v, a) feeds each of the network's inputs, in its order.
+  std::vector<bool> is_v;
+  for (const auto& input : network.inputs()) {
+    if (input.name != "v" && input.name != "a")
+      throw InputError("network input '" + input.name +
+                       "' is neither v [m/s] nor a [m/s^2]; an inverse-model network takes the "
+                       "velocity and/or acceleration");
+    is_v.push_back(input.name == "v");
+  }
+  auto stepper = std::make_shared<NetworkStepper>(network);
+  auto inputs = std::make_shared<std::vector<double>>(is_v.size());
+  return [stepper, inputs, is_v = std::move(is_v)](double v_mps, double a_mps2) {
+    for (size_t i = 0; i < is_v.size(); ++i) (*inputs)[i] = is_v[i] ? v_mps : a_mps2;
+    return stepper->Step(inputs->data());
+  };
+}
+
+}  // namespace
+
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
                               double dt_s, const InverseModels& models) {
   switch (scheme) {
@@ -59,12 +94,11 @@ Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference&
     case FeedforwardScheme::kAnalytic:
       if (models.model == nullptr)
         throw OptionsError("SchemeFeedforward: the analytic scheme needs InverseModels::model");
-      return SampledFeedforward(
-          AnalyticInverse(*models.model, dt_s, reference.v_mps, reference.a_mps2));
+      return AnalyticStepperFeedforward(*models.model, dt_s, reference.v_mps.size());
     case FeedforwardScheme::kNetwork:
       if (models.network == nullptr)
         throw OptionsError("SchemeFeedforward: the nn scheme needs InverseModels::network");
-      return SampledFeedforward(NetworkInverse(*models.network, reference.v_mps, reference.a_mps2));
+      return NetworkStepperFeedforward(*models.network);
     case FeedforwardScheme::kHysteresis:
       if (models.hysteresis == nullptr)
         throw OptionsError("SchemeFeedforward: the hysteresis scheme needs InverseModels::hysteresis");
