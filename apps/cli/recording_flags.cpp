@@ -14,14 +14,16 @@ void RecordingFlags::Add(CLI::App* cmd) {
   cmd->add_option("--var", vars,
                   "column mapping COLUMN=VARIABLE[,...] for MAT/HDF5 files or renamed CSV "
                   "columns: t=time,u=/group/volts,x=data[:,2] (matrix column k 1-based, like "
-                  "MATLAB; a dSPACE ControlDesk signal by its Y(i).Name)")
+                  "MATLAB; a dSPACE ControlDesk signal by its Y(i).Name); one value per flag, repeatable")
+      ->allow_extra_args(false)  // the recordings that follow stay positionals
       ->type_name("MAP");
   cmd->add_option("--rate", rate_hz,
                   "sample rate [Hz] of recordings without a time column: t = k / rate")
       ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", scales,
-                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um")
+                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um; one value per flag, repeatable")
+      ->allow_extra_args(false)
       ->type_name("MAP");
 }
 

@@ -11,6 +11,7 @@
 
 #include "cli/common.hpp"
 #include "cli/output_file.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/dominance_candidates.hpp"
@@ -36,6 +37,7 @@ struct HysteresisCli {
   std::string integrator = "cvode";  // Bouc–Wen fits: cvode | benchmark-chain
   std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
   std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
+  RecordingFlags recording;  // --var, --rate, --scale for every recording read
 };
 
 // Bouc–Wen fits: the start, then one line per start (rewritten at each iteration) with its
@@ -59,8 +61,9 @@ void AttachBoucWenProgress(HysteresisFitOptions& options, const std::string& kin
   };
 }
 
-std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
-  ReadOptions ro;
+std::vector<Recording> ReadAll(const std::vector<std::string>& paths,
+                               const RecordingFlags& flags) {
+  ReadOptions ro = flags.Apply({});
   ro.required_columns = {"t", "u", "x"};
   ro.any_of_columns = {};
   std::vector<Recording> recs;
@@ -110,7 +113,7 @@ void RunFit(const HysteresisCli& o) {
   options.bouc_wen.jacobian = o.jacobian == "central-differences"
                                   ? BoucWenJacobian::kCentralDifferences
                                   : BoucWenJacobian::kSensitivities;
-  const std::vector<Recording> recs = ReadAll(o.recordings);
+  const std::vector<Recording> recs = ReadAll(o.recordings, o.recording);
   AttachBoucWenProgress(options, o.kind, recs);
   HysteresisFitSummary s;
   std::unique_ptr<HysteresisModel> model;
@@ -147,7 +150,7 @@ void RunFit(const HysteresisCli& o) {
 
 void RunSimulate(const HysteresisCli& o) {
   const auto model = ReadHysteresisModel(o.model_path);
-  ReadOptions ro;
+  ReadOptions ro = o.recording.Apply({});
   ro.required_columns = {"t", "u"};
   ro.any_of_columns = {};
   const Recording rec = ReadRecording(o.input, ro);
@@ -178,7 +181,7 @@ void RunSimulate(const HysteresisCli& o) {
 
 void RunInvert(const HysteresisCli& o) {
   const auto model = ReadHysteresisModel(o.model_path);
-  ReadOptions ro;
+  ReadOptions ro = o.recording.Apply({});
   ro.required_columns = {"t", "x"};
   ro.any_of_columns = {};
   const Recording ref = ReadRecording(o.input, ro);
@@ -214,7 +217,7 @@ void RunInvert(const HysteresisCli& o) {
 void RunDominance(const HysteresisCli& o, const CandidateRankingOptions& options) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const auto& path : o.recordings) {
-    ReadOptions ro;
+    ReadOptions ro = o.recording.Apply({});
     ro.required_columns = {"t", "u", "x"};
     ro.any_of_columns = {};
     const CandidateRanking r = RankCandidates(ReadRecording(path, ro), options);
@@ -302,6 +305,7 @@ void AddHysteresisCommand(CLI::App& app) {
   AddThreadsOption(fit, o->options.bouc_wen.threads,
                    "bouc-wen, bouc-wen-piezo: the Jacobian's simulations (central differences) "
                    "or the recordings' sensitivity passes in parallel; 0 = all cores");
+  o->recording.Add(fit);
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");
@@ -315,6 +319,7 @@ void AddHysteresisCommand(CLI::App& app) {
   CLI::App* sim = h->add_subcommand(
       "simulate", "Drive a model with a recording's u from the model's initial state; write t, u, x_model");
   sim->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  o->recording.Add(sim);
   sim->add_option("recording", o->input, "CSV with t [s] and u [V]")->required()->type_name("REC.csv");
   sim->add_flag("--periodic", o->periodic,
                 "u is one period of a periodic input: simulate to the periodic steady state and "
@@ -326,6 +331,7 @@ void AddHysteresisCommand(CLI::App& app) {
   CLI::App* inv = h->add_subcommand(
       "invert", "The input u [V] that makes the model follow a reference x [m]; write t, x, u");
   inv->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  o->recording.Add(inv);
   inv->add_option("reference", o->input, "CSV with t [s] and x [m]")->required()->type_name("REF.csv");
   AddOutputOption(inv, o->output, "write t, x, u (CSV)")->required();
   inv->callback([o] { RunInvert(*o); });
@@ -337,6 +343,7 @@ void AddHysteresisCommand(CLI::App& app) {
       "Rank x, v and a (with play operators of x) by the RMS of their terms in a linear inverse "
       "model u ~ c + th_x x + th_v v + th_a a + sum th_i F_ri[x] [V]: which variable carries "
       "the input (a stack: x; the stage: v)");
+  o->recording.Add(dom);
   dom->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");
