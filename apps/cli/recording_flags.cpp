@@ -14,7 +14,8 @@ void RecordingFlags::Add(CLI::App* cmd) {
   cmd->add_option("--var", vars,
                   "column mapping COLUMN=VARIABLE[,...] for MAT/HDF5 files or renamed CSV "
                   "columns: t=time,u=/group/volts,x=data[:,2] (matrix column k 1-based, like "
-                  "MATLAB; a dSPACE ControlDesk signal by its Y(i).Name); one value per flag, repeatable")
+                  "MATLAB; a dSPACE ControlDesk signal by its Y(k).Name, quoted or not, or Y(k).Data, its time "
+                  "X.Data); one value per flag, repeatable")
       ->allow_extra_args(false)  // the recordings that follow stay positionals
       ->type_name("MAP");
   cmd->add_option("--rate", rate_hz,

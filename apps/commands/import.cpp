@@ -98,7 +98,7 @@ void AddImportCommand(CLI::App& app) {
   cmd->add_option("--column", o->columns,
                   "COLUMN=FILE[:VARIABLE]: a MAT variable (data[:,k] for matrix column k, "
                   "1-based like MATLAB), an HDF5 dataset (/group/name), a ControlDesk signal "
-                  "name, or a text file's column (header name, or number 1.. for headerless "
+                  "(Y(k).Name or Y(k).Data; without a t column t is the export's X.Data), or a text file's column (header name, or number 1.. for headerless "
                   "whitespace/CSV text); repeat per column")
       ->required()
       ->allow_extra_args(false)  // one value per flag, as --var and --scale everywhere

@@ -2,6 +2,7 @@
 // x in µm, read through --var and --scale by the commands that read recordings. The reference is
 // the same command on the CSV recording the MAT file was made from: its output must be the same.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -10,6 +11,7 @@
 #include "container_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "sysid/io.hpp"
+#include "sysid/error.hpp"
 
 namespace sysid::test {
 namespace {
@@ -107,6 +109,107 @@ TEST_CASE("hysteresis fit, simulate and invert read a MAT recording through --va
                                  dir / "bare.csv"});
   CHECK(bare.exit_code == 2);
   CHECK_THAT(bare.err, Catch::Contains("--var"));
+}
+
+
+// A ControlDesk export as matio writes its layout: struct capture with X.Data, the time (not
+// uniform: a real recorder's timestamps), and the signals' Y(k).Name in ControlDesk's quoted form.
+struct ControlDeskFixture {
+  std::vector<double> t, u, x;
+  std::vector<std::string> names{"\"Model Root\"/\"DAC\"/\"u\"/\"Out1\"",
+                                 "\"Model Root\"/\"Encoder\"/\"x\"/\"Out1\""};
+  explicit ControlDeskFixture(const std::string& path) {
+    for (int k = 0; k < 40; ++k) {
+      t.push_back(0.25 + 1e-3 * k + 1e-6 * (k % 3));
+      u.push_back(std::sin(0.3 * k));
+      x.push_back(1e-4 * std::cos(0.2 * k));
+    }
+    WriteControlDesk(path, MatVersion::kV5, "capture", t, names, {u, x});
+  }
+};
+
+ReadOptions Map(std::vector<std::pair<std::string, std::string>> vars) {
+  ReadOptions o;
+  o.required_columns = {"t", "u", "x"};
+  o.mapping.variables = std::move(vars);
+  return o;
+}
+
+TEST_CASE("a ControlDesk export: X.Data, Y(k).Data and every name form reach the signals",
+          "[io][mat][controldesk][labfiles]") {
+  TempDir dir;
+  const std::string p = dir / "capture.mat";
+  const ControlDeskFixture f(p);
+  const auto same = [](const Eigen::VectorXd& got, const std::vector<double>& want) {
+    return std::vector<double>(got.data(), got.data() + got.size()) == want;
+  };
+  // As stored, without the quotes, without the port, by index, with the struct's name.
+  for (const std::string& u_name :
+       {f.names[0], std::string("Model Root/DAC/u/Out1"), std::string("Model Root/DAC/u"),
+        std::string("Y(1).Data"), std::string("capture.Y(1).Data")}) {
+    INFO(u_name);
+    const Recording r = ReadRecording(p, Map({{"u", u_name}, {"x", "Model Root/Encoder/x"}}));
+    CHECK(r.names == std::vector<std::string>{"t", "u", "x"});
+    CHECK(same(r.column("t"), f.t));  // X.Data itself: no --rate, the recorder's timestamps
+    CHECK(same(r.column("u"), f.u));
+    CHECK(same(r.column("x"), f.x));
+  }
+  const Recording explicit_t =
+      ReadRecording(p, Map({{"t", "X.Data"}, {"u", "Y(1).Data"}, {"x", "capture.Y(2).Data"}}));
+  CHECK(same(explicit_t.column("t"), f.t));
+  CHECK(same(explicit_t.column("x"), f.x));
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(p, Map({{"u", "Y(3).Data"}, {"x", "Y(2).Data"}})); }),
+             Catch::Contains("Y(3).Data: expected Y(k).Data with k = 1..2"));
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(p, Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}})); }),
+             Catch::Contains("no variable 'Model Root/DAC'") &&
+                 Catch::Contains("a ControlDesk signal by its Y(k).Name or Y(k).Data"));
+  // Two ports of one block: the name without the port is ambiguous, and says so.
+  WriteControlDesk(dir / "two.mat", MatVersion::kV5, "capture", f.t,
+                   {"\"Model Root\"/\"DAC\"/\"Out1\"", "\"Model Root\"/\"DAC\"/\"Out2\""},
+                   {f.u, f.x});
+  CHECK_THAT(InputErrorMessage([&] { ReadRecording(dir / "two.mat", Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}})); }),
+             Catch::Contains("'Model Root/DAC' names 2 signals of 'capture'"));
+}
+
+TEST_CASE("every name sysid info prints for a ControlDesk export works in --var and import",
+          "[io][cli][controldesk][labfiles]") {
+  TempDir dir;
+  const std::string p = dir / "capture.mat";
+  const ControlDeskFixture f(p);
+  const CliResult info = RunCli({"info", p, "--json"});
+  INFO(info.err);
+  REQUIRE(info.exit_code == 0);
+  std::vector<std::string> shown;
+  const nlohmann::json listed = nlohmann::json::parse(info.out);
+  for (const auto& v : listed["variables"]) {
+    shown.push_back(v["name"]);
+    const std::string type = v["type"];  // "double 40x1 (capture.Y(2).Data)"
+    const size_t open = type.find('(');
+    const size_t end = std::min(type.find(", ", open), type.size() - 1);
+    if (open != std::string::npos) shown.push_back(type.substr(open + 1, end - open - 1));
+  }
+  INFO(info.out);
+  int read = 0;
+  for (const auto& name : shown) {
+    if (name == "capture") continue;  // the struct itself
+    const CliResult r = RunCli({"info", p, "--var", "u=" + name + ",x=" + name});
+    INFO(name << ": " << r.err);
+    CHECK(r.exit_code == 0);
+    ++read;
+  }
+  CHECK(read == 6);  // X.Data and two signals, each by name and by struct.Y(k).Data
+  // import keeps X.Data as t, bit for bit, and says where it came from.
+  const std::string out = dir / "rec.csv";
+  const CliResult imp = RunCli({"import", "--column", "u=" + p + ":Model Root/DAC/u", "--column",
+                                "x=" + p + ":Y(2).Data", "--scale", "x=1", "-o", out});
+  INFO(imp.err);
+  REQUIRE(imp.exit_code == 0);
+  const Recording rec = ReadRecording(out);
+  const Eigen::VectorXd t = rec.column("t");
+  CHECK(std::vector<double>(t.data(), t.data() + t.size()) == f.t);
+  CHECK(rec.meta("source.t") == p + ":X.Data");
+  CHECK(rec.meta("source.u") == p + ":Model Root/DAC/u");
+  CHECK(rec.meta("sample_rate_hz").empty());
 }
 
 }  // namespace

@@ -78,6 +78,21 @@ Recording ImportRecording(const ImportOptions& options) {
     rec.SetColumn(c.column, v);
     origins.emplace_back(c.column, where);
   }
+  // A ControlDesk export's time vector (X.Data) is the recording's t unless one is given.
+  if (!rec.has("t") && options.rate_hz == 0) {
+    for (const auto& c : options.columns) {
+      if (DetectFileFormat(c.file) == FileFormat::kText) continue;
+      Eigen::VectorXd t;
+      if (!internal::OpenContainer(c.file)->ImpliedTime(&t)) continue;
+      const std::string where = c.file + ":X.Data";
+      if (t.size() != rec.rows())
+        throw InputError(fmt::format("{}: {} samples, but {} has {} (lengths differ)", where,
+                                     t.size(), origins.front().second, rec.rows()));
+      rec = internal::WithTimeFirst(rec, t);
+      origins.insert(origins.begin(), {"t", where});
+      break;
+    }
+  }
   ReadOptions ro;
   ro.required_columns = {"t"};
   ro.any_of_columns.clear();
