@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
@@ -38,6 +39,7 @@ struct HysteresisCli {
   std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
   std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
   RecordingFlags recording;  // --var, --rate, --scale for every recording read
+  FitFractionFlag fit_fraction;
 };
 
 // Bouc–Wen fits: the start, then one line per start (rewritten at each iteration) with its
@@ -113,7 +115,8 @@ void RunFit(const HysteresisCli& o) {
   options.bouc_wen.jacobian = o.jacobian == "central-differences"
                                   ? BoucWenJacobian::kCentralDifferences
                                   : BoucWenJacobian::kSensitivities;
-  const std::vector<Recording> recs = ReadAll(o.recordings, o.recording);
+  const std::vector<Recording> recs =
+      o.fit_fraction.FitPart(ReadAll(o.recordings, o.recording), "hysteresis fit");
   AttachBoucWenProgress(options, o.kind, recs);
   HysteresisFitSummary s;
   std::unique_ptr<HysteresisModel> model;
@@ -138,6 +141,7 @@ void RunFit(const HysteresisCli& o) {
   nlohmann::ordered_json fit = nlohmann::ordered_json::parse(summary_json);
   fit.erase("parameters");  // the model file holds them already
   fit["recordings"] = o.recordings;
+  if (o.fit_fraction.fraction < 1) fit["fit_fraction"] = o.fit_fraction.fraction;
   file["fit"] = fit;
   WriteFileAtomically(o.output, WithGeneratorKey(file.dump(2) + "\n"));
   if (o.json) {
@@ -171,6 +175,7 @@ void RunSimulate(const HysteresisCli& o) {
   out.names = {"t", "u", "x_model"};
   out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"input", o.input},
                   {"periodic", o.periodic ? "true" : "false"}};
+  for (const auto& entry : ProvenanceOf(rec, {"t", "u"})) out.metadata.push_back(entry);
   out.data.resize(u.size(), 3);
   out.data.col(0) = rec.column("t");
   out.data.col(1) = u;
@@ -206,6 +211,7 @@ void RunInvert(const HysteresisCli& o) {
   out.source = o.output;
   out.names = {"t", "x", "u"};
   out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"reference", o.input}};
+  for (const auto& entry : ProvenanceOf(ref, {"t", "x"})) out.metadata.push_back(entry);
   out.data.resize(u.size(), 3);
   out.data.col(0) = ref.column("t");
   out.data.col(1) = ref.column("x");
@@ -306,6 +312,7 @@ void AddHysteresisCommand(CLI::App& app) {
                    "bouc-wen, bouc-wen-piezo: the Jacobian's simulations (central differences) "
                    "or the recordings' sensitivity passes in parallel; 0 = all cores");
   o->recording.Add(fit);
+  o->fit_fraction.Add(fit);
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");

@@ -2,6 +2,7 @@
 // x in µm, read through --var and --scale by the commands that read recordings. The reference is
 // the same command on the CSV recording the MAT file was made from: its output must be the same.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -210,6 +211,148 @@ TEST_CASE("every name sysid info prints for a ControlDesk export works in --var 
   CHECK(rec.meta("source.t") == p + ":X.Data");
   CHECK(rec.meta("source.u") == p + ":Model Root/DAC/u");
   CHECK(rec.meta("sample_rate_hz").empty());
+}
+
+TEST_CASE("a unit warning on a MAT recording advises --scale, on a CSV a '# units:' line",
+          "[io][cli][labfiles][units]") {
+  TempDir dir;
+  REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
+  const std::string mat = dir / "pulses.mat";
+  WriteLabMat(mat, ReadRecording(dir / "pulses.csv"));
+  // x in µm read as metres, v and a mapped as they are (m/s): x alone moves too fast.
+  const CliResult r = RunCli({"identify", "--var", "t=time,u=volts,x=pos_um,v=vel,a=acc", mat});
+  INFO(r.err);
+  CHECK_THAT(r.err, Catch::Contains(mat + ": x moves at up to") &&
+                        Catch::Contains("if x is in um, scale it to m with --scale x=1e-6 (a "
+                                        "MAT v5 file holds no '# units:' line)") &&
+                        !Catch::Contains("declare it"));
+  // The advised flag removes the warning.
+  const CliResult fixed = RunCli(
+      {"identify", "--var", "t=time,u=volts,x=pos_um,v=vel,a=acc", "--scale", "x=1e-6", mat});
+  CHECK(fixed.exit_code == 0);
+  CHECK_THAT(fixed.err, !Catch::Contains("warning: " + mat));
+}
+
+TEST_CASE("derive and the hysteresis writers keep where the columns came from", "[io][cli][labfiles]") {
+  TempDir dir;
+  REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
+  const std::string mat = dir / "pulses.mat", out = dir / "derived.csv";
+  WriteLabMat(mat, ReadRecording(dir / "pulses.csv"));
+  const CliResult r = RunCli({"derive", "--var", "t=time,u=volts,x=pos_um", "--scale", "x=1e-6",
+                              "--rate", "1000", mat, "-o", out});
+  // --rate with a t column mapped is refused: the mapping is checked as a whole.
+  CHECK(r.exit_code == 2);
+  const CliResult ok =
+      RunCli({"derive", "--var", "t=time,u=volts,x=pos_um", "--scale", "x=1e-6", mat, "-o", out});
+  INFO(ok.err);
+  REQUIRE(ok.exit_code == 0);
+  const Recording d = ReadRecording(out);
+  CHECK(d.meta("source.t") == mat + ":time");
+  CHECK(d.meta("source.u") == mat + ":volts");
+  CHECK(d.meta("source.x") == mat + ":pos_um");
+  CHECK(d.meta("scale.x") == "1e-06");
+  CHECK(!d.meta("derive").empty());
+  // A window is provenance too.
+  const CliResult cropped = RunCli({"derive", "--var", "t=time,u=volts,x=pos_um", "--scale",
+                                    "x=1e-6", "--t-start", "1", "--t-end", "2", mat, "-o", out});
+  INFO(cropped.err);
+  REQUIRE(cropped.exit_code == 0);
+  CHECK(ReadRecording(out).meta("crop_s") == "1 2");
+  // hysteresis simulate keeps t's and u's sources (its x_model is its own).
+  const std::string piezo = dir / "piezo.mat";
+  WriteLabMat(piezo, ReadRecording(SourcePath("datasets/piezo_aye_ang/piezo.csv")));
+  const std::vector<std::string> map{"--var", "t=time,u=volts,x=pos_um", "--scale", "x=1e-6"};
+  std::vector<std::string> fit{"hysteresis", "fit", "--model", "pi", "--operators", "3",
+                               piezo, "-o", dir / "h.json"};
+  fit.insert(fit.end(), map.begin(), map.end());
+  REQUIRE(RunCli(fit).exit_code == 0);
+  std::vector<std::string> sim{"hysteresis", "simulate", "--model", dir / "h.json", piezo,
+                               "-o", dir / "sim.csv"};
+  sim.insert(sim.end(), map.begin(), map.end());
+  REQUIRE(RunCli(sim).exit_code == 0);
+  const Recording s = ReadRecording(dir / "sim.csv", ReadOptions{{"t", "u"}, {}, true, {}});
+  CHECK(s.meta("source.u") == piezo + ":volts");
+  CHECK(s.meta("source.t") == piezo + ":time");
+  CHECK(s.meta("source.x").empty());
+  CHECK(s.meta("scale.x").empty());  // x is not written
+}
+
+// The rows of t within [a, b], counted directly: the reference for the window.
+Eigen::Index RowsWithin(const Recording& r, double a, double b) {
+  Eigen::Index n = 0;
+  for (Eigen::Index k = 0; k < r.rows(); ++k) n += r.column("t")[k] >= a && r.column("t")[k] <= b;
+  return n;
+}
+
+TEST_CASE("CropRecording keeps the rows of the window and refuses one outside or empty",
+          "[io][labfiles][crop]") {
+  TempDir dir;
+  REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
+  const Recording rec = ReadRecording(dir / "pulses.csv");
+  const double first = rec.column("t")[0], last = rec.column("t")[rec.rows() - 1];
+  for (const auto& [a, b] : {std::pair{first, last}, {1.0, 2.0}, {0.5005, 0.5035}, {3.2, last}}) {
+    INFO(a << " .. " << b);
+    const Recording c = CropRecording(rec, a, b);
+    REQUIRE(c.rows() == RowsWithin(rec, a, b));
+    CHECK(c.names == rec.names);
+    CHECK(c.column("t")[0] >= a);
+    CHECK(c.column("t")[c.rows() - 1] <= b);
+    // The same rows, bit for bit, starting where t first reaches a.
+    Eigen::Index k0 = 0;
+    while (rec.column("t")[k0] < a) ++k0;
+    CHECK(c.data == rec.data.middleRows(k0, c.rows()));
+  }
+  CHECK_THAT(InputErrorMessage([&] { CropRecording(rec, 1, last + 1); }),
+             Catch::Contains("reaches outside the recording"));
+  CHECK_THAT(InputErrorMessage([&] { CropRecording(rec, first - 1, 2); }),
+             Catch::Contains("reaches outside the recording"));
+  CHECK_THAT(InputErrorMessage([&] { CropRecording(rec, 1.0001, 1.0002); }),
+             Catch::Contains("holds 0 samples"));
+  CHECK_THAT(InputErrorMessage([&] { CropRecording(rec, 2, 1); }),
+             Catch::Contains("the start before the end"));
+}
+
+TEST_CASE("--t-start, --t-end on the readers and --fit-fraction on the fitting commands",
+          "[io][cli][labfiles][crop]") {
+  TempDir dir;
+  REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
+  const std::string csv = dir / "pulses.csv";
+  const Recording rec = ReadRecording(csv);
+  const CliResult info = RunCli({"info", csv, "--t-start", "1", "--t-end", "2.5", "--json"});
+  INFO(info.err);
+  REQUIRE(info.exit_code == 0);
+  CHECK(nlohmann::json::parse(info.out)["rows"] == RowsWithin(rec, 1, 2.5));
+  // Outside, empty, reversed: refused with a clear message, nothing printed.
+  const CliResult outside = RunCli({"identify", csv, "--t-end", "1000"});
+  CHECK(outside.exit_code == 2);
+  CHECK_THAT(outside.err, Catch::Contains("reaches outside the recording"));
+  CHECK(outside.out.empty());
+  CHECK(RunCli({"identify", csv, "--t-start", "1.0001", "--t-end", "1.0002"}).exit_code == 2);
+  CHECK(RunCli({"identify", csv, "--t-start", "2", "--t-end", "1"}).exit_code == 1);
+  // --fit-fraction F fits on t <= t0 + F (tN - t0): the same as that window given by hand.
+  const double first = rec.column("t")[0], last = rec.column("t")[rec.rows() - 1];
+  const double cut = first + 0.5 * (last - first);
+  const CliResult half = RunCli({"identify", csv, "--fit-fraction", "0.5", "--json"});
+  const CliResult by_hand =
+      RunCli({"identify", csv, "--t-end", fmt::format("{}", cut), "--json"});
+  INFO(half.err);
+  REQUIRE(half.exit_code == 0);
+  REQUIRE(by_hand.exit_code == 0);
+  CHECK(half.out == by_hand.out);
+  CHECK(half.out != RunCli({"identify", csv, "--json"}).out);  // fewer pulses, another fit
+  CHECK_THAT(half.err, Catch::Contains("the first 50 %") && Catch::Contains("is not used") &&
+                           Catch::Contains("--t-start"));
+  for (const char* bad : {"0", "1.5", "-0.2"})
+    CHECK(RunCli({"identify", csv, "--fit-fraction", bad}).exit_code == 1);
+  // hysteresis fit: the samples it fitted are those of the first part.
+  const std::string piezo = SourcePath("datasets/piezo_aye_ang/piezo.csv");
+  const Recording p = ReadRecording(piezo);
+  const double p0 = p.column("t")[0], p1 = p.column("t")[p.rows() - 1];
+  const CliResult h = RunCli({"hysteresis", "fit", "--model", "pi", "--operators", "3",
+                              "--fit-fraction", "0.25", piezo, "--json", "-o", dir / "h.json"});
+  INFO(h.err);
+  REQUIRE(h.exit_code == 0);
+  CHECK(nlohmann::json::parse(h.out)["samples"] == RowsWithin(p, p0, p0 + 0.25 * (p1 - p0)));
 }
 
 }  // namespace

@@ -247,6 +247,28 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
             "and a duration that is a finite number",
             origin("t"), k + 1, Num(t[k]), Num(t[k - 1]), Num(kMinTimeStep_s)));
   }
+  if (m.t_start_s || m.t_end_s) {
+    const int ti = rec.index_of("t");  // none: CropRecording says so
+    const auto t_at = [&](Eigen::Index row) { return ti < 0 ? 0.0 : rec.data(row, ti); };
+    rec = CropRecording(rec, m.t_start_s.value_or(t_at(0)),
+                        m.t_end_s.value_or(t_at(rec.rows() - 1)));
+  }
+  // Provenance, in the recording's column order: every writer that keeps the metadata (derive,
+  // import) says where each column came from, at what rate and scale. A file name may hold a
+  // newline or an escape sequence: written as \xHH, so each line stays one line.
+  const auto set = [&](const std::string& key, const std::string& value) {
+    for (auto& [k, v] : rec.metadata)
+      if (k == key) {
+        v = value;
+        return;
+      }
+    rec.metadata.emplace_back(key, value);
+  };
+  for (const auto& name : rec.names)
+    for (const auto& [column, where] : origins)
+      if (column == name) set("source." + column, OneLine(where));
+  if (m.rate_hz != 0) set("sample_rate_hz", Num(m.rate_hz));
+  for (const auto& [column, factor] : m.scales) set("scale." + column, Num(factor));
 }
 
 std::unique_ptr<SignalContainer> OpenContainer(const std::string& path) {

@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -13,12 +12,6 @@
 
 namespace sysid {
 namespace {
-
-std::string Num(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
 
 // Without :VARIABLE, the variable named like the column, else the file's only numeric vector.
 std::string DefaultVariable(const ImportColumn& c) {
@@ -100,14 +93,8 @@ Recording ImportRecording(const ImportOptions& options) {
   ro.mapping.scales = options.scales;
   internal::FinishMappedRecording(rec, ro, origins);
 
-  // Provenance, in the recording's column order.
-  // A file name may hold a newline or an escape sequence: written as \xHH, so the metadata
-  // line stays one line and never reaches a terminal raw.
-  for (const auto& [column, where] : origins)
-    rec.metadata.emplace_back("source." + column, internal::OneLine(where));
-  if (options.rate_hz > 0) rec.metadata.emplace_back("sample_rate_hz", Num(options.rate_hz));
-  for (const auto& [column, factor] : options.scales)
-    rec.metadata.emplace_back("scale." + column, Num(factor));
+  // FinishMappedRecording wrote the provenance (source.*, sample_rate_hz, scale.*); the units
+  // follow.
   for (const auto& name : rec.names) {
     std::string unit = ColumnUnit(name);
     for (const auto& [c, u] : options.units)
