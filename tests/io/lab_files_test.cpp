@@ -41,7 +41,7 @@ std::string Replace(std::string out, const std::string& from, const std::string&
   return out;
 }
 
-TEST_CASE("--var and --scale take one value each: the recording after them stays a recording",
+TEST_CASE("the flags --var and --scale take one value each: the recording after them stays one",
           "[io][cli][labfiles]") {
   TempDir dir;
   REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
@@ -312,7 +312,7 @@ TEST_CASE("CropRecording keeps the rows of the window and refuses one outside or
              Catch::Contains("the start before the end"));
 }
 
-TEST_CASE("--t-start, --t-end on the readers and --fit-fraction on the fitting commands",
+TEST_CASE("a time window on every reader and a fit fraction on the fitting commands",
           "[io][cli][labfiles][crop]") {
   TempDir dir;
   REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
