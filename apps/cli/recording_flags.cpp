@@ -14,7 +14,8 @@ void RecordingFlags::Add(CLI::App* cmd, bool window) {
   cmd->add_option("--var", vars,
                   "column mapping COLUMN=VARIABLE[,...] for MAT/HDF5 files or renamed CSV "
                   "columns: t=time,u=/group/volts,x=data[:,2] (matrix column k 1-based, like "
-                  "MATLAB; a dSPACE ControlDesk signal by its Y(k).Name, quoted or not, or Y(k).Data, its time "
+                  "MATLAB; a dSPACE ControlDesk signal by its Y(k).Name, quoted or not, or "
+                  "Y(k).Data, its time "
                   "X.Data); one value per flag, repeatable")
       ->allow_extra_args(false)  // the recordings that follow stay positionals
       ->type_name("MAP");
@@ -23,7 +24,8 @@ void RecordingFlags::Add(CLI::App* cmd, bool window) {
       ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", scales,
-                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um; one value per flag, repeatable")
+                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um; "
+                  "one value per flag, repeatable")
       ->allow_extra_args(false)
       ->type_name("MAP");
   if (!window) return;

@@ -1,6 +1,6 @@
-// --var, --rate, --scale, --t-start, --t-end: where a command's recordings get their columns when the files are MAT
-// or HDF5, or name their columns differently (sysid::SourceMapping). One helper for every
-// command that reads recordings, so the flags mean the same everywhere.
+// --var, --rate, --scale, --t-start, --t-end: where a command's recordings get their columns when
+// the files are MAT or HDF5, or name their columns differently (sysid::SourceMapping). One helper
+// for every command that reads recordings, so the flags mean the same everywhere.
 #ifndef SYSID_APPS_CLI_RECORDING_FLAGS_HPP_
 #define SYSID_APPS_CLI_RECORDING_FLAGS_HPP_
 
@@ -15,9 +15,9 @@
 namespace sysid::cli {
 
 struct RecordingFlags {
-  std::vector<std::string> vars;    ///< "t=NAME,u=NAME" (repeatable)
-  double rate_hz = 0;               ///< [Hz] 0: the file's own t
-  std::vector<std::string> scales;  ///< "x=1e-6" (repeatable, comma-separated)
+  std::vector<std::string> vars;             ///< "t=NAME,u=NAME" (repeatable)
+  double rate_hz = 0;                        ///< [Hz] 0: the file's own t
+  std::vector<std::string> scales;           ///< "x=1e-6" (repeatable, comma-separated)
   std::optional<double> t_start_s, t_end_s;  ///< [s] the time window kept
 
   /// Adds --var, --rate, --scale and, with `window`, --t-start and --t-end to `cmd` (simulate's

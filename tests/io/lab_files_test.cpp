@@ -1,9 +1,10 @@
 // Lab files as they come: a MAT recording whose variables are named as the lab named them, with
 // x in µm, read through --var and --scale by the commands that read recordings. The reference is
 // the same command on the CSV recording the MAT file was made from: its output must be the same.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,8 +12,8 @@
 
 #include "container_fixtures.hpp"
 #include "support/test_support.hpp"
-#include "sysid/io.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid::test {
 namespace {
@@ -60,8 +61,8 @@ TEST_CASE("the flags --var and --scale take one value each: the recording after 
   const std::string model = dir / "model.json";
   REQUIRE(RunCli({"identify", csv, "-o", model}).exit_code == 0);
   const CliResult dom_want = RunCli({"dominance", "--model", model, csv});
-  const CliResult dom = RunCli({"dominance", "--model", model, mat, "--var", "t=time,u=volts,x=pos_um,v=vel,a=acc",
-                                "--scale", "x=1e-6"});
+  const CliResult dom = RunCli({"dominance", "--model", model, mat, "--var",
+                                "t=time,u=volts,x=pos_um,v=vel,a=acc", "--scale", "x=1e-6"});
   INFO(dom.err);
   REQUIRE(dom.exit_code == 0);
   CHECK(Replace(dom.out, mat, csv) == dom_want.out);
@@ -102,16 +103,16 @@ TEST_CASE("hysteresis fit, simulate and invert read a MAT recording through --va
     const CliResult r = RunCli(args);
     INFO(sub << ": " << r.err);
     CHECK(r.exit_code == 0);
-    CHECK(ReadRecording(dir / (std::string(sub) + ".csv"), ReadOptions{{"t"}, {}, true, {}})
-              .rows() == rec.rows());
+    CHECK(
+        ReadRecording(dir / (std::string(sub) + ".csv"), ReadOptions{{"t"}, {}, true, {}}).rows() ==
+        rec.rows());
   }
   // Without --var the lab's names are refused, naming the flag to use.
-  const CliResult bare = RunCli({"hysteresis", "simulate", "--model", dir / "want.json", mat, "-o",
-                                 dir / "bare.csv"});
+  const CliResult bare =
+      RunCli({"hysteresis", "simulate", "--model", dir / "want.json", mat, "-o", dir / "bare.csv"});
   CHECK(bare.exit_code == 2);
   CHECK_THAT(bare.err, Catch::Contains("--var"));
 }
-
 
 // A ControlDesk export as matio writes its layout: struct capture with X.Data, the time (not
 // uniform: a real recorder's timestamps), and the signals' Y(k).Name in ControlDesk's quoted form.
@@ -159,16 +160,22 @@ TEST_CASE("a ControlDesk export: X.Data, Y(k).Data and every name form reach the
       ReadRecording(p, Map({{"t", "X.Data"}, {"u", "Y(1).Data"}, {"x", "capture.Y(2).Data"}}));
   CHECK(same(explicit_t.column("t"), f.t));
   CHECK(same(explicit_t.column("x"), f.x));
-  CHECK_THAT(InputErrorMessage([&] { ReadRecording(p, Map({{"u", "Y(3).Data"}, {"x", "Y(2).Data"}})); }),
+  CHECK_THAT(InputErrorMessage([&] {
+               ReadRecording(p, Map({{"u", "Y(3).Data"}, {"x", "Y(2).Data"}}));
+             }),
              Catch::Contains("Y(3).Data: expected Y(k).Data with k = 1..2"));
-  CHECK_THAT(InputErrorMessage([&] { ReadRecording(p, Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}})); }),
+  CHECK_THAT(InputErrorMessage([&] {
+               ReadRecording(p, Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}}));
+             }),
              Catch::Contains("no variable 'Model Root/DAC'") &&
                  Catch::Contains("a ControlDesk signal by its Y(k).Name or Y(k).Data"));
   // Two ports of one block: the name without the port is ambiguous, and says so.
   WriteControlDesk(dir / "two.mat", MatVersion::kV5, "capture", f.t,
                    {"\"Model Root\"/\"DAC\"/\"Out1\"", "\"Model Root\"/\"DAC\"/\"Out2\""},
                    {f.u, f.x});
-  CHECK_THAT(InputErrorMessage([&] { ReadRecording(dir / "two.mat", Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}})); }),
+  CHECK_THAT(InputErrorMessage([&] {
+               ReadRecording(dir / "two.mat", Map({{"u", "Model Root/DAC"}, {"x", "Y(2).Data"}}));
+             }),
              Catch::Contains("'Model Root/DAC' names 2 signals of 'capture'"));
 }
 
@@ -233,7 +240,8 @@ TEST_CASE("a unit warning on a MAT recording advises --scale, on a CSV a '# unit
   CHECK_THAT(fixed.err, !Catch::Contains("warning: " + mat));
 }
 
-TEST_CASE("derive and the hysteresis writers keep where the columns came from", "[io][cli][labfiles]") {
+TEST_CASE("derive and the hysteresis writers keep where the columns came from",
+          "[io][cli][labfiles]") {
   TempDir dir;
   REQUIRE(RunCli({"generate", "pulses", "-o", dir.path().string()}).exit_code == 0);
   const std::string mat = dir / "pulses.mat", out = dir / "derived.csv";
@@ -262,12 +270,12 @@ TEST_CASE("derive and the hysteresis writers keep where the columns came from", 
   const std::string piezo = dir / "piezo.mat";
   WriteLabMat(piezo, ReadRecording(SourcePath("datasets/piezo_aye_ang/piezo.csv")));
   const std::vector<std::string> map{"--var", "t=time,u=volts,x=pos_um", "--scale", "x=1e-6"};
-  std::vector<std::string> fit{"hysteresis", "fit", "--model", "pi", "--operators", "3",
-                               piezo, "-o", dir / "h.json"};
+  std::vector<std::string> fit{"hysteresis", "fit", "--model", "pi",          "--operators",
+                               "3",          piezo, "-o",      dir / "h.json"};
   fit.insert(fit.end(), map.begin(), map.end());
   REQUIRE(RunCli(fit).exit_code == 0);
-  std::vector<std::string> sim{"hysteresis", "simulate", "--model", dir / "h.json", piezo,
-                               "-o", dir / "sim.csv"};
+  std::vector<std::string> sim{"hysteresis", "simulate", "--model",      dir / "h.json",
+                               piezo,        "-o",       dir / "sim.csv"};
   sim.insert(sim.end(), map.begin(), map.end());
   REQUIRE(RunCli(sim).exit_code == 0);
   const Recording s = ReadRecording(dir / "sim.csv", ReadOptions{{"t", "u"}, {}, true, {}});
@@ -333,8 +341,7 @@ TEST_CASE("a time window on every reader and a fit fraction on the fitting comma
   const double first = rec.column("t")[0], last = rec.column("t")[rec.rows() - 1];
   const double cut = first + 0.5 * (last - first);
   const CliResult half = RunCli({"identify", csv, "--fit-fraction", "0.5", "--json"});
-  const CliResult by_hand =
-      RunCli({"identify", csv, "--t-end", fmt::format("{}", cut), "--json"});
+  const CliResult by_hand = RunCli({"identify", csv, "--t-end", fmt::format("{}", cut), "--json"});
   INFO(half.err);
   REQUIRE(half.exit_code == 0);
   REQUIRE(by_hand.exit_code == 0);

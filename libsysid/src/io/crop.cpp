@@ -13,15 +13,16 @@ namespace sysid {
 Recording CropRecording(const Recording& recording, double t_start_s, double t_end_s) {
   const std::string& source = recording.source;
   if (!recording.has("t"))
-    throw InputError(source + ": a time window needs a time column 't' (give --rate HZ or map "
-                              "one with --var t=NAME)");
+    throw InputError(source +
+                     ": a time window needs a time column 't' (give --rate HZ or map "
+                     "one with --var t=NAME)");
   if (recording.rows() == 0) throw InputError(source + ": no samples");
   const auto t = recording.column("t");
   const double first = t[0], last = t[t.size() - 1];
   const std::string window = fmt::format("the window t = {:.6g} .. {:.6g} s", t_start_s, t_end_s);
   if (!std::isfinite(t_start_s) || !std::isfinite(t_end_s) || !(t_start_s < t_end_s))
-    throw InputError(fmt::format("{}: {}: expected finite bounds, the start before the end",
-                                 source, window));
+    throw InputError(
+        fmt::format("{}: {}: expected finite bounds, the start before the end", source, window));
   if (t_start_s < first || t_end_s > last)
     throw InputError(fmt::format("{}: {} reaches outside the recording (t = {:.6g} .. {:.6g} s)",
                                  source, window, first, last));
