@@ -27,7 +27,7 @@ void InputFlags::Add(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_option("--pulse-start", pulse_train.start_s, "time of the first pulse [s]")
       ->capture_default_str();
-  recording.Add(cmd);
+  recording.Add(cmd, /*window=*/false);
   std::string names;
   for (const auto& n : NamedWaveformNames()) names += (names.empty() ? "" : ", ") + n;
   cmd->add_option("--waveform", waveform, "a named test waveform of the paper: " + names)

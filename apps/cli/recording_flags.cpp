@@ -10,19 +10,44 @@
 
 namespace sysid::cli {
 
-void RecordingFlags::Add(CLI::App* cmd) {
+void RecordingFlags::Add(CLI::App* cmd, bool window) {
   cmd->add_option("--var", vars,
                   "column mapping COLUMN=VARIABLE[,...] for MAT/HDF5 files or renamed CSV "
                   "columns: t=time,u=/group/volts,x=data[:,2] (matrix column k 1-based, like "
-                  "MATLAB; a dSPACE ControlDesk signal by its Y(i).Name)")
+                  "MATLAB; a dSPACE ControlDesk signal by its Y(k).Name, quoted or not, or "
+                  "Y(k).Data, its time "
+                  "X.Data); one value per flag, repeatable")
+      ->allow_extra_args(false)  // the recordings that follow stay positionals
       ->type_name("MAP");
   cmd->add_option("--rate", rate_hz,
                   "sample rate [Hz] of recordings without a time column: t = k / rate")
       ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", scales,
-                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um")
+                  "factor to SI units per column, COLUMN=FACTOR[,...]: x=1e-6 for a sensor in um; "
+                  "one value per flag, repeatable")
+      ->allow_extra_args(false)
       ->type_name("MAP");
+  if (!window) return;
+  cmd->add_option("--t-start", t_start_s,
+                  "keep only t >= S [s] of every recording read (t as recorded, not shifted to "
+                  "0); an error when S lies outside the recording")
+      ->type_name("S");
+  cmd->add_option("--t-end", t_end_s,
+                  "keep only t <= S [s] of every recording read; an error when S lies outside "
+                  "the recording or the window holds fewer than 2 samples")
+      ->type_name("S");
+}
+
+std::vector<std::pair<std::string, std::string>> ProvenanceOf(
+    const Recording& rec, const std::vector<std::string>& columns) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [key, value] : rec.metadata) {
+    bool keep = key == "sample_rate_hz" || key == "crop_s";
+    for (const auto& c : columns) keep = keep || key == "source." + c || key == "scale." + c;
+    if (keep) out.emplace_back(key, value);
+  }
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> ParseAssignments(
@@ -65,6 +90,15 @@ SourceMapping RecordingFlags::Mapping() const {
   SourceMapping m;
   m.variables = ParseAssignments(vars, "--var");
   m.rate_hz = rate_hz;
+  for (const auto& [bound, flag] : {std::pair{t_start_s, "--t-start"}, {t_end_s, "--t-end"}})
+    if (bound && !std::isfinite(*bound))
+      throw OptionsError(fmt::format("{} {}: expected a finite time [s]", flag, *bound), flag);
+  if (t_start_s && t_end_s && !(*t_start_s < *t_end_s))
+    throw OptionsError(fmt::format("--t-start {} --t-end {}: expected the start before the end",
+                                   *t_start_s, *t_end_s),
+                       "--t-start");
+  m.t_start_s = t_start_s;
+  m.t_end_s = t_end_s;
   for (const auto& [column, factor] : ParseAssignments(scales, "--scale")) {
     const double f = ParseFlagNumber(factor, "--scale " + column);
     if (f == 0) throw OptionsError("--scale " + column + ": factor 0", "--scale");

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/output_file.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/dominance_candidates.hpp"
@@ -36,6 +38,8 @@ struct HysteresisCli {
   std::string integrator = "cvode";  // Bouc–Wen fits: cvode | benchmark-chain
   std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
   std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
+  RecordingFlags recording;  // --var, --rate, --scale for every recording read
+  FitFractionFlag fit_fraction;
 };
 
 // Bouc–Wen fits: the start, then one line per start (rewritten at each iteration) with its
@@ -59,8 +63,9 @@ void AttachBoucWenProgress(HysteresisFitOptions& options, const std::string& kin
   };
 }
 
-std::vector<Recording> ReadAll(const std::vector<std::string>& paths) {
-  ReadOptions ro;
+std::vector<Recording> ReadAll(const std::vector<std::string>& paths,
+                               const RecordingFlags& flags) {
+  ReadOptions ro = flags.Apply({});
   ro.required_columns = {"t", "u", "x"};
   ro.any_of_columns = {};
   std::vector<Recording> recs;
@@ -110,7 +115,8 @@ void RunFit(const HysteresisCli& o) {
   options.bouc_wen.jacobian = o.jacobian == "central-differences"
                                   ? BoucWenJacobian::kCentralDifferences
                                   : BoucWenJacobian::kSensitivities;
-  const std::vector<Recording> recs = ReadAll(o.recordings);
+  const std::vector<Recording> recs =
+      o.fit_fraction.FitPart(ReadAll(o.recordings, o.recording), "hysteresis fit");
   AttachBoucWenProgress(options, o.kind, recs);
   HysteresisFitSummary s;
   std::unique_ptr<HysteresisModel> model;
@@ -135,6 +141,7 @@ void RunFit(const HysteresisCli& o) {
   nlohmann::ordered_json fit = nlohmann::ordered_json::parse(summary_json);
   fit.erase("parameters");  // the model file holds them already
   fit["recordings"] = o.recordings;
+  if (o.fit_fraction.fraction < 1) fit["fit_fraction"] = o.fit_fraction.fraction;
   file["fit"] = fit;
   WriteFileAtomically(o.output, WithGeneratorKey(file.dump(2) + "\n"));
   if (o.json) {
@@ -147,7 +154,7 @@ void RunFit(const HysteresisCli& o) {
 
 void RunSimulate(const HysteresisCli& o) {
   const auto model = ReadHysteresisModel(o.model_path);
-  ReadOptions ro;
+  ReadOptions ro = o.recording.Apply({});
   ro.required_columns = {"t", "u"};
   ro.any_of_columns = {};
   const Recording rec = ReadRecording(o.input, ro);
@@ -168,6 +175,7 @@ void RunSimulate(const HysteresisCli& o) {
   out.names = {"t", "u", "x_model"};
   out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"input", o.input},
                   {"periodic", o.periodic ? "true" : "false"}};
+  for (const auto& entry : ProvenanceOf(rec, {"t", "u"})) out.metadata.push_back(entry);
   out.data.resize(u.size(), 3);
   out.data.col(0) = rec.column("t");
   out.data.col(1) = u;
@@ -178,7 +186,7 @@ void RunSimulate(const HysteresisCli& o) {
 
 void RunInvert(const HysteresisCli& o) {
   const auto model = ReadHysteresisModel(o.model_path);
-  ReadOptions ro;
+  ReadOptions ro = o.recording.Apply({});
   ro.required_columns = {"t", "x"};
   ro.any_of_columns = {};
   const Recording ref = ReadRecording(o.input, ro);
@@ -203,6 +211,7 @@ void RunInvert(const HysteresisCli& o) {
   out.source = o.output;
   out.names = {"t", "x", "u"};
   out.metadata = {{"model", o.model_path}, {"kind", model->kind()}, {"reference", o.input}};
+  for (const auto& entry : ProvenanceOf(ref, {"t", "x"})) out.metadata.push_back(entry);
   out.data.resize(u.size(), 3);
   out.data.col(0) = ref.column("t");
   out.data.col(1) = ref.column("x");
@@ -214,7 +223,7 @@ void RunInvert(const HysteresisCli& o) {
 void RunDominance(const HysteresisCli& o, const CandidateRankingOptions& options) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const auto& path : o.recordings) {
-    ReadOptions ro;
+    ReadOptions ro = o.recording.Apply({});
     ro.required_columns = {"t", "u", "x"};
     ro.any_of_columns = {};
     const CandidateRanking r = RankCandidates(ReadRecording(path, ro), options);
@@ -302,6 +311,8 @@ void AddHysteresisCommand(CLI::App& app) {
   AddThreadsOption(fit, o->options.bouc_wen.threads,
                    "bouc-wen, bouc-wen-piezo: the Jacobian's simulations (central differences) "
                    "or the recordings' sensitivity passes in parallel; 0 = all cores");
+  o->recording.Add(fit);
+  o->fit_fraction.Add(fit);
   fit->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");
@@ -315,6 +326,7 @@ void AddHysteresisCommand(CLI::App& app) {
   CLI::App* sim = h->add_subcommand(
       "simulate", "Drive a model with a recording's u from the model's initial state; write t, u, x_model");
   sim->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  o->recording.Add(sim);
   sim->add_option("recording", o->input, "CSV with t [s] and u [V]")->required()->type_name("REC.csv");
   sim->add_flag("--periodic", o->periodic,
                 "u is one period of a periodic input: simulate to the periodic steady state and "
@@ -326,6 +338,7 @@ void AddHysteresisCommand(CLI::App& app) {
   CLI::App* inv = h->add_subcommand(
       "invert", "The input u [V] that makes the model follow a reference x [m]; write t, x, u");
   inv->add_option("--model", o->model_path, "model file from `hysteresis fit`")->required()->type_name("H.json");
+  o->recording.Add(inv);
   inv->add_option("reference", o->input, "CSV with t [s] and x [m]")->required()->type_name("REF.csv");
   AddOutputOption(inv, o->output, "write t, x, u (CSV)")->required();
   inv->callback([o] { RunInvert(*o); });
@@ -337,6 +350,7 @@ void AddHysteresisCommand(CLI::App& app) {
       "Rank x, v and a (with play operators of x) by the RMS of their terms in a linear inverse "
       "model u ~ c + th_x x + th_v v + th_a a + sum th_i F_ri[x] [V]: which variable carries "
       "the input (a stack: x; the stage: v)");
+  o->recording.Add(dom);
   dom->add_option("recordings", o->recordings, "recording CSVs: t [s], u [V], x [m]")
       ->required()
       ->type_name("REC.csv");

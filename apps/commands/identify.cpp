@@ -13,6 +13,7 @@
 
 #include "cli/common.hpp"
 #include "cli/output_file.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -31,6 +32,7 @@ struct IdentifyCli {
   bool json = false;
   bool verbose = false;
   MotionFlags motion;  // derivative empty: the method's default
+  FitFractionFlag fit_fraction;
   // The flags' defaults are the library's.
   PulseIdentificationOptions pulse;
   double max_speed = 0;  // [m/s] 0: no limit (the library's default, infinity)
@@ -51,7 +53,8 @@ void RunIdentify(const IdentifyCli& o) {
       PulseIdentificationOptions po = o.pulse;
       o.motion.ApplyTo(po.motion);
       if (o.max_speed > 0) po.plateau.max_speed_mps = o.max_speed;
-      r = IdentifyFromPulses(o.motion.ReadRecordings(o.recordings), po);
+      r = IdentifyFromPulses(
+          o.fit_fraction.FitPart(o.motion.ReadRecordings(o.recordings), "identify"), po);
     }
     if (!r.a3_given)
       std::cerr << "sysid identify: warning: " << DescribeA3(r.model.a3, false)
@@ -69,7 +72,8 @@ void RunIdentify(const IdentifyCli& o) {
     if (!o.table.empty()) throw OptionsError("--table applies to --method pulse only");
     TrajectoryOptions to = o.trajectory;
     o.motion.ApplyTo(to.motion);
-    const auto r = IdentifyFromTrajectory(o.motion.ReadRecordings(o.recordings), to);
+    const auto r = IdentifyFromTrajectory(
+        o.fit_fraction.FitPart(o.motion.ReadRecordings(o.recordings), "identify"), to);
     rendered = ToJson(r);
     text = o.verbose ? r.FullReport() : r.BriefReport();
   }
@@ -110,6 +114,7 @@ void AddIdentifyCommand(CLI::App& app) {
   o->motion.Add(cmd, "velocity filter",
                 ToString(PulseIdentificationOptions{}.motion.derivative.method) + " (pulse), " +
                     ToString(TrajectoryOptions{}.motion.derivative.method) + " (trajectory)");
+  o->fit_fraction.Add(cmd);
   auto& pulse = o->pulse;
   cmd->add_option("--min-duration", pulse.detection.min_duration_s,
                   "pulse: shortest pulse [s]")

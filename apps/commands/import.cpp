@@ -98,18 +98,21 @@ void AddImportCommand(CLI::App& app) {
   cmd->add_option("--column", o->columns,
                   "COLUMN=FILE[:VARIABLE]: a MAT variable (data[:,k] for matrix column k, "
                   "1-based like MATLAB), an HDF5 dataset (/group/name), a ControlDesk signal "
-                  "name, or a text file's column (header name, or number 1.. for headerless "
+                  "(Y(k).Name or Y(k).Data; without a t column t is the export's X.Data), or a text file's column (header name, or number 1.. for headerless "
                   "whitespace/CSV text); repeat per column")
       ->required()
+      ->allow_extra_args(false)  // one value per flag, as --var and --scale everywhere
       ->type_name("COLUMN=FILE[:VAR]");
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz] when no t column is given: t = k / rate")
       ->check(PositiveNumber())
       ->type_name("HZ");
   cmd->add_option("--scale", o->scales, "factor to SI units, COLUMN=FACTOR[,...] (x=1e-6: um)")
+      ->allow_extra_args(false)
       ->type_name("MAP");
   cmd->add_option("--unit", o->units,
                   "SI unit written as metadata, COLUMN=UNIT[,...] (default: t s, u V, x m, ...; "
                   "u=N for a force input)")
+      ->allow_extra_args(false)
       ->type_name("MAP");
   AddOutputOption(cmd, o->output, "recording CSV (or .mat) to write; stdout when absent");
   GuardOutputFiles(cmd, {{&o->output, "-o"}});

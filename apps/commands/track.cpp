@@ -151,7 +151,8 @@ void RunStackTrack(const TrackCliOptions& o) {
                            "stroke_m");
       ref = MakeStackReference(ro);
     } else {
-      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
+      ref = ReferenceAtControlRate(ReadPositionReference(o.reference_path, o.recording.Mapping()),
+                                   stack.rig.control_rate_hz);
       CheckReferenceForPlant(ref, stack.rig.control_rate_hz, reach_min, reach_max);
     }
   } catch (const OptionsError& e) {
@@ -290,7 +291,8 @@ void RunTrack(const TrackCliOptions& o) {
     if (o.reference_path.empty()) {
       ref = MakeStageProfile(stage, o.profile);
     } else {
-      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
+      ref = ReferenceAtControlRate(ReadPositionReference(o.reference_path, o.recording.Mapping()),
+                                   stage.sample_rate_hz);
       CheckReferenceForPlant(ref, stage.sample_rate_hz, stage.travel_min_m, stage.travel_max_m);
     }
   } catch (const OptionsError& e) {
@@ -377,7 +379,9 @@ void AddTrackCommand(CLI::App& app) {
           ->capture_default_str();
   o->freq = freq;
   cmd->add_option("--reference", o->reference_path,
-                  "position reference CSV with t [s] and x_ref [m] (or x) columns")
+                  "position reference CSV with t [s] and x_ref [m] (or x) columns, sampled "
+                  "uniformly at the control rate or at a rate that divides it (1 kHz on a 10 kHz "
+                  "loop: x_ref, v_ref, a_ref interpolated linearly between its samples)")
       ->check(CLI::ExistingFile)
       ->excludes(freq);
   o->amplitude =

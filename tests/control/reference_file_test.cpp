@@ -3,6 +3,9 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "support/test_support.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
@@ -61,4 +64,65 @@ TEST_CASE("a reference file must fit the plant: its control rate, uniform steps,
   CHECK_THROWS_WITH(sysid::CheckReferenceForPlant(write("far.csv", 1e-3, 1.0), 1000, -0.05, 0.05),
                     Catch::Contains("far.csv: reference sample 21") &&
                         Catch::Contains("x_ref = 1 m is outside the plant's travel"));
+}
+
+// A reference at a rate that divides the loop's: x_ref, v_ref, a_ref linear between its samples.
+// References: a line is reproduced exactly (x = b t, v = b, a = 0 at every new sample), a
+// parabola within linear interpolation's bound c dt^2 / 4 (|x''| dt^2 / 8, x'' = 2c), and the
+// new grid passes CheckReferenceForPlant at the loop's rate.
+TEST_CASE("a reference at 1 kHz on a 10 kHz loop is interpolated linearly", "[control]") {
+  const double b = 0.003, c = 0.02, dt = 1e-3;  // [m/s], [m/s^2], [s]
+  Eigen::VectorXd t(201), line(201), parabola(201);
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    t[k] = 0.5 + dt * static_cast<double>(k);
+    line[k] = b * t[k];
+    parabola[k] = c * t[k] * t[k];
+  }
+  const sysid::PositionReference fine_line =
+      sysid::ReferenceAtControlRate(sysid::ReferenceFromPositions(t, line), 10000);
+  REQUIRE(fine_line.t_s.size() == 2001);
+  CHECK(fine_line.t_s[0] == t[0]);
+  CHECK(fine_line.t_s[2000] == Approx(t[200]).epsilon(1e-15));
+  CHECK_NOTHROW(sysid::CheckReferenceForPlant(fine_line, 10000, -1, 1));
+  for (Eigen::Index i = 0; i < fine_line.t_s.size(); ++i) {
+    const double ti = 0.5 + 1e-4 * static_cast<double>(i);
+    CHECK(fine_line.t_s[i] == Approx(ti).epsilon(1e-14));
+    CHECK(fine_line.x_m[i] == Approx(b * ti).epsilon(1e-13));
+    CHECK(fine_line.v_mps[i] == Approx(b).epsilon(1e-9));
+    CHECK(fine_line.a_mps2[i] == Approx(0).margin(1e-6));
+  }
+  const sysid::PositionReference coarse = sysid::ReferenceFromPositions(t, parabola);
+  const sysid::PositionReference fine = sysid::ReferenceAtControlRate(coarse, 10000);
+  double worst = 0;
+  for (Eigen::Index i = 0; i < fine.t_s.size(); ++i) {
+    const double ti = fine.t_s[i];
+    worst = std::max(worst, std::abs(fine.x_m[i] - c * ti * ti));
+    if (i % 10 == 0) CHECK(fine.x_m[i] == coarse.x_m[i / 10]);  // the samples themselves stay
+  }
+  CHECK(worst <= c * dt * dt / 4 * (1 + 1e-9));
+  CHECK(worst > c * dt * dt / 4 * 0.9);  // the bound is reached mid-interval: linear, not a hold
+  // Interior a is the parabola's 2c, interpolated between equal values.
+  for (Eigen::Index i = 30; i < fine.t_s.size() - 30; ++i)
+    CHECK(fine.a_mps2[i] == Approx(2 * c).epsilon(1e-6));
+  // At the loop's rate, or at a rate that does not divide it: returned as it is.
+  CHECK(sysid::ReferenceAtControlRate(coarse, 1000).t_s.size() == 201);
+  const sysid::PositionReference third = sysid::ReferenceAtControlRate(coarse, 2500);
+  CHECK(third.t_s.size() == 201);
+  CHECK_THROWS_WITH(sysid::CheckReferenceForPlant(third, 2500, -1, 1),
+                    Catch::Contains("at a rate that divides it"));
+}
+
+TEST_CASE("track --reference at 1 kHz runs on the 10 kHz virtual stage", "[control][cli]") {
+  sysid::test::TempDir dir;
+  std::string text = "t,x_ref\n";
+  for (int k = 0; k <= 2000; ++k) {
+    const double t = 1e-3 * k;
+    text += fmt::format("{:.17g},{:.17g}\n", t, 0.002 * (1 - std::cos(3.14159265358979 * t)));
+  }
+  sysid::test::WriteText(dir / "ref_1khz.csv", text);
+  const sysid::test::CliResult r =
+      sysid::test::RunCli({"track", "--reference", dir / "ref_1khz.csv", "--json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Catch::Contains("rms_error"));
 }

@@ -169,9 +169,21 @@ PositionReference ReferenceFromPositions(const Eigen::VectorXd& t_s, const Eigen
 /// Throws InputError as ReadRecording.
 PositionReference ReadPositionReference(const std::string& path,
                                         const SourceMapping& mapping = {});
+/// `ref` at the control rate `control_rate_hz` [Hz] when it is sampled uniformly at a rate that
+/// divides it (R = control rate / reference rate a whole number: a 1 kHz trajectory on a 10 kHz
+/// loop, R = 10): between two reference samples x_ref, v_ref and a_ref are each interpolated
+/// linearly (v_ref and a_ref being the reference's own central differences, at its rate), so
+/// the feedforward sees the trajectory's acceleration rather than the kinks of a line or the
+/// steps of a hold. The first and last t stay; R = 1 returns `ref` unchanged. A reference at
+/// another rate or not uniform is returned unchanged (CheckReferenceForPlant refuses it, naming
+/// the sample). Throws InputError when the result would exceed kMaxReferenceSamples.
+PositionReference ReferenceAtControlRate(const PositionReference& ref, double control_rate_hz);
+/// The most samples ReferenceAtControlRate makes (2e7: 160 MB per column set of four).
+inline constexpr double kMaxReferenceSamples = 2e7;
+
 /// Checks a reference read from a file against the plant that will track it, before any run:
 /// sampled uniformly at the plant's control rate `control_rate_hz` [Hz] (the loop takes one
-/// reference sample per control period), and every x_ref inside [x_min_m, x_max_m] [m] (the
+/// reference sample per control period; ReferenceAtControlRate brings a slower one there), and every x_ref inside [x_min_m, x_max_m] [m] (the
 /// plant's travel). Throws InputError naming ref.description, the sample and the rule.
 void CheckReferenceForPlant(const PositionReference& ref, double control_rate_hz, double x_min_m,
                             double x_max_m);

@@ -10,6 +10,7 @@
 #define SYSID_IO_HPP_
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -67,8 +68,13 @@ struct SourceMapping {
   double rate_hz = 0;
   /// column -> factor to SI (e.g. x -> 1e-6 for a sensor in µm); applied after the mapping.
   std::vector<std::pair<std::string, double>> scales;
+  /// [s] keep only the rows with t_start_s <= t <= t_end_s (CropRecording), after the mapping
+  /// and scales; unset: the recording's first or last t.
+  std::optional<double> t_start_s, t_end_s;
 
-  bool empty() const { return variables.empty() && rate_hz == 0 && scales.empty(); }
+  bool empty() const {
+    return variables.empty() && rate_hz == 0 && scales.empty() && !t_start_s && !t_end_s;
+  }
 };
 
 /// Which columns a reader insists on.
@@ -90,7 +96,8 @@ inline constexpr double kMaxPlausibleTravel_m = 10.0;  ///< [m] max x - min x
 
 /// Warnings (empty when none) when x spans more than kMaxPlausibleTravel_m, or x or the v column
 /// moves faster than kMaxPlausibleSpeed_mps: each names the source, the value, the likely unit
-/// and the fix (a '# units: x=mm' line, which the reader honours, or scaling to metres).
+/// and the fix (a CSV: a '# units: x=mm' line, which the reader honours; a MAT or HDF5 file, whose
+/// source is the file: --scale x=1e-3).
 std::vector<std::string> UnitSanityWarnings(const Recording& recording);
 
 /// Reads and validates a recording: CSV, or MATLAB MAT (v4, v5, v7.3) or HDF5 recognised by the
@@ -170,6 +177,12 @@ SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance = 0.01
 /// Same report.
 SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
                                Eigen::VectorXd* scratch);
+
+/// The rows of `recording` with t_start_s <= t <= t_end_s, t kept as it is (not shifted to 0),
+/// metadata kept and "crop_s: START END" added. Throws InputError naming the source when the
+/// recording has no t, a bound lies outside [first t, last t], t_start_s >= t_end_s, or fewer
+/// than two rows remain.
+Recording CropRecording(const Recording& recording, double t_start_s, double t_end_s);
 
 /// Resamples every column onto the uniform grid t0, t0 + 1/rate, ... <= t_end by linear
 /// interpolation (the column "t" becomes the grid). Throws OptionsError for rate_hz <= 0.

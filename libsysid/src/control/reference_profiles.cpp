@@ -1,6 +1,7 @@
 // Reference profiles for the tracking experiment.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -129,6 +130,42 @@ PositionReference ReadPositionReference(const std::string& path, const SourceMap
   return ref;
 }
 
+PositionReference ReferenceAtControlRate(const PositionReference& ref, double control_rate_hz) {
+  const Eigen::Index n = ref.t_s.size();
+  if (n < 2 || !(control_rate_hz > 0)) return ref;
+  const double span = ref.t_s[n - 1] - ref.t_s[0];
+  const double dt = span / static_cast<double>(n - 1);  // [s] the reference's step
+  for (Eigen::Index k = 1; k < n; ++k)
+    if (std::abs(ref.t_s[k] - ref.t_s[k - 1] - dt) > 1e-6 * dt) return ref;  // not uniform
+  const double ratio = dt * control_rate_hz;
+  const double r = std::round(ratio);
+  if (r < 2 || std::abs(ratio - r) > 1e-6 * r) return ref;  // at the rate, faster, or no divisor
+  if (static_cast<double>(n - 1) * r + 1 > kMaxReferenceSamples)
+    throw InputError(fmt::format(
+        "{}: {} samples at {:g} Hz make {:.4g} at the control rate {:g} Hz, more than the {:g} a "
+        "reference may hold",
+        ref.description, n, 1 / dt, static_cast<double>(n - 1) * r + 1, control_rate_hz,
+        kMaxReferenceSamples));
+  const auto steps = static_cast<Eigen::Index>(r);
+  const Eigen::Index m = (n - 1) * steps + 1;
+  PositionReference out;
+  out.description = ref.description;
+  out.t_s.resize(m);
+  out.x_m.resize(m);
+  out.v_mps.resize(m);
+  out.a_mps2.resize(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const Eigen::Index k = std::min(i / steps, n - 2);  // the interval [t_k, t_k+1]
+    const double w = static_cast<double>(i - k * steps) / r;  // 0 at t_k, 1 at t_k+1
+    const auto lerp = [&](const Eigen::VectorXd& y) { return (1 - w) * y[k] + w * y[k + 1]; };
+    out.t_s[i] = lerp(ref.t_s);
+    out.x_m[i] = lerp(ref.x_m);
+    out.v_mps[i] = lerp(ref.v_mps);
+    out.a_mps2[i] = lerp(ref.a_mps2);
+  }
+  return out;
+}
+
 void CheckReferenceForPlant(const PositionReference& ref, double control_rate_hz, double x_min_m,
                             double x_max_m) {
   const Eigen::Index n = ref.t_s.size();
@@ -139,8 +176,10 @@ void CheckReferenceForPlant(const PositionReference& ref, double control_rate_hz
       throw InputError(fmt::format(
           "{}: reference sample {} (t = {:.9g} s) comes {:.9g} s after the one before; the plant "
           "takes one reference sample per control period, 1 / {:g} Hz = {:.9g} s: give the "
-          "reference at {:g} Hz",
-          ref.description, k + 1, ref.t_s[k], step, control_rate_hz, dt, control_rate_hz));
+          "reference at {:g} Hz, or uniformly at a rate that divides it ({:g} / R Hz, R whole; "
+          "it is then interpolated linearly)",
+          ref.description, k + 1, ref.t_s[k], step, control_rate_hz, dt, control_rate_hz,
+          control_rate_hz));
   }
   for (Eigen::Index k = 0; k < n; ++k)
     if (!(ref.x_m[k] >= x_min_m && ref.x_m[k] <= x_max_m))

@@ -138,6 +138,18 @@ void SetRange(VariableInfo& info, const Eigen::VectorXd& values) {
   if (!values.allFinite()) info.min = info.max = std::numeric_limits<double>::quiet_NaN();
 }
 
+Recording WithTimeFirst(const Recording& rec, const Eigen::VectorXd& t_s) {
+  Recording out;
+  out.source = rec.source;
+  out.metadata = rec.metadata;
+  out.names.push_back("t");
+  out.names.insert(out.names.end(), rec.names.begin(), rec.names.end());
+  out.data.resize(rec.rows(), rec.data.cols() + 1);
+  out.data.col(0) = t_s;
+  out.data.rightCols(rec.data.cols()) = rec.data;
+  return out;
+}
+
 std::string JoinList(const std::vector<std::string>& names) {
   std::string s;
   for (size_t i = 0; i < names.size() && i < 20; ++i) s += (i ? ", " : "") + names[i];
@@ -182,12 +194,6 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
           "{}: has a time column 't' ({}); --rate applies only to recordings without one",
           rec.source, origin("t")));
     const Eigen::Index n = rec.rows();
-    Recording with_t;
-    with_t.source = rec.source;
-    with_t.metadata = rec.metadata;
-    with_t.names.push_back("t");
-    with_t.names.insert(with_t.names.end(), rec.names.begin(), rec.names.end());
-    with_t.data.resize(n, rec.data.cols() + 1);
     // t = k / rate: every step and the span must stay finite numbers (--rate 1e-320 made t inf,
     // --rate 1e308 a subnormal step whose rate is inf).
     const double last_t = static_cast<double>(n > 0 ? n - 1 : 0) / m.rate_hz;
@@ -199,9 +205,9 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
                       std::isfinite(last_t) ? "steps by a subnormal number" : "reaches inf",
                       Num(kMinTimeStep_s)),
           "rate_hz");
-    for (Eigen::Index k = 0; k < n; ++k) with_t.data(k, 0) = static_cast<double>(k) / m.rate_hz;
-    with_t.data.rightCols(rec.data.cols()) = rec.data;
-    rec = std::move(with_t);
+    Eigen::VectorXd t(n);
+    for (Eigen::Index k = 0; k < n; ++k) t[k] = static_cast<double>(k) / m.rate_hz;
+    rec = WithTimeFirst(rec, t);
   }
   for (const auto& name : options.required_columns)
     if (!rec.has(name)) {
@@ -241,6 +247,28 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
             "and a duration that is a finite number",
             origin("t"), k + 1, Num(t[k]), Num(t[k - 1]), Num(kMinTimeStep_s)));
   }
+  if (m.t_start_s || m.t_end_s) {
+    const int ti = rec.index_of("t");  // none: CropRecording says so
+    const auto t_at = [&](Eigen::Index row) { return ti < 0 ? 0.0 : rec.data(row, ti); };
+    rec = CropRecording(rec, m.t_start_s.value_or(t_at(0)),
+                        m.t_end_s.value_or(t_at(rec.rows() - 1)));
+  }
+  // Provenance, in the recording's column order: every writer that keeps the metadata (derive,
+  // import) says where each column came from, at what rate and scale. A file name may hold a
+  // newline or an escape sequence: written as \xHH, so each line stays one line.
+  const auto set = [&](const std::string& key, const std::string& value) {
+    for (auto& [k, v] : rec.metadata)
+      if (k == key) {
+        v = value;
+        return;
+      }
+    rec.metadata.emplace_back(key, value);
+  };
+  for (const auto& name : rec.names)
+    for (const auto& [column, where] : origins)
+      if (column == name) set("source." + column, OneLine(where));
+  if (m.rate_hz != 0) set("sample_rate_hz", Num(m.rate_hz));
+  for (const auto& [column, factor] : m.scales) set("scale." + column, Num(factor));
 }
 
 std::unique_ptr<SignalContainer> OpenContainer(const std::string& path) {
@@ -299,12 +327,7 @@ Recording ReadContainerRecording(const std::string& path, const ReadOptions& opt
     if (t.size() != rec.rows())
       throw InputError(fmt::format("{}:X.Data: {} samples, but {} has {} (lengths differ)", path,
                                    t.size(), origins.front().second, rec.rows()));
-    Recording with_t;
-    with_t.source = path;
-    with_t.SetColumn("t", t);
-    for (size_t i = 0; i < rec.names.size(); ++i)
-      with_t.SetColumn(rec.names[i], rec.data.col(static_cast<Eigen::Index>(i)));
-    rec = std::move(with_t);
+    rec = WithTimeFirst(rec, t);
     origins.emplace_back("t", path + ":X.Data");
   }
   FinishMappedRecording(rec, options, origins);

@@ -76,6 +76,10 @@ std::uint64_t PickedLength(const VariableSpec& spec, const std::vector<std::uint
 /// our InputErrors instead.
 void SilenceHdf5Errors();
 
+/// `rec` with `t_s` as its first column t (source and metadata kept); lengths are the caller's
+/// check.
+Recording WithTimeFirst(const Recording& rec, const Eigen::VectorXd& t_s);
+
 /// "1x8192", "40960x1".
 std::string FormatDims(const std::vector<std::uint64_t>& dims);
 /// Product of `dims`, at most kElementCountCap (below 2^64, so that it converts to uint64_t and

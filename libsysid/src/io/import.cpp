@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -13,12 +12,6 @@
 
 namespace sysid {
 namespace {
-
-std::string Num(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
 
 // Without :VARIABLE, the variable named like the column, else the file's only numeric vector.
 std::string DefaultVariable(const ImportColumn& c) {
@@ -78,6 +71,21 @@ Recording ImportRecording(const ImportOptions& options) {
     rec.SetColumn(c.column, v);
     origins.emplace_back(c.column, where);
   }
+  // A ControlDesk export's time vector (X.Data) is the recording's t unless one is given.
+  if (!rec.has("t") && options.rate_hz == 0) {
+    for (const auto& c : options.columns) {
+      if (DetectFileFormat(c.file) == FileFormat::kText) continue;
+      Eigen::VectorXd t;
+      if (!internal::OpenContainer(c.file)->ImpliedTime(&t)) continue;
+      const std::string where = c.file + ":X.Data";
+      if (t.size() != rec.rows())
+        throw InputError(fmt::format("{}: {} samples, but {} has {} (lengths differ)", where,
+                                     t.size(), origins.front().second, rec.rows()));
+      rec = internal::WithTimeFirst(rec, t);
+      origins.insert(origins.begin(), {"t", where});
+      break;
+    }
+  }
   ReadOptions ro;
   ro.required_columns = {"t"};
   ro.any_of_columns.clear();
@@ -85,14 +93,8 @@ Recording ImportRecording(const ImportOptions& options) {
   ro.mapping.scales = options.scales;
   internal::FinishMappedRecording(rec, ro, origins);
 
-  // Provenance, in the recording's column order.
-  // A file name may hold a newline or an escape sequence: written as \xHH, so the metadata
-  // line stays one line and never reaches a terminal raw.
-  for (const auto& [column, where] : origins)
-    rec.metadata.emplace_back("source." + column, internal::OneLine(where));
-  if (options.rate_hz > 0) rec.metadata.emplace_back("sample_rate_hz", Num(options.rate_hz));
-  for (const auto& [column, factor] : options.scales)
-    rec.metadata.emplace_back("scale." + column, Num(factor));
+  // FinishMappedRecording wrote the provenance (source.*, sample_rate_hz, scale.*); the units
+  // follow.
   for (const auto& name : rec.names) {
     std::string unit = ColumnUnit(name);
     for (const auto& [c, u] : options.units)

@@ -4,6 +4,7 @@
 #include <matio.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -211,6 +212,12 @@ class MatContainer : public SignalContainer {
     }
     if (!controldesk_.empty()) {
       const matvar_t* s = ControlDesk();
+      const matvar_t* time = Field(Field(s, "X", 0), "Data", 0);
+      VariableInfo t_info = Describe(time, "X.Data");
+      t_info.type += fmt::format(" ({}.X.Data, the time)", controldesk_);
+      Eigen::VectorXd t_values;
+      if (time && ToDoubles(time, &t_values)) SetRange(t_info, t_values);
+      out.push_back(t_info);
       const matvar_t* y = Field(s, "Y", 0);
       const size_t n = static_cast<size_t>(ElementCount(Dims(y)));
       for (size_t i = 0; i < n; ++i) {
@@ -243,8 +250,11 @@ class MatContainer : public SignalContainer {
     }
     if (!var) {
       std::vector<std::string> names = Names();
-      throw InputError(
-          fmt::format("{}: no variable '{}' (variables: {})", path_, spec.name, JoinList(names)));
+      throw InputError(fmt::format(
+          "{}: no variable '{}' (variables: {}){}", path_, spec.name, JoinList(names),
+          controldesk_.empty() ? ""
+                               : "; a ControlDesk signal by its Y(k).Name or Y(k).Data, the "
+                                 "time by X.Data"));
     }
     return Pick(var, spec, where);
   }
@@ -342,17 +352,63 @@ class MatContainer : public SignalContainer {
     return names;
   }
 
-  const matvar_t* ControlDeskSignal(const std::string& name) {
-    const matvar_t* y = Field(ControlDesk(), "Y", 0);
+  // A ControlDesk name: X.Data (the time) or Y(k).Data (k 1-based, as `sysid info` lists the
+  // signals), each also prefixed by the struct's name; else a signal's Y(k).Name as stored, or
+  // without its double quotes (ControlDesk writes "Model Root"/"DAC"/"u"/"Out1", the docs and
+  // users Model Root/DAC/u/Out1), or without the last component, the block's port (Out1), when
+  // only one signal matches so.
+  const matvar_t* ControlDeskSignal(const std::string& spec) {
+    const matvar_t* s = ControlDesk();
+    const matvar_t* y = Field(s, "Y", 0);
     const size_t n = static_cast<size_t>(ElementCount(Dims(y)));
-    for (size_t i = 0; i < n; ++i)
-      if (CharString(Field(y, "Name", i)) == name) {
-        const matvar_t* d = Field(y, "Data", i);
-        if (!d)
-          throw InputError(fmt::format("{}:{}.Y({}).Data: missing", path_, controldesk_, i + 1));
-        return d;
-      }
-    return nullptr;
+    const auto data = [&](const matvar_t* v, const std::string& element) {
+      if (!v)
+        throw InputError(fmt::format("{}:{}.{}: missing", path_, controldesk_, element));
+      return v;
+    };
+    const std::string prefix = controldesk_ + ".";
+    const std::string bare =
+        spec.compare(0, prefix.size(), prefix) == 0 ? spec.substr(prefix.size()) : spec;
+    if (bare == "X.Data" || bare == "X(1).Data")
+      return data(Field(Field(s, "X", 0), "Data", 0), "X.Data");
+    if (bare.size() > 8 && bare.compare(0, 2, "Y(") == 0 &&
+        bare.compare(bare.size() - 6, 6, ").Data") == 0) {
+      const std::string k = bare.substr(2, bare.size() - 8);
+      size_t index = 0;
+      const auto [ptr, ec] = std::from_chars(k.data(), k.data() + k.size(), index);
+      if (k.empty() || ec != std::errc() || ptr != k.data() + k.size() || index == 0 ||
+          index > n)
+        throw InputError(fmt::format("{}: {}: expected Y(k).Data with k = 1..{} (1-based, like "
+                                     "MATLAB: the struct '{}' holds {} signals)",
+                                     path_, spec, n, controldesk_, n));
+      return data(Field(y, "Data", index - 1), fmt::format("Y({}).Data", index));
+    }
+    const auto unquoted = [](std::string text) {
+      text.erase(std::remove(text.begin(), text.end(), '"'), text.end());
+      return text;
+    };
+    const std::string want = unquoted(spec);
+    std::vector<size_t> exact, without_port;
+    for (size_t i = 0; i < n; ++i) {
+      const std::string name = CharString(Field(y, "Name", i));
+      if (name == spec) return data(Field(y, "Data", i), fmt::format("Y({}).Data", i + 1));
+      const std::string plain = unquoted(name);
+      if (plain == want) exact.push_back(i);
+      if (plain.size() > want.size() + 1 && plain.compare(0, want.size(), want) == 0 &&
+          plain[want.size()] == '/' && plain.find('/', want.size() + 1) == std::string::npos)
+        without_port.push_back(i);
+    }
+    const std::vector<size_t>& found = exact.empty() ? without_port : exact;
+    if (found.size() > 1) {
+      std::vector<std::string> names;
+      for (const size_t i : found)
+        names.push_back(fmt::format("Y({}).Name {}", i + 1, CharString(Field(y, "Name", i))));
+      throw InputError(fmt::format("{}: '{}' names {} signals of '{}' ({}): name one by its "
+                                   "Y(k).Data or its whole name",
+                                   path_, spec, found.size(), controldesk_, JoinList(names)));
+    }
+    if (found.empty()) return nullptr;
+    return data(Field(y, "Data", found.front()), fmt::format("Y({}).Data", found.front() + 1));
   }
 
   static VariableInfo Describe(const matvar_t* v, const std::string& name) {

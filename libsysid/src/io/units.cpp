@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "sysid/error.hpp"
+#include "sysid/io_containers.hpp"
 
 namespace sysid {
 namespace {
@@ -106,14 +108,23 @@ std::vector<std::string> UnitSanityWarnings(const Recording& r) {
       if (value * factor <= limit) return unit;
     return "";
   };
+  // A MAT or HDF5 file holds no '# units:' line: its fix is the reader's --scale.
+  std::error_code ec;
+  const bool container = std::filesystem::is_regular_file(r.source, ec) &&
+                         DetectFileFormat(r.source) != FileFormat::kText;
   // `unit` a length unit ("mm"), `per` "" for x and "/s" for v.
   auto advice = [&](const std::string& column, const std::string& unit, const char* per) {
-    return unit.empty()
-               ? std::string("check the column's unit")
-               : fmt::format(
-                     "if {} is in {}{}, declare it with a '# units: {}={}{}' line (the reader "
-                     "then converts it) or scale it to m{}",
-                     column, unit, per, column, unit, per, per);
+    if (unit.empty()) return std::string("check the column's unit");
+    if (container)
+      return fmt::format("if {} is in {}{}, scale it to m{} with --scale {}={} (a {} file holds "
+                         "no '# units:' line)",
+                         column, unit, per, per, column,
+                         unit == "mm" ? "1e-3" : unit == "um" ? "1e-6" : "1e-9",
+                         DescribeFileFormat(r.source));
+    return fmt::format(
+        "if {} is in {}{}, declare it with a '# units: {}={}{}' line (the reader then converts "
+        "it) or scale it to m{}",
+        column, unit, per, column, unit, per, per);
   };
   const auto t = r.column("t");
   if (r.has("x")) {

@@ -51,6 +51,8 @@ std::string MappingSentence(const PipelineInputs& inputs) {
       parts.push_back(fmt::format("{}={}", column, factor));  // shortest round-trip text
     flags += " --scale " + Join(parts, ",");
   }
+  if (m.t_start_s) flags += fmt::format(" --t-start {}", *m.t_start_s);
+  if (m.t_end_s) flags += fmt::format(" --t-end {}", *m.t_end_s);
   return " Read with `" + flags.substr(1) + "`.";
 }
 
