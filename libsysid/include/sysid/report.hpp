@@ -54,7 +54,7 @@ struct PlotOutcome {
 
 /// One colour per series label across the plots of a report, so a model keeps its colour from
 /// plot to plot whichever series the others hold: "measured" is black, every other label takes
-/// the next colour of a 10-colour palette on its first use (after 10, the palette repeats).
+/// the next colour of a 20-colour palette on its first use (after 20, the palette repeats).
 class PlotColours {
  public:
   /// The colour of `label` ("#rrggbb").

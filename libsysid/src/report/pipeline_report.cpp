@@ -305,7 +305,7 @@ class ReportWriter {
     }
     Plot("sweep.png",
          {"hidden-size sweep",
-          "hidden units H",
+          "hidden units H [1]",
           "MSE [V^2]",
           {{"training", h, tr, "linespoints"}, {"test", h, te, "linespoints"}},
           false,
