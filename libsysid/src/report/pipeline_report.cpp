@@ -256,8 +256,8 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    PlotSpec terms{"inverse-model terms on the training set", "t [s]",
-                   "term of a3 u = x'' + a1 v(t - tau) + a2 sgn v [m/s^2]", {}, false, 1100, 500};
+    PlotSpec terms{"terms of a3 u = x'' + a1 v(t - tau) + a2 sgn v on the training set", "t [s]",
+                   "term [m/s^2]", {}, false, 1100, 500};
     for (const auto& t : r_.figures.dominance_terms) terms.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("dominance_terms.png",
          terms,

@@ -9,12 +9,12 @@
 namespace sysid {
 namespace {
 
-// Matplotlib's tab10, then the darker halves of tab20b/tab20c: a pipeline report holds about 20
-// labels, and two of them in one plot must not share a colour.
+// Matplotlib's tab10, then ten of tab20b's that none of those resembles: a pipeline report holds
+// about 20 labels, and two of them in one plot must not share (or nearly share) a colour.
 constexpr std::array<const char*, 20> kPalette = {
     "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
-    "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
+    "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#e7ba52", "#843c39",
+    "#7b4173", "#6b6ecf", "#b5cf6b", "#ad494a", "#a55194", "#8c6d31"};
 
 }  // namespace
 
