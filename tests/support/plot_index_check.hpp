@@ -1,5 +1,5 @@
 // The checks every folder of plots passes (its plots.json, PlotIndexJson): the rules of
-// docs/plots.md that a test can read without looking at the images.
+// docs/architecture.md ("Plots") that a test can read without looking at the images.
 #ifndef SYSID_TESTS_SUPPORT_PLOT_INDEX_CHECK_HPP_
 #define SYSID_TESTS_SUPPORT_PLOT_INDEX_CHECK_HPP_
 
