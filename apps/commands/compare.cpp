@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/common.hpp"
@@ -146,25 +147,21 @@ void RunCompare(const CompareCliOptions& o) {
   }
   if (folder) {
     std::vector<std::string> notes;
+    PlotColours colours;  // one colour per model across every recording's plots
+    std::vector<std::pair<std::string, PlotSpec>> drawn;
     folder->Write([&](const fs::path& dir) {
       for (const auto& c : results) {
         const std::string stem = fs::path(c.source).stem().string();
         WriteRecordingByExtension((dir / (stem + "_traces." + o.traces)).string(),
                                   c.AsRecording());
         if (!o.plots) continue;
-        PlotSpec spec;
-        spec.title = "inverse models on " + stem;
-        spec.x_label = "t [s]";
-        spec.y_label = "u [V]";
-        spec.series.push_back({"measured", c.t_s, c.u_measured_v, "lines"});
-        if (c.has_analytic)
-          spec.series.push_back({"analytic inverse", c.t_s, c.u_analytic_v, "lines"});
-        if (c.has_nn) spec.series.push_back({"NN inverse", c.t_s, c.u_nn_v, "lines"});
-        for (const auto& h : c.hysteresis)
-          spec.series.push_back({h.label + " inverse", c.t_s, h.u_v, "lines"});
-        const auto p = WritePlot((dir / (stem + ".png")).string(), spec);
-        if (!p.written) notes.push_back(p.message);
+        for (auto& [file, spec] : ComparisonPlots(c, stem, colours)) {
+          const auto p = WritePlot((dir / file).string(), spec);
+          if (!p.written) notes.push_back(p.message);
+          drawn.emplace_back(file, std::move(spec));
+        }
       }
+      if (!drawn.empty()) WriteFileAtomically((dir / "plots.json").string(), PlotIndexJson(drawn));
       WriteFileAtomically((dir / "summary.csv").string(), ComparisonTableCsv(results));
       WriteFileAtomically((dir / "summary.json").string(), j.dump(2) + "\n");
     });
@@ -209,7 +206,9 @@ void AddCompareCommand(CLI::App& app) {
   cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
       ->check(NonNegativeNumber());
   AddOutputOption(cmd, o->out_dir,
-                  "new folder for <name>_traces.csv, <name>.png, summary.csv, summary.json")
+                  "new folder for <name>_traces.csv, summary.csv, summary.json and the plots "
+                  "(<name>.png, <name>_error.png, <name>_zoom.png, <name>_loop.png; plots.json "
+                  "lists their series)")
       ->type_name("DIR");
   cmd->add_flag("--force", o->force,
                 "replace a folder an earlier sysid compare wrote (one holding .sysid-output)");

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/common.hpp"
@@ -93,11 +94,16 @@ void RunValidate(ValidateCliOptions o) {
     folder->Write([&](const fs::path& dir) {
       WriteFileAtomically((dir / "summary.json").string(), j.dump(2) + "\n");
       if (!o.plots) return;
+      PlotColours colours;  // one colour per series label across the folder's plots
+      std::vector<std::pair<std::string, PlotSpec>> drawn;
       for (const auto& v : results)
-        for (const auto& [name, spec] : ValidationPlots(v, fs::path(v.source).stem().string())) {
+        for (auto& [name, spec] : ValidationPlots(v, fs::path(v.source).stem().string())) {
+          colours.Apply(spec);
           const auto p = WritePlot((dir / name).string(), spec);
           if (!p.written) notes.push_back(p.message);
+          drawn.emplace_back(name, std::move(spec));
         }
+      if (!drawn.empty()) WriteFileAtomically((dir / "plots.json").string(), PlotIndexJson(drawn));
     });
     for (const auto& n : notes) std::cerr << "sysid validate: " << n << '\n';
   }

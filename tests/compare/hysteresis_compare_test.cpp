@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/known_pi.hpp"
+#include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/compare_hysteresis.hpp"
@@ -119,6 +120,23 @@ TEST_CASE("sysid compare --hysteresis scores model files and refuses what cannot
     const sysid::Recording traces = sysid::ReadRecording(dir / "out/run_traces.mat", any);
     CHECK((Eigen::VectorXd(traces.column("u_pi_truth")) - c.hysteresis[0].u_v).cwiseAbs().maxCoeff() ==
           0.0);
+  }
+  SECTION("the plots: the inverse, its error, a zoom and the u-x loop, one colour per model") {
+    const sysid::FrictionModel paper = sysid::FrictionModel::Paper();
+    sysid::WriteModel(dir / "m.json", paper);
+    r = RunCli({"compare", "--hysteresis", dir / "truth.json", "--model", dir / "m.json", "-o",
+                dir / "plots", dir / "run.csv"});
+    REQUIRE(r.exit_code == 0);
+    // 1200 samples trimmed by 5 at each end: above kCompareZoomAbove, so a zoom is drawn.
+    CHECK(sysid::test::CheckPlotIndex(dir / "plots") == 4);
+    const auto p = nlohmann::json::parse(sysid::test::ReadText(dir / "plots/plots.json"));
+    CHECK(p["run.png"]["series"].size() == 3);
+    CHECK(p["run_error.png"]["series"].size() == 2);
+    CHECK(p["run_error.png"]["y_label"] == "u_model - u [V]");
+    CHECK(p["run_zoom.png"]["series"][0]["points"] == 119);
+    CHECK(p["run_loop.png"]["x_label"] == "x [um]");
+    CHECK(p["run_loop.png"]["series"][0]["label"] == "pi:truth inverse");
+    CHECK(p["run_loop.png"]["series"].size() == 2);  // the friction model has no u-x loop
   }
   SECTION("no inverse model at all is a usage error") {
     r = RunCli({"compare", dir / "run.csv"});

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
@@ -222,6 +223,18 @@ TEST_CASE("sysid pipeline writes a complete report from the bundled recordings",
   }
   if (sysid::GnuplotAvailable())
     CHECK(std::filesystem::exists(out + "/validate_waveform_square_v_residual_tests.png"));
+  // Every plot's labels, units, series and colours (plots.json); the dominance plot names the
+  // acceleration term x'' = a and its unit.
+  CHECK(sysid::test::CheckPlotIndex(out) >= 10);
+  const auto plots = nlohmann::json::parse(sysid::test::ReadText(out + "/plots.json"));
+  const auto& terms = plots["dominance_terms.png"];
+  REQUIRE(terms["series"].size() == 2);
+  CHECK(terms["series"][1]["label"] == "acceleration term x'' = a");
+  CHECK_THAT(terms["y_label"].get<std::string>(), Catch::EndsWith("[m/s^2]"));
+  // The analytic inverse keeps its colour from the comparison to the tracking plots.
+  CHECK(plots["compare_test.png"]["series"][0]["colour"] ==
+        plots["tracking_0.5hz.png"]["series"][1]["colour"]);
+  CHECK(plots["tracking_0.5hz.png"]["series"][1]["label"] == "analytic inverse");
   // The verdict follows the recomputed MSEs, and a missing contrast points at the search.
   const bool contrast = mse[2] >= 2 * mse[0] && mse[3] < mse[2];
   CHECK((md.find("**yes, as in the paper**") != std::string::npos) == contrast);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "support/known_pi.hpp"
+#include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare_stack.hpp"
 #include "sysid/error.hpp"
@@ -158,6 +159,26 @@ TEST_CASE("sysid pipeline on a stack folder writes the model table", "[pipeline]
   CHECK(std::filesystem::exists(dir / "report/model_1_pi.json"));
   // The model file is the one scored: `hysteresis simulate` with it gives the table's row.
   CHECK(sysid::ReadHysteresisModel(dir / "report/model_1_pi.json")->kind() == "pi");
+  // The forward and inverse plots: one label and one colour per model in both, the two networks
+  // told apart by their table labels, the measured trace black and last.
+  CHECK(sysid::test::CheckPlotIndex(dir / "report") == 2);
+  const auto plots = nlohmann::json::parse(sysid::test::ReadText(dir / "report/plots.json"));
+  const auto& fwd = plots["stack_forward.png"]["series"];
+  const auto& inv = plots["stack_inverse.png"]["series"];
+  CHECK(fwd.size() == 7);  // six models and the measured trace
+  CHECK(plots["stack_forward.png"]["y_label"] == "x [um]");
+  bool static_net = false, operator_net = false;
+  for (const auto& s : fwd) {
+    static_net |= s["label"] == "5 dominant-variable network (static, H = 10)";
+    operator_net |= s["label"] == "6 operator-input network (4 play operators, H = 10)";
+  }
+  CHECK(static_net);
+  CHECK(operator_net);
+  // Each model in the inverse plot has its forward colour (an inverse refused there, as rdpi's on
+  // the piezo recording, must not shift the others': PlotColours' own test).
+  for (const auto& s : inv)
+    for (const auto& f : fwd)
+      if (f["label"] == s["label"]) CHECK(f["colour"] == s["colour"]);
   // Too short to split: exit 2 naming the file, no report.
   std::filesystem::create_directory(dir / "short");
   sysid::WriteRecording(dir / "short/s.csv", StackRecording(3));

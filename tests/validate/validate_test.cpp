@@ -13,6 +13,7 @@
 
 #include "core/portable_random.hpp"
 #include "support/known_pi.hpp"
+#include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/error.hpp"
@@ -341,6 +342,10 @@ TEST_CASE("sysid validate: the library's numbers, its flags' bounds and its refu
   CHECK(j["recordings"][0] == expected);
   CHECK(j["kind"] == "friction");
   CHECK(std::filesystem::exists(dir / "out/summary.json"));
+  // With plots: v and x, each with its residual tests, listed in plots.json by the house rules.
+  r = RunCli({"validate", "--model", dir / "m.json", "-o", dir / "plotted", dir / "rec.csv"});
+  REQUIRE(r.exit_code == 0);
+  CHECK(sysid::test::CheckPlotIndex(dir / "plotted") == 4);
   r = RunCli({"validate", "--model", dir / "m.json", dir / "rec.csv"});
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.out, Catch::Contains("nrmse_std") && Catch::Contains("nrmse_range") &&

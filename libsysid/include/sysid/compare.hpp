@@ -88,6 +88,7 @@ struct InverseComparison {
   Eigen::VectorXd u_nn_v;        ///< [V]; empty without a network
   Eigen::VectorXd v_mps;         ///< [m/s] velocity used
   Eigen::VectorXd a_mps2;        ///< [m/s^2] acceleration used
+  Eigen::VectorXd x_m;           ///< [m] the recording's x, trimmed; empty without an x column
   std::string motion_from;       ///< MotionSource: "columns v, a", "x (central)", ...
   PredictionErrors analytic;  ///< meaningful when has_analytic
   PredictionErrors nn;  ///< meaningful when has_nn

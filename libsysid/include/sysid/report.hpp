@@ -17,10 +17,20 @@
 namespace sysid {
 
 struct PlotSeries {
+  PlotSeries() = default;
+  PlotSeries(std::string label_, Eigen::VectorXd x_, Eigen::VectorXd y_,
+             std::string style_ = "lines", std::string colour_ = {})
+      : label(std::move(label_)),
+        x(std::move(x_)),
+        y(std::move(y_)),
+        style(std::move(style_)),
+        colour(std::move(colour_)) {}
+
   std::string label;
   Eigen::VectorXd x;
   Eigen::VectorXd y;
   std::string style = "lines";  ///< gnuplot style: "lines", "points", "linespoints"
+  std::string colour;           ///< "#rrggbb"; empty (or anything else): gnuplot's next colour
 };
 
 struct PlotSpec {
@@ -42,6 +52,37 @@ struct PlotOutcome {
   std::string message;  ///< why not, when not written
 };
 
+/// One colour per series label across the plots of a report, so a model keeps its colour from
+/// plot to plot whichever series the others hold: "measured" is black, every other label takes
+/// the next colour of a 20-colour palette on its first use (after 20, the palette repeats).
+class PlotColours {
+ public:
+  /// The colour of `label` ("#rrggbb").
+  std::string For(const std::string& label);
+  /// Gives every series of `spec` without a colour the colour of its label.
+  void Apply(PlotSpec& spec);
+
+ private:
+  std::vector<std::string> labels_;  ///< in order of first use
+};
+
+/// Moves the series labelled "measured" after the others, keeping their order: drawn last, the
+/// measured trace lies on top of the models'.
+void DrawMeasuredLast(PlotSpec& spec);
+
+/// The gnuplot script WritePlot runs: `image` is the output file, data_files[i] holds series i
+/// as "x y" rows. Text is sanitised (back quotes, '$', '@', '"', '\\' and control characters
+/// dropped: gnuplot would substitute or end the string there), a series' colour is set when it
+/// is "#rrggbb", the legend goes below the frame.
+std::string GnuplotScript(const PlotSpec& spec, const std::string& image,
+                          const std::vector<std::string>& data_files);
+
+/// What each plot of a folder shows, as JSON ({"FILE.png": {"title", "x_label", "y_label",
+/// "log_y", "series": [{"label", "colour", "style", "points"}]}}, in drawing order: the last
+/// series is on top). The pipeline report and `sysid compare -o` write it as plots.json, whether
+/// or not gnuplot drew the images.
+std::string PlotIndexJson(const std::vector<std::pair<std::string, PlotSpec>>& plots);
+
 /// True when a gnuplot executable is on PATH (checked once).
 bool GnuplotAvailable();
 
@@ -59,6 +100,18 @@ std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<Sc
 /// "STEM_y_residual_tests.png" (r_e and r_eu against the lag with the ±z/sqrt(N) band).
 std::vector<std::pair<std::string, PlotSpec>> ValidationPlots(const Validation& validation,
                                                               const std::string& stem);
+
+/// The plots of one recording's inverse-model comparison (`sysid compare -o`), by file name,
+/// every model in one colour (`colours`) across them and the measured trace black, drawn last:
+/// "STEM.png" (u against t, the whole recording), "STEM_error.png" (each model's u - measured u
+/// against t), "STEM_zoom.png" when the recording has more than kCompareZoomAbove samples (u over
+/// the window of a tenth of the samples centred on the largest |error| of any model: over the
+/// whole length the traces overlap) and, with hysteresis models and an x column, "STEM_loop.png"
+/// (u against x [um]: each hysteresis model's inverse and the measured loop).
+std::vector<std::pair<std::string, PlotSpec>> ComparisonPlots(const InverseComparison& comparison,
+                                                              const std::string& stem,
+                                                              PlotColours& colours);
+constexpr Eigen::Index kCompareZoomAbove = 1000;  ///< [samples]
 
 /// Writes into `out_dir`: report.md, model.json, nn.json (and nn_typical.json), tables as CSV,
 /// traces and PNG plots. Returns notes about skipped plots (gnuplot missing).

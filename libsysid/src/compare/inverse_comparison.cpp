@@ -173,6 +173,7 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
   c.u_measured_v = u.segment(trim, m);
   c.v_mps = v.segment(trim, m);
   c.a_mps2 = a.segment(trim, m);
+  if (recording.has("x") && recording.rows() == n) c.x_m = recording.column("x").segment(trim, m);
   c.has_analytic = model != nullptr;
   if (model) {
     c.u_analytic_v = AnalyticInverse(*model, dt, v, a).segment(trim, m);

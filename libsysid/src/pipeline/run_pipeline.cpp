@@ -78,8 +78,8 @@ void DominanceTraces(const Recording& training, const FrictionModel& model, Pipe
   Eigen::VectorXd viscous(vd.size());
   for (Eigen::Index k = 0; k < vd.size(); ++k)
     viscous[k] = (vd[k] > 0 ? model.a1p : model.a1n) * vd[k];
-  f.dominance_terms.push_back({"a1 v(t - tau)", m.t_s, viscous});
-  f.dominance_terms.push_back({"x''", m.t_s, m.a_mps2});
+  f.dominance_terms.push_back({"viscous term a1 v(t - tau)", m.t_s, viscous});
+  f.dominance_terms.push_back({"acceleration term x'' = a", m.t_s, m.a_mps2});
 }
 
 PipelineFigures::NetworkSet NetworkTraces(const std::string& set, const Recording& rec,

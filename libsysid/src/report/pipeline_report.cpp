@@ -83,9 +83,11 @@ class ReportWriter {
   // Plots are queued and drawn together at the end (DrawPlots): each is a gnuplot process, and
   // drawn one after another they were most of the report's time. report.md keeps a marker where
   // each plot's line goes.
-  void Plot(const std::string& file, const PlotSpec& spec, const std::string& caption) {
+  void Plot(const std::string& file, PlotSpec spec, const std::string& caption) {
+    DrawMeasuredLast(spec);
+    colours_.Apply(spec);  // one colour per label across the report's plots
     md_ += PlotMarker(plots_.size());
-    plots_.push_back({file, spec, caption, {}});
+    plots_.push_back({file, std::move(spec), caption, {}});
   }
 
   static std::string PlotMarker(std::size_t i) { return fmt::format("\x1f{}\x1f", i); }
@@ -108,6 +110,9 @@ class ReportWriter {
     for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
+    std::vector<std::pair<std::string, PlotSpec>> index;
+    for (const PendingPlot& p : plots_) index.emplace_back(p.file, p.spec);
+    WriteFileAtomically(Path("plots.json"), PlotIndexJson(index));
     for (std::size_t i = 0; i < plots_.size(); ++i) {
       const PendingPlot& p = plots_[i];
       const std::string line = p.outcome.written
@@ -251,8 +256,8 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    PlotSpec terms{"inverse-model terms on the training set", "t [s]", "term [m/s^2]", {}, false,
-                   1100, 500};
+    PlotSpec terms{"terms of a3 u = x'' + a1 v(t - tau) + a2 sgn v on the training set", "t [s]",
+                   "term [m/s^2]", {}, false, 1100, 500};
     for (const auto& t : r_.figures.dominance_terms) terms.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("dominance_terms.png",
          terms,
@@ -300,7 +305,7 @@ class ReportWriter {
     }
     Plot("sweep.png",
          {"hidden-size sweep",
-          "hidden units H",
+          "hidden units H [1]",
           "MSE [V^2]",
           {{"training", h, tr, "linespoints"}, {"test", h, te, "linespoints"}},
           false,
@@ -360,9 +365,9 @@ class ReportWriter {
            {"inverse models on " + name,
             "t [s]",
             "u [V]",
-            {{"measured", c.t_s, c.u_measured_v, "lines"},
-             {"analytic inverse", c.t_s, c.u_analytic_v, "lines"},
-             {"NN inverse", c.t_s, c.u_nn_v, "lines"}},
+            {{"analytic inverse", c.t_s, c.u_analytic_v, "lines"},
+             {internal::NetworkLabel(r_), c.t_s, c.u_nn_v, "lines"},
+             {"measured", c.t_s, c.u_measured_v, "lines"}},
             false,
             1100,
             450},
@@ -404,13 +409,13 @@ class ReportWriter {
     // The paper's ordering: PI worst, analytic better, NN best at every frequency.
     for (double f : r_.options.track_frequencies_hz) {
       double e[3] = {0, 0, 0};
-      PlotSpec spec{
-          fmt::format("tracking error at {} Hz", f), "t [s]", "e [mm]", {}, false, 1100, 450};
+      PlotSpec spec{fmt::format("tracking error at {} Hz: PI with feedforward from each inverse model", f),
+                    "t [s]", "e [mm]", {}, false, 1100, 450};
       for (const auto& t : r_.tracking) {
         if (t.frequency_hz != f) continue;
         const int i = t.scheme == "none" ? 0 : (t.scheme == "analytic" ? 1 : 2);
         e[i] = t.result.max_error_m;
-        spec.series.push_back({t.scheme, t.result.t_s, 1e3 * t.result.e_m, "lines"});
+        spec.series.push_back({SchemeLabel(t.scheme), t.result.t_s, 1e3 * t.result.e_m, "lines"});
       }
       const bool ordered = e[0] > e[1] && e[1] > e[2];
       md_ += fmt::format("\n- {} Hz: {}", f,
@@ -423,6 +428,13 @@ class ReportWriter {
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
     md_ += "\n";
+  }
+
+  // A feedforward scheme under its model's label in every other plot ("none": PI alone).
+  std::string SchemeLabel(const std::string& scheme) const {
+    if (scheme == "analytic") return "analytic inverse";
+    if (scheme == "nn") return internal::NetworkLabel(r_);
+    return scheme == "none" ? "no feedforward" : scheme;
   }
 
   // One sentence when PI alone rings in motion at frequency f (F4 in motion, > 5 um): why the
@@ -584,6 +596,7 @@ class ReportWriter {
   const PipelineResult& r_;
   std::string dir_;
   std::vector<PendingPlot> plots_;
+  PlotColours colours_;
   std::optional<Reference> ref_;
   std::string md_;
   std::vector<std::string> notes_;

@@ -3,12 +3,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "sysid/io.hpp"
@@ -20,12 +22,13 @@ namespace sysid {
 namespace {
 
 // Titles and labels may hold file names: gnuplot substitutes back-quoted text and macros even in
-// a script file, so everything that could quote, substitute or end a line is dropped, not escaped.
+// a script file, so everything that could end the double-quoted string, substitute or end a line
+// is dropped, not escaped. A single quote is plain text inside double quotes, and kept: x'' is
+// the acceleration.
 std::string Sanitise(const std::string& s) {
   std::string out;
   for (unsigned char c : s) {
-    if (c < 0x20 || c == 0x7f || c == '`' || c == '$' || c == '"' || c == '\'' || c == '\\' ||
-        c == '@')
+    if (c < 0x20 || c == 0x7f || c == '`' || c == '$' || c == '"' || c == '\\' || c == '@')
       continue;
     out += static_cast<char>(c);
   }
@@ -53,7 +56,40 @@ int RunGnuplot(const std::string& script, const std::string& err) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+bool IsHexColour(const std::string& c) {
+  if (c.size() != 7 || c[0] != '#') return false;
+  for (size_t i = 1; i < c.size(); ++i)
+    if (!std::isxdigit(static_cast<unsigned char>(c[i]))) return false;
+  return true;
+}
+
 }  // namespace
+
+std::string GnuplotScript(const PlotSpec& spec, const std::string& image,
+                          const std::vector<std::string>& data_files) {
+  const bool svg = std::filesystem::path(image).extension() == ".svg";
+  std::ostringstream script;
+  script << (svg ? "set terminal svg size " : "set terminal pngcairo size ") << spec.width_px << ","
+         << spec.height_px << (svg ? " dynamic\n" : "\n");
+  script << "set output \"" << Sanitise(image) << "\"\n";
+  script << "set title \"" << Sanitise(spec.title) << "\" noenhanced\n";
+  script << "set xlabel \"" << Sanitise(spec.x_label) << "\" noenhanced\n";
+  script << "set ylabel \"" << Sanitise(spec.y_label) << "\" noenhanced\n";
+  // The legend below the frame, in columns: beside it, long labels took the plot's width.
+  script << "set grid\nset key below horizontal noenhanced\n";
+  if (spec.log_y) script << "set logscale y\n";
+  if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && spec.y_min < spec.y_max)
+    script << "set yrange [" << spec.y_min << ":" << spec.y_max << "]\n";
+  script << "plot ";
+  for (size_t i = 0; i < spec.series.size() && i < data_files.size(); ++i) {
+    const auto& s = spec.series[i];
+    script << (i ? ", " : "") << '"' << Sanitise(data_files[i]) << "\" using 1:2 with " << s.style;
+    if (IsHexColour(s.colour)) script << " lc rgb \"" << s.colour << '"';
+    script << " title \"" << Sanitise(s.label) << '"';
+  }
+  script << "\n";
+  return script.str();
+}
 
 bool GnuplotAvailable() {
   static const bool available = [] {
@@ -88,30 +124,17 @@ PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec) {
   const fs::path gp_image = dir / (svg ? "image.svg" : "image.png");
   const fs::path tmp_image = (target.has_parent_path() ? target.parent_path() : fs::path(".")) /
                              ("." + target.filename().string() + ".tmp");
-  std::ofstream script(dir / "plot.gp");
-  script << (svg ? "set terminal svg size " : "set terminal pngcairo size ") << spec.width_px << ","
-         << spec.height_px << (svg ? " dynamic\n" : "\n");
-  script << "set output \"" << Sanitise(gp_image.string()) << "\"\n";
-  script << "set title \"" << Sanitise(spec.title) << "\" noenhanced\n";
-  script << "set xlabel \"" << Sanitise(spec.x_label) << "\" noenhanced\n";
-  script << "set ylabel \"" << Sanitise(spec.y_label) << "\" noenhanced\n";
-  script << "set grid\nset key outside right top noenhanced\n";
-  if (spec.log_y) script << "set logscale y\n";
-  if (std::isfinite(spec.y_min) && std::isfinite(spec.y_max) && spec.y_min < spec.y_max)
-    script << "set yrange [" << spec.y_min << ":" << spec.y_max << "]\n";
-  script << "plot ";
+  std::vector<std::string> data_files;
   for (size_t i = 0; i < spec.series.size(); ++i) {
     const auto& s = spec.series[i];
-    const fs::path data = dir / ("s" + std::to_string(i) + ".dat");
-    std::ofstream d(data);
+    data_files.push_back((dir / ("s" + std::to_string(i) + ".dat")).string());
+    std::ofstream d(data_files.back());
     d.precision(10);
     for (Eigen::Index k = 0; k < std::min(s.x.size(), s.y.size()); ++k)
       d << s.x[k] << ' ' << s.y[k] << '\n';
-    script << (i ? ", " : "") << '"' << Sanitise(data.string()) << "\" using 1:2 with " << s.style
-           << " title \"" << Sanitise(s.label) << '"';
   }
-  script << "\n";
-  script.close();
+  WriteFileAtomically((dir / "plot.gp").string(),
+                      GnuplotScript(spec, gp_image.string(), data_files));
   const int rc = RunGnuplot((dir / "plot.gp").string(), (dir / "err.txt").string());
   PlotOutcome outcome;
   if (rc == 0 && fs::exists(gp_image)) {

@@ -56,6 +56,10 @@ std::string MappingSentence(const PipelineInputs& inputs) {
   return " Read with `" + flags.substr(1) + "`.";
 }
 
+std::string NetworkLabel(const PipelineResult& r) {
+  return fmt::format("NN inverse ({}), H = {}", Join(r.nn_inputs, ", "), r.network.hidden_size());
+}
+
 ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
   ReportSection s;
   if (!r.typical) return s;
@@ -80,14 +84,12 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
     Eigen::VectorXd k(n.targets_v.size());
     for (Eigen::Index i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i);
     PlotSpec spec{fmt::format("networks against the {} set", set),
-                  "sample",
+                  "sample index [1]",
                   "u [V]",
-                  {{"data u", k, n.targets_v, "lines"},
-                   {fmt::format("typical (v, a), H = {}", typical.hidden_size()), k, n.typical_v,
-                    "lines"},
-                   {fmt::format("dominant ({}), H = {}", Join(r.nn_inputs, ", "),
-                                dominant.hidden_size()),
-                    k, n.dominant_v, "lines"}},
+                  {{fmt::format("typical NN (v, a), H = {}", typical.hidden_size()), k,
+                    n.typical_v, "lines"},
+                   {NetworkLabel(r), k, n.dominant_v, "lines"},
+                   {"measured", k, n.targets_v, "lines"}},
                   false,
                   1400,
                   500};

@@ -18,6 +18,10 @@ namespace sysid::internal {
 /// report says how its files were read), else "".
 std::string MappingSentence(const PipelineInputs& inputs);
 
+/// The pipeline's inverse network (nn.json) as every plot of its report labels it:
+/// "NN inverse (v), H = 6".
+std::string NetworkLabel(const PipelineResult& result);
+
 struct ReportPlot {
   std::string file;  ///< e.g. "network_training.png"
   PlotSpec spec;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "report/report_sections.hpp"
@@ -34,8 +35,13 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
   fs::create_directories(dir);
   auto path = [&](const std::string& name) { return (fs::path(dir) / name).string(); };
   std::vector<std::string> notes;
-  auto plot = [&](const std::string& file, const PlotSpec& spec, std::string& md) {
+  PlotColours colours;  // one colour per model across the report's plots
+  std::vector<std::pair<std::string, PlotSpec>> drawn;
+  auto plot = [&](const std::string& file, PlotSpec spec, std::string& md) {
+    DrawMeasuredLast(spec);
+    colours.Apply(spec);
     const PlotOutcome p = WritePlot(path(file), spec);
+    drawn.emplace_back(file, std::move(spec));
     if (p.written) {
       md += "\n![" + spec.title + "](" + file + ")\n";
     } else {
@@ -128,14 +134,15 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
     inv.series.push_back({"measured", t, rec.column("u").segment(k, m), "lines"});
     for (size_t i = 0; i < r.stack_models.size(); ++i) {
       const auto& s = r.stack_models[i];
-      // Short legends (the table's row number and kind): long ones squeeze the plot.
-      const std::string label = fmt::format("{} {}", i + 1, s.kind);
+      // The table's row and model label: two rows may share a kind (both networks).
+      const std::string label = fmt::format("{} {}", i + 1, s.label);
       if (!s.x_model.empty())
         fwd.series.push_back({label, t, 1e6 * s.x_model.front().segment(k, m), "lines"});
       if (!s.u_model.empty()) inv.series.push_back({label, t, s.u_model.front().segment(k, m), "lines"});
     }
     md += "\nThe first " + std::to_string(m) + " scored samples of `" + name +
-          "` (legend: the table's row and the model's kind):\n";
+          "` (legend: the table's row and model; each model keeps its colour in both plots, the "
+          "measured trace is black, drawn last):\n";
     plot("stack_forward.png", fwd, md);
     plot("stack_inverse.png", inv, md);
   }
@@ -151,6 +158,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
     for (const auto& n : r.notes) md += "- " + n + "\n";
   }
   WriteFileAtomically(path("summary.json"), StackSummaryJson(r) + "\n");
+  if (!drawn.empty()) WriteFileAtomically(path("plots.json"), PlotIndexJson(drawn));
   WriteFileAtomically(path("report.md"), md);
   return notes;
 }
