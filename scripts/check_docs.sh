@@ -161,6 +161,30 @@ close_digits("docs/tutorial.md", "validate: the square wave's position fit [%]",
 close_digits("docs/tutorial.md", "validate: the slowest sine's velocity fit [%]",
              val[1]["outputs"][0]["fit_percent"], r"on the slowest sine it is\s+(−[\d.]+) %")
 
+# Chapter 8, your own stage: the gains tune-pi picks and the two plants' tracking errors.
+gains = json.loads(run(["sysid", "tune-pi", "--model", "own.json", "--loop-rate", "10000",
+                        "--json"], tut).stdout)["tuning"]
+close_digits("docs/tutorial.md", "tune-pi's Kp [V/m]", gains["kp_v_per_m"], r"Here Kp = ([\d.]+)\s+V/m")
+close_digits("docs/tutorial.md", "tune-pi's Ki [V/(m s)]", gains["ki_v_per_m_s"], r"and Ki = ([\d.]+) V/\(m s\)")
+close_digits("docs/tutorial.md", "tau from the MAT file's x [ms]",
+             1e3 * model(os.path.join(tut, "own.json"))["tau"], r"so τ\s+here is ([\d.]+) ms")
+close_digits("docs/tutorial.md", "tau from the CSV's recorded v [ms]", 1e3 * tuned["tau"],
+             r"against the ([\d.]+) ms of the CSV's recorded v")
+def track_rms(plant, extra=()):
+    out = json.loads(run(["sysid", "track", "--plant", plant, "--kp", "1937.4", "--ki", "39907",
+                          "--freq", "0.5", "--ff", "none,analytic", "--json", *extra],
+                         tut).stdout)
+    return {r["ff"]: 1e3 * r["rms_error_m"] for r in out["schemes"]}
+own, twin = track_rms("own.json"), track_rms("virtual", ("--model", "own.json"))
+close_digits("docs/tutorial.md", "model plant, PI alone: RMS e [mm]", own["none"],
+             r"With PI alone the model plant's RMS error is ([\d.]+) mm")
+close_digits("docs/tutorial.md", "twin, PI alone: RMS e [mm]", twin["none"],
+             r"against the twin's ([\d.]+) mm")
+close_digits("docs/tutorial.md", "twin, PI + analytic: RMS e [mm]", twin["analytic"],
+             r"while the twin keeps ([\d.]+) mm")
+close("docs/tutorial.md", "model plant, PI + analytic: RMS e [nm]", 1e6 * own["analytic"],
+      quoted("docs/tutorial.md", r"the model cancels itself \((\d+) nm\)"), 1)
+
 # ---- docs/robustness.md ------------------------------------------------------------------
 # "The tutorial's chain (identify with a3 = 6, tune-delay, refine) moves every parameter by
 # A–B %": the moves of the six parameters from the tuned model to the refined one.
