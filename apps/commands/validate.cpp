@@ -149,7 +149,7 @@ void AddValidateCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "replace a folder an earlier sysid validate wrote (one holding .sysid-output)");
   cmd->add_flag("--json", o->json, "print one JSON object with the scores and tests");
-  cmd->add_flag("!--no-plots", o->plots, "skip the PNG plots in the output folder");
+  AddOffFlag(cmd, "--no-plots", o->plots, "skip the PNG plots in the output folder");
   o->motion.Add(cmd, "filter for the measured velocity from x",
                 ToString(o->validation.motion.derivative.method));
   cmd->callback([o] { RunValidate(*o); });

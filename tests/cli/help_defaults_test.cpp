@@ -240,3 +240,14 @@ TEST_CASE("every --seed and --threads has its range, whichever command it is on"
   CHECK(seeds >= 8);  // the walk found the options (generate, train, sweep, pipeline, ...)
   CHECK(threads >= 8);
 }
+
+TEST_CASE("no help text shows CLI11's internals: '{false}' after a flag, an empty 'Excludes:'",
+          "[cli]") {
+  for (const auto& command : AllCommands()) {
+    const std::string help = Help(command);
+    INFO(command[0] << (command.size() > 1 ? " " + command[1] : ""));
+    CHECK(help.find("{false}") == std::string::npos);
+    CHECK(help.find("{true}") == std::string::npos);
+    CHECK_FALSE(std::regex_search(help, std::regex("Excludes: *(\n|$)")));
+  }
+}
