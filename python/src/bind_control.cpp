@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bind_common.hpp"
 #include "sysid/compare.hpp"
@@ -159,6 +160,25 @@ void BindControl(py::module_& m) {
       },
       py::arg("parameters"), py::arg("reference"), py::arg("pi"), py::arg("u_ff_v"),
       py::arg("seed"));
+  s.def(
+      "track_scheme",
+      [](const StageParameters& stage, const PositionReference& reference, const PiOptions& pi,
+         const std::string& scheme, const std::optional<FrictionModel>& model,
+         const std::optional<NeuralNetwork>& network, std::uint64_t seed) {
+        // The loop `sysid track` runs (TrackSchemes): the inverse stepped inside it.
+        InverseModels models;
+        if (model) models.model = &*model;
+        if (network) models.network = &*network;
+        const FeedforwardScheme ff = ParseFeedforwardScheme(scheme);
+        std::vector<SchemeTracking> runs;
+        {
+          py::gil_scoped_release release;
+          runs = TrackSchemes(stage, seed, reference, pi, {ff}, models);
+        }
+        return py::make_tuple(runs[0].result, runs[0].stage_limits);
+      },
+      py::arg("parameters"), py::arg("reference"), py::arg("pi"), py::arg("scheme"),
+      py::arg("model"), py::arg("network"), py::arg("seed"));
 
   m.def(
       "pi_margins_json",

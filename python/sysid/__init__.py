@@ -513,22 +513,18 @@ def _track(parameters=None, reference=None, feedforward="none", model=None, netw
         raise TypeError("track: profile keywords only without a reference")
     pi = _options(stage.PiOptions, pi, {})
     if isinstance(feedforward, str):
-        if feedforward == "none":
-            feedforward = None
-        elif feedforward == "analytic":
-            if model is None:
-                raise OptionsError("track: feedforward 'analytic' needs a model")
-            feedforward = analytic_inverse(_as_model(model), parameters.sample_time_s,
-                                           reference.v_mps, reference.a_mps2)
-        elif feedforward == "nn":
-            if network is None:
-                raise OptionsError("track: feedforward 'nn' needs a network")
-            if not isinstance(network, Network):
-                network = Network.load(_os.fspath(network))
-            feedforward = network_inverse(network, reference.v_mps, reference.a_mps2)
-        else:
+        if feedforward not in ("none", "analytic", "nn"):
             raise OptionsError(f"track: feedforward '{feedforward}' is not one of none, "
                                f"analytic, nn")
+        if feedforward == "analytic" and model is None:
+            raise OptionsError("track: feedforward 'analytic' needs a model")
+        if feedforward == "nn" and network is None:
+            raise OptionsError("track: feedforward 'nn' needs a network")
+        if network is not None and not isinstance(network, Network):
+            network = Network.load(_os.fspath(network))
+        # The loop sysid track runs, with the inverse stepped inside it.
+        return stage.track_scheme(parameters, reference, pi, feedforward,
+                                  None if model is None else _as_model(model), network, seed)
     return stage.track_stage(parameters, reference, pi, feedforward, seed)
 
 
