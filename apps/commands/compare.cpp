@@ -119,8 +119,9 @@ void RunCompare(const CompareCliOptions& o) {
           CompareInverseModels(rec, model ? &*model : nullptr, nn ? &*nn : nullptr, named, co));
     } catch (const NumericalError& e) {
       // A model that refuses or overflows on this recording's reference is the input's
-      // problem (exit 2); the message names the model.
-      throw InputError(o.files[i] + ": " + e.what());
+      // problem (exit 2); the message names the model, and the recording once.
+      const std::string what = e.what();
+      throw InputError(what.rfind(rec.source + ":", 0) == 0 ? what : o.files[i] + ": " + what);
     }
   }
   ProgressDone();

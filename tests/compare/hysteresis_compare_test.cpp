@@ -154,6 +154,22 @@ TEST_CASE("sysid compare --hysteresis scores model files and refuses what cannot
                           Catch::Contains("not invertible"));
     CHECK_FALSE(std::filesystem::exists(dir / "out2"));
   }
+  SECTION("an rdpi whose inverse diverges at the recording's step: exit 2, the recording named "
+          "once") {
+    // Error gain (q_0 + ... + q_n) max|u| / (dt p0) far above 1 at any step this test uses.
+    sysid::test::WriteText(
+        dir / "fast.json",
+        R"({"kind":"rdpi","thresholds":[0.5,1.0,1.5],"weights":[2e-6,1e-6,0.5e-6],)"
+        R"("polynomial":[4e-6],"rate_weights":[1e-7,2e-7,0,1e-7],"offset_m":-2e-4,)"
+        R"("input_min_v":-1,"input_max_v":5})");
+    r = RunCli({"compare", "--hysteresis", dir / "fast.json", "--no-plots", dir / "run.csv"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("not invertible at dt"));
+    // The library's message already starts with the recording: the CLI does not add it again.
+    const std::string run = dir / "run.csv";
+    REQUIRE(r.err.find(run) != std::string::npos);
+    CHECK(r.err.find(run, r.err.find(run) + 1) == std::string::npos);
+  }
   SECTION("a reference outside the model's range: exit 2 naming recording, model and sample") {
     sysid::Recording far = TruthRecording(300, "far.csv");
     far.data(200, 2) = 1.0;  // 1 m: no input in the model's range reaches it
