@@ -144,7 +144,8 @@ CLI::Option* AddOutputOption(CLI::App* cmd, std::string& path, const std::string
 
 CLI::Option* AddOffFlag(CLI::App* cmd, const std::string& name, bool& target,
                         const std::string& what) {
-  return cmd->add_flag_callback(name, [&target] { target = false; }, what);
+  return cmd->add_flag_callback(
+      name, [&target] { target = false; }, what);
 }
 
 CLI::Option* AddDeprecatedAlias(CLI::App* cmd, const std::string& old_flag, CLI::Option* current,

@@ -139,8 +139,8 @@ void RunCompare(const CompareCliOptions& o) {
     const std::string name = fs::path(c.source).stem().string();
     j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(c)));
     auto row = [&](const std::string& which, const PredictionErrors& e) {
-      table.AddRow(
-          {name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse_range, 4), Num(e.r2, 4)});
+      table.AddRow({name, which, Num(e.rmse_v, 4), Num(e.peak_error_v, 4), Num(e.nrmse_range, 4),
+                    Num(e.r2, 4)});
     };
     if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
@@ -181,7 +181,8 @@ void AddCompareCommand(CLI::App& app) {
       "compare",
       "Compare inverse models on recordings: measured u beside the analytic inverse "
       "(x'' + a1 v(t-tau) + a2 sgn v)/a3, the network's prediction and hysteresis models "
-      "inverted on the recorded x; RMSE, peak error, nrmse_range = RMSE / (max u - min u) (at least one of --model, --nn, "
+      "inverted on the recorded x; RMSE, peak error, nrmse_range = RMSE / (max u - min u) (at "
+      "least one of --model, --nn, "
       "--hysteresis)");
   cmd->add_option("--model", o->model_path, "friction model JSON (a1p, a1n, a2p, a2n, a3, tau)")
       ->check(CLI::ExistingFile);

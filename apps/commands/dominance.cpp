@@ -77,8 +77,9 @@ void RunDominance(const DominanceCli& o) {
       return r.margin < kClearDominanceMargin;
     });
     if (unclear > 0)
-      std::cout << fmt::format("{} of {} recordings have no clear dominant variable (margin < {:g})\n",
-                               unclear, s.results.size(), kClearDominanceMargin);
+      std::cout << fmt::format(
+          "{} of {} recordings have no clear dominant variable (margin < {:g})\n", unclear,
+          s.results.size(), kClearDominanceMargin);
   }
 }
 

@@ -80,11 +80,12 @@ void RunIrreducible(const IrreducibleCli& o) {
       if (i == j || files[i] != files[j] || rows[j].mse >= rows[i].mse) continue;
       const auto& sub = rows[j].input_names;
       const auto& set = rows[i].input_names;
-      const bool subset = sub.size() < set.size() &&
-                          std::all_of(sub.begin(), sub.end(), [&](const std::string& n) {
-                            return std::find(set.begin(), set.end(), n) != set.end();
-                          });
-      if (subset && (exceeds[i].empty() || rows[j].mse < rows[i].mse)) exceeds[i] = fmt::format("{}", fmt::join(sub, ","));
+      const bool subset =
+          sub.size() < set.size() && std::all_of(sub.begin(), sub.end(), [&](const std::string& n) {
+            return std::find(set.begin(), set.end(), n) != set.end();
+          });
+      if (subset && (exceeds[i].empty() || rows[j].mse < rows[i].mse))
+        exceeds[i] = fmt::format("{}", fmt::join(sub, ","));
     }
   if (o.json) {
     nlohmann::json j = nlohmann::json::array();
@@ -101,8 +102,9 @@ void RunIrreducible(const IrreducibleCli& o) {
                    {"estimate_above_subset",
                     exceeds[i].empty() ? nlohmann::json(nullptr) : nlohmann::json(exceeds[i])}});
     PrintJson({{"unit", "output unit squared (V^2 for u)"},
-               {"bias", "upward: the estimate may exceed the floor, never the reverse in "
-                        "expectation"},
+               {"bias",
+                "upward: the estimate may exceed the floor, never the reverse in "
+                "expectation"},
                {"rows", j}});
     return;
   }
@@ -111,21 +113,22 @@ void RunIrreducible(const IrreducibleCli& o) {
   bool any_exceeds = false;
   for (size_t i = 0; i < rows.size(); ++i) {
     any_exceeds = any_exceeds || !exceeds[i].empty();
-    table.AddRow({files[i], fmt::format("{}", fmt::join(rows[i].input_names, ",")), std::to_string(rows[i].rows),
-                  Num(rows[i].output_variance, 4), Num(rows[i].mse, 4),
-                  Num(rows[i].mse_low, 4) + " .. " + Num(rows[i].mse_high, 4),
+    table.AddRow({files[i], fmt::format("{}", fmt::join(rows[i].input_names, ",")),
+                  std::to_string(rows[i].rows), Num(rows[i].output_variance, 4),
+                  Num(rows[i].mse, 4), Num(rows[i].mse_low, 4) + " .. " + Num(rows[i].mse_high, 4),
                   Num(100 * rows[i].unexplained_share(), 3),
                   exceeds[i].empty() ? "" : "above " + exceeds[i] + "'s: bias"});
   }
-  std::cout << table.Render()
-            << fmt::format(
-                   "\nAn estimate, in the output's unit squared (V^2 for u), of the least MSE a "
-                   "model of '{}' on those inputs can reach on that data: the mean over rows of "
-                   "the output's variance among each row's {} nearest neighbours in the "
-                   "standardised inputs. It is biased upward (the function's spread within a "
-                   "neighbourhood adds to it, more so with more inputs); the 95 % interval is its spread "
-                   "(delete-a-group jackknife), not its bias.\n",
-                   o.output, o.options.neighbours);
+  std::cout
+      << table.Render()
+      << fmt::format(
+             "\nAn estimate, in the output's unit squared (V^2 for u), of the least MSE a "
+             "model of '{}' on those inputs can reach on that data: the mean over rows of "
+             "the output's variance among each row's {} nearest neighbours in the "
+             "standardised inputs. It is biased upward (the function's spread within a "
+             "neighbourhood adds to it, more so with more inputs); the 95 % interval is its spread "
+             "(delete-a-group jackknife), not its bias.\n",
+             o.output, o.options.neighbours);
   if (any_exceeds)
     std::cout << "A set whose estimate is above a subset's ('above ...: bias') has a floor no "
                  "higher than the subset's: the true floor cannot grow with an input, so the "
@@ -159,10 +162,11 @@ void AddIrreducibleCommand(CLI::App& app) {
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   AddSeedOption(cmd, o->options.seed, "seed of the tie-breaking perturbation");
-  cmd->add_flag("--json", o->json,
-                "print {\"unit\", \"rows\": [{\"file\", \"inputs\", \"output\", \"rows\", "
-                "\"neighbours\", \"output_variance\", \"irreducible_mse_estimate\", \"interval95\", "
-                "\"unexplained_share\", \"estimate_above_subset\"}]}");
+  cmd->add_flag(
+      "--json", o->json,
+      "print {\"unit\", \"rows\": [{\"file\", \"inputs\", \"output\", \"rows\", "
+      "\"neighbours\", \"output_variance\", \"irreducible_mse_estimate\", \"interval95\", "
+      "\"unexplained_share\", \"estimate_above_subset\"}]}");
   o->recording.Add(cmd);
   cmd->callback([o] { RunIrreducible(*o); });
 }

@@ -191,8 +191,8 @@ void BindControl(py::module_& m) {
   m.def(
       "tune_pi_json",
       [](const FrictionModel& model, const std::string& plant, double loop_rate_hz,
-         double phase_margin_deg, double gain_margin_db, double corner_ratio,
-         double extra_delay_s, double u_max_v) {
+         double phase_margin_deg, double gain_margin_db, double corner_ratio, double extra_delay_s,
+         double u_max_v) {
         PiTuningOptions o;
         o.loop_rate_hz = loop_rate_hz;
         o.phase_margin_deg = phase_margin_deg;
@@ -204,8 +204,8 @@ void BindControl(py::module_& m) {
         return TunePiToJson(plant, r, o, SimulatePiBehaviour(model, r.pi));
       },
       py::arg("model"), py::arg("plant"), py::arg("loop_rate_hz"), py::arg("phase_margin_deg"),
-      py::arg("gain_margin_db"), py::arg("crossover_per_integral_corner"),
-      py::arg("extra_delay_s"), py::arg("u_max_v"),
+      py::arg("gain_margin_db"), py::arg("crossover_per_integral_corner"), py::arg("extra_delay_s"),
+      py::arg("u_max_v"),
       "PI gains for the model meeting the margins, as `sysid tune-pi --json` prints them.");
   // The library checks that v and a are equally long (InputError naming v_mps and a_mps2).
   m.def(

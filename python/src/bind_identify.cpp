@@ -434,8 +434,9 @@ void BindIdentify(py::module_& m) {
       .def("to_json", py::overload_cast<const DominanceResult&, int>(&ToJson),
            py::arg("indent") = 2)
       .def("row", &DominanceRow, "One flat dict: source, dominant, margin, rms_<variable>, ...")
-      .def("records", [](const DominanceResult& r) { return DominanceRecords({r}); },
-           "One dict per ranked variable (the CSV table's rows).");
+      .def(
+          "records", [](const DominanceResult& r) { return DominanceRecords({r}); },
+          "One dict per ranked variable (the CSV table's rows).");
   py::class_<DominanceSummary>(m, "DominanceSummary")
       .def("to_json", py::overload_cast<const DominanceSummary&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid dominance --json`'s text")

@@ -139,8 +139,7 @@ void BindNeural(py::module_& m) {
         return fmt::format(
             "IrreducibleError(inputs={}, mse_estimate={:.4g} [{:.4g}, {:.4g}], "
             "output_variance={:.4g}, rows={})",
-            fmt::join(e.input_names, ","), e.mse, e.mse_low, e.mse_high, e.output_variance,
-            e.rows);
+            fmt::join(e.input_names, ","), e.mse, e.mse_low, e.mse_high, e.output_variance, e.rows);
       });
   m.def(
       "estimate_irreducible_error",

@@ -2,7 +2,6 @@
 // field shows that field's default-constructed value (CLI11 capture_default_str), and no help
 // text carries a hand-written default number that could drift from the struct.
 #include <catch2/catch.hpp>
-
 #include <regex>
 #include <sstream>
 #include <string>

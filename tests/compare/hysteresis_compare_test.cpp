@@ -154,8 +154,9 @@ TEST_CASE("sysid compare --hysteresis scores model files and refuses what cannot
                           Catch::Contains("not invertible"));
     CHECK_FALSE(std::filesystem::exists(dir / "out2"));
   }
-  SECTION("an rdpi whose inverse diverges at the recording's step: exit 2, the recording named "
-          "once") {
+  SECTION(
+      "an rdpi whose inverse diverges at the recording's step: exit 2, the recording named "
+      "once") {
     // Error gain (q_0 + ... + q_n) max|u| / (dt p0) far above 1 at any step this test uses.
     sysid::test::WriteText(
         dir / "fast.json",

@@ -128,9 +128,10 @@ TEST_CASE("irreducible error: bad data and options are refused by name", "[nn][i
   CHECK(std::isfinite(sysid::EstimateIrreducibleError(Dataset(x, y), o).mse));
 }
 
-TEST_CASE("irreducible error: the jackknife interval's width matches the estimate's spread over "
-          "independent recordings",
-          "[nn][irreducible]") {
+TEST_CASE(
+    "irreducible error: the jackknife interval's width matches the estimate's spread over "
+    "independent recordings",
+    "[nn][irreducible]") {
   // Second method: the sampling spread of the estimate measured directly, over 40 independent
   // data sets of the same law; the jackknife sees one data set only. Its 95 % interval's
   // half-width over 1.96 must match that spread's standard deviation.
@@ -170,6 +171,5 @@ TEST_CASE("irreducible error: the jackknife interval's width matches the estimat
   CHECK(e.mse_low == e.mse);
   CHECK(e.mse_high == e.mse);
   none.jackknife_groups = 4;
-  CHECK_THROWS_AS(sysid::EstimateIrreducibleError(Dataset(x, x.col(0)), none),
-                  sysid::OptionsError);
+  CHECK_THROWS_AS(sysid::EstimateIrreducibleError(Dataset(x, x.col(0)), none), sysid::OptionsError);
 }

@@ -103,10 +103,10 @@ CandidateRanking RankCandidates(const Recording& recording, const CandidateRanki
 }
 
 std::string CandidateRanking::BriefReport() const {
-  std::string s = fmt::format(
-      "{}: {}; linear model R^2 {:.3f}, residual {:.3g} V\n", source,
-      DominanceVerdict(dominant, ranking.size() > 1 ? ranking[1].name : "", margin), r2,
-      residual_rms_v);
+  std::string s =
+      fmt::format("{}: {}; linear model R^2 {:.3f}, residual {:.3g} V\n", source,
+                  DominanceVerdict(dominant, ranking.size() > 1 ? ranking[1].name : "", margin), r2,
+                  residual_rms_v);
   for (const auto& t : ranking)
     s += fmt::format("  {:<3} rms {:.4g} V  ratio {:.3g}{}\n", t.name, t.rms, t.ratio_to_top,
                      t.negligible ? "  (negligible)" : "");

@@ -256,10 +256,10 @@ std::string DominanceVerdict(const std::string& top, const std::string& second, 
 }
 
 std::string DominanceResult::BriefReport() const {
-  std::string s = fmt::format("{}: {}, {} of {} samples moving\n", source,
-                              DominanceVerdict(dominant, ranking.size() > 1 ? ranking[1].name : "",
-                                               margin),
-                              moving_samples, samples);
+  std::string s =
+      fmt::format("{}: {}, {} of {} samples moving\n", source,
+                  DominanceVerdict(dominant, ranking.size() > 1 ? ranking[1].name : "", margin),
+                  moving_samples, samples);
   for (const auto& t : ranking)
     s += fmt::format("  {:<14} rms {:.4g} m/s^2  peak {:.4g} m/s^2  ratio {:.3g}{}\n", t.name,
                      t.rms, t.peak, t.ratio_to_top, t.negligible ? "  (negligible)" : "");

@@ -1,5 +1,3 @@
-#include "sysid/nn_irreducible.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "sysid/error.hpp"
+#include "sysid/nn_irreducible.hpp"
 
 namespace sysid {
 
@@ -18,10 +17,10 @@ void IrreducibleErrorOptions::Validate() const {
         "IrreducibleErrorOptions::neighbours is {}. Violated constraint: 2 <= neighbours <= 1000",
         neighbours));
   if (jackknife_groups != 0 && (jackknife_groups < 5 || jackknife_groups > 100))
-    throw OptionsError(fmt::format(
-        "IrreducibleErrorOptions::jackknife_groups is {}. Violated constraint: 0 or "
-        "5 <= jackknife_groups <= 100",
-        jackknife_groups));
+    throw OptionsError(
+        fmt::format("IrreducibleErrorOptions::jackknife_groups is {}. Violated constraint: 0 or "
+                    "5 <= jackknife_groups <= 100",
+                    jackknife_groups));
 }
 
 namespace {
@@ -55,8 +54,8 @@ double MeanNeighbourhoodVariance(const Eigen::MatrixXd& points, const Eigen::Vec
 // neighbours' terms too, so the terms are not independent and resampling them (a bootstrap)
 // misses most of the spread; deleting rows lets every neighbourhood re-form. Contiguous blocks
 // keep time-adjacent rows, which share their noise, together.
-double JackknifeStandardError(const Eigen::MatrixXd& points, const Eigen::VectorXd& targets,
-                              int k, int groups) {
+double JackknifeStandardError(const Eigen::MatrixXd& points, const Eigen::VectorXd& targets, int k,
+                              int groups) {
   const Eigen::Index n = points.rows();
   std::vector<double> estimates;
   for (int g = 0; g < groups; ++g) {

@@ -236,10 +236,10 @@ class ReportWriter {
                           "pointwise ratio to top (q99)", "negligible"},
                          rows);
     if (d.ranking.size() > 1)
-      md_ += fmt::format("\nPooled over the recordings: {}.",
-                         DominanceVerdict(d.ranking[0].name, d.ranking[1].name,
-                                          d.ranking[1].rms > 0 ? d.ranking[0].rms / d.ranking[1].rms
-                                                               : HUGE_VAL));
+      md_ += fmt::format(
+          "\nPooled over the recordings: {}.",
+          DominanceVerdict(d.ranking[0].name, d.ranking[1].name,
+                           d.ranking[1].rms > 0 ? d.ranking[0].rms / d.ranking[1].rms : HUGE_VAL));
     md_ += "\nTop-ranked in most recordings: **" + d.dominant + "**; network inputs: ";
     for (const auto& c : r_.nn_inputs) md_ += "`" + c + "` ";
     md_ += "\n";
@@ -256,8 +256,13 @@ class ReportWriter {
     md_ += "\n";
     WriteFileAtomically(Path("dominance.csv"), DominanceTableCsv(d));
     // The paper's figure: the acceleration term against the viscous term over time.
-    PlotSpec terms{"terms of a3 u = x'' + a1 v(t - tau) + a2 sgn v on the training set", "t [s]",
-                   "term [m/s^2]", {}, false, 1100, 500};
+    PlotSpec terms{"terms of a3 u = x'' + a1 v(t - tau) + a2 sgn v on the training set",
+                   "t [s]",
+                   "term [m/s^2]",
+                   {},
+                   false,
+                   1100,
+                   500};
     for (const auto& t : r_.figures.dominance_terms) terms.series.push_back({t.label, t.x, t.y, "lines"});
     Plot("dominance_terms.png",
          terms,
@@ -409,8 +414,14 @@ class ReportWriter {
     // The paper's ordering: PI worst, analytic better, NN best at every frequency.
     for (double f : r_.options.track_frequencies_hz) {
       double e[3] = {0, 0, 0};
-      PlotSpec spec{fmt::format("tracking error at {} Hz: PI with feedforward from each inverse model", f),
-                    "t [s]", "e [mm]", {}, false, 1100, 450};
+      PlotSpec spec{
+          fmt::format("tracking error at {} Hz: PI with feedforward from each inverse model", f),
+          "t [s]",
+          "e [mm]",
+          {},
+          false,
+          1100,
+          450};
       for (const auto& t : r_.tracking) {
         if (t.frequency_hz != f) continue;
         const int i = t.scheme == "none" ? 0 : (t.scheme == "analytic" ? 1 : 2);

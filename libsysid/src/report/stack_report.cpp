@@ -95,9 +95,10 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
     const auto& s = r.stack_models[i];
     const std::string inverse =
         s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
-    rows.push_back({std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
-                    s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")",
-                    G(s.forward_rms_m), Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
+    rows.push_back(
+        {std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
+         s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")", G(s.forward_rms_m),
+         Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
     csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
                        s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
                        s.forward_rms_m, s.forward_nrmse_std, s.inverse_rms_v, s.inverse_nrmse_std,
@@ -106,8 +107,8 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
       WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
                           s.model->ToJson(2) + "\n");
   }
-  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]", "forward nrmse_std",
-                       "inverse e_RMS [V]", "inverse nrmse_std"},
+  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]",
+                       "forward nrmse_std", "inverse e_RMS [V]", "inverse nrmse_std"},
                       rows);
   md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
         "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
