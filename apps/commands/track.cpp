@@ -105,11 +105,14 @@ void WriteTrackFolder(Folder& folder, const Runs& runs, bool plots, const std::s
     for (const auto& run : runs)
       WriteRecording((dir / ("track_" + ToString(run.scheme) + ".csv")).string(),
                      TrackingRecording(run.result, ToString(run.scheme)));
-    if (plots)
-      for (const auto& [name, spec] : TrackingPlots(runs)) {
+    if (plots) {
+      const auto specs = TrackingPlots(runs);
+      for (const auto& [name, spec] : specs) {
         const auto p = WritePlot((dir / name).string(), spec);
         if (!p.written) std::cerr << "sysid track: " << p.message << '\n';
       }
+      WriteFileAtomically((dir / "plots.json").string(), PlotIndexJson(specs));
+    }
     WriteFileAtomically((dir / "summary.json").string(), summary);
   });
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 
 using Catch::Contains;
@@ -75,6 +76,11 @@ TEST_CASE("track --plant M.json: the model as plant, named, with feedforward fro
 
   const auto text = RunCli({"track", "--plant", model, "--freq", "1", "--cycles", "1"});
   REQUIRE(text.exit_code == 0);
+  // -o: the plots' index passes the house's plot rules (one colour per scheme across them).
+  const auto folder = RunCli({"track", "--plant", model, "--ff", "none,analytic", "--freq", "1",
+                              "--cycles", "1", "-o", dir / "out"});
+  REQUIRE(folder.exit_code == 0);
+  CHECK(sysid::test::CheckPlotIndex(dir / "out") == 2);
   CHECK_THAT(text.out, Contains("plant: " + model + " (identified friction model"));
   const auto stage = RunCli({"track", "--plant", "virtual-1khz", "--freq", "1", "--cycles", "1"});
   REQUIRE(stage.exit_code == 0);

@@ -69,6 +69,12 @@ TEST_CASE("tracking plots: error in mm and control signal, one series per scheme
   CHECK(plots[1].first == "control_signal.png");
   CHECK(plots[1].second.series[0].label == "none");
   CHECK(plots[1].second.series[0].y[1] == 1.5);
+  // Each scheme keeps its colour from one plot to the other, and the two differ.
+  for (int i = 0; i < 2; ++i) {
+    CHECK(plots[0].second.series[i].colour.size() == 7);
+    CHECK(plots[0].second.series[i].colour == plots[1].second.series[i].colour);
+  }
+  CHECK(plots[0].second.series[0].colour != plots[0].second.series[1].colour);
 }
 
 TEST_CASE("gnuplot's script keeps x'' and sets each series' colour", "[report]") {

@@ -91,8 +91,8 @@ bool GnuplotAvailable();
 PlotOutcome WritePlot(const std::string& path, const PlotSpec& spec);
 
 /// The plots of a tracking run per feedforward scheme, by file name: "tracking_error.png"
-/// (e [mm] against t [s]) and "control_signal.png" (u [V]), one series per scheme
-/// (`sysid track -o`).
+/// (e [mm] against t [s]) and "control_signal.png" (u [V]), one series per scheme, each scheme
+/// in one colour in both (`sysid track -o`, which writes their plots.json too).
 std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<SchemeTracking>& runs);
 
 /// The plots of a validation, by file name, per output y: "STEM_y.png" (the simulated and the

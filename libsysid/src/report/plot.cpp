@@ -178,6 +178,10 @@ std::vector<std::pair<std::string, PlotSpec>> TrackingPlots(const std::vector<Sc
     err.series.push_back({scheme, run.result.t_s, 1e3 * run.result.e_m, "lines"});
     u.series.push_back({scheme, run.result.t_s, run.result.u_v, "lines"});
   }
+  // One colour per scheme in both plots.
+  PlotColours colours;
+  colours.Apply(err);
+  colours.Apply(u);
   return {{"tracking_error.png", err}, {"control_signal.png", u}};
 }
 
