@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "sysid/compare.hpp"
+#include "control/scheme_loop.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_model.hpp"
@@ -109,30 +110,44 @@ Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference&
   SYSID_CHECK(false, "unknown FeedforwardScheme value");
 }
 
+namespace internal {
+
+std::vector<SchemeTracking> TrackEachScheme(
+    const PositionReference& reference, const PiOptions& pi,
+    const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme,
+    const std::function<void(const Feedforward& ff, SchemeTracking* run)>& run_on_fresh_plant) {
+  std::vector<SchemeTracking> runs;
+  for (std::size_t i = 0; i < schemes.size(); ++i) {
+    if (on_scheme) on_scheme(schemes[i], i);
+    SchemeTracking run;
+    run.scheme = schemes[i];
+    run_on_fresh_plant(SchemeFeedforward(schemes[i], reference, pi.sample_time_s, models), &run);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace internal
+
 std::vector<SchemeTracking> TrackSchemes(
     const StageParameters& stage, std::uint64_t seed, const PositionReference& reference,
     PiOptions pi, const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
     const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme) {
   pi.sample_time_s = stage.sample_time_s();
   pi.Validate();
-  std::vector<SchemeTracking> runs;
   for (auto s : schemes)
     if (s == FeedforwardScheme::kHysteresis)
       throw OptionsError(
           "the hysteresis scheme inverts a voltage-to-position model: it is for the piezo stack "
           "(--plant piezo-stack), not the stage",
           "schemes");
-  for (std::size_t i = 0; i < schemes.size(); ++i) {
-    if (on_scheme) on_scheme(schemes[i], i);
-    SchemeTracking run;
-    run.scheme = schemes[i];
-    const Feedforward ff = SchemeFeedforward(schemes[i], reference, stage.sample_time_s(), models);
-    VirtualStage plant(stage, seed);  // the same plant and noise for every scheme
-    run.result = RunClosedLoop(plant, reference, pi, ff);
-    run.stage_limits = plant.status().Describe();
-    runs.push_back(std::move(run));
-  }
-  return runs;
+  return internal::TrackEachScheme(
+      reference, pi, schemes, models, on_scheme, [&](const Feedforward& ff, SchemeTracking* run) {
+        VirtualStage plant(stage, seed);  // the same plant and noise for every scheme
+        run->result = RunClosedLoop(plant, reference, pi, ff);
+        run->stage_limits = plant.status().Describe();
+      });
 }
 
 }  // namespace sysid

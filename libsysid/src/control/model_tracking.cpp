@@ -2,6 +2,7 @@
 // M.json`): the same schemes and loop as on the virtual stage, the plant the model itself.
 #include <string>
 
+#include "control/scheme_loop.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/simulate.hpp"
@@ -21,21 +22,16 @@ std::vector<SchemeTracking> TrackModelSchemes(
           "the hysteresis scheme inverts a voltage-to-position model: it is for the piezo stack "
           "(--plant piezo-stack), not a friction model",
           "schemes");
-  std::vector<SchemeTracking> runs;
-  for (std::size_t i = 0; i < schemes.size(); ++i) {
-    if (on_scheme) on_scheme(schemes[i], i);
-    SchemeTracking run;
-    run.scheme = schemes[i];
-    const Feedforward ff = SchemeFeedforward(schemes[i], reference, sample_time_s, models);
-    SimulationOptions start;
-    start.x0_m = reference.x_m.size() > 0 ? reference.x_m[0] : 0.0;
-    FrictionModelPlant model_plant(plant, sample_time_s, start);
-    run.result = RunClosedLoop([&model_plant](double u) { return model_plant.Step(u); },
-                               model_plant.position_m(), reference, pi, ff);
-    run.stage_limits = "model plant: " + std::to_string(model_plant.events()) + " stick/slip events";
-    runs.push_back(std::move(run));
-  }
-  return runs;
+  return internal::TrackEachScheme(
+      reference, pi, schemes, models, on_scheme, [&](const Feedforward& ff, SchemeTracking* run) {
+        SimulationOptions start;
+        start.x0_m = reference.x_m.size() > 0 ? reference.x_m[0] : 0.0;
+        FrictionModelPlant model_plant(plant, sample_time_s, start);
+        run->result = RunClosedLoop([&model_plant](double u) { return model_plant.Step(u); },
+                                    model_plant.position_m(), reference, pi, ff);
+        run->stage_limits =
+            "model plant: " + std::to_string(model_plant.events()) + " stick/slip events";
+      });
 }
 
 }  // namespace sysid

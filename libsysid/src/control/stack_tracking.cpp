@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 
+#include "control/scheme_loop.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_model.hpp"
@@ -127,19 +128,13 @@ std::vector<SchemeTracking> TrackStackSchemes(
       throw OptionsError("the piezo stack takes the schemes none and hysteresis ('" + ToString(s) +
                              "' is the stage's: a friction or network inverse of velocity)",
                          "schemes");
-  std::vector<SchemeTracking> runs;
-  for (std::size_t i = 0; i < schemes.size(); ++i) {
-    if (on_scheme) on_scheme(schemes[i], i);
-    SchemeTracking run;
-    run.scheme = schemes[i];
-    const Feedforward ff = SchemeFeedforward(schemes[i], reference, stack.sample_time_s(), models);
-    PiezoStack plant(stack, seed);  // the same plant and noise for every scheme
-    run.result = RunClosedLoop([&plant](double u) { return plant.Step(u); },
-                               plant.measured_position_m(), reference, pi, ff);
-    run.stage_limits = plant.DescribeLimits();
-    runs.push_back(std::move(run));
-  }
-  return runs;
+  return internal::TrackEachScheme(
+      reference, pi, schemes, models, on_scheme, [&](const Feedforward& ff, SchemeTracking* run) {
+        PiezoStack plant(stack, seed);  // the same plant and noise for every scheme
+        run->result = RunClosedLoop([&plant](double u) { return plant.Step(u); },
+                                    plant.measured_position_m(), reference, pi, ff);
+        run->stage_limits = plant.DescribeLimits();
+      });
 }
 
 }  // namespace sysid
