@@ -5,8 +5,8 @@
 #include <sstream>
 #include <utility>
 
-#include "sysid/compare.hpp"
 #include "control/scheme_loop.hpp"
+#include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_model.hpp"
