@@ -253,7 +253,7 @@ std::vector<std::vector<double>> RunKernelsAt(const Problem& prob, std::size_t o
   out.push_back(A.Copy());
   out.push_back(r.Copy());
   OffsetBuffer JtJ(nullptr, P * P, offset), g(nullptr, P, offset);
-  const double sse = k.normal_chunk(p, first, count, block, JtJ.data(), g.data());
+  const double sse = k.normal_chunk(p, first, count, block, nullptr, JtJ.data(), g.data());
   out.push_back(JtJ.Copy());
   out.push_back(g.Copy());
   out.push_back({sse, k.sum_squares_chunk(p, first, count, block)});
@@ -297,6 +297,37 @@ TEST_CASE("every kernel's results are bit-identical wherever malloc puts the buf
           }
         }
       }
+    }
+  }
+  REQUIRE(sysid::internal::nn::SetKernelIsa("auto"));
+}
+
+TEST_CASE("normal equations from the output-layer solve's hidden layer are bit-identical to "
+          "those that recompute it",
+          "[nn][kernels]") {
+  // The LM trainer hands NormalEquations the hidden layer its last output-layer solve left
+  // (same W1, b1; new w2, b2); that must change no bit of J'J, J'r or the sum of squares, on
+  // every instruction set, and the hidden layer must really be used (a wrong one changes them).
+  for (const char* isa : {"generic", "avx2+fma"}) {
+    if (!sysid::internal::nn::SetKernelIsa(isa)) continue;
+    for (int n : {1, 2}) {
+      const Problem p = MakeProblem(n, 13, 3001, 91u + static_cast<unsigned>(n));
+      Eigen::VectorXd theta = p.theta;
+      Eigen::MatrixXd A;
+      REQUIRE(std::isfinite(sysid::internal::nn::SolveOutputLayer(p.Z, p.y, p.H, &theta, &A, 2)));
+      Eigen::MatrixXd JtJ0, JtJ1;
+      Eigen::VectorXd g0, g1;
+      double sse0 = 0, sse1 = 0;
+      sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, theta, &JtJ0, &g0, &sse0, 0, 2);
+      sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, theta, &JtJ1, &g1, &sse1, 0, 2, &A);
+      CHECK(JtJ1.triangularView<Eigen::Lower>().toDenseMatrix() ==
+            JtJ0.triangularView<Eigen::Lower>().toDenseMatrix());
+      CHECK(g1 == g0);
+      CHECK(sse1 == sse0);
+      Eigen::MatrixXd wrong = A;
+      wrong(3, 17) += 1e-3;
+      sysid::internal::nn::NormalEquations(p.Z, p.y, p.H, theta, &JtJ1, &g1, &sse1, 0, 2, &wrong);
+      CHECK(sse1 != sse0);
     }
   }
   REQUIRE(sysid::internal::nn::SetKernelIsa("auto"));

@@ -39,11 +39,16 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   TrainerRun run;
   Eigen::VectorXd theta = theta0;
   Eigen::MatrixXd hidden_scratch;
+  // hidden_scratch holds theta's hidden layer: the output-layer solve leaves it for the
+  // candidate's W1 and b1, which an accepted step makes theta's, and the next normal equations
+  // then skip their tanh pass (same bits).
+  bool hidden_is_theta = false;
   double sse = SumSquares(train.Z, train.y, H, theta, o.threads);
   if (o.solve_output_layer) {
     Eigen::VectorXd solved = theta;
     const double sse_solved =
         SolveOutputLayer(train.Z, train.y, H, &solved, &hidden_scratch, o.threads);
+    hidden_is_theta = std::isfinite(sse_solved);  // solved keeps theta's W1 and b1
     if (std::isfinite(sse_solved) && sse_solved < sse) {
       theta = solved;
       sse = sse_solved;
@@ -84,7 +89,8 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       break;
     }
     double sse_check = 0;
-    NormalEquations(train.Z, train.y, H, theta, &JtJ, &g, &sse_check, 0, o.threads);
+    NormalEquations(train.Z, train.y, H, theta, &JtJ, &g, &sse_check, 0, o.threads,
+                    hidden_is_theta ? &hidden_scratch : nullptr);
     const double grad_norm = 2.0 * g.norm() / N;
     if (!(grad_norm >= o.gradient_tolerance)) {
       run.stop =
@@ -119,6 +125,9 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       double sse_new = o.solve_output_layer ? SolveOutputLayer(train.Z, train.y, H, &candidate,
                                                                &hidden_scratch, o.threads)
                                             : SumSquares(train.Z, train.y, H, candidate, o.threads);
+      // From here hidden_scratch is the candidate's (when the solve succeeded), not theta's.
+      const bool hidden_is_candidate = o.solve_output_layer && std::isfinite(sse_new);
+      hidden_is_theta = false;
       if (o.solve_output_layer && !std::isfinite(sse_new)) {
         candidate = theta + step;  // keep the plain LM trial when the solve fails
         sse_new = SumSquares(train.Z, train.y, H, candidate, o.threads);
@@ -127,6 +136,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
       if (std::isfinite(sse_new) && sse_new < sse) {
         dw_prev = candidate - theta;
         theta.swap(candidate);
+        hidden_is_theta = hidden_is_candidate;
         sse = sse_new;
         mu *= o.mu_decrease;
         accepted = true;

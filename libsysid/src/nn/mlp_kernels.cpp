@@ -167,7 +167,8 @@ void Jacobian(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta
 }
 
 void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
-                     MatrixXd* JtJ, VectorXd* g, double* sse, int block, int threads) {
+                     MatrixXd* JtJ, VectorXd* g, double* sse, int block, int threads,
+                     const MatrixXd* hidden) {
   const int n = static_cast<int>(Z.rows());
   const int P = ParameterCount(n, H);
   const Chunks ch(Z.cols(), block > 0 ? block : DefaultBlock(P));
@@ -189,7 +190,8 @@ void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd
       jtj = JtJ_part[c - 1].data();
       gp = g_part[c - 1].data();
     }
-    sse_part[c] = k.normal_chunk(p, ch.First(c), ch.Count(c), ch.B, jtj, gp);
+    const double* a = hidden != nullptr ? hidden->data() + ch.First(c) * H : nullptr;
+    sse_part[c] = k.normal_chunk(p, ch.First(c), ch.Count(c), ch.B, a, jtj, gp);
   });
   *sse = sse_part[0];
   for (Index c = 1; c < ch.C; ++c) {

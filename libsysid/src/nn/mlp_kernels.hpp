@@ -70,10 +70,14 @@ void Jacobian(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
 
 /// Gauss–Newton pieces: the lower triangle of J'J (P x P), g = J'r and sum r^2, accumulated
 /// over blocks of `block` samples by symmetric rank-k updates, on `threads` threads (0: all
-/// cores); the result does not depend on `threads`.
+/// cores); the result does not depend on `threads`. `hidden` (H x N), when given, is theta's
+/// hidden layer as SolveOutputLayer left it for the same W1 and b1 (that solve changes only
+/// w2 and b2): the tanh pass is skipped, and with the default block the result is bit for bit
+/// the one computed without it.
 void NormalEquations(const Eigen::MatrixXd& Z, const Eigen::VectorXd& y, int H,
                      const Eigen::VectorXd& theta, Eigen::MatrixXd* JtJ, Eigen::VectorXd* g,
-                     double* sse, int block = 0, int threads = 1);
+                     double* sse, int block = 0, int threads = 1,
+                     const Eigen::MatrixXd* hidden = nullptr);
 
 /// Replaces (w2, b2) in theta by the linear least-squares optimum for theta's hidden layer,
 /// min ||A' w2 + b2 - y||^2 with A = tanh(W1 Z + b1), and returns the new sum of squares.

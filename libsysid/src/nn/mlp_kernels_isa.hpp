@@ -30,8 +30,11 @@ struct Table {
                                    double* r);
   /// Adds to the lower triangle of JtJ (P x P, column-major), to g (P) and returns the sum of
   /// squared residuals of samples [first, first + count), in blocks of `block` samples.
-  double (*normal_chunk)(const Problem&, long first, long count, long block, double* JtJ,
-                         double* g);
+  /// `hidden` (H x count, column-major), when not null, is those samples' hidden layer
+  /// tanh(W1 z + b1) as output_normal_chunk computed it for the same W1, b1 and blocks: it
+  /// replaces the tanh pass, with the same bits.
+  double (*normal_chunk)(const Problem&, long first, long count, long block,
+                         const double* hidden, double* JtJ, double* g);
   /// Sum of squared residuals of samples [first, first + count), in blocks of `block`.
   double (*sum_squares_chunk)(const Problem&, long first, long count, long block);
   /// Adds the output layer's normal equations of samples [first, first + count) to G (lower
