@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel_for.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "pipeline/timed_step.hpp"
@@ -247,18 +248,23 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   if (options.track && !inputs.stage.empty()) {
     step("PI tracking with feedforward", [&] {
       const StageParameters stage = ReadStageParameters(inputs.stage);
-      for (double f : options.track_frequencies_hz) {
+      // The frequencies' runs are independent: side by side, then tabulated in their order.
+      const auto& freqs = options.track_frequencies_hz;
+      std::vector<std::vector<SchemeTracking>> runs(freqs.size());
+      internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
         SmoothProfileOptions p;
-        p.frequency_hz = f;
+        p.frequency_hz = freqs[static_cast<std::size_t>(i)];
         p.amplitude_m = options.track_amplitude_m;
         p.sample_rate_hz = stage.sample_rate_hz;
-        const PositionReference ref = MakeSmoothProfile(p);
-        const auto runs = TrackSchemes(stage, 1, ref, options.pi,
-                                       {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
-                                        FeedforwardScheme::kNetwork},
-                                       {&r.model, &r.network});
-        for (const auto& run : runs) r.tracking.push_back({f, ToString(run.scheme), run.result});
-      }
+        runs[static_cast<std::size_t>(i)] =
+            TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi,
+                         {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
+                          FeedforwardScheme::kNetwork},
+                         {&r.model, &r.network});
+      });
+      for (std::size_t i = 0; i < freqs.size(); ++i)
+        for (const auto& run : runs[i])
+          r.tracking.push_back({freqs[i], ToString(run.scheme), run.result});
     });
   } else if (options.track) {
     r.notes.push_back("no stage file: the tracking experiment was skipped");
