@@ -276,7 +276,8 @@ static const @T@ @P@_kOutMax = @OUTMAX@;
 @OPS@
 /* Each hidden sum b1_h + W1_h1 z_1 + W1_h2 z_2 + ... and the output sum b2 + w2_1 t_1 + ... are
  * added in the library's order; the loops over the units have no dependence between units
- * (a compiler may vectorise them). */
+ * (a compiler may vectorise them). The first input's products start the sums (a bare copy of
+ * b1 would become a call to memcpy). */
 @T@ @P@_step(@P@_state* state@ARGS@) {
   @T@ x[@P@_N], z[@P@_N], s[@P@_H];
   @T@ y = @P@_kB2;
@@ -284,8 +285,8 @@ static const @T@ @P@_kOutMax = @OUTMAX@;
   (void)state;
 @COPY@  for (i = 0; i < @P@_N; ++i)
     z[i] = @TWO@ * (x[i] - @P@_kInMin[i]) / (@P@_kInMax[i] - @P@_kInMin[i]) - @ONE@;
-  for (h = 0; h < @P@_H; ++h) s[h] = @P@_kB1[h];
-  for (i = 0; i < @P@_N; ++i)
+  for (h = 0; h < @P@_H; ++h) s[h] = @P@_kB1[h] + @P@_kW1[h] * z[0];
+  for (i = 1; i < @P@_N; ++i)
     for (h = 0; h < @P@_H; ++h) s[h] += @P@_kW1[i * @P@_H + h] * z[i];
   for (h = 0; h < @P@_H; ++h) s[h] = @P@_tanh(s[h]);
   for (h = 0; h < @P@_H; ++h) y += @P@_kW2[h] * s[h];
