@@ -21,7 +21,8 @@ TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile, feedforwa
   CHECK(pi_only.max_error_m < 0.25e-3);
   CHECK(pi_only.saturated_samples == 0);
   // The stage's own steady-state inverse (bisection on SteadyVelocity) as a feedforward.
-  auto inverse = [&p](double v, double) {
+  auto inverse = [&p](const sysid::ReferenceSample& r) {
+    const double v = r.v_mps;
     if (v == 0) return 0.0;
     double lo = 0, hi = 10;
     for (int i = 0; i < 60; ++i) {
@@ -54,7 +55,8 @@ TEST_CASE("the paper's gains track the 0.5 Hz profile on the default stage, feed
   CHECK(pi_only.saturated_samples == 0);
   CHECK(pi_only.max_abs_u_v < 5.0);
   // The stage's own steady-state inverse as a feedforward (bisection on SteadyVelocity).
-  auto inverse = [&p](double v, double) {
+  auto inverse = [&p](const sysid::ReferenceSample& r) {
+    const double v = r.v_mps;
     if (v == 0) return 0.0;
     double lo = 0, hi = 10;
     for (int i = 0; i < 60; ++i) {

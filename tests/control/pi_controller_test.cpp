@@ -90,7 +90,7 @@ TEST_CASE("feedforward adds to the PI output and options are checked", "[control
                   sysid::OptionsError);  // reference sampled at 0.01 s vs Ts = 0.1 s
   const auto ref = Step(20, 0.1, 0.0);
   const auto res = sysid::RunClosedLoop(std::ref(plant), 0.0, ref, SmallGains(),
-                                        [](double, double) { return 0.5; });
+                                        [](const sysid::ReferenceSample&) { return 0.5; });
   CHECK(res.u_ff_v.minCoeff() == 0.5);
 }
 

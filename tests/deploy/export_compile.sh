@@ -3,7 +3,8 @@
 # compiled by the system cc with the strict flags of docs/deploy.md; NAME_check over the
 # vectors (exit 0: every output within the header's bound), and again (double) built by clang
 # -O3 -march=native where clang is installed; no allocator and no stdio in the
-# model's object; and a planted bug in the generated code that the check must catch.
+# model's object; the network's own tanh within its error bound of tanhl (tanh_accuracy.c); and
+# a planted bug in the generated code that the check must catch.
 # Usage: export_compile.sh SYSID SOURCE_DIR KIND   (KIND: friction, nn, pi, gpi, rdpi,
 # nn-operators, bouc-wen; an rdpi whose rate feedback leaves float no bound must be refused in float)
 set -u
@@ -60,6 +61,13 @@ for PREC in $PRECS; do
     fail "$PREC: the model's object calls the allocator, stdio or libm"
   fi
   grep -q "SHA-256 [0-9a-f]\{64\}" "$OUT/$N.h" || fail "$PREC: no SHA-256 in the header"
+  # The network's own tanh against long double tanhl, within its first-order bound.
+  if [ "$KIND" = nn ]; then
+    "$CC" -std=c99 -O2 -ffp-contract=off -DT="$PREC" -DNAME="${N}_tanh" -DLIMIT=6.6 -I"$OUT" \
+      -include "$OUT/$N.c" "$HERE/tanh_accuracy.c" -o tanh_accuracy -lm \
+      || fail "$PREC: tanh_accuracy does not build"
+    ./tanh_accuracy || fail "$PREC: the exported tanh beyond its bound"
+  fi
   # The planted bug must be caught by the check (in double, where the bound is tight).
   if [ "$PREC" = double ]; then
     sed "$MUTANT" "$OUT/$N.c" > mutant.c

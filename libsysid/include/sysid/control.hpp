@@ -128,8 +128,17 @@ class PiController {
   bool saturated_ = false;
 };
 
-/// Feedforward voltage [V] from the reference velocity [m/s] and acceleration [m/s^2].
-using Feedforward = std::function<double(double v_ref_mps, double a_ref_mps2)>;
+/// The reference at one control sample k, as the loop hands it to its feedforward.
+struct ReferenceSample {
+  double x_m = 0;     ///< [m] position x_ref,k
+  double v_mps = 0;   ///< [m/s] velocity v_ref,k
+  double a_mps2 = 0;  ///< [m/s^2] acceleration a_ref,k
+};
+/// Feedforward voltage [V] at sample k from the reference at k. RunClosedLoop calls it once per
+/// sample, in order, so a causal inverse steps inside it with only the past; each takes the
+/// inputs its stepper's Step takes: the friction inverse v and a, a velocity network its named
+/// inputs (v, a), a hysteresis inverse x.
+using Feedforward = std::function<double(const ReferenceSample& reference)>;
 
 /// A sampled position reference; all vectors have the same length.
 struct PositionReference {
@@ -264,12 +273,15 @@ struct InverseModels {
 };
 
 /// The feedforward of `scheme` over `reference` sampled every `dt_s` [s]: empty for kNone;
-/// the analytic inverse (FrictionInverseStepper: the delayed velocity v_ref(t - tau) from its
-/// delay line) and the network (NetworkStepper) stepped inside the loop, one sample per call,
-/// as a real-time controller runs them; the hysteresis inverse u = H^-1[x_ref] computed over
-/// the whole reference first and played back (SampledFeedforward: the loop passes v and a, not
-/// x_ref). Model errors (OptionsError, InputError) are thrown here, before the loop runs.
-/// Throws OptionsError when the scheme's model is missing.
+/// otherwise the scheme's inverse stepped inside the loop, one sample per call with only the
+/// past, as a real-time controller runs it: the analytic inverse (FrictionInverseStepper on
+/// v_ref,k and a_ref,k: the delayed velocity v_ref(t - tau) from its delay line), the network
+/// (NetworkStepper on its inputs v, a), the hysteresis inverse u = H^-1[x_ref]
+/// (HysteresisModel::InverseStepper on x_ref,k). The models' checks (OptionsError,
+/// NumericalError when not invertible) are thrown here, before the loop runs; a reference the
+/// hysteresis model cannot reach stops the loop at that sample with Invert's InputError (the
+/// hysteresis feedforward refers to *models.hysteresis, which must outlive it). Throws
+/// OptionsError when the scheme's model is missing.
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
                               double dt_s, const InverseModels& models);
 

@@ -126,6 +126,8 @@ class PrandtlIshlinskiiModel : public HysteresisModel {
   /// not invertible (the reason names the parameter); InputError naming the sample when y
   /// needs an input outside the training range widened by range_margin.
   Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const override;
+  /// A PiInverseStepper (sysid/hysteresis_stepper.hpp).
+  std::unique_ptr<HysteresisInverseStepper> InverseStepper(double dt_s) const override;
   std::vector<HysteresisParameter> parameters() const override;
   std::string ToJson(int indent = 2) const override;
 

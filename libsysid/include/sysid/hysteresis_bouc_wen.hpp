@@ -96,6 +96,8 @@ class MechanicalBoucWen : public HysteresisModel {
                                    double tolerance = 1e-12, int max_periods = 256) const override;
   bool invertible() const override { return false; }
   Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const override;
+  /// Throws NumericalError, as Invert.
+  std::unique_ptr<HysteresisInverseStepper> InverseStepper(double dt_s) const override;
   /// m, c, k, alpha, beta, gamma, delta, nu.
   std::vector<HysteresisParameter> parameters() const override;
   std::string ToJson(int indent = 2) const override;
@@ -128,6 +130,8 @@ class PiezoBoucWen : public HysteresisModel {
   bool invertible() const override;
   /// u [V] with Simulate(u) = y_desired at every sample (to 1e-12 relative), u_0 from h = 0.
   Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const override;
+  /// A BoucWenInverseStepper (sysid/hysteresis_stepper.hpp; rate-independent: dt_s unused).
+  std::unique_ptr<HysteresisInverseStepper> InverseStepper(double dt_s) const override;
   /// d, alpha, beta, gamma, offset.
   std::vector<HysteresisParameter> parameters() const override;
   std::string ToJson(int indent = 2) const override;

@@ -31,6 +31,24 @@ struct HysteresisFitSummary {
   std::string message;              ///< why the fit stopped; warnings (ill-conditioning, bounds)
 };
 
+/// A model's inverse run causally, one sample at a time, as a real-time controller runs it
+/// (issue #39): Step(x_ref at sample k) -> u_k from the reference so far, no allocation and no
+/// exception on finite input. The concrete steppers (PiInverseStepper, BoucWenInverseStepper in
+/// sysid/hysteresis_stepper.hpp; OperatorNetworkInverseStepper in sysid/nn_stepper.hpp) say
+/// more; HysteresisModel::InverseStepper makes the one of a model of any kind, so that a loop
+/// holding a HysteresisModel can step its inverse.
+class HysteresisInverseStepper {
+ public:
+  virtual ~HysteresisInverseStepper() = default;
+  /// Back to the model's initial state: the next step is the first sample.
+  virtual void Reset() = 0;
+  /// u_k [V] such that the model's output at sample k follows x_ref_m [m].
+  virtual double Step(double x_ref_m) = 0;
+  /// Whether the last step's reference was outside the model's reach (non-finite included): the
+  /// output is then held at the range's end, and the model's Invert refuses that sample.
+  virtual bool out_of_range() const = 0;
+};
+
 /// A hysteresis model y = H[u]. Implementations are immutable after construction (thread-safe
 /// to simulate from several threads).
 class HysteresisModel {
@@ -53,6 +71,11 @@ class HysteresisModel {
   /// the model cannot be inverted, InputError (naming the sample) when y_desired leaves the
   /// model's range.
   virtual Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const = 0;
+  /// The inverse as a causal stepper at sample time dt_s [s]; Invert is a loop over it (and
+  /// raises its errors from out_of_range()), except nn-operators, whose Invert evaluates the
+  /// same features in one batch (a few ulp apart). Throws NumericalError as Invert does when
+  /// the model cannot be inverted (at dt_s).
+  virtual std::unique_ptr<HysteresisInverseStepper> InverseStepper(double dt_s) const = 0;
   /// Every parameter, in a fixed order, with its unit and standard error.
   virtual std::vector<HysteresisParameter> parameters() const = 0;
   /// The model file's JSON text ({"kind": ..., ...}); ReadHysteresisModel reads it back.

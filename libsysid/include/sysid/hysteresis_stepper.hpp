@@ -25,17 +25,18 @@ struct PiInverseSaturation {
   double bound_output_m = 0;  ///< gpi, rdpi: the step's output at the violated end
 };
 
-class PiInverseStepper {
+class PiInverseStepper final : public HysteresisInverseStepper {
  public:
   /// Throws NumericalError when the model is not invertible (the reason names the parameter)
   /// or, rdpi, when the inverse's error gain (q_0 + ... + q_n) max|u| / (dt p0) >= 1; rdpi
   /// also OptionsError unless 0 < dt_s < infinity (pi, gpi do not use dt_s).
   PiInverseStepper(const PrandtlIshlinskiiModel& model, double dt_s);
   /// Back to the model's initial state.
-  void Reset();
+  void Reset() override;
   /// u_k [V] such that the model's output at sample k is x_ref_m [m], clamped to [lo, hi]
   /// (saturation() says so). No allocation and no exception.
-  double Step(double x_ref_m);
+  double Step(double x_ref_m) override;
+  bool out_of_range() const override { return saturation_.saturated; }
   const PiInverseSaturation& saturation() const { return saturation_; }
   double input_min_v() const { return lo_; }  ///< lo [V]
   double input_max_v() const { return hi_; }  ///< hi [V]
@@ -59,15 +60,16 @@ class PiInverseStepper {
 /// The piezo Bouc–Wen inverse (kind "bouc-wen-piezo", rate-independent): u_0 = (x_0 - c) / d
 /// from h = 0, then per sample the u_k whose exact step from (u_{k-1}, h) gives x_ref,k: the
 /// root bracketed by doubling a step from u_{k-1}, then bisected to adjacent doubles.
-class BoucWenInverseStepper {
+class BoucWenInverseStepper final : public HysteresisInverseStepper {
  public:
   /// Throws NumericalError when the model is not invertible (its loop is not monotone).
   explicit BoucWenInverseStepper(const PiezoBoucWen& model);
-  void Reset();
+  void Reset() override;
   /// u_k [V]. No allocation, no exception: a reference out of the model's reach (no bracket
   /// in 200 doublings) holds u_{k-1} and out_of_reach() says so.
-  double Step(double x_ref_m);
+  double Step(double x_ref_m) override;
   bool out_of_reach() const { return out_of_reach_; }
+  bool out_of_range() const override { return out_of_reach_; }
 
  private:
   PiezoBoucWenParameters p_;

@@ -54,6 +54,8 @@ class OperatorNetworkModel : public HysteresisModel {
   /// The inverse network's prediction; InputError naming the sample when y leaves the inverse
   /// network's training range widened by half its span (a tanh network extrapolates flat).
   Eigen::VectorXd Invert(const Eigen::VectorXd& y_desired, double dt_s) const override;
+  /// An OperatorNetworkInverseStepper (sysid/nn_stepper.hpp; dt_s unused).
+  std::unique_ptr<HysteresisInverseStepper> InverseStepper(double dt_s) const override;
   /// Every weight of both networks (forward first; standard errors NaN: not estimated).
   std::vector<HysteresisParameter> parameters() const override;
   std::string ToJson(int indent = 2) const override;

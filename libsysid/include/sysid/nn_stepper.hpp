@@ -40,16 +40,17 @@ class NetworkStepper {
 /// inverse side's play operators on x_ref (from its initial input), then its network on
 /// [x_ref, F_r1, ..., F_rm] through NeuralNetwork::Evaluate. OperatorNetworkModel::Invert
 /// evaluates the same features with EvaluateBatch (a few ulp apart; not a loop over this).
-class OperatorNetworkInverseStepper {
+class OperatorNetworkInverseStepper final : public HysteresisInverseStepper {
  public:
   /// Throws OptionsError for an invalid network.
   explicit OperatorNetworkInverseStepper(const OperatorNetworkModel& model);
-  void Reset();
+  void Reset() override;
   /// u_k [V] from x_ref,k [m]. No allocation and no exception: a reference outside the model's
   /// range (the inverse network's training range widened by half its span; Invert refuses
   /// it) is clamped to it, and saturated() says so.
-  double Step(double x_ref_m);
+  double Step(double x_ref_m) override;
   bool saturated() const { return saturated_; }
+  bool out_of_range() const override { return saturated_; }
   double x_min_m() const { return lo_; }  ///< [m] lower end of the accepted range
   double x_max_m() const { return hi_; }  ///< [m] upper end
 

@@ -55,11 +55,12 @@ TrackingResult RunClosedLoop(const PlantStep& plant, double x0_measured_m,
   r.u_ff_v.resize(n);
   double x = x0_measured_m;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const double u_ff = feedforward ? feedforward(ref.v_mps[k], ref.a_mps2[k]) : 0.0;
+    const double u_ff = feedforward ? feedforward({ref.x_m[k], ref.v_mps[k], ref.a_mps2[k]}) : 0.0;
     if (!std::isfinite(u_ff))
       throw NumericalError("RunClosedLoop: the feedforward returned " + std::to_string(u_ff) +
                            " at t = " + std::to_string(ref.t_s[k]) +
-                           " s (v_ref = " + std::to_string(ref.v_mps[k]) + " m/s)");
+                           " s (x_ref = " + std::to_string(ref.x_m[k]) +
+                           " m, v_ref = " + std::to_string(ref.v_mps[k]) + " m/s)");
     r.x_m[k] = x;
     r.e_m[k] = ref.x_m[k] - x;
     r.u_ff_v[k] = u_ff;

@@ -1,6 +1,7 @@
 // The tracking experiment's feedforward schemes, run on the virtual stage (one loop for
 // `sysid track`, the pipeline and the stage facts).
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <utility>
@@ -59,12 +60,12 @@ bool Uses(const std::vector<FeedforwardScheme>& schemes, FeedforwardScheme schem
 namespace {
 
 // A stepper run inside the loop: RunClosedLoop calls the feedforward once per sample, in order,
-// with the reference's v and a at that sample, so each call is the stepper's next Step, as on a
-// real-time target (RunClosedLoop refuses a non-finite u, naming the sample).
+// with the reference at that sample, so each call is the stepper's next Step, as on a real-time
+// target (RunClosedLoop refuses a non-finite u, naming the sample).
 Feedforward AnalyticStepperFeedforward(const FrictionModel& model, double dt_s,
                                        Eigen::Index samples) {
   auto stepper = std::make_shared<FrictionInverseStepper>(model, dt_s, samples);
-  return [stepper](double v_mps, double a_mps2) { return stepper->Step(v_mps, a_mps2); };
+  return [stepper](const ReferenceSample& r) { return stepper->Step(r.v_mps, r.a_mps2); };
 }
 
 Feedforward NetworkStepperFeedforward(const NeuralNetwork& network) {
@@ -79,9 +80,34 @@ Feedforward NetworkStepperFeedforward(const NeuralNetwork& network) {
   }
   auto stepper = std::make_shared<NetworkStepper>(network);
   auto inputs = std::make_shared<std::vector<double>>(is_v.size());
-  return [stepper, inputs, is_v = std::move(is_v)](double v_mps, double a_mps2) {
-    for (size_t i = 0; i < is_v.size(); ++i) (*inputs)[i] = is_v[i] ? v_mps : a_mps2;
+  return [stepper, inputs, is_v = std::move(is_v)](const ReferenceSample& r) {
+    for (size_t i = 0; i < is_v.size(); ++i) (*inputs)[i] = is_v[i] ? r.v_mps : r.a_mps2;
     return stepper->Step(inputs->data());
+  };
+}
+
+// The hysteresis inverse stepped on x_ref,k. A real-time target clamps a reference out of the
+// model's reach (the stepper does); the experiment refuses it instead, with the batch inverse's
+// own error for the references seen so far (Invert is a loop over the same stepper, so it stops
+// at this sample), and the loop's run is discarded.
+Feedforward HysteresisStepperFeedforward(const HysteresisModel& model, double dt_s,
+                                         Eigen::Index samples) {
+  std::shared_ptr<HysteresisInverseStepper> stepper = model.InverseStepper(dt_s);
+  auto seen = std::make_shared<Eigen::VectorXd>(samples);  // x_ref,0..k: the error path's
+  auto k = std::make_shared<Eigen::Index>(0);
+  return [&model, dt_s, stepper, seen, k](const ReferenceSample& r) {
+    SYSID_CHECK(*k < seen->size(),
+                "feedforward called more often than the reference has samples (" +
+                    std::to_string(seen->size()) + ")");
+    (*seen)[*k] = r.x_m;
+    const double u = stepper->Step(r.x_m);
+    if (stepper->out_of_range() || !std::isfinite(r.x_m)) {
+      model.Invert(seen->head(*k + 1), dt_s);  // throws InputError naming sample k
+      SYSID_CHECK(false, "the " + model.kind() + " inverse stepper left its range at sample " +
+                             std::to_string(*k) + " but Invert accepted the reference");
+    }
+    ++*k;
+    return u;
   };
 }
 
@@ -105,7 +131,7 @@ Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference&
         throw OptionsError("SchemeFeedforward: the hysteresis scheme needs InverseModels::hysteresis");
       // The model maps voltage to position, so its inverse of the position reference is the
       // voltage that would follow it quasi-statically.
-      return SampledFeedforward(models.hysteresis->Invert(reference.x_m, dt_s));
+      return HysteresisStepperFeedforward(*models.hysteresis, dt_s, reference.x_m.size());
   }
   SYSID_CHECK(false, "unknown FeedforwardScheme value");
 }

@@ -23,7 +23,8 @@ std::string CType(ExportPrecision precision);
 std::string CArray(const std::vector<double>& values, ExportPrecision precision);
 /// The file-local expm1 series in C (PREFIX_expm1_series, |r| <= 0.35).
 std::string CExpm1Series(const std::string& prefix, ExportPrecision precision);
-/// The file-local expm1 series and tanh in C (PREFIX_tanh), the same on every IEEE-754 target.
+/// The file-local tanh in C (PREFIX_tanh), the same on every IEEE-754 target (docs/deploy.md:
+/// its error bound).
 std::string CTanh(const std::string& prefix, ExportPrecision precision);
 /// NAME_check.c for a step taking `inputs` (CSV column names) in that order.
 std::string CheckProgram(const std::string& prefix, const std::vector<std::string>& inputs,

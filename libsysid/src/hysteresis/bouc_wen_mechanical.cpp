@@ -33,6 +33,12 @@ int MechanicalRhs(double t, N_Vector x, N_Vector dx, void* data) {
   return std::isfinite(d[1]) && std::isfinite(d[2]) ? 0 : 1;  // > 0: CVODE retries smaller
 }
 
+[[noreturn]] void ThrowNoInverse() {
+  throw NumericalError(
+      "bouc-wen: the mechanical form has no inverse here (it needs y'' of the desired output); "
+      "use the piezo form (bouc-wen-piezo) for feedforward");
+}
+
 }  // namespace
 
 MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
@@ -125,9 +131,11 @@ Eigen::VectorXd MechanicalBoucWen::SimulatePeriodic(const Eigen::VectorXd& u_per
 }
 
 Eigen::VectorXd MechanicalBoucWen::Invert(const Eigen::VectorXd&, double) const {
-  throw NumericalError(
-      "bouc-wen: the mechanical form has no inverse here (it needs y'' of the desired output); "
-      "use the piezo form (bouc-wen-piezo) for feedforward");
+  ThrowNoInverse();
+}
+
+std::unique_ptr<HysteresisInverseStepper> MechanicalBoucWen::InverseStepper(double) const {
+  ThrowNoInverse();
 }
 
 std::vector<HysteresisParameter> MechanicalBoucWen::parameters() const {

@@ -212,6 +212,10 @@ Eigen::VectorXd PiezoBoucWen::Invert(const Eigen::VectorXd& y_desired, double dt
   return u;
 }
 
+std::unique_ptr<HysteresisInverseStepper> PiezoBoucWen::InverseStepper(double) const {
+  return std::make_unique<BoucWenInverseStepper>(*this);
+}
+
 std::vector<HysteresisParameter> PiezoBoucWen::parameters() const {
   std::vector<HysteresisParameter> v = {{"d", "m/V", p_.d_m_per_v, NAN},
                                         {"alpha", "1", p_.alpha, NAN},

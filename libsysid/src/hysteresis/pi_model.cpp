@@ -292,6 +292,12 @@ Eigen::VectorXd PrandtlIshlinskiiModel::Invert(const Eigen::VectorXd& y_desired,
   return u;
 }
 
+std::unique_ptr<HysteresisInverseStepper> PrandtlIshlinskiiModel::InverseStepper(
+    double dt_s) const {
+  if (!invertible()) throw NumericalError(kind() + " model not invertible: " + why_not_invertible_);
+  return std::make_unique<PiInverseStepper>(*this, dt_s);
+}
+
 std::vector<HysteresisParameter> PrandtlIshlinskiiModel::parameters() const {
   const internal::PiLayout l = internal::LayoutOf(p_);
   const Eigen::VectorXd theta = internal::Pack(p_);

@@ -10,6 +10,7 @@
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/nn_operators.hpp"
+#include "sysid/nn_stepper.hpp"
 
 namespace sysid {
 namespace {
@@ -179,6 +180,10 @@ Eigen::VectorXd OperatorNetworkModel::Invert(const Eigen::VectorXd& y, double dt
           "span)", k, static_cast<double>(k) * dt_s, y[k], range.min - half, range.max + half));
   }
   return inverse_.Evaluate(y);
+}
+
+std::unique_ptr<HysteresisInverseStepper> OperatorNetworkModel::InverseStepper(double) const {
+  return std::make_unique<OperatorNetworkInverseStepper>(*this);
 }
 
 std::vector<HysteresisParameter> OperatorNetworkModel::parameters() const {

@@ -3,7 +3,7 @@
 // runs RunClosedLoop with it as the per-sample feedforward, and again with the library's
 // stepper on a second plant of the same seed. Exit 0 when the two tracking-error traces agree
 // to 1e-12 m, 1 otherwise, 2 on bad arguments or a missing symbol. Prints both runs' max |e|
-// and the playback feedforward's (SchemeFeedforward), for the docs.
+// and the library's own loop's (SchemeFeedforward), for the docs.
 //   export_closed_loop stage MODEL.json LIB.so PREFIX DT   the analytic inverse (v, a) in the
 //       default virtual stage's PI loop, the smooth profile; DT [s] the export's --dt, which
 //       must be the stage's control period
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   std::vector<double> state((size() + sizeof(double) - 1) / sizeof(double) + 1);
   init(state.data());
 
-  sysid::TrackingResult exported, library, playback;
+  sysid::TrackingResult exported, library, scheme;
   double dt_s = 0;
   long samples = 0;
   if (mode == "stage") {
@@ -102,17 +102,17 @@ int main(int argc, char** argv) {
     sysid::VirtualStage exported_stage(stage, 1);
     exported = sysid::RunClosedLoop(
         exported_stage, reference, pi,
-        [&](double v_mps, double a_mps2) { return step(state.data(), v_mps, a_mps2); });
+        [&](const sysid::ReferenceSample& r) { return step(state.data(), r.v_mps, r.a_mps2); });
     sysid::FrictionInverseStepper stepper(model, dt_s);
     sysid::VirtualStage library_stage(stage, 1);
-    library = sysid::RunClosedLoop(library_stage, reference, pi, [&](double v_mps, double a_mps2) {
-      return stepper.Step(v_mps, a_mps2);
-    });
+    library = sysid::RunClosedLoop(
+        library_stage, reference, pi,
+        [&](const sysid::ReferenceSample& r) { return stepper.Step(r.v_mps, r.a_mps2); });
     sysid::InverseModels models;
     models.model = &model;
-    sysid::VirtualStage playback_stage(stage, 1);
-    playback = sysid::RunClosedLoop(
-        playback_stage, reference, pi,
+    sysid::VirtualStage scheme_stage(stage, 1);
+    scheme = sysid::RunClosedLoop(
+        scheme_stage, reference, pi,
         sysid::SchemeFeedforward(sysid::FeedforwardScheme::kAnalytic, reference, dt_s, models));
   } else {
     const auto step = reinterpret_cast<StepFn1>(step_symbol);
@@ -130,30 +130,28 @@ int main(int argc, char** argv) {
         sysid::MakeStackReference(sysid::StackReferenceOptions{});
     samples = static_cast<long>(reference.t_s.size());
     const sysid::PiOptions pi = sysid::StackPiOptions(stack);
-    // The hysteresis inverse takes x_ref: the loop calls the feedforward once per sample, in
-    // order, so a counter walks the reference beside it (as a real-time loop would).
+    // The hysteresis inverse takes x_ref,k: the loop hands the feedforward the reference at
+    // each sample, in order.
     auto run = [&](const sysid::Feedforward& ff) {
       sysid::PiezoStack plant(stack, 1);
       return sysid::RunClosedLoop([&plant](double u) { return plant.Step(u); },
                                   plant.measured_position_m(), reference, pi, ff);
     };
-    Eigen::Index k = 0;
-    exported = run([&](double, double) { return step(state.data(), reference.x_m[k++]); });
+    exported = run([&](const sysid::ReferenceSample& r) { return step(state.data(), r.x_m); });
     sysid::PiInverseStepper stepper(*model, dt_s);
-    k = 0;
-    library = run([&](double, double) { return stepper.Step(reference.x_m[k++]); });
+    library = run([&](const sysid::ReferenceSample& r) { return stepper.Step(r.x_m); });
     sysid::InverseModels models;
     models.hysteresis = model;
-    playback = run(
+    scheme = run(
         sysid::SchemeFeedforward(sysid::FeedforwardScheme::kHysteresis, reference, dt_s, models));
   }
   const double de = MaxAbsDiff(exported.e_m, library.e_m);
   std::printf(
       "%s closed loop, %ld samples at %g s: max |e| exported C %.6g m, library stepper "
-      "%.6g m, playback %.6g m; max |e_C - e_stepper| = %.3g m (bound 1e-12 m), "
-      "max |e_stepper - e_playback| = %.3g m\n",
-      mode.c_str(), samples, dt_s, exported.max_error_m, library.max_error_m, playback.max_error_m,
-      de, MaxAbsDiff(library.e_m, playback.e_m));
+      "%.6g m, library loop (SchemeFeedforward) %.6g m; max |e_C - e_stepper| = %.3g m (bound "
+      "1e-12 m), max |e_stepper - e_loop| = %.3g m\n",
+      mode.c_str(), samples, dt_s, exported.max_error_m, library.max_error_m, scheme.max_error_m,
+      de, MaxAbsDiff(library.e_m, scheme.e_m));
   dlclose(lib);
   return de <= 1e-12 ? 0 : 1;
 }
