@@ -8,7 +8,7 @@ apps and python/src, unless the code says why (docs/architecture.md, "Small room
   scripts/check_sizes.py --root DIR  check another tree (the check's own test)
 
 The reason is one comment line:
-  - for a file, `// Long file: WHY` among its first 15 lines;
+  - for a file, `// Long file: WHY` in the comment block at its top;
   - for a function, `// Long function: WHY` among the 8 lines above its opening brace (where its
     signature and doc comment are).
 A function is a brace block that follows a parameter list `)` (with const, override, noexcept or
@@ -70,7 +70,10 @@ def rooms(root):
             lines = text.split("\n")
             rel = path.relative_to(root)
             if len(lines) - 1 > MAX_FILE_LINES:
-                reason = any(FILE_REASON.search(l) for l in lines[:15])
+                top = 0
+                while top < len(lines) and lines[top].startswith("//"):
+                    top += 1
+                reason = any(FILE_REASON.search(l) for l in lines[:top])
                 out.append((rel, 1, f"file of {len(lines) - 1} lines", reason))
             for start, count in long_functions(text):
                 above = lines[max(0, start - 9):start]
