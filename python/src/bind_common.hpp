@@ -160,6 +160,7 @@ py::object RealElementwise(py::handle value, const std::string& name, F f) {
 void BindIo(py::module_& m);
 void BindModel(py::module_& m);
 void BindIdentify(py::module_& m);
+void BindDominance(py::module_& m);
 void BindNeural(py::module_& m);
 void BindStage(py::module_& m);
 void BindControl(py::module_& m);  // after BindStage: adds to sysid.stage

@@ -39,6 +39,8 @@ py::tuple TrackStage(const StageParameters& stage, const PositionReference& refe
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindControl(py::module_& m) {
   py::module_ s = m.attr("stage").cast<py::module_>();
 

@@ -28,6 +28,8 @@ Eigen::VectorXd MapSignal(const HysteresisModel& model, SignalMap map, const py:
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindHysteresis(py::module_& m) {
   py::class_<HysteresisParameter>(m, "HysteresisParameter")
       .def_readonly("name", &HysteresisParameter::name)

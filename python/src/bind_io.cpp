@@ -177,6 +177,8 @@ Recording DeriveRecording(Recording recording, const DerivativeOptions& options,
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindIo(py::module_& m) {
   py::class_<ReadOptions> read_options(m, "ReadOptions",
                                        "Which columns the recording reader insists on.");

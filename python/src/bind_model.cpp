@@ -27,6 +27,8 @@ std::shared_ptr<InputSignal> TableInput(const py::object& t_s, const py::object&
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindModel(py::module_& m) {
   py::class_<FrictionModel> model(
       m, "Model",

@@ -58,6 +58,8 @@ Eigen::VectorXd Predict(const NeuralNetwork& net, const py::object& data) {
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindNeural(py::module_& m) {
   py::class_<ScaledVariable>(m, "ScaledVariable")
       .def(py::init([](std::string name, std::string unit, double min, double max) {

@@ -18,6 +18,8 @@ const char* PresetDoc() {
 
 }  // namespace
 
+// Long function: a pybind11 registration table, one entry per bound type and field in the
+// header's order; split, it would only scatter the table.
 void BindStage(py::module_& m) {
   py::module_ s = m.def_submodule("stage", "The virtual piezo stage and its procedures.");
 

@@ -57,6 +57,7 @@ PYBIND11_MODULE(_sysid, m) {
   BindIo(m);
   BindModel(m);
   BindIdentify(m);
+  BindDominance(m);
   BindNeural(m);
   BindStage(m);
   BindControl(m);

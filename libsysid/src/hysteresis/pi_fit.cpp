@@ -106,6 +106,119 @@ bool LawsonHanson(const Eigen::MatrixXd& R, const Eigen::VectorXd& qtb,
   return false;
 }
 
+// min ||R x - qtb|| with x_j >= 0 where bounded and x_j = 0 where fixed: Ceres from the clipped
+// unconstrained solution, then the exact active set (Lawson-Hanson) from Ceres' point. `exact`
+// says whether the active set settled; otherwise Ceres' point is kept and a note says so.
+Eigen::VectorXd BoundedLeastSquares(const Eigen::MatrixXd& R, const Eigen::VectorXd& qtb,
+                                    const std::vector<bool>& bounded,
+                                    const std::vector<bool>& fixed, bool* exact,
+                                    std::vector<std::string>* notes) {
+  const int P = static_cast<int>(R.cols());
+  // Start: the unconstrained solution with bounded parameters clipped to a small positive value.
+  std::vector<int> all;
+  for (int j = 0; j < P; ++j)
+    if (!fixed[static_cast<size_t>(j)]) all.push_back(j);
+  Eigen::VectorXd x = FreeSolve(R, qtb, all);
+  const double x_floor = 1e-6 * std::max(1e-300, x.cwiseAbs().maxCoeff());
+  for (int j = 0; j < P; ++j)
+    if (bounded[static_cast<size_t>(j)] && !fixed[static_cast<size_t>(j)] && x[j] < x_floor) x[j] = x_floor;
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ReducedCost(R, qtb), nullptr, x.data());
+  for (int j = 0; j < P; ++j)
+    if (bounded[static_cast<size_t>(j)] && !fixed[static_cast<size_t>(j)])
+      problem.SetParameterLowerBound(x.data(), j, 0.0);
+  std::vector<int> constant;
+  for (int j = 0; j < P; ++j)
+    if (fixed[static_cast<size_t>(j)]) constant.push_back(j);
+  if (!constant.empty() && static_cast<int>(constant.size()) < P)
+    problem.SetManifold(x.data(), new ceres::SubsetManifold(P, constant));
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = 500;
+  so.function_tolerance = 1e-15;
+  so.gradient_tolerance = 1e-15;
+  so.parameter_tolerance = 1e-15;
+  so.logging_type = ceres::SILENT;
+  so.num_threads = 1;
+  ceres::Solver::Summary cs;
+  ceres::Solve(so, &problem, &cs);
+  if (!cs.IsSolutionUsable())
+    throw NumericalError("hysteresis fit: the bounded least squares failed: " + cs.message);
+  *exact = LawsonHanson(R, qtb, bounded, fixed, &x);
+  if (!*exact) notes->push_back("the active set did not settle: Ceres' point kept (" + cs.BriefReport() + ")");
+
+  return x;
+}
+
+// Standard errors of the free parameters (sigma2 (Rf' Rf)^-1 in scaled units, back to the
+// parameters' units by `scale`; NaN for the others) and the condition number of the free
+// columns (NaN when none is free).
+double StandardErrors(const Eigen::MatrixXd& R, const std::vector<int>& free,
+                      const Eigen::VectorXd& scale, double sigma2, std::vector<double>* se) {
+  se->assign(static_cast<size_t>(R.cols()), NAN);
+  if (free.empty()) return NAN;
+  const Eigen::MatrixXd Rf = Columns(R, free);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Rf);
+  const Eigen::VectorXd sv = svd.singularValues();
+  if (sv[sv.size() - 1] > 0) {
+    const Eigen::MatrixXd cov = sigma2 * (Rf.transpose() * Rf).inverse();
+    for (size_t c = 0; c < free.size(); ++c)
+      (*se)[static_cast<size_t>(free[c])] =
+          std::sqrt(cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))) /
+          scale[free[c]];
+  }
+  return sv[0] / sv[sv.size() - 1];
+}
+
+// Scales A's columns to unit norm (the returned factors) and marks each parameter bounded
+// (>= 0) or fixed at 0: a zero regressor (noted), the offset when not fitted, held terms.
+Eigen::VectorXd ScaleColumns(const internal::PiLayout& layout, bool offset, Eigen::MatrixXd* A,
+                             std::vector<bool>* bounded, std::vector<bool>* fixed,
+                             std::vector<std::string>* notes) {
+  const int P = layout.size();
+  bounded->assign(static_cast<size_t>(P), false);
+  fixed->assign(static_cast<size_t>(P), false);
+  Eigen::VectorXd scale(P);
+  for (int j = 0; j < P; ++j) {
+    (*bounded)[static_cast<size_t>(j)] = layout.bounded(j);
+    scale[j] = A->col(j).norm();
+    if (!(scale[j] > 0)) {  // e.g. a rate column of recordings that never move
+      scale[j] = 1;
+      (*fixed)[static_cast<size_t>(j)] = true;
+      notes->push_back(layout.name(j) + " fixed at 0 (its regressor is zero)");
+    }
+  }
+  if (!offset) (*fixed)[static_cast<size_t>(layout.offset())] = true;
+  for (int j = 0; j < P; ++j)
+    if (layout.held(j)) (*fixed)[static_cast<size_t>(j)] = true;
+  for (int j = 0; j < P; ++j)
+    if ((*fixed)[static_cast<size_t>(j)]) A->col(j).setZero();
+  A->array().rowwise() /= scale.transpose().array();
+  return scale;
+}
+
+// The fit's one-line account: the active bounds, the conditioning, invertibility, the notes.
+std::string FitMessage(const PrandtlIshlinskiiModel& model, const PiFitReport& rep,
+                       const PiFitOptions& options, bool exact,
+                       const std::vector<std::string>& active, int P, double condition,
+                       const std::vector<std::string>& notes) {
+  std::string message = fmt::format(
+      "non-negative least squares ({}): {} of {} parameters at their bound 0{}; condition number "
+      "of the regression (unit-norm columns) {:.3g}",
+      exact ? "exact active set" : "Ceres' point", active.size(), P,
+      active.empty() ? "" : " (" + fmt::format("{}", fmt::join(active, ", ")) + ")", condition);
+  if (!model.invertible())
+    message += "; not invertible: " + model.why_not_invertible();
+  else if (rep.ill_conditioned_inverse)
+    message += fmt::format("; ill-conditioned inverse: the loading slopes span a ratio {:.3g} > "
+                           "{:.3g}, the inverse amplifies reference noise by up to that factor",
+                           rep.inverse_gain_ratio, options.ill_conditioned_ratio);
+  else
+    message += fmt::format("; inverse gain ratio {:.3g}", rep.inverse_gain_ratio);
+  for (const auto& note : notes) message += "; " + note;
+  return message;
+}
+
 }  // namespace
 
 void PiFitOptions::Validate() const {
@@ -183,62 +296,15 @@ std::unique_ptr<PrandtlIshlinskiiModel> FitPrandtlIshlinskii(
     b.segment(row, u.size()) = x;
     row += u.size();
   }
-  std::vector<bool> bounded(static_cast<size_t>(P)), fixed(static_cast<size_t>(P), false);
-  Eigen::VectorXd scale(P);
+  std::vector<bool> bounded, fixed;
   std::vector<std::string> notes;
-  for (int j = 0; j < P; ++j) {
-    bounded[static_cast<size_t>(j)] = layout.bounded(j);
-    scale[j] = A.col(j).norm();
-    if (!(scale[j] > 0)) {  // e.g. a rate column of recordings that never move
-      scale[j] = 1;
-      fixed[static_cast<size_t>(j)] = true;
-      notes.push_back(layout.name(j) + " fixed at 0 (its regressor is zero)");
-    }
-  }
-  if (!options.offset) fixed[static_cast<size_t>(layout.offset())] = true;
-  for (int j = 0; j < P; ++j)
-    if (layout.held(j)) fixed[static_cast<size_t>(j)] = true;
-  for (int j = 0; j < P; ++j)
-    if (fixed[static_cast<size_t>(j)]) A.col(j).setZero();
-  A.array().rowwise() /= scale.transpose().array();
-
+  const Eigen::VectorXd scale = ScaleColumns(layout, options.offset, &A, &bounded, &fixed, &notes);
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
   const Eigen::MatrixXd R = qr.matrixQR().topRows(P).triangularView<Eigen::Upper>();
   const Eigen::VectorXd qtb = (qr.householderQ().transpose() * b).head(P);
 
-  // Start: the unconstrained solution with bounded parameters clipped to a small positive value.
-  std::vector<int> all;
-  for (int j = 0; j < P; ++j)
-    if (!fixed[static_cast<size_t>(j)]) all.push_back(j);
-  Eigen::VectorXd x = FreeSolve(R, qtb, all);
-  const double x_floor = 1e-6 * std::max(1e-300, x.cwiseAbs().maxCoeff());
-  for (int j = 0; j < P; ++j)
-    if (bounded[static_cast<size_t>(j)] && !fixed[static_cast<size_t>(j)] && x[j] < x_floor) x[j] = x_floor;
-  ceres::Problem problem;
-  problem.AddResidualBlock(new ReducedCost(R, qtb), nullptr, x.data());
-  for (int j = 0; j < P; ++j)
-    if (bounded[static_cast<size_t>(j)] && !fixed[static_cast<size_t>(j)])
-      problem.SetParameterLowerBound(x.data(), j, 0.0);
-  std::vector<int> constant;
-  for (int j = 0; j < P; ++j)
-    if (fixed[static_cast<size_t>(j)]) constant.push_back(j);
-  if (!constant.empty() && static_cast<int>(constant.size()) < P)
-    problem.SetManifold(x.data(), new ceres::SubsetManifold(P, constant));
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = 500;
-  so.function_tolerance = 1e-15;
-  so.gradient_tolerance = 1e-15;
-  so.parameter_tolerance = 1e-15;
-  so.logging_type = ceres::SILENT;
-  so.num_threads = 1;
-  ceres::Solver::Summary cs;
-  ceres::Solve(so, &problem, &cs);
-  if (!cs.IsSolutionUsable())
-    throw NumericalError("hysteresis fit: the bounded least squares failed: " + cs.message);
-  const bool exact = LawsonHanson(R, qtb, bounded, fixed, &x);
-  if (!exact) notes.push_back("the active set did not settle: Ceres' point kept (" + cs.BriefReport() + ")");
-
+  bool exact = false;
+  Eigen::VectorXd x = BoundedLeastSquares(R, qtb, bounded, fixed, &exact, &notes);
   std::vector<int> free;
   std::vector<std::string> active;
   for (int j = 0; j < P; ++j) {
@@ -256,20 +322,8 @@ std::unique_ptr<PrandtlIshlinskiiModel> FitPrandtlIshlinskii(
   const double rss = (A * x - b).squaredNorm();
   const double dof = static_cast<double>(N) - static_cast<double>(free.size());
   const double sigma2 = rss / std::max(1.0, dof);
-  std::vector<double> se(static_cast<size_t>(P), NAN);
-  double condition = NAN;
-  if (!free.empty()) {
-    const Eigen::MatrixXd Rf = Columns(R, free);
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Rf);
-    const Eigen::VectorXd sv = svd.singularValues();
-    condition = sv[0] / sv[sv.size() - 1];
-    if (sv[sv.size() - 1] > 0) {
-      const Eigen::MatrixXd cov = sigma2 * (Rf.transpose() * Rf).inverse();
-      for (size_t c = 0; c < free.size(); ++c)
-        se[static_cast<size_t>(free[c])] =
-            std::sqrt(cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))) / scale[free[c]];
-    }
-  }
+  std::vector<double> se;
+  const double condition = StandardErrors(R, free, scale, sigma2, &se);
   if (!options.offset) se[static_cast<size_t>(layout.offset())] = NAN;
   auto model = std::make_unique<PrandtlIshlinskiiModel>(p, se, options.range_margin);
   PiFitReport rep;
@@ -278,20 +332,7 @@ std::unique_ptr<PrandtlIshlinskiiModel> FitPrandtlIshlinskii(
   rep.inverse_gain_ratio = model->InverseGainRatio();
   rep.ill_conditioned_inverse = !(rep.inverse_gain_ratio <= options.ill_conditioned_ratio);
   rep.residual_std = std::sqrt(sigma2);
-  std::string message = fmt::format(
-      "non-negative least squares ({}): {} of {} parameters at their bound 0{}; condition number "
-      "of the regression (unit-norm columns) {:.3g}",
-      exact ? "exact active set" : "Ceres' point", active.size(), P,
-      active.empty() ? "" : " (" + fmt::format("{}", fmt::join(active, ", ")) + ")", condition);
-  if (!model->invertible())
-    message += "; not invertible: " + model->why_not_invertible();
-  else if (rep.ill_conditioned_inverse)
-    message += fmt::format("; ill-conditioned inverse: the loading slopes span a ratio {:.3g} > "
-                           "{:.3g}, the inverse amplifies reference noise by up to that factor",
-                           rep.inverse_gain_ratio, options.ill_conditioned_ratio);
-  else
-    message += fmt::format("; inverse gain ratio {:.3g}", rep.inverse_gain_ratio);
-  for (const auto& note : notes) message += "; " + note;
+  const std::string message = FitMessage(*model, rep, options, exact, active, P, condition, notes);
   if (summary) {
     summary->kind = model->kind();
     summary->samples = static_cast<int>(N);

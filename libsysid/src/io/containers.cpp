@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -157,15 +158,14 @@ std::string JoinList(const std::vector<std::string>& names) {
   return s.empty() ? "none" : s;
 }
 
-void FinishMappedRecording(Recording& rec, const ReadOptions& options,
-                           const std::vector<std::pair<std::string, std::string>>& origins) {
-  const auto origin = [&](const std::string& column) {
-    for (const auto& [c, o] : origins)
-      if (c == column) return o;
-    return rec.source + ": column '" + column + "'";
-  };
+namespace {
+
+// Where a column came from, for messages.
+using Origin = std::function<std::string(const std::string& column)>;
+
+// --scale: each mapped column times its factor, every value still finite.
+void ApplyScales(Recording& rec, const SourceMapping& m, const Origin& origin) {
   const auto columns = [&] { return JoinList(rec.names); };
-  const SourceMapping& m = options.mapping;
   for (const auto& [column, factor] : m.scales) {
     if (!std::isfinite(factor) || factor == 0)
       throw OptionsError(
@@ -184,31 +184,38 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
                                        Num(rec.data(k, i))),
                            "scales");
   }
-  if (m.rate_hz != 0) {
-    if (!std::isfinite(m.rate_hz) || m.rate_hz <= 0)
-      throw OptionsError(
-          fmt::format("--rate {}: expected a positive sample rate [Hz]", Num(m.rate_hz)),
-          "rate_hz");
-    if (rec.has("t"))
-      throw InputError(fmt::format(
-          "{}: has a time column 't' ({}); --rate applies only to recordings without one",
-          rec.source, origin("t")));
-    const Eigen::Index n = rec.rows();
-    // t = k / rate: every step and the span must stay finite numbers (--rate 1e-320 made t inf,
-    // --rate 1e308 a subnormal step whose rate is inf).
-    const double last_t = static_cast<double>(n > 0 ? n - 1 : 0) / m.rate_hz;
-    if (!(1 / m.rate_hz >= kMinTimeStep_s) || !std::isfinite(last_t))
-      throw OptionsError(
-          fmt::format("--rate {}: t = k / rate over {} samples {}: expected a rate whose step "
-                      "1/rate is at least {} s and whose duration is a finite number",
-                      Num(m.rate_hz), n,
-                      std::isfinite(last_t) ? "steps by a subnormal number" : "reaches inf",
-                      Num(kMinTimeStep_s)),
-          "rate_hz");
-    Eigen::VectorXd t(n);
-    for (Eigen::Index k = 0; k < n; ++k) t[k] = static_cast<double>(k) / m.rate_hz;
-    rec = WithTimeFirst(rec, t);
-  }
+}
+
+// --rate: t = k / rate, for a recording without a time column.
+void ApplyRate(Recording& rec, const SourceMapping& m, const Origin& origin) {
+  if (!std::isfinite(m.rate_hz) || m.rate_hz <= 0)
+    throw OptionsError(
+        fmt::format("--rate {}: expected a positive sample rate [Hz]", Num(m.rate_hz)),
+        "rate_hz");
+  if (rec.has("t"))
+    throw InputError(fmt::format(
+        "{}: has a time column 't' ({}); --rate applies only to recordings without one",
+        rec.source, origin("t")));
+  const Eigen::Index n = rec.rows();
+  // t = k / rate: every step and the span must stay finite numbers (--rate 1e-320 made t inf,
+  // --rate 1e308 a subnormal step whose rate is inf).
+  const double last_t = static_cast<double>(n > 0 ? n - 1 : 0) / m.rate_hz;
+  if (!(1 / m.rate_hz >= kMinTimeStep_s) || !std::isfinite(last_t))
+    throw OptionsError(
+        fmt::format("--rate {}: t = k / rate over {} samples {}: expected a rate whose step "
+                    "1/rate is at least {} s and whose duration is a finite number",
+                    Num(m.rate_hz), n,
+                    std::isfinite(last_t) ? "steps by a subnormal number" : "reaches inf",
+                    Num(kMinTimeStep_s)),
+        "rate_hz");
+  Eigen::VectorXd t(n);
+  for (Eigen::Index k = 0; k < n; ++k) t[k] = static_cast<double>(k) / m.rate_hz;
+  rec = WithTimeFirst(rec, t);
+}
+
+// The columns the caller requires, and a time that increases by steps a rate can be had from.
+void CheckColumnsAndTime(const Recording& rec, const ReadOptions& options, const Origin& origin) {
+  const auto columns = [&] { return JoinList(rec.names); };
   for (const auto& name : options.required_columns)
     if (!rec.has(name)) {
       if (name == "t")
@@ -247,15 +254,13 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
             "and a duration that is a finite number",
             origin("t"), k + 1, Num(t[k]), Num(t[k - 1]), Num(kMinTimeStep_s)));
   }
-  if (m.t_start_s || m.t_end_s) {
-    const int ti = rec.index_of("t");  // none: CropRecording says so
-    const auto t_at = [&](Eigen::Index row) { return ti < 0 ? 0.0 : rec.data(row, ti); };
-    rec = CropRecording(rec, m.t_start_s.value_or(t_at(0)),
-                        m.t_end_s.value_or(t_at(rec.rows() - 1)));
-  }
-  // Provenance, in the recording's column order: every writer that keeps the metadata (derive,
-  // import) says where each column came from, at what rate and scale. A file name may hold a
-  // newline or an escape sequence: written as \xHH, so each line stays one line.
+}
+
+// Provenance, in the recording's column order: every writer that keeps the metadata (derive,
+// import) says where each column came from, at what rate and scale. A file name may hold a
+// newline or an escape sequence: written as \xHH, so each line stays one line.
+void SetProvenance(Recording& rec, const SourceMapping& m,
+                   const std::vector<std::pair<std::string, std::string>>& origins) {
   const auto set = [&](const std::string& key, const std::string& value) {
     for (auto& [k, v] : rec.metadata)
       if (k == key) {
@@ -269,6 +274,28 @@ void FinishMappedRecording(Recording& rec, const ReadOptions& options,
       if (column == name) set("source." + column, OneLine(where));
   if (m.rate_hz != 0) set("sample_rate_hz", Num(m.rate_hz));
   for (const auto& [column, factor] : m.scales) set("scale." + column, Num(factor));
+}
+
+}  // namespace
+
+void FinishMappedRecording(Recording& rec, const ReadOptions& options,
+                           const std::vector<std::pair<std::string, std::string>>& origins) {
+  const Origin origin = [&](const std::string& column) {
+    for (const auto& [c, o] : origins)
+      if (c == column) return o;
+    return rec.source + ": column '" + column + "'";
+  };
+  const SourceMapping& m = options.mapping;
+  ApplyScales(rec, m, origin);
+  if (m.rate_hz != 0) ApplyRate(rec, m, origin);
+  CheckColumnsAndTime(rec, options, origin);
+  if (m.t_start_s || m.t_end_s) {
+    const int ti = rec.index_of("t");  // none: CropRecording says so
+    const auto t_at = [&](Eigen::Index row) { return ti < 0 ? 0.0 : rec.data(row, ti); };
+    rec = CropRecording(rec, m.t_start_s.value_or(t_at(0)),
+                        m.t_end_s.value_or(t_at(rec.rows() - 1)));
+  }
+  SetProvenance(rec, m, origins);
 }
 
 std::unique_ptr<SignalContainer> OpenContainer(const std::string& path) {

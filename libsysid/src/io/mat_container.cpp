@@ -1,5 +1,7 @@
 // MATLAB MAT files (v4, v5, v5 compressed, v7.3) through libmatio. Matio's own failures are
 // caught by its log hook and translated into the house's messages ("FILE:VAR: ...").
+// Long file: matio's every call and its failure translation in one place, so no matio error
+// reaches the user in matio's words.
 #include <fmt/format.h>
 #include <matio.h>
 

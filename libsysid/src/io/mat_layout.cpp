@@ -9,6 +9,8 @@
 // data element's byte count), so it is read here, independently of matio: every variable's
 // stored element count must equal the product of its dims. Zero-filling matio's buffer would
 // hide the corruption, not fix it.
+// Long file: the MAT layout walk of each version (v5 elements, v4 headers, v7.3 through HDF5)
+// beside the one entry point that tells them apart; read together when a fuzzer finds a file.
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <zlib.h>

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,69 @@ std::string Pct(double v) { return std::isnan(v) ? std::string("-") : fmt::forma
 std::string Cell(std::string s) {
   for (size_t i = 0; (i = s.find('|', i)) != std::string::npos; i += 2) s.replace(i, 1, "\\|");
   return s;
+}
+
+// Section 1: the dominance table of `sysid hysteresis dominance` per recording.
+std::string DominanceSection(const PipelineResult& r) {
+  std::string md;
+  md += "\n## 1. Which variable carries the input (`sysid hysteresis dominance`)\n\n";
+  md += "A linear inverse model u ≈ c + θ_x x + θ_v v + θ_a a + Σ θ_i F_ri[x] on each "
+        "recording's fitted part, the variables ranked by the RMS of their terms:\n\n";
+  std::vector<std::vector<std::string>> drows;
+  for (const auto& d : r.stack_dominance) {
+    std::string terms;
+    for (const auto& t : d.ranking) terms += (terms.empty() ? "" : ", ") + t.name + " " + G(t.rms, 3);
+    const bool clear = d.margin >= kClearDominanceMargin;
+    drows.push_back({fs::path(d.source).filename().string(),
+                     clear ? "**" + d.dominant + "**" : "none clear (" + d.dominant + " leads)",
+                     G(d.margin, 3), terms, G(d.r2, 3)});
+  }
+  md += MarkdownTable({"recording", "dominant", "margin (top / second)", "term RMS [V]", "R²"},
+                      drows);
+  md += fmt::format("\nA variable is called dominant at a margin of {:g} or more.\n",
+                    kClearDominanceMargin);
+
+  return md;
+}
+
+// Section 2: the models' forward and inverse scores (models.csv beside it) and their files.
+std::string ModelsSection(const PipelineResult& r,
+                          const std::function<std::string(const std::string&)>& path) {
+  std::string md;
+  md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
+  std::vector<std::vector<std::string>> rows;
+  std::string csv =
+      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse_std,"
+      "inverse_rms_v,inverse_nrmse_std,inverse_error,error\n";
+  auto quoted = [](std::string s) {
+    for (size_t i = 0; (i = s.find('"', i)) != std::string::npos; i += 2) s.insert(i, 1, '"');
+    return "\"" + s + "\"";
+  };
+  for (size_t i = 0; i < r.stack_models.size(); ++i) {
+    const auto& s = r.stack_models[i];
+    const std::string inverse =
+        s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
+    rows.push_back(
+        {std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
+         s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")", G(s.forward_rms_m),
+         Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
+    csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
+                       s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
+                       s.forward_rms_m, s.forward_nrmse_std, s.inverse_rms_v, s.inverse_nrmse_std,
+                       quoted(s.inverse_error), quoted(s.error));
+    if (s.model)
+      WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
+                          s.model->ToJson(2) + "\n");
+  }
+  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]",
+                       "forward nrmse_std", "inverse e_RMS [V]", "inverse nrmse_std"},
+                      rows);
+  md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
+        "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
+        "are wall times on this machine (the only numbers of this report that vary between runs).\n";
+  WriteFileAtomically(path("models.csv"), csv);
+
+  return md;
 }
 
 }  // namespace
@@ -65,55 +129,8 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
       "scored rows.\n",
       100 * kStackTrainFraction, 100 * (1 - kStackTrainFraction));
 
-  md += "\n## 1. Which variable carries the input (`sysid hysteresis dominance`)\n\n";
-  md += "A linear inverse model u ≈ c + θ_x x + θ_v v + θ_a a + Σ θ_i F_ri[x] on each "
-        "recording's fitted part, the variables ranked by the RMS of their terms:\n\n";
-  std::vector<std::vector<std::string>> drows;
-  for (const auto& d : r.stack_dominance) {
-    std::string terms;
-    for (const auto& t : d.ranking) terms += (terms.empty() ? "" : ", ") + t.name + " " + G(t.rms, 3);
-    const bool clear = d.margin >= kClearDominanceMargin;
-    drows.push_back({fs::path(d.source).filename().string(),
-                     clear ? "**" + d.dominant + "**" : "none clear (" + d.dominant + " leads)",
-                     G(d.margin, 3), terms, G(d.r2, 3)});
-  }
-  md += MarkdownTable({"recording", "dominant", "margin (top / second)", "term RMS [V]", "R²"},
-                      drows);
-  md += fmt::format("\nA variable is called dominant at a margin of {:g} or more.\n",
-                    kClearDominanceMargin);
-
-  md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
-  std::vector<std::vector<std::string>> rows;
-  std::string csv =
-      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse_std,"
-      "inverse_rms_v,inverse_nrmse_std,inverse_error,error\n";
-  auto quoted = [](std::string s) {
-    for (size_t i = 0; (i = s.find('"', i)) != std::string::npos; i += 2) s.insert(i, 1, '"');
-    return "\"" + s + "\"";
-  };
-  for (size_t i = 0; i < r.stack_models.size(); ++i) {
-    const auto& s = r.stack_models[i];
-    const std::string inverse =
-        s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
-    rows.push_back(
-        {std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
-         s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")", G(s.forward_rms_m),
-         Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
-    csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
-                       s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
-                       s.forward_rms_m, s.forward_nrmse_std, s.inverse_rms_v, s.inverse_nrmse_std,
-                       quoted(s.inverse_error), quoted(s.error));
-    if (s.model)
-      WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
-                          s.model->ToJson(2) + "\n");
-  }
-  md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]",
-                       "forward nrmse_std", "inverse e_RMS [V]", "inverse nrmse_std"},
-                      rows);
-  md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
-        "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
-        "are wall times on this machine (the only numbers of this report that vary between runs).\n";
-  WriteFileAtomically(path("models.csv"), csv);
+  md += DominanceSection(r);
+  md += ModelsSection(r, path);
 
   // The first recording's scored part, its first 600 samples (a few periods: the loops stay
   // readable): measured beside each model, forward and inverse.

@@ -14,6 +14,8 @@
 //
 // Simulator::Run is the segment loop; each of its steps is a member function below, in the
 // order a segment goes through them.
+// Long file: the segment loop, its stop times and its mode switches share the CVODE state;
+// split, each part would reach into the others' internals.
 #include <fmt/format.h>
 
 #include <algorithm>

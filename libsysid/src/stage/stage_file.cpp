@@ -114,6 +114,8 @@ StageModel FileModel(const internal::JsonNode& root, const StageParameters* pres
 
 }  // namespace
 
+// Long function: the stage file's schema, read section by section in the file's order, each
+// section's keys next to the fields they set.
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
   const internal::JsonDocument doc(json_text, source);
   const internal::JsonNode root = doc.Root();

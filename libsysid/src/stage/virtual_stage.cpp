@@ -36,6 +36,8 @@
 // Work per sample is bounded (integrator.max_steps_per_sample: CVODE steps plus switches), so a
 // stage that cannot be integrated ends with NumericalError naming the time and the state
 // instead of running on.
+// Long file: the hybrid plant's modes, roots and restarts share one CVODE state; split, each
+// part would reach into the others' internals.
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
