@@ -105,6 +105,8 @@ ExportVectors DefaultBoucWenVectors(const PiezoBoucWen& model) {
   return v;
 }
 
+// Long function: the exported C file, emitted top to bottom in the order it is read (header
+// comment, tables, state, init, step); split, the file's text would be scattered over helpers.
 ExportResult ExportBoucWenInverse(const PiezoBoucWen& model, const ExportVectors& v,
                                   const ExportOptions& o, const ExportProvenance& provenance) {
   o.Validate();

@@ -133,6 +133,8 @@ static @T@ @P@_tanh(@T@ x) {
                {"TWENTY", CLiteral(20.0, precision)}});
 }
 
+// Long function: one C routine's text, emitted top to bottom as the compiler will read it;
+// split, its lines would be scattered over helpers.
 std::string CheckProgram(const std::string& prefix, const std::vector<std::string>& inputs,
                          ExportPrecision precision) {
   std::string names, call;

@@ -23,6 +23,8 @@ using internal::Finish;
 using internal::Header;
 using internal::Range;
 
+// Long function: the exported C file, emitted top to bottom in the order it is read (header
+// comment, tables, state, init, step); split, the file's text would be scattered over helpers.
 ExportResult ExportFrictionInverse(const FrictionModel& model, double dt_s,
                                    const ExportVectors& v, const ExportOptions& o,
                                    const ExportProvenance& provenance) {

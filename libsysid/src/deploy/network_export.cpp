@@ -26,6 +26,8 @@ using internal::Range;
 
 namespace {
 
+// Long function: the exported C file, emitted top to bottom in the order it is read (header
+// comment, tables, state, init, step); split, the file's text would be scattered over helpers.
 // The tanh network's step; with `ops`, the operator-input network's inverse: the inverse side's
 // play operators on the clamped x_ref feed the same network code.
 ExportResult ExportNetworkCore(const NeuralNetwork& network, const ExportVectors& v,

@@ -94,6 +94,8 @@ double BisectionFloatBound(const PrandtlIshlinskiiModel& model, const PiInverseS
   return 2 * eta / (s_min * (1 - gain));
 }
 
+// Long function: the exported C file, emitted top to bottom in the order it is read (header
+// comment, tables, state, init, step); split, the file's text would be scattered over helpers.
 // gpi and rdpi: the stepper's bisection on the step's monotone output, in the stepper's
 // operations and order (bit-identical in double).
 ExportResult ExportPiBisection(const PrandtlIshlinskiiModel& model, double dt_s,
@@ -243,6 +245,8 @@ static @T@ @P@_output(const @P@_state* state, @T@ uk, @T@ rho) {
 
 }  // namespace
 
+// Long function: the exported C file, emitted top to bottom in the order it is read (header
+// comment, tables, state, init, step); split, the file's text would be scattered over helpers.
 ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
                              const ExportVectors& v, const ExportOptions& o,
                              const ExportProvenance& provenance) {
