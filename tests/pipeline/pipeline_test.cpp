@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
 #include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
@@ -281,9 +282,9 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
   CHECK(md.find(r.facts->Find("F8")->met ? "**met**" : "**not met**", f8) != std::string::npos);
   const std::string csv = sysid::test::ReadText(dir / "report/loop_fact.csv");
   const auto lines = std::count(csv.begin(), csv.end(), '\n');
-  CHECK(lines == 1 + static_cast<long>(r.facts->loop_triangle->levels.size() +
-                                       r.facts->loop_frequency_sweep.size() +
-                                       r.facts->loop_amplitude_sweep.size()));
+  CHECK(lines == 1 + static_cast<long>(r.facts->results->f8->triangle.levels.size() +
+                                       r.facts->results->f8->frequency_sweep.size() +
+                                       r.facts->results->f8->amplitude_sweep.size()));
 }
 
 TEST_CASE("the pipeline states the PI gains' loop margins, with or without a stage",
