@@ -467,7 +467,7 @@ class ReportWriter {
       const paper::MotionRipple m =
           paper::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
       // Below 10 kHz the loop rate is what rings it (docs/virtual_stage.md, "Loop rate": the
-      // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz (candidate B).
+      // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz.
       const char* cure = p.sample_rate_hz < 1e4
                              ? "a faster loop (rig.control_rate_hz, e.g. 10 kHz) quiets it"
                              : "at this rate the driver's envelope lag sets that margin "

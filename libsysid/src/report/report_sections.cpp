@@ -133,8 +133,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
       "\nF7's contrast (typical test ≥ 2 × typical training and dominant test < typical test): "
       "**{}** (typical test / training {:.3g}).\n",
       contrast ? "yes, as in the paper" : "no", m.typical_test / m.typical_train);
-  // Issue #28 asks the report to say so when the stage's physics gives no contrast, and where
-  // the search for a drive that would is recorded.
+  // When the stage's physics gives no contrast the report says so, and where the search for a
+  // drive that would is recorded.
   if (!contrast)
     s.markdown +=
         "\nThe paper's headline (the typical network overfits, the dominant one generalises) "
