@@ -176,7 +176,8 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
   }
   const double width = area / (hi_u[0] - lo_u[0] + hi_u[1] - lo_u[1]);
   CHECK(r.results->f8->frequency_sweep[at].mean_width_mps == Approx(width).epsilon(0.02));
-  CHECK(Value(f, "sine 1.6 V 1 Hz mean_width_mps") == r.results->f8->frequency_sweep[at].mean_width_mps);
+  CHECK(Value(f, "sine 1.6 V 1 Hz mean_width_mps") ==
+        r.results->f8->frequency_sweep[at].mean_width_mps);
   // The verdict is the four sub-verdicts' conjunction, each from its own numbers.
   std::vector<double> by_f, by_a;
   for (const auto& s : r.results->f8->frequency_sweep) by_f.push_back(s.mean_width_mps);
@@ -195,8 +196,7 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
 TEST_CASE("F8 holds on the default stage, fails (a) on velocity-source and a quasi-static one",
           "[stage][facts][loop]") {
   const sysid::StageFacts def = sysid::RunStageFacts(StageParameters::Default(), F8Only());
-  const sysid::StageFacts vs =
-      sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
+  const sysid::StageFacts vs = sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
   const sysid::StageFacts qs = sysid::RunStageFacts(QuasiStatic(), F8Only());
   const sysid::StageFact& h = def.facts.front();
   const sysid::StageFact& d = vs.facts.front();

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "simulate/reference_integrator.hpp"
 #include "paper/facts_results.hpp"
 #include "paper/measures.hpp"
 #include "paper/paper_numbers.hpp"
+#include "simulate/reference_integrator.hpp"
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
@@ -69,7 +69,8 @@ TEST_CASE("fact criteria on synthetic numbers", "[stage][facts]") {
   const double pa = sysid::paper::TrackingMaxErrorM(0.5, sysid::FeedforwardScheme::kAnalytic);
   const double pnn = sysid::paper::TrackingMaxErrorM(0.5, sysid::FeedforwardScheme::kNetwork);
   CHECK(pn == Approx(0.10651e-3));
-  CHECK(sysid::paper::TrackingMaxErrorM(1.0, sysid::FeedforwardScheme::kNetwork) == Approx(0.07292e-3));
+  CHECK(sysid::paper::TrackingMaxErrorM(1.0, sysid::FeedforwardScheme::kNetwork) ==
+        Approx(0.07292e-3));
   CHECK(std::isnan(sysid::paper::TrackingMaxErrorM(2.0, sysid::FeedforwardScheme::kNetwork)));
   CHECK(facts::TrackingOrderMet(pn, pa, pnn, pn, pa, pnn));
   CHECK(facts::TrackingOrderMet(3 * pn, 2.9 * pa, pnn / 3, pn, pa, pnn));
@@ -180,7 +181,8 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
     const double rms = reference_rms(0.5e-3 * i);
     if (rms < best) best = rms, best_tau = 0.5e-3 * i;
   }
-  INFO("reference tau-hat " << best_tau * 1e3 << " ms, facts " << r.results->delay->tuning.tau_s * 1e3 << " ms");
+  INFO("reference tau-hat " << best_tau * 1e3 << " ms, facts "
+                            << r.results->delay->tuning.tau_s * 1e3 << " ms");
   CHECK(std::abs(best_tau - r.results->delay->tuning.tau_s) <= 0.5e-3);
   CHECK(r.results->delay->rms_at_zero_mps == Approx(at_zero).epsilon(0.01));
   CHECK(r.Find("F3")->met == facts::DelayMet(best_tau, best, at_zero));
@@ -196,9 +198,9 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   bool no_limit_cycle = true;
   for (const auto& row : r.results->tracking) {
     CHECK(row.scheme == sysid::FeedforwardScheme::kNone);
-    no_limit_cycle =
-        no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m && row.saturated_samples == 0 &&
-        row.motion_ripple_m <= o.motion_ripple_tolerance_m;
+    no_limit_cycle = no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m &&
+                     row.saturated_samples == 0 &&
+                     row.motion_ripple_m <= o.motion_ripple_tolerance_m;
     CHECK((row.saturated_samples > 0) == (row.max_abs_u_v >= o.pi.u_max_v - 1e-12));
   }
   CHECK(r.Find("F4")->met == no_limit_cycle);
@@ -259,18 +261,20 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
       FAIL("no row");
       return 0.0;
     };
-    order = order && facts::TrackingOrderMet(err("none"), err("analytic"), err("nn"),
-                                             sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNone),
-                                             sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kAnalytic),
-                                             sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNetwork));
+    order = order && facts::TrackingOrderMet(
+                         err("none"), err("analytic"), err("nn"),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNone),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kAnalytic),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNetwork));
   }
   CHECK(f5->met == order);
   const auto* f7 = r.Find("F7");
   CHECK_FALSE(f7->required);
   CHECK(r.results->f7->dominant.train_v2 > 0);
   CHECK(r.results->f7->typical.test_v2 > 0);
-  CHECK(f7->met ==
-        facts::NetworkContrast(r.results->f7->typical.train_v2, r.results->f7->typical.test_v2, r.results->f7->dominant.test_v2));
+  CHECK(f7->met == facts::NetworkContrast(r.results->f7->typical.train_v2,
+                                          r.results->f7->typical.test_v2,
+                                          r.results->f7->dominant.test_v2));
   CHECK(r.RequiredMet() == f5->met);  // F7 does not count
   // F7's physical context: coverage of (v, a) and the acceleration's differentiation noise.
   const double outside = Value(*f7, "test_rows_outside_training_box_fraction");
@@ -285,8 +289,10 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK(rest > 0.0);  // the P-controlled stage sticks at every reversal
   CHECK(rest < 1.0);
   CHECK(Value(*f7, "training_u_variance_at_rest_v2") > 0);
-  CHECK((1 - rest) * Value(*f7, "dominant_train_moving_mse_v2") <= r.results->f7->dominant.train_v2 * (1 + 1e-12));
-  CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <= r.results->f7->typical.train_v2 * (1 + 1e-12));
+  CHECK((1 - rest) * Value(*f7, "dominant_train_moving_mse_v2") <=
+        r.results->f7->dominant.train_v2 * (1 + 1e-12));
+  CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <=
+        r.results->f7->typical.train_v2 * (1 + 1e-12));
   CHECK(Value(*f7, "dominant_test_moving_mse_v2") >= 0);
   CHECK(Value(*f7, "typical_test_moving_mse_v2") >= 0);
   // The irreducible MSEs (the k-NN floor, tested against closed forms in tests/nn): no network
@@ -297,8 +303,10 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
     CHECK(floor_v > 0);
     CHECK(floor_va > 0);
     const bool train = std::string(set) == "train";
-    CHECK((train ? r.results->f7->dominant.train_v2 : r.results->f7->dominant.test_v2) >= 0.9 * floor_v);
-    CHECK((train ? r.results->f7->typical.train_v2 : r.results->f7->typical.test_v2) >= 0.9 * floor_va);
+    CHECK((train ? r.results->f7->dominant.train_v2 : r.results->f7->dominant.test_v2) >=
+          0.9 * floor_v);
+    CHECK((train ? r.results->f7->typical.train_v2 : r.results->f7->typical.test_v2) >=
+          0.9 * floor_va);
   }
 }
 

@@ -52,14 +52,15 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
   REQUIRE(r.results->f5);
   REQUIRE(r.results->f7);
   const sysid::paper::NetworksFact& f7 = *r.results->f7;
-  const sysid::FrictionModel model = r.results->delay->tuning.model;  // pulse LS + tuned tau (F2, F3 checked)
+  const sysid::FrictionModel model =
+      r.results->delay->tuning.model;  // pulse LS + tuned tau (F2, F3 checked)
 
   // The networks, trained again from the same data and options (training is deterministic per
   // seed: nn training tests), then scored row by row.
   sysid::TrackingProcedure tp;
   tp.kp_v_per_m = 3000;
-  const sysid::Recording training = sysid::RunTrackingSet(
-      stage, sysid::TrainingGrid(), tp, sysid::DeriveSeed(o.seed, 1), "training");
+  const sysid::Recording training = sysid::RunTrackingSet(stage, sysid::TrainingGrid(), tp,
+                                                          sysid::DeriveSeed(o.seed, 1), "training");
   const sysid::Recording test =
       sysid::RunTrackingSet(stage, sysid::TestGrid(), tp, sysid::DeriveSeed(o.seed, 2), "test");
   const auto train_v = sysid::MakeNeuralDataset(training, {"v"}, "u");
@@ -98,11 +99,11 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
     p.cycles = o.track_cycles;
     p.sample_rate_hz = stage.sample_rate_hz;
     const sysid::PositionReference ref = sysid::MakeSmoothProfile(p);
-    const auto runs = sysid::TrackSchemes(
-        stage, o.seed, ref, o.pi,
-        {sysid::FeedforwardScheme::kNone, sysid::FeedforwardScheme::kAnalytic,
-         sysid::FeedforwardScheme::kNetwork},
-        {&model, &dominant});
+    const auto runs =
+        sysid::TrackSchemes(stage, o.seed, ref, o.pi,
+                            {sysid::FeedforwardScheme::kNone, sysid::FeedforwardScheme::kAnalytic,
+                             sysid::FeedforwardScheme::kNetwork},
+                            {&model, &dominant});
     REQUIRE(runs.size() == 3);
     double max_e[3];
     for (int s = 0; s < 3; ++s) {

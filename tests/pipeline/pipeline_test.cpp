@@ -1,13 +1,11 @@
 // The end-to-end pipeline and the tracking command: report presence and content, feedforward
 // paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
 #include "sysid/pipeline.hpp"
-#include "sysid/validate.hpp"
-#include "sysid/report.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -21,7 +19,9 @@
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/report.hpp"
 #include "sysid/stage.hpp"
+#include "sysid/validate.hpp"
 
 using sysid::test::RunCli;
 using sysid::test::SourcePath;

@@ -97,11 +97,11 @@ void Experiments::Track(bool feedforward) {
   for (double f : o_.track_frequencies_hz) {
     const SmoothProfileOptions p = Profile(f);
     const PositionReference ref = MakeSmoothProfile(p);
-    const auto runs = TrackSchemes(
-        stage_, o_.seed, ref, o_.pi, schemes, {&model, network},
-        [&](FeedforwardScheme s, std::size_t) {
-          Step(fmt::format("PI tracking at {} Hz, feedforward {}", f, ToString(s)));
-        });
+    const auto runs =
+        TrackSchemes(stage_, o_.seed, ref, o_.pi, schemes, {&model, network},
+                     [&](FeedforwardScheme s, std::size_t) {
+                       Step(fmt::format("PI tracking at {} Hz, feedforward {}", f, ToString(s)));
+                     });
     for (const auto& run : runs) {
       const TrackingResult& t = run.result;
       TrackingRun row;
@@ -145,8 +145,8 @@ std::vector<std::vector<double>> Experiments::NetworkSpread() {
     const NeuralNetwork net =
         TrainNeuralNetwork(Networks().train_v, nullptr, DominantTraining(k)).network;
     for (std::size_t i = 0; i < refs.size(); ++i) {
-      const auto runs = TrackSchemes(stage_, o_.seed, refs[i], o_.pi,
-                                     {FeedforwardScheme::kNetwork}, {&model, &net});
+      const auto runs = TrackSchemes(stage_, o_.seed, refs[i], o_.pi, {FeedforwardScheme::kNetwork},
+                                     {&model, &net});
       errors[i].push_back(runs.front().result.max_error_m);
     }
   }

@@ -31,8 +31,8 @@ struct PulseExperiment {
 };
 
 struct DelayExperiment {
-  DelayTuningResult tuning;     ///< its curve holds tau = 0
-  double rms_at_zero_mps = 0;   ///< [m/s] RMS dv at tau = 0
+  DelayTuningResult tuning;    ///< its curve holds tau = 0
+  double rms_at_zero_mps = 0;  ///< [m/s] RMS dv at tau = 0
 };
 
 /// Where the networks' training and test sets lie in (v, a) and how noisy a is: F7's context.
@@ -42,8 +42,8 @@ struct SetCoverage {
   double test_rows_outside_training_box_fraction = 0;  ///< outside the training (v, a) box
   /// [m/s^2] RMS of a minus its centred 21-sample moving average (differentiation noise).
   double training_a_noise_rms_mps2 = 0;
-  double training_a_rms_mps2 = 0;           ///< [m/s^2]
-  double training_rest_fraction = 0;        ///< rows with |v| < kRestSpeedMps
+  double training_a_rms_mps2 = 0;             ///< [m/s^2]
+  double training_rest_fraction = 0;          ///< rows with |v| < kRestSpeedMps
   double training_u_variance_at_rest_v2 = 0;  ///< [V^2] spread of u over those rows
 };
 
@@ -53,8 +53,8 @@ struct SetMse {
 };
 
 struct NetworkExperiment {
-  NeuralNetwork dominant;  ///< v -> u, FactsOptions::training
-  NeuralDataset train_v;   ///< its training set
+  NeuralNetwork dominant;                    ///< v -> u, FactsOptions::training
+  NeuralDataset train_v;                     ///< its training set
   SetMse dominant_mse, dominant_moving_mse;  ///< all rows; rows with |v| >= kRestSpeedMps
   SetCoverage coverage;
   bool typical_trained = false;  ///< the rest is set only then (F7 asked)
@@ -81,14 +81,14 @@ struct TrackingRun {
 
 /// One open-loop sinusoid of F8: u = amplitude sin(2 pi f t - pi/2) + offset, its second period.
 struct LoopSine {
-  double amplitude_v = 0;   ///< [V]
-  double frequency_hz = 0;  ///< [Hz]
-  VoltageLoop loop;         ///< areas, spans and starts of the analysed period (no traces)
+  double amplitude_v = 0;     ///< [V]
+  double frequency_hz = 0;    ///< [Hz]
+  VoltageLoop loop;           ///< areas, spans and starts of the analysed period (no traces)
   double mean_width_mps = 0;  ///< [m/s] LoopMeanWidth(loop); NaN when the stage never moves
 };
 
 struct LoopExperiment {
-  VoltageLoop triangle;                  ///< levels: FactsOptions::loop_levels_v
+  VoltageLoop triangle;                   ///< levels: FactsOptions::loop_levels_v
   std::vector<LoopSine> frequency_sweep;  ///< in frequency order
   std::vector<LoopSine> amplitude_sweep;  ///< in amplitude order
 };

@@ -7,7 +7,9 @@
 namespace sysid::paper {
 
 bool PulseModelMet(const FrictionModel& s, const FrictionModel& p) {
-  auto within = [](double a, double b) { return std::abs(a - b) <= kPulseModelTolerance * std::abs(b); };
+  auto within = [](double a, double b) {
+    return std::abs(a - b) <= kPulseModelTolerance * std::abs(b);
+  };
   return within(s.a1p, p.a1p) && within(s.a1n, p.a1n) && within(s.a2p, p.a2p) &&
          within(s.a2n, p.a2n);
 }

@@ -15,20 +15,20 @@ struct TrackingFact {
   /// Max |e| [m] of each scheme, the stage's and the paper's (NaN at a frequency the paper did
   /// not measure).
   struct Row {
-    double frequency_hz = 0;  ///< [Hz]
-    double none_m = 0, analytic_m = 0, nn_m = 0;                     ///< [m]
-    double paper_none_m = 0, paper_analytic_m = 0, paper_nn_m = 0;   ///< [m]
+    double frequency_hz = 0;                                        ///< [Hz]
+    double none_m = 0, analytic_m = 0, nn_m = 0;                    ///< [m]
+    double paper_none_m = 0, paper_analytic_m = 0, paper_nn_m = 0;  ///< [m]
   };
   /// The NN row with dominant networks from several initial weights
   /// (FactsOptions::network_initializations > 1).
   struct Spread {
-    double frequency_hz = 0;            ///< [Hz]
+    double frequency_hz = 0;             ///< [Hz]
     std::vector<double> nn_max_error_m;  ///< [m] per network, the first the NN row's
-    long beats_analytic = 0;            ///< networks with max |e| below the analytic's
+    long beats_analytic = 0;             ///< networks with max |e| below the analytic's
   };
-  std::vector<Row> rows;  ///< in FactsOptions::track_frequencies_hz order
+  std::vector<Row> rows;       ///< in FactsOptions::track_frequencies_hz order
   std::vector<Spread> spread;  ///< empty with one network
-  bool met = false;  ///< the first network's rows: the paper reports one network
+  bool met = false;            ///< the first network's rows: the paper reports one network
 };
 
 /// Within kTrackingFactor of the paper's value, both ways.

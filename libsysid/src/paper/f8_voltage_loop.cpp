@@ -8,9 +8,8 @@
 namespace sysid::paper {
 
 bool LoopWidthMet(const std::vector<double>& relative_widths, double min_fraction) {
-  return !relative_widths.empty() &&
-         std::all_of(relative_widths.begin(), relative_widths.end(),
-                     [&](double w) { return w >= min_fraction; });
+  return !relative_widths.empty() && std::all_of(relative_widths.begin(), relative_widths.end(),
+                                                 [&](double w) { return w >= min_fraction; });
 }
 
 bool LoopRateMet(const std::vector<double>& widths, double min_ratio) {

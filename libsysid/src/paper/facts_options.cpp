@@ -66,7 +66,8 @@ void FactsOptions::Validate() const {
   if (!(motion_ripple_tolerance_m > 0))
     fail(fmt::format("motion_ripple_tolerance_m = {:g}", motion_ripple_tolerance_m), "> 0");
   if (!(motion_ripple_window_s > 0) || !(motion_ripple_window_s <= 10))
-    fail(fmt::format("motion_ripple_window_s = {:g}", motion_ripple_window_s), "0 < window <= 10 s");
+    fail(fmt::format("motion_ripple_window_s = {:g}", motion_ripple_window_s),
+         "0 < window <= 10 s");
   if (training.hidden < 1 || typical_hidden < 1) fail("hidden sizes", ">= 1");
   if (typical_max_epochs < 0) fail("typical_max_epochs", ">= 0");
   if (typical_stride < 1) fail("typical_stride", ">= 1");
@@ -86,8 +87,8 @@ void FactsOptions::Validate() const {
     fail(fmt::format("loop_period_s = {:g}", loop_period_s), "0 < period <= 600 s");
   if (!(loop_peak_forward_v > 0 && loop_peak_forward_v <= 10) ||
       !(loop_peak_backward_v > 0 && loop_peak_backward_v <= 10))
-    fail(fmt::format("loop_peak_forward_v = {:g}, loop_peak_backward_v = {:g}",
-                     loop_peak_forward_v, loop_peak_backward_v),
+    fail(fmt::format("loop_peak_forward_v = {:g}, loop_peak_backward_v = {:g}", loop_peak_forward_v,
+                     loop_peak_backward_v),
          "each in (0, 10] V");
   if (loop_levels_v.empty() || loop_levels_v.size() > 20)
     fail(fmt::format("loop_levels_v has {} values", loop_levels_v.size()), "1 to 20 levels");

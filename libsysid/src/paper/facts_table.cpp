@@ -26,12 +26,13 @@ StageFact Describe(const PlateausFact& x) {
   f.fact = "pulse plateaus: steady velocity of the paper's ten 0.4 s pulses";
   f.paper = "ten plateaus, 33.93 to 85.19 mm/s (pulse table)";
   f.tolerance = fmt::format("each within {:g} % of the paper's", 100 * kPlateauTolerance);
-  for (const auto& row : x.rows) f.values.emplace_back(fmt::format("v_mps at {:+g} V", row.u_v), row.v_mps);
+  for (const auto& row : x.rows)
+    f.values.emplace_back(fmt::format("v_mps at {:+g} V", row.u_v), row.v_mps);
   f.met = x.met;
   const double worst = x.worst_relative_deviation;
-  f.virtual_value = fmt::format("worst {:+g} V: {} vs {} mm/s ({})", x.worst.u_v,
-                                Mm(x.worst.v_mps), Mm(x.worst.paper_v_mps),
-                                std::isfinite(worst) ? Pct(worst) : "no plateau");
+  f.virtual_value =
+      fmt::format("worst {:+g} V: {} vs {} mm/s ({})", x.worst.u_v, Mm(x.worst.v_mps),
+                  Mm(x.worst.paper_v_mps), std::isfinite(worst) ? Pct(worst) : "no plateau");
   f.values.emplace_back("worst_relative_deviation", worst);
   if (x.rows.size() != x.paper_pulses)
     f.note = fmt::format("{} usable pulses, the paper has {}", x.rows.size(), x.paper_pulses);
@@ -97,10 +98,11 @@ StageFact Describe(const PaperGainsFact& x, const FactsOptions& o) {
   for (const auto& row : x.rows) {
     const double hz = row.frequency_hz;
     f.virtual_value += Sep(f.virtual_value, "; ") +
-                       fmt::format("{:g} Hz: ripple {:.3g} um, in motion {:.3g} um, {} clipped "
-                                   "samples, max |u| {:.3g} V",
-                                   hz, 1e6 * row.ripple_m, 1e6 * row.motion_ripple_m,
-                                   row.clipped_samples, row.max_abs_u_v);
+                       fmt::format(
+                           "{:g} Hz: ripple {:.3g} um, in motion {:.3g} um, {} clipped "
+                           "samples, max |u| {:.3g} V",
+                           hz, 1e6 * row.ripple_m, 1e6 * row.motion_ripple_m, row.clipped_samples,
+                           row.max_abs_u_v);
     f.values.emplace_back(fmt::format("ripple_m at {:g} Hz", hz), row.ripple_m);
     f.values.emplace_back(fmt::format("motion_ripple_m at {:g} Hz", hz), row.motion_ripple_m);
     f.values.emplace_back(fmt::format("ringing_hz at {:g} Hz", hz), row.ringing_hz);
@@ -123,9 +125,10 @@ std::vector<std::string> TrackingShortfalls(const TrackingFact::Row& r) {
     why.push_back(fmt::format("analytic {} >= PI {}", Mm(r.analytic_m), Mm(r.none_m)));
   if (!(r.analytic_m > r.nn_m))
     why.push_back(fmt::format("NN {} >= analytic {}", Mm(r.nn_m), Mm(r.analytic_m)));
-  for (const auto& [name, s, p] : {std::tuple<const char*, double, double>{"PI", r.none_m, r.paper_none_m},
-                                   {"analytic", r.analytic_m, r.paper_analytic_m},
-                                   {"NN", r.nn_m, r.paper_nn_m}})
+  for (const auto& [name, s, p] :
+       {std::tuple<const char*, double, double>{"PI", r.none_m, r.paper_none_m},
+        {"analytic", r.analytic_m, r.paper_analytic_m},
+        {"NN", r.nn_m, r.paper_nn_m}})
     if (!WithinTrackingFactor(s, p))
       why.push_back(fmt::format("{} {} mm is {:.3g} x the paper's", name, Mm(s), s / p));
   return why;
@@ -135,9 +138,9 @@ StageFact Describe(const TrackingFact& x) {
   StageFact f;
   f.id = "F5";
   f.fact = "tracking max error [mm]: PI / PI + analytic / PI + NN";
-  f.tolerance = fmt::format(
-      "PI > analytic > NN at each frequency, each within a factor {:g} of the paper's",
-      kTrackingFactor);
+  f.tolerance =
+      fmt::format("PI > analytic > NN at each frequency, each within a factor {:g} of the paper's",
+                  kTrackingFactor);
   f.met = x.met;
   for (const auto& r : x.rows) {
     const double hz = r.frequency_hz;
@@ -198,8 +201,9 @@ StageFact Describe(const NetworksFact& x) {
   f.required = false;
   f.fact = fmt::format("typical (v, a) {}-unit vs dominant v {}-unit network MSE [V^2]",
                        x.typical_hidden, x.dominant_hidden);
-  f.paper = fmt::format("typical: fits training, test very poor; dominant: train {:.3g}, test {:.2g}",
-                        kDominantTrainMseV2, kDominantTestMseV2);
+  f.paper =
+      fmt::format("typical: fits training, test very poor; dominant: train {:.3g}, test {:.2g}",
+                  kDominantTrainMseV2, kDominantTestMseV2);
   f.virtual_value =
       fmt::format("typical: train {:.3g}, test {:.3g}; dominant: train {:.3g}, test {:.3g}",
                   x.typical.train_v2, x.typical.test_v2, x.dominant.train_v2, x.dominant.test_v2);
@@ -207,28 +211,29 @@ StageFact Describe(const NetworksFact& x) {
       "reported; contrast: typical test >= 2 x typical train and dominant test < typical test";
   f.met = x.contrast;
   const SetCoverage& c = x.coverage;
-  f.values = {{"typical_train_mse_v2", x.typical.train_v2},
-              {"typical_test_mse_v2", x.typical.test_v2},
-              {"dominant_train_mse_v2", x.dominant.train_v2},
-              {"dominant_test_mse_v2", x.dominant.test_v2},
-              {"training_max_abs_v_mps", c.training_max_abs_v_mps},
-              {"training_max_abs_a_mps2", c.training_max_abs_a_mps2},
-              {"test_max_abs_v_mps", c.test_max_abs_v_mps},
-              {"test_max_abs_a_mps2", c.test_max_abs_a_mps2},
-              {"test_rows_outside_training_box_fraction", c.test_rows_outside_training_box_fraction},
-              {"training_a_noise_rms_mps2", c.training_a_noise_rms_mps2},
-              {"training_a_rms_mps2", c.training_a_rms_mps2},
-              {"training_rest_fraction", c.training_rest_fraction},
-              {"training_u_variance_at_rest_v2", c.training_u_variance_at_rest_v2},
-              {"dominant_train_moving_mse_v2", x.dominant_moving.train_v2},
-              {"dominant_test_moving_mse_v2", x.dominant_moving.test_v2},
-              {"typical_train_moving_mse_v2", x.typical_moving.train_v2},
-              {"typical_test_moving_mse_v2", x.typical_moving.test_v2},
-              {"train_irreducible_mse_v_v2", x.irreducible_v.train_v2},
-              {"test_irreducible_mse_v_v2", x.irreducible_v.test_v2},
-              {"train_irreducible_mse_va_v2", x.irreducible_va.train_v2},
-              {"test_irreducible_mse_va_v2", x.irreducible_va.test_v2},
-              {"collection_kp_v_per_m", x.collection_kp_v_per_m}};
+  f.values = {
+      {"typical_train_mse_v2", x.typical.train_v2},
+      {"typical_test_mse_v2", x.typical.test_v2},
+      {"dominant_train_mse_v2", x.dominant.train_v2},
+      {"dominant_test_mse_v2", x.dominant.test_v2},
+      {"training_max_abs_v_mps", c.training_max_abs_v_mps},
+      {"training_max_abs_a_mps2", c.training_max_abs_a_mps2},
+      {"test_max_abs_v_mps", c.test_max_abs_v_mps},
+      {"test_max_abs_a_mps2", c.test_max_abs_a_mps2},
+      {"test_rows_outside_training_box_fraction", c.test_rows_outside_training_box_fraction},
+      {"training_a_noise_rms_mps2", c.training_a_noise_rms_mps2},
+      {"training_a_rms_mps2", c.training_a_rms_mps2},
+      {"training_rest_fraction", c.training_rest_fraction},
+      {"training_u_variance_at_rest_v2", c.training_u_variance_at_rest_v2},
+      {"dominant_train_moving_mse_v2", x.dominant_moving.train_v2},
+      {"dominant_test_moving_mse_v2", x.dominant_moving.test_v2},
+      {"typical_train_moving_mse_v2", x.typical_moving.train_v2},
+      {"typical_test_moving_mse_v2", x.typical_moving.test_v2},
+      {"train_irreducible_mse_v_v2", x.irreducible_v.train_v2},
+      {"test_irreducible_mse_v_v2", x.irreducible_v.test_v2},
+      {"train_irreducible_mse_va_v2", x.irreducible_va.train_v2},
+      {"test_irreducible_mse_va_v2", x.irreducible_va.test_v2},
+      {"collection_kp_v_per_m", x.collection_kp_v_per_m}};
   // The share of the dominant network's training MSE on the rows at rest.
   const double rest_share =
       1 - (1 - c.training_rest_fraction) * x.dominant_moving.train_v2 / x.dominant.train_v2;
@@ -269,8 +274,9 @@ std::string SweepText(const std::vector<LoopSine>& runs, bool by_frequency, Stag
 StageFact Describe(const VoltageLoopFact& x, const FactsOptions& o) {
   StageFact f;
   f.id = "F8";
-  f.fact = "voltage-velocity loop, open loop: (a) a loop on the triangle, (b) asymmetric, "
-           "(c) wider at a higher rate, (d) changes with amplitude";
+  f.fact =
+      "voltage-velocity loop, open loop: (a) a loop on the triangle, (b) asymmetric, "
+      "(c) wider at a higher rate, (d) changes with amplitude";
   f.paper = fmt::format(
       "(a) a hysteresis loop on the {:g} s triangle (Fig. 3), (b) direction-dependent (Fig. 3; "
       "pulse LS a2n / a2p = {:.3g}), (c), (d) shapes depend on the voltage's rate and "
@@ -321,8 +327,9 @@ StageFact Describe(const VoltageLoopFact& x, const FactsOptions& o) {
   if (!x.d_met) failed.push_back("(d) the loop's mean width hardly changes with the amplitude");
   for (const auto& w : failed) f.note += (f.note.empty() ? "not met: " : "; ") + w;
   if (f.note.empty())
-    f.note = "width = v (|u| falling) - v (|u| rising) at a level; mean width = enclosed area "
-             "/ voltage span of the motion (`sysid loop`)";
+    f.note =
+        "width = v (|u| falling) - v (|u| rising) at a level; mean width = enclosed area "
+        "/ voltage span of the motion (`sysid loop`)";
   return f;
 }
 

@@ -78,7 +78,8 @@ MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptio
       continue;  // its residual stays 0 in the periodogram below
     }
     const long double mean = (prefix[static_cast<std::size_t>(k + half + 1)] -
-                              prefix[static_cast<std::size_t>(k - half)]) / width;
+                              prefix[static_cast<std::size_t>(k - half)]) /
+                             width;
     const double r = e_m[k] - static_cast<double>(mean);
     residual[static_cast<std::size_t>(k - first)] = r;
     sum2 += r * r;
@@ -90,7 +91,8 @@ MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptio
   // The ringing frequency: the largest bin of the Hann-windowed periodogram (DC left out).
   const std::size_t m = residual.size();
   for (std::size_t k = 0; k < m; ++k)
-    residual[k] *= 0.5 - 0.5 * std::cos(2 * 3.14159265358979323846 * static_cast<double>(k) / static_cast<double>(m - 1));
+    residual[k] *= 0.5 - 0.5 * std::cos(2 * 3.14159265358979323846 * static_cast<double>(k) /
+                                        static_cast<double>(m - 1));
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> spectrum;
   fft.fwd(spectrum, residual);

@@ -25,9 +25,9 @@ double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p
 /// than 4 samples). Without `ringing_frequency` the periodogram, most of the cost, is skipped
 /// and ringing_hz stays 0.
 struct MotionRipple {
-  double rms_m = 0;       ///< [m]
-  double ringing_hz = 0;  ///< [Hz]
-  long samples = 0;       ///< samples the RMS is over
+  double rms_m = 0;            ///< [m]
+  double ringing_hz = 0;       ///< [Hz]
+  long samples = 0;            ///< samples the RMS is over
   long breakaway_samples = 0;  ///< samples after cycle 1 left out as breakaway transients
 };
 MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile,

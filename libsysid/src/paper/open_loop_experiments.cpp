@@ -39,8 +39,7 @@ const DominanceResult& Experiments::Dominance() {
   // stride-th), as the paper's differentiation of its logged encoder positions.
   const double rate = stage_.sample_rate_hz, record_rate = stage_.RecordRateHz();
   const long stride = stage_.RecordStride();
-  const auto n =
-      static_cast<Eigen::Index>(std::llround(o_.dominance_duration_s * record_rate)) + 1;
+  const auto n = static_cast<Eigen::Index>(std::llround(o_.dominance_duration_s * record_rate)) + 1;
   // One lead-in period first: the input starts at 1.5 sin(-pi/2) - 0.3 = -1.8 V, a step from
   // rest whose start-up transient (x'' ~ p v_f) is not the periodic response the paper
   // plotted; the analysed period is the second one.
@@ -55,8 +54,8 @@ const DominanceResult& Experiments::Dominance() {
   DominanceOptions dopt;
   dopt.min_speed_mps = o_.dominance_min_speed_mps;
   dopt.threads = 1;
-  dominance_ = AnalyzeDominance(model, RecordedWindow(stage_, run, lead, n, "dominance test"),
-                                dopt);
+  dominance_ =
+      AnalyzeDominance(model, RecordedWindow(stage_, run, lead, n, "dominance test"), dopt);
   return *dominance_;
 }
 
@@ -72,13 +71,12 @@ LoopSine Experiments::SineLoop(double amplitude_v, double frequency_hz,
   Eigen::VectorXd u(2 * period * stride + 1);
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     const double t = static_cast<double>(k) / rate;
-    u[k] = amplitude_v * std::sin(4 * kHalfPi * frequency_hz * t - kHalfPi) +
-           o_.loop_sine_offset_v;
+    u[k] = amplitude_v * std::sin(4 * kHalfPi * frequency_hz * t - kHalfPi) + o_.loop_sine_offset_v;
   }
   const StageRun run = RunOpenLoop(stage_, u, DeriveSeed(o_.seed, stream));
-  const Recording rec = RecordedWindow(
-      stage_, run, period, period + 1,
-      fmt::format("open-loop sinusoid {:g} V, {:g} Hz", amplitude_v, frequency_hz));
+  const Recording rec =
+      RecordedWindow(stage_, run, period, period + 1,
+                     fmt::format("open-loop sinusoid {:g} V, {:g} Hz", amplitude_v, frequency_hz));
   LoopSine out;
   out.amplitude_v = amplitude_v;
   out.frequency_hz = frequency_hz;
