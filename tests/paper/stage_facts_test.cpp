@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "paper/facts_results.hpp"
+#include "paper/facts_table.hpp"
 #include "paper/measures.hpp"
 #include "paper/paper_numbers.hpp"
 #include "simulate/reference_integrator.hpp"
@@ -566,4 +568,62 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
     CHECK(f4->note.find("rings in motion") != std::string::npos);
   }
   CHECK(Value(*f4, "motion_ripple_m at 0.5 Hz") == r.results->tracking[0].motion_ripple_m);
+}
+
+TEST_CASE("the facts share one run of each experiment", "[stage][facts]") {
+  // F1, F2 and F6 all read the pulse test (F6 its model); it is simulated once.
+  std::vector<std::string> steps;
+  const sysid::StageFacts r =
+      sysid::RunStageFacts(StageParameters::Default(), Only({"F6", "F2", "F1"}),
+                           [&](const std::string& step) { steps.push_back(step); });
+  CHECK(std::count(steps.begin(), steps.end(), "pulse test and least squares") == 1);
+  CHECK(std::count(steps.begin(), steps.end(), "sinusoidal dominance test (open loop)") == 1);
+  CHECK(steps.size() == 2);
+  REQUIRE(r.results);
+  REQUIRE(r.results->f1);
+  REQUIRE(r.results->f2);
+  REQUIRE(r.results->f6);
+  REQUIRE(r.results->pulse);
+  CHECK_FALSE(r.results->f3);
+  CHECK_FALSE(r.results->delay);
+  // F1's rows are the pulse experiment's plateaus, F2's model its least squares.
+  const auto& plateaus = r.results->pulse->plateaus;
+  REQUIRE(r.results->f1->rows.size() == plateaus.size());
+  for (std::size_t i = 0; i < plateaus.size(); ++i) {
+    CHECK(r.results->f1->rows[i].u_v == plateaus[i].u_v);
+    CHECK(r.results->f1->rows[i].v_mps == plateaus[i].v_mps);
+  }
+  CHECK(r.results->f2->stage.a1p == r.results->pulse->identification.model.a1p);
+}
+
+TEST_CASE("the facts' text is made from the typed numbers", "[stage][facts]") {
+  // Hand-made results, no stage: the table's text and values follow the fields.
+  sysid::paper::FactsResults r;
+  sysid::paper::PlateausFact f1;
+  f1.paper_pulses = 10;
+  f1.rows = {{1.6, 0.05, 0.0505}, {-2.3, std::nan(""), -0.06}};
+  f1.worst_relative_deviation = std::numeric_limits<double>::infinity();
+  f1.worst = f1.rows[1];
+  r.f1 = f1;
+  sysid::paper::DelayFact f3;
+  f3.tau_s = 1e-3;
+  f3.rms_at_tau_mps = 2e-3;
+  f3.rms_at_zero_mps = 4e-3;
+  f3.rms_ratio = 0.5;
+  r.f3 = f3;
+  const FactsOptions options;
+  const auto rows = sysid::paper::FactsTable(r, options);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].id == "F1");
+  CHECK(rows[0].virtual_value == "worst -2.3 V: nan vs -60 mm/s (no plateau)");
+  CHECK(rows[0].note == "2 usable pulses, the paper has 10");
+  CHECK_FALSE(rows[0].met);
+  REQUIRE(rows[0].values.size() == 3);
+  CHECK(rows[0].values[0].first == "v_mps at +1.6 V");
+  CHECK(rows[0].values[0].second == 0.05);
+  CHECK(rows[1].id == "F3");
+  CHECK(rows[1].virtual_value == "tau = 1 ms; RMS dv 2 mm/s at tau, 4 at 0 (ratio 0.5)");
+  CHECK(rows[1].tolerance == "2.5 <= tau <= 4.5 ms and RMS(tau) <= 0.8 RMS(0)");
+  // Not met below the window: the note says why a late stage is fitted with no delay.
+  CHECK(rows[1].note.find("best fitted with no delay") != std::string::npos);
 }
