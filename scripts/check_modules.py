@@ -38,11 +38,11 @@ LAYERS = [
     ["validate"],
     ["stage", "stack", "deploy"],
     ["control"],
-    ["facts"],
+    ["paper"],
     ["pipeline"],
     ["report"],
 ]
-HEADER_MODULE = {"error": "core", "termination": "core", "stage_facts": "facts"}
+HEADER_MODULE = {"error": "core", "termination": "core", "stage_facts": "paper"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 

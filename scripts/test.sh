@@ -31,7 +31,7 @@ if ((sanitize)); then
   # Labels: the Monte-Carlo check, the docs' and tutorial's command runs, the paper's facts
   # (long simulations and trainings through code the module tests already run under ASan) and
   # the few single tests labelled long (tests/CMakeLists.txt says which and why).
-  exclude=(-LE '^(slow|docs|tutorial|facts|long)$')
+  exclude=(-LE '^(slow|docs|tutorial|paper|long)$')
 fi
 scripts/setup.sh --test-tools "$BUILD_DIR" "$@"
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "${SYSID_JOBS:-$(nproc)}" ${exclude[@]+"${exclude[@]}"}

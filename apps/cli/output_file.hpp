@@ -1,4 +1,4 @@
-// The rule for every "-o FILE" of the CLI (issue #29): a command replaces only files it can
+// The rule for every "-o FILE" of the CLI: a command replaces only files it can
 // prove sysid wrote, told by the generator mark every writer puts first; --force replaces any
 // other regular file. A FIFO or a device is written through and a symbolic link is followed
 // (WriteFileAtomically), so neither is ever replaced.

@@ -3,7 +3,7 @@
 
 Runs the paper's PI alone (F4's experiment: smooth 10 mm profile, dwell 10 %, 2 cycles) on a
 stage, forms F4's residual r = e - (centred 50 ms moving average of e) over the samples after
-cycle 1 (as facts::MotionRippleOf), and splits r's energy into windows around each stroke's
+cycle 1 (as paper::MotionRippleOf), and splits r's energy into windows around each stroke's
 onset (the reference leaves a dwell), its end (the reference reaches a dwell) and the rest
 ("steady motion" / dwell). The commands are replayed open loop (RunOpenLoop, same seed: the
 same plant) to read the true velocity and the stick/slip state.

@@ -1,18 +1,17 @@
 // The end-to-end pipeline and the tracking command: report presence and content, feedforward
 // paths, and bad input. Small sweeps keep the suite fast; the full run is the README's demo.
 #include "sysid/pipeline.hpp"
-#include "sysid/validate.hpp"
-#include "sysid/report.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
 #include "support/plot_index_check.hpp"
 #include "support/test_support.hpp"
 #include "sysid/compare.hpp"
@@ -20,7 +19,9 @@
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/report.hpp"
 #include "sysid/stage.hpp"
+#include "sysid/validate.hpp"
 
 using sysid::test::RunCli;
 using sysid::test::SourcePath;
@@ -281,9 +282,9 @@ TEST_CASE("the pipeline report carries the paper's facts table on request", "[pi
   CHECK(md.find(r.facts->Find("F8")->met ? "**met**" : "**not met**", f8) != std::string::npos);
   const std::string csv = sysid::test::ReadText(dir / "report/loop_fact.csv");
   const auto lines = std::count(csv.begin(), csv.end(), '\n');
-  CHECK(lines == 1 + static_cast<long>(r.facts->loop_triangle->levels.size() +
-                                       r.facts->loop_frequency_sweep.size() +
-                                       r.facts->loop_amplitude_sweep.size()));
+  CHECK(lines == 1 + static_cast<long>(r.facts->results->f8->triangle.levels.size() +
+                                       r.facts->results->f8->frequency_sweep.size() +
+                                       r.facts->results->f8->amplitude_sweep.size()));
 }
 
 TEST_CASE("the pipeline states the PI gains' loop margins, with or without a stage",

@@ -58,8 +58,8 @@ struct DelayTuningOptions {
   /// and each simulation keeps tau of velocity history.
   static constexpr double kMaxTau_s = 1.0;
   /// Largest cost curve (each point is one simulation of every segment, as one search
-  /// evaluation: about 10 ms on the bundled pulse test, so 1000 points take about 15 s; the
-  /// former 10000 took over two minutes, issue #29).
+  /// evaluation: about 10 ms on the bundled pulse test, so 1000 points take about 15 s and
+  /// 10000 over two minutes).
   static constexpr int kMaxCurvePoints = 1000;
 };
 

@@ -1,5 +1,5 @@
 // Prandtl–Ishlinskii inverses (pi, gpi, rdpi; sysid/hysteresis.hpp) run causally, one sample at
-// a time, as a real-time controller runs them (issue #39): Step(x_ref_k) -> u_k from the
+// a time, as a real-time controller runs them: Step(x_ref_k) -> u_k from the
 // reference position at sample k and the play operators' state. pi: the closed-form inverse, a
 // classical PI model of x - c (Kuhnen 2003); gpi, rdpi: a bisection to adjacent doubles on the
 // step's monotone output (rdpi's rate is that of the inverse's own last two outputs).

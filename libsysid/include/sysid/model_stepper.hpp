@@ -1,5 +1,5 @@
 // The analytic friction inverse run causally, one sample at a time, as a real-time controller
-// runs it (issue #39): u_k = (a_k + a1 v(t_k - tau) + a2 sgn v_k) / a3 (sysid/model.hpp) from
+// runs it: u_k = (a_k + a1 v(t_k - tau) + a2 sgn v_k) / a3 (sysid/model.hpp) from
 // the reference's velocity v_k [m/s] and acceleration a_k [m/s^2] at sample k and the
 // velocities before it. v(t_k - tau) comes from a DelayLine (sysid/signal.hpp): linear
 // interpolation between the two neighbouring samples, v_0 held before the first sample, the

@@ -21,7 +21,7 @@ struct MotionOptions {
   /// Name of a measured-velocity column [m/s].
   std::string velocity_column = "v";
   /// The one rule for a recording's own velocity and acceleration columns, in every command
-  /// and in Python (issue 29). true (the default): a recording's velocity_column [m/s] and its
+  /// and in Python. true (the default): a recording's velocity_column [m/s] and its
   /// column a [m/s^2] are used as they are when present (they were made with the filter chosen
   /// when the data set was built, e.g. by `sysid derive`); with v but no a, a is v's derivative
   /// by `derivative`. false (the CLI's --derivative): v and a come from x by `derivative`

@@ -1,4 +1,4 @@
-// The tanh inverse network run one sample at a time (issue #39): a static map, so the stepper
+// The tanh inverse network run one sample at a time: a static map, so the stepper
 // holds no history; it exists so that every inverse has the same streaming face (construct,
 // Reset, Step) and so that the sample loop allocates nothing. Step is NeuralNetwork::Evaluate
 // (std::tanh, inputs scaled by the stored mapminmax ranges, the output unscaled), bit for bit.

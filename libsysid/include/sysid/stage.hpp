@@ -25,7 +25,7 @@
 //   "drive-hysteresis-static" (without the creep below).
 //   Optional creep (drive.creep, DriveCreep below): shares of that voltage and of the
 //   hysteresis' lag relax with a time constant (the ceramic's domain relaxation); the default
-//   stage, preset "drive-hysteresis", has both (issue #28); preset "velocity-source" neither.
+//   stage, preset "drive-hysteresis", has both; preset "velocity-source" neither.
 //
 // ACTUATOR DELAY (model "actuator-delay", the preset of libsysid <= 0.x; kept because on it the
 // paper's feedforward does NOT help: its multi-ms transport delay makes the stage respond later
@@ -221,9 +221,9 @@ struct StageParameters {
   void Validate() const;
   /// The calibrated virtual stage (identical to datasets/virtual/stage.json): the preset
   /// "drive-hysteresis", VelocitySource() plus the ceramic's asymmetric play operators whose
-  /// lag partly creeps out (docs/virtual_stage.md, "F8 with F5", candidate P2; issue #28).
+  /// lag partly creeps out (docs/virtual_stage.md, "F8 with F5").
   static StageParameters Default();
-  /// The velocity-source stage without drive hysteresis, the default before it (candidate C):
+  /// The velocity-source stage without drive hysteresis:
   /// a 10 kHz control loop recorded at 1 kHz with a 0.1 ms driver lag (docs/virtual_stage.md,
   /// "Loop rate"). The member defaults are the 1 kHz loop with a 0.3 ms lag:
   /// Preset("virtual-1khz").
@@ -232,10 +232,10 @@ struct StageParameters {
   /// the stage on which the paper's feedforward does not help (docs/virtual_stage.md).
   static StageParameters ActuatorDelay();
   /// A named preset: "virtual" or "drive-hysteresis" (= Default()), "velocity-source"
-  /// (= VelocitySource(), the default before the drive hysteresis), "virtual-1khz"
+  /// (= VelocitySource()), "virtual-1khz"
   /// (VelocitySource() at the member defaults' 1 kHz loop and 0.3 ms lag), "actuator-delay",
   /// "drive-hysteresis-static" (VelocitySource() plus the ceramic's asymmetric hysteresis with
-  /// wider operators and no creep: candidate H2).
+  /// wider operators and no creep).
   /// Throws OptionsError listing the names otherwise.
   static StageParameters Preset(const std::string& name);
   /// True when `name` is one of Preset's names.

@@ -1,40 +1,24 @@
 // The paper's measured facts, checked on a stage: runs the paper's experiments on a virtual stage
-// and compares what they give with what the paper printed. Ids are fixed:
+// and compares what they give with what the paper printed (`sysid stage facts`). Ids are fixed:
 //
 //   F1 pulse plateaus     the ten 0.4 s pulses' steady velocities, each within 2 % of the paper's
 //   F2 pulse LS           a1p, a1n, a2p, a2n within 5 % of 104.0154, 117.1441, 3.1023, 6.8216
 //   F3 delay              tune-delay on the pulse recording: tau in [2.5, 4.5] ms and
 //                         RMS dv(tau) <= 0.8 RMS dv(0)
 //   F4 paper gains        PI Kp = 19000 V/m, Ki = 660000 V/(m s) on the 0.5 and 1 Hz references:
-//                         no limit cycle (ripple and pinning defined below) and quiet in motion
+//                         no limit cycle and quiet in motion
 //   F5 tracking table     max |e|: PI > PI + analytic > PI + NN at both frequencies, each within a
 //                         factor 3 of the paper's table
 //   F6 dominance          u = 1.5 sin(pi/2 t - pi/2) - 0.3 V open loop: the ratio of peaks
 //                         max |x''| / max |a1 x'| over the moving part <= 0.3 (O(10^-1))
 //   F7 networks           typical (v, a) 120-unit vs dominant v 24-unit network MSEs; reported,
 //                         not required (the paper's contrast: typical fits training, not test)
-//   F8 voltage loop       the voltage-velocity loop of the paper's section-3 tests, open loop:
-//                         (a) on the 6 s triangle (+1.5 / -2.1 V) a loop, width at stated
-//                         voltages of the pulse region >= a fraction of the velocity there;
-//                         (b) asymmetric: the start voltages of the two directions differ;
-//                         (c) rate: under u = 1.6 sin(2 pi f t - pi/2) - 0.3 V the loop's mean
-//                         width grows with f; (d) amplitude: at 1 Hz the mean width changes
-//                         with A (criteria below, at FactsOptions' loop_* fields)
+//   F8 voltage loop       the open-loop voltage-velocity loop of the paper's section-3 tests:
+//                         its width, asymmetry, and change with rate and amplitude
 //
-// F4's criteria, on the PI-alone runs of the smooth profile (control.hpp, MakeSmoothProfile;
-// dwell 10 % of the period at each end):
-//   ripple  for every dwell after the first cycle, the last half of the dwell (the reference is at
-//           rest and the move's transient has had half a dwell to decay); ripple amplitude =
-//           max over these windows of (max e - min e) / 2 [m]. Ripple when it exceeds
-//           FactsOptions::ripple_tolerance_m (default 1 um = 10 counts of a 0.1 um encoder).
-//   pinned  any sample, from the start, at which the PI output was clipped at +-u_max
-//           (TrackingResult::saturated_samples > 0).
-//   motion  ripple in motion: r_k = e_k - (centred moving average of e over
-//           FactsOptions::motion_ripple_window_s, 50 ms), over every sample after the first cycle
-//           whose window lies inside the run; RMS of r above
-//           FactsOptions::motion_ripple_tolerance_m (5 um) is ringing, and the frequency of the
-//           largest peak of r's Hann-windowed periodogram is reported as the ringing frequency.
-//
+// This header is the command's entry point: the options, the table of facts and the run. The
+// experiments, each fact's typed numbers and criterion, and the paper's printed numbers are the
+// paper's reproduction, not API: libsysid/src/paper/ (f1_plateaus.hpp ... f8_voltage_loop.hpp).
 // Every experiment is seeded; the same stage and options give the same numbers.
 #ifndef SYSID_STAGE_FACTS_HPP_
 #define SYSID_STAGE_FACTS_HPP_
@@ -42,7 +26,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -56,21 +40,9 @@
 
 namespace sysid {
 
-/// The paper's printed numbers the facts compare against.
-struct PaperFacts {
-  /// The pulse table: (amplitude [V], steady velocity [m/s]), as in datasets/paper.
-  static const std::vector<std::pair<double, double>>& PulseTable();
-  static FrictionModel PulseModel();         ///< a1p 104.0154, a1n 117.1441, a2p 3.1023, a2n 6.8216
-  static constexpr double kTauS = 0.0035;    ///< [s] the paper's delay
-  static constexpr double kKpVPerM = 19000;  ///< [V/m]
-  static constexpr double kKiVPerMS = 660000;  ///< [V/(m s)]
-  /// Max tracking error [m] at 0.5 Hz and 1 Hz for "none", "analytic", "nn".
-  static double TrackingMaxErrorM(double frequency_hz, const std::string& scheme);
-  static constexpr double kTypicalHidden = 120;
-  static constexpr double kDominantHidden = 24;
-  static constexpr double kDominantTrainMseV2 = 0.118161;  ///< [V^2] H = 24
-  static constexpr double kDominantTestMseV2 = 0.052982;   ///< [V^2] H = 24
-};
+namespace paper {
+struct FactsResults;
+}  // namespace paper
 
 struct FactsOptions {
   /// Facts to run ("F1".."F8"); empty: all. Prerequisites run as needed.
@@ -156,43 +128,12 @@ struct StageFact {
   std::vector<std::pair<std::string, double>> values;  ///< named numbers (SI units in names)
 };
 
-struct FactsTrackingRow {
-  double frequency_hz = 0;
-  std::string scheme;      ///< "none", "analytic", "nn"
-  double max_error_m = 0;  ///< [m]
-  double ripple_m = 0;     ///< [m] F4's ripple amplitude (see above)
-  double motion_ripple_m = 0;  ///< [m] F4's RMS ripple in motion (see above)
-  double ringing_hz = 0;       ///< [Hz] the periodogram peak of that ripple
-  long saturated_samples = 0;
-  double max_abs_u_v = 0;  ///< [V]
-};
-
-/// One open-loop sinusoid of F8: u = amplitude sin(2 pi f t - pi/2) + offset, its second period.
-struct FactsLoopSine {
-  double amplitude_v = 0;   ///< [V]
-  double frequency_hz = 0;  ///< [Hz]
-  VoltageLoop loop;         ///< areas, spans and starts of the analysed period
-  /// [m/s] (area forward + area backward) / (span forward + span backward): the loop's mean
-  /// width over both directions (facts::LoopMeanWidth); NaN when the stage never moves.
-  double mean_width_mps = 0;
-};
-
 struct StageFacts {
   std::string stage_name;
   std::vector<StageFact> facts;  ///< the facts run, in id order
-  // The experiments' results (filled as far as the facts run needed them).
-  std::vector<std::pair<double, double>> plateaus;  ///< (u [V], v [m/s]) per pulse, input order
-  std::optional<FrictionModel> pulse_model;         ///< pulse LS, tau = 0
-  std::optional<DelayTuningResult> delay;
-  double rms_at_zero_mps = 0;  ///< [m/s] RMS dv at tau = 0 (F3)
-  std::vector<FactsTrackingRow> tracking;
-  double dominance_peak_ratio = 0;     ///< max |x''| / max |a1 x'| (the paper's bound)
-  double dominance_pointwise_q99 = 0;  ///< 99 % quantile of |x''(t)| / |a1 x'(t)|
-  double dominant_train_mse = 0, dominant_test_mse = 0;  ///< [V^2]
-  double typical_train_mse = 0, typical_test_mse = 0;    ///< [V^2]
-  std::optional<VoltageLoop> loop_triangle;  ///< F8: the triangle's loop (levels as options)
-  std::vector<FactsLoopSine> loop_frequency_sweep;  ///< F8 (c), in frequency order
-  std::vector<FactsLoopSine> loop_amplitude_sweep;  ///< F8 (d), in amplitude order
+  /// Each fact's numbers as typed fields and the experiments behind them (libsysid/src/paper/
+  /// facts_results.hpp, not API); null in a table read back from JSON.
+  std::shared_ptr<const paper::FactsResults> results;
 
   const StageFact* Find(const std::string& id) const;
   /// Every required fact that was run is met.
@@ -203,55 +144,6 @@ struct StageFacts {
   /// A Markdown table: id | fact | paper | stage | tolerance | met.
   std::string ToMarkdown() const;
 };
-
-/// The criteria alone, on numbers (so they can be tested without running a stage).
-namespace facts {
-/// F1: every |v - v_paper| <= 0.02 |v_paper|; `stage` and `paper` in the same order.
-bool PlateausMet(const std::vector<double>& stage_mps, const std::vector<double>& paper_mps);
-/// F2: every coefficient within 5 %.
-bool PulseModelMet(const FrictionModel& stage, const FrictionModel& paper);
-/// F3: tau in [2.5, 4.5] ms and rms_at_tau <= 0.8 rms_at_zero.
-bool DelayMet(double tau_s, double rms_at_tau_mps, double rms_at_zero_mps);
-/// F4's ripple amplitude [m] of a PI run on a smooth profile made with `profile`.
-double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile);
-/// F4 in motion: the RMS of e minus its centred moving average over `window_s` [s] (an odd
-/// number of samples, 2 round(window_s rate / 2) + 1), over the samples after the first cycle
-/// whose window lies inside e [m], each stroke's breakaway transient left out (from the
-/// reference leaving a dwell to `window_s` after the largest |e| in the stroke's first half:
-/// the onset error F5 measures), and the frequency [Hz] of the largest peak of that
-/// residual's Hann-windowed periodogram, the left-out samples as 0 (0 when there are fewer
-/// than 4 samples). Without `ringing_frequency` the periodogram, most of the cost, is skipped
-/// and ringing_hz stays 0.
-struct MotionRipple {
-  double rms_m = 0;      ///< [m]
-  double ringing_hz = 0;  ///< [Hz]
-  long samples = 0;      ///< samples the RMS is over
-  long breakaway_samples = 0;  ///< samples after cycle 1 left out as breakaway transients
-};
-MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& profile,
-                            double window_s = 0.05, bool ringing_frequency = true);
-/// F5: none > analytic > nn, and each within a factor 3 of the paper's (both ways).
-bool TrackingOrderMet(double none_m, double analytic_m, double nn_m, double paper_none_m,
-                      double paper_analytic_m, double paper_nn_m);
-/// F6: ratio of peaks <= 0.3.
-bool DominanceMet(double peak_ratio);
-/// F7's contrast: the typical network's test MSE >= 2x its training MSE, and the dominant
-/// network's test MSE below the typical's.
-bool NetworkContrast(double typical_train, double typical_test, double dominant_test);
-/// F8: a loop's mean width over both directions [m/s], (area_f + area_b) / (span_f + span_b);
-/// NaN when the stage never moved.
-double LoopMeanWidth(const VoltageLoop& loop);
-/// F8 (a): width / mean(|v_rising|, |v_falling|) at a level; NaN without both branches.
-double LoopRelativeWidth(const VoltageLoopLevel& level);
-/// F8 (b): max / min of |start forward|, |start backward|; NaN when either never starts.
-double StartRatio(const VoltageLoop& loop);
-/// F8 (a): every relative width >= min_fraction (none NaN, at least one).
-bool LoopWidthMet(const std::vector<double>& relative_widths, double min_fraction);
-/// F8 (c): last / first >= min_ratio, both finite and the first > 0.
-bool LoopRateMet(const std::vector<double>& widths_by_frequency, double min_ratio);
-/// F8 (d): |last - first| >= min_change x min(|first|, |last|), both finite and nonzero.
-bool LoopAmplitudeMet(const std::vector<double>& widths_by_amplitude, double min_change);
-}  // namespace facts
 
 using FactsProgress = std::function<void(const std::string& step)>;
 

@@ -9,7 +9,7 @@
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
 #include "delay/delay_json.hpp"
-#include "facts/facts_json.hpp"
+#include "paper/facts_json.hpp"
 #include "model/model_json.hpp"
 #include "nn/nn_json.hpp"
 #include "sysid/pipeline.hpp"

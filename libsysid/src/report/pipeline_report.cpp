@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "paper/measures.hpp"
 #include "report/report_sections.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -460,13 +461,13 @@ class ReportWriter {
                                               p.sample_rate_hz * f));
       const FactsOptions limits;
       // The ringing frequency (a long FFT) only when the sentence is written.
-      if (facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s, false).rms_m <=
+      if (paper::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s, false).rms_m <=
           limits.motion_ripple_tolerance_m)
         return {};
-      const facts::MotionRipple m =
-          facts::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
+      const paper::MotionRipple m =
+          paper::MotionRippleOf(t.result.e_m, p, limits.motion_ripple_window_s);
       // Below 10 kHz the loop rate is what rings it (docs/virtual_stage.md, "Loop rate": the
-      // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz (candidate B).
+      // 1 kHz loop at 80 Hz); at 10 kHz the 0.3 ms lag still rings, at 132 Hz.
       const char* cure = p.sample_rate_hz < 1e4
                              ? "a faster loop (rig.control_rate_hz, e.g. 10 kHz) quiets it"
                              : "at this rate the driver's envelope lag sets that margin "

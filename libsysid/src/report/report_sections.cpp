@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
+#include "paper/measures.hpp"
+#include "paper/paper_numbers.hpp"
 #include "sysid/io.hpp"
 #include "sysid/motion.hpp"
 #include "sysid/nn.hpp"
@@ -120,8 +123,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
        {fmt::format("dominant ({}), H = {}", Join(r.nn_inputs, ", "), dominant.hidden_size()),
         G(m.dominant_train), G(m.dominant_test),
         fmt::format("{} / {}", G(floors[0].second), G(floors[1].second)),
-        fmt::format("{:.3f} / {:.3f}", PaperFacts::kDominantTrainMseV2,
-                    PaperFacts::kDominantTestMseV2)}});
+        fmt::format("{:.3f} / {:.3f}", paper::kDominantTrainMseV2,
+                    paper::kDominantTestMseV2)}});
   s.markdown +=
       "\nThe least MSE is estimated from the data alone (`sysid irreducible`: the variance of u "
       "among each row's 10 nearest neighbours in the network's standardised inputs): a network "
@@ -130,8 +133,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
       "\nF7's contrast (typical test ≥ 2 × typical training and dominant test < typical test): "
       "**{}** (typical test / training {:.3g}).\n",
       contrast ? "yes, as in the paper" : "no", m.typical_test / m.typical_train);
-  // Issue #28 asks the report to say so when the stage's physics gives no contrast, and where
-  // the search for a drive that would is recorded.
+  // When the stage's physics gives no contrast the report says so, and where the search for a
+  // drive that would is recorded.
   if (!contrast)
     s.markdown +=
         "\nThe paper's headline (the typical network overfits, the dominant one generalises) "
@@ -149,8 +152,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
         "test set ({:.3g} × the paper's {:.3f} V²): the rows where the stage rests while u "
         "crosses the dead band decide the MSE, whatever the network (docs/virtual_stage.md, "
         "\"F7: what the data allow\").\n",
-        G(floors[1].second), floors[1].second / PaperFacts::kDominantTestMseV2,
-        PaperFacts::kDominantTestMseV2);
+        G(floors[1].second), floors[1].second / paper::kDominantTestMseV2,
+        paper::kDominantTestMseV2);
   s.files.emplace_back("network_mse.csv", csv);
   if (mses) *mses = m;
   return s;
@@ -159,8 +162,9 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
 ReportSection LoopFactSection(const StageFacts& facts) {
   ReportSection s;
   const StageFact* f = facts.Find("F8");
-  if (!f || !facts.loop_triangle) return s;
-  const VoltageLoop& t = *facts.loop_triangle;
+  if (!f || !facts.results || !facts.results->f8) return s;
+  const paper::VoltageLoopFact& loops = *facts.results->f8;
+  const VoltageLoop& t = loops.triangle;
   s.markdown = fmt::format(
       "\n### F8 on the stage: the loop of the paper's section-3 tests\n\n"
       "`sysid stage facts --facts F8` (docs/virtual_stage.md, \"Stage facts\"): **{}**{}.\n\n"
@@ -174,17 +178,17 @@ ReportSection LoopFactSection(const StageFacts& facts) {
   for (const auto& l : t.levels) {
     rows.push_back({fmt::format("{:+g}", l.level_v), G(1e3 * l.v_rising_mps),
                     G(1e3 * l.v_falling_mps), G(1e3 * l.WidthMps()),
-                    G(100 * facts::LoopRelativeWidth(l), 3)});
+                    G(100 * paper::LoopRelativeWidth(l), 3)});
     csv += fmt::format("triangle,,,{:g},{:.9g},{:.9g},{:.9g},{:.9g}\n", l.level_v, l.WidthMps(),
                        t.MeanWidthForwardMps(), t.MeanWidthBackwardMps(),
-                       facts::LoopMeanWidth(t));
+                       paper::LoopMeanWidth(t));
   }
   s.markdown += MarkdownTable({"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]",
                                "width [mm/s]", "width / \\|v\\| [%]"},
                               rows);
   s.markdown += "\nSinusoids u = A sin(2π f t − π/2) − 0.3 V (second period; mean width [mm/s]):\n\n";
   rows.clear();
-  for (const auto* sweep : {&facts.loop_frequency_sweep, &facts.loop_amplitude_sweep})
+  for (const auto* sweep : {&loops.frequency_sweep, &loops.amplitude_sweep})
     for (const auto& r : *sweep) {
       rows.push_back({G(r.amplitude_v), G(r.frequency_hz), G(r.loop.start_forward_v),
                       G(r.loop.start_backward_v), G(1e3 * r.loop.MeanWidthForwardMps()),

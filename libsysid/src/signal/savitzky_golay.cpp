@@ -2,7 +2,7 @@
 // The weights come from a QR least-squares solve on abscissae scaled to [-1, 1] (a Vandermonde
 // matrix in raw sample offsets is ill-conditioned for wide windows); only the window x
 // (order + 1) factorisation and one row of weights are stored, so memory is linear in the
-// window (issue #29: the full window x window weight matrix took 6.3 GB at 20001). Boost.Math's
+// window (a full window x window weight matrix would take 6.3 GB at 20001). Boost.Math's
 // discrete_lanczos_derivative computes the same estimator for derivatives 1 and 2 (the tests
 // cross-check against it) but not the smoothed value itself nor order 2 fits for acceleration,
 // so one general path is kept here.

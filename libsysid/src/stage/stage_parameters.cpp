@@ -177,7 +177,7 @@ StageParameters LoopRateCWithPlay(const std::vector<double>& r, double w) {
   return p;
 }
 
-// Preset "drive-hysteresis-static" (docs/virtual_stage.md, "Drive hysteresis", candidate H2):
+// Preset "drive-hysteresis-static" (docs/virtual_stage.md, "Drive hysteresis"):
 // C with the ceramic's asymmetric, rate-independent hysteresis.
 StageParameters DriveHysteresisStaticPreset() {
   StageParameters p = LoopRateCWithPlay({0.1, 0.2, 0.3}, 0.2);
@@ -185,10 +185,10 @@ StageParameters DriveHysteresisStaticPreset() {
   return p;
 }
 
-// Preset "drive-hysteresis" (docs/virtual_stage.md, "F8 with F5", candidate P2): C with narrow
+// Preset "drive-hysteresis" (docs/virtual_stage.md, "F8 with F5"): C with narrow
 // play operators whose lag partly creeps out (the creep's loop share), so that the loop widens
 // with the rate (F8 (c)) while a held pulse settles as without it (F1-F3). It meets every
-// required fact at seed 1 and F5 at 14 of 24 seeds (the wider K62 before it: 3 of 12).
+// required fact at seed 1 and F5 at 14 of 24 seeds (wider operators: 3 of 12).
 StageParameters DriveHysteresisPreset() {
   StageParameters p = LoopRateCWithPlay({0.05, 0.1, 0.2}, 0.16);
   p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis with creep)";
@@ -202,9 +202,9 @@ StageParameters DriveHysteresisPreset() {
 
 }  // namespace
 
-// The default is the drive-hysteresis stage (P2): of every stage tried it is the closest to the
-// paper that meets each required fact at seed 1, F8's loop among them (issue #28). C, the
-// default before it, stays as the preset "velocity-source".
+// The default is the drive-hysteresis stage: of every stage tried it is the closest to the
+// paper that meets each required fact at seed 1, F8's loop among them. C is the preset
+// "velocity-source".
 StageParameters StageParameters::Default() { return DriveHysteresisPreset(); }
 
 StageParameters StageParameters::VelocitySource() {

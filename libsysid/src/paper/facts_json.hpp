@@ -1,6 +1,6 @@
 // Private: FactsOptions as a JSON object, for the options that hold one (PipelineOptions).
-#ifndef SYSID_SRC_FACTS_FACTS_JSON_HPP_
-#define SYSID_SRC_FACTS_FACTS_JSON_HPP_
+#ifndef SYSID_SRC_PAPER_FACTS_JSON_HPP_
+#define SYSID_SRC_PAPER_FACTS_JSON_HPP_
 
 #include <nlohmann/json.hpp>
 
@@ -15,4 +15,4 @@ void ReadFactsOptions(const JsonNode& node, FactsOptions& options);
 
 }  // namespace sysid::internal
 
-#endif  // SYSID_SRC_FACTS_FACTS_JSON_HPP_
+#endif  // SYSID_SRC_PAPER_FACTS_JSON_HPP_

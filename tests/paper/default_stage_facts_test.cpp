@@ -29,9 +29,8 @@ TEST_CASE("the default stage meets F1-F4, F6, F8 and F5's ordering against PI",
   // PI and analytic rows too, its NN row uses the reduced network (the full 24-unit run is
   // `sysid stage facts`, docs/virtual_stage.md). F7 is reported only, so not asked here. One
   // thread: the training's result is then reproducible (measured: identical over repeated runs).
-  const auto r = sysid::test::RunCli(
-      {"stage", "facts", "--json", "--reduced", "--threads", "1", "--facts",
-       "F1,F2,F3,F4,F5,F6,F8"});
+  const auto r = sysid::test::RunCli({"stage", "facts", "--json", "--reduced", "--threads", "1",
+                                      "--facts", "F1,F2,F3,F4,F5,F6,F8"});
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["facts"].size() == 7);

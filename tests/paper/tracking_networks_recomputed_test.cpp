@@ -5,30 +5,17 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
+#include "paper/paper_numbers.hpp"
 #include "sysid/control.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/stage.hpp"
 #include "sysid/stage_facts.hpp"
 
 namespace {
-
-double ValueOf(const sysid::StageFact& f, const std::string& name) {
-  for (const auto& [n, v] : f.values)
-    if (n == name) return v;
-  FAIL("no value " << name << " in " << f.id);
-  return 0;
-}
-
-// F5's value name for a frequency and scheme ("max_error_m at 0.5 Hz none"; %g as {:g}).
-std::string ErrorKey(double hz, const char* scheme) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "max_error_m at %g Hz %s", hz, scheme);
-  return buf;
-}
 
 // Mean of (net(x_k) - u_k)^2 over the raw rows, network evaluated one row at a time.
 double Mse(const sysid::NeuralNetwork& net, const sysid::NeuralDataset& d) {
@@ -60,15 +47,20 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
   // Not the default gain, so a facts run that ignored the option would train on other data.
   o.collection_kp_v_per_m = 3000;
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
-  REQUIRE(r.delay.has_value());
-  const sysid::FrictionModel model = r.delay->model;  // pulse LS + tuned tau (F2, F3 checked)
+  REQUIRE(r.results);
+  REQUIRE(r.results->delay);
+  REQUIRE(r.results->f5);
+  REQUIRE(r.results->f7);
+  const sysid::paper::NetworksFact& f7 = *r.results->f7;
+  const sysid::FrictionModel model =
+      r.results->delay->tuning.model;  // pulse LS + tuned tau (F2, F3 checked)
 
   // The networks, trained again from the same data and options (training is deterministic per
   // seed: nn training tests), then scored row by row.
   sysid::TrackingProcedure tp;
   tp.kp_v_per_m = 3000;
-  const sysid::Recording training = sysid::RunTrackingSet(
-      stage, sysid::TrainingGrid(), tp, sysid::DeriveSeed(o.seed, 1), "training");
+  const sysid::Recording training = sysid::RunTrackingSet(stage, sysid::TrainingGrid(), tp,
+                                                          sysid::DeriveSeed(o.seed, 1), "training");
   const sysid::Recording test =
       sysid::RunTrackingSet(stage, sysid::TestGrid(), tp, sysid::DeriveSeed(o.seed, 2), "test");
   const auto train_v = sysid::MakeNeuralDataset(training, {"v"}, "u");
@@ -86,28 +78,32 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
   // The same sums in another order: 1e-12 relative.
   const double dom_train = Mse(dominant, train_v), dom_test = Mse(dominant, test_v);
   const double typ_train = Mse(typical, train_va), typ_test = Mse(typical, test_va);
-  CHECK(r.dominant_train_mse == Approx(dom_train).epsilon(1e-12));
-  CHECK(r.dominant_test_mse == Approx(dom_test).epsilon(1e-12));
-  CHECK(r.typical_train_mse == Approx(typ_train).epsilon(1e-12));
-  CHECK(r.typical_test_mse == Approx(typ_test).epsilon(1e-12));
+  CHECK(f7.dominant.train_v2 == Approx(dom_train).epsilon(1e-12));
+  CHECK(f7.dominant.test_v2 == Approx(dom_test).epsilon(1e-12));
+  CHECK(f7.typical.train_v2 == Approx(typ_train).epsilon(1e-12));
+  CHECK(f7.typical.test_v2 == Approx(typ_test).epsilon(1e-12));
   // F7's contrast, written out: typical test >= 2 x typical train, dominant test below typical.
   CHECK(r.Find("F7")->met == (typ_test >= 2 * typ_train && dom_test < typ_test));
   CHECK(r.Find("F7")->note.find("collected at Kp 3000 V/m") != std::string::npos);
 
   // F5: each scheme tracked on the stage, errors and feedforwards recomputed from the traces.
   bool order_met = true;
-  for (double hz : o.track_frequencies_hz) {
+  REQUIRE(r.results->f5->rows.size() == o.track_frequencies_hz.size());
+  for (std::size_t i = 0; i < o.track_frequencies_hz.size(); ++i) {
+    const double hz = o.track_frequencies_hz[i];
+    const sysid::paper::TrackingFact::Row& row = r.results->f5->rows[i];
+    CHECK(row.frequency_hz == hz);
     sysid::SmoothProfileOptions p;
     p.frequency_hz = hz;
     p.amplitude_m = o.track_amplitude_m;
     p.cycles = o.track_cycles;
     p.sample_rate_hz = stage.sample_rate_hz;
     const sysid::PositionReference ref = sysid::MakeSmoothProfile(p);
-    const auto runs = sysid::TrackSchemes(
-        stage, o.seed, ref, o.pi,
-        {sysid::FeedforwardScheme::kNone, sysid::FeedforwardScheme::kAnalytic,
-         sysid::FeedforwardScheme::kNetwork},
-        {&model, &dominant});
+    const auto runs =
+        sysid::TrackSchemes(stage, o.seed, ref, o.pi,
+                            {sysid::FeedforwardScheme::kNone, sysid::FeedforwardScheme::kAnalytic,
+                             sysid::FeedforwardScheme::kNetwork},
+                            {&model, &dominant});
     REQUIRE(runs.size() == 3);
     double max_e[3];
     for (int s = 0; s < 3; ++s) {
@@ -136,16 +132,17 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
     CHECK(worst_a <= 1e-9);   // interpolation weights rounded differently: ~1e-13 V
     CHECK(worst_n <= 1e-11);  // the same network, evaluated one sample at a time: ~1e-12 V
     const char* names[] = {"none", "analytic", "nn"};
-    const auto& f5 = *r.Find("F5");
+    const double facts_e[] = {row.none_m, row.analytic_m, row.nn_m};
     for (int s = 0; s < 3; ++s) {
       INFO(hz << " Hz " << names[s]);
       // The same seeded runs: equal to rounding.
-      CHECK(ValueOf(f5, ErrorKey(hz, names[s])) == Approx(max_e[s]).epsilon(1e-12));
+      CHECK(facts_e[s] == Approx(max_e[s]).epsilon(1e-12));
     }
     // F5's criterion written out: strict order and each within a factor 3 of the paper's.
-    const double paper[] = {sysid::PaperFacts::TrackingMaxErrorM(hz, "none"),
-                            sysid::PaperFacts::TrackingMaxErrorM(hz, "analytic"),
-                            sysid::PaperFacts::TrackingMaxErrorM(hz, "nn")};
+    using sysid::FeedforwardScheme;
+    const double paper[] = {sysid::paper::TrackingMaxErrorM(hz, FeedforwardScheme::kNone),
+                            sysid::paper::TrackingMaxErrorM(hz, FeedforwardScheme::kAnalytic),
+                            sysid::paper::TrackingMaxErrorM(hz, FeedforwardScheme::kNetwork)};
     bool met = max_e[0] > max_e[1] && max_e[1] > max_e[2];
     for (int s = 0; s < 3; ++s) met = met && max_e[s] <= 3 * paper[s] && max_e[s] >= paper[s] / 3;
     order_met = order_met && met;

@@ -1,5 +1,5 @@
 // JSON of the stage-facts options (the facts' results are StageFacts::ToJson).
-#include "facts/facts_json.hpp"
+#include "paper/facts_json.hpp"
 
 #include <string>
 #include <string_view>

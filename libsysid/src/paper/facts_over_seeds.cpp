@@ -70,8 +70,7 @@ std::vector<std::uint64_t> ParseFactsSeeds(const std::string& text) {
 
 FactsSeedSweep RunStageFactsOverSeeds(const StageParameters& stage,
                                       const std::vector<std::uint64_t>& seeds,
-                                      const FactsOptions& options,
-                                      const FactsProgress& progress) {
+                                      const FactsOptions& options, const FactsProgress& progress) {
   if (seeds.empty()) throw OptionsError("seeds: expected at least one seed", "seeds");
   if (seeds.size() > kMaxFactsSeeds)
     throw OptionsError(fmt::format("seeds: at most {} per sweep", kMaxFactsSeeds), "seeds");
@@ -128,8 +127,8 @@ std::string FactsSeedSweep::ToJson() const {
 }
 
 std::string FactsSeedSweep::ToMarkdown() const {
-  std::string md = fmt::format("Seeds: {}\n\n| id | fact | met at | not met at |\n|---|---|---|---|\n",
-                               JoinSeeds(seeds));
+  std::string md = fmt::format(
+      "Seeds: {}\n\n| id | fact | met at | not met at |\n|---|---|---|---|\n", JoinSeeds(seeds));
   if (runs.empty()) return md;
   for (const StageFact& f : runs.front().facts) {
     const std::vector<std::uint64_t> met = MetAt(f.id);

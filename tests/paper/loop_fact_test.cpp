@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
+#include "paper/measures.hpp"
+#include "paper/paper_numbers.hpp"
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
@@ -18,7 +21,7 @@ namespace {
 
 using sysid::FactsOptions;
 using sysid::StageParameters;
-namespace facts = sysid::facts;
+namespace facts = sysid::paper;
 
 double Value(const sysid::StageFact& f, const std::string& name) {
   for (const auto& [n, v] : f.values)
@@ -132,9 +135,9 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
   const sysid::StageFact& f = r.facts.front();
   CHECK(f.id == "F8");
   CHECK(f.required);
-  REQUIRE(r.loop_triangle);
-  REQUIRE(r.loop_frequency_sweep.size() == o.loop_sine_frequencies_hz.size());
-  REQUIRE(r.loop_amplitude_sweep.size() == o.loop_sine_amplitudes_v.size());
+  REQUIRE(r.results->f8);
+  REQUIRE(r.results->f8->frequency_sweep.size() == o.loop_sine_frequencies_hz.size());
+  REQUIRE(r.results->f8->amplitude_sweep.size() == o.loop_sine_amplitudes_v.size());
   // The triangle recomputed: the same seeded run read by `sysid loop`'s analysis.
   sysid::TriangleProcedure tri;
   const sysid::Recording rec = sysid::RunTriangleTest(stage, tri, sysid::DeriveSeed(o.seed, 4),
@@ -172,12 +175,13 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
     hi_u[d] = std::max({hi_u[d], us[k], us[k + 1]});
   }
   const double width = area / (hi_u[0] - lo_u[0] + hi_u[1] - lo_u[1]);
-  CHECK(r.loop_frequency_sweep[at].mean_width_mps == Approx(width).epsilon(0.02));
-  CHECK(Value(f, "sine 1.6 V 1 Hz mean_width_mps") == r.loop_frequency_sweep[at].mean_width_mps);
+  CHECK(r.results->f8->frequency_sweep[at].mean_width_mps == Approx(width).epsilon(0.02));
+  CHECK(Value(f, "sine 1.6 V 1 Hz mean_width_mps") ==
+        r.results->f8->frequency_sweep[at].mean_width_mps);
   // The verdict is the four sub-verdicts' conjunction, each from its own numbers.
   std::vector<double> by_f, by_a;
-  for (const auto& s : r.loop_frequency_sweep) by_f.push_back(s.mean_width_mps);
-  for (const auto& s : r.loop_amplitude_sweep) by_a.push_back(s.mean_width_mps);
+  for (const auto& s : r.results->f8->frequency_sweep) by_f.push_back(s.mean_width_mps);
+  for (const auto& s : r.results->f8->amplitude_sweep) by_a.push_back(s.mean_width_mps);
   const bool a = facts::LoopWidthMet(relative, o.loop_min_relative_width);
   const bool b = facts::StartRatio(t) >= o.loop_min_start_ratio;
   const bool c = facts::LoopRateMet(by_f, o.loop_min_rate_ratio);
@@ -192,8 +196,7 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
 TEST_CASE("F8 holds on the default stage, fails (a) on velocity-source and a quasi-static one",
           "[stage][facts][loop]") {
   const sysid::StageFacts def = sysid::RunStageFacts(StageParameters::Default(), F8Only());
-  const sysid::StageFacts vs =
-      sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
+  const sysid::StageFacts vs = sysid::RunStageFacts(StageParameters::VelocitySource(), F8Only());
   const sysid::StageFacts qs = sysid::RunStageFacts(QuasiStatic(), F8Only());
   const sysid::StageFact& h = def.facts.front();
   const sysid::StageFact& d = vs.facts.front();

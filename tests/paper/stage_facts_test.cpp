@@ -6,11 +6,16 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "paper/facts_results.hpp"
+#include "paper/facts_table.hpp"
+#include "paper/measures.hpp"
+#include "paper/paper_numbers.hpp"
 #include "simulate/reference_integrator.hpp"
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
@@ -23,7 +28,7 @@ namespace {
 using sysid::FactsOptions;
 using sysid::FrictionModel;
 using sysid::StageParameters;
-namespace facts = sysid::facts;
+namespace facts = sysid::paper;
 
 FactsOptions Only(std::vector<std::string> ids) {
   FactsOptions o = FactsOptions::Reduced();
@@ -48,7 +53,7 @@ TEST_CASE("fact criteria on synthetic numbers", "[stage][facts]") {
   CHECK_FALSE(facts::PlateausMet({0.05}, {0.05, 0.06}));                  // a missing plateau
   CHECK_FALSE(facts::PlateausMet({std::nan("")}, {0.05}));
   // F2: 5 % of each coefficient.
-  const FrictionModel p = sysid::PaperFacts::PulseModel();
+  const FrictionModel p = sysid::paper::PulseModel();
   FrictionModel s = p;
   s.a1p *= 1.049;
   s.a2n *= 0.951;
@@ -62,12 +67,13 @@ TEST_CASE("fact criteria on synthetic numbers", "[stage][facts]") {
   CHECK_FALSE(facts::DelayMet(0.0, 0.5, 1.0));
   CHECK_FALSE(facts::DelayMet(4.6e-3, 0.5, 1.0));
   // F5: strict ordering and a factor 3 both ways, with the paper's 0.5 Hz row.
-  const double pn = sysid::PaperFacts::TrackingMaxErrorM(0.5, "none");
-  const double pa = sysid::PaperFacts::TrackingMaxErrorM(0.5, "analytic");
-  const double pnn = sysid::PaperFacts::TrackingMaxErrorM(0.5, "nn");
+  const double pn = sysid::paper::TrackingMaxErrorM(0.5, sysid::FeedforwardScheme::kNone);
+  const double pa = sysid::paper::TrackingMaxErrorM(0.5, sysid::FeedforwardScheme::kAnalytic);
+  const double pnn = sysid::paper::TrackingMaxErrorM(0.5, sysid::FeedforwardScheme::kNetwork);
   CHECK(pn == Approx(0.10651e-3));
-  CHECK(sysid::PaperFacts::TrackingMaxErrorM(1.0, "nn") == Approx(0.07292e-3));
-  CHECK(std::isnan(sysid::PaperFacts::TrackingMaxErrorM(2.0, "nn")));
+  CHECK(sysid::paper::TrackingMaxErrorM(1.0, sysid::FeedforwardScheme::kNetwork) ==
+        Approx(0.07292e-3));
+  CHECK(std::isnan(sysid::paper::TrackingMaxErrorM(2.0, sysid::FeedforwardScheme::kNetwork)));
   CHECK(facts::TrackingOrderMet(pn, pa, pnn, pn, pa, pnn));
   CHECK(facts::TrackingOrderMet(3 * pn, 2.9 * pa, pnn / 3, pn, pa, pnn));
   CHECK_FALSE(facts::TrackingOrderMet(pn, pnn, pa, pn, pa, pnn));        // NN worse than analytic
@@ -104,26 +110,26 @@ TEST_CASE("F1 and F2 follow the stage's closed-form steady velocities", "[stage]
     stage.saturation_v = saturation_v;  // 1.9 V clips the four largest pulses: slower plateaus
     const sysid::StageFacts r = sysid::RunStageFacts(stage, Only({"F1", "F2"}));
     REQUIRE(r.facts.size() == 2);
-    REQUIRE(r.plateaus.size() == sysid::PaperFacts::PulseTable().size());
+    REQUIRE(r.results->pulse->plateaus.size() == sysid::paper::PulseTable().size());
     std::vector<double> closed, paper;
     std::vector<sysid::PulsePoint> points;
-    for (size_t i = 0; i < r.plateaus.size(); ++i) {
-      const auto [u, v] = r.plateaus[i];
-      CHECK(u == Approx(sysid::PaperFacts::PulseTable()[i].first).margin(1e-9));
+    for (size_t i = 0; i < r.results->pulse->plateaus.size(); ++i) {
+      const auto [u, v] = r.results->pulse->plateaus[i];
+      CHECK(u == Approx(sysid::paper::PulseTable()[i].first).margin(1e-9));
       // The stage's steady law (its own closed form / bisection), at the clipped voltage.
       const double v_closed = stage.SteadyVelocity(std::clamp(u, -saturation_v, saturation_v));
       CHECK(v == Approx(v_closed).epsilon(2e-3));  // noise and quantisation only
       closed.push_back(v_closed);
-      paper.push_back(sysid::PaperFacts::PulseTable()[i].second);
+      paper.push_back(sysid::paper::PulseTable()[i].second);
       points.push_back({u, v_closed, ""});
     }
     const FrictionModel fit = sysid::FitPulseTable(points).model;
     CHECK(r.facts[0].id == "F1");
     CHECK(r.facts[0].met == facts::PlateausMet(closed, paper));
     CHECK(r.facts[1].id == "F2");
-    CHECK(r.facts[1].met == facts::PulseModelMet(fit, sysid::PaperFacts::PulseModel()));
-    CHECK(r.pulse_model->a1p == Approx(fit.a1p).epsilon(5e-3));
-    CHECK(r.pulse_model->a2n == Approx(fit.a2n).epsilon(2e-2));
+    CHECK(r.facts[1].met == facts::PulseModelMet(fit, sysid::paper::PulseModel()));
+    CHECK(r.results->pulse->identification.model.a1p == Approx(fit.a1p).epsilon(5e-3));
+    CHECK(r.results->pulse->identification.model.a2n == Approx(fit.a2n).epsilon(2e-2));
     if (saturation_v < 2) CHECK_FALSE(r.facts[0].met);  // 2.5 V clipped to 1.9 V: ~25 % slower
   }
 }
@@ -137,7 +143,7 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
   FactsOptions o = Only({"F3"});
   o.delay.curve_points = 21;  // tau = 0, 1, ..., 20 ms
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
-  REQUIRE(r.delay.has_value());
+  REQUIRE(r.results->delay);
   const sysid::Recording rec = sysid::RunPulseTest(stage, o.pulse, o.seed);
   const Eigen::VectorXd t = rec.column("t"), u = rec.column("u"), x = rec.column("x");
   const double dt = 1.0 / stage.RecordRateHz(), h = 5e-5;  // the recording's rate
@@ -150,7 +156,7 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
   };
   const std::vector<double> xm(x.data(), x.data() + x.size());
   auto reference_rms = [&](double tau) {
-    FrictionModel m = *r.pulse_model;
+    FrictionModel m = r.results->pulse->identification.model;
     m.tau_s = std::max(tau, h);
     const auto ref = sysid::test::ReferenceRk4(m, input, t[t.size() - 1], h,
                                                static_cast<int>(std::lround(dt / h)));
@@ -163,10 +169,10 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
     return std::sqrt(sum / static_cast<double>(t.size()));
   };
   // The CVODE curve at tau = 0, 1, ..., 8 ms against the reference.
-  for (const auto& [tau, cost] : r.delay->curve) {
+  for (const auto& [tau, cost] : r.results->delay->tuning.curve) {
     const double ms = tau * 1e3;
     if (ms > 8.0 || std::abs(ms - std::round(ms)) > 1e-9) continue;
-    const double rms = std::sqrt(cost / static_cast<double>(r.delay->samples));
+    const double rms = std::sqrt(cost / static_cast<double>(r.results->delay->tuning.samples));
     INFO("tau = " << ms << " ms");
     CHECK(reference_rms(tau) == Approx(rms).epsilon(0.01));
   }
@@ -177,9 +183,10 @@ TEST_CASE("F3 agrees with an independent tiny-step reference integrator", "[stag
     const double rms = reference_rms(0.5e-3 * i);
     if (rms < best) best = rms, best_tau = 0.5e-3 * i;
   }
-  INFO("reference tau-hat " << best_tau * 1e3 << " ms, facts " << r.delay->tau_s * 1e3 << " ms");
-  CHECK(std::abs(best_tau - r.delay->tau_s) <= 0.5e-3);
-  CHECK(r.rms_at_zero_mps == Approx(at_zero).epsilon(0.01));
+  INFO("reference tau-hat " << best_tau * 1e3 << " ms, facts "
+                            << r.results->delay->tuning.tau_s * 1e3 << " ms");
+  CHECK(std::abs(best_tau - r.results->delay->tuning.tau_s) <= 0.5e-3);
+  CHECK(r.results->delay->rms_at_zero_mps == Approx(at_zero).epsilon(0.01));
   CHECK(r.Find("F3")->met == facts::DelayMet(best_tau, best, at_zero));
 }
 
@@ -189,13 +196,13 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
   REQUIRE(r.facts.size() == 2);
   // F4: PI alone at both frequencies.
-  REQUIRE(r.tracking.size() == 2);
+  REQUIRE(r.results->tracking.size() == 2);
   bool no_limit_cycle = true;
-  for (const auto& row : r.tracking) {
-    CHECK(row.scheme == "none");
-    no_limit_cycle =
-        no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m && row.saturated_samples == 0 &&
-        row.motion_ripple_m <= o.motion_ripple_tolerance_m;
+  for (const auto& row : r.results->tracking) {
+    CHECK(row.scheme == sysid::FeedforwardScheme::kNone);
+    no_limit_cycle = no_limit_cycle && row.ripple_m <= o.ripple_tolerance_m &&
+                     row.saturated_samples == 0 &&
+                     row.motion_ripple_m <= o.motion_ripple_tolerance_m;
     CHECK((row.saturated_samples > 0) == (row.max_abs_u_v >= o.pi.u_max_v - 1e-12));
   }
   CHECK(r.Find("F4")->met == no_limit_cycle);
@@ -215,7 +222,7 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   const sysid::StageRun run = sysid::RunOpenLoop(stage, u, sysid::DeriveSeed(o.seed, 3));
   Eigen::VectorXd x(n);
   for (Eigen::Index k = 0; k < n; ++k) x[k] = run.x_m[(lead + k) * stride];
-  const sysid::FrictionModel m = *r.pulse_model;
+  const sysid::FrictionModel m = r.results->pulse->identification.model;
   // Central differences, second-order one-sided at the two ends (the window ends at full
   // backward speed, so its last samples count).
   auto diff = [rate](const Eigen::VectorXd& y) {
@@ -235,9 +242,9 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   }
   CHECK(Value(*r.Find("F6"), "peak_acceleration_mps2") == Approx(peak_a).epsilon(1e-9));
   CHECK(Value(*r.Find("F6"), "peak_viscous_mps2") == Approx(peak_v).epsilon(1e-9));
-  CHECK(r.dominance_peak_ratio == Approx(peak_a / peak_v).epsilon(1e-9));
+  CHECK(r.results->f6->peak_ratio == Approx(peak_a / peak_v).epsilon(1e-9));
   CHECK(r.Find("F6")->met == (peak_a / peak_v <= 0.3));
-  CHECK(r.dominance_pointwise_q99 > 0);
+  CHECK(r.results->f6->pointwise_ratio_q99 > 0);
 }
 
 // Consistency of the verdicts with the facts' own predicates and of F7's context values; the
@@ -246,28 +253,30 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
 TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   const sysid::StageFacts r = sysid::RunStageFacts(StageParameters::Default(), Only({"F5", "F7"}));
   REQUIRE(r.facts.size() == 2);
-  REQUIRE(r.tracking.size() == 6);  // none, analytic, nn at 0.5 and 1 Hz
+  REQUIRE(r.results->tracking.size() == 6);  // none, analytic, nn at 0.5 and 1 Hz
   const auto* f5 = r.Find("F5");
   bool order = true;
   for (double hz : {0.5, 1.0}) {
     auto err = [&](const std::string& s) {
-      for (const auto& row : r.tracking)
-        if (row.frequency_hz == hz && row.scheme == s) return row.max_error_m;
+      for (const auto& row : r.results->tracking)
+        if (row.frequency_hz == hz && sysid::ToString(row.scheme) == s) return row.max_error_m;
       FAIL("no row");
       return 0.0;
     };
-    order = order && facts::TrackingOrderMet(err("none"), err("analytic"), err("nn"),
-                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "none"),
-                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "analytic"),
-                                             sysid::PaperFacts::TrackingMaxErrorM(hz, "nn"));
+    order = order && facts::TrackingOrderMet(
+                         err("none"), err("analytic"), err("nn"),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNone),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kAnalytic),
+                         sysid::paper::TrackingMaxErrorM(hz, sysid::FeedforwardScheme::kNetwork));
   }
   CHECK(f5->met == order);
   const auto* f7 = r.Find("F7");
   CHECK_FALSE(f7->required);
-  CHECK(r.dominant_train_mse > 0);
-  CHECK(r.typical_test_mse > 0);
-  CHECK(f7->met ==
-        facts::NetworkContrast(r.typical_train_mse, r.typical_test_mse, r.dominant_test_mse));
+  CHECK(r.results->f7->dominant.train_v2 > 0);
+  CHECK(r.results->f7->typical.test_v2 > 0);
+  CHECK(f7->met == facts::NetworkContrast(r.results->f7->typical.train_v2,
+                                          r.results->f7->typical.test_v2,
+                                          r.results->f7->dominant.test_v2));
   CHECK(r.RequiredMet() == f5->met);  // F7 does not count
   // F7's physical context: coverage of (v, a) and the acceleration's differentiation noise.
   const double outside = Value(*f7, "test_rows_outside_training_box_fraction");
@@ -282,8 +291,10 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
   CHECK(rest > 0.0);  // the P-controlled stage sticks at every reversal
   CHECK(rest < 1.0);
   CHECK(Value(*f7, "training_u_variance_at_rest_v2") > 0);
-  CHECK((1 - rest) * Value(*f7, "dominant_train_moving_mse_v2") <= r.dominant_train_mse * (1 + 1e-12));
-  CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <= r.typical_train_mse * (1 + 1e-12));
+  CHECK((1 - rest) * Value(*f7, "dominant_train_moving_mse_v2") <=
+        r.results->f7->dominant.train_v2 * (1 + 1e-12));
+  CHECK((1 - rest) * Value(*f7, "typical_train_moving_mse_v2") <=
+        r.results->f7->typical.train_v2 * (1 + 1e-12));
   CHECK(Value(*f7, "dominant_test_moving_mse_v2") >= 0);
   CHECK(Value(*f7, "typical_test_moving_mse_v2") >= 0);
   // The irreducible MSEs (the k-NN floor, tested against closed forms in tests/nn): no network
@@ -294,8 +305,10 @@ TEST_CASE("F5 and F7 with reduced networks", "[stage][facts]") {
     CHECK(floor_v > 0);
     CHECK(floor_va > 0);
     const bool train = std::string(set) == "train";
-    CHECK((train ? r.dominant_train_mse : r.dominant_test_mse) >= 0.9 * floor_v);
-    CHECK((train ? r.typical_train_mse : r.typical_test_mse) >= 0.9 * floor_va);
+    CHECK((train ? r.results->f7->dominant.train_v2 : r.results->f7->dominant.test_v2) >=
+          0.9 * floor_v);
+    CHECK((train ? r.results->f7->typical.train_v2 : r.results->f7->typical.test_v2) >=
+          0.9 * floor_va);
   }
 }
 
@@ -324,7 +337,7 @@ TEST_CASE("sysid stage facts: JSON shape and exit codes", "[stage][facts][cli]")
   m.a1n = v["a1n_per_s"];
   m.a2p = v["a2p_mps2"];
   m.a2n = v["a2n_mps2"];
-  CHECK(j["facts"][1]["met"] == facts::PulseModelMet(m, sysid::PaperFacts::PulseModel()));
+  CHECK(j["facts"][1]["met"] == facts::PulseModelMet(m, sysid::paper::PulseModel()));
 
   const auto table = sysid::test::RunCli({"stage", "facts", "--reduced", "--facts", "F1"});
   CHECK(table.exit_code == 0);
@@ -495,9 +508,9 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
   const StageParameters stage = StageParameters::Preset("virtual-1khz");
   const FactsOptions o = Only({"F4"});
   const sysid::StageFacts r = sysid::RunStageFacts(stage, o);
-  REQUIRE(r.tracking.size() == 2);
+  REQUIRE(r.results->tracking.size() == 2);
   bool quiet = true;
-  for (const auto& row : r.tracking) {
+  for (const auto& row : r.results->tracking) {
     // The same run (same stage, seed and profile) in the test, and the ripple from its error
     // by a plain loop: each sample minus the mean of its 51-sample window, after cycle 1.
     sysid::SmoothProfileOptions p;
@@ -554,5 +567,63 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
     CHECK_FALSE(f4->met);
     CHECK(f4->note.find("rings in motion") != std::string::npos);
   }
-  CHECK(Value(*f4, "motion_ripple_m at 0.5 Hz") == r.tracking[0].motion_ripple_m);
+  CHECK(Value(*f4, "motion_ripple_m at 0.5 Hz") == r.results->tracking[0].motion_ripple_m);
+}
+
+TEST_CASE("the facts share one run of each experiment", "[stage][facts]") {
+  // F1, F2 and F6 all read the pulse test (F6 its model); it is simulated once.
+  std::vector<std::string> steps;
+  const sysid::StageFacts r =
+      sysid::RunStageFacts(StageParameters::Default(), Only({"F6", "F2", "F1"}),
+                           [&](const std::string& step) { steps.push_back(step); });
+  CHECK(std::count(steps.begin(), steps.end(), "pulse test and least squares") == 1);
+  CHECK(std::count(steps.begin(), steps.end(), "sinusoidal dominance test (open loop)") == 1);
+  CHECK(steps.size() == 2);
+  REQUIRE(r.results);
+  REQUIRE(r.results->f1);
+  REQUIRE(r.results->f2);
+  REQUIRE(r.results->f6);
+  REQUIRE(r.results->pulse);
+  CHECK_FALSE(r.results->f3);
+  CHECK_FALSE(r.results->delay);
+  // F1's rows are the pulse experiment's plateaus, F2's model its least squares.
+  const auto& plateaus = r.results->pulse->plateaus;
+  REQUIRE(r.results->f1->rows.size() == plateaus.size());
+  for (std::size_t i = 0; i < plateaus.size(); ++i) {
+    CHECK(r.results->f1->rows[i].u_v == plateaus[i].u_v);
+    CHECK(r.results->f1->rows[i].v_mps == plateaus[i].v_mps);
+  }
+  CHECK(r.results->f2->stage.a1p == r.results->pulse->identification.model.a1p);
+}
+
+TEST_CASE("the facts' text is made from the typed numbers", "[stage][facts]") {
+  // Hand-made results, no stage: the table's text and values follow the fields.
+  sysid::paper::FactsResults r;
+  sysid::paper::PlateausFact f1;
+  f1.paper_pulses = 10;
+  f1.rows = {{1.6, 0.05, 0.0505}, {-2.3, std::nan(""), -0.06}};
+  f1.worst_relative_deviation = std::numeric_limits<double>::infinity();
+  f1.worst = f1.rows[1];
+  r.f1 = f1;
+  sysid::paper::DelayFact f3;
+  f3.tau_s = 1e-3;
+  f3.rms_at_tau_mps = 2e-3;
+  f3.rms_at_zero_mps = 4e-3;
+  f3.rms_ratio = 0.5;
+  r.f3 = f3;
+  const FactsOptions options;
+  const auto rows = sysid::paper::FactsTable(r, options);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].id == "F1");
+  CHECK(rows[0].virtual_value == "worst -2.3 V: nan vs -60 mm/s (no plateau)");
+  CHECK(rows[0].note == "2 usable pulses, the paper has 10");
+  CHECK_FALSE(rows[0].met);
+  REQUIRE(rows[0].values.size() == 3);
+  CHECK(rows[0].values[0].first == "v_mps at +1.6 V");
+  CHECK(rows[0].values[0].second == 0.05);
+  CHECK(rows[1].id == "F3");
+  CHECK(rows[1].virtual_value == "tau = 1 ms; RMS dv 2 mm/s at tau, 4 at 0 (ratio 0.5)");
+  CHECK(rows[1].tolerance == "2.5 <= tau <= 4.5 ms and RMS(tau) <= 0.8 RMS(0)");
+  // Not met below the window: the note says why a late stage is fitted with no delay.
+  CHECK(rows[1].note.find("best fitted with no delay") != std::string::npos);
 }
