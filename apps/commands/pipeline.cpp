@@ -67,6 +67,10 @@ void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) 
 }
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
+  if (!(o.options.pulse_fit_fraction > 0))
+    throw OptionsError(fmt::format("--fit-fraction {:g}: expected 0 < F <= 1",
+                                   o.options.pulse_fit_fraction),
+                       "--fit-fraction");
   // Check the output folder before any work (cli/output_folder.hpp).
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
   const fs::path& out = folder.path();
