@@ -68,9 +68,9 @@ void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) 
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
   if (!(o.options.pulse_fit_fraction > 0))
-    throw OptionsError(fmt::format("--fit-fraction {:g}: expected 0 < F <= 1",
-                                   o.options.pulse_fit_fraction),
-                       "--fit-fraction");
+    throw OptionsError(
+        fmt::format("--fit-fraction {:g}: expected 0 < F <= 1", o.options.pulse_fit_fraction),
+        "--fit-fraction");
   // Check the output folder before any work (cli/output_folder.hpp).
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
   const fs::path& out = folder.path();
@@ -124,18 +124,18 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
       "model: a1p={:.6g} a1n={:.6g} a2p={:.6g} a2n={:.6g} a3={:.6g} tau={:.4g} s\n", r.model.a1p,
       r.model.a1n, r.model.a2p, r.model.a2n, r.model.a3, r.model.tau_s);
   if (r.skipped.empty())
-    std::cout << fmt::format("dominant variable: {}; network {} hidden units, test MSE {:.4g} V^2\n",
-                             r.dominance.dominant, r.network.hidden_size(), r.network_test_mse);
+    std::cout << fmt::format(
+        "dominant variable: {}; network {} hidden units, test MSE {:.4g} V^2\n",
+        r.dominance.dominant, r.network.hidden_size(), r.network_test_mse);
   for (const auto& v : r.validations)
     for (const auto& out : v.outputs)
       std::cout << fmt::format("validation on {}: {} fit {:.4g} %\n",
                                fs::path(v.source).filename().string(), out.output,
                                out.scores.fit_percent);
   if (r.tuning)
-    std::cout << fmt::format("PI tuned on the model: Kp = {:.5g} V/m, Ki = {:.5g} V/(m s) at {:g} "
-                             "Hz\n",
-                             r.tuning->pi.kp_v_per_m, r.tuning->pi.ki_v_per_m_s,
-                             1 / r.tuning->pi.sample_time_s);
+    std::cout << fmt::format(
+        "PI tuned on the model: Kp = {:.5g} V/m, Ki = {:.5g} V/(m s) at {:g} Hz\n",
+        r.tuning->pi.kp_v_per_m, r.tuning->pi.ki_v_per_m_s, 1 / r.tuning->pi.sample_time_s);
   for (const auto& [title, rows] :
        {std::pair<std::string, const std::vector<TrackingRow>*>{"on the stage", &r.tracking},
         {"on the identified model", &r.model_tracking}}) {

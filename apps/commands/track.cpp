@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "cli/recording_flags.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/control.hpp"
@@ -121,12 +121,10 @@ SchemesAndReference ParseSchemesAndReference(const TrackCliOptions& o, double co
       CheckReferenceForPlant(out.reference, control_rate_hz, x_min_m, x_max_m);
     }
   } catch (const OptionsError& e) {
-    std::map<std::string, std::string> flags{{"schemes", "--ff"},
-                                             {"waveform", "--waveform"},
-                                             {"frequency_hz", "--freq"},
-                                             {"amplitude_m", "--amplitude"},
-                                             {"stroke_m", "--amplitude"},
-                                             {"cycles", "--cycles"}};
+    std::map<std::string, std::string> flags{
+        {"schemes", "--ff"},         {"waveform", "--waveform"},
+        {"frequency_hz", "--freq"},  {"amplitude_m", "--amplitude"},
+        {"stroke_m", "--amplitude"}, {"cycles", "--cycles"}};
     if (Given(o.loop_rate)) flags["sample_rate_hz"] = "--loop-rate";
     RethrowWithFlag(e, flags);
   }
@@ -170,8 +168,8 @@ void RunStackTrack(const TrackCliOptions& o) {
   // generous envelope that still refuses a 1 m stroke on a 30 um stack.
   const double reach_min = stack.MaxStaticGain() * std::min(stack.rig.voltage_min_v, 0.0),
                reach_max = stack.MaxStaticGain() * stack.rig.voltage_max_v;
-  const SchemesAndReference parsed = ParseSchemesAndReference(
-      o, stack.rig.control_rate_hz, reach_min, reach_max, [&] {
+  const SchemesAndReference parsed =
+      ParseSchemesAndReference(o, stack.rig.control_rate_hz, reach_min, reach_max, [&] {
         StackReferenceOptions ro;
         ro.waveform = ParseStackWaveform(o.waveform);
         if (Given(o.freq)) ro.frequency_hz = o.profile.frequency_hz;
@@ -179,12 +177,12 @@ void RunStackTrack(const TrackCliOptions& o) {
         ro.cycles = o.profile.cycles;
         ro.sample_rate_hz = stack.rig.control_rate_hz;
         if (!(ro.stroke_m <= reach_max))
-          throw OptionsError(fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
-                                         "stack's reach, {:g} m (its steepest slope {:g} m/V at "
-                                         "{:g} V)",
-                                         ro.stroke_m, reach_max, stack.MaxStaticGain(),
-                                         stack.rig.voltage_max_v),
-                             "stroke_m");
+          throw OptionsError(
+              fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
+                          "stack's reach, {:g} m (its steepest slope {:g} m/V at "
+                          "{:g} V)",
+                          ro.stroke_m, reach_max, stack.MaxStaticGain(), stack.rig.voltage_max_v),
+              "stroke_m");
         return MakeStackReference(ro);
       });
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
@@ -244,13 +242,13 @@ void RunModelTrack(const TrackCliOptions& o) {
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
   const FrictionModel plant = ReadModel(o.plant);
   // An identified model has no travel limits.
-  const SchemesAndReference parsed = ParseSchemesAndReference(
-      o, o.loop_rate_hz, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-      [&] {
-        SmoothProfileOptions profile = o.profile;
-        profile.sample_rate_hz = o.loop_rate_hz;
-        return MakeSmoothProfile(profile);
-      });
+  const SchemesAndReference parsed =
+      ParseSchemesAndReference(o, o.loop_rate_hz, -std::numeric_limits<double>::max(),
+                               std::numeric_limits<double>::max(), [&] {
+                                 SmoothProfileOptions profile = o.profile;
+                                 profile.sample_rate_hz = o.loop_rate_hz;
+                                 return MakeSmoothProfile(profile);
+                               });
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
   const PositionReference& ref = parsed.reference;
   const FrictionModel ff_model = o.model_path.empty() ? plant : ReadModel(o.model_path);

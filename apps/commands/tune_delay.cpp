@@ -9,14 +9,14 @@
 
 #include "cli/common.hpp"
 #include "cli/fit_fraction_flag.hpp"
-#include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "sysid/model.hpp"
 #include "sysid/io_output.hpp"
+#include "sysid/model.hpp"
 
 namespace sysid::cli {
 namespace {

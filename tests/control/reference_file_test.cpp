@@ -1,9 +1,9 @@
 // A position reference read from a CSV: x_ref (or x) as written, v and a by central
 // differences, exact for a quadratic x = c t^2 (v = 2 c t, a = 2 c) at interior samples.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -133,9 +133,10 @@ TEST_CASE("track --reference at 1 kHz runs on the 10 kHz virtual stage", "[contr
 // The model plant takes the same reference path as the stage (ReferenceAtControlRate). The
 // reference: the same positions resampled by hand to the 10 kHz loop (linear interpolation
 // written here), whose run with PI alone (x_ref is all it reads) must be the same run.
-TEST_CASE("track --reference at 1 kHz runs on a model plant at 10 kHz, as the reference "
-          "resampled by hand",
-          "[control][cli]") {
+TEST_CASE(
+    "track --reference at 1 kHz runs on a model plant at 10 kHz, as the reference "
+    "resampled by hand",
+    "[control][cli]") {
   sysid::test::TempDir dir;
   sysid::WriteModel(dir / "model.json", sysid::FrictionModel::Paper());
   auto x_of = [](double t) { return 0.002 * (1 - std::cos(3.14159265358979 * t)); };

@@ -383,7 +383,8 @@ TEST_CASE("a fit fraction on tune-delay, refine and sweep fits the first part on
        {std::vector<std::string>{"tune-delay"},
         std::vector<std::string>{"refine", "--max-iterations", "1"}}) {
     std::vector<std::string> base = command;
-    for (const std::string& a : {std::string("--model"), dir / "m.json", csv, std::string("--json")})
+    for (const std::string& a :
+         {std::string("--model"), dir / "m.json", csv, std::string("--json")})
       base.push_back(a);
     auto with = [&](std::vector<std::string> extra) {
       std::vector<std::string> args = base;
@@ -414,8 +415,13 @@ TEST_CASE("a fit fraction on tune-delay, refine and sweep fits the first part on
     if (t[k] <= t0 + 0.3 * (t1 - t0))
       text += fmt::format("{:.17g},{:.17g},{:.17g}\n", t[k], u[k], v[k]);
   WriteText(dir / "train_part.csv", text);
-  const std::vector<std::string> sweep{"sweep", "--hidden", "2,3", "--max-epochs", "3",
-                                       "--test", SourcePath("datasets/virtual/test.csv"),
+  const std::vector<std::string> sweep{"sweep",
+                                       "--hidden",
+                                       "2,3",
+                                       "--max-epochs",
+                                       "3",
+                                       "--test",
+                                       SourcePath("datasets/virtual/test.csv"),
                                        "--json"};
   auto run_sweep = [&](const std::string& file, std::vector<std::string> extra) {
     std::vector<std::string> args = sweep;
@@ -437,8 +443,8 @@ TEST_CASE("a fit fraction on tune-delay, refine and sweep fits the first part on
           Approx(hand_rows[i]["test_mse"].get<double>()).epsilon(1e-12));
     CHECK(part_rows[i]["train_mse"] != whole_rows[i]["train_mse"]);
   }
-  CHECK_THAT(part_err, Catch::Contains("sysid sweep: fitting on") &&
-                           Catch::Contains("the first 30 %"));
+  CHECK_THAT(part_err,
+             Catch::Contains("sysid sweep: fitting on") && Catch::Contains("the first 30 %"));
 }
 
 }  // namespace

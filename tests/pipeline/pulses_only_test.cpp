@@ -26,9 +26,10 @@ using sysid::test::RunCli;
 using sysid::test::SourcePath;
 using sysid::test::TempDir;
 
-TEST_CASE("sysid pipeline on pulse recordings alone: identify, validate on the held-out end, "
-          "tune PI and track on the model, name what is skipped",
-          "[pipeline][cli]") {
+TEST_CASE(
+    "sysid pipeline on pulse recordings alone: identify, validate on the held-out end, "
+    "tune PI and track on the model, name what is skipped",
+    "[pipeline][cli]") {
   namespace fs = std::filesystem;
   TempDir dir;
   fs::create_directory(dir / "in");
@@ -110,9 +111,10 @@ TEST_CASE("sysid pipeline on pulse recordings alone: identify, validate on the h
         0.1 * j["model_tracking"][0]["max_error_m"].get<double>());
 }
 
-TEST_CASE("pipeline inputs: pulses alone are a data set, one tracking set without the other "
-          "is not",
-          "[pipeline]") {
+TEST_CASE(
+    "pipeline inputs: pulses alone are a data set, one tracking set without the other "
+    "is not",
+    "[pipeline]") {
   namespace fs = std::filesystem;
   TempDir dir;
   fs::copy_file(SourcePath("datasets/virtual/pulses.csv"), dir / "pulses.csv");

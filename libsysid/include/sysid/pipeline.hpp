@@ -234,7 +234,8 @@ std::string ToJson(const PipelineResult& result, int indent = 2);
 /// facts_required_met against the facts. A pulse-only run's summary has no dominant, nn_inputs,
 /// hidden, network and nn_test_mse (they come together), and carries skipped [strings],
 /// tuned_pi {kp_v_per_m, ki_v_per_m_s, sample_time_s} and model_tracking (as tracking): read
-/// back into skipped, tuning->pi and model_tracking. Throws InputError "SOURCE:LINE:COL: NAME: expected
+/// back into skipped, tuning->pi and model_tracking. Throws InputError "SOURCE:LINE:COL: NAME:
+/// expected
 /// ..., found ...".
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name);
 

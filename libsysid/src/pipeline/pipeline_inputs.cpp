@@ -31,8 +31,7 @@ void RequireComplete(const PipelineInputs& in) {
   std::string missing;
   if (in.pulses.empty()) missing += " pulse recordings (pulses*.csv|mat|h5),";
   if (!in.training.empty() && in.test.empty()) missing += " a test set (test*.csv|mat|h5),";
-  if (in.training.empty() && !in.test.empty())
-    missing += " a training set (training*.csv|mat|h5),";
+  if (in.training.empty() && !in.test.empty()) missing += " a training set (training*.csv|mat|h5),";
   if (!missing.empty()) {
     missing.pop_back();
     throw InputError(in.root + ": missing" + missing +

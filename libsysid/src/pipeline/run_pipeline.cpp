@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/timed_step.hpp"
 #include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "pipeline/timed_step.hpp"
 #include "sysid/nn_irreducible.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
@@ -106,8 +106,9 @@ PipelineFigures::NetworkSet NetworkTraces(const std::string& set, const Recordin
 void SplitPulses(std::vector<Recording>& pulses, double fraction, std::vector<Recording>& held_out,
                  std::vector<std::string>& notes) {
   if (fraction >= 1) {
-    notes.push_back("pulse recordings alone, fitted whole (pulse_fit_fraction = 1): the model is "
-                    "validated on the waveforms only");
+    notes.push_back(
+        "pulse recordings alone, fitted whole (pulse_fit_fraction = 1): the model is "
+        "validated on the waveforms only");
     return;
   }
   for (Recording& rec : pulses) {
@@ -310,10 +311,9 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
         p.frequency_hz = f;
         p.amplitude_m = options.track_amplitude_m;
         p.sample_rate_hz = 1 / pi.sample_time_s;
-        const auto runs =
-            TrackModelSchemes(r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
-                              {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic},
-                              {&r.model, nullptr});
+        const auto runs = TrackModelSchemes(
+            r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
+            {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic}, {&r.model, nullptr});
         for (const auto& run : runs)
           r.model_tracking.push_back({f, ToString(run.scheme), run.result});
       }

@@ -58,8 +58,8 @@ class ReportWriter {
             : ", training set `" + fs::path(r_.inputs.training).filename().string() +
                   "`, test set `" + fs::path(r_.inputs.test).filename().string() + "`, ";
     md_ += "Inputs: `" + r_.inputs.root + "` — " + std::to_string(r_.inputs.pulses.size()) +
-           " pulse recording(s)" + sets +
-           std::to_string(r_.inputs.waveforms.size()) + " test waveform(s)" +
+           " pulse recording(s)" + sets + std::to_string(r_.inputs.waveforms.size()) +
+           " test waveform(s)" +
            (r_.inputs.loops.empty()
                 ? std::string()
                 : ", " + std::to_string(r_.inputs.loops.size()) + " voltage-loop sweep(s)") +
@@ -391,8 +391,9 @@ class ReportWriter {
 
   // A pulse-only run: what it did not do, and which recordings would make it.
   void Skipped() {
-    md_ += "\n## 3-5. Dominance, networks, inverse comparison: skipped\n\n"
-           "Pulse recordings alone identify the rough model; the steps below need more:\n\n";
+    md_ +=
+        "\n## 3-5. Dominance, networks, inverse comparison: skipped\n\n"
+        "Pulse recordings alone identify the rough model; the steps below need more:\n\n";
     for (const auto& s : r_.skipped) md_ += "- " + s + "\n";
   }
 
@@ -452,10 +453,10 @@ class ReportWriter {
                                                 "alone).",
                                                 1e3 * e[0], 1e3 * e[1])
                          : ordered ? "the paper's ordering holds (PI > PI + analytic > PI + NN)."
-                                 : fmt::format("**the paper's ordering does not hold** (max "
-                                               "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
-                                               "analytic, NN).",
-                                               1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
+                                   : fmt::format("**the paper's ordering does not hold** (max "
+                                                 "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
+                                                 "analytic, NN).",
+                                                 1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
       md_ += RingingSentence(f);
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
@@ -579,9 +580,8 @@ class ReportWriter {
       csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g}\n", t.frequency_hz, t.scheme,
                          t.result.max_error_m, t.result.rms_error_m, t.result.rms_u_v);
     }
-    md_ += MarkdownTable({"frequency [Hz]", "feedforward", "max \\|e\\| [mm]", "RMS e [mm]",
-                          "RMS u [V]"},
-                         rows);
+    md_ += MarkdownTable(
+        {"frequency [Hz]", "feedforward", "max \\|e\\| [mm]", "RMS e [mm]", "RMS u [V]"}, rows);
     WriteFileAtomically(Path("model_tracking.csv"), csv);
     for (double f : r_.options.track_frequencies_hz) {
       PlotSpec spec{fmt::format("tracking error at {} Hz on the identified model", f),
