@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/recording_flags.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
@@ -28,6 +29,7 @@ struct NeuralCliOptions {
   std::string output_range;               ///< MIN:MAX
   bool json = false;
   NeuralTrainingOptions training;
+  FitFractionFlag fit_fraction;  ///< of the training file; --test and --validation stay whole
 };
 
 inline std::vector<std::string> SplitComma(const std::string& s) {
@@ -67,10 +69,24 @@ inline std::string InitFlag(NeuralInit i) {
   return i == NeuralInit::kUniform ? "uniform" : "nguyen-widrow";
 }
 
+// The training set of --train NAMES -> OUTPUT: the file's first --fit-fraction (a note on stderr
+// naming `command` and the part left out) or all of it.
+inline NeuralDataset ReadTrainingSet(const NeuralCliOptions& o,
+                                     const std::vector<std::string>& names,
+                                     const std::string& command) {
+  if (o.fit_fraction.fraction == 1)
+    return ReadNeuralDataset(o.train_path, names, o.output, o.recording.Mapping());
+  return MakeNeuralDataset(
+      o.fit_fraction.FitPart({ReadRecording(o.train_path, o.recording.Apply({{"t"}, {}}))}, command)
+          .front(),
+      names, o.output);
+}
+
 inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
   o.trainer = TrainerFlag(o.training.trainer);
   o.init = InitFlag(o.training.init);
   o.recording.Add(cmd);
+  o.fit_fraction.Add(cmd);
   cmd->add_option("--train", o.train_path,
                   "training CSV with the input and output columns (t [s] optional)")
       ->required()

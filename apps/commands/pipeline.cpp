@@ -67,6 +67,10 @@ void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) 
 }
 
 void RunPipelineCommand(const PipelineCliOptions& o) {
+  if (!(o.options.pulse_fit_fraction > 0))
+    throw OptionsError(
+        fmt::format("--fit-fraction {:g}: expected 0 < F <= 1", o.options.pulse_fit_fraction),
+        "--fit-fraction");
   // Check the output folder before any work (cli/output_folder.hpp).
   const OutputFolder folder(o.out_dir, o.force, {o.input}, "pipeline");
   const fs::path& out = folder.path();
@@ -104,6 +108,7 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
     PrintStackSummary(r, out, o.json);
     return;
   }
+  for (const auto& s : r.skipped) std::cerr << "sysid pipeline: skipped: " << s << '\n';
 
   if (!r.pulse.a3_given)
     std::cerr << "sysid pipeline: warning: " << DescribeA3(r.pulse.model.a3, false)
@@ -116,16 +121,30 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
     return;
   }
   std::cout << fmt::format(
-      "model: a1p={:.6g} a1n={:.6g} a2p={:.6g} a2n={:.6g} a3={:.6g} tau={:.4g} s\n"
-      "dominant variable: {}; network {} hidden units, test MSE {:.4g} V^2\n",
-      r.model.a1p, r.model.a1n, r.model.a2p, r.model.a2n, r.model.a3, r.model.tau_s,
-      r.dominance.dominant, r.network.hidden_size(), r.network_test_mse);
-  if (!r.tracking.empty()) {
+      "model: a1p={:.6g} a1n={:.6g} a2p={:.6g} a2n={:.6g} a3={:.6g} tau={:.4g} s\n", r.model.a1p,
+      r.model.a1n, r.model.a2p, r.model.a2n, r.model.a3, r.model.tau_s);
+  if (r.skipped.empty())
+    std::cout << fmt::format(
+        "dominant variable: {}; network {} hidden units, test MSE {:.4g} V^2\n",
+        r.dominance.dominant, r.network.hidden_size(), r.network_test_mse);
+  for (const auto& v : r.validations)
+    for (const auto& out : v.outputs)
+      std::cout << fmt::format("validation on {}: {} fit {:.4g} %\n",
+                               fs::path(v.source).filename().string(), out.output,
+                               out.scores.fit_percent);
+  if (r.tuning)
+    std::cout << fmt::format(
+        "PI tuned on the model: Kp = {:.5g} V/m, Ki = {:.5g} V/(m s) at {:g} Hz\n",
+        r.tuning->pi.kp_v_per_m, r.tuning->pi.ki_v_per_m_s, 1 / r.tuning->pi.sample_time_s);
+  for (const auto& [title, rows] :
+       {std::pair<std::string, const std::vector<TrackingRow>*>{"on the stage", &r.tracking},
+        {"on the identified model", &r.model_tracking}}) {
+    if (rows->empty()) continue;
     Table t({"freq [Hz]", "feedforward", "max |e| [mm]", "RMS e [mm]"});
-    for (const auto& row : r.tracking)
+    for (const auto& row : *rows)
       t.AddRow({Num(row.frequency_hz, 3), row.scheme, Num(1e3 * row.result.max_error_m, 4),
                 Num(1e3 * row.result.rms_error_m, 4)});
-    std::cout << t.Render();
+    std::cout << "PI tracking " << title << ":\n" << t.Render();
   }
   std::cout << "report: " << (out / "report.md").string() << '\n';
 }
@@ -141,7 +160,11 @@ void AddPipelineCommand(CLI::App& app) {
       "or .hdf5 (--var/--rate/--scale map every one) and stage.json (enables "
       "tracking), or a manifest.json naming them. A folder with none of pulses*, train*, "
       "test* (or a manifest {\"stack\": [...]}) is a stack data set: its recordings (t, u, x) "
-      "fit the hysteresis models on their first 40 % and score them on the rest");
+      "fit the hysteresis models on their first 40 % and score them on the rest. Pulse "
+      "recordings alone (no training or test set) run identify, tune delay, [refine], "
+      "validation on each pulse recording's held-out end (--fit-fraction), the PI gains' "
+      "margins, PI tuning and tracking on the identified model, and name the recordings that "
+      "would enable the other steps");
   cmd->add_option("input", o->input, "folder of recordings, or a manifest JSON")
       ->required()
       ->check(CLI::ExistingPath)
@@ -180,6 +203,13 @@ void AddPipelineCommand(CLI::App& app) {
   AddOffFlag(cmd, "--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");
   cmd->add_flag("--refine", p.refine, "refine all parameters by output error (Ceres)");
   AddOffFlag(cmd, "--no-track", p.track, "skip the PI tracking experiment");
+  cmd->add_option("--fit-fraction", p.pulse_fit_fraction,
+                  "with pulse recordings alone: identify on the first fraction F of each pulse "
+                  "recording's duration and validate on the rest, 0 < F <= 1 (unused with a "
+                  "training set)")
+      ->type_name("F")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_flag("--facts", p.facts,
                 "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
                 "table in the report, facts.json");

@@ -7,14 +7,15 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "cli/output_file.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
-#include "sysid/error.hpp"
 #include "sysid/delay.hpp"
+#include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "sysid/model.hpp"
 #include "sysid/io_output.hpp"
+#include "sysid/model.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -29,6 +30,7 @@ struct RefineCli {
   bool fix_tau = false;
   RefineOptions options;  // the flags' defaults are the library's
   MotionFlags motion;
+  FitFractionFlag fit_fraction;
 };
 
 void RunRefine(const RefineCli& o) {
@@ -37,7 +39,8 @@ void RunRefine(const RefineCli& o) {
   r.refine_a3 = !o.fix_a3;
   r.refine_tau = !o.fix_tau;
   o.motion.ApplyTo(r.motion);
-  const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
+  const std::vector<Recording> recs =
+      o.fit_fraction.FitPart(o.motion.ReadRecordings(o.recordings), "refine");
   const RefineResult res = RefineOutputError(initial, recs, r);
   for (const auto& w : res.warnings) std::cerr << "sysid refine: warning: " << w << '\n';
   const std::string rendered = ToJson(res);
@@ -73,6 +76,7 @@ void AddRefineCommand(CLI::App& app) {
                   "Levenberg-Marquardt iterations [count]")
       ->capture_default_str();
   AddThreadsOption(cmd, r.threads, "simulation threads [count]; 0 = all cores");
+  o->fit_fraction.Add(cmd);
   cmd->add_option("--min-duration", r.detection.min_duration_s,
                   "pulses (cut points) last at least this long [s]")
       ->capture_default_str();

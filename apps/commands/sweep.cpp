@@ -29,8 +29,7 @@ void RunSweep(SweepCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   so.training = o.nn.training;
   const auto names = SplitComma(o.nn.inputs);
-  const NeuralDataset train =
-      ReadNeuralDataset(o.nn.train_path, names, o.nn.output, o.nn.recording.Mapping());
+  const NeuralDataset train = ReadTrainingSet(o.nn, names, "sweep");
   std::unique_ptr<NeuralDataset> test, validation;
   if (!o.nn.test_path.empty())
     test = std::make_unique<NeuralDataset>(

@@ -11,17 +11,19 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/common.hpp"
-#include "cli/recording_flags.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
+#include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/control.hpp"
@@ -97,6 +99,38 @@ bool IsModelPlant(const std::string& plant) {
   return !IsStackFileText(text) && text.find("\"a1p\"") != std::string::npos;
 }
 
+// --ff and the reference for every plant: the smooth profile `profile` makes (--freq,
+// --amplitude, --cycles, --waveform) or --reference, which a plant at control_rate_hz [Hz] takes
+// at its rate or at one dividing it (ReferenceAtControlRate: linear interpolation) inside its
+// travel [x_min_m, x_max_m] [m]. A library refusal names the flag.
+struct SchemesAndReference {
+  std::vector<FeedforwardScheme> schemes;
+  PositionReference reference;
+};
+SchemesAndReference ParseSchemesAndReference(const TrackCliOptions& o, double control_rate_hz,
+                                             double x_min_m, double x_max_m,
+                                             const std::function<PositionReference()>& profile) {
+  SchemesAndReference out;
+  try {
+    out.schemes = ParseFeedforwardSchemes(o.ff);
+    if (o.reference_path.empty()) {
+      out.reference = profile();
+    } else {
+      out.reference = ReferenceAtControlRate(
+          ReadPositionReference(o.reference_path, o.recording.Mapping()), control_rate_hz);
+      CheckReferenceForPlant(out.reference, control_rate_hz, x_min_m, x_max_m);
+    }
+  } catch (const OptionsError& e) {
+    std::map<std::string, std::string> flags{
+        {"schemes", "--ff"},         {"waveform", "--waveform"},
+        {"frequency_hz", "--freq"},  {"amplitude_m", "--amplitude"},
+        {"stroke_m", "--amplitude"}, {"cycles", "--cycles"}};
+    if (Given(o.loop_rate)) flags["sample_rate_hz"] = "--loop-rate";
+    RethrowWithFlag(e, flags);
+  }
+  return out;
+}
+
 // -o DIR for stage and stack alike: a trace per scheme, the plots, the summary.
 template <typename Folder, typename Runs>
 void WriteTrackFolder(Folder& folder, const Runs& runs, bool plots, const std::string& summary) {
@@ -130,41 +164,29 @@ void RunStackTrack(const TrackCliOptions& o) {
   if (Given(o.kp)) pi.kp_v_per_m = o.pi.kp_v_per_m;
   if (Given(o.ki)) pi.ki_v_per_m_s = o.pi.ki_v_per_m_s;
   if (Given(o.u_max)) pi.u_max_v = o.pi.u_max_v;
-  std::vector<FeedforwardScheme> schemes;
-  PositionReference ref;
-  try {
-    schemes = ParseFeedforwardSchemes(o.ff);
-    StackReferenceOptions ro;
-    ro.waveform = ParseStackWaveform(o.waveform);
-    if (Given(o.freq)) ro.frequency_hz = o.profile.frequency_hz;
-    if (Given(o.amplitude)) ro.stroke_m = o.profile.amplitude_m;
-    ro.cycles = o.profile.cycles;
-    ro.sample_rate_hz = stack.rig.control_rate_hz;
-    // The stack reaches at most its steepest static slope times the amplifier's range: a
-    // generous envelope that still refuses a 1 m stroke on a 30 um stack.
-    const double reach_min = stack.MaxStaticGain() * std::min(stack.rig.voltage_min_v, 0.0),
-                 reach_max = stack.MaxStaticGain() * stack.rig.voltage_max_v;
-    if (o.reference_path.empty()) {
-      if (!(ro.stroke_m <= reach_max))
-        throw OptionsError(fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
-                                       "stack's reach, {:g} m (its steepest slope {:g} m/V at "
-                                       "{:g} V)",
-                                       ro.stroke_m, reach_max, stack.MaxStaticGain(),
-                                       stack.rig.voltage_max_v),
-                           "stroke_m");
-      ref = MakeStackReference(ro);
-    } else {
-      ref = ReferenceAtControlRate(ReadPositionReference(o.reference_path, o.recording.Mapping()),
-                                   stack.rig.control_rate_hz);
-      CheckReferenceForPlant(ref, stack.rig.control_rate_hz, reach_min, reach_max);
-    }
-  } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"schemes", "--ff"},
-                        {"waveform", "--waveform"},
-                        {"frequency_hz", "--freq"},
-                        {"stroke_m", "--amplitude"},
-                        {"cycles", "--cycles"}});
-  }
+  // The stack reaches at most its steepest static slope times the amplifier's range: a
+  // generous envelope that still refuses a 1 m stroke on a 30 um stack.
+  const double reach_min = stack.MaxStaticGain() * std::min(stack.rig.voltage_min_v, 0.0),
+               reach_max = stack.MaxStaticGain() * stack.rig.voltage_max_v;
+  const SchemesAndReference parsed =
+      ParseSchemesAndReference(o, stack.rig.control_rate_hz, reach_min, reach_max, [&] {
+        StackReferenceOptions ro;
+        ro.waveform = ParseStackWaveform(o.waveform);
+        if (Given(o.freq)) ro.frequency_hz = o.profile.frequency_hz;
+        if (Given(o.amplitude)) ro.stroke_m = o.profile.amplitude_m;
+        ro.cycles = o.profile.cycles;
+        ro.sample_rate_hz = stack.rig.control_rate_hz;
+        if (!(ro.stroke_m <= reach_max))
+          throw OptionsError(
+              fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
+                          "stack's reach, {:g} m (its steepest slope {:g} m/V at "
+                          "{:g} V)",
+                          ro.stroke_m, reach_max, stack.MaxStaticGain(), stack.rig.voltage_max_v),
+              "stroke_m");
+        return MakeStackReference(ro);
+      });
+  const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
+  const PositionReference& ref = parsed.reference;
   std::unique_ptr<HysteresisModel> hysteresis;
   if (Uses(schemes, FeedforwardScheme::kHysteresis)) {
     if (o.hysteresis_path.empty())
@@ -219,25 +241,16 @@ void RunModelTrack(const TrackCliOptions& o) {
   const auto folder = OptionalOutputFolder(
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
   const FrictionModel plant = ReadModel(o.plant);
-  std::vector<FeedforwardScheme> schemes;
-  PositionReference ref;
-  try {
-    schemes = ParseFeedforwardSchemes(o.ff);
-    if (o.reference_path.empty()) {
-      SmoothProfileOptions profile = o.profile;
-      profile.sample_rate_hz = o.loop_rate_hz;
-      ref = MakeSmoothProfile(profile);
-    } else {
-      ref = ReadPositionReference(o.reference_path, o.recording.Mapping());
-      CheckReferenceForPlant(ref, o.loop_rate_hz, -std::numeric_limits<double>::max(),
-                             std::numeric_limits<double>::max());
-    }
-  } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"schemes", "--ff"},
-                        {"amplitude_m", "--amplitude"},
-                        {"frequency_hz", "--freq"},
-                        {"sample_rate_hz", "--loop-rate"}});
-  }
+  // An identified model has no travel limits.
+  const SchemesAndReference parsed =
+      ParseSchemesAndReference(o, o.loop_rate_hz, -std::numeric_limits<double>::max(),
+                               std::numeric_limits<double>::max(), [&] {
+                                 SmoothProfileOptions profile = o.profile;
+                                 profile.sample_rate_hz = o.loop_rate_hz;
+                                 return MakeSmoothProfile(profile);
+                               });
+  const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
+  const PositionReference& ref = parsed.reference;
   const FrictionModel ff_model = o.model_path.empty() ? plant : ReadModel(o.model_path);
   std::optional<NeuralNetwork> nn;
   if (Uses(schemes, FeedforwardScheme::kNetwork)) {
@@ -287,20 +300,11 @@ void RunTrack(const TrackCliOptions& o) {
   const auto folder = OptionalOutputFolder(
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
   const StageParameters stage = LoadStage(o.plant);
-  std::vector<FeedforwardScheme> schemes;
-  PositionReference ref;
-  try {
-    schemes = ParseFeedforwardSchemes(o.ff);
-    if (o.reference_path.empty()) {
-      ref = MakeStageProfile(stage, o.profile);
-    } else {
-      ref = ReferenceAtControlRate(ReadPositionReference(o.reference_path, o.recording.Mapping()),
-                                   stage.sample_rate_hz);
-      CheckReferenceForPlant(ref, stage.sample_rate_hz, stage.travel_min_m, stage.travel_max_m);
-    }
-  } catch (const OptionsError& e) {
-    RethrowWithFlag(e, {{"schemes", "--ff"}, {"amplitude_m", "--amplitude"}});
-  }
+  const SchemesAndReference parsed =
+      ParseSchemesAndReference(o, stage.sample_rate_hz, stage.travel_min_m, stage.travel_max_m,
+                               [&] { return MakeStageProfile(stage, o.profile); });
+  const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
+  const PositionReference& ref = parsed.reference;
   std::optional<FrictionModel> model;
   std::optional<NeuralNetwork> nn;
   if (Uses(schemes, FeedforwardScheme::kAnalytic)) {

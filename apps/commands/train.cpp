@@ -12,7 +12,6 @@
 #include "cli/common.hpp"
 #include "cli/output_file.hpp"
 #include "cli/registry.hpp"
-#include "cli/fit_fraction_flag.hpp"
 #include "commands/nn_training_options.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
@@ -23,22 +22,13 @@ namespace {
 struct TrainCliOptions {
   NeuralCliOptions nn;
   bool history = false;
-  FitFractionFlag fit_fraction;  // of the training file; --test and --validation stay whole
 };
 
 void RunTrain(TrainCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   const auto names = SplitComma(o.nn.inputs);
   // Read everything before training so bad files fail fast.
-  const NeuralDataset train =
-      o.fit_fraction.fraction == 1
-          ? ReadNeuralDataset(o.nn.train_path, names, o.nn.output, o.nn.recording.Mapping())
-          : MakeNeuralDataset(
-                o.fit_fraction
-                    .FitPart({ReadRecording(o.nn.train_path, o.nn.recording.Apply({{"t"}, {}}))},
-                             "train")
-                    .front(),
-                names, o.nn.output);
+  const NeuralDataset train = ReadTrainingSet(o.nn, names, "train");
   std::unique_ptr<NeuralDataset> test, validation;
   if (!o.nn.test_path.empty())
     test = std::make_unique<NeuralDataset>(
@@ -113,7 +103,6 @@ void AddTrainCommand(CLI::App& app) {
       ->type_name("NN.json");
   GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});
   cmd->add_flag("--history", o->history, "with --json: include every epoch (mu, MSEs)");
-  o->fit_fraction.Add(cmd);
   cmd->callback([o] { RunTrain(*o); });
 }
 

@@ -8,14 +8,15 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "cli/output_file.hpp"
+#include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
+#include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "sysid/model.hpp"
 #include "sysid/io_output.hpp"
+#include "sysid/model.hpp"
 
 namespace sysid::cli {
 namespace {
@@ -28,13 +29,15 @@ struct TuneDelayCli {
   bool verbose = false;
   std::string output;
   MotionFlags motion;
+  FitFractionFlag fit_fraction;
 };
 
 void RunTuneDelay(const TuneDelayCli& o) {
   const FrictionModel model = ReadModel(o.model);
   DelayTuningOptions d = o.options;
   o.motion.ApplyTo(d.motion);
-  const std::vector<Recording> recs = o.motion.ReadRecordings(o.recordings);
+  const std::vector<Recording> recs =
+      o.fit_fraction.FitPart(o.motion.ReadRecordings(o.recordings), "tune-delay");
   const DelayTuningResult r = TuneDelay(model, recs, d);
   for (const auto& w : r.warnings) std::cerr << "sysid tune-delay: warning: " << w << '\n';
   if (!o.output.empty())
@@ -81,6 +84,7 @@ void AddTuneDelayCommand(CLI::App& app) {
       ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
       ->capture_default_str();
   AddThreadsOption(cmd, d.threads, "simulation threads [count]; 0 = all cores");
+  o->fit_fraction.Add(cmd);
   AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print tau [s], cost [m^2/s^2], evaluations, curve and the model as JSON");

@@ -289,6 +289,12 @@ void BindIo(py::module_& m) {
       },
       py::arg("t_s"), py::arg("tolerance") = 0.01);
   m.def("resample", &Resample, py::arg("recording"), py::arg("rate_hz"), ReleaseGil());
+  m.def("crop", &CropRecording, py::arg("recording"), py::arg("t_start_s"), py::arg("t_end_s"),
+        ReleaseGil(),
+        "The rows with t_start_s <= t <= t_end_s [s], t kept as recorded (not shifted to 0), "
+        "metadata kept and 'crop_s: START END' added (`--t-start/--t-end`). DataError naming the "
+        "source when a bound lies outside the recording, the start is not before the end, or "
+        "fewer than two rows remain.");
 
   // ---- Signal conditioning ----
   py::enum_<DerivativeMethod> method(m, "DerivativeMethod");

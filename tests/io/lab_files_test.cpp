@@ -362,5 +362,90 @@ TEST_CASE("a time window on every reader and a fit fraction on the fitting comma
   CHECK(nlohmann::json::parse(h.out)["samples"] == RowsWithin(p, p0, p0 + 0.25 * (p1 - p0)));
 }
 
+// tune-delay, refine and sweep: --fit-fraction F is the recording's first part, the same run as
+// that part given by hand (--t-end on a single file; for sweep, a training file cut by hand,
+// since --t-end would cut the test file too).
+TEST_CASE("a fit fraction on tune-delay, refine and sweep fits the first part only",
+          "[io][cli][labfiles][crop]") {
+  TempDir dir;
+  const std::string csv = SourcePath("datasets/virtual/pulses.csv");
+  REQUIRE(RunCli({"identify", csv, "-o", dir / "m.json"}).exit_code == 0);
+  const Recording rec = ReadRecording(csv);
+  const double first = rec.column("t")[0], last = rec.column("t")[rec.rows() - 1];
+  const double cut = first + 0.5 * (last - first);
+  // The outputs without their wall time (the one field that differs between two runs).
+  auto without_time = [](const std::string& text) {
+    nlohmann::json j = nlohmann::json::parse(text);
+    j.erase("wall_time_s");
+    return j;
+  };
+  for (const std::vector<std::string>& command :
+       {std::vector<std::string>{"tune-delay"},
+        std::vector<std::string>{"refine", "--max-iterations", "1"}}) {
+    std::vector<std::string> base = command;
+    for (const std::string& a :
+         {std::string("--model"), dir / "m.json", csv, std::string("--json")})
+      base.push_back(a);
+    auto with = [&](std::vector<std::string> extra) {
+      std::vector<std::string> args = base;
+      args.insert(args.end(), extra.begin(), extra.end());
+      return RunCli(args);
+    };
+    const CliResult half = with({"--fit-fraction", "0.5"});
+    const CliResult by_hand = with({"--t-end", fmt::format("{:.17g}", cut)});
+    const CliResult whole = with({});
+    INFO(command[0] << ": " << half.err);
+    REQUIRE(half.exit_code == 0);
+    REQUIRE(by_hand.exit_code == 0);
+    REQUIRE(whole.exit_code == 0);
+    CHECK(without_time(half.out) == without_time(by_hand.out));
+    CHECK(without_time(half.out) != without_time(whole.out));
+    CHECK_THAT(half.err, Catch::Contains("sysid " + command[0] + ": fitting on") &&
+                             Catch::Contains("the first 50 %") &&
+                             Catch::Contains(fmt::format("--t-start {:.6g}", cut)));
+    CHECK(with({"--fit-fraction", "0"}).exit_code == 1);
+  }
+  // sweep on the training set's first 30 % against the same rows written to a file by hand.
+  const std::string training = SourcePath("datasets/virtual/training.csv");
+  const Recording train = ReadRecording(training);
+  const double t0 = train.column("t")[0], t1 = train.column("t")[train.rows() - 1];
+  std::string text = "t,u,v\n";
+  const Eigen::VectorXd t = train.column("t"), u = train.column("u"), v = train.column("v");
+  for (Eigen::Index k = 0; k < t.size(); ++k)
+    if (t[k] <= t0 + 0.3 * (t1 - t0))
+      text += fmt::format("{:.17g},{:.17g},{:.17g}\n", t[k], u[k], v[k]);
+  WriteText(dir / "train_part.csv", text);
+  const std::vector<std::string> sweep{"sweep",
+                                       "--hidden",
+                                       "2,3",
+                                       "--max-epochs",
+                                       "3",
+                                       "--test",
+                                       SourcePath("datasets/virtual/test.csv"),
+                                       "--json"};
+  auto run_sweep = [&](const std::string& file, std::vector<std::string> extra) {
+    std::vector<std::string> args = sweep;
+    args.insert(args.end(), {"--train", file});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = RunCli(args);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return std::make_pair(nlohmann::json::parse(r.out)["rows"], r.err);
+  };
+  const auto [part_rows, part_err] = run_sweep(training, {"--fit-fraction", "0.3"});
+  const auto [hand_rows, hand_err] = run_sweep(dir / "train_part.csv", {});
+  const auto [whole_rows, whole_err] = run_sweep(training, {});
+  REQUIRE(part_rows.size() == 2);
+  for (size_t i = 0; i < 2; ++i) {
+    CHECK(part_rows[i]["train_mse"].get<double>() ==
+          Approx(hand_rows[i]["train_mse"].get<double>()).epsilon(1e-12));
+    CHECK(part_rows[i]["test_mse"].get<double>() ==
+          Approx(hand_rows[i]["test_mse"].get<double>()).epsilon(1e-12));
+    CHECK(part_rows[i]["train_mse"] != whole_rows[i]["train_mse"]);
+  }
+  CHECK_THAT(part_err,
+             Catch::Contains("sysid sweep: fitting on") && Catch::Contains("the first 30 %"));
+}
+
 }  // namespace
 }  // namespace sysid::test

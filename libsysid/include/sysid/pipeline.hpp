@@ -20,6 +20,7 @@
 #include "sysid/compare.hpp"
 #include "sysid/compare_stack.hpp"
 #include "sysid/control.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/dominance_candidates.hpp"
@@ -42,6 +43,11 @@ namespace sysid {
 /// waveform*.csv (test waveforms), loop*.csv (slow open-loop sweeps: the voltage-velocity
 /// loop, optional), stage.json (a virtual-stage file, enables tracking).
 ///
+/// **Pulse recordings alone** (no training or test set; waveforms, loops and a stage file
+/// optional) are a stage data set too: the pipeline then runs what pulses allow (PulsesOnly,
+/// RunPipeline) and names the recordings that would enable the rest. A training set without a
+/// test set, or the reverse, is an error.
+///
 /// A **stack** data set (a piezo stack: no pulse test, recordings with columns t [s], u [V],
 /// x [m]) is a folder with none of pulses*, train*, test* (every *.csv in it is a stack
 /// recording), or a manifest {"stack": ["piezo.csv", ...]} (without the stage's keys). The
@@ -61,6 +67,12 @@ struct PipelineInputs {
   SourceMapping mapping;
 
   bool IsStack() const { return !stack.empty(); }
+  /// Pulse recordings and no training or test set: identification, delay, refinement,
+  /// validation on the pulses' held-out parts, margins, PI tuning and tracking on the
+  /// identified model; no dominance, network or inverse comparison.
+  bool PulsesOnly() const {
+    return !pulses.empty() && training.empty() && test.empty() && !IsStack();
+  }
   /// `base` with `mapping`: how every step and the report read these recordings.
   ReadOptions Read(ReadOptions base = {}) const {
     base.mapping = mapping;
@@ -89,6 +101,11 @@ struct PipelineOptions {
   int typical_hidden = 120;  ///< the paper's 120 units
   int typical_max_epochs = 60;
   int typical_stride = 2;  ///< training rows used by the typical net: every n-th
+  /// With pulse recordings alone (PipelineInputs::PulsesOnly): identify, tune the delay and
+  /// refine on the first fraction F of each pulse recording's duration (CropRecording, as
+  /// `--fit-fraction` elsewhere) and validate the model on the rest; in (0, 1], 1: fit on the
+  /// whole recordings and validate on the waveforms alone. Unused with a training set.
+  double pulse_fit_fraction = 0.7;
   bool track = true;       ///< PI tracking when a stage file is available
   std::vector<double> track_frequencies_hz{0.5, 1.0};
   double track_amplitude_m = 0.01;  ///< [m] stroke of the smooth profile
@@ -170,6 +187,16 @@ struct PipelineResult {
   /// the stage's sample time, else at the pulse recordings' (the report's section 6).
   std::optional<PiMarginsReport> margins;
   std::optional<StageFacts> facts;  ///< when options.facts and a stage file
+  /// Pulse recordings alone, with options.track: TunePi of `model` (default targets: 45 deg,
+  /// 6 dB) at the margins' sample time; unset with a note when no gains meet the targets.
+  std::optional<PiTuningResult> tuning;
+  /// Pulse recordings alone, with options.track: PI tracking of the smooth profile
+  /// (track_frequencies_hz, track_amplitude_m) on the identified model as the plant
+  /// (TrackModelSchemes at the margins' sample time) with no and with analytic feedforward,
+  /// under the tuned gains (options.pi when tuning failed).
+  std::vector<TrackingRow> model_tracking;
+  /// The steps a pulse-only run skipped, each "STEP: needs RECORDINGS" (also in notes).
+  std::vector<std::string> skipped;
   /// A stack data set (inputs.IsStack()): the stage's steps above are skipped and these are
   /// filled instead. Each of StackModelSpecs fitted on the first kStackTrainFraction of every
   /// recording and scored on the rest (FitAndScoreHysteresis), and RankCandidates of each
@@ -204,7 +231,11 @@ std::string ToJson(const PipelineResult& result, int indent = 2);
 /// tracking traces and metrics other than max/rms error, the margins' model, gains and phase
 /// crossovers, and the facts' texts and numbers (only id, required and met). The derived values
 /// are checked: hidden against the network, each margin's stable against its margins,
-/// facts_required_met against the facts. Throws InputError "SOURCE:LINE:COL: NAME: expected
+/// facts_required_met against the facts. A pulse-only run's summary has no dominant, nn_inputs,
+/// hidden, network and nn_test_mse (they come together), and carries skipped [strings],
+/// tuned_pi {kp_v_per_m, ki_v_per_m_s, sample_time_s} and model_tracking (as tracking): read
+/// back into skipped, tuning->pi and model_tracking. Throws InputError "SOURCE:LINE:COL: NAME:
+/// expected
 /// ..., found ...".
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name);
 

@@ -25,11 +25,13 @@ bool IsRecordingFile(const fs::path& p) {
   return ext == ".csv" || ext == ".mat" || ext == ".h5" || ext == ".hdf5";
 }
 
+// Pulse recordings are the least a stage needs; the tracking sets come as a pair (pulses alone
+// run the identification part, PipelineInputs::PulsesOnly).
 void RequireComplete(const PipelineInputs& in) {
   std::string missing;
   if (in.pulses.empty()) missing += " pulse recordings (pulses*.csv|mat|h5),";
-  if (in.training.empty()) missing += " a training set (training*.csv|mat|h5),";
-  if (in.test.empty()) missing += " a test set (test*.csv|mat|h5),";
+  if (!in.training.empty() && in.test.empty()) missing += " a test set (test*.csv|mat|h5),";
+  if (in.training.empty() && !in.test.empty()) missing += " a training set (training*.csv|mat|h5),";
   if (!missing.empty()) {
     missing.pop_back();
     throw InputError(in.root + ": missing" + missing +
@@ -157,6 +159,9 @@ void PipelineOptions::Validate() const {
   if (typical_hidden < 1) fail("typical_hidden", "typical_hidden >= 1");
   if (typical_stride < 1) fail("typical_stride", "typical_stride >= 1");
   if (typical_max_epochs < 0) fail("typical_max_epochs", "typical_max_epochs >= 0");
+  if (!(pulse_fit_fraction > 0 && pulse_fit_fraction <= 1))
+    fail("pulse_fit_fraction = " + std::to_string(pulse_fit_fraction),
+         "0 < pulse_fit_fraction <= 1");
   for (double f : track_frequencies_hz)
     if (!(f > 0)) fail("track_frequencies_hz", "every frequency > 0");
   delay.Validate();

@@ -24,21 +24,35 @@ using Rule = internal::NumberRule;
 std::string ToJson(const PipelineResult& r, int indent) {
   Json j;
   j["model"] = Json::parse(ModelToJson(r.model, -1));
-  j["dominant"] = r.dominance.dominant;
-  j["nn_inputs"] = r.nn_inputs;
-  j["hidden"] = r.network.hidden_size();
-  j["network"] = Json::parse(NeuralNetworkToJson(r.network, -1));
-  j["nn_test_mse"] = internal::NumberOrNull(r.network_test_mse);
+  // A pulse-only run has no dominance and no network (its "skipped" says why).
+  if (r.skipped.empty()) {
+    j["dominant"] = r.dominance.dominant;
+    j["nn_inputs"] = r.nn_inputs;
+    j["hidden"] = r.network.hidden_size();
+    j["network"] = Json::parse(NeuralNetworkToJson(r.network, -1));
+    j["nn_test_mse"] = internal::NumberOrNull(r.network_test_mse);
+  } else {
+    j["skipped"] = r.skipped;
+  }
   if (r.typical) {
     j["typical_train_mse"] = internal::NumberOrNull(r.typical->train_mse);
     j["typical_test_mse"] = internal::NumberOrNull(r.typical_test_mse);
   }
-  j["tracking"] = Json::array();
-  for (const auto& t : r.tracking)
-    j["tracking"].push_back({{"frequency_hz", t.frequency_hz},
-                             {"ff", t.scheme},
-                             {"max_error_m", t.result.max_error_m},
-                             {"rms_error_m", t.result.rms_error_m}});
+  auto rows = [](const std::vector<TrackingRow>& tracking) {
+    Json a = Json::array();
+    for (const auto& t : tracking)
+      a.push_back({{"frequency_hz", t.frequency_hz},
+                   {"ff", t.scheme},
+                   {"max_error_m", t.result.max_error_m},
+                   {"rms_error_m", t.result.rms_error_m}});
+    return a;
+  };
+  j["tracking"] = rows(r.tracking);
+  if (r.tuning)
+    j["tuned_pi"] = {{"kp_v_per_m", r.tuning->pi.kp_v_per_m},
+                     {"ki_v_per_m_s", r.tuning->pi.ki_v_per_m_s},
+                     {"sample_time_s", r.tuning->pi.sample_time_s}};
+  if (!r.model_tracking.empty()) j["model_tracking"] = rows(r.model_tracking);
   if (r.margins) {
     // The PI gains' verdict per direction: margins.json (the report) holds the whole analysis.
     j["margins"] = Json::array();
@@ -67,21 +81,34 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
   const JsonNode root = doc.Root();
   // "report" is the path `sysid pipeline --json` adds in front of the library's summary.
   root.ExpectObject({"model", "dominant", "nn_inputs", "hidden", "network", "nn_test_mse",
-                     "typical_train_mse", "typical_test_mse", "tracking", "margins", "facts",
-                     "facts_required_met", "steps"},
+                     "skipped", "typical_train_mse", "typical_test_mse", "tracking", "tuned_pi",
+                     "model_tracking", "margins", "facts", "facts_required_met", "steps"},
                     {"report"});
   PipelineResult r;
   r.model = internal::ModelFromJson(doc, root.Get("model"), {"units"});
-  r.dominance.dominant = root.Get("dominant").String();
-  const JsonNode inputs = root.Get("nn_inputs");
-  inputs.ExpectArray();
-  for (size_t i = 0; i < inputs.Size(); ++i) r.nn_inputs.push_back(inputs.Element(i).String(true));
-  r.network = internal::NeuralNetworkFromJson(root.Get("network"));
-  // hidden is the network's, written for readers of the summary: checked, not stored.
-  const JsonNode hidden = root.Get("hidden");
-  if (hidden.Integer(0, std::numeric_limits<int>::max()) != r.network.hidden_size())
-    hidden.Expected(std::to_string(r.network.hidden_size()) + " (the network's hidden units)");
-  r.network_test_mse = root.Get("nn_test_mse").NumberOrNaN(Rule::NonNegative());
+  if (root.Has("skipped")) {
+    // A pulse-only run: the network's keys are absent.
+    for (const char* key : {"dominant", "nn_inputs", "hidden", "network", "nn_test_mse"})
+      if (root.Has(key))
+        root.Get(key).Expected("no network key in a run that skipped the network (\"skipped\")");
+    const JsonNode skipped = root.Get("skipped");
+    skipped.ExpectArray();
+    for (size_t i = 0; i < skipped.Size(); ++i)
+      r.skipped.push_back(skipped.Element(i).String(true));
+    if (r.skipped.empty()) skipped.Expected("the steps skipped (a non-empty list)");
+  } else {
+    r.dominance.dominant = root.Get("dominant").String();
+    const JsonNode inputs = root.Get("nn_inputs");
+    inputs.ExpectArray();
+    for (size_t i = 0; i < inputs.Size(); ++i)
+      r.nn_inputs.push_back(inputs.Element(i).String(true));
+    r.network = internal::NeuralNetworkFromJson(root.Get("network"));
+    // hidden is the network's, written for readers of the summary: checked, not stored.
+    const JsonNode hidden = root.Get("hidden");
+    if (hidden.Integer(0, std::numeric_limits<int>::max()) != r.network.hidden_size())
+      hidden.Expected(std::to_string(r.network.hidden_size()) + " (the network's hidden units)");
+    r.network_test_mse = root.Get("nn_test_mse").NumberOrNaN(Rule::NonNegative());
+  }
   if (root.Has("typical_train_mse") != root.Has("typical_test_mse"))
     root.Fail("typical_train_mse and typical_test_mse come together (a typical network)");
   if (root.Has("typical_train_mse")) {
@@ -90,17 +117,29 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
     r.typical->train_mse = root.Get("typical_train_mse").NumberOrNaN(Rule::NonNegative());
     r.typical_test_mse = root.Get("typical_test_mse").NumberOrNaN(Rule::NonNegative());
   }
-  const JsonNode tracking = root.Get("tracking");
-  tracking.ExpectArray();
-  for (size_t i = 0; i < tracking.Size(); ++i) {
-    const JsonNode t = tracking.Element(i);
-    t.ExpectObject({"frequency_hz", "ff", "max_error_m", "rms_error_m"});
-    TrackingRow row;
-    row.frequency_hz = t.Get("frequency_hz").Number(Rule::Positive());
-    row.scheme = t.Get("ff").String(true);
-    row.result.max_error_m = t.Get("max_error_m").Number(Rule::NonNegative());
-    row.result.rms_error_m = t.Get("rms_error_m").Number(Rule::NonNegative());
-    r.tracking.push_back(row);
+  auto read_rows = [](const JsonNode& tracking, std::vector<TrackingRow>& out) {
+    tracking.ExpectArray();
+    for (size_t i = 0; i < tracking.Size(); ++i) {
+      const JsonNode t = tracking.Element(i);
+      t.ExpectObject({"frequency_hz", "ff", "max_error_m", "rms_error_m"});
+      TrackingRow row;
+      row.frequency_hz = t.Get("frequency_hz").Number(Rule::Positive());
+      row.scheme = t.Get("ff").String(true);
+      row.result.max_error_m = t.Get("max_error_m").Number(Rule::NonNegative());
+      row.result.rms_error_m = t.Get("rms_error_m").Number(Rule::NonNegative());
+      out.push_back(row);
+    }
+  };
+  read_rows(root.Get("tracking"), r.tracking);
+  if (root.Has("model_tracking")) read_rows(root.Get("model_tracking"), r.model_tracking);
+  if (root.Has("tuned_pi")) {
+    // The gains only: the tuning's targets and margins are in the report (tuned_pi.json).
+    const JsonNode t = root.Get("tuned_pi");
+    t.ExpectObject({"kp_v_per_m", "ki_v_per_m_s", "sample_time_s"});
+    r.tuning.emplace();
+    r.tuning->pi.kp_v_per_m = t.Get("kp_v_per_m").Number(Rule::NonNegative());
+    r.tuning->pi.ki_v_per_m_s = t.Get("ki_v_per_m_s").Number(Rule::NonNegative());
+    r.tuning->pi.sample_time_s = t.Get("sample_time_s").Number(Rule::Positive());
   }
   if (root.Has("margins")) {
     // The verdicts only: the gains, the model's a1 and the phase crossovers are not carried.
@@ -175,6 +214,7 @@ const internal::FieldList<PipelineOptions>& PipelineFields() {
           .Add("typical_hidden", &O::typical_hidden)
           .Add("typical_max_epochs", &O::typical_max_epochs)
           .Add("typical_stride", &O::typical_stride)
+          .Add("pulse_fit_fraction", &O::pulse_fit_fraction)
           .Add("track", &O::track)
           .Add("track_frequencies_hz", &O::track_frequencies_hz)
           .Add("track_amplitude_m", &O::track_amplitude_m)

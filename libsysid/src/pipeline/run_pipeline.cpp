@@ -5,9 +5,10 @@
 #include <vector>
 
 #include "core/parallel_for.hpp"
+#include "pipeline/timed_step.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "pipeline/timed_step.hpp"
 #include "sysid/nn_irreducible.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
@@ -101,6 +102,40 @@ PipelineFigures::NetworkSet NetworkTraces(const std::string& set, const Recordin
   return s;
 }
 
+// Pulse recordings alone: each cut at the fraction F of its duration, the first part to fit, the
+// rest to validate on (F = 1: the whole recording to fit, nothing held out).
+void SplitPulses(std::vector<Recording>& pulses, double fraction, std::vector<Recording>& held_out,
+                 std::vector<std::string>& notes) {
+  if (fraction >= 1) {
+    notes.push_back(
+        "pulse recordings alone, fitted whole (pulse_fit_fraction = 1): the model is "
+        "validated on the waveforms only");
+    return;
+  }
+  for (Recording& rec : pulses) {
+    const auto t = rec.column("t");
+    const double first = t[0], last = t[t.size() - 1];
+    const double cut = first + fraction * (last - first);
+    held_out.push_back(CropRecording(rec, cut, last));
+    rec = CropRecording(rec, first, cut);
+    notes.push_back(fmt::format(
+        "pulse recordings alone: the model is identified on t = {:.6g} .. {:.6g} s of {} (the "
+        "first {:g} %) and validated on t = {:.6g} .. {:.6g} s (its rows in the validation "
+        "table)",
+        first, cut, rec.source, 100 * fraction, cut, last));
+  }
+}
+
+// What a pulse-only run leaves out, and the recordings that would enable it.
+std::vector<std::string> SkippedWithoutTrackingSets() {
+  const std::string sets =
+      "a training set and a test set (training*.csv and test*.csv: closed-loop tracking "
+      "recordings with t, u, x; sysid generate tracking makes them on the twin)";
+  return {"dominance analysis: needs " + sets,
+          "NN hidden-size sweep and the typical (v, a) network: need " + sets,
+          "inverse-model comparison (analytic vs NN): needs " + sets + " and a network"};
+}
+
 }  // namespace
 
 PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
@@ -114,14 +149,21 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     internal::TimedStep(r, progress, name, body);
   };
 
-  std::vector<Recording> pulses;
+  const bool pulses_only = inputs.PulsesOnly();
+  std::vector<Recording> pulses, held_out_pulses;
   Recording training, test;
   std::vector<Recording> waveforms;
   step("read recordings", [&] {
     pulses = ReadAll(inputs.pulses, inputs.Read());
-    training = WithDerivatives(ReadRecording(inputs.training, inputs.Read()));
-    test = WithDerivatives(ReadRecording(inputs.test, inputs.Read()));
+    if (!pulses_only) {
+      training = WithDerivatives(ReadRecording(inputs.training, inputs.Read()));
+      test = WithDerivatives(ReadRecording(inputs.test, inputs.Read()));
+    }
     waveforms = ReadAll(inputs.waveforms, inputs.Read());
+    if (pulses_only) {
+      SplitPulses(pulses, options.pulse_fit_fraction, held_out_pulses, r.notes);
+      r.skipped = SkippedWithoutTrackingSets();  // the report's section 3-5 lists them
+    }
   });
 
   step("identify (pulse least squares)", [&] {
@@ -162,52 +204,56 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     });
   }
 
-  step("dominance analysis", [&] {
-    DominanceOptions dopt;
-    dopt.threads = options.threads;
-    r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
-    // The paper's rule: the network takes the dominant variable only; the ranking of the others
-    // is in the report. A caller may name the inputs instead.
-    r.nn_inputs = options.nn_inputs.empty()
-                      ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
-                      : options.nn_inputs;
-  });
+  if (!pulses_only) {
+    step("dominance analysis", [&] {
+      DominanceOptions dopt;
+      dopt.threads = options.threads;
+      r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
+      // The paper's rule: the network takes the dominant variable only; the ranking of the others
+      // is in the report. A caller may name the inputs instead.
+      r.nn_inputs = options.nn_inputs.empty()
+                        ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
+                        : options.nn_inputs;
+    });
 
-  const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
-  step("NN hidden-size sweep (LM)", [&] {
-    const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
-    HiddenSweepOptions so;
-    so.hidden_sizes = options.hidden_sizes;
-    so.training = options.training;
-    so.threads = options.threads;
-    r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
-    const auto chosen = static_cast<size_t>(r.sweep.chosen);
-    r.network = r.sweep.runs[chosen].network;
-    r.network_test_mse = r.sweep.rows[chosen].test_mse;
-  });
+    const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
+    step("NN hidden-size sweep (LM)", [&] {
+      const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
+      HiddenSweepOptions so;
+      so.hidden_sizes = options.hidden_sizes;
+      so.training = options.training;
+      so.threads = options.threads;
+      r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
+      const auto chosen = static_cast<size_t>(r.sweep.chosen);
+      r.network = r.sweep.runs[chosen].network;
+      r.network_test_mse = r.sweep.rows[chosen].test_mse;
+    });
 
-  if (options.typical) {
-    step("typical (v, a) network", [&] {
-      const NeuralDataset train_va =
-          SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
-      const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
-      NeuralTrainingOptions t = options.training;
-      t.hidden = options.typical_hidden;
-      t.max_epochs = options.typical_max_epochs;
-      t.threads = options.threads;
-      r.typical = TrainNeuralNetwork(train_va, nullptr, t);
-      r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+    if (options.typical) {
+      step("typical (v, a) network", [&] {
+        const NeuralDataset train_va =
+            SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+        const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
+        NeuralTrainingOptions t = options.training;
+        t.hidden = options.typical_hidden;
+        t.max_epochs = options.typical_max_epochs;
+        t.threads = options.threads;
+        r.typical = TrainNeuralNetwork(train_va, nullptr, t);
+        r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+      });
+    }
+
+    step("compare inverse models", [&] {
+      r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
+      for (const auto& w : waveforms)
+        r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
     });
   }
 
-  step("compare inverse models", [&] {
-    r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
-    for (const auto& w : waveforms)
-      r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
-  });
-
   step("validate the model on held-out recordings", [&] {
-    std::vector<const Recording*> held_out{&training, &test};
+    std::vector<const Recording*> held_out;
+    if (!pulses_only) held_out = {&training, &test};
+    for (const auto& p : held_out_pulses) held_out.push_back(&p);
     for (const auto& w : waveforms) held_out.push_back(&w);
     for (const Recording* rec : held_out) {
       try {
@@ -220,7 +266,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
 
   step("figure traces (pulse simulation, network outputs)", [&] {
     PulseVelocityTraces(pulses.front(), r.model, options.delay, r.figures);
-    DominanceTraces(training, r.model, r.figures);
+    if (!pulses_only) DominanceTraces(training, r.model, r.figures);
     if (r.typical)
       for (const auto& [set, rec] : {std::pair<std::string, const Recording*>{"training", &training},
                                      {"test", &test}})
@@ -245,6 +291,36 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     });
   }
 
+  // Pulses alone: no network to compare, so the loop is closed on the identified model itself,
+  // with gains tuned for it (the paper's gains are often unstable on a user's model).
+  if (options.track && pulses_only) {
+    step("tune PI gains on the identified model", [&] {
+      PiTuningOptions to;
+      to.loop_rate_hz = 1 / r.margins->pi.sample_time_s;
+      to.u_max_v = options.pi.u_max_v;
+      try {
+        r.tuning = TunePi(r.model, to);
+      } catch (const NumericalError& e) {
+        r.notes.push_back(std::string("PI tuning found no gains: ") + e.what() +
+                          "; the model-plant tracking runs the given gains");
+      }
+    });
+    step("PI tracking on the identified model", [&] {
+      const PiOptions pi = r.tuning ? r.tuning->pi : r.margins->pi;
+      for (double f : options.track_frequencies_hz) {
+        SmoothProfileOptions p;
+        p.frequency_hz = f;
+        p.amplitude_m = options.track_amplitude_m;
+        p.sample_rate_hz = 1 / pi.sample_time_s;
+        const auto runs = TrackModelSchemes(
+            r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
+            {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic}, {&r.model, nullptr});
+        for (const auto& run : runs)
+          r.model_tracking.push_back({f, ToString(run.scheme), run.result});
+      }
+    });
+  }
+
   if (options.track && !inputs.stage.empty()) {
     step("PI tracking with feedforward", [&] {
       const StageParameters stage = ReadStageParameters(inputs.stage);
@@ -256,11 +332,12 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
         p.frequency_hz = freqs[static_cast<std::size_t>(i)];
         p.amplitude_m = options.track_amplitude_m;
         p.sample_rate_hz = stage.sample_rate_hz;
+        std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
+                                               FeedforwardScheme::kAnalytic};
+        if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
         runs[static_cast<std::size_t>(i)] =
-            TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi,
-                         {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic,
-                          FeedforwardScheme::kNetwork},
-                         {&r.model, &r.network});
+            TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi, schemes,
+                         {&r.model, pulses_only ? nullptr : &r.network});
       });
       for (std::size_t i = 0; i < freqs.size(); ++i)
         for (const auto& run : runs[i])

@@ -16,6 +16,7 @@
 #include "core/json_text.hpp"
 #include "paper/measures.hpp"
 #include "report/report_sections.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/pipeline.hpp"
@@ -52,11 +53,14 @@ class ReportWriter {
   std::vector<std::string> Write() {
     fs::create_directories(dir_);
     md_ = "# libsysid pipeline report\n\n";
+    const std::string sets =
+        r_.inputs.PulsesOnly()
+            ? std::string(" alone (no training or test set), ")
+            : ", training set `" + fs::path(r_.inputs.training).filename().string() +
+                  "`, test set `" + fs::path(r_.inputs.test).filename().string() + "`, ";
     md_ += "Inputs: `" + r_.inputs.root + "` — " + std::to_string(r_.inputs.pulses.size()) +
-           " pulse recording(s), training set `" +
-           fs::path(r_.inputs.training).filename().string() + "`, test set `" +
-           fs::path(r_.inputs.test).filename().string() + "`, " +
-           std::to_string(r_.inputs.waveforms.size()) + " test waveform(s)" +
+           " pulse recording(s)" + sets + std::to_string(r_.inputs.waveforms.size()) +
+           " test waveform(s)" +
            (r_.inputs.loops.empty()
                 ? std::string()
                 : ", " + std::to_string(r_.inputs.loops.size()) + " voltage-loop sweep(s)") +
@@ -64,12 +68,17 @@ class ReportWriter {
     if (ref_) md_ += "Reference numbers (" + ref_->label + ") are set beside ours.\n";
     Model();
     Delay();
-    Dominance();
-    Neural();
-    Comparison();
+    if (r_.skipped.empty()) {
+      Dominance();
+      Neural();
+      Comparison();
+    } else {
+      Skipped();
+    }
     Render(internal::ValidationSection(r_));
     Tracking();
     Margins();
+    ModelTracking();
     Facts();
     Loops();
     Timing();
@@ -381,6 +390,14 @@ class ReportWriter {
     }
   }
 
+  // A pulse-only run: what it did not do, and which recordings would make it.
+  void Skipped() {
+    md_ +=
+        "\n## 3-5. Dominance, networks, inverse comparison: skipped\n\n"
+        "Pulse recordings alone identify the rough model; the steps below need more:\n\n";
+    for (const auto& s : r_.skipped) md_ += "- " + s + "\n";
+  }
+
   void Tracking() {
     if (r_.tracking.empty()) return;
     md_ += "\n## 6. PI position control with feedforward\n\n";
@@ -429,13 +446,18 @@ class ReportWriter {
         e[i] = t.result.max_error_m;
         spec.series.push_back({SchemeLabel(t.scheme), t.result.t_s, 1e3 * t.result.e_m, "lines"});
       }
-      const bool ordered = e[0] > e[1] && e[1] > e[2];
+      const bool with_nn = r_.skipped.empty();
+      const bool ordered = e[0] > e[1] && (!with_nn || e[1] > e[2]);
       md_ += fmt::format("\n- {} Hz: {}", f,
-                         ordered ? "the paper's ordering holds (PI > PI + analytic > PI + NN)."
-                                 : fmt::format("**the paper's ordering does not hold** (max "
-                                               "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
-                                               "analytic, NN).",
-                                               1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
+                         !with_nn ? fmt::format("max error {:.4g} mm with PI alone, {:.4g} mm with "
+                                                "the analytic feedforward (no network: pulses "
+                                                "alone).",
+                                                1e3 * e[0], 1e3 * e[1])
+                         : ordered ? "the paper's ordering holds (PI > PI + analytic > PI + NN)."
+                                   : fmt::format("**the paper's ordering does not hold** (max "
+                                                 "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
+                                                 "analytic, NN).",
+                                                 1e3 * e[0], 1e3 * e[1], 1e3 * e[2]));
       md_ += RingingSentence(f);
       Plot(fmt::format("tracking_{}hz.png", f), spec, fmt::format("tracking error {} Hz", f));
     }
@@ -512,6 +534,71 @@ class ReportWriter {
              "small-signal one, so read this as a warning, not a verdict: look for ringing "
              "while the stage slides (in the tracking runs, or on the rig); at rest friction "
              "may hold it quiet.\n";
+  }
+
+  // Pulses alone: gains tuned for the identified model (sysid tune-pi) and the loop closed on the
+  // model itself (sysid track --plant M.json), with and without the analytic feedforward.
+  void ModelTracking() {
+    if (!r_.tuning && r_.model_tracking.empty()) return;
+    md_ += "\n### PI gains tuned for the identified model, the loop on the model\n\n";
+    if (r_.tuning) {
+      const PiTuningResult& t = *r_.tuning;
+      md_ += fmt::format(
+          "`sysid tune-pi`: Kp = {} V/m, Ki = {} V/(m s) at {} Hz, the highest crossover at "
+          "which both directions keep a 45 deg phase margin and a 6 dB gain margin "
+          "(tuned_pi.json):\n\n",
+          F(t.pi.kp_v_per_m), F(t.pi.ki_v_per_m_s), F(1 / t.pi.sample_time_s));
+      std::vector<std::vector<std::string>> rows;
+      auto num = [](double v, int digits) {
+        return std::isnan(v) ? std::string("none") : F(v, digits);
+      };
+      for (const auto& [name, a1, l] : t.margins.Directions())
+        rows.push_back({name, F(a1), num(l.crossover_rad_s, 4), num(l.phase_margin_deg, 3),
+                        num(l.gain_margin, 3), l.Stable() ? "yes" : "**no**"});
+      md_ += MarkdownTable({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
+                            "gain margin", "stable"},
+                           rows);
+      PiTuningOptions to;
+      to.loop_rate_hz = 1 / t.pi.sample_time_s;
+      to.u_max_v = t.pi.u_max_v;
+      WriteFileAtomically(Path("tuned_pi.json"), ToJson(t, to) + "\n");
+    }
+    if (r_.model_tracking.empty()) return;
+    const PiOptions& pi = r_.tuning ? r_.tuning->pi : r_.margins->pi;
+    md_ += fmt::format(
+        "\nPlant: the identified model (`model.json`) simulated with stick-slip at {} Hz "
+        "(`sysid track --plant model.json`), from rest, exact position; Kp = {} V/m, Ki = {} "
+        "V/(m s){}; smooth back-and-forth profile of {} mm. The analytic feedforward is the "
+        "plant's own inverse, so this is the loop's best case; on the rig the model's error adds "
+        "to it.\n\n",
+        F(1 / pi.sample_time_s), F(pi.kp_v_per_m), F(pi.ki_v_per_m_s),
+        r_.tuning ? " (tuned)" : " (given: no tuned gains)", F(1e3 * r_.options.track_amplitude_m));
+    std::vector<std::vector<std::string>> rows;
+    std::string csv = "frequency_hz,ff,max_error_m,rms_error_m,rms_u_v\n";
+    for (const auto& t : r_.model_tracking) {
+      rows.push_back({F(t.frequency_hz, 3), t.scheme, F(1e3 * t.result.max_error_m, 4),
+                      F(1e3 * t.result.rms_error_m, 4), F(t.result.rms_u_v, 4)});
+      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g}\n", t.frequency_hz, t.scheme,
+                         t.result.max_error_m, t.result.rms_error_m, t.result.rms_u_v);
+    }
+    md_ += MarkdownTable(
+        {"frequency [Hz]", "feedforward", "max \\|e\\| [mm]", "RMS e [mm]", "RMS u [V]"}, rows);
+    WriteFileAtomically(Path("model_tracking.csv"), csv);
+    for (double f : r_.options.track_frequencies_hz) {
+      PlotSpec spec{fmt::format("tracking error at {} Hz on the identified model", f),
+                    "t [s]",
+                    "e [mm]",
+                    {},
+                    false,
+                    1100,
+                    450};
+      for (const auto& t : r_.model_tracking)
+        if (t.frequency_hz == f)
+          spec.series.push_back({SchemeLabel(t.scheme), t.result.t_s, 1e3 * t.result.e_m, "lines"});
+      Plot(fmt::format("model_tracking_{}hz.png", f), spec,
+           fmt::format("tracking error {} Hz on the model", f));
+    }
+    md_ += "\n";
   }
 
   // The slow open-loop sweeps: the voltage-velocity loop (the paper's Fig. 3 test).

@@ -2,6 +2,7 @@
 // recording (report_sections.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -38,9 +39,14 @@ ReportSection ValidationSection(const PipelineResult& result) {
   j["recordings"] = nlohmann::ordered_json::array();
   for (const Validation& v : result.validations) {
     const std::string name = fs::path(v.source).stem().string();
+    // Pulses alone: a pulse recording's row is its held-out end (the fit took the rest).
+    const bool pulse_part = result.inputs.PulsesOnly() &&
+                            std::find(result.inputs.pulses.begin(), result.inputs.pulses.end(),
+                                      v.source) != result.inputs.pulses.end();
+    const std::string label = pulse_part ? name + " (held-out end)" : name;
     j["recordings"].push_back(nlohmann::ordered_json::parse(ToJson(v)));
     for (const OutputValidation& o : v.outputs)
-      rows.push_back({name, o.output, fmt::format("{:.4g}", o.scores.fit_percent),
+      rows.push_back({label, o.output, fmt::format("{:.4g}", o.scores.fit_percent),
                       fmt::format("{:.4g} {}", o.scores.rmse, o.unit),
                       fmt::format("{:.4g}", o.scores.nrmse_std),
                       fmt::format("{:.4g}", o.scores.nrmse_range), Verdict(o.autocorrelation),
@@ -49,7 +55,7 @@ ReportSection ValidationSection(const PipelineResult& result) {
     for (auto& [file, spec] : ValidationPlots(v, "validate_" + name))
       if (file.find("_v.png") != std::string::npos ||
           file.find("_v_residual_tests.png") != std::string::npos)
-        s.plots.push_back({file, spec, name + ": " + spec.title});
+        s.plots.push_back({file, spec, label + ": " + spec.title});
   }
   s.markdown += MarkdownTable({"recording", "output", "fit [%]", "RMSE", "nrmse_std", "nrmse_range",
                                "autocorrelation", "cross-correlation u"},
