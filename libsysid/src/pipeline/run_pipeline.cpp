@@ -136,23 +136,27 @@ std::vector<std::string> SkippedWithoutTrackingSets() {
           "inverse-model comparison (analytic vs NN): needs " + sets + " and a network"};
 }
 
-}  // namespace
-
-PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
-                           const PipelineProgress& progress) {
-  if (inputs.IsStack()) return RunStackPipeline(inputs, options, progress);
-  options.Validate();
-  PipelineResult r;
-  r.inputs = inputs;
-  r.options = options;
-  auto step = [&](const std::string& name, auto&& body) {
-    internal::TimedStep(r, progress, name, body);
-  };
-
-  const bool pulses_only = inputs.PulsesOnly();
-  std::vector<Recording> pulses, held_out_pulses;
+// One run of the stage pipeline: the recordings, read once, and the steps in order, each timed.
+struct PipelineRun {
+  const PipelineInputs& inputs;
+  const PipelineOptions& options;
+  const PipelineProgress& progress;
+  PipelineResult& r;
+  const bool pulses_only;
+  std::vector<Recording> pulses, held_out_pulses, waveforms;
   Recording training, test;
-  std::vector<Recording> waveforms;
+
+  PipelineRun(const PipelineInputs& in, const PipelineOptions& opt, const PipelineProgress& prog,
+              PipelineResult& result)
+      : inputs(in), options(opt), progress(prog), r(result), pulses_only(in.PulsesOnly()) {}
+
+  template <typename Body>
+  void step(const std::string& name, Body&& body) {
+    internal::TimedStep(r, progress, name, body);
+  }
+
+  // Read the recordings; identify a1, a2 from the pulses, then the delay (and the refinement).
+  void IdentifyModel() {
   step("read recordings", [&] {
     pulses = ReadAll(inputs.pulses, inputs.Read());
     if (!pulses_only) {
@@ -204,52 +208,57 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     });
   }
 
-  if (!pulses_only) {
-    step("dominance analysis", [&] {
-      DominanceOptions dopt;
-      dopt.threads = options.threads;
-      r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
-      // The paper's rule: the network takes the dominant variable only; the ranking of the others
-      // is in the report. A caller may name the inputs instead.
-      r.nn_inputs = options.nn_inputs.empty()
-                        ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
-                        : options.nn_inputs;
-    });
+  }
 
-    const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
-    step("NN hidden-size sweep (LM)", [&] {
-      const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
-      HiddenSweepOptions so;
-      so.hidden_sizes = options.hidden_sizes;
-      so.training = options.training;
-      so.threads = options.threads;
-      r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
-      const auto chosen = static_cast<size_t>(r.sweep.chosen);
-      r.network = r.sweep.runs[chosen].network;
-      r.network_test_mse = r.sweep.rows[chosen].test_mse;
-    });
+  // The dominant variable, the hidden-size sweep, the typical network, the inverse comparison.
+  void InverseNetworks() {
+  step("dominance analysis", [&] {
+    DominanceOptions dopt;
+    dopt.threads = options.threads;
+    r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
+    // The paper's rule: the network takes the dominant variable only; the ranking of the others
+    // is in the report. A caller may name the inputs instead.
+    r.nn_inputs = options.nn_inputs.empty()
+                      ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
+                      : options.nn_inputs;
+  });
 
-    if (options.typical) {
-      step("typical (v, a) network", [&] {
-        const NeuralDataset train_va =
-            SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
-        const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
-        NeuralTrainingOptions t = options.training;
-        t.hidden = options.typical_hidden;
-        t.max_epochs = options.typical_max_epochs;
-        t.threads = options.threads;
-        r.typical = TrainNeuralNetwork(train_va, nullptr, t);
-        r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
-      });
-    }
+  const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
+  step("NN hidden-size sweep (LM)", [&] {
+    const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
+    HiddenSweepOptions so;
+    so.hidden_sizes = options.hidden_sizes;
+    so.training = options.training;
+    so.threads = options.threads;
+    r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
+    const auto chosen = static_cast<size_t>(r.sweep.chosen);
+    r.network = r.sweep.runs[chosen].network;
+    r.network_test_mse = r.sweep.rows[chosen].test_mse;
+  });
 
-    step("compare inverse models", [&] {
-      r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
-      for (const auto& w : waveforms)
-        r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
+  if (options.typical) {
+    step("typical (v, a) network", [&] {
+      const NeuralDataset train_va =
+          SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+      const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
+      NeuralTrainingOptions t = options.training;
+      t.hidden = options.typical_hidden;
+      t.max_epochs = options.typical_max_epochs;
+      t.threads = options.threads;
+      r.typical = TrainNeuralNetwork(train_va, nullptr, t);
+      r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
     });
   }
 
+  step("compare inverse models", [&] {
+    r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
+    for (const auto& w : waveforms)
+      r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
+  });
+  }
+
+  // The model on every held-out recording, the figures' traces, the voltage-velocity loops.
+  void ValidateModel() {
   step("validate the model on held-out recordings", [&] {
     std::vector<const Recording*> held_out;
     if (!pulses_only) held_out = {&training, &test};
@@ -281,6 +290,10 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
     });
   }
 
+  }
+
+  // The PI loop: margins, gains tuned on the model (pulses alone), tracking, the paper's facts.
+  void CloseTheLoop() {
   if (options.track) {
     step("loop margins of the PI gains", [&] {
       PiOptions pi = options.pi;
@@ -356,6 +369,23 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   } else if (options.facts) {
     r.notes.push_back("no stage file: the paper's facts were not checked");
   }
+  }
+};
+
+}  // namespace
+
+PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
+                           const PipelineProgress& progress) {
+  if (inputs.IsStack()) return RunStackPipeline(inputs, options, progress);
+  options.Validate();
+  PipelineResult r;
+  r.inputs = inputs;
+  r.options = options;
+  PipelineRun run(inputs, options, progress, r);
+  run.IdentifyModel();
+  if (!run.pulses_only) run.InverseNetworks();
+  run.ValidateModel();
+  run.CloseTheLoop();
   return r;
 }
 
