@@ -157,218 +157,217 @@ struct PipelineRun {
 
   // Read the recordings; identify a1, a2 from the pulses, then the delay (and the refinement).
   void IdentifyModel() {
-  step("read recordings", [&] {
-    pulses = ReadAll(inputs.pulses, inputs.Read());
-    if (!pulses_only) {
-      training = WithDerivatives(ReadRecording(inputs.training, inputs.Read()));
-      test = WithDerivatives(ReadRecording(inputs.test, inputs.Read()));
-    }
-    waveforms = ReadAll(inputs.waveforms, inputs.Read());
-    if (pulses_only) {
-      SplitPulses(pulses, options.pulse_fit_fraction, held_out_pulses, r.notes);
-      r.skipped = SkippedWithoutTrackingSets();  // the report's section 3-5 lists them
-    }
-  });
-
-  step("identify (pulse least squares)", [&] {
-    PulseIdentificationOptions po;
-    po.fit.a3 = inputs.a3.value_or(options.a3);
-    po.fit.a3_given = inputs.a3.has_value() || options.a3_given;
-    if (!po.fit.a3_given)
-      r.notes.push_back("warning: " + DescribeA3(po.fit.a3, false) +
-                        "; a1 and a2 scale with a3, so this model is the paper's stage's unless "
-                        "a3 is right for yours");
-    r.pulse = IdentifyFromPulses(pulses, po);
-    r.model = r.pulse.model;
-  });
-
-  if (options.tune_delay) {
-    step("tune delay (NLopt)", [&] {
-      DelayTuningOptions d = options.delay;
-      d.threads = options.threads;
-      if (d.curve_points == 0) d.curve_points = 21;  // the report plots cost against tau
-      r.delay = TuneDelay(r.model, pulses, d);
-      if (!IsSolutionUsable(r.delay->termination)) {
-        r.notes.push_back("delay tuning failed (" + r.delay->message + "); tau = 0 kept");
-      } else {
-        r.model = r.delay->model;
+    step("read recordings", [&] {
+      pulses = ReadAll(inputs.pulses, inputs.Read());
+      if (!pulses_only) {
+        training = WithDerivatives(ReadRecording(inputs.training, inputs.Read()));
+        test = WithDerivatives(ReadRecording(inputs.test, inputs.Read()));
+      }
+      waveforms = ReadAll(inputs.waveforms, inputs.Read());
+      if (pulses_only) {
+        SplitPulses(pulses, options.pulse_fit_fraction, held_out_pulses, r.notes);
+        r.skipped = SkippedWithoutTrackingSets();  // the report's section 3-5 lists them
       }
     });
-  }
 
-  if (options.refine) {
-    step("refine (Ceres output error)", [&] {
-      r.refine = RefineOutputError(r.model, pulses);
-      if (r.refine->termination == Termination::kConverged && r.refine->final_cost <= r.refine->initial_cost) {
-        r.model = r.refine->model;
-      } else {
-        r.notes.push_back("output-error refinement did not improve the fit (" + r.refine->message +
-                          "); the pulse/delay model is kept");
-      }
+    step("identify (pulse least squares)", [&] {
+      PulseIdentificationOptions po;
+      po.fit.a3 = inputs.a3.value_or(options.a3);
+      po.fit.a3_given = inputs.a3.has_value() || options.a3_given;
+      if (!po.fit.a3_given)
+        r.notes.push_back("warning: " + DescribeA3(po.fit.a3, false) +
+                          "; a1 and a2 scale with a3, so this model is the paper's stage's unless "
+                          "a3 is right for yours");
+      r.pulse = IdentifyFromPulses(pulses, po);
+      r.model = r.pulse.model;
     });
-  }
 
+    if (options.tune_delay) {
+      step("tune delay (NLopt)", [&] {
+        DelayTuningOptions d = options.delay;
+        d.threads = options.threads;
+        if (d.curve_points == 0) d.curve_points = 21;  // the report plots cost against tau
+        r.delay = TuneDelay(r.model, pulses, d);
+        if (!IsSolutionUsable(r.delay->termination)) {
+          r.notes.push_back("delay tuning failed (" + r.delay->message + "); tau = 0 kept");
+        } else {
+          r.model = r.delay->model;
+        }
+      });
+    }
+
+    if (options.refine) {
+      step("refine (Ceres output error)", [&] {
+        r.refine = RefineOutputError(r.model, pulses);
+        if (r.refine->termination == Termination::kConverged &&
+            r.refine->final_cost <= r.refine->initial_cost) {
+          r.model = r.refine->model;
+        } else {
+          r.notes.push_back("output-error refinement did not improve the fit (" +
+                            r.refine->message + "); the pulse/delay model is kept");
+        }
+      });
+    }
   }
 
   // The dominant variable, the hidden-size sweep, the typical network, the inverse comparison.
   void InverseNetworks() {
-  step("dominance analysis", [&] {
-    DominanceOptions dopt;
-    dopt.threads = options.threads;
-    r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
-    // The paper's rule: the network takes the dominant variable only; the ranking of the others
-    // is in the report. A caller may name the inputs instead.
-    r.nn_inputs = options.nn_inputs.empty()
-                      ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
-                      : options.nn_inputs;
-  });
-
-  const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
-  step("NN hidden-size sweep (LM)", [&] {
-    const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
-    HiddenSweepOptions so;
-    so.hidden_sizes = options.hidden_sizes;
-    so.training = options.training;
-    so.threads = options.threads;
-    r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
-    const auto chosen = static_cast<size_t>(r.sweep.chosen);
-    r.network = r.sweep.runs[chosen].network;
-    r.network_test_mse = r.sweep.rows[chosen].test_mse;
-  });
-
-  if (options.typical) {
-    step("typical (v, a) network", [&] {
-      const NeuralDataset train_va =
-          SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
-      const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
-      NeuralTrainingOptions t = options.training;
-      t.hidden = options.typical_hidden;
-      t.max_epochs = options.typical_max_epochs;
-      t.threads = options.threads;
-      r.typical = TrainNeuralNetwork(train_va, nullptr, t);
-      r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+    step("dominance analysis", [&] {
+      DominanceOptions dopt;
+      dopt.threads = options.threads;
+      r.dominance = AnalyzeDominanceBatch(r.model, {training, test}, dopt);
+      // The paper's rule: the network takes the dominant variable only; the ranking of the others
+      // is in the report. A caller may name the inputs instead.
+      r.nn_inputs = options.nn_inputs.empty()
+                        ? std::vector<std::string>{ColumnOf(r.dominance.dominant)}
+                        : options.nn_inputs;
     });
-  }
 
-  step("compare inverse models", [&] {
-    r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
-    for (const auto& w : waveforms)
-      r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
-  });
+    const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
+    step("NN hidden-size sweep (LM)", [&] {
+      const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
+      HiddenSweepOptions so;
+      so.hidden_sizes = options.hidden_sizes;
+      so.training = options.training;
+      so.threads = options.threads;
+      r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
+      const auto chosen = static_cast<size_t>(r.sweep.chosen);
+      r.network = r.sweep.runs[chosen].network;
+      r.network_test_mse = r.sweep.rows[chosen].test_mse;
+    });
+
+    if (options.typical) {
+      step("typical (v, a) network", [&] {
+        const NeuralDataset train_va =
+            SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+        const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
+        NeuralTrainingOptions t = options.training;
+        t.hidden = options.typical_hidden;
+        t.max_epochs = options.typical_max_epochs;
+        t.threads = options.threads;
+        r.typical = TrainNeuralNetwork(train_va, nullptr, t);
+        r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+      });
+    }
+
+    step("compare inverse models", [&] {
+      r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
+      for (const auto& w : waveforms)
+        r.comparisons.push_back(CompareInverseModels(w, r.model, &r.network));
+    });
   }
 
   // The model on every held-out recording, the figures' traces, the voltage-velocity loops.
   void ValidateModel() {
-  step("validate the model on held-out recordings", [&] {
-    std::vector<const Recording*> held_out;
-    if (!pulses_only) held_out = {&training, &test};
-    for (const auto& p : held_out_pulses) held_out.push_back(&p);
-    for (const auto& w : waveforms) held_out.push_back(&w);
-    for (const Recording* rec : held_out) {
-      try {
-        r.validations.push_back(ValidateFrictionModel(*rec, r.model));
-      } catch (const NumericalError& e) {
-        r.notes.push_back("validation of " + rec->source + " skipped: " + e.what());
+    step("validate the model on held-out recordings", [&] {
+      std::vector<const Recording*> held_out;
+      if (!pulses_only) held_out = {&training, &test};
+      for (const auto& p : held_out_pulses) held_out.push_back(&p);
+      for (const auto& w : waveforms) held_out.push_back(&w);
+      for (const Recording* rec : held_out) {
+        try {
+          r.validations.push_back(ValidateFrictionModel(*rec, r.model));
+        } catch (const NumericalError& e) {
+          r.notes.push_back("validation of " + rec->source + " skipped: " + e.what());
+        }
       }
-    }
-  });
-
-  step("figure traces (pulse simulation, network outputs)", [&] {
-    PulseVelocityTraces(pulses.front(), r.model, options.delay, r.figures);
-    if (!pulses_only) DominanceTraces(training, r.model, r.figures);
-    if (r.typical)
-      for (const auto& [set, rec] : {std::pair<std::string, const Recording*>{"training", &training},
-                                     {"test", &test}})
-        r.figures.networks.push_back(
-            NetworkTraces(set, *rec, r.typical->network, r.network, r.nn_inputs));
-  });
-
-  if (!inputs.loops.empty()) {
-    step("voltage-velocity loop", [&] {
-      for (const auto& path : inputs.loops)
-        r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path, inputs.Read())));
     });
-  }
 
+    step("figure traces (pulse simulation, network outputs)", [&] {
+      PulseVelocityTraces(pulses.front(), r.model, options.delay, r.figures);
+      if (!pulses_only) DominanceTraces(training, r.model, r.figures);
+      if (r.typical)
+        for (const auto& [set, rec] :
+             {std::pair<std::string, const Recording*>{"training", &training}, {"test", &test}})
+          r.figures.networks.push_back(
+              NetworkTraces(set, *rec, r.typical->network, r.network, r.nn_inputs));
+    });
+
+    if (!inputs.loops.empty()) {
+      step("voltage-velocity loop", [&] {
+        for (const auto& path : inputs.loops)
+          r.loops.push_back(AnalyzeVoltageLoop(ReadRecording(path, inputs.Read())));
+      });
+    }
   }
 
   // The PI loop: margins, gains tuned on the model (pulses alone), tracking, the paper's facts.
   void CloseTheLoop() {
-  if (options.track) {
-    step("loop margins of the PI gains", [&] {
-      PiOptions pi = options.pi;
-      pi.sample_time_s = inputs.stage.empty()
-                             ? AnalyzeSampling(pulses.front().column("t")).nominal_dt_s
-                             : ReadStageParameters(inputs.stage).sample_time_s();
-      r.margins = AnalyzePiMargins(r.model, pi);
-    });
-  }
-
-  // Pulses alone: no network to compare, so the loop is closed on the identified model itself,
-  // with gains tuned for it (the paper's gains are often unstable on a user's model).
-  if (options.track && pulses_only) {
-    step("tune PI gains on the identified model", [&] {
-      PiTuningOptions to;
-      to.loop_rate_hz = 1 / r.margins->pi.sample_time_s;
-      to.u_max_v = options.pi.u_max_v;
-      try {
-        r.tuning = TunePi(r.model, to);
-      } catch (const NumericalError& e) {
-        r.notes.push_back(std::string("PI tuning found no gains: ") + e.what() +
-                          "; the model-plant tracking runs the given gains");
-      }
-    });
-    step("PI tracking on the identified model", [&] {
-      const PiOptions pi = r.tuning ? r.tuning->pi : r.margins->pi;
-      for (double f : options.track_frequencies_hz) {
-        SmoothProfileOptions p;
-        p.frequency_hz = f;
-        p.amplitude_m = options.track_amplitude_m;
-        p.sample_rate_hz = 1 / pi.sample_time_s;
-        const auto runs = TrackModelSchemes(
-            r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
-            {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic}, {&r.model, nullptr});
-        for (const auto& run : runs)
-          r.model_tracking.push_back({f, ToString(run.scheme), run.result});
-      }
-    });
-  }
-
-  if (options.track && !inputs.stage.empty()) {
-    step("PI tracking with feedforward", [&] {
-      const StageParameters stage = ReadStageParameters(inputs.stage);
-      // The frequencies' runs are independent: side by side, then tabulated in their order.
-      const auto& freqs = options.track_frequencies_hz;
-      std::vector<std::vector<SchemeTracking>> runs(freqs.size());
-      internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
-        SmoothProfileOptions p;
-        p.frequency_hz = freqs[static_cast<std::size_t>(i)];
-        p.amplitude_m = options.track_amplitude_m;
-        p.sample_rate_hz = stage.sample_rate_hz;
-        std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
-                                               FeedforwardScheme::kAnalytic};
-        if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
-        runs[static_cast<std::size_t>(i)] =
-            TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi, schemes,
-                         {&r.model, pulses_only ? nullptr : &r.network});
+    if (options.track) {
+      step("loop margins of the PI gains", [&] {
+        PiOptions pi = options.pi;
+        pi.sample_time_s = inputs.stage.empty()
+                               ? AnalyzeSampling(pulses.front().column("t")).nominal_dt_s
+                               : ReadStageParameters(inputs.stage).sample_time_s();
+        r.margins = AnalyzePiMargins(r.model, pi);
       });
-      for (std::size_t i = 0; i < freqs.size(); ++i)
-        for (const auto& run : runs[i])
-          r.tracking.push_back({freqs[i], ToString(run.scheme), run.result});
-    });
-  } else if (options.track) {
-    r.notes.push_back("no stage file: the tracking experiment was skipped");
-  }
+    }
 
-  if (options.facts && !inputs.stage.empty()) {
-    step("paper facts on the stage (F1-F8)", [&] {
-      FactsOptions fo = options.facts_options;
-      fo.threads = options.threads;
-      r.facts = RunStageFacts(ReadStageParameters(inputs.stage), fo);
-    });
-  } else if (options.facts) {
-    r.notes.push_back("no stage file: the paper's facts were not checked");
-  }
+    // Pulses alone: no network to compare, so the loop is closed on the identified model itself,
+    // with gains tuned for it (the paper's gains are often unstable on a user's model).
+    if (options.track && pulses_only) {
+      step("tune PI gains on the identified model", [&] {
+        PiTuningOptions to;
+        to.loop_rate_hz = 1 / r.margins->pi.sample_time_s;
+        to.u_max_v = options.pi.u_max_v;
+        try {
+          r.tuning = TunePi(r.model, to);
+        } catch (const NumericalError& e) {
+          r.notes.push_back(std::string("PI tuning found no gains: ") + e.what() +
+                            "; the model-plant tracking runs the given gains");
+        }
+      });
+      step("PI tracking on the identified model", [&] {
+        const PiOptions pi = r.tuning ? r.tuning->pi : r.margins->pi;
+        for (double f : options.track_frequencies_hz) {
+          SmoothProfileOptions p;
+          p.frequency_hz = f;
+          p.amplitude_m = options.track_amplitude_m;
+          p.sample_rate_hz = 1 / pi.sample_time_s;
+          const auto runs = TrackModelSchemes(
+              r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
+              {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic}, {&r.model, nullptr});
+          for (const auto& run : runs)
+            r.model_tracking.push_back({f, ToString(run.scheme), run.result});
+        }
+      });
+    }
+
+    if (options.track && !inputs.stage.empty()) {
+      step("PI tracking with feedforward", [&] {
+        const StageParameters stage = ReadStageParameters(inputs.stage);
+        // The frequencies' runs are independent: side by side, then tabulated in their order.
+        const auto& freqs = options.track_frequencies_hz;
+        std::vector<std::vector<SchemeTracking>> runs(freqs.size());
+        internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
+          SmoothProfileOptions p;
+          p.frequency_hz = freqs[static_cast<std::size_t>(i)];
+          p.amplitude_m = options.track_amplitude_m;
+          p.sample_rate_hz = stage.sample_rate_hz;
+          std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
+                                                 FeedforwardScheme::kAnalytic};
+          if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
+          runs[static_cast<std::size_t>(i)] =
+              TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi, schemes,
+                           {&r.model, pulses_only ? nullptr : &r.network});
+        });
+        for (std::size_t i = 0; i < freqs.size(); ++i)
+          for (const auto& run : runs[i])
+            r.tracking.push_back({freqs[i], ToString(run.scheme), run.result});
+      });
+    } else if (options.track) {
+      r.notes.push_back("no stage file: the tracking experiment was skipped");
+    }
+
+    if (options.facts && !inputs.stage.empty()) {
+      step("paper facts on the stage (F1-F8)", [&] {
+        FactsOptions fo = options.facts_options;
+        fo.threads = options.threads;
+        r.facts = RunStageFacts(ReadStageParameters(inputs.stage), fo);
+      });
+    } else if (options.facts) {
+      r.notes.push_back("no stage file: the paper's facts were not checked");
+    }
   }
 };
 
