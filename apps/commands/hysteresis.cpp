@@ -37,7 +37,8 @@ struct HysteresisCli {
   bool no_offset = false;
   // Bouc–Wen fits: auto | fixed-step | cvode | benchmark-chain (auto: docs/hysteresis.md).
   std::string integrator = "auto";
-  std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
+  // Bouc–Wen fits: auto | hold | linear | band-limited (auto: docs/hysteresis.md).
+  std::string input_model = "auto";
   std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
   RecordingFlags recording;  // --var, --rate, --scale for every recording read
   FitFractionFlag fit_fraction;
@@ -97,6 +98,7 @@ void RunFit(const HysteresisCli& o) {
   sim.input = o.input_model == "hold"           ? InputInterpolation::kHold
               : o.input_model == "band-limited" ? InputInterpolation::kBandLimited
                                                 : InputInterpolation::kLinear;
+  options.bouc_wen.choose_input = o.input_model == "auto" && o.kind == "bouc-wen";
   // auto: the mechanical form's fixed step (its steps per sample chosen by step doubling and
   // checked against CVODE), CVODE for a held input; the piezo form's closed-form step (cvode's
   // setting: CVODE only for a band-limited input).
@@ -310,9 +312,11 @@ void AddHysteresisCommand(CLI::App& app) {
       ->type_name("TOL")
       ->capture_default_str();
   fit->add_option("--input", o->input_model,
-                  "bouc-wen, bouc-wen-piezo with cvode or fixed-step: u between samples: hold, linear or "
-                  "band-limited (the record as one period of a periodic input)")
-      ->check(CLI::IsMember({"hold", "linear", "band-limited"}))
+                  "bouc-wen, bouc-wen-piezo: u between samples: auto (bouc-wen: band-limited when "
+                  "every recording is whole periods of a band-limited signal, else linear; "
+                  "bouc-wen-piezo: linear), hold, linear or band-limited (the record as one "
+                  "period of a periodic input)")
+      ->check(CLI::IsMember({"auto", "hold", "linear", "band-limited"}))
       ->capture_default_str();
   fit->add_option("--starts", o->options.bouc_wen.starts,
                   "bouc-wen, bouc-wen-piezo: starting points (1..64)")

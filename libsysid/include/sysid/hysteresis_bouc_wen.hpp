@@ -177,6 +177,12 @@ struct BoucWenFitOptions {
   /// input; where CVODE refuses the input, step doubling again): past the tolerance m doubles and
   /// the fit continues from its parameters; the summary's message gives m and both errors.
   double fixed_step_tolerance = 1e-4;
+  /// Mechanical form: the input between samples chosen from the recordings instead of
+  /// simulation.input: band-limited when every recording's u is whole periods of a band-limited
+  /// signal (it wraps from its last sample to its first by no more than its largest step, and at
+  /// most 1e-6 of its variance lies above a quarter of the sampling rate), else linear. The
+  /// summary's message says which and why.
+  bool choose_input = false;
   /// Starting values; the mechanical form's default is the linear fit described in
   /// docs/hysteresis.md when `mechanical_initial_given` is false.
   MechanicalBoucWenParameters mechanical_initial;

@@ -527,55 +527,14 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   return s;
 }
 
-// The fixed step's y of every recording at m steps per sample, stacked.
-Eigen::VectorXd FixedStepStacked(const MechanicalBoucWenParameters& p,
-                                 const std::vector<Series>& data, InputInterpolation how, int m) {
-  Eigen::Index n = 0;
-  for (const auto& s : data) n += s.u.size();
-  Eigen::VectorXd y(n);
-  Eigen::Index at = 0;
+// The recordings' inputs and sample times, as the fixed step's helpers take them.
+internal::SampledRecordings Inputs(const std::vector<Series>& data) {
+  internal::SampledRecordings r;
   for (const auto& s : data) {
-    internal::CheckFixedStepWork(s.u.size(), m, how, "bouc-wen");
-    y.segment(at, s.u.size()) =
-        internal::FixedStepOutput(p, internal::FixedStepInput(s.u, how, m), s.dt_s, m);
-    at += s.u.size();
+    r.u.push_back(&s.u);
+    r.dt_s.push_back(s.dt_s);
   }
-  return y;
-}
-
-// The fixed step's step count: the smallest m = 2, 4, ..., 512 whose step-doubling estimate at p
-// is within tolerance_m [m]; *estimate_m is that estimate. A diverging step (Newton at a coarse
-// step) counts as too coarse.
-int ChooseSubsteps(const MechanicalBoucWenParameters& p, const std::vector<Series>& data,
-                   InputInterpolation how, double tolerance_m, double* estimate_m) {
-  auto simulate = [&](int m) {
-    try {
-      return FixedStepStacked(p, data, how, m);
-    } catch (const NumericalError&) {
-      return Eigen::VectorXd();
-    } catch (const InputError& e) {
-      throw NumericalError(fmt::format(
-          "bouc-wen: the fixed step did not reach its tolerance {:.3g} m (step doubling) before "
-          "its work bound: {}; fit with --integrator cvode, or a larger --step-tolerance",
-          tolerance_m, e.what()));
-    }
-  };
-  Eigen::VectorXd coarse = simulate(2);
-  double estimate = std::numeric_limits<double>::infinity();
-  for (int m = 2; m <= 512; m *= 2) {
-    const Eigen::VectorXd fine = simulate(2 * m);
-    estimate = coarse.size() > 0 && fine.size() > 0 ? internal::StepDoublingError(coarse, fine)
-                                                    : std::numeric_limits<double>::infinity();
-    if (estimate <= tolerance_m) {
-      *estimate_m = estimate;
-      return m;
-    }
-    coarse = fine;
-  }
-  throw NumericalError(fmt::format(
-      "bouc-wen: the fixed step's step-doubling error at 512 steps per sample is {:.3g} m, above "
-      "its tolerance {:.3g} m; fit with --integrator cvode, or a larger --step-tolerance",
-      estimate, tolerance_m));
+  return r;
 }
 
 // The final model's fixed step against CVODE (rtol 1e-9, the same input): the RMS difference
@@ -599,8 +558,10 @@ double FixedStepCheck(const MechanicalBoucWenParameters& p, const std::vector<Se
   } catch (const InputError& e) {
     *how = fmt::format("by step doubling (CVODE refused the input: {})", e.what());
   }
-  return internal::StepDoublingError(FixedStepStacked(p, data, sim.input, sim.upsampling),
-                                     FixedStepStacked(p, data, sim.input, 2 * sim.upsampling));
+  const internal::SampledRecordings in = Inputs(data);
+  return internal::StepDoublingError(
+      internal::FixedStepStacked(p, in, sim.input, sim.upsampling),
+      internal::FixedStepStacked(p, in, sim.input, 2 * sim.upsampling));
 }
 
 }  // namespace
@@ -652,13 +613,31 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
                     recordings.front().source, u_min));
   Layout layout = MakeLayout(form, data, options);
+  std::string input_note;
+  if (options.choose_input && form == BoucWenForm::kMechanical) {
+    bool band_limited = true;
+    double worst_wrap = 0, worst_high = 0;
+    for (const auto& s : data) {
+      double wrap = 0, high = 0;
+      band_limited = internal::PeriodicBandLimited(s.u, &wrap, &high) && band_limited;
+      worst_wrap = std::max(worst_wrap, wrap / std::max(s.u.cwiseAbs().maxCoeff(), 1e-300));
+      worst_high = std::max(worst_high, high);
+    }
+    layout.sim.input = band_limited ? InputInterpolation::kBandLimited : InputInterpolation::kLinear;
+    input_note = fmt::format(
+        "; input {} between samples (chosen: {}; largest wrap step {:.3g} of max|u|, power above "
+        "a quarter of the sampling rate {:.3g} of the variance, band-limited at most {:g})",
+        band_limited ? "band-limited" : "linear",
+        band_limited ? "every recording is whole periods of a band-limited signal"
+                     : "not every recording is whole periods of a band-limited signal",
+        worst_wrap, worst_high, internal::kBandLimitedPower);
+  }
   const bool fixed_step = form == BoucWenForm::kMechanical &&
                           options.simulation.integrator == BoucWenIntegrator::kFixedStep;
-  const bool exact =
-      options.jacobian == BoucWenJacobian::kSensitivities &&
-      (form == BoucWenForm::kMechanical
-           ? options.simulation.integrator != BoucWenIntegrator::kCvode
-           : options.simulation.input != InputInterpolation::kBandLimited);
+  const bool exact = options.jacobian == BoucWenJacobian::kSensitivities &&
+                     (form == BoucWenForm::kMechanical
+                          ? layout.sim.integrator != BoucWenIntegrator::kCvode
+                          : layout.sim.input != InputInterpolation::kBandLimited);
   const char* jacobian_how = exact ? "forward sensitivities" : "central differences";
   // The fixed step's tolerance [m] and the steps per sample it needs at the start.
   double step_tolerance_m = 0, start_estimate_m = 0;
@@ -671,8 +650,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     for (const auto& s : data) sum += (s.x.array() - s.x.mean()).square().sum();
     step_tolerance_m =
         options.fixed_step_tolerance * std::sqrt(sum / static_cast<double>(n));
-    set_substeps(ChooseSubsteps(MechanicalParameters(layout.all), data, layout.sim.input,
-                                step_tolerance_m, &start_estimate_m));
+    set_substeps(internal::ChooseFixedSteps(MechanicalParameters(layout.all), Inputs(data),
+                                            layout.sim.input, step_tolerance_m,
+                                            &start_estimate_m));
   }
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
@@ -796,7 +776,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                         ? fmt::format(" and {} with sensitivities", work.sensitivity_passes)
                         : std::string(),
                     options.starts, jacobian_how, fixed.empty() ? "" : "; ", fixed) +
-        fixed_step_note;
+        input_note + fixed_step_note;
     summary->fit_time_s = clock.Elapsed();
   }
   return model;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
@@ -71,6 +72,55 @@ void FixedStepOutputSensitivity(const MechanicalBoucWenParameters& p, const Eige
 double StepDoublingError(const Eigen::VectorXd& y_m, const Eigen::VectorXd& y_2m) {
   const double n = static_cast<double>(std::max<Eigen::Index>(y_m.size(), 1));
   return 4.0 / 3.0 * std::sqrt((y_m - y_2m).squaredNorm() / n);
+}
+
+Eigen::VectorXd FixedStepStacked(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                                 InputInterpolation how, int m) {
+  Eigen::Index n = 0;
+  for (const Eigen::VectorXd* u : in.u) {
+    CheckFixedStepWork(u->size(), m, how, "bouc-wen");
+    n += u->size();
+  }
+  Eigen::VectorXd y(n);
+  Eigen::Index at = 0;
+  for (size_t k = 0; k < in.u.size(); ++k) {
+    const Eigen::VectorXd& u = *in.u[k];
+    y.segment(at, u.size()) = FixedStepOutput(p, FixedStepInput(u, how, m), in.dt_s[k], m);
+    at += u.size();
+  }
+  return y;
+}
+
+int ChooseFixedSteps(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                     InputInterpolation how, double tolerance_m, double* estimate_m) {
+  auto simulate = [&](int m) {
+    try {
+      return FixedStepStacked(p, in, how, m);
+    } catch (const NumericalError&) {
+      return Eigen::VectorXd();  // Newton diverged: too coarse
+    } catch (const InputError& e) {
+      throw NumericalError(fmt::format(
+          "bouc-wen: the fixed step did not reach its tolerance {:.3g} m (step doubling) before "
+          "its work bound: {}; fit with --integrator cvode, or a larger --step-tolerance",
+          tolerance_m, e.what()));
+    }
+  };
+  Eigen::VectorXd coarse = simulate(2);
+  double estimate = std::numeric_limits<double>::infinity();
+  for (int m = 2; m <= 512; m *= 2) {
+    const Eigen::VectorXd fine = simulate(2 * m);
+    estimate = coarse.size() > 0 && fine.size() > 0 ? StepDoublingError(coarse, fine)
+                                                    : std::numeric_limits<double>::infinity();
+    if (estimate <= tolerance_m) {
+      *estimate_m = estimate;
+      return m;
+    }
+    coarse = fine;
+  }
+  throw NumericalError(fmt::format(
+      "bouc-wen: the fixed step's step-doubling error at 512 steps per sample is {:.3g} m, above "
+      "its tolerance {:.3g} m; fit with --integrator cvode, or a larger --step-tolerance",
+      estimate, tolerance_m));
 }
 
 }  // namespace sysid::internal

@@ -33,6 +33,18 @@ class SampledInput {
   double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
 };
 
+/// The most power above a quarter of the sampling rate, as a fraction of u's variance, that a
+/// band-limited input may have for PeriodicBandLimited.
+inline constexpr double kBandLimitedPower = 1e-6;
+
+/// True when u looks like the band-limited interpolant's input, one or more whole periods of a
+/// signal whose lines lie well below the Nyquist frequency: its wrap (u[0] after u[n-1]) is no
+/// larger a step than its largest step between samples, and its lines above a quarter of the
+/// sampling rate hold at most kBandLimitedPower of its variance (a record that does not wrap
+/// smoothly spreads its jump over every line). *wrap_step and *high_fraction say what was
+/// measured (NaN: not measured: fewer than 8 samples, or an FFT past kMaxFftWork).
+bool PeriodicBandLimited(const Eigen::VectorXd& u, double* wrap_step, double* high_fraction);
+
 /// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
 /// at the first non-finite sample; `kind` starts the message ("bouc-wen").
 void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);
@@ -169,6 +181,22 @@ void CheckFixedStepWork(Eigen::Index rows, int substeps, InputInterpolation how,
 /// y_m - y_exact ~ C / m^2 and y_m - y_2m ~ (3/4) C / m^2, and the error of y_m is estimated as
 /// (4/3) |y_m - y_2m| (Richardson). The RMS over every sample of every recording.
 double StepDoublingError(const Eigen::VectorXd& y_m, const Eigen::VectorXd& y_2m);
+
+/// Recordings' inputs u and their sample times dt_s [s], side by side (not owned).
+struct SampledRecordings {
+  std::vector<const Eigen::VectorXd*> u;
+  std::vector<double> dt_s;
+};
+/// The fixed step's y [m] of every recording at m steps per sample, stacked (CheckFixedStepWork
+/// first: InputError past the work bound).
+Eigen::VectorXd FixedStepStacked(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                                 InputInterpolation how, int m);
+/// The fixed step's steps per sample at p: the smallest m = 2, 4, ..., 512 whose step-doubling
+/// estimate (StepDoublingError of m against 2m over every sample) is within tolerance_m [m];
+/// *estimate_m is that estimate. A diverging step counts as too coarse. Throws NumericalError
+/// when no m reaches the tolerance, or the work bound comes first.
+int ChooseFixedSteps(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                     InputInterpolation how, double tolerance_m, double* estimate_m);
 
 /// The most operations an FFT of the benchmark chain or of a band-limited input may cost: Eigen's
 /// FFT (kissfft) spends about n x (the sum of n's prime factors) on a length n, so a length with
