@@ -162,6 +162,13 @@ TEST_CASE("bouc-wen: the band-limited input is recognised by its wrap and its sp
   CHECK(high <= 1e-20);
   // Cut mid-period: the wrap jumps.
   CHECK_FALSE(internal::PeriodicBandLimited(u.head(700), &wrap, &high));
+  // A long slow sine cut mid-period: its jump's power above a quarter of the rate is below the
+  // bound (spread over 2^17 lines), the wrap is what refuses it.
+  Eigen::VectorXd slow(1 << 17);
+  for (Eigen::Index i = 0; i < slow.size(); ++i)
+    slow[i] = std::sin(2 * M_PI * 10.05 * static_cast<double>(i) / static_cast<double>(slow.size()));
+  CHECK_FALSE(internal::PeriodicBandLimited(slow, &wrap, &high));
+  CHECK(high <= internal::kBandLimitedPower);
   // A ramp wraps by its whole range; noise has power everywhere.
   CHECK_FALSE(internal::PeriodicBandLimited(Eigen::VectorXd::LinSpaced(512, 0, 1), &wrap, &high));
   Eigen::VectorXd noise(512);
