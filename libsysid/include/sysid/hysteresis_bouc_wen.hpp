@@ -177,7 +177,8 @@ struct BoucWenFitOptions {
   /// input; where CVODE refuses the input, step doubling again): past the tolerance m doubles and
   /// the fit continues from its parameters; the summary's message gives m and both errors.
   double fixed_step_tolerance = 1e-4;
-  /// Mechanical form: the input between samples chosen from the recordings instead of
+  /// Mechanical form with CVODE or the fixed step (the chain's input is band-limited anyway):
+  /// the input between samples chosen from the recordings instead of
   /// simulation.input: band-limited when every recording's u is whole periods of a band-limited
   /// signal (it wraps from its last sample to its first by no more than its largest step, and at
   /// most 1e-6 of its variance lies above a quarter of the sampling rate), else linear. The

@@ -614,7 +614,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                     recordings.front().source, u_min));
   Layout layout = MakeLayout(form, data, options);
   std::string input_note;
-  if (options.choose_input && form == BoucWenForm::kMechanical) {
+  // The chain takes its input band-limited whatever `input` says.
+  if (options.choose_input && form == BoucWenForm::kMechanical &&
+      layout.sim.integrator != BoucWenIntegrator::kBenchmarkChain) {
     bool band_limited = true;
     double worst_wrap = 0, worst_high = 0;
     for (const auto& s : data) {
