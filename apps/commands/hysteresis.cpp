@@ -102,19 +102,20 @@ void RunFit(const HysteresisCli& o) {
   // auto: the mechanical form's fixed step (its steps per sample chosen by step doubling and
   // checked against CVODE), CVODE for a held input; the piezo form's closed-form step (cvode's
   // setting: CVODE only for a band-limited input).
-  sim.integrator = o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
-                   : o.integrator == "fixed-step"    ? BoucWenIntegrator::kFixedStep
-                   : o.integrator == "auto" && o.kind == "bouc-wen" &&
-                           sim.input != InputInterpolation::kHold
-                       ? BoucWenIntegrator::kFixedStep
-                       : BoucWenIntegrator::kCvode;
+  sim.integrator =
+      o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
+      : o.integrator == "fixed-step"    ? BoucWenIntegrator::kFixedStep
+      : o.integrator == "auto" && o.kind == "bouc-wen" && sim.input != InputInterpolation::kHold
+          ? BoucWenIntegrator::kFixedStep
+          : BoucWenIntegrator::kCvode;
   if (o.kind != "bouc-wen" && sim.integrator != BoucWenIntegrator::kCvode)
     throw OptionsError("--integrator " + o.integrator +
                        ": only for --model bouc-wen (the mechanical form; bouc-wen-piezo takes "
                        "its exact closed-form step, or CVODE for a band-limited input)");
   if (sim.integrator == BoucWenIntegrator::kFixedStep && sim.input == InputInterpolation::kHold)
-    throw OptionsError("--integrator fixed-step: takes --input linear or band-limited (a held "
-                       "input: --integrator cvode)");
+    throw OptionsError(
+        "--integrator fixed-step: takes --input linear or band-limited (a held "
+        "input: --integrator cvode)");
   try {
     options.Validate(o.kind);
   } catch (const OptionsError& e) {

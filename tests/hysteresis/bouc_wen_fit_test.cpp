@@ -209,8 +209,9 @@ TEST_CASE("bouc-wen: the fixed-step fit recovers the system from CVODE's data",
   o.mechanical_initial_given = true;
   o.starts = 2;
   HysteresisFitSummary summary;
-  const auto model = FitBoucWen(BoucWenForm::kMechanical,
-                                {MakeRecording(u, y + Noise(y.size(), 7.4e-6, 42), dt)}, o, &summary);
+  const auto model =
+      FitBoucWen(BoucWenForm::kMechanical, {MakeRecording(u, y + Noise(y.size(), 7.4e-6, 42), dt)},
+                 o, &summary);
   INFO(summary.message);
   CHECK(summary.message.find("Jacobian by forward sensitivities") != std::string::npos);
   CHECK(summary.message.find("the final model against CVODE rtol 1e-9") != std::string::npos);
@@ -238,9 +239,10 @@ Eigen::VectorXd PiezoInput(Eigen::Index n, double dt) {
   return u;
 }
 
-TEST_CASE("bouc-wen-piezo: the closed-form step's Jacobian (ceres::Jet) agrees with central "
-          "differences",
-          "[hysteresis][bouc-wen][fit]") {
+TEST_CASE(
+    "bouc-wen-piezo: the closed-form step's Jacobian (ceres::Jet) agrees with central "
+    "differences",
+    "[hysteresis][bouc-wen][fit]") {
   const double dt = 1e-3;
   const Eigen::VectorXd u = PiezoInput(1500, dt);
   internal::PortableRandom random(13);

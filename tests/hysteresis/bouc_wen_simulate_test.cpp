@@ -166,7 +166,8 @@ TEST_CASE("bouc-wen: the band-limited input is recognised by its wrap and its sp
   // bound (spread over 2^17 lines), the wrap is what refuses it.
   Eigen::VectorXd slow(1 << 17);
   for (Eigen::Index i = 0; i < slow.size(); ++i)
-    slow[i] = std::sin(2 * M_PI * 10.05 * static_cast<double>(i) / static_cast<double>(slow.size()));
+    slow[i] =
+        std::sin(2 * M_PI * 10.05 * static_cast<double>(i) / static_cast<double>(slow.size()));
   CHECK_FALSE(internal::PeriodicBandLimited(slow, &wrap, &high));
   CHECK(high <= internal::kBandLimitedPower);
   // A ramp wraps by its whole range; noise has power everywhere.

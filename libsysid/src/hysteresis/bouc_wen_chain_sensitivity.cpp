@@ -40,7 +40,8 @@ Vec RateParameterPartials(const MechanicalBoucWenParameters& p, double v, double
 }  // namespace
 
 void NewmarkSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& uf, double h,
-                        Eigen::Index stride, bool with_nu, Eigen::VectorXd* y, NewmarkJacobian* dy_dp) {
+                        Eigen::Index stride, bool with_nu, Eigen::VectorXd* y,
+                        NewmarkJacobian* dy_dp) {
   const Eigen::Index nf = uf.size();
   const Eigen::Index kept = nf > 0 ? (nf - 1) / stride + 1 : 0;
   const double m = p.m_kg, c = p.c_n_s_per_m, k = p.k_n_per_m;

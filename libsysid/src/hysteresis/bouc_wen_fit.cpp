@@ -265,8 +265,9 @@ class OutputError : public ceres::CostFunction {
   bool ResidualsAndSensitivities(const double* x, double* residuals, double* jacobian) const {
     const int np = static_cast<int>(l_->free.size());
     const Eigen::VectorXd p = l_->Full(x);
-    const MechanicalBoucWenParameters m =
-        l_->form == BoucWenForm::kMechanical ? MechanicalParameters(p) : MechanicalBoucWenParameters{};
+    const MechanicalBoucWenParameters m = l_->form == BoucWenForm::kMechanical
+                                              ? MechanicalParameters(p)
+                                              : MechanicalBoucWenParameters{};
     const PiezoBoucWenParameters z =
         l_->form == BoucWenForm::kPiezo ? PiezoParameters(p) : PiezoBoucWenParameters{};
     try {
@@ -292,8 +293,8 @@ class OutputError : public ceres::CostFunction {
           internal::ChainOutputSensitivity(m, s.fine_u, len, s.dt_s, l_->sim.upsampling, with_nu,
                                            &y, &dy);
         else
-          internal::FixedStepOutputSensitivity(m, s.fine_u, s.dt_s, l_->sim.upsampling, with_nu,
-                                               &y, &dy);
+          internal::FixedStepOutputSensitivity(m, s.fine_u, s.dt_s, l_->sim.upsampling, with_nu, &y,
+                                               &dy);
       } catch (const Error&) {
         return;
       }
@@ -573,8 +574,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   FitClock clock{std::chrono::steady_clock::now(), options.max_time_s};
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
-  if (form == BoucWenForm::kPiezo &&
-      options.simulation.integrator != BoucWenIntegrator::kCvode)
+  if (form == BoucWenForm::kPiezo && options.simulation.integrator != BoucWenIntegrator::kCvode)
     throw OptionsError(
         "BoucWenFitOptions::simulation.integrator = benchmark-chain or fixed-step. Violated "
         "constraint: the chain and the fixed step are the mechanical form's",
@@ -625,7 +625,8 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
       worst_wrap = std::max(worst_wrap, wrap / std::max(s.u.cwiseAbs().maxCoeff(), 1e-300));
       worst_high = std::max(worst_high, high);
     }
-    layout.sim.input = band_limited ? InputInterpolation::kBandLimited : InputInterpolation::kLinear;
+    layout.sim.input =
+        band_limited ? InputInterpolation::kBandLimited : InputInterpolation::kLinear;
     input_note = fmt::format(
         "; input {} between samples (chosen: {}; largest wrap step {:.3g} of max|u|, power above "
         "a quarter of the sampling rate {:.3g} of the variance, band-limited at most {:g})",
@@ -636,10 +637,10 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   }
   const bool fixed_step = form == BoucWenForm::kMechanical &&
                           options.simulation.integrator == BoucWenIntegrator::kFixedStep;
-  const bool exact = options.jacobian == BoucWenJacobian::kSensitivities &&
-                     (form == BoucWenForm::kMechanical
-                          ? layout.sim.integrator != BoucWenIntegrator::kCvode
-                          : layout.sim.input != InputInterpolation::kBandLimited);
+  const bool exact =
+      options.jacobian == BoucWenJacobian::kSensitivities &&
+      (form == BoucWenForm::kMechanical ? layout.sim.integrator != BoucWenIntegrator::kCvode
+                                        : layout.sim.input != InputInterpolation::kBandLimited);
   const char* jacobian_how = exact ? "forward sensitivities" : "central differences";
   // The fixed step's tolerance [m] and the steps per sample it needs at the start.
   double step_tolerance_m = 0, start_estimate_m = 0;
@@ -650,11 +651,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   if (fixed_step) {
     double sum = 0;
     for (const auto& s : data) sum += (s.x.array() - s.x.mean()).square().sum();
-    step_tolerance_m =
-        options.fixed_step_tolerance * std::sqrt(sum / static_cast<double>(n));
+    step_tolerance_m = options.fixed_step_tolerance * std::sqrt(sum / static_cast<double>(n));
     set_substeps(internal::ChooseFixedSteps(MechanicalParameters(layout.all), Inputs(data),
-                                            layout.sim.input, step_tolerance_m,
-                                            &start_estimate_m));
+                                            layout.sim.input, step_tolerance_m, &start_estimate_m));
   }
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)

@@ -38,8 +38,7 @@ Eigen::VectorXd FixedStepInput(const Eigen::VectorXd& u, InputInterpolation how,
         "input");
   if (n == 0) return u;
   const Eigen::Index nf = (n - 1) * substeps + 1;
-  if (how == InputInterpolation::kBandLimited)
-    return UpsampleBandLimited(u, substeps).head(nf);
+  if (how == InputInterpolation::kBandLimited) return UpsampleBandLimited(u, substeps).head(nf);
   Eigen::VectorXd uf(nf);
   for (Eigen::Index k = 0; k + 1 < n; ++k) {
     const double step = (u[k + 1] - u[k]) / substeps;

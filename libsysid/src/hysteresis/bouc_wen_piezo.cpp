@@ -72,7 +72,7 @@ PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulat
                     "the fixed step are the mechanical form's (use cvode for bouc-wen-piezo: its "
                     "held or linear input takes the exact closed-form step)",
                     options_.integrator == BoucWenIntegrator::kFixedStep ? "fixed-step"
-                                                                          : "benchmark-chain"),
+                                                                         : "benchmark-chain"),
         "integrator");
 }
 
