@@ -646,7 +646,11 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   double step_tolerance_m = 0, start_estimate_m = 0;
   auto set_substeps = [&](int m) {
     layout.sim.upsampling = m;
-    for (auto& s : data) s.fine_u = internal::FixedStepInput(s.u, layout.sim.input, m);
+    for (auto& s : data) {
+      // The work bound before the allocation (a doubled m was not checked by the choice).
+      internal::CheckFixedStepWork(s.u.size(), m, layout.sim.input, "bouc-wen");
+      s.fine_u = internal::FixedStepInput(s.u, layout.sim.input, m);
+    }
   };
   if (fixed_step) {
     double sum = 0;
