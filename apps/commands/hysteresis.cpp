@@ -35,8 +35,10 @@ struct HysteresisCli {
   std::string input;
   bool periodic = false;
   bool no_offset = false;
-  std::string integrator = "cvode";  // Bouc–Wen fits: cvode | benchmark-chain
-  std::string input_model = "linear";  // Bouc–Wen fits with CVODE: hold | linear | band-limited
+  // Bouc–Wen fits: auto | fixed-step | cvode | benchmark-chain (auto: docs/hysteresis.md).
+  std::string integrator = "auto";
+  // Bouc–Wen fits: auto | hold | linear | band-limited (auto: docs/hysteresis.md).
+  std::string input_model = "auto";
   std::string jacobian = "sensitivities";  // Bouc–Wen fits: sensitivities | central-differences
   RecordingFlags recording;  // --var, --rate, --scale for every recording read
   FitFractionFlag fit_fraction;
@@ -93,14 +95,27 @@ void RunFit(const HysteresisCli& o) {
   HysteresisFitOptions options = o.options;
   options.pi.offset = !o.no_offset;
   BoucWenSimulationOptions& sim = options.bouc_wen.simulation;
-  sim.integrator = o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
-                                                     : BoucWenIntegrator::kCvode;
   sim.input = o.input_model == "hold"           ? InputInterpolation::kHold
               : o.input_model == "band-limited" ? InputInterpolation::kBandLimited
                                                 : InputInterpolation::kLinear;
-  if (o.kind != "bouc-wen" && sim.integrator == BoucWenIntegrator::kBenchmarkChain)
-    throw OptionsError("--integrator benchmark-chain: only for --model bouc-wen (the "
-                       "benchmark's generator of the mechanical form)");
+  options.bouc_wen.choose_input = o.input_model == "auto" && o.kind == "bouc-wen";
+  // auto: the mechanical form's fixed step (its steps per sample chosen by step doubling and
+  // checked against CVODE), CVODE for a held input; the piezo form's closed-form step (cvode's
+  // setting: CVODE only for a band-limited input).
+  sim.integrator =
+      o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
+      : o.integrator == "fixed-step"    ? BoucWenIntegrator::kFixedStep
+      : o.integrator == "auto" && o.kind == "bouc-wen" && sim.input != InputInterpolation::kHold
+          ? BoucWenIntegrator::kFixedStep
+          : BoucWenIntegrator::kCvode;
+  if (o.kind != "bouc-wen" && sim.integrator != BoucWenIntegrator::kCvode)
+    throw OptionsError("--integrator " + o.integrator +
+                       ": only for --model bouc-wen (the mechanical form; bouc-wen-piezo takes "
+                       "its exact closed-form step, or CVODE for a band-limited input)");
+  if (sim.integrator == BoucWenIntegrator::kFixedStep && sim.input == InputInterpolation::kHold)
+    throw OptionsError(
+        "--integrator fixed-step: takes --input linear or band-limited (a held "
+        "input: --integrator cvode)");
   try {
     options.Validate(o.kind);
   } catch (const OptionsError& e) {
@@ -133,7 +148,8 @@ void RunFit(const HysteresisCli& o) {
                           {"hidden", "--hidden"},
                           {"starts", "--starts"},
                           {"threads", "--threads"},
-                          {"max_time_s", "--max-time"}});
+                          {"max_time_s", "--max-time"},
+                          {"fixed_step_tolerance", "--step-tolerance"}});
     }
   }
   const std::string summary_json = HysteresisFitSummaryJson(s, *model, 2);
@@ -284,22 +300,33 @@ void AddHysteresisCommand(CLI::App& app) {
       ->capture_default_str();
   AddSeedOption(fit, o->options.network.seed, "nn-operators: initialisation seed");
   fit->add_option("--integrator", o->integrator,
-                  "bouc-wen, bouc-wen-piezo: how the fit simulates: cvode, or benchmark-chain "
-                  "(bouc-wen only: the Bouc-Wen benchmark's own generator, docs/hysteresis.md)")
-      ->check(CLI::IsMember({"cvode", "benchmark-chain"}))
+                  "bouc-wen, bouc-wen-piezo: how the fit simulates: auto (bouc-wen: fixed-step, "
+                  "or cvode for --input hold; bouc-wen-piezo: its exact step), fixed-step "
+                  "(bouc-wen: Newmark at m steps per sample, m chosen by step doubling and "
+                  "checked against CVODE), cvode, or benchmark-chain (bouc-wen: the Bouc-Wen "
+                  "benchmark's own generator); docs/hysteresis.md")
+      ->check(CLI::IsMember({"auto", "fixed-step", "cvode", "benchmark-chain"}))
+      ->capture_default_str();
+  fit->add_option("--step-tolerance", o->options.bouc_wen.fixed_step_tolerance,
+                  "bouc-wen with fixed-step: the integration error allowed, relative to the "
+                  "output's RMS about its mean (0 < TOL <= 0.1)")
+      ->type_name("TOL")
       ->capture_default_str();
   fit->add_option("--input", o->input_model,
-                  "bouc-wen, bouc-wen-piezo with cvode: u between samples: hold, linear or "
-                  "band-limited (the record as one period of a periodic input)")
-      ->check(CLI::IsMember({"hold", "linear", "band-limited"}))
+                  "bouc-wen, bouc-wen-piezo: u between samples: auto (bouc-wen: band-limited when "
+                  "every recording is whole periods of a band-limited signal, else linear; "
+                  "bouc-wen-piezo: linear), hold, linear or band-limited (the record as one "
+                  "period of a periodic input)")
+      ->check(CLI::IsMember({"auto", "hold", "linear", "band-limited"}))
       ->capture_default_str();
   fit->add_option("--starts", o->options.bouc_wen.starts,
                   "bouc-wen, bouc-wen-piezo: starting points (1..64)")
       ->capture_default_str();
   fit->add_option("--jacobian", o->jacobian,
-                  "bouc-wen with benchmark-chain: how the fit differentiates the simulation: "
-                  "sensitivities (exact, the chain's step differentiated) or central-differences "
-                  "(2p+1 simulations); elsewhere central differences")
+                  "bouc-wen, bouc-wen-piezo: how the fit differentiates the simulation: "
+                  "sensitivities (exact: the fixed step's, the chain's or the piezo closed form's "
+                  "step differentiated; CVODE: central differences) or central-differences "
+                  "(2p+1 simulations)")
       ->check(CLI::IsMember({"sensitivities", "central-differences"}))
       ->capture_default_str();
   fit->add_option("--max-time", o->options.bouc_wen.max_time_s,

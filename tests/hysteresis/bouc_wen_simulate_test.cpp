@@ -120,6 +120,66 @@ TEST_CASE("bouc-wen: CVODE against a tiny-step RK4 for held, linear and band-lim
   }
 }
 
+TEST_CASE("bouc-wen: the fixed step's step-doubling choice is within its tolerance of RK4",
+          "[hysteresis][bouc-wen]") {
+  // The benchmark's system on 160 samples at 750 Hz (a dozen velocity reversals), linear and
+  // band-limited input: the steps per sample chosen for a tolerance of 1e-4 of the output's RMS
+  // (the fit's default), then the fixed step at that count against the tiny-step RK4 reference.
+  const MechanicalBoucWenParameters p;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(160, dt, 2, 20, 20.0);
+  for (auto how : {InputInterpolation::kLinear, InputInterpolation::kBandLimited}) {
+    const Eigen::VectorXd ref = CheckedMechanicalRk4(p, u, dt, how, 4000);
+    const double rms = std::sqrt((ref.array() - ref.mean()).square().mean());
+    const double tolerance = 1e-4 * rms;
+    double estimate = 0;
+    const int m = internal::ChooseFixedSteps(p, {{&u}, {dt}}, how, tolerance, &estimate);
+    const Eigen::VectorXd y =
+        internal::FixedStepOutput(p, internal::FixedStepInput(u, how, m), dt, m);
+    const double error = std::sqrt((y - ref).squaredNorm() / static_cast<double>(y.size()));
+    INFO("input " << static_cast<int>(how) << ": m " << m << ", estimate " << estimate
+                  << " m, error against RK4 " << error << " m, tolerance " << tolerance << " m");
+    CHECK(estimate <= tolerance);
+    CHECK(error <= tolerance);  // the rule's promise, against the independent reference
+    // Richardson's estimate is the error's size, not just a bound (second order).
+    CHECK(estimate == Approx(error).epsilon(0.3));
+    // Half the steps would not do: the choice is the smallest power of two.
+    if (m > 2) {
+      const Eigen::VectorXd coarse =
+          internal::FixedStepOutput(p, internal::FixedStepInput(u, how, m / 2), dt, m / 2);
+      CHECK(std::sqrt((coarse - ref).squaredNorm() / static_cast<double>(y.size())) > tolerance);
+    }
+  }
+}
+
+TEST_CASE("bouc-wen: the band-limited input is recognised by its wrap and its spectrum",
+          "[hysteresis][bouc-wen]") {
+  const double dt = 1.0 / 750;
+  double wrap = 0, high = 0;
+  // Whole periods of a multisine with lines far below Nyquist: band-limited.
+  const Eigen::VectorXd u = Multisine(512, dt, 3, 40, 15.0).replicate(2, 1);
+  CHECK(internal::PeriodicBandLimited(u, &wrap, &high));
+  CHECK(high <= 1e-20);
+  // Cut mid-period: the wrap jumps.
+  CHECK_FALSE(internal::PeriodicBandLimited(u.head(700), &wrap, &high));
+  // A long slow sine cut mid-period: its jump's power above a quarter of the rate is below the
+  // bound (spread over 2^17 lines), the wrap is what refuses it.
+  Eigen::VectorXd slow(1 << 17);
+  for (Eigen::Index i = 0; i < slow.size(); ++i)
+    slow[i] =
+        std::sin(2 * M_PI * 10.05 * static_cast<double>(i) / static_cast<double>(slow.size()));
+  CHECK_FALSE(internal::PeriodicBandLimited(slow, &wrap, &high));
+  CHECK(high <= internal::kBandLimitedPower);
+  // A ramp wraps by its whole range; noise has power everywhere.
+  CHECK_FALSE(internal::PeriodicBandLimited(Eigen::VectorXd::LinSpaced(512, 0, 1), &wrap, &high));
+  Eigen::VectorXd noise(512);
+  for (Eigen::Index i = 0; i < noise.size(); ++i) noise[i] = std::sin(1e3 * i * i);
+  CHECK_FALSE(internal::PeriodicBandLimited(noise, &wrap, &high));
+  CHECK(high > 0.1);
+  // The same multisine with lines up to 0.4 of the sampling rate: not well below Nyquist.
+  CHECK_FALSE(internal::PeriodicBandLimited(Multisine(512, dt, 3, 200, 15.0), &wrap, &high));
+}
+
 TEST_CASE("bouc-wen: nu > 1 and CVODE agree with RK4 too", "[hysteresis][bouc-wen]") {
   MechanicalBoucWenParameters p;
   p.nu = 2;

@@ -9,6 +9,7 @@
 #include "support/known_pi.hpp"
 #include "support/test_support.hpp"
 #include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
 
 namespace {
@@ -242,6 +243,51 @@ TEST_CASE("sysid hysteresis fit: the Bouc-Wen simulation flags reach the model f
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.err, Catch::Contains("--max-time"));
   CHECK_FALSE(std::filesystem::exists(dir / "pi.json"));
+}
+
+TEST_CASE("sysid hysteresis fit: bouc-wen's default is the fixed step, its input chosen",
+          "[hysteresis][cli]") {
+  // A swept force on the benchmark's system, simulated by CVODE, not periodic: the default fit
+  // takes the fixed step on the linear input, and its model file says so.
+  TempDir dir;
+  const double dt = 1.0 / 750;
+  Eigen::VectorXd u(600);
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    const double t = static_cast<double>(i) * dt;
+    u[i] = 20 * (1 + t) * std::sin(2 * M_PI * (5 + 20 * t) * t);
+  }
+  const Eigen::VectorXd x = sysid::MechanicalBoucWen({}).Simulate(u, dt);
+  sysid::Recording rec;
+  rec.names = {"t", "u", "x"};
+  rec.data.resize(u.size(), 3);
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    rec.data.row(i) << static_cast<double>(i) * dt, u[i], x[i];
+  sysid::WriteRecording(dir / "rec.csv", rec);
+  auto r = RunCli({"hysteresis", "fit", "--model", "bouc-wen", "--starts", "1", dir / "rec.csv",
+                   "-o", dir / "bw.json"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(sysid::test::ReadText(dir / "bw.json"));
+  CHECK(j["simulation"]["integrator"] == "fixed-step");
+  CHECK(j["simulation"]["input"] == "linear");
+  CHECK(j["simulation"]["upsampling"].get<int>() >= 2);
+  const std::string message = j["fit"]["message"].get<std::string>();
+  CHECK_THAT(message, Catch::Contains("input linear between samples (chosen: not every"));
+  CHECK_THAT(message, Catch::Contains("the final model against CVODE rtol 1e-9"));
+  CHECK_THAT(message, Catch::Contains("Jacobian by forward sensitivities"));
+  // A held input is CVODE's; the tolerance is bounded.
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen", "--integrator", "fixed-step", "--input",
+              "hold", dir / "rec.csv", "-o", dir / "h.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--integrator fixed-step"));
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen", "--step-tolerance", "0", dir / "rec.csv",
+              "-o", dir / "h.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.err, Catch::Contains("--step-tolerance"));
+  r = RunCli({"hysteresis", "fit", "--model", "bouc-wen-piezo", "--integrator", "fixed-step",
+              dir / "rec.csv", "-o", dir / "h.json"});
+  CHECK(r.exit_code == 1);
+  CHECK_FALSE(std::filesystem::exists(dir / "h.json"));
 }
 
 TEST_CASE("sysid hysteresis fit: --progress reports the Bouc-Wen fit, --max-time stops it",

@@ -42,14 +42,19 @@ enum class InputInterpolation {
 enum class BoucWenIntegrator {
   kCvode,           ///< CVODE (Adams) with `input` between samples, tolerances rtol/atol
   kBenchmarkChain,  ///< mechanical form only: the Bouc–Wen benchmark's generator (see top)
+  /// Mechanical form only: the chain's Newmark/trapezoidal step at `upsampling` steps per sample
+  /// on `input` (linear or band-limited) without decimation; second order. A fit chooses the
+  /// steps per sample by step doubling (BoucWenFitOptions::fixed_step_tolerance).
+  kFixedStep,
 };
 
 struct BoucWenSimulationOptions {
   BoucWenIntegrator integrator = BoucWenIntegrator::kCvode;
-  InputInterpolation input = InputInterpolation::kLinear;  ///< CVODE only
+  InputInterpolation input = InputInterpolation::kLinear;  ///< CVODE and the fixed step
   double rtol = 1e-9;  ///< [1] CVODE relative tolerance, in (0, 1e-2]
-  /// Benchmark chain: integration steps per input sample (the benchmark: 20); the decimation
-  /// runs MATLAB's decimate(..., 'fir') once per prime factor, largest last. In [1, 1000].
+  /// Benchmark chain and fixed step: integration steps per input sample (the benchmark: 20); the
+  /// chain's decimation runs MATLAB's decimate(..., 'fir') once per prime factor, largest last.
+  /// In [1, 1000].
   int upsampling = 20;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
@@ -147,10 +152,10 @@ class PiezoBoucWen : public HysteresisModel {
 
 /// How the fit gets the Jacobian of the residuals in the parameters.
 enum class BoucWenJacobian {
-  /// Forward sensitivities of the simulator's own discrete recursion where it has them (the
-  /// benchmark chain: the Newmark/trapezoidal step differentiated, then the linear FIR
-  /// decimation): exact to rounding, one pass. Elsewhere (CVODE, the piezo form) central
-  /// differences.
+  /// Forward sensitivities of the simulator's own discrete recursion where it has them: exact to
+  /// rounding, one pass. The benchmark chain and the fixed step: the Newmark/trapezoidal step
+  /// differentiated (then the chain's linear FIR decimation); the piezo form's closed-form step
+  /// (held or linear input): differentiated by ceres::Jet. Elsewhere (CVODE) central differences.
   kSensitivities,
   /// Central differences, 2 p + 1 simulations per Jacobian (p free parameters), in parallel.
   kCentralDifferences,
@@ -166,8 +171,23 @@ struct BoucWenFitProgress {
 };
 
 struct BoucWenFitOptions {
-  /// How the fit simulates (the benchmark's data: the benchmark chain).
+  /// How the fit simulates (the benchmark's data: the benchmark chain). With the fixed step its
+  /// `upsampling` is chosen by the fit (fixed_step_tolerance).
   BoucWenSimulationOptions simulation;
+  /// [1] The fixed step's tolerance, relative to the recordings' output RMS about its mean
+  /// (rms(x - mean x)), in (0, 0.1]. The steps per sample m: the smallest power of two (2 to 512)
+  /// whose step-doubling estimate (internal::StepDoublingError, m against 2m, at the starting
+  /// parameters) is within it. After the fit the model is simulated by CVODE (rtol 1e-9, the same
+  /// input; where CVODE refuses the input, step doubling again): past the tolerance m doubles and
+  /// the fit continues from its parameters; the summary's message gives m and both errors.
+  double fixed_step_tolerance = 1e-4;
+  /// Mechanical form with CVODE or the fixed step (the chain's input is band-limited anyway):
+  /// the input between samples chosen from the recordings instead of
+  /// simulation.input: band-limited when every recording's u is whole periods of a band-limited
+  /// signal (it wraps from its last sample to its first by no more than its largest step, and at
+  /// most 1e-6 of its variance lies above a quarter of the sampling rate), else linear. The
+  /// summary's message says which and why.
+  bool choose_input = false;
   /// Starting values; the mechanical form's default is the linear fit described in
   /// docs/hysteresis.md when `mechanical_initial_given` is false.
   MechanicalBoucWenParameters mechanical_initial;

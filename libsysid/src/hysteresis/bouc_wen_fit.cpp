@@ -43,6 +43,8 @@ void BoucWenFitOptions::Validate() const {
   if (max_iterations < 1 || max_iterations > 10000)
     rule("max_iterations", max_iterations, "1 <= max_iterations <= 10000");
   if (threads < 0) rule("threads", threads, "threads >= 0");
+  if (!(fixed_step_tolerance > 0 && fixed_step_tolerance <= 0.1))
+    rule("fixed_step_tolerance", fixed_step_tolerance, "0 < fixed_step_tolerance <= 0.1");
   if (!(max_time_s >= 0) || !std::isfinite(max_time_s))
     rule("max_time_s", max_time_s, "max_time_s >= 0 and finite (0: no bound)");
 }
@@ -64,13 +66,25 @@ MechanicalBoucWenParameters MechanicalParameters(const Eigen::VectorXd& p) {
   return m;
 }
 
+// The piezo form's parameters from the fit's vector (d, alpha, beta, gamma, offset).
+PiezoBoucWenParameters PiezoParameters(const Eigen::VectorXd& p) {
+  PiezoBoucWenParameters z;
+  z.d_m_per_v = p[0];
+  z.alpha = p[1];
+  z.beta_per_v = p[2];
+  z.gamma_per_v = p[3];
+  z.offset_m = p[4];
+  return z;
+}
+
 struct Series {
   Eigen::VectorXd u, x;
   double dt_s;
-  // The benchmark chain's upsampled input (internal::ChainInput), when the fit simulates by the
-  // chain: it does not depend on the parameters, and recomputing it (an FFT of 20 n points)
-  // was a fifth of every simulation. Empty otherwise.
-  Eigen::VectorXd chain_u;
+  // The benchmark chain's upsampled input (internal::ChainInput) or the fixed step's
+  // (internal::FixedStepInput), when the fit simulates by one of them: it does not depend on the
+  // parameters, and recomputing it (for the chain an FFT of 20 n points) was a fifth of every
+  // simulation. Empty otherwise.
+  Eigen::VectorXd fine_u;
 };
 
 // The parameters as one vector: mechanical m, c, k, alpha, beta, gamma, delta, nu; piezo d,
@@ -94,15 +108,18 @@ struct Layout {
     if (form == BoucWenForm::kMechanical) {
       return std::make_unique<MechanicalBoucWen>(MechanicalParameters(p), sim, std::move(errors));
     }
-    PiezoBoucWenParameters z;
-    z.d_m_per_v = p[0];
-    z.alpha = p[1];
-    z.beta_per_v = p[2];
-    z.gamma_per_v = p[3];
-    z.offset_m = p[4];
-    return std::make_unique<PiezoBoucWen>(z, sim, std::move(errors));
+    return std::make_unique<PiezoBoucWen>(PiezoParameters(p), sim, std::move(errors));
   }
 };
+
+// The model's y at a recording's samples, from its fine input when the fit keeps one.
+Eigen::VectorXd SimulateSeries(const Layout& l, const HysteresisModel& model, const Series& s) {
+  if (s.fine_u.size() == 0) return model.Simulate(s.u, s.dt_s);
+  const auto& p = static_cast<const MechanicalBoucWen&>(model).values();
+  if (l.sim.integrator == BoucWenIntegrator::kBenchmarkChain)
+    return internal::ChainOutput(p, s.fine_u, s.x.size(), s.dt_s, l.sim.upsampling);
+  return internal::FixedStepOutput(p, s.fine_u, s.dt_s, l.sim.upsampling);
+}
 
 // y_model - x over every recording, stacked; false when the simulation fails.
 bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x, double* r) {
@@ -110,11 +127,7 @@ bool Residuals(const Layout& l, const std::vector<Series>& data, const double* x
     const auto model = l.Model(l.Full(x));
     Eigen::Index at = 0;
     for (const auto& s : data) {
-      const Eigen::VectorXd y =
-          s.chain_u.size() > 0
-              ? internal::ChainOutput(static_cast<const MechanicalBoucWen&>(*model).values(),
-                                      s.chain_u, s.x.size(), s.dt_s, l.sim.upsampling)
-              : model->Simulate(s.u, s.dt_s);
+      const Eigen::VectorXd y = SimulateSeries(l, *model, s);
       Eigen::Map<Eigen::VectorXd>(r + at, s.x.size()) = y - s.x;
       at += s.x.size();
     }
@@ -153,9 +166,13 @@ class OutputError : public ceres::CostFunction {
   OutputError(const Layout* l, const std::vector<Series>* data, Eigen::Index n, int threads,
               BoucWenJacobian jacobian, Work* work, std::shared_ptr<EvaluationCache> cache)
       : l_(l), data_(data), threads_(threads), work_(work), c_(std::move(cache)) {
-    sensitivities_ = jacobian == BoucWenJacobian::kSensitivities &&
-                     l->form == BoucWenForm::kMechanical && !data->empty();
-    for (const auto& s : *data) sensitivities_ = sensitivities_ && s.chain_u.size() > 0;
+    // The exact Jacobian where the simulation is a discrete recursion: the mechanical form's
+    // chain and fixed step (a fine input kept), the piezo form's closed-form step.
+    sensitivities_ = jacobian == BoucWenJacobian::kSensitivities && !data->empty();
+    if (l->form == BoucWenForm::kPiezo)
+      sensitivities_ = sensitivities_ && l->sim.input != InputInterpolation::kBandLimited;
+    else
+      for (const auto& s : *data) sensitivities_ = sensitivities_ && s.fine_u.size() > 0;
     mutable_parameter_block_sizes()->push_back(static_cast<int>(l->free.size()));
     set_num_residuals(static_cast<int>(n));
   }
@@ -242,14 +259,20 @@ class OutputError : public ceres::CostFunction {
     return Eigen::Map<RowMajor>(j, n, np);
   }
 
-  // The chain's residuals and their exact Jacobian (ChainOutputSensitivity), the recordings in
-  // parallel; false when the parameters are invalid or a simulation fails.
+  // The residuals and their exact Jacobian (ChainOutputSensitivity, FixedStepOutputSensitivity,
+  // PiezoOutputSensitivity), the recordings in parallel; false when the parameters are invalid or
+  // a simulation fails.
   bool ResidualsAndSensitivities(const double* x, double* residuals, double* jacobian) const {
     const int np = static_cast<int>(l_->free.size());
     const Eigen::VectorXd p = l_->Full(x);
-    MechanicalBoucWenParameters m = MechanicalParameters(p);
+    const MechanicalBoucWenParameters m = l_->form == BoucWenForm::kMechanical
+                                              ? MechanicalParameters(p)
+                                              : MechanicalBoucWenParameters{};
+    const PiezoBoucWenParameters z =
+        l_->form == BoucWenForm::kPiezo ? PiezoParameters(p) : PiezoBoucWenParameters{};
     try {
       m.Validate();
+      z.Validate();
     } catch (const Error&) {
       return false;
     }
@@ -264,8 +287,14 @@ class OutputError : public ceres::CostFunction {
       Eigen::VectorXd y;
       Eigen::MatrixXd dy;
       try {
-        internal::ChainOutputSensitivity(m, s.chain_u, len, s.dt_s, l_->sim.upsampling, with_nu, &y,
-                                         &dy);
+        if (l_->form == BoucWenForm::kPiezo)
+          internal::PiezoOutputSensitivity(z, s.u, &y, &dy);
+        else if (l_->sim.integrator == BoucWenIntegrator::kBenchmarkChain)
+          internal::ChainOutputSensitivity(m, s.fine_u, len, s.dt_s, l_->sim.upsampling, with_nu,
+                                           &y, &dy);
+        else
+          internal::FixedStepOutputSensitivity(m, s.fine_u, s.dt_s, l_->sim.upsampling, with_nu, &y,
+                                               &dy);
       } catch (const Error&) {
         return;
       }
@@ -499,6 +528,43 @@ Solved Solve(const Layout& l, const std::vector<Series>& data, Eigen::Index n,
   return s;
 }
 
+// The recordings' inputs and sample times, as the fixed step's helpers take them.
+internal::SampledRecordings Inputs(const std::vector<Series>& data) {
+  internal::SampledRecordings r;
+  for (const auto& s : data) {
+    r.u.push_back(&s.u);
+    r.dt_s.push_back(s.dt_s);
+  }
+  return r;
+}
+
+// The final model's fixed step against CVODE (rtol 1e-9, the same input): the RMS difference
+// [m] over every sample. Where CVODE refuses the input (its band-limited work bound), step
+// doubling at m instead; *how says which.
+double FixedStepCheck(const MechanicalBoucWenParameters& p, const std::vector<Series>& data,
+                      const BoucWenSimulationOptions& sim, std::string* how) {
+  BoucWenSimulationOptions cv = sim;
+  cv.integrator = BoucWenIntegrator::kCvode;
+  cv.rtol = 1e-9;
+  const MechanicalBoucWen reference(p, cv);
+  double sum = 0, count = 0;
+  try {
+    for (const auto& s : data) {
+      const Eigen::VectorXd y = internal::FixedStepOutput(p, s.fine_u, s.dt_s, sim.upsampling);
+      sum += (y - reference.Simulate(s.u, s.dt_s)).squaredNorm();
+      count += static_cast<double>(s.u.size());
+    }
+    *how = "against CVODE rtol 1e-9";
+    return std::sqrt(sum / count);
+  } catch (const InputError& e) {
+    *how = fmt::format("by step doubling (CVODE refused the input: {})", e.what());
+  }
+  const internal::SampledRecordings in = Inputs(data);
+  return internal::StepDoublingError(
+      internal::FixedStepStacked(p, in, sim.input, sim.upsampling),
+      internal::FixedStepStacked(p, in, sim.input, 2 * sim.upsampling));
+}
+
 }  // namespace
 
 std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
@@ -508,11 +574,10 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   FitClock clock{std::chrono::steady_clock::now(), options.max_time_s};
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
-  if (form == BoucWenForm::kPiezo &&
-      options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain)
+  if (form == BoucWenForm::kPiezo && options.simulation.integrator != BoucWenIntegrator::kCvode)
     throw OptionsError(
-        "BoucWenFitOptions::simulation.integrator = benchmark-chain. Violated constraint: the "
-        "chain is the mechanical form's",
+        "BoucWenFitOptions::simulation.integrator = benchmark-chain or fixed-step. Violated "
+        "constraint: the chain and the fixed step are the mechanical form's",
         "simulation.integrator");
   std::vector<Series> data;
   Eigen::Index n = 0;
@@ -531,7 +596,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
       } catch (const InputError& e) {
         throw InputError(r.source + ": " + e.what());
       }
-      s.chain_u = internal::ChainInput(s.u, options.simulation.upsampling);
+      s.fine_u = internal::ChainInput(s.u, options.simulation.upsampling);
     }
     n += s.u.size();
     data.push_back(std::move(s));
@@ -547,12 +612,53 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     throw InputError(
         fmt::format("{}: column 'u' is constant ({} V): nothing to fit a hysteresis to",
                     recordings.front().source, u_min));
-  const Layout layout = MakeLayout(form, data, options);
-  const char* jacobian_how =
-      options.jacobian == BoucWenJacobian::kSensitivities && form == BoucWenForm::kMechanical &&
-              options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain
-          ? "forward sensitivities"
-          : "central differences";
+  Layout layout = MakeLayout(form, data, options);
+  std::string input_note;
+  // The chain takes its input band-limited whatever `input` says.
+  if (options.choose_input && form == BoucWenForm::kMechanical &&
+      layout.sim.integrator != BoucWenIntegrator::kBenchmarkChain) {
+    bool band_limited = true;
+    double worst_wrap = 0, worst_high = 0;
+    for (const auto& s : data) {
+      double wrap = 0, high = 0;
+      band_limited = internal::PeriodicBandLimited(s.u, &wrap, &high) && band_limited;
+      worst_wrap = std::max(worst_wrap, wrap / std::max(s.u.cwiseAbs().maxCoeff(), 1e-300));
+      worst_high = std::max(worst_high, high);
+    }
+    layout.sim.input =
+        band_limited ? InputInterpolation::kBandLimited : InputInterpolation::kLinear;
+    input_note = fmt::format(
+        "; input {} between samples (chosen: {}; largest wrap step {:.3g} of max|u|, power above "
+        "a quarter of the sampling rate {:.3g} of the variance, band-limited at most {:g})",
+        band_limited ? "band-limited" : "linear",
+        band_limited ? "every recording is whole periods of a band-limited signal"
+                     : "not every recording is whole periods of a band-limited signal",
+        worst_wrap, worst_high, internal::kBandLimitedPower);
+  }
+  const bool fixed_step = form == BoucWenForm::kMechanical &&
+                          options.simulation.integrator == BoucWenIntegrator::kFixedStep;
+  const bool exact =
+      options.jacobian == BoucWenJacobian::kSensitivities &&
+      (form == BoucWenForm::kMechanical ? layout.sim.integrator != BoucWenIntegrator::kCvode
+                                        : layout.sim.input != InputInterpolation::kBandLimited);
+  const char* jacobian_how = exact ? "forward sensitivities" : "central differences";
+  // The fixed step's tolerance [m] and the steps per sample it needs at the start.
+  double step_tolerance_m = 0, start_estimate_m = 0;
+  auto set_substeps = [&](int m) {
+    layout.sim.upsampling = m;
+    for (auto& s : data) {
+      // The work bound before the allocation (a doubled m was not checked by the choice).
+      internal::CheckFixedStepWork(s.u.size(), m, layout.sim.input, "bouc-wen");
+      s.fine_u = internal::FixedStepInput(s.u, layout.sim.input, m);
+    }
+  };
+  if (fixed_step) {
+    double sum = 0;
+    for (const auto& s : data) sum += (s.x.array() - s.x.mean()).square().sum();
+    step_tolerance_m = options.fixed_step_tolerance * std::sqrt(sum / static_cast<double>(n));
+    set_substeps(internal::ChooseFixedSteps(MechanicalParameters(layout.all), Inputs(data),
+                                            layout.sim.input, step_tolerance_m, &start_estimate_m));
+  }
   const int np = static_cast<int>(layout.free.size());
   if (n <= np)
     throw InputError(fmt::format("FitBoucWen: {} samples for {} free parameters", n, np));
@@ -599,6 +705,33 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   std::unique_ptr<ceres::Problem> owner(problem);
   if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
     throw NumericalError("bouc-wen fit failed: " + s.summary.message);
+  // The fixed step checked on the final model: past its tolerance, twice the steps and the fit
+  // continues from where it is (a fresh evaluation cache: the residuals changed with m).
+  std::string fixed_step_note;
+  while (fixed_step) {
+    std::string how;
+    const double error_m =
+        FixedStepCheck(MechanicalParameters(layout.Full(s.x.data())), data, layout.sim, &how);
+    fixed_step_note = fmt::format(
+        "; fixed step: {} steps per sample (step doubling at the start: {:.3g} m RMS), the final "
+        "model {}: {:.3g} m RMS, tolerance {:.3g} m ({:g} of rms(x))",
+        layout.sim.upsampling, start_estimate_m, how, error_m, step_tolerance_m,
+        options.fixed_step_tolerance);
+    if (error_m <= step_tolerance_m) break;
+    if (2 * layout.sim.upsampling > 512)
+      throw NumericalError(fmt::format(
+          "bouc-wen: the fitted model's fixed step at {} steps per sample differs from CVODE by "
+          "{:.3g} m RMS, above its tolerance {:.3g} m; fit with --integrator cvode, or a larger "
+          "--step-tolerance",
+          layout.sim.upsampling, error_m, step_tolerance_m));
+    set_substeps(2 * layout.sim.upsampling);
+    problem = nullptr;
+    s = Solve(layout, data, n, s.x, options.max_iterations, options, clock, 0, &work,
+              std::make_shared<EvaluationCache>(), &problem);
+    owner.reset(problem);
+    if (s.summary.termination_type == ceres::FAILURE || !std::isfinite(s.summary.final_cost))
+      throw NumericalError("bouc-wen fit failed: " + s.summary.message);
+  }
   // Standard errors from s^2 (J^T J)^-1 at the optimum, in physical units (as refine).
   const Eigen::VectorXd p = layout.Full(s.x.data());
   std::vector<double> errors(static_cast<size_t>(p.size()),
@@ -647,7 +780,8 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
                     work.sensitivity_passes > 0
                         ? fmt::format(" and {} with sensitivities", work.sensitivity_passes)
                         : std::string(),
-                    options.starts, jacobian_how, fixed.empty() ? "" : "; ", fixed);
+                    options.starts, jacobian_how, fixed.empty() ? "" : "; ", fixed) +
+        input_note + fixed_step_note;
     summary->fit_time_s = clock.Elapsed();
   }
   return model;

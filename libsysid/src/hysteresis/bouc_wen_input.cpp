@@ -88,4 +88,29 @@ void SampledInput::Evaluate(double t, Eigen::Index k, double* u, double* du) con
   *du = 2 * sdu;
 }
 
+bool PeriodicBandLimited(const Eigen::VectorXd& u, double* wrap_step, double* high_fraction) {
+  const Eigen::Index n = u.size();
+  *wrap_step = *high_fraction = NAN;
+  if (n < 8 || FftWork(n) > kMaxFftWork) return false;
+  double largest_step = 0;
+  for (Eigen::Index i = 0; i + 1 < n; ++i)
+    largest_step = std::max(largest_step, std::abs(u[i + 1] - u[i]));
+  *wrap_step = std::abs(u[0] - u[n - 1]);
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> in(static_cast<size_t>(n)), x;
+  const double mean = u.mean();
+  for (Eigen::Index i = 0; i < n; ++i) in[static_cast<size_t>(i)] = u[i] - mean;
+  fft.fwd(x, in);
+  // Parseval: the lines above n/4 (a quarter of the sampling rate) against all of them.
+  double high = 0, all = 0;
+  for (Eigen::Index j = 1; j < n; ++j) {
+    const double power = std::norm(x[static_cast<size_t>(j)]);
+    all += power;
+    if (std::min(j, n - j) > n / 4) high += power;
+  }
+  if (!(all > 0)) return false;
+  *high_fraction = high / all;
+  return *wrap_step <= largest_step && *high_fraction <= kBandLimitedPower;
+}
+
 }  // namespace sysid::internal

@@ -33,6 +33,18 @@ class SampledInput {
   double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
 };
 
+/// The most power above a quarter of the sampling rate, as a fraction of u's variance, that a
+/// band-limited input may have for PeriodicBandLimited.
+inline constexpr double kBandLimitedPower = 1e-6;
+
+/// True when u looks like the band-limited interpolant's input, one or more whole periods of a
+/// signal whose lines lie well below the Nyquist frequency: its wrap (u[0] after u[n-1]) is no
+/// larger a step than its largest step between samples, and its lines above a quarter of the
+/// sampling rate hold at most kBandLimitedPower of its variance (a record that does not wrap
+/// smoothly spreads its jump over every line). *wrap_step and *high_fraction say what was
+/// measured (NaN: not measured: fewer than 8 samples, or an FFT past kMaxFftWork).
+bool PeriodicBandLimited(const Eigen::VectorXd& u, double* wrap_step, double* high_fraction);
+
 /// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
 /// at the first non-finite sample; `kind` starts the message ("bouc-wen").
 void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);
@@ -126,6 +138,18 @@ Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::V
 /// delta, nu.
 inline constexpr int kMechanicalParameters = 8;
 
+/// dy/dp at the steps a recursion keeps: one column per kept step, rows in kMechanicalParameters'
+/// order.
+using NewmarkJacobian = Eigen::Matrix<double, kMechanicalParameters, Eigen::Dynamic>;
+
+/// NewmarkBoucWen from rest over the fine input uf (step h_s [s]) with its forward sensitivities
+/// (the implicit step differentiated at its Newton solution), keeping y and dy/dp at every
+/// `stride`-th step from the first ((uf.size() - 1) / stride + 1 of them). `with_nu` false
+/// leaves the nu row at 0 (it costs a logarithm per step). y is NewmarkBoucWen's to the last bit.
+void NewmarkSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& uf, double h_s,
+                        Eigen::Index stride, bool with_nu, Eigen::VectorXd* y,
+                        NewmarkJacobian* dy_dp);
+
 /// ChainOutput and its exact Jacobian: y [m] at the n coarse samples and dy/dp (n x 8, columns in
 /// kMechanicalParameters' order, each in m per the parameter's unit), by forward sensitivities of
 /// the Newmark/trapezoidal recursion (the implicit step differentiated at its Newton solution)
@@ -134,6 +158,45 @@ inline constexpr int kMechanicalParameters = 8;
 void ChainOutputSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& ufx,
                             Eigen::Index n, double dt_s, int upsampling, bool with_nu,
                             Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
+
+/// The fixed-step integrator (BoucWenIntegrator::kFixedStep): the Newmark/trapezoidal step of
+/// the chain at dt_s / substeps on u taken between samples as `how` says (linear, or
+/// band-limited: the record as one period), no decimation: y is every substeps-th step's.
+/// FixedStepInput: u at the (n - 1) substeps + 1 fine points (it depends on u alone, so a fit
+/// computes it once per substep count). Throws OptionsError for a held input (its jumps would
+/// need the acceleration restarted at every sample; CVODE takes it).
+Eigen::VectorXd FixedStepInput(const Eigen::VectorXd& u, InputInterpolation how, int substeps);
+/// y [m] at the n samples from FixedStepInput's result.
+Eigen::VectorXd FixedStepOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& uf,
+                                double dt_s, int substeps);
+/// FixedStepOutput and its exact Jacobian (n x 8, as ChainOutputSensitivity's).
+void FixedStepOutputSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& uf,
+                                double dt_s, int substeps, bool with_nu, Eigen::VectorXd* y,
+                                Eigen::MatrixXd* dy_dp);
+/// Throws InputError, before any allocation, when the fixed step over `rows` samples would take
+/// more than kMaxSignalSamples steps, or its band-limited input's FFT more than kMaxFftWork.
+void CheckFixedStepWork(Eigen::Index rows, int substeps, InputInterpolation how, const char* kind);
+
+/// The fixed step's error estimate by step doubling: the step is second order, so
+/// y_m - y_exact ~ C / m^2 and y_m - y_2m ~ (3/4) C / m^2, and the error of y_m is estimated as
+/// (4/3) |y_m - y_2m| (Richardson). The RMS over every sample of every recording.
+double StepDoublingError(const Eigen::VectorXd& y_m, const Eigen::VectorXd& y_2m);
+
+/// Recordings' inputs u and their sample times dt_s [s], side by side (not owned).
+struct SampledRecordings {
+  std::vector<const Eigen::VectorXd*> u;
+  std::vector<double> dt_s;
+};
+/// The fixed step's y [m] of every recording at m steps per sample, stacked (CheckFixedStepWork
+/// first: InputError past the work bound).
+Eigen::VectorXd FixedStepStacked(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                                 InputInterpolation how, int m);
+/// The fixed step's steps per sample at p: the smallest m = 2, 4, ..., 512 whose step-doubling
+/// estimate (StepDoublingError of m against 2m over every sample) is within tolerance_m [m];
+/// *estimate_m is that estimate. A diverging step counts as too coarse. Throws NumericalError
+/// when no m reaches the tolerance, or the work bound comes first.
+int ChooseFixedSteps(const MechanicalBoucWenParameters& p, const SampledRecordings& in,
+                     InputInterpolation how, double tolerance_m, double* estimate_m);
 
 /// The most operations an FFT of the benchmark chain or of a band-limited input may cost: Eigen's
 /// FFT (kissfft) spends about n x (the sum of n's prime factors) on a length n, so a length with
@@ -158,8 +221,57 @@ void CheckChainWork(Eigen::Index rows, int upsampling, double periods, const cha
 /// than kMaxFftWork.
 void CheckBandLimitedWork(Eigen::Index rows, const char* kind);
 
-/// The piezo form's exact step: h after u moves in a straight line from u0 to u1, from h0.
-double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h0);
+/// The piezo form's exact step: h [m] after u moves in a straight line from u0 to u1 [V], from
+/// h, with d [m/V], alpha, beta [1/V], gamma [1/V] of type T: double, or a ceres::Jet for the
+/// fit's exact Jacobian (the same step differentiated; its branches are taken on the values).
+///
+/// Along the segment, with direction s = sign(u1 - u0) and progress w = |u - u0|,
+/// dh/dw = A - B h with A = s alpha d and B = beta + s sign(h) gamma: exponential in w while h
+/// keeps its sign, and h crosses zero at most once (after that it moves with A's sign).
+template <typename T>
+T PiezoStepOf(const T& d, const T& alpha, const T& beta, const T& gamma, double u0, double u1,
+              T h) {
+  using std::abs;
+  using std::expm1;
+  using std::log;
+  const double s = u1 > u0 ? 1.0 : u1 < u0 ? -1.0 : 0.0;
+  if (s == 0) return h;
+  const T a = s * alpha * d;
+  T w = T(std::abs(u1 - u0));
+  for (int piece = 0; piece < 3 && w > 0; ++piece) {
+    const double sigma = h > 0 ? 1.0 : h < 0 ? -1.0 : a > 0 ? 1.0 : a < 0 ? -1.0 : 0.0;
+    if (sigma == 0) return T(0);  // h = 0 and no drive
+    const T b = beta + s * sigma * gamma;
+    // g(w) = (1 - exp(-b w)) / b, w where b w is negligible.
+    auto g = [&b](const T& x) { return abs(b * x) < 1e-300 ? x : T(-expm1(-b * x) / b); };
+    const T end = h + (a - b * h) * g(w);
+    const double end_sign = end > 0 ? 1.0 : end < 0 ? -1.0 : 0.0;
+    if (h == 0 || end_sign == sigma || end_sign == 0) return end;
+    // h reaches 0 at w*: h + (a - b h) g(w*) = 0.
+    T wstar;
+    if (abs(b) < 1e-300) {
+      wstar = -h / a;
+    } else {
+      const T ratio = a / (a - b * h);  // exp(-b w*)
+      wstar = -log(ratio) / b;
+    }
+    if (wstar < 0) wstar = T(0);
+    if (wstar > w) wstar = w;
+    w -= wstar;
+    h = T(0);
+  }
+  return h;
+}
+
+inline double PiezoStep(const PiezoBoucWenParameters& p, double u0, double u1, double h) {
+  return PiezoStepOf<double>(p.d_m_per_v, p.alpha, p.beta_per_v, p.gamma_per_v, u0, u1, h);
+}
+
+/// The piezo form's y [m] at the samples u [V] by the exact step (Simulate's, to the last bit)
+/// and its exact Jacobian dy/dp (n x 5: d, alpha, beta, gamma, offset; each in m per the
+/// parameter's unit), the step differentiated by ceres::Jet.
+void PiezoOutputSensitivity(const PiezoBoucWenParameters& p, const Eigen::VectorXd& u,
+                            Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
 
 }  // namespace sysid::internal
 

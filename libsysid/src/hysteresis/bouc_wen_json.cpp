@@ -18,7 +18,15 @@ namespace {
 }
 
 const char* ToString(BoucWenIntegrator i) {
-  return i == BoucWenIntegrator::kCvode ? "cvode" : "benchmark-chain";
+  switch (i) {
+    case BoucWenIntegrator::kCvode:
+      return "cvode";
+    case BoucWenIntegrator::kBenchmarkChain:
+      return "benchmark-chain";
+    case BoucWenIntegrator::kFixedStep:
+      return "fixed-step";
+  }
+  return "?";
 }
 const char* ToString(InputInterpolation i) {
   switch (i) {
@@ -71,8 +79,10 @@ BoucWenSimulationOptions SimulationFromJson(const internal::JsonDocument& doc,
       o.integrator = BoucWenIntegrator::kCvode;
     else if (s == "benchmark-chain")
       o.integrator = BoucWenIntegrator::kBenchmarkChain;
+    else if (s == "fixed-step")
+      o.integrator = BoucWenIntegrator::kFixedStep;
     else
-      n.Expected("\"cvode\" or \"benchmark-chain\"");
+      n.Expected("\"cvode\", \"benchmark-chain\" or \"fixed-step\"");
   }
   if (node.Has("input")) {
     const auto n = node.Get("input");
@@ -114,6 +124,11 @@ void BoucWenSimulationOptions::Validate() const {
     Violated("BoucWenSimulationOptions", "rtol", rtol, "0 < rtol <= 1e-2");
   if (upsampling < 1 || upsampling > 1000)
     Violated("BoucWenSimulationOptions", "upsampling", upsampling, "1 <= upsampling <= 1000");
+  if (integrator == BoucWenIntegrator::kFixedStep && input == InputInterpolation::kHold)
+    throw OptionsError(
+        "BoucWenSimulationOptions::input = hold. Violated constraint: the fixed-step integrator "
+        "takes a linear or band-limited input (use cvode for a held one)",
+        "input");
 }
 
 void MechanicalBoucWenParameters::Validate() const {
@@ -196,10 +211,10 @@ std::unique_ptr<HysteresisModel> BoucWenModelFromJson(const std::string& text,
   p.beta_per_v = ps.Get("beta").Number();
   p.gamma_per_v = ps.Get("gamma").Number();
   p.offset_m = ps.Has("offset") ? ps.Get("offset").Number() : 0.0;
-  if (sim.integrator == BoucWenIntegrator::kBenchmarkChain && root.Has("simulation"))
+  if (sim.integrator != BoucWenIntegrator::kCvode && root.Has("simulation"))
     root.Get("simulation")
         .Get("integrator")
-        .Expected("\"cvode\" (the chain is the mechanical form's)");
+        .Expected("\"cvode\" (the chain and the fixed step are the mechanical form's)");
   return std::make_unique<PiezoBoucWen>(p, sim, ErrorsFromJson(root, names));
 }
 

@@ -1,4 +1,4 @@
-// The mechanical Bouc–Wen oscillator: CVODE, or the benchmark's chain.
+// The mechanical Bouc–Wen oscillator: CVODE, the benchmark's chain, or the fixed step.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -58,6 +58,12 @@ Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_
     internal::CheckChainWork(n, options_.upsampling, 1, "bouc-wen");
     return internal::ChainOutput(p_, internal::ChainInput(u, options_.upsampling), n, dt_s,
                                  options_.upsampling);
+  }
+  if (options_.integrator == BoucWenIntegrator::kFixedStep) {
+    internal::CheckFixedStepWork(n, options_.upsampling, options_.input, "bouc-wen");
+    return internal::FixedStepOutput(
+        p_, internal::FixedStepInput(u, options_.input, options_.upsampling), dt_s,
+        options_.upsampling);
   }
   const internal::SampledInput input(u, dt_s, options_.input);
   MechanicalOde ode{&p_, &input, 0};
