@@ -12,6 +12,7 @@
 #include <memory>
 #include <unsupported/Eigen/FFT>
 
+#include "core/option_rule.hpp"
 #include "core/parallel_for.hpp"
 #include "core/portable_random.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
@@ -27,9 +28,7 @@ void BoucWenFitOptions::Validate() const {
   if (mechanical_initial_given) mechanical_initial.Validate();
   if (piezo_initial_given) piezo_initial.Validate();
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("BoucWenFitOptions::{} = {}. Violated constraint: {}", field, value, what),
-        field);
+    internal::FailOption("BoucWenFitOptions", field, value, what);
   };
   if (fit_beta && !fit_nu)
     rule("fit_beta", 1,
@@ -510,10 +509,8 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
   if (form == BoucWenForm::kPiezo &&
       options.simulation.integrator == BoucWenIntegrator::kBenchmarkChain)
-    throw OptionsError(
-        "BoucWenFitOptions::simulation.integrator = benchmark-chain. Violated constraint: the "
-        "chain is the mechanical form's",
-        "simulation.integrator");
+    internal::FailOption("BoucWenFitOptions", "simulation.integrator", "benchmark-chain",
+                         "the chain is the mechanical form's");
   std::vector<Series> data;
   Eigen::Index n = 0;
   for (const auto& r : recordings) {

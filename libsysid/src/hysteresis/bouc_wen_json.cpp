@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 
@@ -13,8 +14,7 @@ namespace sysid {
 namespace {
 
 [[noreturn]] void Violated(const char* type, const char* field, double value, const char* rule) {
-  throw OptionsError(fmt::format("{}::{} = {}. Violated constraint: {}", type, field, value, rule),
-                     field);
+  internal::FailOption(type, field, value, rule);
 }
 
 const char* ToString(BoucWenIntegrator i) {

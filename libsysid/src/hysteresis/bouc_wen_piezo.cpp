@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/cvode_solver.hpp"
+#include "core/option_rule.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_stepper.hpp"
@@ -76,10 +77,8 @@ PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulat
   p_.Validate();
   options_.Validate();
   if (options_.integrator == BoucWenIntegrator::kBenchmarkChain)
-    throw OptionsError(
-        "BoucWenSimulationOptions::integrator = benchmark-chain. Violated constraint: the chain "
-        "is the mechanical form's (use cvode for bouc-wen-piezo)",
-        "integrator");
+    internal::FailOption("BoucWenSimulationOptions", "integrator", "benchmark-chain",
+                         "the chain is the mechanical form's (use cvode for bouc-wen-piezo)");
 }
 
 Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
