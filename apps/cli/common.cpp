@@ -79,8 +79,7 @@ void RethrowWithFlag(const OptionsError& e, const std::map<std::string, std::str
                      const std::string& fallback) {
   const auto flag = field_flags.find(e.field());
   if (flag == field_flags.end() && fallback.empty()) throw e;
-  throw OptionsError((flag == field_flags.end() ? fallback : flag->second) + ": " + e.what(),
-                     e.field());
+  throw e.WithMessage((flag == field_flags.end() ? fallback : flag->second) + ": " + e.what());
 }
 
 CLI::Validator FiniteRange(double lo, double hi) {

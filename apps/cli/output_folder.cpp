@@ -126,7 +126,7 @@ void OutputFolder::Write(const std::function<void(const fs::path&)>& write) cons
   } catch (const NumericalError& e) {
     throw NumericalError(named(e.what()));
   } catch (const OptionsError& e) {
-    throw OptionsError(named(e.what()), e.field());
+    throw e.WithMessage(named(e.what()));
   }
   const auto changed = [&] {
     return InputError("-o " + given_ +

@@ -40,7 +40,7 @@ void RunDerive(const DeriveCliOptions& o) {
   if (o.order && opt.method == DerivativeMethod::kSavitzkyGolay) opt.savgol_order = *o.order;
   if (o.order && opt.method != DerivativeMethod::kSavitzkyGolay) opt.butterworth_order = *o.order;
   if (o.decimate < 1)
-    throw OptionsError(fmt::format("--decimate: K = {}. Violated constraint: K >= 1", o.decimate));
+    throw OptionsError("", "--decimate", std::to_string(o.decimate), "--decimate >= 1");
 
   Recording rec =
       ReadRecording(o.path, o.recording.Apply(ReadOptions{{"t", "u", "x"}, {}, true, {}}));
@@ -58,9 +58,12 @@ void RunDerive(const DeriveCliOptions& o) {
     dt_s = AddDerivatives(rec, dt_s, opt, o.decimate);
   } catch (const OptionsError& e) {
     RethrowWithFlag(e,
-                    {{"cutoff_hz", "--cutoff"}, {"butterworth_order", "--order"},
-                     {"savgol_order", "--order"}, {"savgol_window", "--window"},
-                     {"factor", "--decimate"}},
+                    {{"cutoff_hz", "--cutoff"},
+                     {"butterworth_order", "--order"},
+                     {"savgol_order", "--order"},
+                     {"savgol_window", "--window"},
+                     {"factor", "--decimate"},
+                     {"decimate", "--decimate"}},
                     "--method");
   } catch (const InputError& e) {
     throw InputError(o.path + ": " + e.what());

@@ -48,9 +48,8 @@ void RunSimulate(SimulateCliOptions o) {
   sim.t_end_s = o.t_end_s > 0 ? o.t_end_s : input.duration_s;
   if (!(sim.t_end_s > 0))
     throw OptionsError(
-        fmt::format("--t-end = {}. Violated constraint: t_end > 0 (the input "
-                    "ends at {} s; give --t-end)",
-                    sim.t_end_s, input.duration_s));
+        "", "--t-end", fmt::format("{}", sim.t_end_s),
+        fmt::format("t_end > 0 (the input ends at {} s; give --t-end)", input.duration_s));
   const SimulationResult r = Simulate(model, *input.signal, sim);
   const SimulationSummary& s = r.summary;
   if (!s.IsSolutionUsable())

@@ -177,12 +177,10 @@ void RunStackTrack(const TrackCliOptions& o) {
         ro.cycles = o.profile.cycles;
         ro.sample_rate_hz = stack.rig.control_rate_hz;
         if (!(ro.stroke_m <= reach_max))
-          throw OptionsError(
-              fmt::format("stroke_m = {:g} m. Violated constraint: at most the "
-                          "stack's reach, {:g} m (its steepest slope {:g} m/V at "
-                          "{:g} V)",
-                          ro.stroke_m, reach_max, stack.MaxStaticGain(), stack.rig.voltage_max_v),
-              "stroke_m");
+          throw OptionsError("StackReferenceOptions", "stroke_m", fmt::format("{:g} m", ro.stroke_m),
+                             fmt::format("at most the stack's reach, {:g} m (its steepest slope "
+                                         "{:g} m/V at {:g} V)",
+                                         reach_max, stack.MaxStaticGain(), stack.rig.voltage_max_v));
         return MakeStackReference(ro);
       });
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;

@@ -142,12 +142,11 @@ inline void CheckSameLength(const std::string& who, const std::string& name_a, E
                      " has " + std::to_string(n_b) + "; they must be equally long");
 }
 
-/// OptionsError "WHO: dt_s = X. Violated constraint: 0 < dt_s < infinity" (the library's rule
+/// OptionsError "WHO::dt_s = X. Violated constraint: 0 < dt_s < infinity" (the library's rule
 /// and words for a sample interval, as AnalyticInverse) unless dt_s is positive and finite.
 inline void CheckTimeStep(const std::string& who, double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError(who + ": dt_s = " + std::to_string(dt_s) +
-                       ". Violated constraint: 0 < dt_s < infinity");
+    throw OptionsError(who, "dt_s", std::to_string(dt_s), "0 < dt_s < infinity");
 }
 
 /// f applied to every element of RealArray(value, name): a scalar for a scalar, else an array of

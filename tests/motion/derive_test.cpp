@@ -47,7 +47,7 @@ TEST_CASE("AddDerivatives decimates first and returns the new interval", "[motio
     sysid::AddDerivatives(again, 0.001, {}, 0);
     FAIL("decimate = 0 accepted");
   } catch (const sysid::OptionsError& e) {
-    CHECK(e.field() == "factor");
+    CHECK(e.field() == "decimate");
   }
   sysid::DerivativeOptions bad;
   bad.method = sysid::DerivativeMethod::kButterworthCentral;

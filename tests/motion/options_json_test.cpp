@@ -48,7 +48,7 @@ TEST_CASE("motion options JSON: bad input names the place", "[motion][json]") {
                                                  "m.json"),
                     Contains("derivative.savgol_window: expected an integer"));
   CHECK_THROWS_WITH(sysid::MotionOptionsFromJson("{\"velocity_column\": \"\"}", "m.json"),
-                    Contains("m.json:1:1: MotionOptions::velocity_column is empty"));
+                    Contains("m.json:1:2: velocity_column: expected a column name, found empty"));
   CHECK_THROWS_WITH(sysid::MotionOptionsFromJson("{\"prefer_velocity_column\": 1}", "m.json"),
                     Contains("prefer_velocity_column: expected true or false, found 1"));
 }

@@ -87,7 +87,7 @@ TEST_CASE("training options JSON: bad input names the place", "[nn][json]") {
                     Contains("t.json:1:2: output_range: expected finite min < max, max - min "
                              "finite, found -1"));
   CHECK_THROWS_WITH(sysid::HiddenSweepOptionsFromJson("{\"hidden_sizes\": [8, 0]}", "s.json"),
-                    Contains("s.json:1:1: HiddenSweepOptions::hidden_sizes contains 0"));
+                    Contains("s.json:1:22: hidden_sizes[1]: expected every size >= 1, found 0"));
   CHECK_THROWS_WITH(sysid::HiddenSweepOptionsFromJson("{\"training\": {\"hiden\": 3}}", "s.json"),
                     Contains("unknown key 'hiden' in 'training'"));
 }

@@ -174,7 +174,7 @@ TEST_CASE("pipeline options round-trip through JSON", "[pipeline][json]") {
 TEST_CASE("pipeline options JSON: bad input names the place", "[pipeline][json]") {
   using Catch::Contains;
   CHECK_THROWS_WITH(sysid::PipelineOptionsFromJson("{\"typical_stride\": 0}", "p.json"),
-                    Contains("p.json:1:1: PipelineOptions::typical_stride"));
+                    Contains("p.json:1:2: typical_stride: expected typical_stride >= 1, found 0"));
   CHECK_THROWS_WITH(
       sysid::PipelineOptionsFromJson("{\"pi\": {\n \"u_max_v\": -1}}", "p.json"),
       Contains("p.json:2:2: pi.u_max_v: expected u_max_v > 0, found -1"));

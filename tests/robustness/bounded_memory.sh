@@ -10,13 +10,13 @@ v="$src/datasets/virtual"
 ulimit -v 1048576
 
 # derive --resample: rate x duration against kMaxSignalSamples (2e7).
-expect 1 "--resample: Resample: rate_hz = 1e+12" derive "$v/pulses.csv" --resample 1e12
+expect 1 "--resample: Resample::rate_hz = 1e+12" derive "$v/pulses.csv" --resample 1e12
 expect 1 "rate_hz x duration <= kMaxSignalSamples = 2e7" derive "$v/pulses.csv" --resample 5e6
 # A recording with a 1e6 s gap: 1e9 samples at 1 kHz.
 printf 't,u,x\n0,0,0\n0.001,0,0\n0.002,0,0\n1000000,0,0\n1000000.001,0,0\n' > gap.csv
-expect 1 "over the 1e+06 s of gap.csv gives 1e+09 samples" derive gap.csv --resample 1000
+expect 1 "(1e+09 samples over the 1e+06 s of gap.csv)" derive gap.csv --resample 1000
 # Savitzky-Golay: the window is bounded (work per sample) and memory is linear in it.
-expect 1 "--window: DerivativeOptions: savgol_window = 20001. Violated constraint: savgol_window <= 10001" \
+expect 1 "--window: DerivativeOptions::savgol_window = 20001. Violated constraint: savgol_window <= 10001" \
   derive "$v/training.csv" --method savgol --window 20001 --order 5
 expect 1 "savgol_window <= 10001" derive "$v/training.csv" --method savgol --window 100001
 expect 1 "savgol_order <= 20" derive "$v/training.csv" --method savgol --window 101 --order 50

@@ -98,9 +98,10 @@ TEST_CASE("derive rejects bad options with exit 1 and bad data with exit 2", "[s
   };
   fails({"derive", in, "--method", "lanczos", "-o", out}, 1, "--method");
   fails({"derive", in, "--method", "savgol", "--window", "20", "-o", out}, 1,
-        "--window: DerivativeOptions: savgol_window = 20. Violated constraint");
+        "--window: DerivativeOptions::savgol_window = 20. Violated constraint");
   fails({"derive", in, "--method", "butterworth", "--cutoff", "700", "-o", out}, 1, "--cutoff: ");
-  fails({"derive", in, "--decimate", "0", "-o", out}, 1, "--decimate: K = 0");
+  fails({"derive", in, "--decimate", "0", "-o", out}, 1,
+        "--decimate = 0. Violated constraint: --decimate >= 1");
   fails({"derive", in, "--method", "savgol", "--window", "101", "-o", out}, 2,
         "rec.csv: SavitzkyGolay: the signal has 100 samples");
 

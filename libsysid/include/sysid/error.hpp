@@ -24,17 +24,49 @@ class InputError : public Error {
 };
 
 /// An option that violates its documented rule. The CLI exits with code 1 (usage).
-/// `field()` names the offending options field (e.g. "cutoff_hz") when the thrower knows it, so
-/// a caller can name its own spelling of it (a command-line flag) without parsing the message.
+/// A rule on one field carries its parts as members: `owner()` (the options struct,
+/// "NeuralTrainingOptions"; may be empty), `field()` (a dotted path such as
+/// "candidates[1].gain"), `value()` (as text) and `rule()`, so a caller can position or rename
+/// the error (a JSON file's FILE:LINE:COL, a command-line flag) without parsing the message.
+/// Errors that are no rule on one field have an empty `rule()` and maybe a `field()`.
 class OptionsError : public Error {
  public:
   using Error::Error;
   OptionsError(const std::string& message, std::string field)
       : Error(message), field_(std::move(field)) {}
+  /// A rule on one field; the message reads "OWNER::FIELD = VALUE. Violated constraint: RULE"
+  /// ("FIELD = VALUE. ..." without an owner). Library code raises it through
+  /// internal::FailOption (core/option_rule.hpp), which formats the value.
+  OptionsError(std::string owner, std::string field, std::string value, std::string rule)
+      : Error(Compose(owner, field, value, rule)),
+        owner_(std::move(owner)),
+        field_(std::move(field)),
+        value_(std::move(value)),
+        rule_(std::move(rule)) {}
+
+  const std::string& owner() const { return owner_; }  ///< empty when not given
   const std::string& field() const { return field_; }  ///< empty when not given
+  const std::string& value() const { return value_; }  ///< empty when not a rule
+  const std::string& rule() const { return rule_; }    ///< empty when not a rule
+
+  /// The same error (members kept) with another message: context added to it ("--hidden: " +
+  /// what()) or a path in it replaced.
+  OptionsError WithMessage(const std::string& message) const {
+    OptionsError e(*this);
+    static_cast<Error&>(e) = Error(message);
+    return e;
+  }
 
  private:
+  static std::string Compose(const std::string& owner, const std::string& field,
+                             const std::string& value, const std::string& rule) {
+    return (owner.empty() ? "" : owner + "::") + field + " = " + value +
+           ". Violated constraint: " + rule;
+  }
+  std::string owner_;
   std::string field_;
+  std::string value_;
+  std::string rule_;
 };
 
 /// Numerical trouble that leaves no usable answer (singular system, unidentifiable

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/error.hpp"
 
@@ -29,10 +30,9 @@ void HysteresisFitOptions::Validate(const std::string& kind) const {
   RequireKind(kind);
   const int lo = kind == "nn-operators" ? 0 : 1;
   if (operators < lo || operators > kMaxPlayOperators)
-    throw OptionsError(fmt::format("HysteresisFitOptions::operators = {}. Violated constraint: "
-                                   "{} <= operators <= {} (kMaxPlayOperators) for {}",
-                                   operators, lo, kMaxPlayOperators, kind),
-                       "operators");
+    internal::FailOption("HysteresisFitOptions", "operators", operators,
+                         fmt::format("{} <= operators <= {} (kMaxPlayOperators) for {}", lo,
+                                     kMaxPlayOperators, kind));
   // The kind's own options too, so a caller validating before it reads recordings (the CLI)
   // refuses --hidden 1e9 at once, naming the field, as it does --operators.
   if (kind == "nn-operators") {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -47,8 +48,7 @@ Eigen::VectorXd AnalyticInverse(const FrictionModel& model, double dt_s,
   model.Validate();
   CheckSameLength(v_mps, a_mps2, "AnalyticInverse");
   if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError("AnalyticInverse: dt_s = " + std::to_string(dt_s) +
-                       ". Violated constraint: 0 < dt_s < infinity");
+    internal::FailOption("AnalyticInverse", "dt_s", dt_s, "0 < dt_s < infinity");
   FrictionInverseStepper stepper(model, dt_s, static_cast<long long>(v_mps.size()));
   Eigen::VectorXd u(v_mps.size());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
@@ -113,8 +113,7 @@ std::string HysteresisInverseResult::TraceColumn() const {
 
 void CompareOptions::Validate() const {
   if (trim_samples < 0)
-    throw OptionsError("CompareOptions::trim_samples = " + std::to_string(trim_samples) +
-                       ". Violated constraint: trim_samples >= 0");
+    internal::FailOption("CompareOptions", "trim_samples", trim_samples, "trim_samples >= 0");
 }
 
 Recording InverseComparison::AsRecording() const {
@@ -150,8 +149,8 @@ InverseComparison CompareInverseModels(const Recording& recording, const Frictio
                                        const CompareOptions& options) {
   options.Validate();
   if (!model && !network && hysteresis.empty())
-    throw OptionsError("CompareInverseModels: no inverse model. Violated constraint: a friction "
-                       "model, a network or at least one hysteresis model");
+    internal::FailOption("CompareInverseModels", "models", "none",
+                         "a friction model, a network or at least one hysteresis model");
   if (model) model->Validate();
   InverseComparison c;
   c.source = recording.source;

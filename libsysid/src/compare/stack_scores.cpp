@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/compare_stack.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -34,9 +35,7 @@ std::vector<HysteresisModelSpec> StackModelSpecs(int threads) {
 
 Recording TrainingPart(const Recording& recording, double train_fraction) {
   if (!(train_fraction > 0 && train_fraction < 1))
-    throw OptionsError(fmt::format("train_fraction = {}. Violated constraint: 0 < "
-                                   "train_fraction < 1", train_fraction),
-                       "train_fraction");
+    internal::FailOption("", "train_fraction", train_fraction, "0 < train_fraction < 1");
   const Eigen::Index n = recording.rows();
   const auto split = static_cast<Eigen::Index>(std::llround(train_fraction * static_cast<double>(n)));
   if (split < 2 || n - split < 2)

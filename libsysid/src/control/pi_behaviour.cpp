@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
+#include "core/option_rule.hpp"
 #include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 
@@ -13,11 +13,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void Require(bool ok, const char* field, double value, const char* rule) {
-  if (ok) return;
-  std::ostringstream s;
-  s.precision(12);
-  s << "PiBehaviourOptions::" << field << " = " << value << ". Violated constraint: " << rule;
-  throw OptionsError(s.str(), field);
+  if (!ok) internal::FailOption("PiBehaviourOptions", field, value, rule);
 }
 
 PositionReference Sampled(const Eigen::VectorXd& x_m, double ts, const std::string& what) {

@@ -1,18 +1,15 @@
 // The discrete PI law with conditional-integration anti-windup (see control.hpp).
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "core/option_rule.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid {
 namespace {
 [[noreturn]] void Violated(const char* field, double value, const char* rule) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "PiOptions::" << field << " = " << value << ". Violated constraint: " << rule;
-  throw OptionsError(s.str());
+  internal::FailOption("PiOptions", field, value, rule);
 }
 }  // namespace
 

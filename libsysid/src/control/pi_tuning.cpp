@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
+#include "core/option_rule.hpp"
 #include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
 
@@ -19,11 +19,7 @@ constexpr int kBisections = 40;      // between the last good and the first bad 
 constexpr double kLowestCrossoverRadS = 0.1;
 
 void Require(bool ok, const char* field, double value, const char* rule) {
-  if (ok) return;
-  std::ostringstream s;
-  s.precision(12);
-  s << "PiTuningOptions::" << field << " = " << value << ". Violated constraint: " << rule;
-  throw OptionsError(s.str(), field);
+  if (!ok) internal::FailOption("PiTuningOptions", field, value, rule);
 }
 
 bool MeetsTargets(const LoopMargins& m, const PiTuningOptions& o) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/option_rule.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -13,11 +14,8 @@
 namespace sysid {
 
 void SmoothProfileOptions::Validate() const {
-  std::ostringstream s;
-  s.precision(12);
-  auto fail = [&](const char* field, double v, const char* rule) {
-    s << "SmoothProfileOptions::" << field << " = " << v << ". Violated constraint: " << rule;
-    throw OptionsError(s.str());
+  auto fail = [](const char* field, double v, const char* rule) {
+    internal::FailOption("SmoothProfileOptions", field, v, rule);
   };
   if (!std::isfinite(frequency_hz) || !(frequency_hz > 0))
     fail("frequency_hz", frequency_hz, "frequency_hz > 0");
@@ -41,12 +39,11 @@ PositionReference MakeStageProfile(const StageParameters& stage, SmoothProfileOp
   // The stroke must fit the stage's travel from where it starts.
   const double end = stage.initial_position_m + options.amplitude_m;
   if (!(end >= stage.travel_min_m && end <= stage.travel_max_m))
-    throw OptionsError(
-        fmt::format("amplitude_m = {} m. Violated constraint: the stroke from the start position "
-                    "{} m stays within the stage's travel [{}, {}] m",
-                    options.amplitude_m, stage.initial_position_m, stage.travel_min_m,
-                    stage.travel_max_m),
-        "amplitude_m");
+    internal::FailOption(
+        "SmoothProfileOptions", "amplitude_m", fmt::format("{} m", options.amplitude_m),
+        fmt::format("the stroke from the start position {} m stays within the "
+                    "stage's travel [{}, {}] m",
+                    stage.initial_position_m, stage.travel_min_m, stage.travel_max_m));
   return MakeSmoothProfile(options);
 }
 

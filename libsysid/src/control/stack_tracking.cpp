@@ -6,6 +6,7 @@
 #include <complex>
 
 #include "control/scheme_loop.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_model.hpp"
@@ -15,9 +16,7 @@ namespace sysid {
 namespace {
 
 [[noreturn]] void Violated(const char* field, double value, const std::string& rule) {
-  throw OptionsError(fmt::format("StackReferenceOptions::{} = {:.12g}. Violated constraint: {}",
-                                 field, value, rule),
-                     field);
+  internal::FailOption("StackReferenceOptions", field, value, rule);
 }
 
 }  // namespace

@@ -518,23 +518,13 @@ std::string JsonDocument::FindSuffix(const std::string& suffix, const std::strin
   return "";
 }
 
-std::string JsonDocument::ValidationField(const std::string& message) {
-  const size_t colons = message.find("::");
-  const size_t eq = message.find(" = ", colons == std::string::npos ? 0 : colons);
-  if (colons == std::string::npos || eq == std::string::npos) return "";
-  return message.substr(colons + 2, eq - colons - 2);
-}
-
-void JsonDocument::FailValidation(const std::string& message, const std::string& pointer) const {
-  const std::string field = ValidationField(message);
-  const size_t eq = message.find(" = ");
-  const size_t rule_at = message.find(". Violated constraint: ");
-  if (field.empty() || rule_at == std::string::npos || eq == std::string::npos || eq > rule_at)
-    throw InputError((pointer.empty() ? source_ : Where(pointer)) + ": " + message);
-  const std::string value = message.substr(eq + 3, rule_at - eq - 3);
-  const std::string rule = message.substr(rule_at + 23);
+void JsonDocument::FailValidation(const OptionsError& e, const std::string& pointer) const {
+  if (e.rule().empty())
+    throw InputError((pointer.empty() ? source_ : Where(pointer)) + ": " + e.what());
+  const std::string& rule = e.rule();
+  const std::string& value = e.value();
   if (pointer.empty() || !Contains(pointer))
-    throw InputError(source_ + ":1:1: " + field + ": expected " + rule + ", found " + value +
+    throw InputError(source_ + ":1:1: " + e.field() + ": expected " + rule + ", found " + value +
                      " (the built-in default)");
   // The dotted name of `pointer`: walk the document so array indices print as [i].
   std::string name;
@@ -656,7 +646,8 @@ void ValidateOptions(const JsonDocument& doc, const std::function<void()>& valid
   try {
     validate();
   } catch (const OptionsError& e) {
-    const std::string field = JsonDocument::ValidationField(e.what());
+    // A rule on one field is placed at that field; any other error at the document's start.
+    const std::string field = e.rule().empty() ? std::string() : e.field();
     std::string pointer;
     if (!field.empty()) {
       // "candidates[1].gain" -> "/candidates/1/gain"
@@ -677,7 +668,7 @@ void ValidateOptions(const JsonDocument& doc, const std::function<void()>& valid
       }
     }
     if (pointer.empty()) throw InputError(doc.source() + ":1:1: " + e.what());
-    doc.FailValidation(e.what(), pointer);
+    doc.FailValidation(e, pointer);
   }
 }
 

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "sysid/error.hpp"
 #include "sysid/termination.hpp"
 
 namespace sysid::internal {
@@ -128,13 +129,12 @@ class JsonDocument {
   /// "/forward/coulomb_mps2") and starts with `prefix`; empty when none.
   std::string FindSuffix(const std::string& suffix, const std::string& prefix = "") const;
 
-  /// Re-throws a Validate() error ("Type::field = value. Violated constraint: rule") as a
-  /// positioned InputError "SOURCE:LINE:COL: NAME: expected rule, found value", where
-  /// `pointer` is the JSON pointer of the field (empty when the field is not in the file).
-  [[noreturn]] void FailValidation(const std::string& message, const std::string& pointer) const;
-  /// The field of a Validate() message ("forward.coulomb_mps2", "drive_map_in_v[3]"); empty when
-  /// the message has another form.
-  static std::string ValidationField(const std::string& message);
+  /// Re-throws a Validate() error as a positioned InputError "SOURCE:LINE:COL: NAME: expected
+  /// RULE, found VALUE" from its members (OptionsError::rule(), value()), where `pointer` is
+  /// the JSON pointer of its field(); at "SOURCE:1:1" marked "(the built-in default)" when the
+  /// field is not written in the file. An error without a rule keeps its message, placed at
+  /// `pointer` (the file when empty).
+  [[noreturn]] void FailValidation(const OptionsError& e, const std::string& pointer) const;
 
  private:
   struct Place {
@@ -180,8 +180,8 @@ nlohmann::ordered_json NamesJson(const std::vector<std::string>& names);
 void ReadNames(const JsonNode& list, std::vector<std::string>& names);
 /// A uint64 (a seed): JsonNode::Integer reads longs.
 std::uint64_t Uint64FromJson(const JsonNode& node);
-/// Runs `validate` (an options struct's Validate()); its OptionsError ("Type::field = value.
-/// Violated constraint: rule") becomes an InputError at the field's place in `doc`: the
+/// Runs `validate` (an options struct's Validate()); its OptionsError with a rule becomes an
+/// InputError at the place of its field() in `doc` (FailValidation): the
 /// top-level key when written there, else the first nested key of that name, else the
 /// document's start with the message as it is. `base` (a JSON pointer such as
 /// "/facts_options") is where the validated struct sits when it is nested: its keys are looked

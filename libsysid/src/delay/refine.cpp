@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "delay/parameter_names.hpp"
 #include "delay/segments.hpp"
 #include "sysid/delay.hpp"
@@ -61,8 +62,7 @@ void RefineOptions::Validate() const {
   motion.Validate();
   detection.Validate();
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("RefineOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("RefineOptions", field, value, what);
   };
   if (!(tau_max_s > 0) || !std::isfinite(tau_max_s)) rule("tau_max_s", tau_max_s, "tau_max_s > 0");
   if (max_iterations < 1) rule("max_iterations", max_iterations, "max_iterations >= 1");

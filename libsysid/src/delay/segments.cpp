@@ -7,6 +7,7 @@
 #include <exception>
 #include <thread>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
 #include "sysid/signal.hpp"
@@ -17,10 +18,8 @@ namespace sysid {
 void SegmentOptions::Validate() const {
   detection.Validate();
   if (!(rest_speed_mps > 0) || !std::isfinite(rest_speed_mps))
-    throw OptionsError(
-        fmt::format("SegmentOptions::rest_speed_mps = {}. Violated constraint: "
-                    "rest_speed_mps > 0 [m/s]",
-                    rest_speed_mps));
+    internal::FailOption("SegmentOptions", "rest_speed_mps", rest_speed_mps,
+                         "rest_speed_mps > 0 [m/s]");
 }
 
 namespace internal {

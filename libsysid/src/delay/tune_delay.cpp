@@ -7,8 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "numerics/bounded_search.hpp"
+#include "core/option_rule.hpp"
 #include "delay/segments.hpp"
+#include "numerics/bounded_search.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/error.hpp"
 
@@ -16,8 +17,7 @@ namespace sysid {
 
 void DelayTuningOptions::Validate() const {
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("DelayTuningOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("DelayTuningOptions", field, value, what);
   };
   if (!(tau_min_s >= 0) || !std::isfinite(tau_min_s))
     rule("tau_min_s", tau_min_s, "tau_min_s >= 0 [s]");

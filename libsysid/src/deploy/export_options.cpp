@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "c_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/deploy.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -33,9 +34,7 @@ std::string ToString(ExportPrecision precision) { return CType(precision); }
 ExportPrecision ExportPrecisionFromString(const std::string& name) {
   if (name == "double") return ExportPrecision::kDouble;
   if (name == "float") return ExportPrecision::kFloat;
-  throw OptionsError("ExportOptions::precision = \"" + name +
-                         "\". Violated constraint: \"double\" or \"float\"",
-                     "precision");
+  internal::FailOption("ExportOptions", "precision", "\"" + name + "\"", "\"double\" or \"float\"");
 }
 
 void ExportOptions::Validate() const {
@@ -47,8 +46,7 @@ void ExportOptions::Validate() const {
       "typedef",  "union",  "unsigned", "void",   "volatile", "while",    "_Bool",
       "_Complex", "_Imaginary"};
   auto fail = [&](const std::string& rule) {
-    throw OptionsError("ExportOptions::prefix = \"" + prefix + "\". Violated constraint: " + rule,
-                       "prefix");
+    internal::FailOption("ExportOptions", "prefix", "\"" + prefix + "\"", rule);
   };
   if (prefix.empty() || prefix.size() > 40) fail("1 to 40 characters");
   if (!(std::isalpha(static_cast<unsigned char>(prefix[0]))))

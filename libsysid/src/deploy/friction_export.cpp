@@ -7,6 +7,7 @@
 #include <string>
 
 #include "c_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/deploy.hpp"
 #include "sysid/error.hpp"
 #include "sysid/model_stepper.hpp"
@@ -32,10 +33,11 @@ ExportResult ExportFrictionInverse(const FrictionModel& model, double dt_s,
   FrictionInverseStepper stepper(model, dt_s);  // validates the model and dt_s
   const long long whole = stepper.delay_line().whole_samples();
   if (whole + 2 > kMaxExportDelaySamples)
-    throw OptionsError(fmt::format("tau / dt = {:.6g} samples. Violated constraint: tau / dt + "
-                                   "2 <= {} (kMaxExportDelaySamples, the exported delay line)",
-                                   model.tau_s / dt_s, kMaxExportDelaySamples),
-                       "dt_s");
+    internal::FailOption("ExportFrictionInverse", "dt_s",
+                         fmt::format("{} s (tau / dt = {:.6g} samples)", dt_s, model.tau_s / dt_s),
+                         fmt::format("tau / dt + 2 <= {} (kMaxExportDelaySamples, the exported "
+                                     "delay line)",
+                                     kMaxExportDelaySamples));
   CheckVectors(v, 2, "friction");
   ExportResult r;
   r.kind = "friction";

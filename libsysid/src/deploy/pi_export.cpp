@@ -8,6 +8,7 @@
 #include <string>
 
 #include "c_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/deploy.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_stepper.hpp"
@@ -252,8 +253,7 @@ ExportResult ExportPiInverse(const PrandtlIshlinskiiModel& model, double dt_s,
                              const ExportProvenance& provenance) {
   o.Validate();
   if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError(fmt::format("dt_s = {}. Violated constraint: 0 < dt_s < infinity", dt_s),
-                       "dt_s");
+    internal::FailOption("", "dt_s", dt_s, "0 < dt_s < infinity");
   if (model.pi().form != PiForm::kClassical) return ExportPiBisection(model, dt_s, v, o, provenance);
   PiInverseStepper stepper(model, dt_s);  // NumericalError when not invertible
   CheckVectors(v, 1, "pi");

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "sysid/dominance_candidates.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -15,12 +16,12 @@ namespace sysid {
 void CandidateRankingOptions::Validate() const {
   motion.Validate();
   if (operators < 0 || operators > kMaxPlayOperators)
-    throw OptionsError(fmt::format("CandidateRankingOptions::operators = {}. Violated constraint: "
-                                   "0 <= operators <= {} (kMaxPlayOperators)", operators,
-                                   kMaxPlayOperators), "operators");
+    internal::FailOption(
+        "CandidateRankingOptions", "operators", operators,
+        fmt::format("0 <= operators <= {} (kMaxPlayOperators)", kMaxPlayOperators));
   if (!(negligible_ratio >= 0 && negligible_ratio < 1))
-    throw OptionsError(fmt::format("CandidateRankingOptions::negligible_ratio = {}. Violated "
-                                   "constraint: in [0, 1)", negligible_ratio), "negligible_ratio");
+    internal::FailOption("CandidateRankingOptions", "negligible_ratio", negligible_ratio,
+                         "in [0, 1)");
 }
 
 CandidateRanking RankCandidates(const Recording& recording, const CandidateRankingOptions& o) {

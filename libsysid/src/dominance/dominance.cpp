@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io_output.hpp"
 
@@ -20,8 +21,7 @@ namespace sysid {
 void DominanceOptions::Validate() const {
   motion.Validate();
   auto rule = [](const std::string& field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("DominanceOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("DominanceOptions", field, value, what);
   };
   if (!(min_speed_mps >= 0) || !std::isfinite(min_speed_mps))
     rule("min_speed_mps", min_speed_mps, "min_speed_mps >= 0 [m/s]");
@@ -39,11 +39,8 @@ void DominanceOptions::Validate() const {
                       i));
     if (!std::isfinite(c.gain)) rule(fmt::format("candidates[{}].gain", i), c.gain, "finite");
     if (c.variable == "acceleration" || c.variable == "velocity")
-      throw OptionsError(
-          fmt::format("DominanceOptions::candidates[{}].variable = '{}'. "
-                      "Violated constraint: a name other than acceleration and "
-                      "velocity",
-                      i, c.variable));
+      internal::FailOption("DominanceOptions", fmt::format("candidates[{}].variable", i),
+                           "'" + c.variable + "'", "a name other than acceleration and velocity");
   }
 }
 

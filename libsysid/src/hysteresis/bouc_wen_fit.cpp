@@ -12,6 +12,7 @@
 #include <memory>
 #include <unsupported/Eigen/FFT>
 
+#include "core/option_rule.hpp"
 #include "core/parallel_for.hpp"
 #include "core/portable_random.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
@@ -27,9 +28,7 @@ void BoucWenFitOptions::Validate() const {
   if (mechanical_initial_given) mechanical_initial.Validate();
   if (piezo_initial_given) piezo_initial.Validate();
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("BoucWenFitOptions::{} = {}. Violated constraint: {}", field, value, what),
-        field);
+    internal::FailOption("BoucWenFitOptions", field, value, what);
   };
   if (fit_beta && !fit_nu)
     rule("fit_beta", 1,
@@ -575,10 +574,11 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
   if (form == BoucWenForm::kPiezo && options.simulation.integrator != BoucWenIntegrator::kCvode)
-    throw OptionsError(
-        "BoucWenFitOptions::simulation.integrator = benchmark-chain or fixed-step. Violated "
-        "constraint: the chain and the fixed step are the mechanical form's",
-        "simulation.integrator");
+    internal::FailOption("BoucWenFitOptions", "simulation.integrator",
+                         options.simulation.integrator == BoucWenIntegrator::kFixedStep
+                             ? "fixed-step"
+                             : "benchmark-chain",
+                         "the chain and the fixed step are the mechanical form's");
   std::vector<Series> data;
   Eigen::Index n = 0;
   for (const auto& r : recordings) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/option_rule.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -32,10 +33,9 @@ void CheckFixedStepWork(Eigen::Index rows, int substeps, InputInterpolation how,
 Eigen::VectorXd FixedStepInput(const Eigen::VectorXd& u, InputInterpolation how, int substeps) {
   const Eigen::Index n = u.size();
   if (how == InputInterpolation::kHold)
-    throw OptionsError(
-        "BoucWenSimulationOptions::input = hold. Violated constraint: the fixed-step integrator "
-        "takes a linear or band-limited input (use cvode for a held one)",
-        "input");
+    internal::FailOption("BoucWenSimulationOptions", "input", "hold",
+                         "the fixed-step integrator takes a linear or band-limited input (use "
+                         "cvode for a held one)");
   if (n == 0) return u;
   const Eigen::Index nf = (n - 1) * substeps + 1;
   if (how == InputInterpolation::kBandLimited) return UpsampleBandLimited(u, substeps).head(nf);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 
@@ -13,8 +14,7 @@ namespace sysid {
 namespace {
 
 [[noreturn]] void Violated(const char* type, const char* field, double value, const char* rule) {
-  throw OptionsError(fmt::format("{}::{} = {}. Violated constraint: {}", type, field, value, rule),
-                     field);
+  internal::FailOption(type, field, value, rule);
 }
 
 const char* ToString(BoucWenIntegrator i) {
@@ -125,10 +125,9 @@ void BoucWenSimulationOptions::Validate() const {
   if (upsampling < 1 || upsampling > 1000)
     Violated("BoucWenSimulationOptions", "upsampling", upsampling, "1 <= upsampling <= 1000");
   if (integrator == BoucWenIntegrator::kFixedStep && input == InputInterpolation::kHold)
-    throw OptionsError(
-        "BoucWenSimulationOptions::input = hold. Violated constraint: the fixed-step integrator "
-        "takes a linear or band-limited input (use cvode for a held one)",
-        "input");
+    internal::FailOption("BoucWenSimulationOptions", "input", "hold",
+                         "the fixed-step integrator takes a linear or band-limited input (use "
+                         "cvode for a held one)");
 }
 
 void MechanicalBoucWenParameters::Validate() const {

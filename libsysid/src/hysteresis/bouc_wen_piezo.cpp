@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/cvode_solver.hpp"
+#include "core/option_rule.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_stepper.hpp"
@@ -67,13 +68,12 @@ PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulat
   p_.Validate();
   options_.Validate();
   if (options_.integrator != BoucWenIntegrator::kCvode)
-    throw OptionsError(
-        fmt::format("BoucWenSimulationOptions::integrator = {}. Violated constraint: the chain and "
-                    "the fixed step are the mechanical form's (use cvode for bouc-wen-piezo: its "
-                    "held or linear input takes the exact closed-form step)",
-                    options_.integrator == BoucWenIntegrator::kFixedStep ? "fixed-step"
-                                                                         : "benchmark-chain"),
-        "integrator");
+    internal::FailOption("BoucWenSimulationOptions", "integrator",
+                         options_.integrator == BoucWenIntegrator::kFixedStep ? "fixed-step"
+                                                                              : "benchmark-chain",
+                         "the chain and the fixed step are the mechanical form's (use cvode for "
+                         "bouc-wen-piezo: its held or linear input takes the exact closed-form "
+                         "step)");
 }
 
 Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "pi_terms.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -223,8 +224,7 @@ std::string FitMessage(const PrandtlIshlinskiiModel& model, const PiFitReport& r
 
 void PiFitOptions::Validate() const {
   auto fail = [](const std::string& field, double value, const std::string& rule) {
-    throw OptionsError(
-        fmt::format("PiFitOptions::{} = {}. Violated constraint: {}", field, value, rule), field);
+    internal::FailOption("PiFitOptions", field, value, rule);
   };
   if (thresholds.empty() && (operators < 1 || operators > kMaxPlayOperators))
     fail("operators", operators, fmt::format("1 <= operators <= {} (kMaxPlayOperators)", kMaxPlayOperators));

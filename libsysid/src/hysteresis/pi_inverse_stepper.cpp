@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "pi_terms.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_stepper.hpp"
@@ -24,8 +25,7 @@ PiInverseStepper::PiInverseStepper(const PrandtlIshlinskiiModel& model, double d
   p_ = closed_form_ ? PrandtlIshlinskiiModel(model.InverseParameters()).pi() : p;
   if (p.form == PiForm::kRateDependent) {
     if (!(dt_s > 0) || !std::isfinite(dt_s))
-      throw OptionsError(fmt::format("Invert: dt_s = {}. Violated constraint: dt_s > 0", dt_s),
-                         "dt_s");
+      internal::FailOption("Invert", "dt_s", dt_s, "dt_s > 0");
     // An error e in u_{k-1} moves the next step's rate by e/dt and its output by up to
     // (q0 |u| + sum q_i |z_i|) e / dt, which u_k undoes at the slope p0: the inverse's errors
     // grow by that gain per step. Refuse when it reaches 1 on the input range.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/option_rule.hpp"
 #include "pi_terms.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -15,8 +16,7 @@ namespace sysid {
 namespace {
 
 [[noreturn]] void Fail(const std::string& field, double value, const std::string& rule) {
-  throw OptionsError(
-      fmt::format("PiParameters::{} = {}. Violated constraint: {}", field, value, rule), field);
+  internal::FailOption("PiParameters", field, value, rule);
 }
 
 void RequireFinite(const std::vector<double>& v, const std::string& name) {
@@ -101,9 +101,8 @@ PrandtlIshlinskiiModel::PrandtlIshlinskiiModel(PiParameters p, std::vector<doubl
                                    std_errors_.size(), l.size()),
                        "std_errors");
   if (!(range_margin_ >= 0) || !std::isfinite(range_margin_))
-    throw OptionsError(fmt::format("PiFitOptions::range_margin = {}. Violated constraint: "
-                                   "range_margin >= 0, finite", range_margin_),
-                       "range_margin");
+    internal::FailOption("PiFitOptions", "range_margin", range_margin_,
+                         "range_margin >= 0, finite");
   // Why the model may not be monotone in u (then no inverse).
   const double p0 = p_.polynomial[0];
   if (p_.form == PiForm::kClassical) {
@@ -145,8 +144,7 @@ PrandtlIshlinskiiModel::PrandtlIshlinskiiModel(PiParameters p, std::vector<doubl
 
 Eigen::VectorXd PrandtlIshlinskiiModel::Simulate(const Eigen::VectorXd& u, double dt_s) const {
   if (p_.form == PiForm::kRateDependent && (!(dt_s > 0) || !std::isfinite(dt_s)))
-    throw OptionsError(fmt::format("Simulate: dt_s = {}. Violated constraint: dt_s > 0", dt_s),
-                       "dt_s");
+    internal::FailOption("Simulate", "dt_s", dt_s, "dt_s > 0");
   const internal::PiLayout l = internal::LayoutOf(p_);
   std::vector<double> z = internal::InitialState(p_);
   Eigen::VectorXd y(u.size());

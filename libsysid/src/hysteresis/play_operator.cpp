@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 
@@ -10,10 +11,8 @@ namespace sysid {
 
 Eigen::VectorXd PlayOperator(const Eigen::VectorXd& u, double r, double z0) {
   if (!(r >= 0) || !std::isfinite(r))
-    throw OptionsError(fmt::format("PlayOperator: r = {}. Violated constraint: r >= 0, finite", r),
-                       "r");
-  if (!std::isfinite(z0))
-    throw OptionsError(fmt::format("PlayOperator: z0 = {}. Violated constraint: finite", z0), "z0");
+    internal::FailOption("PlayOperator", "r", r, "r >= 0, finite");
+  if (!std::isfinite(z0)) internal::FailOption("PlayOperator", "z0", z0, "finite");
   Eigen::VectorXd z(u.size());
   double state = z0;
   for (Eigen::Index k = 0; k < u.size(); ++k) z[k] = state = PlayStep(u[k], r, state);
@@ -41,10 +40,9 @@ std::vector<double> UniformThresholds(double u_min, double u_max, int n) {
     throw InputError(fmt::format(
         "uniform thresholds need an input range with max > min, found [{}, {}] V", u_min, u_max));
   if (n < 1 || n > kMaxPlayOperators)
-    throw OptionsError(fmt::format("PiFitOptions::operators = {}. Violated constraint: 1 <= "
-                                   "operators <= {} (kMaxPlayOperators)",
-                                   n, kMaxPlayOperators),
-                       "operators");
+    internal::FailOption(
+        "PiFitOptions", "operators", n,
+        fmt::format("1 <= operators <= {} (kMaxPlayOperators)", kMaxPlayOperators));
   const double half_range = 0.5 * (u_max - u_min);
   std::vector<double> r(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) r[static_cast<size_t>(i)] = (i + 1) * half_range / (n + 1);

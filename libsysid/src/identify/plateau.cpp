@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 
@@ -31,8 +32,7 @@ std::string ToString(PulseStatus status) {
 
 void PlateauOptions::Validate() const {
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("PlateauOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("PlateauOptions", field, value, what);
   };
   if (!(window_fraction > 0 && window_fraction <= 1))
     rule("window_fraction", window_fraction, "0 < window_fraction <= 1");

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 
@@ -10,8 +11,7 @@ namespace sysid {
 
 void PulseDetectionOptions::Validate() const {
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("PulseDetectionOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("PulseDetectionOptions", field, value, what);
   };
   if (!(min_duration_s > 0) || !std::isfinite(min_duration_s))
     rule("min_duration_s", min_duration_s, "min_duration_s > 0 [s]");

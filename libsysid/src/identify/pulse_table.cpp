@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "identify/linear_fit.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
@@ -17,8 +18,7 @@ void PulseFitOptions::Validate() const {
   // A model file requires a3 > 0 (FrictionModel::Validate): a negative gain would only write a
   // model that every other command rejects.
   if (!std::isfinite(a3) || !(a3 > 0))
-    throw OptionsError(fmt::format(
-        "PulseFitOptions::a3 = {}. Violated constraint: a3 > 0 and finite [m/(s^2 V)]", a3));
+    internal::FailOption("PulseFitOptions", "a3", a3, "a3 > 0 and finite [m/(s^2 V)]");
 }
 
 std::vector<PulsePoint> ReadPulseTable(const std::string& path, const SourceMapping& mapping) {

@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "numerics/bounded_search.hpp"
+#include "core/option_rule.hpp"
 #include "identify/linear_fit.hpp"
+#include "numerics/bounded_search.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/signal.hpp"
@@ -25,8 +26,7 @@ MotionOptions TrajectoryOptions::DefaultMotion() {
 void TrajectoryOptions::Validate() const {
   motion.Validate();
   auto rule = [](const char* field, double value, const char* what) {
-    throw OptionsError(
-        fmt::format("TrajectoryOptions::{} = {}. Violated constraint: {}", field, value, what));
+    internal::FailOption("TrajectoryOptions", field, value, what);
   };
   if (!(tau_s >= 0) || !std::isfinite(tau_s)) rule("tau_s", tau_s, "tau_s >= 0 [s]");
   if (!(tau_min_s >= 0) || !std::isfinite(tau_min_s))

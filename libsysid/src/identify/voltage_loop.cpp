@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 
@@ -84,18 +85,20 @@ void FindAreas(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const Voltage
 }  // namespace
 
 void VoltageLoopOptions::Validate() const {
-  auto rule = [](const std::string& field, const std::string& what) {
-    throw OptionsError("VoltageLoopOptions::" + field + ". Violated constraint: " + what);
-  };
+  constexpr const char* kOwner = "VoltageLoopOptions";
   if (levels_v.size() > 1000)
-    rule(fmt::format("levels_v has {} values", levels_v.size()), "at most 1000 levels");
-  for (double l : levels_v)
-    if (!std::isfinite(l) || l == 0) rule(fmt::format("levels_v has {}", l), "finite and != 0");
+    internal::FailOption(kOwner, "levels_v", fmt::format("{} values", levels_v.size()),
+                         "at most 1000 levels");
+  for (size_t i = 0; i < levels_v.size(); ++i)
+    if (!std::isfinite(levels_v[i]) || levels_v[i] == 0)
+      internal::FailOption(kOwner, fmt::format("levels_v[{}]", i), levels_v[i], "finite and != 0");
   if (half_window < 0 || half_window > 100000)
-    rule(fmt::format("half_window = {}", half_window), "0 <= half_window <= 100000");
+    internal::FailOption(kOwner, "half_window", half_window, "0 <= half_window <= 100000");
   if (!(moving_speed_mps > 0) || !std::isfinite(moving_speed_mps))
-    rule(fmt::format("moving_speed_mps = {}", moving_speed_mps), "moving_speed_mps > 0 [m/s]");
-  if (cycles < 1 || cycles > 10000) rule(fmt::format("cycles = {}", cycles), "1 <= cycles <= 10000");
+    internal::FailOption(kOwner, "moving_speed_mps", moving_speed_mps,
+                         "moving_speed_mps > 0 [m/s]");
+  if (cycles < 1 || cycles > 10000)
+    internal::FailOption(kOwner, "cycles", cycles, "1 <= cycles <= 10000");
 }
 
 double VoltageLoop::MeanWidthForwardMps() const {

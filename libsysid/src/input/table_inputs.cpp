@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
 #include "sysid/io.hpp"
@@ -83,7 +84,7 @@ std::vector<double> PiecewiseLinearInput::Edges(double t0_s, double t1_s) const 
 InputHold ParseInputHold(const std::string& name) {
   if (name == "zoh") return InputHold::kZeroOrder;
   if (name == "linear") return InputHold::kLinear;
-  throw OptionsError("--hold = '" + name + "'. Violated constraint: one of zoh, linear");
+  internal::FailOption("", "hold", "'" + name + "'", "one of zoh, linear");
 }
 
 std::unique_ptr<InputSignal> MakeTableInput(std::vector<double> t_s, std::vector<double> u_v,

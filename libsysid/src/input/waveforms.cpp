@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/input.hpp"
 #include "sysid/io.hpp"
@@ -18,21 +19,21 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  if (!ok)
-    throw OptionsError(field + " = " + std::to_string(value) + ". Violated constraint: " + rule);
+void Require(bool ok, const char* owner, const std::string& field, double value,
+             const std::string& rule) {
+  if (!ok) internal::FailOption(owner, field, value, rule);
 }
 
 }  // namespace
 
 SumOfSinesInput::SumOfSinesInput(std::vector<SineComponent> components, double offset_v)
     : components_(std::move(components)), offset_v_(offset_v) {
-  Require(std::isfinite(offset_v_), "SumOfSinesInput offset_v", offset_v_, "finite");
+  Require(std::isfinite(offset_v_), "SumOfSinesInput", "offset_v", offset_v_, "finite");
   for (const auto& c : components_) {
-    Require(std::isfinite(c.amplitude_v), "SineComponent::amplitude_v", c.amplitude_v, "finite");
-    Require(std::isfinite(c.frequency_hz) && c.frequency_hz >= 0, "SineComponent::frequency_hz",
+    Require(std::isfinite(c.amplitude_v), "SineComponent", "amplitude_v", c.amplitude_v, "finite");
+    Require(std::isfinite(c.frequency_hz) && c.frequency_hz >= 0, "SineComponent", "frequency_hz",
             c.frequency_hz, "finite and >= 0");
-    Require(std::isfinite(c.phase_rad), "SineComponent::phase_rad", c.phase_rad, "finite");
+    Require(std::isfinite(c.phase_rad), "SineComponent", "phase_rad", c.phase_rad, "finite");
   }
 }
 
@@ -56,23 +57,25 @@ double PulseTrainSpec::duration_s() const {
 }
 
 PiecewiseConstantInput MakePulseTrain(const PulseTrainSpec& spec) {
-  Require(!spec.amplitudes_v.empty(), "PulseTrainSpec::amplitudes_v (count)", 0,
-          "at least one amplitude");
-  for (double a : spec.amplitudes_v)
-    Require(std::isfinite(a), "PulseTrainSpec::amplitudes_v", a, "finite");
-  Require(std::isfinite(spec.on_s) && spec.on_s > 0, "PulseTrainSpec::on_s", spec.on_s, "on_s > 0");
-  Require(std::isfinite(spec.off_s) && spec.off_s >= 0, "PulseTrainSpec::off_s", spec.off_s,
+  if (spec.amplitudes_v.empty())
+    internal::FailOption("PulseTrainSpec", "amplitudes_v", "empty", "at least one amplitude");
+  for (size_t i = 0; i < spec.amplitudes_v.size(); ++i)
+    Require(std::isfinite(spec.amplitudes_v[i]), "PulseTrainSpec",
+            fmt::format("amplitudes_v[{}]", i), spec.amplitudes_v[i], "finite");
+  Require(std::isfinite(spec.on_s) && spec.on_s > 0, "PulseTrainSpec", "on_s", spec.on_s,
+          "on_s > 0");
+  Require(std::isfinite(spec.off_s) && spec.off_s >= 0, "PulseTrainSpec", "off_s", spec.off_s,
           "off_s >= 0");
-  Require(spec.repeats >= 1, "PulseTrainSpec::repeats", spec.repeats, "repeats >= 1");
+  Require(spec.repeats >= 1, "PulseTrainSpec", "repeats", spec.repeats, "repeats >= 1");
   // The table has (1 or 2) x repeats x amplitudes rows: bounded by the signal limit before it is
   // allocated (repeats = 2e9 is a typo, not a request for 32 GB), as every generated signal is.
   const double rows =
       (spec.off_s > 0 ? 2.0 : 1.0) * spec.repeats * static_cast<double>(spec.amplitudes_v.size());
-  Require(rows <= kMaxSignalSamples, "PulseTrainSpec::repeats", spec.repeats,
+  Require(rows <= kMaxSignalSamples, "PulseTrainSpec", "repeats", spec.repeats,
           fmt::format("repeats x amplitudes x (2 with off_s > 0, else 1) <= {:.0f} table rows "
                       "(sysid::kMaxSignalSamples; asked for {:.0f})",
                       kMaxSignalSamples, rows));
-  Require(std::isfinite(spec.start_s), "PulseTrainSpec::start_s", spec.start_s, "finite");
+  Require(std::isfinite(spec.start_s), "PulseTrainSpec", "start_s", spec.start_s, "finite");
   const double period = spec.on_s + spec.off_s;
   // A zero row before the start makes u = 0 there (a table holds its first value backwards).
   std::vector<double> t{spec.start_s - period}, u{0.0};
@@ -138,7 +141,7 @@ NamedWaveform MakeNamedWaveform(const std::string& name) {
   } else {
     std::string known;
     for (const auto& n : NamedWaveformNames()) known += (known.empty() ? "" : ", ") + n;
-    throw OptionsError("--waveform = '" + name + "'. Violated constraint: one of " + known);
+    internal::FailOption("", "waveform", "'" + name + "'", "one of " + known);
   }
   return w;
 }

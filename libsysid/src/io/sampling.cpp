@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 
@@ -52,8 +53,7 @@ SamplingReport AnalyzeSampling(const Eigen::VectorXd& t, double tolerance,
 
 Recording Resample(const Recording& recording, double rate_hz) {
   if (!(rate_hz > 0) || !std::isfinite(rate_hz))
-    throw OptionsError("Resample: rate_hz = " + std::to_string(rate_hz) +
-                       ". Violated constraint: rate_hz > 0");
+    internal::FailOption("Resample", "rate_hz", rate_hz, "rate_hz > 0");
   const auto t = recording.column("t");
   if (t.size() < 2) throw InputError(recording.source + ": resampling needs at least 2 rows");
   const double t0 = t[0], t1 = t[t.size() - 1], dt = 1.0 / rate_hz;
@@ -61,11 +61,10 @@ Recording Resample(const Recording& recording, double rate_hz) {
   // The grid's size is bounded before allocation: rate x duration (a long gap counts).
   const double samples = std::floor((t1 - t0) / dt * (1 + 1e-12)) + 1;
   if (!(samples <= kMaxSignalSamples))
-    throw OptionsError(fmt::format("Resample: rate_hz = {:.6g} over the {:.6g} s of {} gives "
-                                   "{:.6g} samples. Violated constraint: rate_hz x duration <= "
-                                   "kMaxSignalSamples = 2e7; lower the rate",
-                                   rate_hz, t1 - t0, recording.source, samples),
-                       "rate_hz");
+    internal::FailOption("Resample", "rate_hz",
+                         fmt::format("{:.6g} Hz ({:.6g} samples over the {:.6g} s of {})", rate_hz,
+                                     samples, t1 - t0, recording.source),
+                         "rate_hz x duration <= kMaxSignalSamples = 2e7; lower the rate");
   const auto n = static_cast<Eigen::Index>(samples);
   Recording out;
   out.source = recording.source;

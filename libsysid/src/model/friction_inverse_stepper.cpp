@@ -1,6 +1,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/model_stepper.hpp"
 
@@ -10,8 +11,7 @@ namespace {
 
 double CheckedStep(double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s))
-    throw OptionsError("FrictionInverseStepper: dt_s = " + std::to_string(dt_s) +
-                       ". Violated constraint: 0 < dt_s < infinity");
+    internal::FailOption("FrictionInverseStepper", "dt_s", dt_s, "0 < dt_s < infinity");
   return dt_s;
 }
 

@@ -2,6 +2,7 @@
 #include <limits>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
 
@@ -9,9 +10,7 @@ namespace sysid {
 namespace {
 
 void Require(bool ok, const char* field, double value, const char* rule) {
-  if (!ok)
-    throw OptionsError(std::string("FrictionModel::") + field + " = " + std::to_string(value) +
-                       ". Violated constraint: " + rule);
+  if (!ok) internal::FailOption("FrictionModel", field, value, rule);
 }
 
 }  // namespace

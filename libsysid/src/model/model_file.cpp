@@ -27,8 +27,7 @@ FrictionModel ModelFromJson(const JsonDocument& doc, const JsonNode& node,
   try {
     m.Validate();
   } catch (const OptionsError& e) {
-    const std::string field = JsonDocument::ValidationField(e.what());
-    doc.FailValidation(e.what(), field.empty() ? "" : node.pointer() + "/" + field);
+    doc.FailValidation(e, e.field().empty() ? "" : node.pointer() + "/" + e.field());
   }
   return m;
 }

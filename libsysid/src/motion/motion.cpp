@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/signal.hpp"
@@ -14,14 +15,10 @@ namespace sysid {
 
 void MotionOptions::Validate() const {
   if (!(max_relative_jitter >= 0) || !std::isfinite(max_relative_jitter))
-    throw OptionsError(
-        fmt::format("MotionOptions::max_relative_jitter = {}. Violated "
-                    "constraint: max_relative_jitter >= 0",
-                    max_relative_jitter));
+    internal::FailOption("MotionOptions", "max_relative_jitter", max_relative_jitter,
+                         "max_relative_jitter >= 0");
   if (velocity_column.empty())
-    throw OptionsError(
-        "MotionOptions::velocity_column is empty. Violated constraint: a column "
-        "name");
+    internal::FailOption("MotionOptions", "velocity_column", "empty", "a column name");
 }
 
 namespace {
@@ -122,9 +119,7 @@ std::string MotionSource(const Recording& recording, const MotionOptions& option
 
 double AddDerivatives(Recording& recording, double dt_s, const DerivativeOptions& derivative,
                       int decimate) {
-  if (decimate < 1)
-    throw OptionsError(fmt::format("decimate = {}. Violated constraint: decimate >= 1", decimate),
-                       "factor");
+  if (decimate < 1) internal::FailOption("AddDerivatives", "decimate", decimate, "decimate >= 1");
   derivative.Validate(dt_s * decimate);
   if (decimate != 1) {
     recording = DecimateRecording(recording, dt_s, decimate);

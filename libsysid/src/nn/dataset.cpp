@@ -1,6 +1,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
@@ -10,8 +11,7 @@ namespace sysid {
 NeuralDataset MakeNeuralDataset(const Recording& recording,
                                 const std::vector<std::string>& input_names,
                                 const std::string& output_name) {
-  if (input_names.empty())
-    throw OptionsError("inputs is empty. Violated constraint: at least one input column");
+  if (input_names.empty()) internal::FailOption("", "inputs", "empty", "at least one input column");
   NeuralDataset d;
   d.input_names = input_names;
   d.output_name = output_name;

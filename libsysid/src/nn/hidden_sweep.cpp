@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 
@@ -18,16 +19,12 @@ namespace sysid {
 
 void HiddenSweepOptions::Validate() const {
   if (hidden_sizes.empty())
-    throw OptionsError(
-        "HiddenSweepOptions::hidden_sizes is empty. Violated constraint: at "
-        "least one size");
-  for (int h : hidden_sizes)
-    if (h < 1)
-      throw OptionsError("HiddenSweepOptions::hidden_sizes contains " + std::to_string(h) +
-                         ". Violated constraint: every size >= 1");
-  if (threads < 0)
-    throw OptionsError("HiddenSweepOptions::threads = " + std::to_string(threads) +
-                       ". Violated constraint: threads >= 0");
+    internal::FailOption("HiddenSweepOptions", "hidden_sizes", "empty", "at least one size");
+  for (size_t i = 0; i < hidden_sizes.size(); ++i)
+    if (hidden_sizes[i] < 1)
+      internal::FailOption("HiddenSweepOptions", "hidden_sizes[" + std::to_string(i) + "]",
+                           hidden_sizes[i], "every size >= 1");
+  if (threads < 0) internal::FailOption("HiddenSweepOptions", "threads", threads, "threads >= 0");
   training.Validate();
 }
 

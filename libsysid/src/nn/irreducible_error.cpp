@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn_irreducible.hpp"
 
@@ -13,14 +14,11 @@ namespace sysid {
 
 void IrreducibleErrorOptions::Validate() const {
   if (neighbours < 2 || neighbours > 1000)
-    throw OptionsError(fmt::format(
-        "IrreducibleErrorOptions::neighbours is {}. Violated constraint: 2 <= neighbours <= 1000",
-        neighbours));
+    internal::FailOption("IrreducibleErrorOptions", "neighbours", neighbours,
+                         "2 <= neighbours <= 1000");
   if (jackknife_groups != 0 && (jackknife_groups < 5 || jackknife_groups > 100))
-    throw OptionsError(
-        fmt::format("IrreducibleErrorOptions::jackknife_groups is {}. Violated constraint: 0 or "
-                    "5 <= jackknife_groups <= 100",
-                    jackknife_groups));
+    internal::FailOption("IrreducibleErrorOptions", "jackknife_groups", jackknife_groups,
+                         "0 or 5 <= jackknife_groups <= 100");
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "nn/mlp_kernels.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
@@ -16,9 +17,8 @@ namespace {
 void CheckRange(const std::string& what, double min, double max) {
   // max - min finite too: the scaling divides by it (-1e308..1e308 made every value 0 or NaN).
   if (!std::isfinite(min) || !std::isfinite(max) || !(min < max) || !std::isfinite(max - min))
-    throw OptionsError(fmt::format("{} = [{:.17g}, {:.17g}]. Violated constraint: finite min < "
-                                   "max, max - min finite",
-                                   what, min, max));
+    internal::FailOption("NeuralNetwork", what, fmt::format("[{:.17g}, {:.17g}]", min, max),
+                         "finite min < max, max - min finite");
 }
 
 }  // namespace
@@ -35,18 +35,15 @@ std::string DefaultUnit(std::string_view symbol) {
 NeuralNetwork::NeuralNetwork(std::vector<ScaledVariable> inputs, ScaledVariable output, int hidden)
     : inputs_(std::move(inputs)), output_(std::move(output)) {
   if (inputs_.empty())
-    throw OptionsError(
-        "NeuralNetwork: inputs is empty. Violated constraint: "
-        "at least one input");
+    internal::FailOption("NeuralNetwork", "inputs", "empty", "at least one input");
   // Checked before the weights are allocated (H x n, 2 H): hidden = 10^9 is a typo, not a
   // request for gigabytes.
   if (hidden < 1 || hidden > kMaxHiddenUnits)
-    throw OptionsError("NeuralNetwork: hidden = " + std::to_string(hidden) +
-                       ". Violated constraint: 1 <= hidden <= " + std::to_string(kMaxHiddenUnits) +
-                       " (sysid::kMaxHiddenUnits)");
-  for (const auto& in : inputs_)
-    CheckRange("NeuralNetwork input '" + in.name + "' range", in.min, in.max);
-  CheckRange("NeuralNetwork output '" + output_.name + "' range", output_.min, output_.max);
+    internal::FailOption(
+        "NeuralNetwork", "hidden", hidden,
+        fmt::format("1 <= hidden <= {} (sysid::kMaxHiddenUnits)", kMaxHiddenUnits));
+  for (const auto& in : inputs_) CheckRange("input '" + in.name + "' range", in.min, in.max);
+  CheckRange("output '" + output_.name + "' range", output_.min, output_.max);
   W1_ = Eigen::MatrixXd::Zero(hidden, input_count());
   b1_ = Eigen::VectorXd::Zero(hidden);
   w2_ = Eigen::VectorXd::Zero(hidden);
@@ -65,10 +62,9 @@ Eigen::VectorXd NeuralNetwork::parameters() const {
 void NeuralNetwork::set_parameters(const Eigen::VectorXd& theta) {
   const int H = hidden_size(), n = input_count();
   if (theta.size() != parameter_count())
-    throw OptionsError("NeuralNetwork::set_parameters: theta has " + std::to_string(theta.size()) +
-                       " entries. Violated constraint: size = "
-                       "H n + 2 H + 1 = " +
-                       std::to_string(parameter_count()));
+    internal::FailOption("NeuralNetwork::set_parameters", "theta",
+                         fmt::format("{} entries", theta.size()),
+                         fmt::format("size = H n + 2 H + 1 = {}", parameter_count()));
   const internal::nn::Weights w(theta, n, H);
   W1_ = w.W1;
   b1_ = w.b1;
@@ -105,9 +101,8 @@ double NeuralNetwork::Evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) const
 
 Eigen::VectorXd NeuralNetwork::EvaluateBatch(const Eigen::MatrixXd& X) const {
   if (X.cols() != input_count())
-    throw OptionsError(
-        "NeuralNetwork::EvaluateBatch: X has " + std::to_string(X.cols()) +
-        " columns. Violated constraint: columns = inputs = " + std::to_string(input_count()));
+    internal::FailOption("NeuralNetwork::EvaluateBatch", "X", fmt::format("{} columns", X.cols()),
+                         fmt::format("columns = inputs = {}", input_count()));
   const Eigen::Index N = X.rows();
   Eigen::VectorXd out(N);
   constexpr Eigen::Index kBlock = 512;
@@ -131,15 +126,13 @@ Eigen::VectorXd NeuralNetwork::EvaluateBatch(const Eigen::MatrixXd& X) const {
 
 void NeuralNetwork::Validate() const {
   if (inputs_.empty() || hidden_size() < 1)
-    throw OptionsError(
-        "NeuralNetwork: empty network. Violated constraint: inputs >= 1, "
-        "hidden >= 1");
+    internal::FailOption("NeuralNetwork", inputs_.empty() ? "inputs" : "hidden",
+                         inputs_.empty() ? "empty" : "0 units", "inputs >= 1, hidden >= 1");
   for (const auto& in : inputs_) CheckRange("input '" + in.name + "' range", in.min, in.max);
   CheckRange("output '" + output_.name + "' range", output_.min, output_.max);
   if (!parameters().allFinite())
-    throw OptionsError(
-        "NeuralNetwork: a weight is NaN or infinite. Violated constraint: "
-        "finite weights");
+    internal::FailOption("NeuralNetwork", "parameters", "a NaN or infinite weight",
+                         "finite weights");
 }
 
 }  // namespace sysid

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/nn_operators.hpp"
@@ -90,23 +91,20 @@ void CheckFitMemory(const std::vector<Recording>& recordings, const OperatorNetw
   if (bytes <= kTrainingMemoryLimitBytes) return;
   // Name the option whose term dominates, so the CLI points at the flag to lower.
   const char* field = features >= training ? "operators" : "hidden";
-  throw OptionsError(
-      fmt::format("OperatorNetworkOptions::{} = {}. Violated constraint: the nn-operators fit "
-                  "with {} operators and {} hidden units ({} weights per network) on {} samples "
-                  "needs about {:.3g} GB, above the limit of {:.3g} GB; use fewer operators, "
-                  "hidden units or samples",
-                  field, field[0] == 'o' ? o.operators : o.hidden, o.operators, o.hidden,
-                  static_cast<long long>(weights), rows, bytes * 1e-9,
-                  kTrainingMemoryLimitBytes * 1e-9),
-      field);
+  internal::FailOption(
+      "OperatorNetworkOptions", field, field[0] == 'o' ? o.operators : o.hidden,
+      fmt::format("the nn-operators fit with {} operators and {} hidden units ({} weights per "
+                  "network) on {} samples needs about {:.3g} GB, above the limit of {:.3g} GB; "
+                  "use fewer operators, hidden units or samples",
+                  o.operators, o.hidden, static_cast<long long>(weights), rows, bytes * 1e-9,
+                  kTrainingMemoryLimitBytes * 1e-9));
 }
 
 }  // namespace
 
 void OperatorNetworkOptions::Validate() const {
   auto fail = [](const char* field, double v, const std::string& rule) {
-    throw OptionsError(fmt::format("OperatorNetworkOptions::{} = {}. Violated constraint: {}",
-                                   field, v, rule), field);
+    internal::FailOption("OperatorNetworkOptions", field, v, rule);
   };
   if (operators < 0 || operators > kMaxPlayOperators)
     fail("operators", operators, fmt::format("0 <= operators <= {} (kMaxPlayOperators)", kMaxPlayOperators));
@@ -133,29 +131,24 @@ Eigen::VectorXd OperatorNetworkSide::Evaluate(const Eigen::VectorXd& input) cons
 
 OperatorNetworkModel::OperatorNetworkModel(OperatorNetworkSide forward, OperatorNetworkSide inverse)
     : forward_(std::move(forward)), inverse_(std::move(inverse)) {
+  constexpr const char* kOwner = "OperatorNetworkModel";
   for (const OperatorNetworkSide* s : {&forward_, &inverse_}) {
     const char* side = s == &forward_ ? "forward" : "inverse";
     if (s->thresholds.size() > static_cast<size_t>(kMaxPlayOperators))
-      throw OptionsError(fmt::format("OperatorNetworkModel::{}.thresholds = {}. Violated "
-                                     "constraint: at most {} operators", side,
-                                     s->thresholds.size(), kMaxPlayOperators),
-                         std::string(side) + ".thresholds");
+      internal::FailOption(kOwner, std::string(side) + ".thresholds", s->thresholds.size(),
+                           fmt::format("at most {} operators", kMaxPlayOperators));
     for (size_t i = 0; i < s->thresholds.size(); ++i)
       if (!std::isfinite(s->thresholds[i]) || !(s->thresholds[i] > 0) ||
           (i > 0 && !(s->thresholds[i] > s->thresholds[i - 1])))
-        throw OptionsError(fmt::format("OperatorNetworkModel::{}.thresholds[{}] = {}. Violated "
-                                       "constraint: > 0 and strictly increasing", side, i,
-                                       s->thresholds[i]),
-                           fmt::format("{}.thresholds[{}]", side, i));
+        internal::FailOption(kOwner, fmt::format("{}.thresholds[{}]", side, i), s->thresholds[i],
+                             "> 0 and strictly increasing");
     if (!std::isfinite(s->initial_input))
-      throw OptionsError(fmt::format("OperatorNetworkModel::{}.initial_input = {}. Violated "
-                                     "constraint: finite", side, s->initial_input),
-                         std::string(side) + ".initial_input");
+      internal::FailOption(kOwner, std::string(side) + ".initial_input", s->initial_input,
+                           "finite");
     if (static_cast<size_t>(s->network.input_count()) != s->thresholds.size() + 1)
-      throw OptionsError(fmt::format("OperatorNetworkModel::{}.network = {} inputs. Violated "
-                                     "constraint: 1 + {} operators", side,
-                                     s->network.input_count(), s->thresholds.size()),
-                         std::string(side) + ".network");
+      internal::FailOption(kOwner, std::string(side) + ".network",
+                           fmt::format("{} inputs", s->network.input_count()),
+                           fmt::format("1 + {} operators", s->thresholds.size()));
     s->network.Validate();
   }
 }

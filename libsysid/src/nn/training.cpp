@@ -1,4 +1,6 @@
 // TrainNeuralNetwork: scaling, seeded initialisation, restarts, and the choice of trainer.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "core/portable_random.hpp"
 #include "nn/mlp_kernels.hpp"
 #include "nn/trainers.hpp"
@@ -125,9 +128,7 @@ std::string ToString(NeuralTrainer trainer) {
 
 void NeuralTrainingOptions::Validate() const {
   auto fail = [](const std::string& field, double value, const std::string& rule) {
-    std::ostringstream s;
-    s << "NeuralTrainingOptions::" << field << " = " << value << ". Violated constraint: " << rule;
-    throw OptionsError(s.str());
+    internal::FailOption("NeuralTrainingOptions", field, value, rule);
   };
   if (hidden < 1 || hidden > kMaxHiddenUnits)
     fail("hidden", hidden, "1 <= hidden <= " + std::to_string(kMaxHiddenUnits));
@@ -163,9 +164,8 @@ void NeuralTrainingOptions::Validate() const {
   if (output_range && !range_ok(*output_range))
     fail("output_range.max", output_range->second, "finite min < max, max - min finite");
   if (initial_parameters && !initial_parameters->allFinite())
-    throw OptionsError(
-        "NeuralTrainingOptions::initial_parameters contains NaN or Inf. "
-        "Violated constraint: finite");
+    internal::FailOption("NeuralTrainingOptions", "initial_parameters", "NaN or Inf entries",
+                         "finite");
 }
 
 std::string NeuralTrainingResult::BriefReport() const {
@@ -191,19 +191,18 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
     const double P = static_cast<double>(H) * (n + 2) + 1;
     const double bytes = 16.0 * P * P + 8.0 * static_cast<double>(train.targets.size()) * H;
     if (bytes > kTrainingMemoryLimitBytes) {
-      std::ostringstream s;
-      s << "NeuralTrainingOptions::hidden = " << H << ". Violated constraint: training " << H
-        << " hidden units on " << n << " inputs (" << static_cast<long>(P) << " weights) and "
-        << train.targets.size() << " rows needs about " << bytes / 1e9
-        << " GB, above the limit of " << kTrainingMemoryLimitBytes / 1e9
-        << " GB; use fewer hidden units";
-      throw OptionsError(s.str());
+      internal::FailOption(
+          "NeuralTrainingOptions", "hidden", H,
+          fmt::format("training {} hidden units on {} inputs ({} weights) and {} rows needs "
+                      "about {:.6g} GB, above the limit of {:.6g} GB; use fewer hidden units",
+                      H, n, static_cast<long>(P), train.targets.size(), bytes / 1e9,
+                      kTrainingMemoryLimitBytes / 1e9));
     }
   }
   if (!options.input_ranges.empty() && static_cast<int>(options.input_ranges.size()) != n)
-    throw OptionsError(
-        "NeuralTrainingOptions::input_ranges has " + std::to_string(options.input_ranges.size()) +
-        " entries. Violated constraint: one per input (" + std::to_string(n) + ") or none");
+    internal::FailOption("NeuralTrainingOptions", "input_ranges",
+                         fmt::format("{} entries", options.input_ranges.size()),
+                         fmt::format("one per input ({}) or none", n));
   std::vector<ScaledVariable> inputs;
   for (int i = 0; i < n; ++i) {
     const auto& name = train.input_names[i];
@@ -224,10 +223,9 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
   internal::nn::NormalizedData zval;
   if (validation) zval = Normalize(net, *validation);
   if (options.initial_parameters && options.initial_parameters->size() != net.parameter_count())
-    throw OptionsError("NeuralTrainingOptions::initial_parameters has " +
-                       std::to_string(options.initial_parameters->size()) +
-                       " entries. Violated constraint: size = H n + 2 H + 1 = " +
-                       std::to_string(net.parameter_count()));
+    internal::FailOption("NeuralTrainingOptions", "initial_parameters",
+                         fmt::format("{} entries", options.initial_parameters->size()),
+                         fmt::format("size = H n + 2 H + 1 = {}", net.parameter_count()));
 
   NeuralTrainingResult result;
   const int restarts = options.initial_parameters ? 1 : options.restarts;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "paper/facts_results.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage_facts.hpp"
@@ -39,89 +40,89 @@ FactsOptions FactsOptions::Reduced() {
 }
 
 void FactsOptions::Validate() const {
-  auto fail = [](const std::string& what, const std::string& rule) {
-    throw OptionsError("FactsOptions::" + what + ". Violated constraint: " + rule);
+  auto fail = [](const std::string& field, const auto& value, const std::string& rule) {
+    internal::FailOption("FactsOptions", field, value, rule);
   };
   for (const auto& id : facts)
     if (std::find(paper::FactIds().begin(), paper::FactIds().end(), id) == paper::FactIds().end())
-      fail("facts contains '" + id + "'", "ids are F1, F2, F3, F4, F5, F6, F7, F8");
-  if (threads < 0) fail("threads = " + std::to_string(threads), "threads >= 0 (0: all cores)");
+      fail("facts", "'" + id + "'", "ids are F1, F2, F3, F4, F5, F6, F7, F8");
+  if (threads < 0) fail("threads", threads, "threads >= 0 (0: all cores)");
   pulse.Validate();
   delay.Validate();
   if (delay.tau_min_s != 0.0 || delay.curve_points < 2)
-    fail(fmt::format("delay.tau_min_s = {:g}, delay.curve_points = {}", delay.tau_min_s,
-                     delay.curve_points),
+    fail("delay.tau_min_s", fmt::format("{:g} (curve_points {})", delay.tau_min_s,
+                                        delay.curve_points),
          "tau_min_s = 0 and curve_points >= 2 (F3 compares with tau = 0)");
   pi.Validate();
-  if (track_frequencies_hz.empty()) fail("track_frequencies_hz = {}", "at least one frequency");
+  if (track_frequencies_hz.empty()) fail("track_frequencies_hz", "{}", "at least one frequency");
   for (double f : track_frequencies_hz)
     if (!(f >= 0.01 && f <= 50))  // bounds the run length: cycles / f seconds of samples
-      fail(fmt::format("track_frequencies_hz has {:g}", f), "0.01 <= f <= 50 Hz");
+      fail("track_frequencies_hz", f, "0.01 <= f <= 50 Hz");
   if (!(std::abs(track_amplitude_m) > 0) || !std::isfinite(track_amplitude_m))
-    fail(fmt::format("track_amplitude_m = {:g}", track_amplitude_m), "finite and != 0");
+    fail("track_amplitude_m", track_amplitude_m, "finite and != 0");
   if (track_cycles < 2 || track_cycles > 100)
-    fail("track_cycles = " + std::to_string(track_cycles), "2 <= track_cycles <= 100");
+    fail("track_cycles", track_cycles, "2 <= track_cycles <= 100");
   if (!(ripple_tolerance_m > 0))
-    fail(fmt::format("ripple_tolerance_m = {:g}", ripple_tolerance_m), "> 0");
+    fail("ripple_tolerance_m", ripple_tolerance_m, "> 0");
   if (!(motion_ripple_tolerance_m > 0))
-    fail(fmt::format("motion_ripple_tolerance_m = {:g}", motion_ripple_tolerance_m), "> 0");
+    fail("motion_ripple_tolerance_m", motion_ripple_tolerance_m, "> 0");
   if (!(motion_ripple_window_s > 0) || !(motion_ripple_window_s <= 10))
-    fail(fmt::format("motion_ripple_window_s = {:g}", motion_ripple_window_s),
+    fail("motion_ripple_window_s", motion_ripple_window_s,
          "0 < window <= 10 s");
-  if (training.hidden < 1 || typical_hidden < 1) fail("hidden sizes", ">= 1");
-  if (typical_max_epochs < 0) fail("typical_max_epochs", ">= 0");
-  if (typical_stride < 1) fail("typical_stride", ">= 1");
+  if (training.hidden < 1 || typical_hidden < 1) fail("training.hidden", fmt::format("{} (typical_hidden {})", training.hidden, typical_hidden), "both >= 1");
+  if (typical_max_epochs < 0) fail("typical_max_epochs", typical_max_epochs, ">= 0");
+  if (typical_stride < 1) fail("typical_stride", typical_stride, ">= 1");
   if (!(collection_kp_v_per_m > 0) || !std::isfinite(collection_kp_v_per_m))
-    fail("collection_kp_v_per_m", "> 0 and finite");
+    fail("collection_kp_v_per_m", collection_kp_v_per_m, "> 0 and finite");
   if (network_initializations < 1 || network_initializations > 100)
-    fail("network_initializations = " + std::to_string(network_initializations),
+    fail("network_initializations", network_initializations,
          "1 <= network_initializations <= 100");
   if (!(dominance_duration_s > 0) || dominance_duration_s > 3600)
-    fail(fmt::format("dominance_duration_s = {:g}", dominance_duration_s),
+    fail("dominance_duration_s", dominance_duration_s,
          "0 < duration <= 3600 s");
   if (!std::isfinite(dominance_amplitude_v) || !std::isfinite(dominance_offset_v) ||
       !(dominance_omega_rad_s > 0))
-    fail("dominance input", "finite amplitude and offset, omega > 0");
-  if (!(dominance_min_speed_mps > 0)) fail("dominance_min_speed_mps", "> 0");
+    fail("dominance_omega_rad_s", fmt::format("{:g} (amplitude {:g} V, offset {:g} V)", dominance_omega_rad_s, dominance_amplitude_v, dominance_offset_v), "finite amplitude and offset, omega > 0");
+  if (!(dominance_min_speed_mps > 0)) fail("dominance_min_speed_mps", dominance_min_speed_mps, "> 0");
   if (!(loop_period_s > 0 && loop_period_s <= 600))
-    fail(fmt::format("loop_period_s = {:g}", loop_period_s), "0 < period <= 600 s");
+    fail("loop_period_s", loop_period_s, "0 < period <= 600 s");
   if (!(loop_peak_forward_v > 0 && loop_peak_forward_v <= 10) ||
       !(loop_peak_backward_v > 0 && loop_peak_backward_v <= 10))
-    fail(fmt::format("loop_peak_forward_v = {:g}, loop_peak_backward_v = {:g}", loop_peak_forward_v,
-                     loop_peak_backward_v),
+    fail("loop_peak_forward_v",
+         fmt::format("{:g} (loop_peak_backward_v {:g})", loop_peak_forward_v, loop_peak_backward_v),
          "each in (0, 10] V");
   if (loop_levels_v.empty() || loop_levels_v.size() > 20)
-    fail(fmt::format("loop_levels_v has {} values", loop_levels_v.size()), "1 to 20 levels");
+    fail("loop_levels_v", fmt::format("{} values", loop_levels_v.size()), "1 to 20 levels");
   for (double l : loop_levels_v)
     if (!(l > 0 ? l < loop_peak_forward_v : l > -loop_peak_backward_v))
-      fail(fmt::format("loop_levels_v has {:g}", l),
+      fail("loop_levels_v", l,
            "every level != 0 and inside the triangle's range (-peak_backward_v, peak_forward_v)");
   if (!(loop_min_relative_width > 0) || !std::isfinite(loop_min_relative_width))
-    fail(fmt::format("loop_min_relative_width = {:g}", loop_min_relative_width), "> 0");
+    fail("loop_min_relative_width", loop_min_relative_width, "> 0");
   if (!(loop_min_start_ratio > 1) || !std::isfinite(loop_min_start_ratio))
-    fail(fmt::format("loop_min_start_ratio = {:g}", loop_min_start_ratio), "> 1");
+    fail("loop_min_start_ratio", loop_min_start_ratio, "> 1");
   if (!(loop_min_rate_ratio > 1) || !std::isfinite(loop_min_rate_ratio))
-    fail(fmt::format("loop_min_rate_ratio = {:g}", loop_min_rate_ratio), "> 1");
+    fail("loop_min_rate_ratio", loop_min_rate_ratio, "> 1");
   if (!(loop_min_amplitude_change > 0) || !std::isfinite(loop_min_amplitude_change))
-    fail(fmt::format("loop_min_amplitude_change = {:g}", loop_min_amplitude_change), "> 0");
+    fail("loop_min_amplitude_change", loop_min_amplitude_change, "> 0");
   if (!(std::abs(loop_sine_offset_v) <= 10))
-    fail(fmt::format("loop_sine_offset_v = {:g}", loop_sine_offset_v), "|offset| <= 10 V");
+    fail("loop_sine_offset_v", loop_sine_offset_v, "|offset| <= 10 V");
   auto sweep = [&](const std::vector<double>& x, const std::string& name, double lo, double hi,
                    const std::string& unit) {
     if (x.size() < 2 || x.size() > 10)
-      fail(fmt::format("{} has {} values", name, x.size()), "2 to 10 values");
+      fail(name, fmt::format("{} values", x.size()), "2 to 10 values");
     for (std::size_t i = 0; i < x.size(); ++i)
       if (!(x[i] >= lo && x[i] <= hi) || (i > 0 && !(x[i] > x[i - 1])))
-        fail(fmt::format("{} has {:g}", name, x[i]),
+        fail(name + "[" + std::to_string(i) + "]", x[i],
              fmt::format("increasing, each in [{:g}, {:g}] {}", lo, hi, unit));
   };
   // Bounds the runs: two periods of the slowest sinusoid, at most 2 / 0.05 = 40 s.
   sweep(loop_sine_frequencies_hz, "loop_sine_frequencies_hz", 0.05, 50, "Hz");
   sweep(loop_sine_amplitudes_v, "loop_sine_amplitudes_v", 0.01, 10, "V");
   if (!(loop_sine_frequency_hz >= 0.05 && loop_sine_frequency_hz <= 50))
-    fail(fmt::format("loop_sine_frequency_hz = {:g}", loop_sine_frequency_hz), "0.05 to 50 Hz");
+    fail("loop_sine_frequency_hz", loop_sine_frequency_hz, "0.05 to 50 Hz");
   if (!(std::abs(loop_sine_amplitude_v) <= 10) || !(loop_sine_amplitude_v > 0))
-    fail(fmt::format("loop_sine_amplitude_v = {:g}", loop_sine_amplitude_v), "0 < A <= 10 V");
+    fail("loop_sine_amplitude_v", loop_sine_amplitude_v, "0 < A <= 10 V");
 }
 
 }  // namespace sysid

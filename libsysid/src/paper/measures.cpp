@@ -9,6 +9,7 @@
 #include <unsupported/Eigen/FFT>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 
 namespace sysid::paper {
@@ -35,8 +36,7 @@ double RippleAmplitude(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p
 MotionRipple MotionRippleOf(const Eigen::VectorXd& e_m, const SmoothProfileOptions& p,
                             double window_s, bool ringing_frequency) {
   if (!(window_s > 0) || !std::isfinite(window_s))
-    throw OptionsError(fmt::format(
-        "MotionRippleOf: window_s = {:g}. Violated constraint: window_s > 0", window_s));
+    internal::FailOption("MotionRippleOf", "window_s", window_s, "window_s > 0");
   const Eigen::Index n = e_m.size();
   const auto half = static_cast<Eigen::Index>(std::llround(0.5 * window_s * p.sample_rate_hz));
   // After the first cycle, and only where the whole window lies inside the run.

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/json_text.hpp"
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/pipeline.hpp"
@@ -150,20 +151,23 @@ NeuralTrainingOptions PipelineOptions::DefaultTraining() {
 }
 
 void PipelineOptions::Validate() const {
-  auto fail = [](const std::string& field, const std::string& rule) {
-    throw OptionsError("PipelineOptions::" + field + ". Violated constraint: " + rule);
+  auto fail = [](const std::string& field, double value, const std::string& rule) {
+    internal::FailOption("PipelineOptions", field, value, rule);
   };
-  if (!(a3 > 0)) fail("a3 = " + std::to_string(a3), "a3 > 0");
-  if (hidden_sizes.empty()) fail("hidden_sizes = {}", "at least one hidden size");
-  if (threads < 0) fail("threads = " + std::to_string(threads), "threads >= 0 (0: all cores)");
-  if (typical_hidden < 1) fail("typical_hidden", "typical_hidden >= 1");
-  if (typical_stride < 1) fail("typical_stride", "typical_stride >= 1");
-  if (typical_max_epochs < 0) fail("typical_max_epochs", "typical_max_epochs >= 0");
+  if (!(a3 > 0)) fail("a3", a3, "a3 > 0");
+  if (hidden_sizes.empty())
+    internal::FailOption("PipelineOptions", "hidden_sizes", "{}", "at least one hidden size");
+  if (threads < 0) fail("threads", threads, "threads >= 0 (0: all cores)");
+  if (typical_hidden < 1) fail("typical_hidden", typical_hidden, "typical_hidden >= 1");
+  if (typical_stride < 1) fail("typical_stride", typical_stride, "typical_stride >= 1");
+  if (typical_max_epochs < 0)
+    fail("typical_max_epochs", typical_max_epochs, "typical_max_epochs >= 0");
   if (!(pulse_fit_fraction > 0 && pulse_fit_fraction <= 1))
-    fail("pulse_fit_fraction = " + std::to_string(pulse_fit_fraction),
-         "0 < pulse_fit_fraction <= 1");
-  for (double f : track_frequencies_hz)
-    if (!(f > 0)) fail("track_frequencies_hz", "every frequency > 0");
+    fail("pulse_fit_fraction", pulse_fit_fraction, "0 < pulse_fit_fraction <= 1");
+  for (size_t i = 0; i < track_frequencies_hz.size(); ++i)
+    if (!(track_frequencies_hz[i] > 0))
+      fail("track_frequencies_hz[" + std::to_string(i) + "]", track_frequencies_hz[i],
+           "every frequency > 0");
   delay.Validate();
   training.Validate();
   pi.Validate();

@@ -7,7 +7,8 @@
 
 namespace sysid::internal {
 
-/// Throws OptionsError "`where`: dt_s = X. Violated constraint: dt_s > 0 and finite".
+/// Throws OptionsError "`where`::dt_s = X s. Violated constraint: dt_s > 0 and finite" (`where`
+/// is the options struct or the function the value was given to; its owner()).
 void CheckSampleInterval(const char* where, double dt_s);
 /// Throws OptionsError unless 0 < cutoff_hz < 0.5 / dt_s.
 void CheckCutoff(const char* where, const char* field, double cutoff_hz, double dt_s);

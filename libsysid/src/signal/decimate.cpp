@@ -1,6 +1,7 @@
 // Decimation behind a zero-phase anti-alias low-pass.
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "signal/checks.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
@@ -9,10 +10,7 @@ namespace sysid {
 
 Eigen::VectorXd Decimate(const Eigen::VectorXd& y, double dt_s, int factor) {
   internal::CheckSampleInterval("Decimate", dt_s);
-  if (factor < 1)
-    throw OptionsError("Decimate: factor = " + std::to_string(factor) +
-                       ". Violated constraint: factor >= 1",
-                       "factor");
+  if (factor < 1) internal::FailOption("Decimate", "factor", factor, "factor >= 1");
   if (factor == 1) return y;
   const double cutoff_hz = kDecimateCutoffFraction * 0.5 / (factor * dt_s);
   const Eigen::VectorXd filtered =
@@ -32,10 +30,7 @@ Recording DecimateRecording(const Recording& recording, double dt_s, int factor)
     Eigen::VectorXd kept;
     if (recording.names[c] == "t") {  // time is subsampled, never filtered
       internal::CheckSampleInterval("DecimateRecording", dt_s);
-      if (factor < 1)
-        throw OptionsError("DecimateRecording: factor = " + std::to_string(factor) +
-                               ". Violated constraint: factor >= 1",
-                           "factor");
+      if (factor < 1) internal::FailOption("DecimateRecording", "factor", factor, "factor >= 1");
       kept.resize((column.size() + factor - 1) / factor);
       for (Eigen::Index i = 0; i < kept.size(); ++i) kept[i] = column[i * factor];
     } else {

@@ -1,11 +1,14 @@
 // The one fractional-sample delay of the library (analytic inverse and its streaming stepper,
 // trajectory regressors, dominance terms): y(t_k - tau) on the signal's own grid, as a batch
 // (DelaySignal) and streaming (DelayLine), both through one split of tau and one interpolation.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/signal.hpp"
 
@@ -30,8 +33,10 @@ double Interpolate(double y_hi, double y_lo, double frac) {
 
 void CheckDelay(double dt_s, double tau_s) {
   if (!(dt_s > 0) || !(tau_s >= 0) || !std::isfinite(tau_s))
-    throw OptionsError("DelaySignal: dt_s = " + std::to_string(dt_s) + ", tau_s = " +
-                       std::to_string(tau_s) + ". Violated constraint: dt_s > 0, tau_s >= 0");
+    internal::FailOption(
+        "DelaySignal", !(dt_s > 0) ? "dt_s" : "tau_s",
+        fmt::format("{} s (dt_s = {} s, tau_s = {} s)", !(dt_s > 0) ? dt_s : tau_s, dt_s, tau_s),
+        "dt_s > 0, tau_s >= 0 and finite");
 }
 
 }  // namespace
@@ -45,9 +50,9 @@ DelayLine::DelayLine(double dt_s, double tau_s, long long max_pushes) {
   const double cap = max_pushes >= 0 ? static_cast<double>(max_pushes) : whole;
   const double used = std::min(whole, cap);
   if (used + 2 > static_cast<double>(kMaxDelayLineSamples))
-    throw OptionsError("DelayLine: tau_s / dt_s = " + std::to_string(tau_s / dt_s) +
-                       " samples. Violated constraint: tau_s / dt_s + 2 <= " +
-                       std::to_string(kMaxDelayLineSamples) + " (kMaxDelayLineSamples)");
+    internal::FailOption(
+        "DelayLine", "tau_s", fmt::format("{} samples of dt_s", tau_s / dt_s),
+        fmt::format("tau_s / dt_s + 2 <= {} (kMaxDelayLineSamples)", kMaxDelayLineSamples));
   whole_ = static_cast<long long>(used);
   ring_.assign(static_cast<size_t>(whole_ + 2), 0.0);
 }

@@ -34,9 +34,8 @@ void DerivativeOptions::Validate(double dt_s) const {
     case DerivativeMethod::kCentral:
       break;
     case DerivativeMethod::kButterworthCentral:
-      internal::CheckCutoff("DerivativeOptions::cutoff_hz", "cutoff_hz", cutoff_hz, dt_s);
-      internal::CheckButterworthOrder("DerivativeOptions::butterworth_order", "butterworth_order",
-                                    butterworth_order);
+      internal::CheckCutoff(kWhere, "cutoff_hz", cutoff_hz, dt_s);
+      internal::CheckButterworthOrder(kWhere, "butterworth_order", butterworth_order);
       break;
     case DerivativeMethod::kSavitzkyGolay:
       // Order >= 2: a straight-line fit has no acceleration.

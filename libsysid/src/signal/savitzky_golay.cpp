@@ -9,6 +9,7 @@
 #include <Eigen/QR>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "signal/checks.hpp"
 #include "signal/filters.hpp"
 #include "sysid/error.hpp"
@@ -70,9 +71,8 @@ Eigen::VectorXd SavitzkyGolay(const Eigen::VectorXd& y, double dt_s, int window,
   internal::CheckSampleInterval(kWhere, dt_s);
   internal::CheckSavitzkyGolay(kWhere, "window", window, "order", order, 0);
   if (deriv < 0 || deriv > 2 || deriv > order)
-    throw OptionsError(
-        "SavitzkyGolay: deriv = " + std::to_string(deriv) +
-        ". Violated constraint: 0 <= deriv <= min(2, order = " + std::to_string(order) + ")");
+    internal::FailOption(kWhere, "deriv", deriv,
+                         "0 <= deriv <= min(2, order = " + std::to_string(order) + ")");
   internal::CheckLength(kWhere, y.size(), window,
                       "a Savitzky-Golay window of " + std::to_string(window));
   internal::CheckFinite(kWhere, y);

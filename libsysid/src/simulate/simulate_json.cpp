@@ -71,8 +71,7 @@ SimulationOptions SimulationOptionsFromJson(std::string_view text, const std::st
   try {
     o.Validate();
   } catch (const OptionsError& e) {
-    const std::string field = internal::JsonDocument::ValidationField(e.what());
-    doc.FailValidation(e.what(), field.empty() ? "" : "/" + field);
+    doc.FailValidation(e, e.field().empty() ? "" : "/" + e.field());
   }
   return o;
 }

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/simulate.hpp"
@@ -11,12 +12,7 @@ namespace sysid {
 namespace {
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  if (!ok) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "SimulationOptions::" << field << " = " << value << ". Violated constraint: " << rule;
-    throw OptionsError(os.str());
-  }
+  if (!ok) internal::FailOption("SimulationOptions", field, value, rule);
 }
 
 }  // namespace
@@ -59,7 +55,7 @@ std::string ToString(IntegratorMethod method) {
 IntegratorMethod ParseIntegratorMethod(const std::string& name) {
   if (name == "adams") return IntegratorMethod::kAdams;
   if (name == "bdf") return IntegratorMethod::kBdf;
-  throw OptionsError("--method = '" + name + "'. Violated constraint: one of adams, bdf");
+  internal::FailOption("", "method", "'" + name + "'", "one of adams, bdf");
 }
 
 std::string ToString(EventKind kind) {

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/cvode_solver.hpp"
+#include "core/option_rule.hpp"
 #include "simulate/output_sampler.hpp"
 #include "simulate/segment_model.hpp"
 #include "simulate/timeline.hpp"
@@ -505,9 +506,8 @@ class FrictionModelPlant::Impl {
   static const FrictionModel& Checked(const FrictionModel& model, double sample_time_s) {
     model.Validate();
     if (!(sample_time_s > 0) || !std::isfinite(sample_time_s))
-      throw OptionsError("FrictionModelPlant: sample_time_s = " + std::to_string(sample_time_s) +
-                             " s. Violated constraint: finite, > 0",
-                         "sample_time_s");
+      internal::FailOption("FrictionModelPlant", "sample_time_s",
+                           fmt::format("{} s", sample_time_s), "finite, > 0");
     return model;
   }
 

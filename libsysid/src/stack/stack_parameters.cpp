@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stack.hpp"
 
@@ -10,10 +11,7 @@ namespace sysid {
 namespace {
 
 [[noreturn]] void Violated(const std::string& field, double value, const std::string& rule) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "StackParameters::" << field << " = " << value << ". Violated constraint: " << rule;
-  throw OptionsError(s.str());
+  internal::FailOption("StackParameters", field, value, rule);
 }
 
 std::string G(double v) {

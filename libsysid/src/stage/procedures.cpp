@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "core/portable_random.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -24,8 +25,9 @@ std::string Fmt(double v) {
   return s.str();
 }
 
-[[noreturn]] void Violated(const std::string& field, double value, const std::string& rule) {
-  throw OptionsError(field + " = " + Fmt(value) + ". Violated constraint: " + rule);
+[[noreturn]] void Violated(const char* owner, const std::string& field, double value,
+                           const std::string& rule) {
+  internal::FailOption(owner, field, value, rule);
 }
 
 // Every signal a procedure makes is sized here, so the sample limit is checked before any
@@ -33,9 +35,10 @@ std::string Fmt(double v) {
 long Samples(double seconds, double rate_hz) {
   const double n = seconds * rate_hz;
   if (!(n <= kMaxSignalSamples))
-    throw OptionsError("a signal of " + Fmt(seconds) + " s at " + Fmt(rate_hz) + " Hz needs " +
-                       Fmt(n) + " samples. Violated constraint: at most " +
-                       Fmt(kMaxSignalSamples) + " samples per signal (shorten it or lower the rate)");
+    internal::FailOption(
+        "", "signal length",
+        Fmt(n) + " samples (" + Fmt(seconds) + " s at " + Fmt(rate_hz) + " Hz)",
+        "at most " + Fmt(kMaxSignalSamples) + " samples per signal (shorten it or lower the rate)");
   return static_cast<long>(std::llround(n));
 }
 
@@ -78,18 +81,16 @@ std::uint64_t DeriveSeed(std::uint64_t seed, std::uint64_t index) {
 
 void PulseProcedure::Validate() const {
   if (amplitudes_v.empty())
-    throw OptionsError(
-        "PulseProcedure::amplitudes_v is empty. Violated constraint: at least "
-        "one amplitude");
+    internal::FailOption("PulseProcedure", "amplitudes_v", "empty", "at least one amplitude");
   for (size_t i = 0; i < amplitudes_v.size(); ++i)
     if (!std::isfinite(amplitudes_v[i]) || std::abs(amplitudes_v[i]) > 10.0)
-      Violated("PulseProcedure::amplitudes_v[" + std::to_string(i) + "]", amplitudes_v[i],
+      Violated("PulseProcedure", "amplitudes_v[" + std::to_string(i) + "]", amplitudes_v[i],
                "|amplitude| <= 10 V and finite");
-  if (!(on_s > 0) || !std::isfinite(on_s)) Violated("PulseProcedure::on_s", on_s, "on_s > 0");
+  if (!(on_s > 0) || !std::isfinite(on_s)) Violated("PulseProcedure", "on_s", on_s, "on_s > 0");
   if (!(rest_s >= 0) || !std::isfinite(rest_s))
-    Violated("PulseProcedure::rest_s", rest_s, "rest_s >= 0");
+    Violated("PulseProcedure", "rest_s", rest_s, "rest_s >= 0");
   if (!(lead_s >= 0) || !std::isfinite(lead_s))
-    Violated("PulseProcedure::lead_s", lead_s, "lead_s >= 0");
+    Violated("PulseProcedure", "lead_s", lead_s, "lead_s >= 0");
 }
 
 double PulseProcedure::PulseStart(std::size_t i) const {
@@ -98,16 +99,16 @@ double PulseProcedure::PulseStart(std::size_t i) const {
 
 Eigen::VectorXd PulseProcedure::Voltage(double rate) const {
   Validate();
-  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  if (!(rate > 0)) Violated("", "sample_rate_hz", rate, "sample_rate_hz > 0");
   // A pulse shorter than a sample, or a whole test of one sample, is no pulse test (excite
   // --rate 1e-300 wrote a header and no row, --on 1e-300 a file of zeros).
   if (Samples(on_s, rate) < 1)
-    Violated("PulseProcedure::on_s", on_s,
+    Violated("PulseProcedure", "on_s", on_s,
              "on_s >= one sample interval 1 / sample_rate_hz = " + Fmt(1 / rate) + " s");
   const long n = Samples(PulseStart(amplitudes_v.size()), rate);
   if (n < 2)
-    Violated("sample_rate_hz", rate, "at least two samples over the test (" +
-                                         Fmt(PulseStart(amplitudes_v.size())) + " s)");
+    Violated("", "sample_rate_hz", rate,
+             "at least two samples over the test (" + Fmt(PulseStart(amplitudes_v.size())) + " s)");
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
   for (size_t i = 0; i < amplitudes_v.size(); ++i) {
     const long k0 = Samples(PulseStart(i), rate);
@@ -187,17 +188,18 @@ Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& proce
 
 void TriangleProcedure::Validate() const {
   if (!(period_s > 0) || !std::isfinite(period_s))
-    Violated("TriangleProcedure::period_s", period_s, "period_s > 0");
+    Violated("TriangleProcedure", "period_s", period_s, "period_s > 0");
   if (!(peak_forward_v >= 0) || peak_forward_v > 10)
-    Violated("TriangleProcedure::peak_forward_v", peak_forward_v, "0 <= peak_forward_v <= 10");
+    Violated("TriangleProcedure", "peak_forward_v", peak_forward_v, "0 <= peak_forward_v <= 10");
   if (!(peak_backward_v >= 0) || peak_backward_v > 10)
-    Violated("TriangleProcedure::peak_backward_v", peak_backward_v, "0 <= peak_backward_v <= 10");
-  if (cycles < 1 || cycles > 1000) Violated("TriangleProcedure::cycles", cycles, "1 <= cycles <= 1000");
+    Violated("TriangleProcedure", "peak_backward_v", peak_backward_v, "0 <= peak_backward_v <= 10");
+  if (cycles < 1 || cycles > 1000)
+    Violated("TriangleProcedure", "cycles", cycles, "1 <= cycles <= 1000");
 }
 
 Eigen::VectorXd TriangleProcedure::Voltage(double rate) const {
   Validate();
-  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  if (!(rate > 0)) Violated("", "sample_rate_hz", rate, "sample_rate_hz > 0");
   const long n = Samples(cycles * period_s, rate);
   Eigen::VectorXd u(n);
   for (long k = 0; k < n; ++k) {
@@ -235,11 +237,13 @@ Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure&
 
 void TrackingProcedure::Validate(const StageParameters& stage) const {
   if (!(kp_v_per_m > 0) || !std::isfinite(kp_v_per_m))
-    Violated("TrackingProcedure::kp_v_per_m", kp_v_per_m, "kp_v_per_m > 0");
-  if (lead_cycles < 0) Violated("TrackingProcedure::lead_cycles", lead_cycles, "lead_cycles >= 0");
-  if (kept_cycles < 1) Violated("TrackingProcedure::kept_cycles", kept_cycles, "kept_cycles >= 1");
+    Violated("TrackingProcedure", "kp_v_per_m", kp_v_per_m, "kp_v_per_m > 0");
+  if (lead_cycles < 0)
+    Violated("TrackingProcedure", "lead_cycles", lead_cycles, "lead_cycles >= 0");
+  if (kept_cycles < 1)
+    Violated("TrackingProcedure", "kept_cycles", kept_cycles, "kept_cycles >= 1");
   if (!(tail_s >= 0) || !std::isfinite(tail_s))
-    Violated("TrackingProcedure::tail_s", tail_s, "tail_s >= 0");
+    Violated("TrackingProcedure", "tail_s", tail_s, "tail_s >= 0");
   derivative.Validate(1.0 / stage.RecordRateHz());
 }
 
@@ -250,9 +254,9 @@ void CheckWaveform(const VelocityWaveform& w, const StageParameters& stage) {
     throw OptionsError("waveform '" + w.name + "': needs at least one term and period_s > 0");
   for (const auto& t : w.terms)
     if (!(t.omega_rad_s > 0))
-      Violated("waveform '" + w.name + "' omega_rad_s", t.omega_rad_s, "omega_rad_s > 0");
+      Violated("", "waveform '" + w.name + "' omega_rad_s", t.omega_rad_s, "omega_rad_s > 0");
   if (w.PeakVelocity() > stage.max_velocity_mps)
-    Violated("waveform '" + w.name + "' peak velocity [m/s]", w.PeakVelocity(),
+    Violated("", "waveform '" + w.name + "' peak velocity [m/s]", w.PeakVelocity(),
              "peak velocity <= the stage's max_velocity_mps (" + Fmt(stage.max_velocity_mps) + ")");
 }
 
@@ -376,7 +380,7 @@ Recording RunTrackingSet(const StageParameters& stage, const std::vector<Velocit
 
 Recording ReferenceSignals(const std::vector<VelocityWaveform>& waveforms,
                            const TrackingProcedure& procedure, double rate) {
-  if (!(rate > 0)) Violated("sample_rate_hz", rate, "sample_rate_hz > 0");
+  if (!(rate > 0)) Violated("", "sample_rate_hz", rate, "sample_rate_hz > 0");
   if (procedure.kept_cycles < 1 || procedure.lead_cycles < 0)
     throw OptionsError("ReferenceSignals: need kept_cycles >= 1 and lead_cycles >= 0");
   std::vector<std::array<double, 5>> rows;

@@ -55,8 +55,8 @@ struct Section {
   }
 };
 
-// The JSON pointer of the StageParameters field a Validate() message names
-// ("forward.coulomb_mps2", "drive_map_in_v[3]", "sample_rate_hz"); empty when not in the file.
+// The JSON pointer of the StageParameters field an OptionsError names (its field():
+// "forward.coulomb_mps2", "drive_map_in_v[3]", "sample_rate_hz"); empty when not in the file.
 std::string FieldPointer(const internal::JsonDocument& doc, const std::string& field) {
   std::string suffix = "/";
   for (char ch : field) {
@@ -287,8 +287,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   try {
     p.Validate();
   } catch (const OptionsError& e) {
-    doc.FailValidation(e.what(),
-                       FieldPointer(doc, internal::JsonDocument::ValidationField(e.what())));
+    doc.FailValidation(e, FieldPointer(doc, e.field()));
   }
   // A bound beyond the physics that keeps every procedure's work finite (1e12 Hz would ask for
   // terabytes); only a file can set it, so it is reported at its place.

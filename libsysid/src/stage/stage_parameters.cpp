@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
 
@@ -20,9 +21,7 @@ std::string Fmt(double v) {
 }
 
 void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  if (!ok)
-    throw OptionsError("StageParameters::" + field + " = " + Fmt(value) +
-                       ". Violated constraint: " + rule);
+  if (!ok) internal::FailOption("StageParameters", field, value, rule);
 }
 
 void RequireFinite(const std::string& field, double value) {

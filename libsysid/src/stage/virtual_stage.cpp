@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "core/cvode_solver.hpp"
+#include "core/option_rule.hpp"
 #include "core/portable_random.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
@@ -127,8 +128,7 @@ class VirtualStage::Impl {
 
   double Dac(double u) const {
     if (!std::isfinite(u))
-      throw OptionsError("VirtualStage::Step: u_command_v = " + Num(u) +
-                         ". Violated constraint: u_command_v is finite");
+      internal::FailOption("VirtualStage::Step", "u_command_v", Num(u), "u_command_v is finite");
     const double levels = std::ldexp(1.0, p_.dac_bits);
     const double code = std::clamp(std::round((u + p_.dac_range_v) / dac_step_), 0.0, levels - 1);
     return code * dac_step_ - p_.dac_range_v;

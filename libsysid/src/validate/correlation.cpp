@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/validate.hpp"
 
@@ -12,9 +13,7 @@ namespace {
 
 void CheckLag(Eigen::Index n, int max_lag) {
   if (max_lag < 0 || max_lag >= n)
-    throw OptionsError(
-        fmt::format("max_lag = {}. Violated constraint: 0 <= max_lag < N = {}", max_lag, n),
-        "max_lag");
+    internal::FailOption("", "max_lag", max_lag, fmt::format("0 <= max_lag < N = {}", n));
 }
 
 Eigen::VectorXd Centred(const Eigen::VectorXd& s, const char* name) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis.hpp"
 #include "sysid/input.hpp"
@@ -52,15 +53,9 @@ void ValidationOptions::Validate() const {
   residual.Validate();
   motion.Validate();
   if (!(sim_rtol > 0 && sim_rtol < 1))
-    throw OptionsError(
-        fmt::format("ValidationOptions::sim_rtol = {}. Violated constraint: 0 < sim_rtol < 1",
-                    sim_rtol),
-        "sim_rtol");
+    internal::FailOption("ValidationOptions", "sim_rtol", sim_rtol, "0 < sim_rtol < 1");
   if (!(sim_atol > 0 && std::isfinite(sim_atol)))
-    throw OptionsError(
-        fmt::format("ValidationOptions::sim_atol = {}. Violated constraint: sim_atol > 0",
-                    sim_atol),
-        "sim_atol");
+    internal::FailOption("ValidationOptions", "sim_atol", sim_atol, "sim_atol > 0");
 }
 
 Validation ValidateFrictionModel(const Recording& recording, const FrictionModel& model,

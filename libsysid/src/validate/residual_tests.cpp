@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/validate.hpp"
 
@@ -12,8 +13,7 @@ namespace {
 
 void CheckProbability(double p, const char* name) {
   if (!(p > 0 && p < 0.5))
-    throw OptionsError(fmt::format("{} = {}. Violated constraint: 0 < {} < 0.5", name, p, name),
-                       name);
+    internal::FailOption("ResidualTestOptions", name, p, fmt::format("0 < {} < 0.5", name));
 }
 
 CorrelationTest Judge(std::string name, int first_lag, const Eigen::VectorXd& r_all,
@@ -70,20 +70,14 @@ void CheckLength(Eigen::Index n, const ResidualTestOptions& o) {
 
 void ResidualTestOptions::Validate() const {
   if (max_lag < 1 || max_lag > 1000)
-    throw OptionsError(
-        fmt::format("ResidualTestOptions::max_lag = {}. Violated constraint: 1 <= max_lag <= 1000",
-                    max_lag),
-        "max_lag");
-  if (!(z > 0 && z <= 10))
-    throw OptionsError(
-        fmt::format("ResidualTestOptions::z = {}. Violated constraint: 0 < z <= 10", z), "z");
+    internal::FailOption("ResidualTestOptions", "max_lag", max_lag, "1 <= max_lag <= 1000");
+  if (!(z > 0 && z <= 10)) internal::FailOption("ResidualTestOptions", "z", z, "0 < z <= 10");
   CheckProbability(lag_probability, "lag_probability");
   CheckProbability(test_level, "test_level");
 }
 
 double NormalQuantile(double q) {
-  if (!(q > 0 && q < 1))
-    throw OptionsError(fmt::format("normal quantile: q = {}. Violated constraint: 0 < q < 1", q));
+  if (!(q > 0 && q < 1)) internal::FailOption("NormalQuantile", "q", q, "0 < q < 1");
   // Φ(x) = erfc(-x / sqrt 2) / 2 is increasing; bisect on [-40, 40].
   double lo = -40, hi = 40;
   while (hi - lo > 1e-12) {
@@ -94,10 +88,10 @@ double NormalQuantile(double q) {
 }
 
 int AllowedLagsOutside(int lags, double p, double level) {
-  if (lags < 1) throw OptionsError(fmt::format("lags = {}. Violated constraint: lags >= 1", lags));
-  if (!(p > 0 && p < 1) || !(level > 0 && level < 1))
-    throw OptionsError(
-        fmt::format("p = {}, level = {}. Violated constraint: both in (0, 1)", p, level));
+  if (lags < 1) internal::FailOption("AllowedLagsOutside", "lags", lags, "lags >= 1");
+  if (!(p > 0 && p < 1)) internal::FailOption("AllowedLagsOutside", "p", p, "0 < p < 1");
+  if (!(level > 0 && level < 1))
+    internal::FailOption("AllowedLagsOutside", "level", level, "0 < level < 1");
   // P(X = j) by the recurrence P(j) = P(j - 1) (n - j + 1) / j p / (1 - p), from (1 - p)^n.
   double pj = std::pow(1.0 - p, lags), cdf = pj;
   int k = 0;
