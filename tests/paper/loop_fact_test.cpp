@@ -230,7 +230,7 @@ TEST_CASE("F8's options are validated before any experiment", "[stage][facts][lo
   const StageParameters stage = StageParameters::Default();
   FactsOptions o = F8Only();
   o.loop_levels_v = {1.6};  // above the triangle's +1.5 V peak: never crossed
-  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("loop_levels_v has 1.6"));
+  CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("loop_levels_v = 1.6"));
   o = F8Only();
   o.loop_sine_frequencies_hz = {1, 0.5};
   CHECK_THROWS_WITH(sysid::RunStageFacts(stage, o), Catch::Contains("increasing"));

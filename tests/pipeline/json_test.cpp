@@ -180,7 +180,8 @@ TEST_CASE("pipeline options JSON: bad input names the place", "[pipeline][json]"
       Contains("p.json:2:2: pi.u_max_v: expected u_max_v > 0, found -1"));
   CHECK_THROWS_WITH(
       sysid::PipelineOptionsFromJson("{\"facts_options\": {\"facts\": [\"F9\"]}}", "p.json"),
-      Contains("FactsOptions::facts contains 'F9'"));
+      Contains("p.json:1:20: facts_options.facts: expected ids are F1, F2, F3, F4, F5, F6, F7, "
+               "F8, found 'F9'"));
   CHECK_THROWS_WITH(
       sysid::PipelineOptionsFromJson("{\"facts_options\": {\"pulse\": {\"on\": 1}}}", "p.json"),
       Contains("unknown key 'on' in 'facts_options.pulse'"));
