@@ -265,16 +265,9 @@ void RunDominance(const HysteresisCli& o, const CandidateRankingOptions& options
   if (o.json) std::cout << all.dump(2) << "\n";
 }
 
-void AddHysteresisCommand(CLI::App& app) {
-  CLI::App* h = app.add_subcommand(
-      "hysteresis",
-      "Hysteresis models of an actuator's input u [V] to displacement x [m]: Prandtl-Ishlinskii "
-      "(pi, asymmetric gpi, rate-dependent rdpi), Bouc-Wen and the operator-input network; fit, "
-      "simulate, invert (docs/hysteresis.md)");
-  h->require_subcommand(1);
-  auto o = std::make_shared<HysteresisCli>();
-
-  CLI::App* fit = h->add_subcommand("fit", "Fit a model to recordings (columns t [s], u [V], x [m])");
+// `hysteresis fit`: its flags on the shared options o.
+void AddFitSubcommand(CLI::App& h, const std::shared_ptr<HysteresisCli>& o) {
+  CLI::App* fit = h.add_subcommand("fit", "Fit a model to recordings (columns t [s], u [V], x [m])");
   fit->add_option("--model", o->kind, "model kind")
       ->required()
       ->check(CLI::IsMember(HysteresisKinds()))
@@ -349,6 +342,18 @@ void AddHysteresisCommand(CLI::App& app) {
   AddOutputOption(fit, o->output, "write the model file (JSON)")->required();
   fit->callback([o] { RunFit(*o); });
   GuardOutputFiles(fit, {{&o->output, "-o"}});
+}
+
+void AddHysteresisCommand(CLI::App& app) {
+  CLI::App* h = app.add_subcommand(
+      "hysteresis",
+      "Hysteresis models of an actuator's input u [V] to displacement x [m]: Prandtl-Ishlinskii "
+      "(pi, asymmetric gpi, rate-dependent rdpi), Bouc-Wen and the operator-input network; fit, "
+      "simulate, invert (docs/hysteresis.md)");
+  h->require_subcommand(1);
+  auto o = std::make_shared<HysteresisCli>();
+
+  AddFitSubcommand(*h, o);
 
   CLI::App* sim = h->add_subcommand(
       "simulate", "Drive a model with a recording's u from the model's initial state; write t, u, x_model");

@@ -126,6 +126,50 @@ struct VelocityError {
   }
 };
 
+// Standard errors from s^2 (J^T J)^-1 at the optimum z, in physical units, into r.std_error
+// (NaN where J^T J is singular).
+void SetStandardErrors(const FrictionModel& initial, const Layout& layout,
+                       const std::vector<internal::SimSegment>& segments, const RefineOptions& options,
+                       const ceres::NumericDiffOptions& nd, double* z_data, Eigen::Index n,
+                       std::atomic<long>* simulations_count, RefineResult& r) {
+  const int np = static_cast<int>(layout.names.size());
+  std::atomic<long>& simulations = *simulations_count;
+  r.std_error = Eigen::VectorXd::Constant(np, std::numeric_limits<double>::quiet_NaN());
+  // The Jacobian for the covariance is taken from simulations 1000x tighter than the fit's
+  // (at most 1e-10): at the fit's rtol the central differences carry the integrator's noise,
+  // which inflates J^T J and made the standard errors ~15 % too small against a Monte-Carlo
+  // spread (tests/delay/refine_monte_carlo_test.cpp); at 1e-10 they agree within its error.
+  const double covariance_rtol = std::min(options.sim_rtol * 1e-3, 1e-10);
+  auto* tight = new ceres::DynamicNumericDiffCostFunction<VelocityError, ceres::CENTRAL>(
+      new VelocityError{&initial,
+                        &layout,
+                        &segments,
+                        {covariance_rtol, covariance_rtol * 1e-3, options.threads},
+                        &simulations},
+      ceres::TAKE_OWNERSHIP, nd);
+  tight->AddParameterBlock(np);
+  tight->SetNumResiduals(static_cast<int>(n));
+  ceres::Problem covariance_problem;
+  covariance_problem.AddResidualBlock(tight, nullptr, z_data);
+  ceres::CRSMatrix crs;
+  double final_cost = 0;
+  covariance_problem.Evaluate(ceres::Problem::EvaluateOptions(), &final_cost, nullptr, nullptr,
+                              &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row)
+    for (int k = crs.rows[static_cast<size_t>(row)]; k < crs.rows[static_cast<size_t>(row) + 1];
+         ++k)
+      J(row, crs.cols[static_cast<size_t>(k)]) = crs.values[static_cast<size_t>(k)];
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
+  if (lu.isInvertible() && n > np) {
+    const double s2 = r.final_cost / static_cast<double>(n - np);
+    const Eigen::MatrixXd cov = s2 * lu.inverse();
+    for (int i = 0; i < np; ++i)
+      r.std_error[i] = std::sqrt(cov(i, i)) * layout.scale[static_cast<size_t>(i)];
+  }
+}
+
 }  // namespace
 
 RefineResult RefineOutputError(const FrictionModel& initial,
@@ -204,41 +248,7 @@ RefineResult RefineOutputError(const FrictionModel& initial,
   r.message = summary.message;
   if (summary.termination_type == ceres::FAILURE || !std::isfinite(r.final_cost))
     throw NumericalError("output-error refinement failed: " + summary.message);
-  // Standard errors from s^2 (J^T J)^-1 at the optimum, in physical units.
-  r.std_error = Eigen::VectorXd::Constant(np, std::numeric_limits<double>::quiet_NaN());
-  // The Jacobian for the covariance is taken from simulations 1000x tighter than the fit's
-  // (at most 1e-10): at the fit's rtol the central differences carry the integrator's noise,
-  // which inflates J^T J and made the standard errors ~15 % too small against a Monte-Carlo
-  // spread (tests/delay/refine_monte_carlo_test.cpp); at 1e-10 they agree within its error.
-  const double covariance_rtol = std::min(options.sim_rtol * 1e-3, 1e-10);
-  auto* tight = new ceres::DynamicNumericDiffCostFunction<VelocityError, ceres::CENTRAL>(
-      new VelocityError{&initial,
-                        &layout,
-                        &segments,
-                        {covariance_rtol, covariance_rtol * 1e-3, options.threads},
-                        &simulations},
-      ceres::TAKE_OWNERSHIP, nd);
-  tight->AddParameterBlock(np);
-  tight->SetNumResiduals(static_cast<int>(n));
-  ceres::Problem covariance_problem;
-  covariance_problem.AddResidualBlock(tight, nullptr, z.data());
-  ceres::CRSMatrix crs;
-  double final_cost = 0;
-  covariance_problem.Evaluate(ceres::Problem::EvaluateOptions(), &final_cost, nullptr, nullptr,
-                              &crs);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int row = 0; row < crs.num_rows; ++row)
-    for (int k = crs.rows[static_cast<size_t>(row)]; k < crs.rows[static_cast<size_t>(row) + 1];
-         ++k)
-      J(row, crs.cols[static_cast<size_t>(k)]) = crs.values[static_cast<size_t>(k)];
-  const Eigen::MatrixXd JtJ = J.transpose() * J;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
-  if (lu.isInvertible() && n > np) {
-    const double s2 = r.final_cost / static_cast<double>(n - np);
-    const Eigen::MatrixXd cov = s2 * lu.inverse();
-    for (int i = 0; i < np; ++i)
-      r.std_error[i] = std::sqrt(cov(i, i)) * layout.scale[static_cast<size_t>(i)];
-  }
+  SetStandardErrors(initial, layout, segments, options, nd, z.data(), n, &simulations, r);
   r.simulations = simulations.load();
   r.warnings = FarFromPriorWarnings(r);
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -177,6 +177,25 @@ std::string NeuralTrainingResult::BriefReport() const {
   return s.str();
 }
 
+namespace {
+
+// LM holds J^T J and its damped copy (P x P each) and the hidden layer of the training set
+// (N x H): refuse before allocating when that passes the documented limit.
+void CheckTrainingMemory(int n, int H, std::size_t rows) {
+  const double P = static_cast<double>(H) * (n + 2) + 1;
+  const double bytes = 16.0 * P * P + 8.0 * static_cast<double>(rows) * H;
+  if (bytes > kTrainingMemoryLimitBytes) {
+    internal::FailOption(
+        "NeuralTrainingOptions", "hidden", H,
+        fmt::format("training {} hidden units on {} inputs ({} weights) and {} rows needs "
+                    "about {:.6g} GB, above the limit of {:.6g} GB; use fewer hidden units",
+                    H, n, static_cast<long>(P), rows, bytes / 1e9,
+                    kTrainingMemoryLimitBytes / 1e9));
+  }
+}
+
+}  // namespace
+
 NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const NeuralDataset* validation,
                                         const NeuralTrainingOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -185,20 +204,7 @@ NeuralTrainingResult TrainNeuralNetwork(const NeuralDataset& train, const Neural
   if (validation) CheckData(*validation, "validation", &train);
   const int n = static_cast<int>(train.input_names.size());
   const int H = options.hidden;
-  {
-    // LM holds J^T J and its damped copy (P x P each) and the hidden layer of the training set
-    // (N x H): refuse before allocating when that passes the documented limit.
-    const double P = static_cast<double>(H) * (n + 2) + 1;
-    const double bytes = 16.0 * P * P + 8.0 * static_cast<double>(train.targets.size()) * H;
-    if (bytes > kTrainingMemoryLimitBytes) {
-      internal::FailOption(
-          "NeuralTrainingOptions", "hidden", H,
-          fmt::format("training {} hidden units on {} inputs ({} weights) and {} rows needs "
-                      "about {:.6g} GB, above the limit of {:.6g} GB; use fewer hidden units",
-                      H, n, static_cast<long>(P), train.targets.size(), bytes / 1e9,
-                      kTrainingMemoryLimitBytes / 1e9));
-    }
-  }
+  CheckTrainingMemory(n, H, train.targets.size());
   if (!options.input_ranges.empty() && static_cast<int>(options.input_ranges.size()) != n)
     internal::FailOption("NeuralTrainingOptions", "input_ranges",
                          fmt::format("{} entries", options.input_ranges.size()),

@@ -76,6 +76,56 @@ std::string ToJson(const PipelineResult& r, int indent) {
   return internal::DumpJson(j, indent);
 }
 
+namespace {
+
+// The margins' verdicts only: the gains, the model's a1 and the phase crossovers are not carried.
+void ReadMarginVerdicts(const JsonNode& margins, PipelineResult& r) {
+  margins.ExpectArray();
+  if (margins.Size() != 2) margins.Expected("two directions, forward then backward");
+  r.margins.emplace();
+  for (size_t i = 0; i < 2; ++i) {
+    const JsonNode m = margins.Element(i);
+    m.ExpectObject({"direction", "crossover_rad_s", "phase_margin_deg", "gain_margin", "stable"});
+    const char* name = i == 0 ? "forward" : "backward";
+    if (m.Get("direction").String() != name)
+      m.Get("direction").Expected(std::string("\"") + name + "\"");
+    LoopMargins& l = i == 0 ? r.margins->forward : r.margins->backward;
+    l.crossover_rad_s = m.Get("crossover_rad_s").NumberOrNaN(Rule::Positive());
+    l.phase_margin_deg = m.Get("phase_margin_deg").NumberOrNaN();
+    l.gain_margin = m.Get("gain_margin").NumberOrNaN(Rule::Positive());
+    const JsonNode stable = m.Get("stable");
+    if (stable.Boolean() != l.Stable())
+      stable.Expected(std::string(l.Stable() ? "true" : "false") +
+                      " (phase margin > 0 and gain margin > 1 or none)");
+  }
+}
+
+// The facts' verdicts only: facts.json (the report) holds each fact's numbers and notes.
+void ReadFactVerdicts(const JsonNode& root, PipelineResult& r) {
+  if (root.Has("facts") != root.Has("facts_required_met"))
+    root.Fail("facts and facts_required_met come together (a run with facts)");
+  if (root.Has("facts")) {
+    const JsonNode facts = root.Get("facts");
+    facts.ExpectArray();
+    r.facts.emplace();
+    for (size_t i = 0; i < facts.Size(); ++i) {
+      const JsonNode f = facts.Element(i);
+      f.ExpectObject({"id", "required", "met"});
+      StageFact fact;
+      fact.id = f.Get("id").String(true);
+      fact.required = f.Get("required").Boolean();
+      fact.met = f.Get("met").Boolean();
+      r.facts->facts.push_back(fact);
+    }
+    const JsonNode met = root.Get("facts_required_met");
+    if (met.Boolean() != r.facts->RequiredMet())
+      met.Expected(std::string(r.facts->RequiredMet() ? "true" : "false") +
+                   " (every required fact's met)");
+  }
+}
+
+}  // namespace
+
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
   const JsonNode root = doc.Root();
@@ -141,49 +191,8 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
     r.tuning->pi.ki_v_per_m_s = t.Get("ki_v_per_m_s").Number(Rule::NonNegative());
     r.tuning->pi.sample_time_s = t.Get("sample_time_s").Number(Rule::Positive());
   }
-  if (root.Has("margins")) {
-    // The verdicts only: the gains, the model's a1 and the phase crossovers are not carried.
-    const JsonNode margins = root.Get("margins");
-    margins.ExpectArray();
-    if (margins.Size() != 2) margins.Expected("two directions, forward then backward");
-    r.margins.emplace();
-    for (size_t i = 0; i < 2; ++i) {
-      const JsonNode m = margins.Element(i);
-      m.ExpectObject({"direction", "crossover_rad_s", "phase_margin_deg", "gain_margin", "stable"});
-      const char* name = i == 0 ? "forward" : "backward";
-      if (m.Get("direction").String() != name)
-        m.Get("direction").Expected(std::string("\"") + name + "\"");
-      LoopMargins& l = i == 0 ? r.margins->forward : r.margins->backward;
-      l.crossover_rad_s = m.Get("crossover_rad_s").NumberOrNaN(Rule::Positive());
-      l.phase_margin_deg = m.Get("phase_margin_deg").NumberOrNaN();
-      l.gain_margin = m.Get("gain_margin").NumberOrNaN(Rule::Positive());
-      const JsonNode stable = m.Get("stable");
-      if (stable.Boolean() != l.Stable())
-        stable.Expected(std::string(l.Stable() ? "true" : "false") +
-                        " (phase margin > 0 and gain margin > 1 or none)");
-    }
-  }
-  if (root.Has("facts") != root.Has("facts_required_met"))
-    root.Fail("facts and facts_required_met come together (a run with facts)");
-  if (root.Has("facts")) {
-    // The verdicts only: facts.json (the report) holds each fact's numbers and notes.
-    const JsonNode facts = root.Get("facts");
-    facts.ExpectArray();
-    r.facts.emplace();
-    for (size_t i = 0; i < facts.Size(); ++i) {
-      const JsonNode f = facts.Element(i);
-      f.ExpectObject({"id", "required", "met"});
-      StageFact fact;
-      fact.id = f.Get("id").String(true);
-      fact.required = f.Get("required").Boolean();
-      fact.met = f.Get("met").Boolean();
-      r.facts->facts.push_back(fact);
-    }
-    const JsonNode met = root.Get("facts_required_met");
-    if (met.Boolean() != r.facts->RequiredMet())
-      met.Expected(std::string(r.facts->RequiredMet() ? "true" : "false") +
-                   " (every required fact's met)");
-  }
+  if (root.Has("margins")) ReadMarginVerdicts(root.Get("margins"), r);
+  ReadFactVerdicts(root, r);
   const JsonNode steps = root.Get("steps");
   steps.ExpectArray();
   for (size_t i = 0; i < steps.Size(); ++i) {

@@ -1,5 +1,6 @@
-// StageParameters: defaults (the calibrated virtual stage), validation, the static drive map and
-// the steady sliding velocity.
+// StageParameters: validation of each model's fields, the drive hysteresis and creep setters,
+// the paper's pulse table and the speed map through it (presets: stage_presets.cpp; the
+// steady-state physics: steady_state.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -41,12 +42,6 @@ void ValidateBranch(const std::string& name, const FrictionBranch& b) {
   Require(b.viscous_per_s >= 0, name + ".viscous_per_s", b.viscous_per_s, "viscous_per_s >= 0");
 }
 
-// Steady friction g(v) + s2 v of one branch at speed |v| = s >= 0.
-double SteadyFriction(const FrictionBranch& b, double s) {
-  const double r = s / b.stribeck_velocity_mps;
-  return b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r) + b.viscous_per_s * s;
-}
-
 }  // namespace
 
 // The paper's pulse table (section "Parameter Identification"): amplitude [V], measured
@@ -77,36 +72,6 @@ void StageParameters::SetSpeedMapThrough(
     motor.speed_map_out_mps.push_back(vf);
   }
 }
-
-namespace {
-
-// The velocity source on the member defaults (1 kHz loop, 0.3 ms envelope): the default
-// before the loop-rate candidate C, kept as the preset "virtual-1khz".
-StageParameters VelocitySourceAtMemberDefaults() {
-  StageParameters p;  // velocity source: the member defaults are the calibrated values
-  // Speed map through the paper's ten pulse points: a held pulse settles where
-  // p (v_f(u_i) - v) = g(v), so v_f(u_i) = v_i + sgn(v_i) g(|v_i|) / p gives exactly v_i.
-  p.SetSpeedMapThrough(StageParameters::PaperPulseTable());
-  return p;
-}
-
-// The loop-rate candidate C (docs/virtual_stage.md, "Loop rate"): at the member defaults'
-// 1 kHz loop with a 0.3 ms envelope the paper's PI gains ring in motion and the NN
-// feedforward beats the analytic inverse at 5 of 12 seeds (F5); a 10 kHz loop recorded at
-// 1 kHz (the paper's record rate) with a 0.1 ms envelope is quiet after each breakaway and
-// meets F5 at 11 of 12. The member defaults stay 1 kHz / 0.3 ms because the actuator-delay
-// preset builds on them; the speed map does not depend on the rates or the lag. The
-// drive-hysteresis presets build on C itself, not on Default(), so that they stay C if the
-// default moves again.
-StageParameters LoopRateC() {
-  StageParameters p = VelocitySourceAtMemberDefaults();
-  p.sample_rate_hz = 10000;
-  p.record_rate_hz = 1000;
-  p.lag_time_constant_s = 0.0001;
-  return p;
-}
-
-}  // namespace
 
 void StageParameters::SetDriveHysteresis(const DriveHysteresis& h) {
   const double forward = HeldDriveLag(true), backward = HeldDriveLag(false);
@@ -147,121 +112,6 @@ double DriveHysteresis::SaturationRate() const {
   return s > 0 ? (1 - w) / s : std::numeric_limits<double>::infinity();
 }
 
-double MotorParameters::Thrust(double y) const {
-  return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::tanh(y / thrust_limit_mps2) : y;
-}
-
-double MotorParameters::ThrustSlope(double y) const {
-  if (!(thrust_limit_mps2 > 0)) return 1.0;
-  const double t = std::tanh(y / thrust_limit_mps2);
-  return 1 - t * t;
-}
-
-double MotorParameters::DroopForThrust(double f) const {
-  return thrust_limit_mps2 > 0 ? thrust_limit_mps2 * std::atanh(f / thrust_limit_mps2) : f;
-}
-
-namespace {
-
-// Candidate C with asymmetric play operators of thresholds r [V], each of weight w (alpha 0.3).
-StageParameters LoopRateCWithPlay(const std::vector<double>& r, double w) {
-  StageParameters p = LoopRateC();
-  DriveHysteresis h;
-  h.thresholds_v = r;
-  h.weights.assign(r.size(), w);
-  h.rate_weights_s_per_v.assign(r.size(), 0.0);
-  h.rate_time_constant_s = 0.01;
-  h.asymmetry = 0.3;
-  p.SetDriveHysteresis(h);
-  return p;
-}
-
-// Preset "drive-hysteresis-static" (docs/virtual_stage.md, "Drive hysteresis"):
-// C with the ceramic's asymmetric, rate-independent hysteresis.
-StageParameters DriveHysteresisStaticPreset() {
-  StageParameters p = LoopRateCWithPlay({0.1, 0.2, 0.3}, 0.2);
-  p.name = "virtual PLS8/HR-8 (velocity source, static drive hysteresis)";
-  return p;
-}
-
-// Preset "drive-hysteresis" (docs/virtual_stage.md, "F8 with F5"): C with narrow
-// play operators whose lag partly creeps out (the creep's loop share), so that the loop widens
-// with the rate (F8 (c)) while a held pulse settles as without it (F1-F3). It meets every
-// required fact at seed 1 and F5 at 14 of 24 seeds (wider operators: 3 of 12).
-StageParameters DriveHysteresisPreset() {
-  StageParameters p = LoopRateCWithPlay({0.05, 0.1, 0.2}, 0.16);
-  p.name = "virtual PLS8/HR-8 (velocity source, drive hysteresis with creep)";
-  DriveCreep c;
-  c.voltage_share = 0;
-  c.loop_share = 0.3;
-  c.time_constant_s = 0.04;
-  p.SetDriveCreep(c);
-  return p;
-}
-
-}  // namespace
-
-// The default is the drive-hysteresis stage: of every stage tried it is the closest to the
-// paper that meets each required fact at seed 1, F8's loop among them. C is the preset
-// "velocity-source".
-StageParameters StageParameters::Default() { return DriveHysteresisPreset(); }
-
-StageParameters StageParameters::VelocitySource() {
-  StageParameters p = LoopRateC();
-  p.name = "virtual PLS8/HR-8 (velocity source)";
-  return p;
-}
-
-namespace {
-
-StageParameters VirtualOneKhz() {
-  StageParameters p = VelocitySourceAtMemberDefaults();
-  p.name = "virtual PLS8/HR-8 (velocity source, 1 kHz loop)";
-  return p;
-}
-
-struct PresetEntry {
-  const char* name;
-  StageParameters (*make)();
-};
-
-// Every preset, once: IsPresetName, Preset, PresetNames and every message listing them read it.
-constexpr PresetEntry kPresets[] = {{"virtual", &StageParameters::Default},
-                                    {"velocity-source", &StageParameters::VelocitySource},
-                                    {"virtual-1khz", &VirtualOneKhz},
-                                    {"actuator-delay", &StageParameters::ActuatorDelay},
-                                    {"drive-hysteresis", &StageParameters::Default},
-                                    {"drive-hysteresis-static", &DriveHysteresisStaticPreset}};
-
-}  // namespace
-
-const std::vector<std::string>& StageParameters::PresetNames() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> v;
-    for (const PresetEntry& e : kPresets) v.emplace_back(e.name);
-    return v;
-  }();
-  return names;
-}
-
-std::string StageParameters::PresetNameList() {
-  std::string text;
-  for (const std::string& name : PresetNames())
-    text += (text.empty() ? "" : ", ") + name + (name == "virtual" ? " (= drive-hysteresis)" : "");
-  return text;
-}
-
-bool StageParameters::IsPresetName(const std::string& name) {
-  const auto& names = PresetNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-StageParameters StageParameters::Preset(const std::string& name) {
-  for (const PresetEntry& e : kPresets)
-    if (name == e.name) return e.make();
-  throw OptionsError("stage preset '" + name + "' is not one of " + PresetNameList());
-}
-
 std::string ToString(StageModel model) {
   return model == StageModel::kActuatorDelay ? "actuator-delay" : "velocity-source";
 }
@@ -270,36 +120,6 @@ StageModel ParseStageModel(const std::string& text) {
   if (text == "velocity-source") return StageModel::kVelocitySource;
   if (text == "actuator-delay") return StageModel::kActuatorDelay;
   throw OptionsError("stage model '" + text + "' is not one of velocity-source, actuator-delay");
-}
-
-double RailFriction::Sliding(double speed_mps) const {
-  const double r = speed_mps / stribeck_velocity_mps;
-  return coulomb_mps2 + (static_mps2 - coulomb_mps2) * std::exp(-r * r);
-}
-
-double RailFriction::SlidingSlope(double speed_mps) const {
-  const double r = speed_mps / stribeck_velocity_mps;
-  return (static_mps2 - coulomb_mps2) * std::exp(-r * r) * (-2.0 * r) / stribeck_velocity_mps;
-}
-
-StageParameters StageParameters::ActuatorDelay() {
-  StageParameters p;
-  p.name = "virtual PLS8/HR-8 (actuator delay)";
-  p.model = StageModel::kActuatorDelay;
-  p.transport_delay_s = 0.002;
-  p.lag_time_constant_s = 0.0015;
-  // Friction branches near the paper's rough model (a1 ~ s2, a2 ~ Fc + a3 dz) with a Stribeck
-  // dip the rough model lacks; breakaway at dz + Fs/a3 = 0.63 V forward, 1.32 V backward.
-  p.forward = {2.2, 2.9, 0.004, 104.0};
-  p.backward = {5.9, 7.0, 0.004, 117.0};
-  // The driver's static characteristic, calibrated to the paper's pulse table: the knot at
-  // |u| - dz holds (g(v) + s2 v) / a3 for the paper's measured v at that amplitude u, so a
-  // held pulse settles at the paper's velocity (a near-identity map: corrections of <= 4 %).
-  p.drive_map_in_v = {-10.0, -2.35, -2.15, -1.95, -1.85, -1.65, 0.0,
-                      1.15,  1.35,  1.45,  1.55,  1.85,  10.0};
-  p.drive_map_out_v = {-10.0,  -2.37173, -2.06792, -1.95658, -1.88462, -1.64497, 0.0,
-                       1.1406, 1.36195,  1.44515,  1.55625,  1.84329,  10.0};
-  return p;
 }
 
 void StageParameters::Validate() const {
@@ -535,81 +355,6 @@ void StageParameters::ValidateDriveMap() const {
     }
   }
   Require(has_zero, "drive_map_in_v", 0.0, "a knot at 0 V (with M(0) = 0)");
-}
-
-double StageParameters::DriveMap(double u) const {
-  const auto& in = drive_map_in_v;
-  const auto& out = drive_map_out_v;
-  // Segment [k, k+1] containing u; the end segments extrapolate linearly.
-  size_t k = static_cast<size_t>(std::upper_bound(in.begin(), in.end(), u) - in.begin());
-  k = std::clamp<size_t>(k, 1, in.size() - 1) - 1;
-  const double s = (u - in[k]) / (in[k + 1] - in[k]);
-  return out[k] + s * (out[k + 1] - out[k]);
-}
-
-double StageParameters::NoLoadSpeed(double u) const {
-  const auto& in = motor.speed_map_in_v;
-  const auto& out = motor.speed_map_out_mps;
-  const bool forward = u > 0;
-  if (forward ? u <= motor.dead_zone_forward_v : u >= -motor.dead_zone_backward_v) return 0.0;
-  // This side's knots, preceded by the dead-zone edge (|u| = dz, v_f = 0), in order of |u|.
-  double prev_u = forward ? motor.dead_zone_forward_v : -motor.dead_zone_backward_v;
-  double prev_v = 0;
-  double last_u = prev_u, last_v = 0;
-  bool have_segment = false;
-  const size_t n = in.size();
-  for (size_t j = 0; j < n; ++j) {
-    const size_t i = forward ? j : n - 1 - j;
-    if ((in[i] > 0) != forward) continue;
-    const double ku = in[i], kv = out[i];
-    if (forward ? u <= ku : u >= ku) return prev_v + (u - prev_u) / (ku - prev_u) * (kv - prev_v);
-    last_u = prev_u;
-    last_v = prev_v;
-    prev_u = ku;
-    prev_v = kv;
-    have_segment = true;
-  }
-  if (!have_segment) return 0.0;
-  // Beyond the last knot: the last segment extended.
-  return prev_v + (u - prev_u) / (prev_u - last_u) * (prev_v - last_v);
-}
-
-double StageParameters::SteadyVelocity(double u_v) const {
-  const double u =
-      std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
-  if (model == StageModel::kVelocitySource) {
-    const double vf = NoLoadSpeed(u > 0   ? u - HeldDriveLag(true)
-                                  : u < 0 ? u + HeldDriveLag(false)
-                                          : 0.0);
-    const double p = motor.pole_per_s;
-    if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
-    // h(s) = T(p (|v_f| - s)) - g(s) falls through zero wherever it is zero (Validate), h(0) > 0
-    // and h(|v_f|) < 0, so one root in (0, |v_f|).
-    double lo = 0, hi = std::abs(vf);
-    for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (motor.Thrust(p * (std::abs(vf) - mid)) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
-    }
-    return (vf > 0 ? 1.0 : -1.0) * 0.5 * (lo + hi);
-  }
-  if (std::abs(u) <= dead_zone_v) return 0.0;
-  const double sign = u > 0 ? 1.0 : -1.0;
-  const FrictionBranch& b = u > 0 ? forward : backward;
-  const double drive = sign * gain_mps2_per_v * DriveMap(u - sign * dead_zone_v);
-  if (drive <= b.static_mps2) return 0.0;
-  // g(v) + s2 v dips below Fs (Stribeck) and then rises; since drive > Fs >= g, friction
-  // crosses the drive exactly once, above the dip.
-  double lo = 0, hi = 1e-6;
-  while (SteadyFriction(b, hi) <= drive) {
-    lo = hi;
-    hi *= 2;
-    if (hi > 1e3) return sign * hi;  // friction never catches up (s2 = 0): unbounded
-  }
-  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (SteadyFriction(b, mid) > drive ? hi : lo) = mid;
-  }
-  return sign * 0.5 * (lo + hi);
 }
 
 long StageParameters::RecordStride() const {
