@@ -125,6 +125,17 @@ void BindControl(py::module_& m) {
                              })
       .def_readonly("typical_test_mse", &PipelineResult::typical_test_mse)
       .def_readonly("tracking", &PipelineResult::tracking)
+      .def_readonly("skipped", &PipelineResult::skipped,
+                    "the steps a pulse-only run skipped and the recordings that enable them")
+      .def_readonly("model_tracking", &PipelineResult::model_tracking,
+                    "tracking on the identified model as the plant (a pulse-only run)")
+      .def_property_readonly(
+          "tuned_pi",
+          [](const PipelineResult& r) -> std::optional<PiOptions> {
+            if (!r.tuning) return std::nullopt;
+            return r.tuning->pi;
+          },
+          "the PI gains tuned on the model (a pulse-only run), else None")
       .def_property_readonly(
           "margins",
           [](const PipelineResult& r) -> std::optional<py::dict> {
