@@ -151,6 +151,35 @@ void WriteTrackFolder(Folder& folder, const Runs& runs, bool plots, const std::s
   });
 }
 
+// Progress per scheme on stderr, as every plant's loop reports it.
+std::function<void(FeedforwardScheme, size_t)> SchemeProgress(size_t schemes) {
+  return [schemes](FeedforwardScheme s, size_t i) {
+    Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1, schemes));
+  };
+}
+
+// The network --ff nn needs (read from --nn), else none.
+std::optional<NeuralNetwork> NetworkIfUsed(const std::vector<FeedforwardScheme>& schemes,
+                                           const TrackCliOptions& o) {
+  if (!Uses(schemes, FeedforwardScheme::kNetwork)) return std::nullopt;
+  if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
+  return ReadNeuralNetwork(o.nn_path);
+}
+
+// The friction plants' table (the stage, an identified model): errors in mm, then the column
+// `last` holding each run's stage limits.
+Table FrictionRunsTable(const std::vector<SchemeTracking>& runs, const std::string& last) {
+  Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
+               last});
+  for (const auto& run : runs) {
+    const auto& r = run.result;
+    table.AddRow({ToString(run.scheme), Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
+                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
+                  run.stage_limits});
+  }
+  return table;
+}
+
 void RunStackTrack(const TrackCliOptions& o) {
   namespace fs = std::filesystem;
   const auto folder = OptionalOutputFolder(o.out_dir, o.force,
@@ -194,10 +223,7 @@ void RunStackTrack(const TrackCliOptions& o) {
   std::vector<SchemeTracking> runs;
   try {
     runs = TrackStackSchemes(stack, o.seed, ref, pi, schemes, {nullptr, nullptr, hysteresis.get()},
-                             [&](FeedforwardScheme s, size_t i) {
-                               Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1,
-                                                    schemes.size()));
-                             });
+                             SchemeProgress(schemes.size()));
   } catch (const OptionsError& e) {
     RethrowWithFlag(e, {{"schemes", "--ff"}});
   }
@@ -250,26 +276,13 @@ void RunModelTrack(const TrackCliOptions& o) {
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
   const PositionReference& ref = parsed.reference;
   const FrictionModel ff_model = o.model_path.empty() ? plant : ReadModel(o.model_path);
-  std::optional<NeuralNetwork> nn;
-  if (Uses(schemes, FeedforwardScheme::kNetwork)) {
-    if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
-    nn = ReadNeuralNetwork(o.nn_path);
-  }
+  const std::optional<NeuralNetwork> nn = NetworkIfUsed(schemes, o);
   const std::vector<SchemeTracking> runs = TrackModelSchemes(
       plant, 1 / o.loop_rate_hz, ref, o.pi, schemes, {&ff_model, nn ? &*nn : nullptr},
-      [&](FeedforwardScheme s, size_t i) {
-        Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1, schemes.size()));
-      });
+      SchemeProgress(schemes.size()));
   ProgressDone();
   const std::string summary = TrackingSummaryToJson(o.plant, ref, o.pi, runs);
-  Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
-               "plant"});
-  for (const auto& run : runs) {
-    const auto& r = run.result;
-    table.AddRow({ToString(run.scheme), Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
-                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
-                  run.stage_limits});
-  }
+  const Table table = FrictionRunsTable(runs, "plant");
   if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
   if (o.json) {
     std::cout << summary;
@@ -304,32 +317,19 @@ void RunTrack(const TrackCliOptions& o) {
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
   const PositionReference& ref = parsed.reference;
   std::optional<FrictionModel> model;
-  std::optional<NeuralNetwork> nn;
   if (Uses(schemes, FeedforwardScheme::kAnalytic)) {
     if (o.model_path.empty()) throw OptionsError("--ff analytic needs --model M.json");
     model = ReadModel(o.model_path);
   }
-  if (Uses(schemes, FeedforwardScheme::kNetwork)) {
-    if (o.nn_path.empty()) throw OptionsError("--ff nn needs --nn NN.json");
-    nn = ReadNeuralNetwork(o.nn_path);
-  }
+  const std::optional<NeuralNetwork> nn = NetworkIfUsed(schemes, o);
   const std::vector<SchemeTracking> runs = TrackSchemes(
       stage, o.seed, ref, o.pi, schemes, {model ? &*model : nullptr, nn ? &*nn : nullptr},
-      [&](FeedforwardScheme s, size_t i) {
-        Progress(fmt::format("track: {} ({}/{})", ToString(s), i + 1, schemes.size()));
-      });
+      SchemeProgress(schemes.size()));
   ProgressDone();
 
   const std::string summary = TrackingSummaryToJson(
       StageParameters::IsPresetName(o.plant) ? stage.name : o.plant, ref, o.pi, runs);
-  Table table({"feedforward", "max |e| [mm]", "RMS e [mm]", "RMS u [V]", "max |u| [V]", "saturated",
-               "limits"});
-  for (const auto& run : runs) {
-    const auto& r = run.result;
-    table.AddRow({ToString(run.scheme), Num(1e3 * r.max_error_m, 5), Num(1e3 * r.rms_error_m, 5),
-                  Num(r.rms_u_v, 4), Num(r.max_abs_u_v, 4), std::to_string(r.saturated_samples),
-                  run.stage_limits});
-  }
+  const Table table = FrictionRunsTable(runs, "limits");
   if (folder) WriteTrackFolder(*folder, runs, o.plots, summary);
   std::cout << (o.json ? summary : "plant: " + stage.name + "\n" + table.Render());
 }
