@@ -383,11 +383,7 @@ TEST_CASE("bouc-wen-piezo: the fit recovers d, alpha, beta, gamma and the offset
   truth.offset_m = 3e-6;
   const double dt = 1e-3;
   // Decaying loops of several amplitudes (a sine sweep down in amplitude), 0..60 V.
-  Eigen::VectorXd u(3000);
-  for (Eigen::Index i = 0; i < u.size(); ++i) {
-    const double t = static_cast<double>(i) * dt;
-    u[i] = 30 + 30 * std::exp(-t / 2) * std::sin(2 * M_PI * 2 * t);
-  }
+  const Eigen::VectorXd u = PiezoInput(3000, dt);
   const Eigen::VectorXd y = PiezoBoucWen(truth).Simulate(u, dt);
   const Eigen::VectorXd x = y + Noise(y.size(), 2e-8, 7);  // 20 nm: a capacitive sensor's noise
   BoucWenFitOptions o;  // the automatic start: the straight line and a mild loop

@@ -68,6 +68,18 @@ void CheckBandLimitedWork(Eigen::Index rows, const char* kind) {
         kind, rows, work, kMaxFftWork));
 }
 
+void NewmarkAdvance(const MechanicalBoucWenParameters& p, double u1, double h, double y0,
+                    double v0, double a0, double z0, double f0, Eigen::Index i, double* y1,
+                    double* v1, double* a1, double* z1) {
+  NewmarkNewton(p, u1, h, y0, v0, a0, z0, f0, y1, z1);
+  *v1 = 2 * (*y1 - y0) / h - v0;
+  *a1 = 4 * (*y1 - y0 - h * v0) / (h * h) - a0;
+  if (!std::isfinite(*y1) || !std::isfinite(*z1))
+    throw NumericalError(fmt::format(
+        "bouc-wen: the Newmark step {} diverged (y = {}, z = {}): check the parameters", i, *y1,
+        *z1));
+}
+
 void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen::Index n, double h,
                     NewmarkState* s, double* y_out) {
   if (n < 1) return;
@@ -81,14 +93,8 @@ void NewmarkBoucWen(const MechanicalBoucWenParameters& p, const double* u, Eigen
   for (Eigen::Index i = k0; i < n; ++i) {
     const double y0 = s->y, v0 = s->v, a0 = s->a, z0 = s->z;
     const double f0 = MechanicalRate(p, v0, z0).f;
-    double y1 = 0, z1 = 0;
-    NewmarkNewton(p, u[i], h, y0, v0, a0, z0, f0, &y1, &z1);
-    const double v1 = 2 * (y1 - y0) / h - v0;
-    const double a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
-    if (!std::isfinite(y1) || !std::isfinite(z1))
-      throw NumericalError(fmt::format(
-          "bouc-wen: the Newmark step {} diverged (y = {}, z = {}): check the parameters", i, y1,
-          z1));
+    double y1 = 0, v1 = 0, a1 = 0, z1 = 0;
+    NewmarkAdvance(p, u[i], h, y0, v0, a0, z0, f0, i, &y1, &v1, &a1, &z1);
     s->y = y1;
     s->v = v1;
     s->a = a1;

@@ -59,14 +59,8 @@ void NewmarkSensitivity(const MechanicalBoucWenParameters& p, const Eigen::Vecto
   Vec f0p = RateParameterPartials(p, v0, z0, with_nu);
   const double j11 = 4 * m / (h * h) + 2 * c / h + k;
   for (Eigen::Index i = 1; i < nf; ++i) {
-    double y1 = 0, z1 = 0;
-    NewmarkNewton(p, uf[i], h, y0, v0, a0, z0, r0.f, &y1, &z1);
-    const double v1 = 2 * (y1 - y0) / h - v0;
-    const double a1 = 4 * (y1 - y0 - h * v0) / (h * h) - a0;
-    if (!std::isfinite(y1) || !std::isfinite(z1))
-      throw NumericalError(fmt::format(
-          "bouc-wen: the Newmark step {} diverged (y = {}, z = {}): check the parameters", i, y1,
-          z1));
+    double y1 = 0, v1 = 0, a1 = 0, z1 = 0;
+    NewmarkAdvance(p, uf[i], h, y0, v0, a0, z0, r0.f, i, &y1, &v1, &a1, &z1);
     const BoucWenRate r1 = MechanicalRate(p, v1, z1);
     const Vec f1p = RateParameterPartials(p, v1, z1, with_nu);
     // R1's derivative without the (y1, z1) terms, moved to the right.

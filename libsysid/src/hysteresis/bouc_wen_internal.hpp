@@ -106,6 +106,13 @@ inline void NewmarkNewton(const MechanicalBoucWenParameters& p, double u1, doubl
   *z1_out = z1;
 }
 
+/// One whole Newmark step from (y0, v0, a0, z0) with f0 = z'(v0, z0): NewmarkNewton for y1 and
+/// z1, then v1 and a1 by the Newmark formulas; NumericalError naming step `i` when it diverges.
+/// Shared by the simulation and its sensitivities.
+void NewmarkAdvance(const MechanicalBoucWenParameters& p, double u1, double h, double y0,
+                    double v0, double a0, double z0, double f0, Eigen::Index i, double* y1,
+                    double* v1, double* a1, double* z1);
+
 /// Newmark average acceleration (gamma = 1/2, beta = 1/4) on y with the trapezoidal rule on z,
 /// the implicit step solved by Newton on (y, z), at step h_s over the samples u (already at the
 /// integration rate), from the state (y, v, z); the state is updated. Returns y at every sample
