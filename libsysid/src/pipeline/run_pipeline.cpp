@@ -155,6 +155,25 @@ struct PipelineRun {
     internal::TimedStep(r, progress, name, body);
   }
 
+  // `track` on the smooth profile at each tracking frequency, sampled at `rate_hz`; the
+  // frequencies are independent, so they run side by side (--threads) and their rows are
+  // appended to `rows` in frequency order.
+  template <typename Track>
+  void TrackAtEachFrequency(double rate_hz, std::vector<TrackingRow>* rows, const Track& track) {
+    const auto& freqs = options.track_frequencies_hz;
+    std::vector<std::vector<SchemeTracking>> runs(freqs.size());
+    internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
+      SmoothProfileOptions p;
+      p.frequency_hz = freqs[static_cast<std::size_t>(i)];
+      p.amplitude_m = options.track_amplitude_m;
+      p.sample_rate_hz = rate_hz;
+      runs[static_cast<std::size_t>(i)] = track(MakeSmoothProfile(p));
+    });
+    for (std::size_t i = 0; i < freqs.size(); ++i)
+      for (const auto& run : runs[i])
+        rows->push_back({freqs[i], ToString(run.scheme), run.result});
+  }
+
   // Read the recordings; identify a1, a2 from the pulses, then the delay (and the refinement).
   void IdentifyModel() {
     step("read recordings", [&] {
@@ -319,41 +338,24 @@ struct PipelineRun {
       });
       step("PI tracking on the identified model", [&] {
         const PiOptions pi = r.tuning ? r.tuning->pi : r.margins->pi;
-        for (double f : options.track_frequencies_hz) {
-          SmoothProfileOptions p;
-          p.frequency_hz = f;
-          p.amplitude_m = options.track_amplitude_m;
-          p.sample_rate_hz = 1 / pi.sample_time_s;
-          const auto runs = TrackModelSchemes(
-              r.model, pi.sample_time_s, MakeSmoothProfile(p), pi,
-              {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic}, {&r.model, nullptr});
-          for (const auto& run : runs)
-            r.model_tracking.push_back({f, ToString(run.scheme), run.result});
-        }
+        TrackAtEachFrequency(1 / pi.sample_time_s, &r.model_tracking, [&](const PositionReference& ref) {
+          return TrackModelSchemes(r.model, pi.sample_time_s, ref, pi,
+                                   {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic},
+                                   {&r.model, nullptr});
+        });
       });
     }
 
     if (options.track && !inputs.stage.empty()) {
       step("PI tracking with feedforward", [&] {
         const StageParameters stage = ReadStageParameters(inputs.stage);
-        // The frequencies' runs are independent: side by side, then tabulated in their order.
-        const auto& freqs = options.track_frequencies_hz;
-        std::vector<std::vector<SchemeTracking>> runs(freqs.size());
-        internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
-          SmoothProfileOptions p;
-          p.frequency_hz = freqs[static_cast<std::size_t>(i)];
-          p.amplitude_m = options.track_amplitude_m;
-          p.sample_rate_hz = stage.sample_rate_hz;
-          std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
-                                                 FeedforwardScheme::kAnalytic};
-          if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
-          runs[static_cast<std::size_t>(i)] =
-              TrackSchemes(stage, 1, MakeSmoothProfile(p), options.pi, schemes,
-                           {&r.model, pulses_only ? nullptr : &r.network});
+        std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
+                                               FeedforwardScheme::kAnalytic};
+        if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
+        TrackAtEachFrequency(stage.sample_rate_hz, &r.tracking, [&](const PositionReference& ref) {
+          return TrackSchemes(stage, 1, ref, options.pi, schemes,
+                              {&r.model, pulses_only ? nullptr : &r.network});
         });
-        for (std::size_t i = 0; i < freqs.size(); ++i)
-          for (const auto& run : runs[i])
-            r.tracking.push_back({freqs[i], ToString(run.scheme), run.result});
       });
     } else if (options.track) {
       r.notes.push_back("no stage file: the tracking experiment was skipped");
