@@ -63,4 +63,17 @@ std::vector<Recording> MotionFlags::ReadRecordings(const std::vector<std::string
   return recs;
 }
 
+CLI::Option* AddMotionRecordings(CLI::App* cmd, std::vector<std::string>& paths) {
+  return cmd
+      ->add_option("recordings", paths,
+                   "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
+      ->type_name("REC.csv");
+}
+
+void AddModelAndRecordings(CLI::App* cmd, std::string& model, const std::string& model_help,
+                           std::vector<std::string>& recordings) {
+  cmd->add_option("--model", model, model_help)->required()->type_name("M.json");
+  AddMotionRecordings(cmd, recordings)->required();
+}
+
 }  // namespace sysid::cli

@@ -19,6 +19,14 @@ namespace sysid::cli {
 /// where v and a came from, `from` being MotionSource's words.
 std::string MotionSourceNote(const std::string& from);
 
+/// The positional recording files of a command that reads them with MotionFlags::ReadRecordings
+/// (t, u and x or a velocity column); the caller makes it required where it is.
+CLI::Option* AddMotionRecordings(CLI::App* cmd, std::vector<std::string>& paths);
+/// A required --model file (M.json, described by `model_help`) and required recordings
+/// (AddMotionRecordings): the inputs of tune-delay, refine and dominance.
+void AddModelAndRecordings(CLI::App* cmd, std::string& model, const std::string& model_help,
+                           std::vector<std::string>& recordings);
+
 struct MotionFlags {
   /// empty: the recording's v, a columns when present, else x with the algorithm's default
   /// filter; given: v, a from x with this filter (MotionOptions::prefer_velocity_column off).

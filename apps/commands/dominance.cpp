@@ -90,13 +90,8 @@ void AddDominanceCommand(CLI::App& app) {
       "Rank the inverse model's input variables (acceleration, velocity, ...) by the size of "
       "the terms of a3 u = x'' + a1 v(t-tau) + a2 sgn(v) they generate over the moving part "
       "[m/s^2]; batch over many recordings in parallel");
-  cmd->add_option("--model", o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)")
-      ->required()
-      ->type_name("M.json");
-  cmd->add_option("recordings", o->recordings,
-                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
-      ->required()
-      ->type_name("REC.csv");
+  AddModelAndRecordings(cmd, o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)",
+                        o->recordings);
   cmd->add_option("--candidate", o->candidates,
                   "further candidate variable NAME=COLUMN*GAIN: term GAIN*COLUMN [m/s^2]")
       ->type_name("NAME=COL*GAIN");

@@ -91,9 +91,7 @@ void AddIdentifyCommand(CLI::App& app) {
       "Identify the friction model x'' = -a1 v(t-tau) - a2 sgn(v) + a3 u from pulse recordings "
       "(the paper's steady-state least squares) or any excited recording (trajectory least "
       "squares, identifies a3 too). Exit 3 when parameters are not identifiable.");
-  cmd->add_option("recordings", o->recordings,
-                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
-      ->type_name("REC.csv");
+  AddMotionRecordings(cmd, o->recordings);
   cmd->add_option("--method", o->method, "pulse or trajectory")
       ->check(CLI::IsMember({"pulse", "trajectory"}))
       ->capture_default_str();

@@ -82,6 +82,32 @@ inline NeuralDataset ReadTrainingSet(const NeuralCliOptions& o,
       names, o.output);
 }
 
+// The data of one training run: the training set (ReadTrainingSet) and the --test and
+// --validation files (whole) when given; all read before training, so a bad file fails fast.
+struct NeuralDatasets {
+  NeuralDataset train;
+  std::unique_ptr<NeuralDataset> test, validation;  ///< null when not given
+};
+
+inline NeuralDatasets ReadNeuralDatasets(const NeuralCliOptions& o,
+                                         const std::vector<std::string>& names,
+                                         const std::string& command) {
+  NeuralDatasets d{ReadTrainingSet(o, names, command), nullptr, nullptr};
+  if (!o.test_path.empty())
+    d.test = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.test_path, names, o.output, o.recording.Mapping()));
+  if (!o.validation_path.empty())
+    d.validation = std::make_unique<NeuralDataset>(
+        ReadNeuralDataset(o.validation_path, names, o.output, o.recording.Mapping()));
+  return d;
+}
+
+// The unit of a mean squared error of the column `output` ("V^2"; "(unit)^2" when the column
+// has no known unit), for progress lines.
+inline std::string MseUnit(const std::string& output) {
+  return DefaultUnit(output).empty() ? "(unit)^2" : DefaultUnit(output) + "^2";
+}
+
 inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
   o.trainer = TrainerFlag(o.training.trainer);
   o.init = InitFlag(o.training.init);

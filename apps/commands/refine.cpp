@@ -57,13 +57,7 @@ void AddRefineCommand(CLI::App& app) {
       "refine",
       "Refine a1p, a1n, a2p, a2n, a3 and tau by minimising sum (v_sim - v_meas)^2 with Ceres "
       "(numeric differentiation through the simulator), starting from --model");
-  cmd->add_option("--model", o->model, "starting model file (JSON)")
-      ->required()
-      ->type_name("M.json");
-  cmd->add_option("recordings", o->recordings,
-                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
-      ->required()
-      ->type_name("REC.csv");
+  AddModelAndRecordings(cmd, o->model, "starting model file (JSON)", o->recordings);
   cmd->add_flag("--json", o->json, "print the refined model plus diagnostics as JSON");
   AddVerboseFlag(cmd, o->verbose);
   AddOutputOption(cmd, o->output, "write the refined model file (same JSON as --json)");

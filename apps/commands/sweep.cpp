@@ -29,24 +29,17 @@ void RunSweep(SweepCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   so.training = o.nn.training;
   const auto names = SplitComma(o.nn.inputs);
-  const NeuralDataset train = ReadTrainingSet(o.nn, names, "sweep");
-  std::unique_ptr<NeuralDataset> test, validation;
-  if (!o.nn.test_path.empty())
-    test = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.test_path, names, o.nn.output, o.nn.recording.Mapping()));
-  if (!o.nn.validation_path.empty())
-    validation = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output, o.nn.recording.Mapping()));
+  const NeuralDatasets data = ReadNeuralDatasets(o.nn, names, "sweep");
   if (ProgressEnabled()) {
     Progress(fmt::format("training {} networks ...", so.hidden_sizes.size()));
-    const std::string unit =
-        DefaultUnit(o.nn.output).empty() ? "(unit)^2" : DefaultUnit(o.nn.output) + "^2";
+    const std::string unit = MseUnit(o.nn.output);
     so.on_network = [unit](const HiddenSweepRow& row, size_t done, size_t total) {
       Progress(fmt::format("trained {}/{} networks (last: H = {}, {} epochs, training MSE {:.4g} {})",
                            done, total, row.hidden, row.epochs, row.train_mse, unit));
     };
   }
-  const HiddenSweepResult r = SweepHiddenSize(train, validation.get(), test.get(), so);
+  const HiddenSweepResult r =
+      SweepHiddenSize(data.train, data.validation.get(), data.test.get(), so);
   ProgressDone();
   const auto& best = r.rows[r.chosen];
 

@@ -28,19 +28,13 @@ void RunTrain(TrainCliOptions& o) {
   ResolveNeuralOptions(o.nn);
   const auto names = SplitComma(o.nn.inputs);
   // Read everything before training so bad files fail fast.
-  const NeuralDataset train = ReadTrainingSet(o.nn, names, "train");
-  std::unique_ptr<NeuralDataset> test, validation;
-  if (!o.nn.test_path.empty())
-    test = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.test_path, names, o.nn.output, o.nn.recording.Mapping()));
-  if (!o.nn.validation_path.empty())
-    validation = std::make_unique<NeuralDataset>(
-        ReadNeuralDataset(o.nn.validation_path, names, o.nn.output, o.nn.recording.Mapping()));
+  const NeuralDatasets data = ReadNeuralDatasets(o.nn, names, "train");
+  const NeuralDataset* test = data.test.get();
   if (ProgressEnabled())
     Progress(fmt::format("training {}-{}-1 ...", names.size(), o.nn.training.hidden));
-  AttachEpochProgress(o.nn.training, names.size(),
-                      DefaultUnit(o.nn.output).empty() ? "(unit)^2" : DefaultUnit(o.nn.output) + "^2");
-  const NeuralTrainingResult r = TrainNeuralNetwork(train, validation.get(), o.nn.training);
+  AttachEpochProgress(o.nn.training, names.size(), MseUnit(o.nn.output));
+  const NeuralTrainingResult r =
+      TrainNeuralNetwork(data.train, data.validation.get(), o.nn.training);
   ProgressDone();
   const double test_mse =
       test ? MeanSquaredError(r.network, *test) : std::numeric_limits<double>::quiet_NaN();
@@ -80,7 +74,7 @@ void RunTrain(TrainCliOptions& o) {
                            ToString(r.stop), r.message);
   Table t({"set", "MSE"});
   t.AddRow({"training", Num(r.train_mse)});
-  if (validation) t.AddRow({"validation", Num(r.validation_mse)});
+  if (data.validation) t.AddRow({"validation", Num(r.validation_mse)});
   if (test) t.AddRow({"test", Num(test_mse)});
   std::cout << t.Render();
   if (!o.nn.model_path.empty()) std::cout << "wrote " << o.nn.model_path << '\n';

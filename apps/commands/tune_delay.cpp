@@ -51,13 +51,8 @@ void AddTuneDelayCommand(CLI::App& app) {
       "tune-delay",
       "Tune the delay tau of the viscous term: minimise sum (v_sim - v_meas)^2 over all samples "
       "(NLopt DIRECT-L then BOBYQA, pulses simulated in parallel); other parameters fixed");
-  cmd->add_option("--model", o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)")
-      ->required()
-      ->type_name("M.json");
-  cmd->add_option("recordings", o->recordings,
-                  "recording CSVs: t [s], u [V] and x [m] or a velocity column [m/s]")
-      ->required()
-      ->type_name("REC.csv");
+  AddModelAndRecordings(cmd, o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)",
+                        o->recordings);
   DelayTuningOptions& d = o->options;
   const double tau_limit = DelayTuningOptions::kMaxTau_s;
   const CLI::Range tau_range(0.0, tau_limit);

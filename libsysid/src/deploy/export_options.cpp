@@ -19,15 +19,7 @@
 
 namespace sysid {
 
-using internal::CArray;
-using internal::CheckVectors;
-using internal::CLiteral;
 using internal::CType;
-using internal::Epsilon;
-using internal::Fill;
-using internal::Finish;
-using internal::Header;
-using internal::Range;
 
 std::string ToString(ExportPrecision precision) { return CType(precision); }
 

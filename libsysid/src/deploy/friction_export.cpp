@@ -14,15 +14,8 @@
 
 namespace sysid {
 
-using internal::CArray;
-using internal::CheckVectors;
-using internal::CLiteral;
-using internal::CType;
-using internal::Epsilon;
-using internal::Fill;
-using internal::Finish;
-using internal::Header;
-using internal::Range;
+// The C text helpers of c_text.hpp, by their short names.
+using namespace internal;
 
 // Long function: the exported C file, emitted top to bottom in the order it is read (header
 // comment, tables, state, init, step); split, the file's text would be scattered over helpers.

@@ -15,15 +15,8 @@
 
 namespace sysid {
 
-using internal::CArray;
-using internal::CheckVectors;
-using internal::CLiteral;
-using internal::CType;
-using internal::Epsilon;
-using internal::Fill;
-using internal::Finish;
-using internal::Header;
-using internal::Range;
+// The C text helpers of c_text.hpp, by their short names.
+using namespace internal;
 
 namespace {
 

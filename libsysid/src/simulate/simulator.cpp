@@ -84,17 +84,7 @@ class Simulator {
 
   SimulationResult Run() {
     StartMode();
-    while (usable()) {
-      SnapOntoStops();
-      if (!usable()) break;
-      BeginSegment();
-      EmitReached();
-      if (t_ >= t_end_ - TimeEps(t_end_)) break;
-      if (SkipStuckStretch()) continue;
-      const SegmentEnd end = IntegrateSegment();
-      if (!usable()) break;
-      EndSegment(end);
-    }
+    IntegrateToEnd(false);
     Finish();
     return std::move(result_);
   }
@@ -116,27 +106,7 @@ class Simulator {
       pending_decision_ = false;
       ChangeMode(p_.Decide(p_.Force(t_, 0.0)));
     }
-    while (usable()) {
-      SnapOntoStops();
-      if (!usable()) break;
-      BeginSegment();
-      EmitReached();
-      if (t_ >= t_end_ - TimeEps(t_end_)) break;
-      if (SkipStuckStretch()) {
-        if (pending_decision_) break;
-        continue;
-      }
-      const SegmentEnd end = IntegrateSegment();
-      if (!usable()) break;
-      if (end.t_s >= t_end_ - TimeEps(t_end_)) {
-        pending_end_ = end;
-        t_ = end.t_s;
-        x_ = cv_.state()[0];
-        v_ = p_.mode == 0 ? 0.0 : cv_.state()[1];
-        break;
-      }
-      EndSegment(end);
-    }
+    IntegrateToEnd(true);
     if (!usable())
       throw NumericalError("the friction model plant: " + result_.summary.message);
     return x_;
@@ -150,6 +120,33 @@ class Simulator {
 
  private:
   bool usable() const { return result_.summary.IsSolutionUsable(); }
+
+  /// Integrates segment by segment up to t_end_ (or a failure). `stepped` (Advance): a segment
+  /// ending at t_end_, or a stuck stretch reaching it, leaves its decision to the next call
+  /// (pending_end_, pending_decision_), which knows the input from t_end_ on.
+  void IntegrateToEnd(bool stepped) {
+    while (usable()) {
+      SnapOntoStops();
+      if (!usable()) break;
+      BeginSegment();
+      EmitReached();
+      if (t_ >= t_end_ - TimeEps(t_end_)) break;
+      if (SkipStuckStretch()) {
+        if (stepped && pending_decision_) break;
+        continue;
+      }
+      const SegmentEnd end = IntegrateSegment();
+      if (!usable()) break;
+      if (stepped && end.t_s >= t_end_ - TimeEps(t_end_)) {
+        pending_end_ = end;
+        t_ = end.t_s;
+        x_ = cv_.state()[0];
+        v_ = p_.mode == 0 ? 0.0 : cv_.state()[1];
+        break;
+      }
+      EndSegment(end);
+    }
+  }
 
   /// Tolerances, the root functions, the method's order cap and the step bound: tau keeps
   /// v(t - tau) in the accepted past (the history never has to extrapolate), the input may
