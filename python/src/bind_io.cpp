@@ -88,8 +88,8 @@ Recording RecordingFromArrays(const py::dict& columns, const std::string& source
 // ---- NumPy views into a recording's storage ----
 // rec[name] and rec.data are views into Recording::data (no copy), and appending a column grows
 // that matrix (Recording::SetColumn -> conservativeResize -> realloc), which may move it and free
-// the old buffer: a view taken before then reads and writes freed heap (the audit's `double free
-// or corruption`). Of the sound fixes this is the cheapest for users: copying on every rec[name]
+// the old buffer: a view taken before then would read and write freed heap (glibc's `double
+// free or corruption`). Of the sound fixes this is the cheapest for users: copying on every rec[name]
 // would cost a column per access and stop writes reaching the recording, and refusing set_column
 // while any view lives would make appending fail because of a stray variable. Instead every view
 // of a recording's current buffer has one owner (a capsule, the views' `base`), which holds the

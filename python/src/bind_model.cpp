@@ -45,8 +45,8 @@ void BindModel(py::module_& m) {
       .def_static("paper", &FrictionModel::Paper, "The paper's identified model.")
       // Both methods check the model once per call, here and not in FrictionModel's methods:
       // those run per sample in C++ loops (AnalyticInverse, the comparisons), whose callers
-      // validate once. Without it a3 = 0 gave inf and a NaN field NaN, as answers (OptionsError
-      // now, as analytic_inverse and every other consumer of a model).
+      // validate once. Without it a3 = 0 would give inf and a NaN field NaN, as answers; with
+      // it an invalid model is an OptionsError, as in analytic_inverse and every other consumer.
       .def("steady_velocity",
            [](const FrictionModel& f, const py::object& u) {
              f.Validate();

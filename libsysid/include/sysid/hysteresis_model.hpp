@@ -31,8 +31,8 @@ struct HysteresisFitSummary {
   std::string message;              ///< why the fit stopped; warnings (ill-conditioning, bounds)
 };
 
-/// A model's inverse run causally, one sample at a time, as a real-time controller runs it
-/// (issue #39): Step(x_ref at sample k) -> u_k from the reference so far, no allocation and no
+/// A model's inverse run causally, one sample at a time, as a real-time controller runs it:
+/// Step(x_ref at sample k) -> u_k from the reference so far, no allocation and no
 /// exception on finite input. The concrete steppers (PiInverseStepper, BoucWenInverseStepper in
 /// sysid/hysteresis_stepper.hpp; OperatorNetworkInverseStepper in sysid/nn_stepper.hpp) say
 /// more; HysteresisModel::InverseStepper makes the one of a model of any kind, so that a loop

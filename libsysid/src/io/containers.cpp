@@ -246,7 +246,7 @@ void CheckColumnsAndTime(const Recording& rec, const ReadOptions& options, const
         throw InputError(fmt::format("{}[{}]: time must be strictly increasing, found {} after {}",
                                      origin("t"), k + 1, Num(t[k]), Num(t[k - 1])));
     // A subnormal step has an infinite rate, a span past the largest double an infinite
-    // duration (--scale t=1e-320 gave the first).
+    // duration (--scale t=1e-320 makes the first).
     for (Eigen::Index k = 1; k < t.size(); ++k)
       if (!(t[k] - t[k - 1] >= kMinTimeStep_s) || !std::isfinite(t[k] - t[0]))
         throw InputError(fmt::format(

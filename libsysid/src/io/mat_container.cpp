@@ -510,7 +510,7 @@ class MatContainer : public SignalContainer {
 
   std::string path_;
   // Owned by a member, not closed in a destructor: the constructor throws on a malformed file
-  // after Mat_Open succeeded, and only members are cleaned up then (the fuzzer found the leak).
+  // after Mat_Open succeeded, and only members are cleaned up then (a destructor would leak).
   struct MatCloser {
     void operator()(mat_t* m) const { Mat_Close(m); }
   };

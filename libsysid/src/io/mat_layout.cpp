@@ -557,8 +557,8 @@ std::optional<std::size_t> CheckMatLayout(const std::string& path) {
     const std::uint32_t type = check.U32(tag);
     const std::uint64_t bytes = check.U32(tag + 4);
     // Only matrices (plain or compressed) belong at the top level of a MAT v5 file; matio stops
-    // at anything else, silently for some (200 bytes of 0xFF after a valid header were listed
-    // as a file of 0 variables, exit 0).
+    // at anything else, silently for some (it lists 200 bytes of 0xFF after a valid header as a
+    // file of 0 variables).
     if (type != kMiMatrix && type != kMiCompressed)
       check.Fail(path, fmt::format("an element of MAT data type {} where a variable belongs "
                                    "(garbage, or a damaged file)",

@@ -71,8 +71,8 @@ OperatorNetworkSide TrainSide(const std::vector<Eigen::VectorXd>& inputs,
 // Refuses, before anything is allocated, a fit whose memory passes kTrainingMemoryLimitBytes.
 // The options' own bounds (operators <= kMaxPlayOperators, hidden <= 200) are not enough: the
 // feature matrix grows with samples x operators and TrainNeuralNetwork's own limit is checked
-// only after TrainSide has built it, so 200 operators on 2e6 samples asked for two 3.2 GB
-// matrices and ended in std::bad_alloc (Python: MemoryError) instead of an OptionsError.
+// only after TrainSide has built it, so 200 operators on 2e6 samples would ask for two 3.2 GB
+// matrices and end in std::bad_alloc (Python: MemoryError) instead of an OptionsError.
 // Per side, sequentially: the dataset's N x (1 + m) features and its normalised copy, one
 // recording's features while they are copied in, targets (twice), and TrainNeuralNetwork's
 // estimate 16 P^2 + 8 N H; plus the u and x copies (2 N) held for both sides.
