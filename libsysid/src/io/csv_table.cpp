@@ -7,14 +7,22 @@
 
 namespace sysid {
 
-std::string CsvField(std::string_view s) {
-  if (s.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(s);
+namespace {
+
+// `s` in double quotes, each inner quote doubled (RFC 4180, 2.7).
+std::string InQuotes(std::string_view s) {
   std::string out = "\"";
   for (const char c : s) {
     if (c == '"') out += '"';
     out += c;
   }
   return out + "\"";
+}
+
+}  // namespace
+
+std::string CsvField(std::string_view s) {
+  return s.find_first_of(",\"\r\n") == std::string_view::npos ? std::string(s) : InQuotes(s);
 }
 
 CsvTable::CsvTable(const std::vector<std::string>& header, std::string_view preamble)
@@ -35,14 +43,7 @@ CsvTable& CsvTable::Append(std::string_view raw) {
 
 CsvTable& CsvTable::Text(std::string_view field) { return Append(CsvField(field)); }
 
-CsvTable& CsvTable::Quoted(std::string_view field) {
-  std::string out = "\"";
-  for (const char c : field) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return Append(out + "\"");
-}
+CsvTable& CsvTable::Quoted(std::string_view field) { return Append(InQuotes(field)); }
 
 CsvTable& CsvTable::Number(double v, int significant_digits) {
   return Append(fmt::format("{:.{}g}", v, significant_digits));
