@@ -1,8 +1,6 @@
 // The one CSV table writer (sysid/io_csv_table.hpp): RFC 4180 quoting, rows as wide as the
 // header, numbers as printf writes them. Python's csv module reads tricky tables back in
 // python/tests/test_csv_table.py (the independent reader).
-#include "sysid/io_csv_table.hpp"
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include <string>
 
 #include "sysid/error.hpp"
+#include "sysid/io_csv_table.hpp"
 
 using sysid::CsvField;
 using sysid::CsvTable;
@@ -41,7 +40,13 @@ TEST_CASE("a table is its header and rows, LF-terminated, with the fields as wri
 }
 
 TEST_CASE("numbers are printf's %.Ng, and 17 digits or Shortest read back exactly", "[io][csv]") {
-  const double values[] = {0.1, 1.0 / 3, -2.5e-310, 6.02214076e23, 123456789.0, 0.0, -0.0,
+  const double values[] = {0.1,
+                           1.0 / 3,
+                           -2.5e-310,
+                           6.02214076e23,
+                           123456789.0,
+                           0.0,
+                           -0.0,
                            std::numeric_limits<double>::max(),
                            std::numeric_limits<double>::quiet_NaN(),
                            std::numeric_limits<double>::infinity()};

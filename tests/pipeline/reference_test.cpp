@@ -13,7 +13,8 @@
 using sysid::test::SourcePath;
 using sysid::test::TempDir;
 
-TEST_CASE("the paper's reference numbers read as the JSON file holds them", "[pipeline][reference]") {
+TEST_CASE("the paper's reference numbers read as the JSON file holds them",
+          "[pipeline][reference]") {
   const std::string path = SourcePath("experiments/paper_numbers.json");
   const sysid::PipelineReference ref = sysid::ReadPipelineReference(path);
   const auto j = nlohmann::json::parse(std::ifstream(path));
@@ -55,8 +56,9 @@ TEST_CASE("an empty reference sets nothing; a wrong type is named at its key",
   CHECK_FALSE(empty.sweep);
   CHECK_FALSE(empty.tracking_max_error_mm);
   sysid::test::WriteText(dir / "bad.json", "{\"label\": \"x\",\n \"model\": {\"a1p\": \"fast\"}}");
-  CHECK_THROWS_WITH(sysid::ReadPipelineReference(dir / "bad.json"),
-                    Catch::StartsWith(dir / "bad.json" + ":2:2: model: expected an object of numbers"));
+  CHECK_THROWS_WITH(
+      sysid::ReadPipelineReference(dir / "bad.json"),
+      Catch::StartsWith(dir / "bad.json" + ":2:2: model: expected an object of numbers"));
   sysid::test::WriteText(dir / "freq.json", "{\"tracking_max_error_mm\": {\"fast\": {\"nn\": 1}}}");
   CHECK_THROWS_AS(sysid::ReadPipelineReference(dir / "freq.json"), sysid::InputError);
   // The pipeline reads it before its first step: a bad file fails at once, no recording read.

@@ -1,9 +1,8 @@
 // CSV tables in one dialect (sysid/io_csv_table.hpp).
-#include "sysid/io_csv_table.hpp"
-
 #include <fmt/format.h>
 
 #include "sysid/error.hpp"
+#include "sysid/io_csv_table.hpp"
 
 namespace sysid {
 
@@ -56,8 +55,8 @@ CsvTable& CsvTable::Integer(long long v) { return Append(fmt::format("{}", v)); 
 CsvTable& CsvTable::Empty() { return Append(""); }
 
 CsvTable& CsvTable::EndRow() {
-  SYSID_CHECK(fields_ == columns_, fmt::format("CsvTable: a row of {} fields under a header of {}",
-                                               fields_, columns_));
+  SYSID_CHECK(fields_ == columns_,
+              fmt::format("CsvTable: a row of {} fields under a header of {}", fields_, columns_));
   text_ += '\n';
   fields_ = 0;
   ++rows_;

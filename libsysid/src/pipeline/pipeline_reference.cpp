@@ -2,9 +2,9 @@
 // that a bad file fails before the long steps and the report reads nothing.
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,19 +45,16 @@ std::optional<double> PipelineReference::ModelValue(const std::string& name) con
 PipelineReference ReadPipelineReference(const std::string& path) {
   const std::string text = ReadFile(path);
   const nlohmann::json j = internal::ParseJsonText(text, path);  // positioned, duplicate keys
-  if (!j.is_object())
-    throw InputError(path + ":1:1: expected a JSON object of reference numbers");
+  if (!j.is_object()) throw InputError(path + ":1:1: expected a JSON object of reference numbers");
   PipelineReference ref;
-  ReadKey(j, text, path, "label", "a string", [&](const nlohmann::json& v) {
-    ref.label = v.get<std::string>();
-  });
+  ReadKey(j, text, path, "label", "a string",
+          [&](const nlohmann::json& v) { ref.label = v.get<std::string>(); });
   ReadKey(j, text, path, "model", "an object of numbers", [&](const nlohmann::json& v) {
     ref.model.emplace();
     for (const auto& [name, value] : v.items()) ref.model->emplace_back(name, value.get<double>());
   });
-  ReadKey(j, text, path, "dominance_ratio_bound", "a number", [&](const nlohmann::json& v) {
-    ref.dominance_ratio_bound = v.get<double>();
-  });
+  ReadKey(j, text, path, "dominance_ratio_bound", "a number",
+          [&](const nlohmann::json& v) { ref.dominance_ratio_bound = v.get<double>(); });
   ReadKey(j, text, path, "sweep", "an array of {hidden, epochs, train_mse, test_mse}",
           [&](const nlohmann::json& v) {
             ref.sweep.emplace();

@@ -21,13 +21,8 @@ void AddVelocityPlot(const PipelineFigures& f, ReportSection& s) {
     return;
   }
   if (f.pulse_velocity.empty()) return;
-  PlotSpec spec{"pulse response: measured and simulated velocity",
-                "t [s]",
-                "v [m/s]",
-                {},
-                false,
-                1100,
-                500};
+  PlotSpec spec{
+      "pulse response: measured and simulated velocity", "t [s]", "v [m/s]", {}, false, 1100, 500};
   for (const auto& t : f.pulse_velocity) spec.series.push_back({t.label, t.x, t.y, "lines"});
   s.AddPlot("pulse_velocity.png", spec, "measured vs simulated velocity");
 }
@@ -65,14 +60,20 @@ ReportSection PulseSection(const PipelineResult& r) {
   const auto& p = r.pulse;
   s.markdown = "\n## 1. Pulse-test identification\n\n";
   std::vector<std::vector<std::string>> rows;
-  CsvTable csv({"source", "t_start_s", "duration_s", "u_v", "v_mps", "v_stderr_mps", "status",
-                "reason"});
+  CsvTable csv(
+      {"source", "t_start_s", "duration_s", "u_v", "v_mps", "v_stderr_mps", "status", "reason"});
   for (const auto& e : p.pulses) {
     rows.push_back({fs::path(e.pulse.source).filename().string(), Sig(e.pulse.t_start_s, 4),
                     Sig(e.pulse.amplitude_v, 4), Sig(e.v_mps, 5), ToString(e.status), e.reason});
-    csv.Text(e.pulse.source).Number(e.pulse.t_start_s).Number(e.pulse.duration_s)
-        .Number(e.pulse.amplitude_v).Number(e.v_mps).Number(e.v_stderr_mps)
-        .Text(ToString(e.status)).Quoted(e.reason).EndRow();
+    csv.Text(e.pulse.source)
+        .Number(e.pulse.t_start_s)
+        .Number(e.pulse.duration_s)
+        .Number(e.pulse.amplitude_v)
+        .Number(e.v_mps)
+        .Number(e.v_stderr_mps)
+        .Text(ToString(e.status))
+        .Quoted(e.reason)
+        .EndRow();
   }
   s.markdown += MarkdownTable(
       {"recording", "t start [s]", "u [V]", "steady v [m/s]", "status", "reason"}, rows);
@@ -82,11 +83,11 @@ ReportSection PulseSection(const PipelineResult& r) {
                 Sig(p.fit.relative_error, 3) + ":\n\n";
   s.markdown += ParameterTable(r);
   if (!p.a3_given) s.markdown += "\n**Warning:** " + DescribeA3(p.model.a3, false) + ".\n";
-  s.markdown += "\nThe final model (" + std::string(p.a3_given ? "a3 given" : "a3 the default") +
-                ", then the delay" +
-                std::string(r.refine ? " and the output-error refinement of all six parameters"
-                                     : "") +
-                ") is `model.json`.\n";
+  s.markdown +=
+      "\nThe final model (" + std::string(p.a3_given ? "a3 given" : "a3 the default") +
+      ", then the delay" +
+      std::string(r.refine ? " and the output-error refinement of all six parameters" : "") +
+      ") is `model.json`.\n";
   s.writes.emplace_back("model.json", [&r](const std::string& path) { WriteModel(path, r.model); });
   return s;
 }

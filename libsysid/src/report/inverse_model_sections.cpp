@@ -28,18 +28,18 @@ void AddTypicalNetwork(const PipelineResult& r, ReportSection& s) {
   const double train_dom = chosen.train_mse;
   const bool overfits = t.train_mse <= train_dom && r.typical_test_mse > r.network_test_mse;
   s.markdown +=
-      overfits ? "\nAs in the paper, the typical network fits the training set at least as well "
-                 "and the test set worse: it overfits.\n"
-               : fmt::format(
-                     "\n**Not the paper's outcome:** the typical network's training MSE is {} "
-                     "and its test MSE {} against the dominant network's {} and {}. With "
-                     "encoder-quantised acceleration as an input, 120 units and the pipeline's "
-                     "epoch budget ({} epochs on every n-th training sample, n = {}), this data "
-                     "does not "
-                     "reproduce the overfitting; see docs/neural.md.\n",
-                     Sig(t.train_mse), Sig(r.typical_test_mse), Sig(train_dom),
-                     Sig(r.network_test_mse), r.options.typical_max_epochs,
-                     r.options.typical_stride);
+      overfits
+          ? "\nAs in the paper, the typical network fits the training set at least as well "
+            "and the test set worse: it overfits.\n"
+          : fmt::format(
+                "\n**Not the paper's outcome:** the typical network's training MSE is {} "
+                "and its test MSE {} against the dominant network's {} and {}. With "
+                "encoder-quantised acceleration as an input, 120 units and the pipeline's "
+                "epoch budget ({} epochs on every n-th training sample, n = {}), this data "
+                "does not "
+                "reproduce the overfitting; see docs/neural.md.\n",
+                Sig(t.train_mse), Sig(r.typical_test_mse), Sig(train_dom), Sig(r.network_test_mse),
+                r.options.typical_max_epochs, r.options.typical_stride);
   s.writes.emplace_back("nn_typical.json",
                         [&t](const std::string& path) { WriteNeuralNetwork(path, t.network); });
 }
@@ -48,8 +48,7 @@ void AddTypicalNetwork(const PipelineResult& r, ReportSection& s) {
 std::vector<std::string> ReferenceSweepCells(const PipelineReference& ref, int hidden) {
   std::vector<std::string> cells{"", "", ""};
   for (const auto& p : *ref.sweep)
-    if (p.hidden == hidden)
-      cells = {std::to_string(p.epochs), Sig(p.train_mse), Sig(p.test_mse)};
+    if (p.hidden == hidden) cells = {std::to_string(p.epochs), Sig(p.train_mse), Sig(p.test_mse)};
   return cells;
 }
 
@@ -84,8 +83,9 @@ ReportSection DominanceSection(const PipelineResult& r) {
         fs::path(res.source).filename().string(), res.peak_ratio, res.pointwise_ratio_quantile,
         res.pointwise_ratio_max, res.moving_samples);
   if (r.reference && r.reference->dominance_ratio_bound)
-    s.markdown += fmt::format("\n- {}: the bound (ratio of peaks, read off its figure) is O({:.1g}).",
-                              r.reference->label, *r.reference->dominance_ratio_bound);
+    s.markdown +=
+        fmt::format("\n- {}: the bound (ratio of peaks, read off its figure) is O({:.1g}).",
+                    r.reference->label, *r.reference->dominance_ratio_bound);
   s.markdown += "\n";
   s.files.emplace_back("dominance.csv", DominanceTableCsv(d));
   // The paper's figure: the acceleration term against the viscous term over time.
@@ -125,8 +125,12 @@ ReportSection NetworkSection(const PipelineResult& r) {
       cells.insert(cells.end(), extra.begin(), extra.end());
     }
     rows.push_back(cells);
-    csv.Integer(row.hidden).Integer(row.epochs).Number(row.train_mse).Number(row.test_mse)
-        .Text(ToString(row.stop)).EndRow();
+    csv.Integer(row.hidden)
+        .Integer(row.epochs)
+        .Number(row.train_mse)
+        .Number(row.test_mse)
+        .Text(ToString(row.stop))
+        .EndRow();
   }
   s.markdown += MarkdownTable(header, rows);
   s.markdown += "\nRule: " + sweep.rule + ". The chosen network is `nn.json`.\n";
@@ -164,11 +168,14 @@ ReportSection ComparisonSection(const PipelineResult& r) {
     rows.push_back({name, Sig(c.analytic.rmse_v, 4), Sig(c.nn.rmse_v, 4),
                     Sig(c.analytic.peak_error_v, 4), Sig(c.nn.peak_error_v, 4),
                     Sig(c.analytic.nrmse_range, 3), Sig(c.nn.nrmse_range, 3)});
-    for (const auto& [model, e] : {std::pair<const char*, const PredictionErrors*>{
-                                       "analytic", &c.analytic},
-                                   {"nn", &c.nn}})
-      csv.Text(name).Text(model).Number(e->rmse_v).Number(e->peak_error_v)
-          .Number(e->nrmse_range).EndRow();
+    for (const auto& [model, e] :
+         {std::pair<const char*, const PredictionErrors*>{"analytic", &c.analytic}, {"nn", &c.nn}})
+      csv.Text(name)
+          .Text(model)
+          .Number(e->rmse_v)
+          .Number(e->peak_error_v)
+          .Number(e->nrmse_range)
+          .EndRow();
     s.writes.emplace_back("compare_" + name + ".csv",
                           [&c](const std::string& path) { WriteRecording(path, c.AsRecording()); });
   }

@@ -30,8 +30,8 @@ std::string Header(const PipelineResult& r) {
                       : ", training set `" + fs::path(in.training).filename().string() +
                             "`, test set `" + fs::path(in.test).filename().string() + "`, ";
   std::string md = "# libsysid pipeline report\n\n";
-  md += "Inputs: `" + in.root + "` — " + std::to_string(in.pulses.size()) +
-        " pulse recording(s)" + sets + std::to_string(in.waveforms.size()) + " test waveform(s)" +
+  md += "Inputs: `" + in.root + "` — " + std::to_string(in.pulses.size()) + " pulse recording(s)" +
+        sets + std::to_string(in.waveforms.size()) + " test waveform(s)" +
         (in.loops.empty() ? std::string()
                           : ", " + std::to_string(in.loops.size()) + " voltage-loop sweep(s)") +
         "." + internal::MappingSentence(in) + "\n";
@@ -105,10 +105,10 @@ std::vector<std::string> WriteReport(const PipelineResult& r, const std::string&
   std::vector<std::string> notes = std::move(all.notes);
   for (std::size_t i = 0; i < all.plots.size(); ++i) {
     const auto& p = all.plots[i];
-    const std::string line = outcomes[i].written
-                                 ? "\n![" + p.caption + "](" + p.file + ")\n"
-                                 : "\n*(plot `" + p.file + "` not drawn: " +
-                                       outcomes[i].message + ")*\n";
+    const std::string line =
+        outcomes[i].written
+            ? "\n![" + p.caption + "](" + p.file + ")\n"
+            : "\n*(plot `" + p.file + "` not drawn: " + outcomes[i].message + ")*\n";
     if (!outcomes[i].written) notes.push_back(outcomes[i].message);
     const std::string marker = ReportSection::Marker(i);
     all.markdown.replace(all.markdown.find(marker), marker.size(), line);

@@ -20,10 +20,6 @@
 namespace sysid::internal {
 namespace {
 
-std::string G(double v, int digits = 4) {
-  return std::isnan(v) ? std::string("-") : fmt::format("{:.{}g}", v, digits);
-}
-
 // F8's note without its "not met: " lead (the verdict is already in bold).
 std::string FailedParts(const std::string& note) {
   const std::string lead = "not met: ";
@@ -33,6 +29,10 @@ std::string FailedParts(const std::string& note) {
 }  // namespace
 
 std::string Sig(double v, int digits) { return fmt::format("{:.{}g}", v, digits); }
+
+std::string SigOrDash(double v, int digits) {
+  return std::isnan(v) ? std::string("-") : Sig(v, digits);
+}
 
 std::string JoinWith(const std::vector<std::string>& v, const std::string& sep) {
   std::string out;
@@ -97,7 +97,8 @@ std::string MappingSentence(const PipelineInputs& inputs) {
 }
 
 std::string NetworkLabel(const PipelineResult& r) {
-  return fmt::format("NN inverse ({}), H = {}", JoinWith(r.nn_inputs, ", "), r.network.hidden_size());
+  return fmt::format("NN inverse ({}), H = {}", JoinWith(r.nn_inputs, ", "),
+                     r.network.hidden_size());
 }
 
 ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
@@ -117,22 +118,26 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
     (set == "training" ? m.typical_train : m.typical_test) = mt;
     (set == "training" ? m.dominant_train : m.dominant_test) = md;
     csv.Text("typical").Text("v a").Integer(typical.hidden_size()).Text(set).Number(mt).EndRow();
-    csv.Text("dominant").Text(JoinWith(r.nn_inputs, " ")).Integer(dominant.hidden_size())
-        .Text(set).Number(md).EndRow();
+    csv.Text("dominant")
+        .Text(JoinWith(r.nn_inputs, " "))
+        .Integer(dominant.hidden_size())
+        .Text(set)
+        .Number(md)
+        .EndRow();
     // Against the row index, as the paper's figures: the set is segments in random order, and
     // the index keeps them side by side without the gaps a time axis could show.
     Eigen::VectorXd k(n.targets_v.size());
     for (Eigen::Index i = 0; i < k.size(); ++i) k[i] = static_cast<double>(i);
-    PlotSpec spec{fmt::format("networks against the {} set", set),
-                  "sample index [1]",
-                  "u [V]",
-                  {{fmt::format("typical NN (v, a), H = {}", typical.hidden_size()), k,
-                    n.typical_v, "lines"},
-                   {NetworkLabel(r), k, n.dominant_v, "lines"},
-                   {"measured", k, n.targets_v, "lines"}},
-                  false,
-                  1400,
-                  500};
+    PlotSpec spec{
+        fmt::format("networks against the {} set", set),
+        "sample index [1]",
+        "u [V]",
+        {{fmt::format("typical NN (v, a), H = {}", typical.hidden_size()), k, n.typical_v, "lines"},
+         {NetworkLabel(r), k, n.dominant_v, "lines"},
+         {"measured", k, n.targets_v, "lines"}},
+        false,
+        1400,
+        500};
     // The data's range plus a quarter each way: a network that strays far outside (a typical
     // network extrapolating in a) is cut at the frame instead of flattening the data.
     const double lo = n.targets_v.minCoeff(), hi = n.targets_v.maxCoeff(), pad = 0.25 * (hi - lo);
@@ -140,7 +145,8 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
     spec.y_max = hi + pad;
     s.plots.push_back({fmt::format("network_{}.png", set), spec,
                        fmt::format("network outputs against the {} set (y: the data's range "
-                                   "+-25 %)", set)});
+                                   "+-25 %)",
+                                   set)});
   }
   const bool contrast = m.typical_test >= 2 * m.typical_train && m.dominant_test < m.typical_test;
   s.markdown = fmt::format(
@@ -154,14 +160,14 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
   s.markdown += MarkdownTable(
       {"network", "training MSE [V²]", "test MSE [V²]",
        "least MSE on its inputs, training / test [V²]", "paper (training / test)"},
-      {{fmt::format("typical (v, a), H = {}", typical.hidden_size()), G(m.typical_train),
-        G(m.typical_test), fmt::format("{} / {}", G(floors[0].first), G(floors[1].first)),
+      {{fmt::format("typical (v, a), H = {}", typical.hidden_size()), SigOrDash(m.typical_train),
+        SigOrDash(m.typical_test),
+        fmt::format("{} / {}", SigOrDash(floors[0].first), SigOrDash(floors[1].first)),
         "fits training; test very poor"},
        {fmt::format("dominant ({}), H = {}", JoinWith(r.nn_inputs, ", "), dominant.hidden_size()),
-        G(m.dominant_train), G(m.dominant_test),
-        fmt::format("{} / {}", G(floors[0].second), G(floors[1].second)),
-        fmt::format("{:.3f} / {:.3f}", paper::kDominantTrainMseV2,
-                    paper::kDominantTestMseV2)}});
+        SigOrDash(m.dominant_train), SigOrDash(m.dominant_test),
+        fmt::format("{} / {}", SigOrDash(floors[0].second), SigOrDash(floors[1].second)),
+        fmt::format("{:.3f} / {:.3f}", paper::kDominantTrainMseV2, paper::kDominantTestMseV2)}});
   s.markdown +=
       "\nThe least MSE is estimated from the data alone (`sysid irreducible`: the variance of u "
       "among each row's 10 nearest neighbours in the network's standardised inputs): a network "
@@ -189,7 +195,7 @@ ReportSection NetworkFigurePair(const PipelineResult& r, NetworkMses* mses) {
         "test set ({:.3g} × the paper's {:.3f} V²): the rows where the stage rests while u "
         "crosses the dead band decide the MSE, whatever the network (docs/virtual_stage.md, "
         "\"F7: what the data allow\").\n",
-        G(floors[1].second), floors[1].second / paper::kDominantTestMseV2,
+        SigOrDash(floors[1].second), floors[1].second / paper::kDominantTestMseV2,
         paper::kDominantTestMseV2);
   s.files.emplace_back("network_mse.csv", csv.str());
   if (mses) *mses = m;
@@ -208,35 +214,49 @@ ReportSection LoopFactSection(const StageFacts& facts) {
       "Triangle (one period, open loop): starts forward at {} V, backward at {} V; width = "
       "v (\\|u\\| falling) − v (\\|u\\| rising); mean width = enclosed area / voltage span.\n\n",
       f->met ? "met" : "not met", f->met ? std::string() : ", " + FailedParts(f->note),
-      G(t.start_forward_v), G(t.start_backward_v));
+      SigOrDash(t.start_forward_v), SigOrDash(t.start_backward_v));
   std::vector<std::vector<std::string>> rows;
   CsvTable csv({"test", "amplitude_v", "frequency_hz", "level_v", "width_mps",
                 "mean_width_forward_mps", "mean_width_backward_mps", "mean_width_mps"});
   for (const auto& l : t.levels) {
-    rows.push_back({fmt::format("{:+g}", l.level_v), G(1e3 * l.v_rising_mps),
-                    G(1e3 * l.v_falling_mps), G(1e3 * l.WidthMps()),
-                    G(100 * paper::LoopRelativeWidth(l), 3)});
-    csv.Text("triangle").Empty().Empty().Number(l.level_v, 6).Number(l.WidthMps())
-        .Number(t.MeanWidthForwardMps()).Number(t.MeanWidthBackwardMps())
-        .Number(paper::LoopMeanWidth(t)).EndRow();
+    rows.push_back({fmt::format("{:+g}", l.level_v), SigOrDash(1e3 * l.v_rising_mps),
+                    SigOrDash(1e3 * l.v_falling_mps), SigOrDash(1e3 * l.WidthMps()),
+                    SigOrDash(100 * paper::LoopRelativeWidth(l), 3)});
+    csv.Text("triangle")
+        .Empty()
+        .Empty()
+        .Number(l.level_v, 6)
+        .Number(l.WidthMps())
+        .Number(t.MeanWidthForwardMps())
+        .Number(t.MeanWidthBackwardMps())
+        .Number(paper::LoopMeanWidth(t))
+        .EndRow();
   }
   s.markdown += MarkdownTable({"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]",
                                "width [mm/s]", "width / \\|v\\| [%]"},
                               rows);
-  s.markdown += "\nSinusoids u = A sin(2π f t − π/2) − 0.3 V (second period; mean width [mm/s]):\n\n";
+  s.markdown +=
+      "\nSinusoids u = A sin(2π f t − π/2) − 0.3 V (second period; mean width [mm/s]):\n\n";
   rows.clear();
   for (const auto* sweep : {&loops.frequency_sweep, &loops.amplitude_sweep})
     for (const auto& r : *sweep) {
-      rows.push_back({G(r.amplitude_v), G(r.frequency_hz), G(r.loop.start_forward_v),
-                      G(r.loop.start_backward_v), G(1e3 * r.loop.MeanWidthForwardMps()),
-                      G(1e3 * r.loop.MeanWidthBackwardMps()), G(1e3 * r.mean_width_mps)});
-      csv.Text("sine").Number(r.amplitude_v, 6).Number(r.frequency_hz, 6).Empty().Empty()
-          .Number(r.loop.MeanWidthForwardMps()).Number(r.loop.MeanWidthBackwardMps())
-          .Number(r.mean_width_mps).EndRow();
+      rows.push_back(
+          {SigOrDash(r.amplitude_v), SigOrDash(r.frequency_hz), SigOrDash(r.loop.start_forward_v),
+           SigOrDash(r.loop.start_backward_v), SigOrDash(1e3 * r.loop.MeanWidthForwardMps()),
+           SigOrDash(1e3 * r.loop.MeanWidthBackwardMps()), SigOrDash(1e3 * r.mean_width_mps)});
+      csv.Text("sine")
+          .Number(r.amplitude_v, 6)
+          .Number(r.frequency_hz, 6)
+          .Empty()
+          .Empty()
+          .Number(r.loop.MeanWidthForwardMps())
+          .Number(r.loop.MeanWidthBackwardMps())
+          .Number(r.mean_width_mps)
+          .EndRow();
     }
-  s.markdown += MarkdownTable({"A [V]", "f [Hz]", "start forward [V]", "start backward [V]",
-                               "forward", "backward", "both"},
-                              rows);
+  s.markdown += MarkdownTable(
+      {"A [V]", "f [Hz]", "start forward [V]", "start backward [V]", "forward", "backward", "both"},
+      rows);
   s.files.emplace_back("loop_fact.csv", csv.str());
   return s;
 }

@@ -54,6 +54,8 @@ struct ReportSection {
 
 /// `v` with `digits` significant digits (%.{digits}g).
 std::string Sig(double v, int digits = 5);
+/// The same, "-" for NaN (a number that was not computed).
+std::string SigOrDash(double v, int digits = 4);
 /// The strings of `v` separated by `sep`.
 std::string JoinWith(const std::vector<std::string>& v, const std::string& sep);
 
@@ -61,15 +63,15 @@ std::string JoinWith(const std::vector<std::string>& v, const std::string& sep);
 ReportSection PulseSection(const PipelineResult& result);       ///< 1: pulses.csv, model.json
 ReportSection DelaySection(const PipelineResult& result);       ///< 2: cost curve, pulse response
 ReportSection DominanceSection(const PipelineResult& result);   ///< 3: dominance.csv
-ReportSection NetworkSection(const PipelineResult& result);       ///< 4: sweep.csv, nn.json
+ReportSection NetworkSection(const PipelineResult& result);     ///< 4: sweep.csv, nn.json
 ReportSection ComparisonSection(const PipelineResult& result);  ///< 5: comparison.csv
 ReportSection SkippedSection(const PipelineResult& result);     ///< 3-5 of a pulse-only run
 ReportSection TrackingSection(const PipelineResult& result);    ///< 6: tracking.csv
 ReportSection MarginsSection(const PipelineResult& result);     ///< 6: margins.json
 ReportSection ModelTrackingSection(const PipelineResult& result);  ///< 6: model_tracking.csv
-ReportSection FactsSection(const PipelineResult& result);       ///< 7: facts.json
-ReportSection LoopsSection(const PipelineResult& result);       ///< 8: loops.csv, loop_N.json
-ReportSection StepsSection(const PipelineResult& result);         ///< steps and notes
+ReportSection FactsSection(const PipelineResult& result);          ///< 7: facts.json
+ReportSection LoopsSection(const PipelineResult& result);          ///< 8: loops.csv, loop_N.json
+ReportSection StepsSection(const PipelineResult& result);          ///< steps and notes
 
 /// The four MSEs of the typical and the dominant network on the pipeline's sets, as the facts'
 /// F7 computes them: each network on every row of the training set and of the test set.

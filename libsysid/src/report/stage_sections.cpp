@@ -60,14 +60,17 @@ ReportSection LoopsSection(const PipelineResult& r) {
         volts(l.start_backward_v), volts(l.stop_forward_v), volts(l.stop_backward_v));
     std::vector<std::vector<std::string>> rows;
     for (const auto& lv : l.levels) {
-      rows.push_back({Sig(lv.level_v, 4), mm(lv.v_rising_mps), mm(lv.v_falling_mps),
-                      mm(lv.WidthMps())});
-      csv.Text(name).Number(lv.level_v).Number(lv.v_rising_mps).Number(lv.v_falling_mps)
-          .Number(lv.WidthMps()).EndRow();
+      rows.push_back(
+          {Sig(lv.level_v, 4), mm(lv.v_rising_mps), mm(lv.v_falling_mps), mm(lv.WidthMps())});
+      csv.Text(name)
+          .Number(lv.level_v)
+          .Number(lv.v_rising_mps)
+          .Number(lv.v_falling_mps)
+          .Number(lv.WidthMps())
+          .EndRow();
     }
-    s.markdown += MarkdownTable({"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]",
-                                 "width [mm/s]"},
-                                rows);
+    s.markdown += MarkdownTable(
+        {"u [V]", "v, \\|u\\| rising [mm/s]", "v, \\|u\\| falling [mm/s]", "width [mm/s]"}, rows);
     PlotSpec spec{"voltage-velocity loop: " + name, "u [V]", "v [mm/s]", {}, false, 900, 600};
     spec.series.push_back({name, l.u_v, 1e3 * l.v_mps, "lines"});
     s.AddPlot(fmt::format("loop_{}.png", i + 1), spec, "voltage-velocity loop " + name);

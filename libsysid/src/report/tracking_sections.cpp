@@ -47,8 +47,12 @@ std::string RingingSentence(const PipelineResult& r, double f) {
 std::string TrackingCsv(const std::vector<TrackingRow>& rows) {
   CsvTable csv({"frequency_hz", "ff", "max_error_m", "rms_error_m", "rms_u_v"});
   for (const auto& t : rows)
-    csv.Shortest(t.frequency_hz).Text(t.scheme).Number(t.result.max_error_m)
-        .Number(t.result.rms_error_m).Number(t.result.rms_u_v).EndRow();
+    csv.Shortest(t.frequency_hz)
+        .Text(t.scheme)
+        .Number(t.result.max_error_m)
+        .Number(t.result.rms_error_m)
+        .Number(t.result.rms_u_v)
+        .EndRow();
   return csv.str();
 }
 
@@ -61,9 +65,9 @@ std::string MarginsTable(const PiMarginsReport& m) {
   for (const auto& [name, a1, l] : m.Directions())
     rows.push_back({name, Sig(a1), num(l.crossover_rad_s, 4), num(l.phase_margin_deg, 3),
                     num(l.gain_margin, 3), l.Stable() ? "yes" : "**no**"});
-  return MarkdownTable({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
-                        "gain margin", "stable"},
-                       rows);
+  return MarkdownTable(
+      {"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]", "gain margin", "stable"},
+      rows);
 }
 
 // The reference's max error [mm] at frequency f for `scheme`, or "".
@@ -84,10 +88,10 @@ std::string OrderingLine(const PipelineResult& r, double f) {
   const bool with_nn = r.skipped.empty();
   const bool ordered = e[0] > e[1] && (!with_nn || e[1] > e[2]);
   return fmt::format("\n- {} Hz: {}", f,
-                     !with_nn ? fmt::format("max error {:.4g} mm with PI alone, {:.4g} mm with "
-                                            "the analytic feedforward (no network: pulses "
-                                            "alone).",
-                                            1e3 * e[0], 1e3 * e[1])
+                     !with_nn  ? fmt::format("max error {:.4g} mm with PI alone, {:.4g} mm with "
+                                              "the analytic feedforward (no network: pulses "
+                                              "alone).",
+                                             1e3 * e[0], 1e3 * e[1])
                      : ordered ? "the paper's ordering holds (PI > PI + analytic > PI + NN)."
                                : fmt::format("**the paper's ordering does not hold** (max "
                                              "errors {:.4g}, {:.4g}, {:.4g} mm for none, "
@@ -120,12 +124,13 @@ ReportSection TrackingSection(const PipelineResult& r) {
       r.options.pi.ki_v_per_m_s, r.options.pi.u_max_v, 1e3 * r.options.track_amplitude_m);
   const PipelineReference* ref =
       r.reference && r.reference->tracking_max_error_mm ? &*r.reference : nullptr;
-  std::vector<std::string> header{"frequency [Hz]", "feedforward", "max \\|e\\| [mm]",
-                                  "RMS e [mm]", "RMS u [V]"};
+  std::vector<std::string> header{"frequency [Hz]", "feedforward", "max \\|e\\| [mm]", "RMS e [mm]",
+                                  "RMS u [V]"};
   if (ref) header.push_back(ref->label + " max \\|e\\| [mm]");
   std::vector<std::vector<std::string>> rows;
   for (const auto& t : r.tracking) {
-    std::vector<std::string> row{Sig(t.frequency_hz, 3), t.scheme, Sig(1e3 * t.result.max_error_m, 4),
+    std::vector<std::string> row{Sig(t.frequency_hz, 3), t.scheme,
+                                 Sig(1e3 * t.result.max_error_m, 4),
                                  Sig(1e3 * t.result.rms_error_m, 4), Sig(t.result.rms_u_v, 4)};
     if (ref) row.push_back(ReferenceMaxError(*ref, t.frequency_hz, t.scheme));
     rows.push_back(row);
