@@ -46,7 +46,7 @@ TEST_CASE("the paper's reference numbers read as the JSON file holds them",
   CHECK(ref.tracking_max_error_mm->size() == n);
 }
 
-TEST_CASE("an empty reference sets nothing; a wrong type is named at its key",
+TEST_CASE("an empty reference sets nothing, a wrong type is named at its key",
           "[pipeline][reference]") {
   TempDir dir;
   sysid::test::WriteText(dir / "empty.json", "{}");
