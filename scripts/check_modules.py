@@ -12,6 +12,11 @@ a violation.
   scripts/check_modules.py --graph    print the module graph as markdown (for the docs)
   scripts/check_modules.py --root DIR check another source tree (the check's own test)
 
+The report module only formats what the pipeline computed (docs/architecture.md, "report"):
+a call in libsysid/src/report/ to a function that reads, simulates, fits, trains or analyses
+(REPORT_FORBIDDEN_CALL), or an include of such a module's header (REPORT_FORBIDDEN_INCLUDES), is
+reported with file and line, and the check fails.
+
 The check also reads docs/architecture.md: its layer line (the code block under "## Layers")
 must list LAYERS in order, and its graph table must be the one --graph prints, so the
 architecture doc cannot drift from the sources.
@@ -42,6 +47,14 @@ LAYERS = [
     ["pipeline"],
     ["report"],
 ]
+# What report/ may not call: the library's readers, simulators, fits, trainers and analyses
+# (by their names' verbs), outside comments and string literals. RunGnuplot draws.
+REPORT_FORBIDDEN_CALL = re.compile(
+    r"\b((?:Read|Load|Parse|Simulate|Fit|Invert|Train|Identify|Tune|Estimate|Analyze|Rank|Refine"
+    r"|Sweep|MotionRipple)\w*|(?:Track|Run|Compare|Validate)[A-Z]\w*)\s*\(")
+REPORT_ALLOWED_CALLS = {"RunGnuplot"}
+REPORT_FORBIDDEN_INCLUDES = {"sysid/simulate.hpp", "sysid/nn_irreducible.hpp", "sysid/delay.hpp",
+                             "sysid/identify.hpp"}
 HEADER_MODULE = {"error": "core", "termination": "core", "stage_facts": "paper"}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
@@ -100,6 +113,34 @@ def doc_problems(doc, table, root):
     return problems
 
 
+def code_only(line):
+    """`line` without string literals and // comments (block comments are not used in src/)."""
+    line = re.sub(r'"(?:\\.|[^"\\])*"', '""', line)
+    line = re.sub(r"'(?:\\.|[^'\\])*'", "''", line)
+    return line.split("//", 1)[0]
+
+
+def report_problems(src, root):
+    """Calls and includes in report/ that would read, simulate or compute there."""
+    problems = []
+    for path in sorted((src / "report").rglob("*")):
+        if path.suffix not in (".cpp", ".hpp"):
+            continue
+        for lineno, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            where = f"{path.relative_to(root)}:{lineno}"
+            hit = INCLUDE.match(line)
+            if hit and hit.group(1) in REPORT_FORBIDDEN_INCLUDES:
+                problems.append(f"{where}: report/ includes {hit.group(1)}: the report formats what "
+                                f"the pipeline computed (put the computation in pipeline/)")
+                continue
+            for call in REPORT_FORBIDDEN_CALL.finditer(code_only(line)):
+                if call.group(1) not in REPORT_ALLOWED_CALLS:
+                    problems.append(f"{where}: report/ calls {call.group(1)}: the report reads, "
+                                    f"simulates and computes nothing (put it in pipeline/, its "
+                                    f"result in PipelineResult)")
+    return problems
+
+
 def main():
     root = pathlib.Path(__file__).resolve().parent.parent
     if "--root" in sys.argv:
@@ -147,6 +188,9 @@ def main():
                 problems.append(
                     f"{where}: module '{m}' includes {target} of module '{n}', which is "
                     f"{'in the same layer' if rank[n] == rank[m] else 'above it'}")
+
+    if (src / "report").is_dir():
+        problems += report_problems(src, root)
 
     table = graph_table(edges, rank)
     if "--graph" in sys.argv:

@@ -15,6 +15,7 @@
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
+#include "sysid/io_csv_table.hpp"
 #include "sysid/io_output.hpp"
 #include "sysid/signal.hpp"
 
@@ -175,6 +176,30 @@ Recording DeriveRecording(Recording recording, const DerivativeOptions& options,
   return recording;
 }
 
+// sysid.csv_table: Python's cells through the library's one CSV writer.
+std::string CsvTableOf(const std::vector<std::string>& header, const std::vector<py::list>& rows,
+                       int digits) {
+  CsvTable table(header);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].size() != header.size())
+      throw py::value_error(fmt::format("csv_table: row {} has {} fields, the header {}", i,
+                                        rows[i].size(), header.size()));
+    for (const py::handle cell : rows[i]) {
+      if (cell.is_none()) table.Empty();
+      else if (py::isinstance<py::str>(cell)) table.Text(cell.cast<std::string>());
+      else if (py::isinstance<py::bool_>(cell)) table.Integer(cell.cast<bool>() ? 1 : 0);
+      else if (py::isinstance<py::int_>(cell)) table.Integer(cell.cast<long long>());
+      else if (py::isinstance<py::float_>(cell)) table.Number(cell.cast<double>(), digits);
+      else
+        throw py::type_error(fmt::format("csv_table: row {}: expected str, int, float or None, "
+                                         "got {}",
+                                         i, py::str(cell.get_type()).cast<std::string>()));
+    }
+    table.EndRow();
+  }
+  return table.str();
+}
+
 }  // namespace
 
 // Long function: a pybind11 registration table, one entry per bound type and field in the
@@ -295,6 +320,15 @@ void BindIo(py::module_& m) {
         "metadata kept and 'crop_s: START END' added (`--t-start/--t-end`). DataError naming the "
         "source when a bound lies outside the recording, the start is not before the end, or "
         "fewer than two rows remain.");
+
+  m.def(
+      "csv_table",
+      &CsvTableOf,
+      py::arg("header"), py::arg("rows"), py::arg("digits") = 17,
+      "A CSV table as sysid writes every table (the report's, the CLI's): RFC 4180 quoting (a "
+      "field with a comma, quote, CR or LF quoted, quotes doubled), LF line ends; str fields as "
+      "text, int as integers, float with `digits` significant digits (17: exact round trip), "
+      "None empty, bool as 1/0. ValueError when a row is not as wide as the header.");
 
   // ---- Signal conditioning ----
   py::enum_<DerivativeMethod> method(m, "DerivativeMethod");

@@ -20,6 +20,7 @@ from . import _sysid
 from ._sysid import (  # noqa: F401  (re-exported)
     Error, DataError, OptionsError, NumericalError, InternalError,
     ReadOptions, Recording, SamplingReport, analyze_sampling, resample, crop, parse_recording,
+    csv_table,
     DerivativeMethod, DerivativeOptions, Derivatives, differentiate, MotionOptions, MotionSignals,
     extract_motion,
     Model, InputSignal, table_input, SineComponent, sines_input, PulseTrainSpec, pulse_train,

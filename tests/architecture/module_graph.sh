@@ -29,3 +29,16 @@ fi
 grep -q "docs/architecture.md:[0-9]*: the graph table reads '| nn | .*, stage |'" "$tmp/err" \
   || { echo "FAIL: the doc drift is not named with its line:"; cat "$tmp/err"; exit 1; }
 echo "ok: a drifted architecture doc is reported"
+
+# The report formats what the pipeline computed: a read or a simulation planted in report/
+# fails, naming file, line and call.
+rm -rf "$tmp/libsysid" "$tmp/docs" && mkdir -p "$tmp/libsysid"
+cp -R "$src/libsysid/src" "$src/libsysid/include" "$tmp/libsysid/"
+printf 'static auto planted = [](const sysid::FrictionModel& m, const sysid::Recording& r) {\n  return sysid::SimulateRecording(m, r);\n};\n' \
+  >> "$tmp/libsysid/src/report/stack_report.cpp"
+if python3 "$src/scripts/check_modules.py" --root "$tmp" 2> "$tmp/err"; then
+  echo "FAIL: a simulation planted in report/ passed the check"; exit 1
+fi
+grep -q "libsysid/src/report/stack_report.cpp:[0-9]*: report/ calls SimulateRecording" "$tmp/err" \
+  || { echo "FAIL: the planted call is not named with its line:"; cat "$tmp/err"; exit 1; }
+echo "ok: a simulation in report/ is reported"

@@ -129,6 +129,25 @@ TEST_CASE("the stack pipeline scores each model as fitting and simulating it dir
     CHECK(s.forward_nrmse_std < 0.5);  // even the static network, a line through the loop
     if (s.inverse_error.empty()) CHECK(s.inverse_nrmse_std < 0.5);
   }
+  // The report's figures, computed here: the scored part's first 600 rows (800..1399) of the
+  // recording and of the direct fit's simulation and inverse, under the table's row labels.
+  const auto& f = r.figures;
+  CHECK(f.stack_source == dir / "stack.csv");
+  REQUIRE(f.stack_position.size() == r.stack_models.size() + 1);
+  REQUIRE(f.stack_voltage.size() >= 2);
+  CHECK(f.stack_position[0].label == "measured");
+  CHECK(f.stack_position[1].label == "1 " + pi.label);
+  CHECK(f.stack_voltage[1].label == "1 " + pi.label);
+  for (const auto* traces : {&f.stack_position, &f.stack_voltage})
+    for (const auto& t : *traces) {
+      REQUIRE(t.x.size() == sysid::kStackFigureSamples);
+      CHECK(t.x[0] == rec.data(800, 0));
+      CHECK(t.x[599] == rec.data(1399, 0));
+    }
+  CHECK(f.stack_position[0].y[0] == rec.data(800, 2));
+  CHECK(f.stack_voltage[0].y[599] == rec.data(1399, 1));
+  CHECK(f.stack_position[1].y[0] == Approx(xm[800]).epsilon(1e-10));
+  CHECK(f.stack_voltage[1].y[599] == Approx(um[1399]).epsilon(1e-10));
   // The summary names the split and carries the table.
   const auto j = nlohmann::json::parse(sysid::StackSummaryJson(r));
   CHECK(j["dataset"] == "stack");

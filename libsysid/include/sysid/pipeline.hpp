@@ -160,7 +160,55 @@ struct PipelineFigures {
     double typical_floor_mse = 0, dominant_floor_mse = 0;
   };
   std::vector<NetworkSet> networks;
+  /// With tracking on the stage: where PI alone rings while the stage moves (the RMS of its
+  /// error minus the error's moving average above FactsOptions' motion_ripple_tolerance_m, as
+  /// F4 measures it), one entry per such tracking frequency.
+  struct Ringing {
+    double frequency_hz = 0;    ///< [Hz] the profile's
+    double sample_rate_hz = 0;  ///< [Hz] the loop's
+    double rms_m = 0;           ///< [m] RMS of e minus its moving average, in motion
+    double ringing_hz = 0;      ///< [Hz] the ripple's frequency
+  };
+  std::vector<Ringing> tracking_ringing;
+  /// A stack data set: the first recording's scored part, its first samples (at most
+  /// kStackFigureSamples, a few periods), against t [s]: the measured x [m] then each model's
+  /// forward simulation (stack_position), the measured u [V] then each model's inverse
+  /// (stack_voltage). Labels "measured" and "ROW LABEL" (the row of stack_models, from 1).
+  std::string stack_source;
+  std::vector<Trace> stack_position, stack_voltage;
 };
+
+/// The most samples of the stack figures' traces (PipelineFigures::stack_position).
+inline constexpr Eigen::Index kStackFigureSamples = 600;
+
+/// Reference numbers set beside ours in the report (e.g. the paper's:
+/// experiments/paper_numbers.json), read by RunPipeline from options.reference_path before the
+/// first step. Every key is optional; an absent one leaves its member unset.
+struct PipelineReference {
+  std::string label = "reference";  ///< "label"
+  /// "model": friction-model parameters by name (a1p, a1n, a2p, a2n, a3 [SI], tau [s]).
+  std::optional<std::vector<std::pair<std::string, double>>> model;
+  std::optional<double> dominance_ratio_bound;  ///< [1] "dominance_ratio_bound"
+  struct SweepRow {
+    int hidden = -1;
+    int epochs = 0;
+    double train_mse = 0, test_mse = 0;  ///< [V^2]
+  };
+  std::optional<std::vector<SweepRow>> sweep;  ///< "sweep"
+  struct TrackingError {
+    double frequency_hz = 0;  ///< [Hz]
+    std::string scheme;       ///< "none", "analytic", "nn"
+    double max_error_mm = 0;  ///< [mm]
+  };
+  /// "tracking_max_error_mm": {"FREQUENCY": {"SCHEME": max error [mm]}}.
+  std::optional<std::vector<TrackingError>> tracking_max_error_mm;
+  /// The model value named `name`, if given.
+  std::optional<double> ModelValue(const std::string& name) const;
+};
+
+/// Reads a reference file; InputError "PATH:LINE:COL: ..." on bad JSON or a value of the wrong
+/// type.
+PipelineReference ReadPipelineReference(const std::string& path);
 
 struct PipelineResult {
   PipelineInputs inputs;
@@ -203,7 +251,8 @@ struct PipelineResult {
   /// recording (which variable carries the input).
   std::vector<HysteresisSplitScore> stack_models;
   std::vector<CandidateRanking> stack_dominance;
-  PipelineFigures figures;  ///< the stage pipeline's; empty for a stack data set
+  PipelineFigures figures;
+  std::optional<PipelineReference> reference;  ///< with options.reference_path
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report
 };

@@ -10,6 +10,7 @@
 #include "core/json_text.hpp"
 #include "signal/signal_json.hpp"
 #include "sysid/compare.hpp"
+#include "sysid/io_csv_table.hpp"
 
 namespace sysid {
 namespace {
@@ -85,19 +86,18 @@ CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& 
 }
 
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {
-  std::string csv = "recording,model,rmse_v,peak_error_v,nrmse_range,r2\n";
+  CsvTable csv({"recording", "model", "rmse_v", "peak_error_v", "nrmse_range", "r2"});
   for (const auto& c : comparisons) {
-    // A file name may hold a comma or a line break: quoted, the row stays one row.
-    const std::string name = internal::CsvField(std::filesystem::path(c.source).stem().string());
+    const std::string name = std::filesystem::path(c.source).stem().string();
     auto row = [&](const std::string& which, const PredictionErrors& e) {
-      csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", name, internal::CsvField(which),
-                         e.rmse_v, e.peak_error_v, e.nrmse_range, e.r2);
+      csv.Text(name).Text(which).Number(e.rmse_v).Number(e.peak_error_v).Number(e.nrmse_range)
+          .Number(e.r2).EndRow();
     };
     if (c.has_analytic) row("analytic", c.analytic);
     if (c.has_nn) row("nn", c.nn);
     for (const auto& h : c.hysteresis) row(h.label, h.errors);
   }
-  return csv;
+  return csv.str();
 }
 
 }  // namespace sysid

@@ -33,10 +33,6 @@ nlohmann::json ParseJsonText(std::string_view text, const std::string& source);
 /// `max_chars` is cut with "...". Used wherever an error message quotes file data.
 std::string Printable(std::string_view s, size_t max_chars = 80);
 
-/// `s` as one field of a CSV table (RFC 4180): quoted, inner quotes doubled, when it holds a
-/// comma, a quote or a line break (a file name may), else unchanged.
-std::string CsvField(std::string_view s);
-
 /// True when `s` holds a control byte (tab and newline included) or DEL.
 bool HasControlByte(std::string_view s);
 

@@ -8,16 +8,6 @@
 
 namespace sysid::internal {
 
-std::string CsvField(std::string_view s) {
-  if (s.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(s);
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
 bool HasControlByte(std::string_view s) {
   return std::any_of(s.begin(), s.end(), [](char c) {
     const auto b = static_cast<unsigned char>(c);

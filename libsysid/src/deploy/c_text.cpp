@@ -6,8 +6,10 @@
 #include <cctype>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "sysid/error.hpp"
+#include "sysid/io_csv_table.hpp"
 #include "sysid/io_output.hpp"
 
 namespace sysid::internal {
@@ -265,14 +267,14 @@ int main(int argc, char** argv) {
 
 std::string VectorsCsv(const std::vector<std::string>& inputs, const Eigen::MatrixXd& x,
                        const Eigen::VectorXd& u) {
-  std::string out = GeneratorLine();
-  for (const auto& name : inputs) out += name + ",";
-  out += "u_expected_v\n";
+  std::vector<std::string> header = inputs;
+  header.push_back("u_expected_v");
+  CsvTable csv(header, GeneratorLine());
   for (Eigen::Index k = 0; k < x.rows(); ++k) {
-    for (Eigen::Index i = 0; i < x.cols(); ++i) out += fmt::format("{:.17g},", x(k, i));
-    out += fmt::format("{:.17g}\n", u[k]);
+    for (Eigen::Index i = 0; i < x.cols(); ++i) csv.Number(x(k, i), 17);
+    csv.Number(u[k], 17).EndRow();
   }
-  return out;
+  return csv.str();
 }
 
 std::string Provenance(const ExportProvenance& provenance, ExportPrecision precision,

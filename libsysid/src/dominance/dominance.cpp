@@ -14,6 +14,7 @@
 #include "core/json_text.hpp"
 #include "core/option_rule.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io_csv_table.hpp"
 #include "sysid/io_output.hpp"
 
 namespace sysid {
@@ -228,20 +229,20 @@ DominanceSummary AnalyzeDominanceBatch(const FrictionModel& model,
 
 std::string DominanceTableCsv(const DominanceSummary& summary) {
   // First the mark of a file sysid wrote (a later -o replaces only such files).
-  std::string out = GeneratorLine() +
-      "# dominance of the inverse-model terms; rms and peak in [m/s^2], ratios dimensionless\n"
-      "source,rank,variable,rms,peak,ratio_to_top,ratio_bound,ratio_max,negligible,dominant,"
-      "margin,moving_samples\n";
+  CsvTable csv({"source", "rank", "variable", "rms", "peak", "ratio_to_top", "ratio_bound",
+                "ratio_max", "negligible", "dominant", "margin", "moving_samples"},
+               GeneratorLine() +
+                   "# dominance of the inverse-model terms; rms and peak in [m/s^2], ratios "
+                   "dimensionless\n");
   for (const auto& r : summary.results) {
     int rank = 0;
-    const std::string source = internal::CsvField(r.source);  // a file name may hold a comma
     for (const auto& s : r.ranking)
-      out += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.9g},{}\n", source,
-                         ++rank, s.name, s.rms, s.peak, s.ratio_to_top, s.ratio_bound, s.ratio_max,
-                         s.negligible ? 1 : 0, r.dominant == s.name ? 1 : 0, r.margin,
-                         r.moving_samples);
+      csv.Text(r.source).Integer(++rank).Text(s.name).Number(s.rms).Number(s.peak)
+          .Number(s.ratio_to_top).Number(s.ratio_bound).Number(s.ratio_max)
+          .Integer(s.negligible ? 1 : 0).Integer(r.dominant == s.name ? 1 : 0).Number(r.margin)
+          .Integer(static_cast<long long>(r.moving_samples)).EndRow();
   }
-  return out;
+  return csv.str();
 }
 
 std::string DominanceVerdict(const std::string& top, const std::string& second, double margin) {

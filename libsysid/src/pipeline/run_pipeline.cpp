@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/parallel_for.hpp"
+#include "paper/measures.hpp"
 #include "pipeline/timed_step.hpp"
 #include "sysid/control_tuning.hpp"
 #include "sysid/error.hpp"
@@ -74,6 +75,25 @@ void PulseVelocityTraces(const Recording& pulse, const FrictionModel& model,
 }
 
 // The paper's dominance figure: the acceleration term against the viscous term over time.
+// PI alone's error at one tracking frequency: its ringing in motion when above F4's tolerance.
+void RingingTrace(const TrackingRow& row, PipelineFigures& f) {
+  const Eigen::VectorXd& t = row.result.t_s;
+  if (t.size() < 2) return;
+  SmoothProfileOptions p;
+  p.frequency_hz = row.frequency_hz;
+  p.sample_rate_hz = 1.0 / (t[1] - t[0]);
+  p.cycles = static_cast<int>(
+      std::lround(static_cast<double>(t.size() - 1) / p.sample_rate_hz * row.frequency_hz));
+  const FactsOptions limits;
+  // The ringing frequency (a long FFT) only where it rings.
+  if (paper::MotionRippleOf(row.result.e_m, p, limits.motion_ripple_window_s, false).rms_m <=
+      limits.motion_ripple_tolerance_m)
+    return;
+  const paper::MotionRipple m =
+      paper::MotionRippleOf(row.result.e_m, p, limits.motion_ripple_window_s);
+  f.tracking_ringing.push_back({row.frequency_hz, p.sample_rate_hz, m.rms_m, m.ringing_hz});
+}
+
 void DominanceTraces(const Recording& training, const FrictionModel& model, PipelineFigures& f) {
   const MotionSignals m = ExtractMotion(training);
   const Eigen::VectorXd vd = DelaySignal(m.v_mps, m.dt_s, model.tau_s);
@@ -356,6 +376,8 @@ struct PipelineRun {
           return TrackSchemes(stage, 1, ref, options.pi, schemes,
                               {&r.model, pulses_only ? nullptr : &r.network});
         });
+        for (const TrackingRow& row : r.tracking)
+          if (row.scheme == "none") RingingTrace(row, r.figures);
       });
     } else if (options.track) {
       r.notes.push_back("no stage file: the tracking experiment was skipped");
@@ -382,6 +404,7 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
   PipelineResult r;
   r.inputs = inputs;
   r.options = options;
+  if (!options.reference_path.empty()) r.reference = ReadPipelineReference(options.reference_path);
   PipelineRun run(inputs, options, progress, r);
   run.IdentifyModel();
   if (!run.pulses_only) run.InverseNetworks();

@@ -2,6 +2,7 @@
 // fitted on the first part of every recording and scored on the rest (sysid/compare_stack.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -38,6 +39,25 @@ void CheckStackRanges(const Recording& rec) {
         rec.source, peak, kMaxStackVoltage_v));
 }
 
+// The first recording's scored part, its first kStackFigureSamples samples: measured beside each
+// model, forward and inverse (the report's two plots).
+void StackTraces(const Recording& rec, const std::vector<HysteresisSplitScore>& models,
+                 PipelineFigures& f) {
+  const Eigen::Index k = TrainingPart(rec, kStackTrainFraction).rows();
+  const Eigen::Index m = std::min<Eigen::Index>(rec.rows() - k, kStackFigureSamples);
+  const Eigen::VectorXd t = rec.column("t").segment(k, m);
+  f.stack_source = rec.source;
+  f.stack_position.push_back({"measured", t, rec.column("x").segment(k, m)});
+  f.stack_voltage.push_back({"measured", t, rec.column("u").segment(k, m)});
+  for (size_t i = 0; i < models.size(); ++i) {
+    const auto& s = models[i];
+    // The table's row and model label: two rows may share a kind (both networks).
+    const std::string label = fmt::format("{} {}", i + 1, s.label);
+    if (!s.x_model.empty()) f.stack_position.push_back({label, t, s.x_model.front().segment(k, m)});
+    if (!s.u_model.empty()) f.stack_voltage.push_back({label, t, s.u_model.front().segment(k, m)});
+  }
+}
+
 }  // namespace
 
 PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOptions& options,
@@ -72,6 +92,7 @@ PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOpti
       if (!s.error.empty()) r.notes.push_back(s.label + ": no score: " + s.error);
     });
   }
+  if (!r.stack_models.empty()) StackTraces(recs.front(), r.stack_models, r.figures);
   return r;
 }
 

@@ -1,9 +1,12 @@
-// Private: sections of the pipeline's report that are computed apart from the report writer
-// (the networks' figure pair, F8's loop numbers). Each returns its markdown, its plots and its
-// files; the writer renders the plots and writes the files atomically.
+// Private: the sections of the pipeline's report. Each is made from the PipelineResult alone
+// (the report reads, simulates and fits nothing: scripts/check_modules.py checks report/ for
+// such calls) and returns its markdown, its plots and its files; the writer
+// (pipeline_report.cpp) renders the plots and writes the files.
 #ifndef SYSID_SRC_REPORT_REPORT_SECTIONS_HPP_
 #define SYSID_SRC_REPORT_REPORT_SECTIONS_HPP_
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,9 +33,45 @@ struct ReportPlot {
 
 struct ReportSection {
   std::string markdown;
-  std::vector<ReportPlot> plots;                        ///< drawn after the markdown
+  /// Each drawn where AddPlot marked its place in the markdown; a plot pushed without a marker
+  /// after the markdown.
+  std::vector<ReportPlot> plots;
   std::vector<std::pair<std::string, std::string>> files;  ///< (file name, contents)
+  /// Files that their own writer checks and writes (a model, a network, a recording):
+  /// (file name, writer given the file's path); a writer may refer to the PipelineResult.
+  std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writes;
+  std::vector<std::string> notes;  ///< for the run's notes (WritePipelineReport returns them)
+
+  /// Queues a plot and marks its place at the end of the markdown.
+  void AddPlot(std::string file, PlotSpec spec, std::string caption);
+  /// `other` after this section: its markdown, plots (markers renumbered), files and notes.
+  void Append(ReportSection other);
+  /// The marker of plot `i` in the markdown.
+  static std::string Marker(std::size_t i);
+  /// A marker for every plot pushed without one, after the markdown.
+  void MarkUnplaced();
 };
+
+/// `v` with `digits` significant digits (%.{digits}g).
+std::string Sig(double v, int digits = 5);
+/// The same, "-" for NaN (a number that was not computed).
+std::string SigOrDash(double v, int digits = 4);
+/// The strings of `v` separated by `sep`.
+std::string JoinWith(const std::vector<std::string>& v, const std::string& sep);
+
+// The sections in the report's order (each empty when its step did not run).
+ReportSection PulseSection(const PipelineResult& result);       ///< 1: pulses.csv, model.json
+ReportSection DelaySection(const PipelineResult& result);       ///< 2: cost curve, pulse response
+ReportSection DominanceSection(const PipelineResult& result);   ///< 3: dominance.csv
+ReportSection NetworkSection(const PipelineResult& result);     ///< 4: sweep.csv, nn.json
+ReportSection ComparisonSection(const PipelineResult& result);  ///< 5: comparison.csv
+ReportSection SkippedSection(const PipelineResult& result);     ///< 3-5 of a pulse-only run
+ReportSection TrackingSection(const PipelineResult& result);    ///< 6: tracking.csv
+ReportSection MarginsSection(const PipelineResult& result);     ///< 6: margins.json
+ReportSection ModelTrackingSection(const PipelineResult& result);  ///< 6: model_tracking.csv
+ReportSection FactsSection(const PipelineResult& result);          ///< 7: facts.json
+ReportSection LoopsSection(const PipelineResult& result);          ///< 8: loops.csv, loop_N.json
+ReportSection StepsSection(const PipelineResult& result);          ///< steps and notes
 
 /// The four MSEs of the typical and the dominant network on the pipeline's sets, as the facts'
 /// F7 computes them: each network on every row of the training set and of the test set.
@@ -44,8 +83,7 @@ struct NetworkMses {
 /// The paper's figure pair (its Fig. 8 for the typical network, Fig. 11 for the dominant one):
 /// each network's output against the data u [V] on the training set and on the test set (two
 /// plots, network_training.png and network_test.png), and the four MSEs in one table with the
-/// paper's beside them (network_mse.csv). Needs result.typical; reads the training and test
-/// recordings again (v and a as the pipeline made them).
+/// paper's beside them (network_mse.csv), from result.figures.networks. Needs result.typical.
 ReportSection NetworkFigurePair(const PipelineResult& result, NetworkMses* mses = nullptr);
 
 /// F8's loop numbers (the triangle at its levels, the sinusoids' mean widths by frequency and

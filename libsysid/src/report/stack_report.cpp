@@ -3,7 +3,6 @@
 // v, a, the forward and inverse plots, the model files, models.csv and summary.json.
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -13,16 +12,17 @@
 
 #include "report/report_sections.hpp"
 #include "sysid/io.hpp"
+#include "sysid/io_csv_table.hpp"
 #include "sysid/report.hpp"
 
 namespace sysid {
 namespace {
 namespace fs = std::filesystem;
+using internal::SigOrDash;
 
-std::string G(double v, int digits = 4) {
-  return std::isnan(v) ? std::string("-") : fmt::format("{:.{}g}", v, digits);
+std::string Pct(double v) {
+  return std::isnan(v) ? std::string("-") : fmt::format("{:.2f} %", 100 * v);
 }
-std::string Pct(double v) { return std::isnan(v) ? std::string("-") : fmt::format("{:.2f} %", 100 * v); }
 
 // Markdown cells may not hold a bare '|'.
 std::string Cell(std::string s) {
@@ -34,16 +34,18 @@ std::string Cell(std::string s) {
 std::string DominanceSection(const PipelineResult& r) {
   std::string md;
   md += "\n## 1. Which variable carries the input (`sysid hysteresis dominance`)\n\n";
-  md += "A linear inverse model u ≈ c + θ_x x + θ_v v + θ_a a + Σ θ_i F_ri[x] on each "
-        "recording's fitted part, the variables ranked by the RMS of their terms:\n\n";
+  md +=
+      "A linear inverse model u ≈ c + θ_x x + θ_v v + θ_a a + Σ θ_i F_ri[x] on each "
+      "recording's fitted part, the variables ranked by the RMS of their terms:\n\n";
   std::vector<std::vector<std::string>> drows;
   for (const auto& d : r.stack_dominance) {
     std::string terms;
-    for (const auto& t : d.ranking) terms += (terms.empty() ? "" : ", ") + t.name + " " + G(t.rms, 3);
+    for (const auto& t : d.ranking)
+      terms += (terms.empty() ? "" : ", ") + t.name + " " + SigOrDash(t.rms, 3);
     const bool clear = d.margin >= kClearDominanceMargin;
     drows.push_back({fs::path(d.source).filename().string(),
                      clear ? "**" + d.dominant + "**" : "none clear (" + d.dominant + " leads)",
-                     G(d.margin, 3), terms, G(d.r2, 3)});
+                     SigOrDash(d.margin, 3), terms, SigOrDash(d.r2, 3)});
   }
   md += MarkdownTable({"recording", "dominant", "margin (top / second)", "term RMS [V]", "R²"},
                       drows);
@@ -59,25 +61,30 @@ std::string ModelsSection(const PipelineResult& r,
   std::string md;
   md += "\n## 2. Hysteresis models: forward and inverse on the scored part\n\n";
   std::vector<std::vector<std::string>> rows;
-  std::string csv =
-      "model,kind,parameters,fit_time_s,train_samples,test_samples,forward_rms_m,forward_nrmse_std,"
-      "inverse_rms_v,inverse_nrmse_std,inverse_error,error\n";
-  auto quoted = [](std::string s) {
-    for (size_t i = 0; (i = s.find('"', i)) != std::string::npos; i += 2) s.insert(i, 1, '"');
-    return "\"" + s + "\"";
-  };
+  CsvTable csv({"model", "kind", "parameters", "fit_time_s", "train_samples", "test_samples",
+                "forward_rms_m", "forward_nrmse_std", "inverse_rms_v", "inverse_nrmse_std",
+                "inverse_error", "error"});
   for (size_t i = 0; i < r.stack_models.size(); ++i) {
     const auto& s = r.stack_models[i];
     const std::string inverse =
-        s.inverse_error.empty() ? G(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
+        s.inverse_error.empty() ? SigOrDash(s.inverse_rms_v) : "- (" + Cell(s.inverse_error) + ")";
     rows.push_back(
         {std::to_string(i + 1), s.label, s.error.empty() ? std::to_string(s.parameters) : "-",
-         s.error.empty() ? G(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")", G(s.forward_rms_m),
-         Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
-    csv += fmt::format("{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{}\n", quoted(s.label),
-                       s.kind, s.parameters, s.fit_time_s, s.train_samples, s.test_samples,
-                       s.forward_rms_m, s.forward_nrmse_std, s.inverse_rms_v, s.inverse_nrmse_std,
-                       quoted(s.inverse_error), quoted(s.error));
+         s.error.empty() ? SigOrDash(s.fit_time_s, 3) : "- (" + Cell(s.error) + ")",
+         SigOrDash(s.forward_rms_m), Pct(s.forward_nrmse_std), inverse, Pct(s.inverse_nrmse_std)});
+    csv.Quoted(s.label)
+        .Text(s.kind)
+        .Integer(s.parameters)
+        .Number(s.fit_time_s, 6)
+        .Integer(s.train_samples)
+        .Integer(s.test_samples)
+        .Number(s.forward_rms_m)
+        .Number(s.forward_nrmse_std)
+        .Number(s.inverse_rms_v)
+        .Number(s.inverse_nrmse_std)
+        .Quoted(s.inverse_error)
+        .Quoted(s.error)
+        .EndRow();
     if (s.model)
       WriteFileAtomically(path(fmt::format("model_{}_{}.json", i + 1, s.kind)),
                           s.model->ToJson(2) + "\n");
@@ -85,10 +92,11 @@ std::string ModelsSection(const PipelineResult& r,
   md += MarkdownTable({"#", "model", "parameters", "fit time [s]", "forward e_RMS [m]",
                        "forward nrmse_std", "inverse e_RMS [V]", "inverse nrmse_std"},
                       rows);
-  md += "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
-        "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
-        "are wall times on this machine (the only numbers of this report that vary between runs).\n";
-  WriteFileAtomically(path("models.csv"), csv);
+  md +=
+      "\nThe fitted models are `model_<row>_<kind>.json` (`sysid hysteresis simulate|invert "
+      "--model FILE`); the table is `models.csv`, the run's summary `summary.json`. Fit times "
+      "are wall times on this machine (the only numbers of this report that vary between runs).\n";
+  WriteFileAtomically(path("models.csv"), csv.str());
 
   return md;
 }
@@ -132,33 +140,29 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
   md += DominanceSection(r);
   md += ModelsSection(r, path);
 
-  // The first recording's scored part, its first 600 samples (a few periods: the loops stay
-  // readable): measured beside each model, forward and inverse.
-  if (!r.stack_models.empty()) {
-    ReadOptions ro = r.inputs.Read();
-    ro.required_columns = {"t", "u", "x"};
-    ro.any_of_columns = {};
-    const Recording rec = ReadRecording(r.inputs.stack.front(), ro);
-    const Eigen::Index k = TrainingPart(rec, kStackTrainFraction).rows();
-    const Eigen::Index m = std::min<Eigen::Index>(rec.rows() - k, 600);
-    const Eigen::VectorXd t = rec.column("t").segment(k, m);
-    const std::string name = fs::path(rec.source).filename().string();
-    PlotSpec fwd{"forward models: the start of the scored part of " + name, "t [s]", "x [um]", {},
-                 false, 1000, 550};
-    PlotSpec inv{"inverse models: the start of the scored part of " + name, "t [s]", "u [V]", {},
-                 false, 1000, 550};
-    fwd.series.push_back(
-        {"measured", t, 1e6 * Eigen::VectorXd(rec.column("x").segment(k, m)), "lines"});
-    inv.series.push_back({"measured", t, rec.column("u").segment(k, m), "lines"});
-    for (size_t i = 0; i < r.stack_models.size(); ++i) {
-      const auto& s = r.stack_models[i];
-      // The table's row and model label: two rows may share a kind (both networks).
-      const std::string label = fmt::format("{} {}", i + 1, s.label);
-      if (!s.x_model.empty())
-        fwd.series.push_back({label, t, 1e6 * s.x_model.front().segment(k, m), "lines"});
-      if (!s.u_model.empty()) inv.series.push_back({label, t, s.u_model.front().segment(k, m), "lines"});
-    }
-    md += "\nThe first " + std::to_string(m) + " scored samples of `" + name +
+  // The first recording's scored part, its first samples (a few periods: the loops stay
+  // readable): measured beside each model, forward and inverse (the pipeline's traces).
+  const PipelineFigures& f = r.figures;
+  if (!f.stack_position.empty()) {
+    const std::string name = fs::path(f.stack_source).filename().string();
+    PlotSpec fwd{"forward models: the start of the scored part of " + name,
+                 "t [s]",
+                 "x [um]",
+                 {},
+                 false,
+                 1000,
+                 550};
+    PlotSpec inv{"inverse models: the start of the scored part of " + name,
+                 "t [s]",
+                 "u [V]",
+                 {},
+                 false,
+                 1000,
+                 550};
+    for (const auto& t : f.stack_position) fwd.series.push_back({t.label, t.x, 1e6 * t.y, "lines"});
+    for (const auto& t : f.stack_voltage) inv.series.push_back({t.label, t.x, t.y, "lines"});
+    md += "\nThe first " + std::to_string(f.stack_position.front().x.size()) +
+          " scored samples of `" + name +
           "` (legend: the table's row and model; each model keeps its colour in both plots, the "
           "measured trace is black, drawn last):\n";
     plot("stack_forward.png", fwd, md);

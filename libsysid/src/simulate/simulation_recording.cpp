@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "sysid/io.hpp"
+#include "sysid/io_csv_table.hpp"
 #include "sysid/model.hpp"
 #include "sysid/simulate.hpp"
 
@@ -43,9 +44,9 @@ std::string SimulationSummary::FullReport() const {
 }
 
 std::string EventsToCsv(const std::vector<SimulationEvent>& events) {
-  std::string text = "t,kind\n";
-  for (const auto& e : events) text += fmt::format("{:.17g},{}\n", e.t_s, ToString(e.kind));
-  return text;
+  CsvTable csv({"t", "kind"});
+  for (const auto& e : events) csv.Number(e.t_s, 17).Text(ToString(e.kind)).EndRow();
+  return csv.str();
 }
 
 }  // namespace sysid
