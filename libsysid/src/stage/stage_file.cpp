@@ -138,11 +138,11 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
       preset ? *preset : vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
-  // A complete file written before the rail had memory leaves the key out: no memory; one
-  // without the drive's hysteresis or creep blocks has none (the default stage has both).
   // The plant's own fields: exactly one of these is set, that of `model`.
   VelocitySourcePlant* const vsp = std::get_if<VelocitySourcePlant>(&p.plant);
   ActuatorDelayPlant* const adp = std::get_if<ActuatorDelayPlant>(&p.plant);
+  // A complete file written before the rail had memory leaves the key out: no memory; one
+  // without the drive's hysteresis or creep blocks has none (the default stage has both).
   if (complete && vsp) {
     vsp->rail.memory_time_s = 0.0;
     vsp->hysteresis = DriveHysteresis{};
