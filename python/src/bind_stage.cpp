@@ -40,8 +40,20 @@ void BindStage(py::module_& m) {
       .def_static("from_json", &ParseStageParameters, py::arg("text"), py::arg("source") = "json")
       .def("to_json", &StageParametersToJson)
       .def_readwrite("name", &StageParameters::name)
-      .def_readwrite("gain_mps2_per_v", &StageParameters::gain_mps2_per_v)
-      .def_readwrite("dead_zone_v", &StageParameters::dead_zone_v)
+      .def_property_readonly(
+          "model", [](const StageParameters& p) { return ToString(p.model()); },
+          "The plant the stage holds: \"velocity-source\" or \"actuator-delay\".")
+      // The actuator-delay plant's fields under their names from before the plants were split;
+      // on a velocity-source stage they raise sysid.OptionsError (they are not its fields).
+      .def_property(
+          "gain_mps2_per_v",
+          [](const StageParameters& p) { return p.actuator_delay().gain_mps2_per_v; },
+          [](StageParameters& p, double v) { p.actuator_delay().gain_mps2_per_v = v; },
+          "[m/(s^2 V)] a3 of the actuator-delay plant (OptionsError on a velocity-source stage)")
+      .def_property(
+          "dead_zone_v", [](const StageParameters& p) { return p.actuator_delay().dead_zone_v; },
+          [](StageParameters& p, double v) { p.actuator_delay().dead_zone_v = v; },
+          "[V] the actuator-delay plant's dead zone (OptionsError on a velocity-source stage)")
       .def_readwrite("position_noise_m", &StageParameters::position_noise_m)
       .def_readwrite("encoder_resolution_m", &StageParameters::encoder_resolution_m)
       .def_readwrite("sample_rate_hz", &StageParameters::sample_rate_hz)

@@ -187,6 +187,25 @@ def test_stage_presets_match_cli_generate(tmp_path):
         assert name in StageParameters.preset.__doc__
 
 
+def test_stage_model_and_actuator_delay_attributes():
+    # The stage holds one plant: model names it; the actuator-delay plant's fields keep their
+    # old attribute names, write through to the file, and are refused on a velocity source.
+    StageParameters = sysid.stage.StageParameters
+    assert StageParameters.default().model == "velocity-source"
+    ad = StageParameters.preset("actuator-delay")
+    assert ad.model == "actuator-delay"
+    assert ad.gain_mps2_per_v == 6.0 and ad.dead_zone_v == 0.15
+    ad.gain_mps2_per_v = 5.5
+    ad.dead_zone_v = 0.2
+    back = StageParameters.from_json(ad.to_json())
+    assert back.gain_mps2_per_v == 5.5 and back.dead_zone_v == 0.2
+    with pytest.raises(sysid.OptionsError, match="velocity-source"):
+        StageParameters.default().gain_mps2_per_v
+    vs = StageParameters.default()
+    with pytest.raises(sysid.OptionsError, match="velocity-source"):
+        vs.dead_zone_v = 0.1
+
+
 def test_stage_tracking_matches_bundled_waveform():
     # datasets/virtual/waveform_*.csv are `sysid generate waveforms` with seed 1.
     waves = sysid.stage.paper_test_waveforms()

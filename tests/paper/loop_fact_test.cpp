@@ -41,10 +41,10 @@ FactsOptions F8Only() {
 StageParameters QuasiStatic() {
   StageParameters s = StageParameters::VelocitySource();
   s.name = "quasi-static";
-  s.motor.pole_per_s = 3000;
+  s.velocity_source().motor.pole_per_s = 3000;
   s.lag_time_constant_s = 1e-5;
-  s.rail.memory_time_s = 0;
-  s.SetSpeedMapThrough(StageParameters::PaperPulseTable());
+  s.velocity_source().rail.memory_time_s = 0;
+  s.velocity_source().SetSpeedMapThrough(StageParameters::PaperPulseTable());
   return s;
 }
 

@@ -237,15 +237,15 @@ TEST_CASE(
   const sysid::DriveCreep c = Creep(0.1, 0.6, 0.02);
   const sysid::StageParameters p = Stage(true, c);
   const sysid::DriveHysteresis h = Ceramic();
-  CHECK(p.HeldDriveLag(true) == Approx(0.4 * h.HeldLag(true)));
-  CHECK(p.HeldDriveLag(false) == Approx(0.4 * h.HeldLag(false)));
+  CHECK(p.velocity_source().HeldDriveLag(true) == Approx(0.4 * h.HeldLag(true)));
+  CHECK(p.velocity_source().HeldDriveLag(false) == Approx(0.4 * h.HeldLag(false)));
   // A slow rise starts the stage where the default's does (the dead zones moved by the held
   // lag that remains).
   const sysid::StageParameters def = Stage1kHz();
-  CHECK(p.motor.dead_zone_forward_v + p.HeldDriveLag(true) ==
-        Approx(def.motor.dead_zone_forward_v));
-  CHECK(p.motor.dead_zone_backward_v + p.HeldDriveLag(false) ==
-        Approx(def.motor.dead_zone_backward_v));
+  CHECK(p.velocity_source().motor.dead_zone_forward_v + p.velocity_source().HeldDriveLag(true) ==
+        Approx(def.velocity_source().motor.dead_zone_forward_v));
+  CHECK(p.velocity_source().motor.dead_zone_backward_v + p.velocity_source().HeldDriveLag(false) ==
+        Approx(def.velocity_source().motor.dead_zone_backward_v));
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable()) {
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
     // From the opposite direction, back to 0 V, then the pulse held 1.2 s: the plateau is the
@@ -269,8 +269,10 @@ TEST_CASE(
   other.SetDriveHysteresis(tiny);
   other.SetDriveCreep(c);
   other.SetDriveHysteresis(h);
-  CHECK(other.motor.dead_zone_forward_v == Approx(p.motor.dead_zone_forward_v));
-  CHECK(other.motor.speed_map_in_v.back() == Approx(p.motor.speed_map_in_v.back()));
+  CHECK(other.velocity_source().motor.dead_zone_forward_v ==
+        Approx(p.velocity_source().motor.dead_zone_forward_v));
+  CHECK(other.velocity_source().motor.speed_map_in_v.back() ==
+        Approx(p.velocity_source().motor.speed_map_in_v.back()));
 }
 
 TEST_CASE(
@@ -281,16 +283,16 @@ TEST_CASE(
   const sysid::StageParameters p = Stage(true, Creep(0.2, 0.5, 0.03));
   const std::string text = sysid::StageParametersToJson(p);
   const sysid::StageParameters back = sysid::ParseStageParameters(text, "c.json");
-  CHECK(back.creep.voltage_share == 0.2);
-  CHECK(back.creep.loop_share == 0.5);
-  CHECK(back.creep.time_constant_s == 0.03);
+  CHECK(back.velocity_source().creep.voltage_share == 0.2);
+  CHECK(back.velocity_source().creep.loop_share == 0.5);
+  CHECK(back.velocity_source().creep.time_constant_s == 0.03);
   CHECK(sysid::StageParametersToJson(back) == text);
   // A preset file may add or change it (the preset's dead zones stay: the user moves them).
   const auto pre = sysid::ParseStageParameters(
       "{\"preset\": \"velocity-source\", \"drive\": {\"creep\": {\"voltage_share\": 0.1}}}",
       "p.json");
-  CHECK(pre.creep.voltage_share == 0.1);
-  CHECK(pre.creep.loop_share == 0);
+  CHECK(pre.velocity_source().creep.voltage_share == 0.1);
+  CHECK(pre.velocity_source().creep.loop_share == 0);
   auto edited = [&](const std::string& from, const std::string& to) {
     std::string t = text;
     const size_t at = t.find(from);

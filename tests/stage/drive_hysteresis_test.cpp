@@ -164,9 +164,9 @@ TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle o
   }
   // Moving the knots by the held lag: without it the held pulses would be slower.
   sysid::StageParameters raw = Stage1kHz();
-  raw.hysteresis = h;
-  raw.motor.dead_zone_forward_v -= h.HeldLag(true);
-  raw.motor.dead_zone_backward_v -= h.HeldLag(false);
+  raw.velocity_source().hysteresis = h;
+  raw.velocity_source().motor.dead_zone_forward_v -= h.HeldLag(true);
+  raw.velocity_source().motor.dead_zone_backward_v -= h.HeldLag(false);
   CHECK(std::abs(raw.SteadyVelocity(1.5)) < 0.0574 - 0.003);
 }
 
@@ -179,9 +179,11 @@ TEST_CASE("drive hysteresis in the stage file: written only when set, read back,
   const sysid::StageParameters p = Stage(Ceramic(0.3, 0.003, 0.01));
   const std::string text = sysid::StageParametersToJson(p);
   const sysid::StageParameters back = sysid::ParseStageParameters(text, "h.json");
-  CHECK(back.hysteresis.thresholds_v == p.hysteresis.thresholds_v);
-  CHECK(back.hysteresis.rate_weights_s_per_v == p.hysteresis.rate_weights_s_per_v);
-  CHECK(back.hysteresis.asymmetry == 0.3);
+  CHECK(back.velocity_source().hysteresis.thresholds_v ==
+        p.velocity_source().hysteresis.thresholds_v);
+  CHECK(back.velocity_source().hysteresis.rate_weights_s_per_v ==
+        p.velocity_source().hysteresis.rate_weights_s_per_v);
+  CHECK(back.velocity_source().hysteresis.asymmetry == 0.3);
   CHECK(sysid::StageParametersToJson(back) == text);
   // A preset file adds the block (the preset's dead zones and map stay: the user moves them).
   const auto pre = sysid::ParseStageParameters(
@@ -189,7 +191,7 @@ TEST_CASE("drive hysteresis in the stage file: written only when set, read back,
       "\"weights\": [0.2], \"rate_weights_s_per_v\": [0], \"rate_time_constant_s\": 0, "
       "\"asymmetry\": 0}}}",
       "p.json");
-  CHECK(pre.hysteresis.enabled());
+  CHECK(pre.velocity_source().hysteresis.enabled());
   // Errors name the key, the rule and the value at the key's place.
   auto edited = [&](const std::string& from, const std::string& to) {
     std::string t = text;
@@ -244,9 +246,9 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
   INFO(name);
   REQUIRE(sysid::StageParameters::IsPresetName(name));
   const sysid::StageParameters p = sysid::LoadStage(name);
-  CHECK(p.hysteresis.enabled());
+  CHECK(p.velocity_source().hysteresis.enabled());
   // The static one (H2) has no creep; the default one's play lag partly relaxes.
-  CHECK(p.creep.enabled() == (name == "drive-hysteresis"));
+  CHECK(p.velocity_source().creep.enabled() == (name == "drive-hysteresis"));
   CHECK(p.sample_rate_hz == 10000);
   CHECK(p.RecordRateHz() == 1000);
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
@@ -254,10 +256,10 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
   // On a slow rise the stage starts where the default does (the dead zone moved by the lag a
   // held voltage keeps).
   const sysid::StageParameters def = Stage1kHz();
-  CHECK(p.motor.dead_zone_forward_v + p.HeldDriveLag(true) ==
-        Approx(def.motor.dead_zone_forward_v));
-  CHECK(p.motor.dead_zone_backward_v + p.HeldDriveLag(false) ==
-        Approx(def.motor.dead_zone_backward_v));
+  CHECK(p.velocity_source().motor.dead_zone_forward_v + p.velocity_source().HeldDriveLag(true) ==
+        Approx(def.velocity_source().motor.dead_zone_forward_v));
+  CHECK(p.velocity_source().motor.dead_zone_backward_v + p.velocity_source().HeldDriveLag(false) ==
+        Approx(def.velocity_source().motor.dead_zone_backward_v));
   const std::string text = sysid::StageParametersToJson(p);
   CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "p.json")) == text);
   // It is candidate C with the hysteresis block whichever stage is the default: built here
@@ -267,12 +269,13 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
   c.sample_rate_hz = 10000;
   c.record_rate_hz = 1000;
   c.lag_time_constant_s = 0.0001;
-  c.SetDriveHysteresis(p.hysteresis);
-  if (p.creep.enabled()) c.SetDriveCreep(p.creep);
+  c.SetDriveHysteresis(p.velocity_source().hysteresis);
+  if (p.velocity_source().creep.enabled()) c.SetDriveCreep(p.velocity_source().creep);
   CHECK(sysid::StageParametersToJson(c) == text);
   // A file may name it as its preset and change one value.
-  CHECK(sysid::ParseStageParameters("{\"preset\": \"" + name +
-                                        "\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
-                                    "p.json")
+  CHECK(sysid::ParseStageParameters(
+            "{\"preset\": \"" + name + "\", \"drive\": {\"hysteresis\": {\"asymmetry\": 0}}}",
+            "p.json")
+            .velocity_source()
             .hysteresis.asymmetry == 0);
 }

@@ -81,7 +81,8 @@ TEST_CASE("through the former hang at 10 kHz the stage follows an independent ti
       rk4.w = s.w_v;
       rk4.s = s.slip_memory_mps;
       rk4.stuck = s.stuck;
-      rk4.d = s.v_mps != 0 ? (s.v_mps > 0 ? 1 : -1) : (p.NoLoadSpeed(s.w_v) > 0 ? 1 : -1);
+      rk4.d = s.v_mps != 0 ? (s.v_mps > 0 ? 1 : -1)
+                           : (p.velocity_source().NoLoadSpeed(s.w_v) > 0 ? 1 : -1);
     }
     const double u = controller.Update(ref.x_m[k] - stage.measured_position_m());
     stage.Step(u);

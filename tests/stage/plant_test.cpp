@@ -22,13 +22,15 @@ struct Rk4Reference {
   double drive = 0;
   std::vector<double> Rhs(const std::vector<double>& y) const {
     const double v = y[1];
-    const sysid::FrictionBranch& b = v < 0 ? p.backward : p.forward;
+    const sysid::FrictionBranch& b =
+        v < 0 ? p.actuator_delay().backward : p.actuator_delay().forward;
     const double r = v / b.stribeck_velocity_mps;
     const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r);
-    const double dz = v - p.bristle_stiffness_per_s2 * std::abs(v) * y[2] / g;
-    const double f =
-        p.bristle_stiffness_per_s2 * y[2] + p.bristle_damping_per_s * dz + b.viscous_per_s * v;
-    return {v, p.gain_mps2_per_v * y[3] - f, dz, (drive - y[3]) / p.lag_time_constant_s};
+    const double dz = v - p.actuator_delay().bristle_stiffness_per_s2 * std::abs(v) * y[2] / g;
+    const double f = p.actuator_delay().bristle_stiffness_per_s2 * y[2] +
+                     p.actuator_delay().bristle_damping_per_s * dz + b.viscous_per_s * v;
+    return {v, p.actuator_delay().gain_mps2_per_v * y[3] - f, dz,
+            (drive - y[3]) / p.lag_time_constant_s};
   }
   void Step(std::vector<double>& y, double h) const {
     auto add = [](const std::vector<double>& a, const std::vector<double>& b, double s) {
@@ -44,8 +46,9 @@ struct Rk4Reference {
   }
   double Driver(double u_dac) const {
     const double s = std::clamp(u_dac, -p.saturation_v, p.saturation_v);
-    if (std::abs(s) <= p.dead_zone_v) return 0;
-    return p.DriveMap(s > 0 ? s - p.dead_zone_v : s + p.dead_zone_v);
+    if (std::abs(s) <= p.actuator_delay().dead_zone_v) return 0;
+    return p.actuator_delay().DriveMap(s > 0 ? s - p.actuator_delay().dead_zone_v
+                                             : s + p.actuator_delay().dead_zone_v);
   }
 };
 
@@ -69,7 +72,8 @@ std::pair<double, double> CompareWithReference(const sysid::StageParameters& p) 
     const sysid::StageState s = stage.state();
     worst_x = std::max(worst_x, std::abs(s.x_m - ref.x));
     worst_v = std::max(worst_v, std::abs(s.v_mps - ref.v));
-    if (p.rail.memory_time_s > 0) CHECK(s.slip_memory_mps == Approx(ref.s).margin(5e-5));
+    if (p.velocity_source().rail.memory_time_s > 0)
+      CHECK(s.slip_memory_mps == Approx(ref.s).margin(5e-5));
     if (k > 20) {
       CHECK(s.stuck == ref.stuck);
       saw_stuck = saw_stuck || s.stuck;
@@ -89,10 +93,10 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
           "reversals",
           "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
-  REQUIRE(p.model == sysid::StageModel::kVelocitySource);
+  REQUIRE(p.model() == sysid::StageModel::kVelocitySource);
   p.position_noise_m = 0;
   SECTION("memoryless rail (Karnopp with g(|v|))") {
-    p.rail.memory_time_s = 0;
+    p.velocity_source().rail.memory_time_s = 0;
     const auto [worst_x, worst_v] = CompareWithReference(p);
     INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s");
     // CVODE rtol 1e-7 over ~2.5 cm of path (measured 3.9e-8 m); the reference locates each
@@ -101,16 +105,16 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
     CHECK(worst_v < 5e-5);  // [m/s]
   }
   SECTION("rail with frictional memory and a strong Stribeck dip") {
-    p.rail = {0.6, 4.0, 0.01, 0.02};
+    p.velocity_source().rail = {0.6, 4.0, 0.01, 0.02};
     const auto [worst_x, worst_v] = CompareWithReference(p);
     INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s");
     CHECK(worst_x < 6e-8);  // [m]
     CHECK(worst_v < 5e-5);  // [m/s]
   }
   SECTION("a stiff droop behind a thrust limit") {
-    p.motor.pole_per_s = 2000;
-    p.motor.thrust_limit_mps2 = 8;
-    p.rail = {0.6, 1.0, 0.005, 0.0};
+    p.velocity_source().motor.pole_per_s = 2000;
+    p.velocity_source().motor.thrust_limit_mps2 = 8;
+    p.velocity_source().rail = {0.6, 1.0, 0.005, 0.0};
     const auto [worst_x, worst_v] = CompareWithReference(p);
     INFO("max |dx| " << worst_x << " m, max |dv| " << worst_v << " m/s");
     CHECK(worst_x < 6e-8);  // [m]
@@ -121,19 +125,21 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
 TEST_CASE("thrust limit: steady velocities, breakaway and the limit on acceleration",
           "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
-  p.motor.pole_per_s = 2000;
-  p.motor.thrust_limit_mps2 = 8;
-  p.rail = {0.6, 1.0, 0.005, 0.0};
+  p.velocity_source().motor.pole_per_s = 2000;
+  p.velocity_source().motor.thrust_limit_mps2 = 8;
+  p.velocity_source().rail = {0.6, 1.0, 0.005, 0.0};
   p.position_noise_m = 0;
-  p.SetSpeedMapThrough(sysid::StageParameters::PaperPulseTable());
+  p.velocity_source().SetSpeedMapThrough(sysid::StageParameters::PaperPulseTable());
   REQUIRE_NOTHROW(p.Validate());
   // The speed map puts each held pulse on the paper's plateau: L tanh(p (v_f - v) / L) = g(v).
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
   // Breakaway where L tanh(p v_f / L) = Fs: v_f = (L / p) atanh(Fs / L).
   const double vf_break = 8.0 / 2000 * std::atanh(1.0 / 8);
-  double lo = p.motor.dead_zone_forward_v, hi = 1.3;  // v_f rises from 0 to the first knot
-  for (int i = 0; i < 100; ++i) (p.NoLoadSpeed(0.5 * (lo + hi)) < vf_break ? lo : hi) = 0.5 * (lo + hi);
+  double lo = p.velocity_source().motor.dead_zone_forward_v,
+         hi = 1.3;  // v_f rises from 0 to the first knot
+  for (int i = 0; i < 100; ++i)
+    (p.velocity_source().NoLoadSpeed(0.5 * (lo + hi)) < vf_break ? lo : hi) = 0.5 * (lo + hi);
   CHECK(p.SteadyVelocity(lo - 1e-9) == 0.0);
   CHECK(p.SteadyVelocity(hi + 1e-9) > 0.0);
   // A 2 V step from rest: the stage accelerates at no more than L - Fc (the lag and the
@@ -149,22 +155,22 @@ TEST_CASE("thrust limit: steady velocities, breakaway and the limit on accelerat
   CHECK(max_accel <= 8 - 0.6 + 1e-9);
   CHECK(max_accel > 0.9 * (8 - 0.6));
   // Validate: a limit at or below the static friction could never break the stage away.
-  p.motor.thrust_limit_mps2 = 1.0;
+  p.velocity_source().motor.thrust_limit_mps2 = 1.0;
   CHECK_THROWS_WITH(p.Validate(), Catch::Contains("thrust_limit_mps2"));
   // Near its limit the thrust barely grows with the droop: the Stribeck dip could then give two
   // steady speeds. p = 100 beats max |g'| = 68.6 1/s alone, not with L = 1.2 (100 x 0.31).
-  p.motor.pole_per_s = 100;
-  p.motor.thrust_limit_mps2 = 0;
+  p.velocity_source().motor.pole_per_s = 100;
+  p.velocity_source().motor.thrust_limit_mps2 = 0;
   CHECK_NOTHROW(p.Validate());
-  p.motor.thrust_limit_mps2 = 1.2;
+  p.velocity_source().motor.thrust_limit_mps2 = 1.2;
   CHECK_THROWS_WITH(p.Validate(), Catch::Contains("single steady speed"));
 }
 
 TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
   p.position_noise_m = 0;
-  p.rail = {0.6, 4.0, 0.01, 0.02};
-  const double tm = p.rail.memory_time_s;
+  p.velocity_source().rail = {0.6, 4.0, 0.01, 0.02};
+  const double tm = p.velocity_source().rail.memory_time_s;
   // A long held pulse: steady sliding has s = |v|, so the steady law (and the pulse table) does
   // not depend on T_m.
   sysid::VirtualStage stage(p, 1);
@@ -199,7 +205,7 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
   // memory).
   auto width = [](double memory_time_s, double period_s) {
     sysid::StageParameters p = Stage1kHz();
-    p.rail.memory_time_s = memory_time_s;
+    p.velocity_source().rail.memory_time_s = memory_time_s;
     p.position_noise_m = 0;
     const int n = static_cast<int>(period_s * 1000);
     const double q = period_s / 4;
@@ -237,17 +243,20 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
 TEST_CASE("velocity source: speed map, steady velocities and breakaway against closed forms",
           "[stage][plant]") {
   const sysid::StageParameters p = Stage1kHz();
-  const double pp = p.motor.pole_per_s;
+  const double pp = p.velocity_source().motor.pole_per_s;
   // The map passes its knots, is 0 in the dead zone and extends its end segments linearly.
-  for (size_t i = 0; i < p.motor.speed_map_in_v.size(); ++i)
-    CHECK(p.NoLoadSpeed(p.motor.speed_map_in_v[i]) == Approx(p.motor.speed_map_out_mps[i]));
-  CHECK(p.NoLoadSpeed(0.0) == 0.0);
-  CHECK(p.NoLoadSpeed(p.motor.dead_zone_forward_v) == 0.0);
-  CHECK(p.NoLoadSpeed(-p.motor.dead_zone_backward_v) == 0.0);
-  const double f13 = p.NoLoadSpeed(1.3), f17 = p.NoLoadSpeed(1.7), f20 = p.NoLoadSpeed(2.0);
-  const double dz = p.motor.dead_zone_forward_v;
-  CHECK(p.NoLoadSpeed(0.5 * (dz + 1.3)) == Approx(0.5 * f13));
-  CHECK(p.NoLoadSpeed(3.0) == Approx(f20 + (f20 - f17) / 0.3 * 1.0));
+  for (size_t i = 0; i < p.velocity_source().motor.speed_map_in_v.size(); ++i)
+    CHECK(p.velocity_source().NoLoadSpeed(p.velocity_source().motor.speed_map_in_v[i]) ==
+          Approx(p.velocity_source().motor.speed_map_out_mps[i]));
+  CHECK(p.velocity_source().NoLoadSpeed(0.0) == 0.0);
+  CHECK(p.velocity_source().NoLoadSpeed(p.velocity_source().motor.dead_zone_forward_v) == 0.0);
+  CHECK(p.velocity_source().NoLoadSpeed(-p.velocity_source().motor.dead_zone_backward_v) == 0.0);
+  const double f13 = p.velocity_source().NoLoadSpeed(1.3),
+               f17 = p.velocity_source().NoLoadSpeed(1.7),
+               f20 = p.velocity_source().NoLoadSpeed(2.0);
+  const double dz = p.velocity_source().motor.dead_zone_forward_v;
+  CHECK(p.velocity_source().NoLoadSpeed(0.5 * (dz + 1.3)) == Approx(0.5 * f13));
+  CHECK(p.velocity_source().NoLoadSpeed(3.0) == Approx(f20 + (f20 - f17) / 0.3 * 1.0));
   // Steady sliding p (v_f - v) = g(v): the paper's ten pulse points come out exactly.
   const double table[10][2] = {{1.3, 0.04465},   {1.5, 0.05742},   {1.6, 0.06222},
                                {1.7, 0.06863},   {2.0, 0.08519},   {-1.8, -0.03393},
@@ -256,10 +265,11 @@ TEST_CASE("velocity source: speed map, steady velocities and breakaway against c
   for (const auto& row : table) {
     const double v = p.SteadyVelocity(row[0]);
     CHECK(v == Approx(row[1]).epsilon(1e-10));
-    CHECK(pp * (p.NoLoadSpeed(row[0]) - v) == Approx((v > 0 ? 1 : -1) * p.rail.Sliding(std::abs(v))));
+    CHECK(pp * (p.velocity_source().NoLoadSpeed(row[0]) - v) ==
+          Approx((v > 0 ? 1 : -1) * p.velocity_source().rail.Sliding(std::abs(v))));
   }
   // Breakaway from rest where p v_f(u) = Fs: on the first segment v_f = f13 (u - dz)/(1.3 - dz).
-  const double u_start = dz + p.rail.static_mps2 / pp * (1.3 - dz) / f13;
+  const double u_start = dz + p.velocity_source().rail.static_mps2 / pp * (1.3 - dz) / f13;
   CHECK(p.SteadyVelocity(u_start - 1e-6) == 0.0);
   CHECK(p.SteadyVelocity(u_start + 1e-3) > 0.0);
   // Held inside the threshold the stage does not move at all (the preload holds it).
@@ -269,7 +279,8 @@ TEST_CASE("velocity source: speed map, steady velocities and breakaway against c
       sysid::RunOpenLoop(quiet, Eigen::VectorXd::Constant(200, u_start - 0.002), 3);
   CHECK(held.x_true_m.cwiseAbs().maxCoeff() == 0.0);
   const sysid::StageRun back = sysid::RunOpenLoop(
-      quiet, Eigen::VectorXd::Constant(200, -p.motor.dead_zone_backward_v + 0.01), 3);
+      quiet, Eigen::VectorXd::Constant(200, -p.velocity_source().motor.dead_zone_backward_v + 0.01),
+      3);
   CHECK(back.x_true_m.cwiseAbs().maxCoeff() == 0.0);
   // A held voltage settles at the steady velocity (time constant 1/p = 3.3 ms << 0.3 s).
   for (double u : {1.25, 1.6, 3.0, -1.9, -4.0}) {

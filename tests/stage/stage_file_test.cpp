@@ -14,23 +14,28 @@ TEST_CASE("the bundled stage.json is the built-in calibrated stage", "[stage][fi
   CHECK(sysid::StageParametersToJson(file) ==
         sysid::StageParametersToJson(sysid::StageParameters::Default()));
   const auto back = sysid::ParseStageParameters(sysid::StageParametersToJson(file), "mem.json");
-  CHECK(back.backward.viscous_per_s == file.backward.viscous_per_s);
-  CHECK(back.drive_map_out_v == file.drive_map_out_v);
+  REQUIRE(back.model() == sysid::StageModel::kVelocitySource);
+  CHECK(back.velocity_source().motor.speed_map_out_mps ==
+        file.velocity_source().motor.speed_map_out_mps);
+  CHECK(back.velocity_source().hysteresis.weights == file.velocity_source().hysteresis.weights);
+  // The velocity source has no actuator-delay fields: asking for them is an error.
+  CHECK_THROWS_AS(file.actuator_delay(), sysid::OptionsError);
 }
 
 TEST_CASE("the rail's memory: written, read back, 0 when a file predates it", "[stage][file]") {
   const sysid::StageParameters p = sysid::StageParameters::Default();
-  REQUIRE(p.rail.memory_time_s > 0);
+  REQUIRE(p.velocity_source().rail.memory_time_s > 0);
   std::string text = sysid::StageParametersToJson(p);
-  CHECK(sysid::ParseStageParameters(text, "m.json").rail.memory_time_s == p.rail.memory_time_s);
+  CHECK(sysid::ParseStageParameters(text, "m.json").velocity_source().rail.memory_time_s ==
+        p.velocity_source().rail.memory_time_s);
   // A complete file written before the key existed: no memory, everything else as written.
   const auto key = text.find("\"memory_time_s\"");
   REQUIRE(key != std::string::npos);
   const auto comma = text.rfind(',', key);
   text.erase(comma, text.find('\n', key) - comma);
   const auto old = sysid::ParseStageParameters(text, "old.json");
-  CHECK(old.rail.memory_time_s == 0.0);
-  CHECK(old.rail.static_mps2 == p.rail.static_mps2);
+  CHECK(old.velocity_source().rail.memory_time_s == 0.0);
+  CHECK(old.velocity_source().rail.static_mps2 == p.velocity_source().rail.static_mps2);
   // Out of range is a positioned error.
   CHECK_THROWS_WITH(
       sysid::ParseStageParameters(
@@ -40,12 +45,12 @@ TEST_CASE("the rail's memory: written, read back, 0 when a file predates it", "[
 
 TEST_CASE("the thrust limit: written when set, read back, absent means none", "[stage][file]") {
   sysid::StageParameters p = sysid::StageParameters::Default();
-  REQUIRE(p.motor.thrust_limit_mps2 == 0);
+  REQUIRE(p.velocity_source().motor.thrust_limit_mps2 == 0);
   CHECK(sysid::StageParametersToJson(p).find("thrust_limit_mps2") == std::string::npos);
-  p.motor.pole_per_s = 2000;
-  p.motor.thrust_limit_mps2 = 8;
+  p.velocity_source().motor.pole_per_s = 2000;
+  p.velocity_source().motor.thrust_limit_mps2 = 8;
   const std::string text = sysid::StageParametersToJson(p);
-  CHECK(sysid::ParseStageParameters(text, "t.json").motor.thrust_limit_mps2 == 8);
+  CHECK(sysid::ParseStageParameters(text, "t.json").velocity_source().motor.thrust_limit_mps2 == 8);
   CHECK_THROWS_WITH(
       sysid::ParseStageParameters(
           "{\"preset\": \"virtual\", \"motor\": {\"thrust_limit_mps2\": 2}}", "t.json"),
@@ -61,7 +66,7 @@ TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 
   CHECK(c.lag_time_constant_s == 0.0001);
   REQUIRE(sysid::StageParameters::IsPresetName("virtual-1khz"));
   const sysid::StageParameters a = sysid::LoadStage("virtual-1khz");
-  CHECK(a.model == sysid::StageModel::kVelocitySource);
+  CHECK(a.model() == sysid::StageModel::kVelocitySource);
   CHECK(a.sample_rate_hz == 1000);
   CHECK(a.RecordRateHz() == 1000);
   CHECK(a.lag_time_constant_s == 0.0003);
@@ -138,12 +143,12 @@ TEST_CASE("the default is C with the drive's hysteresis and creep, files without
           "[stage][file]") {
   const sysid::StageParameters d = sysid::StageParameters::Default();
   const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
-  REQUIRE(d.hysteresis.enabled());
-  REQUIRE(d.creep.enabled());
-  CHECK_FALSE(c.hysteresis.enabled());
-  CHECK_FALSE(c.creep.enabled());
-  CHECK(d.hysteresis.thresholds_v == std::vector<double>{0.05, 0.1, 0.2});
-  CHECK(d.creep.loop_share == 0.3);
+  REQUIRE(d.velocity_source().hysteresis.enabled());
+  REQUIRE(d.velocity_source().creep.enabled());
+  CHECK_FALSE(c.velocity_source().hysteresis.enabled());
+  CHECK_FALSE(c.velocity_source().creep.enabled());
+  CHECK(d.velocity_source().hysteresis.thresholds_v == std::vector<double>{0.05, 0.1, 0.2});
+  CHECK(d.velocity_source().creep.loop_share == 0.3);
   for (const char* name : {"virtual", "drive-hysteresis"})
     CHECK(sysid::StageParametersToJson(sysid::LoadStage(name)) ==
           sysid::StageParametersToJson(d));
@@ -155,42 +160,43 @@ TEST_CASE("the default is C with the drive's hysteresis and creep, files without
   const std::string c_text = sysid::StageParametersToJson(c);
   REQUIRE(c_text.find("hysteresis") == std::string::npos);
   const sysid::StageParameters c_back = sysid::ParseStageParameters(c_text, "c.json");
-  CHECK_FALSE(c_back.hysteresis.enabled());
-  CHECK_FALSE(c_back.creep.enabled());
+  CHECK_FALSE(c_back.velocity_source().hysteresis.enabled());
+  CHECK_FALSE(c_back.velocity_source().creep.enabled());
   CHECK(sysid::StageParametersToJson(c_back) == c_text);
   const std::string d_text = sysid::StageParametersToJson(d);
   CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(d_text, "d.json")) == d_text);
   // A preset file changes what it names and keeps the rest of its preset.
   const auto vs = sysid::ParseStageParameters(
       "{\"preset\": \"velocity-source\", \"rig\": {\"position_noise_m\": 0}}", "v.json");
-  CHECK_FALSE(vs.hysteresis.enabled());
+  CHECK_FALSE(vs.velocity_source().hysteresis.enabled());
   const auto dv = sysid::ParseStageParameters(
       "{\"preset\": \"virtual\", \"rig\": {\"position_noise_m\": 0}}", "d.json");
-  CHECK(dv.hysteresis.thresholds_v == d.hysteresis.thresholds_v);
+  CHECK(dv.velocity_source().hysteresis.thresholds_v ==
+        d.velocity_source().hysteresis.thresholds_v);
 }
 
 TEST_CASE("stage files name their model, presets load by name", "[stage][file]") {
   // The actuator-delay preset round-trips and keeps its model.
   const auto ad = sysid::StageParameters::ActuatorDelay();
   const auto back = sysid::ParseStageParameters(sysid::StageParametersToJson(ad), "ad.json");
-  CHECK(back.model == sysid::StageModel::kActuatorDelay);
+  CHECK(back.model() == sysid::StageModel::kActuatorDelay);
   CHECK(sysid::StageParametersToJson(back) == sysid::StageParametersToJson(ad));
   CHECK(sysid::LoadStage("actuator-delay").transport_delay_s == 0.002);
-  CHECK(sysid::LoadStage("virtual").model == sysid::StageModel::kVelocitySource);
+  CHECK(sysid::LoadStage("virtual").model() == sysid::StageModel::kVelocitySource);
   // A file without "model" written before the key existed (it has "friction") is actuator delay.
   std::string old_file = sysid::StageParametersToJson(sysid::StageParameters::ActuatorDelay());
   old_file.erase(old_file.find("\"model\""), old_file.find("\"note\"") - old_file.find("\"model\""));
-  CHECK(sysid::ParseStageParameters(old_file, "o.json").model ==
+  CHECK(sysid::ParseStageParameters(old_file, "o.json").model() ==
         sysid::StageModel::kActuatorDelay);
   // "preset": a partial file changes a preset, which gives the model and the other values.
   const auto partial = sysid::ParseStageParameters(
       "{\"preset\": \"actuator-delay\", \"friction\": {\"bristle_damping_per_s\": 900}}", "p.json");
-  CHECK(partial.model == sysid::StageModel::kActuatorDelay);
-  CHECK(partial.bristle_damping_per_s == 900);
+  CHECK(partial.model() == sysid::StageModel::kActuatorDelay);
+  CHECK(partial.actuator_delay().bristle_damping_per_s == 900);
   CHECK(partial.transport_delay_s == sysid::StageParameters::ActuatorDelay().transport_delay_s);
   CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual\", \"rig\": {\"position_noise_m\": 0}}",
                                     "n.json")
-            .model == sysid::StageModel::kVelocitySource);
+            .model() == sysid::StageModel::kVelocitySource);
   CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json"),
                     Catch::StartsWith("p.json:1:2: preset: expected a preset name"));
   CHECK_THROWS_WITH(
@@ -310,4 +316,37 @@ TEST_CASE("stage file value errors are positioned: key, rule, found value", "[st
   CHECK_NOTHROW(sysid::ParseStageParameters(
       R"({"preset": "virtual", "rig": {"encoder_resolution_m": 1e-9, "position_noise_m": 1e-6}})",
       "ok.json"));
+}
+
+TEST_CASE("each plant validates its own fields over the shared driver", "[stage][file]") {
+  using Catch::Contains;
+  // The actuator delay: its dead zone must stay below the driver's clip, checked by its own
+  // Validate and by the stage's, which hands it the shared saturation_v.
+  sysid::StageParameters ad = sysid::StageParameters::ActuatorDelay();
+  ad.actuator_delay().dead_zone_v = ad.saturation_v;
+  CHECK_THROWS_WITH(ad.Validate(), Contains("StageParameters::saturation_v") &&
+                                       Contains("saturation_v > dead_zone_v"));
+  CHECK_THROWS_WITH(ad.actuator_delay().Validate(ad.saturation_v),
+                    Contains("StageParameters::saturation_v") &&
+                        Contains("saturation_v > dead_zone_v"));
+  CHECK_NOTHROW(ad.actuator_delay().Validate(ad.saturation_v + 1));
+  // The velocity source: its dead zones likewise, named by the file's path.
+  sysid::StageParameters vs = sysid::StageParameters::VelocitySource();
+  vs.velocity_source().motor.dead_zone_forward_v = vs.saturation_v;
+  CHECK_THROWS_WITH(vs.Validate(), Contains("motor.dead_zone_forward_v"));
+  CHECK_NOTHROW(sysid::StageParameters::VelocitySource().velocity_source().Validate(10.0));
+  // The stage validates the plant it holds: the velocity source's rig with the actuator
+  // delay's plant is a valid actuator-delay stage, and writes only that plant's sections.
+  sysid::StageParameters swapped = sysid::StageParameters::VelocitySource();
+  swapped.plant = sysid::StageParameters::ActuatorDelay().actuator_delay();
+  CHECK_NOTHROW(swapped.Validate());
+  CHECK(swapped.model() == sysid::StageModel::kActuatorDelay);
+  CHECK_THROWS_WITH(swapped.velocity_source(), Contains("model is actuator-delay"));
+  const std::string text = sysid::StageParametersToJson(swapped);
+  CHECK(text.find("\"friction\"") != std::string::npos);
+  CHECK(text.find("\"motor\"") == std::string::npos);
+  CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "s.json")) == text);
+  // The shared settings are checked whichever plant is held.
+  swapped.saturation_v = 0;
+  CHECK_THROWS_WITH(swapped.Validate(), Contains("StageParameters::saturation_v"));
 }

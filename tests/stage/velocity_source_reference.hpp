@@ -29,16 +29,18 @@ struct VelocitySourceReference {
   double x = 0, v = 0, w = 0, s = 0;
   bool stuck = true;
   double d = 1;  // sliding direction
+  const sysid::VelocitySourcePlant& vs() const { return p.velocity_source(); }
   double Thrust(double y) const {
-    const double l = p.motor.thrust_limit_mps2;
+    const double l = vs().motor.thrust_limit_mps2;
     return l > 0 ? l * std::tanh(y / l) : y;
   }
   double Accel(double vv, double ww, double ss) const {
-    const double slip = p.rail.memory_time_s > 0 ? ss : std::abs(vv);
-    return Thrust(p.motor.pole_per_s * (p.NoLoadSpeed(ww) - vv)) - d * p.rail.Sliding(slip);
+    const double slip = vs().rail.memory_time_s > 0 ? ss : std::abs(vv);
+    return Thrust(vs().motor.pole_per_s * (vs().NoLoadSpeed(ww) - vv)) -
+           d * vs().rail.Sliding(slip);
   }
   double Memory(double vv, double ss) const {
-    return p.rail.memory_time_s > 0 ? (std::abs(vv) - ss) / p.rail.memory_time_s : 0.0;
+    return vs().rail.memory_time_s > 0 ? (std::abs(vv) - ss) / vs().rail.memory_time_s : 0.0;
   }
   void Step(double u_drive, double h) {
     const double t = p.lag_time_constant_s;
@@ -50,8 +52,8 @@ struct VelocitySourceReference {
       const double m1 = Memory(0, s), m2 = Memory(0, s + h / 2 * m1),
                    m3 = Memory(0, s + h / 2 * m2), m4 = Memory(0, s + h * m3);
       s += h / 6 * (m1 + 2 * m2 + 2 * m3 + m4);
-      const double vf = p.NoLoadSpeed(w);
-      if (std::abs(Thrust(p.motor.pole_per_s * vf)) > p.rail.static_mps2) {
+      const double vf = vs().NoLoadSpeed(w);
+      if (std::abs(Thrust(vs().motor.pole_per_s * vf)) > vs().rail.static_mps2) {
         stuck = false;
         d = vf > 0 ? 1 : -1;
       }
@@ -70,8 +72,8 @@ struct VelocitySourceReference {
     s += h / 6 * (s1 + 2 * s2 + 2 * s3 + s4);
     if (v * d < 0) {  // came to rest within the step
       v = 0;
-      const double vf = p.NoLoadSpeed(w);
-      if (std::abs(Thrust(p.motor.pole_per_s * vf)) <= p.rail.static_mps2)
+      const double vf = vs().NoLoadSpeed(w);
+      if (std::abs(Thrust(vs().motor.pole_per_s * vf)) <= vs().rail.static_mps2)
         stuck = true;
       else
         d = vf > 0 ? 1 : -1;

@@ -1,7 +1,7 @@
 // The virtual piezo stage: a simulated ultrasonic-motor stage (PBA PLS8 + Nanomotion HR-8 as in
 // the paper) that is deliberately richer than the rough model of model.hpp, and the paper's
 // data-collection procedures (pulse test, tracking sets, test waveforms) that run on it.
-// Two plant models share the rig (DAC, encoder, end stops) and the integrator (CVODE):
+// Two plant models (VelocitySourcePlant, ActuatorDelayPlant) share the rig, driver and CVODE:
 //
 // VELOCITY SOURCE (model "velocity-source", the default's; docs/virtual_stage.md). An ultrasonic
 // motor's fingertips push with a force that droops linearly with speed, from the stall force at
@@ -58,6 +58,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "sysid/io.hpp"
@@ -151,7 +152,7 @@ struct DriveHysteresis {
 ///   held (the pinned domain walls relax), so a slow sweep traces a loop (1 - k_l) as wide as
 ///   a fast one: the loop widens with the rate.
 /// Held, z = q and u_h = u_pi + k_l D = s - (1 - k_l) D: the held lag is (1 - k_l) times the
-/// hysteresis' (StageParameters::HeldDriveLag). s and u_pi are held per control sample, so z
+/// hysteresis' (VelocitySourcePlant::HeldDriveLag). s and u_pi are held per control sample, so z
 /// has the closed form q + (z_a - q) e^(-(t - t_a) / T_c) over each held piece: the envelope
 /// lag sees that continuous u_h (no integrator state, z advanced exactly from piece to piece).
 struct DriveCreep {
@@ -161,33 +162,68 @@ struct DriveCreep {
   bool enabled() const { return voltage_share > 0 || loop_share > 0; }
 };
 
-/// Every parameter of the virtual stage, SI units. The JSON file carries the unit in each key.
-struct StageParameters {
-  std::string name = "virtual PLS8/HR-8 (velocity source)";
-  StageModel model = StageModel::kVelocitySource;
-  // Velocity-source model (used when model == kVelocitySource).
+/// The velocity-source plant's own parameters (model "velocity-source"; the top of this file).
+/// The driver, rig and integrator are StageParameters' (shared with the actuator delay).
+struct VelocitySourcePlant {
   MotorParameters motor;
   RailFriction rail;
-  // Driver (both models: saturation, transport delay, lag).
-  double saturation_v = 10.0;           ///< [V] driver input clip, > dead_zone_v
-  double transport_delay_s = 0.0;       ///< [s] >= 0, any multiple of the sample time
-  double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
-  /// Velocity source: the ceramic's hysteresis before the lag (file: drive.hysteresis, written
-  /// only when enabled; a file without it has none).
-  DriveHysteresis hysteresis;
-  /// Velocity source: the ceramic's creep after its hysteresis (file: drive.creep, written
-  /// only when enabled; a file without it has none).
-  DriveCreep creep;
-  // Actuator-delay model only: force actuator and LuGre rail friction.
+  DriveHysteresis hysteresis;  ///< before the lag (file: drive.hysteresis, when enabled)
+  DriveCreep creep;            ///< after the hysteresis (file: drive.creep, when enabled)
+
+  /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE" (FIELD as
+  /// the stage file's path: motor.pole_per_s, hysteresis.weights[2], ...); `saturation_v` [V] is
+  /// the driver's clip, which the dead zones must stay below.
+  void Validate(double saturation_v) const;
+  double NoLoadSpeed(double u_v) const;  ///< [m/s] v_f(u) of the motor (0 in the dead zone)
+  /// [m/s] steady sliding velocity under a held voltage u_v [V] (clipped by the DAC and the
+  /// driver) reached from 0 V: T(p (|v_f| - s)) = g(s) by bisection, 0 when |T(p v_f)| <= Fs;
+  /// v_f read at u -+ HeldDriveLag.
+  double SteadyVelocity(double u_v) const;
+  /// [V] the drive's lag of a voltage held after a rise (rising) or a fall of at least 2 r_max
+  /// from 0 V: the hysteresis' HeldLag, of which the creep's loop share has relaxed,
+  /// (1 - k_l) HeldLag (0 without hysteresis).
+  double HeldDriveLag(bool rising) const;
+  /// Sets the speed map's knots so that a held voltage u_i settles at v_i for each
+  /// (u_i [V], v_i [m/s]) (steady law T(p (v_f - v)) = g(|v|), so
+  /// v_f(u_i) = v_i + sgn(v_i) T^-1(g(|v_i|)) / p), for the current pole, thrust limit and rail.
+  /// With drive hysteresis the knot sits at the held u_h: u_i reached from 0 V by a rise
+  /// (u_i > 0) or a fall (u_i < 0) of at least 2 r_max, u_i -+ HeldDriveLag.
+  /// The presets call it with the paper's pulse table.
+  void SetSpeedMapThrough(const std::vector<std::pair<double, double>>& steady_points);
+};
+
+/// The actuator-delay plant's own parameters (model "actuator-delay"; the top of this file).
+struct ActuatorDelayPlant {
   double gain_mps2_per_v = 6.0;         ///< [m/(s^2 V)] a3, force per volt per unit mass
-  double dead_zone_v = 0.15;            ///< [V] dz >= 0
+  double dead_zone_v = 0.15;            ///< [V] dz >= 0, below the driver's saturation_v
   std::vector<double> drive_map_in_v;   ///< [V] knots of M (after the dead zone), increasing
   std::vector<double> drive_map_out_v;  ///< [V] M at the knots, non-decreasing, M(0) = 0
-  // Friction (LuGre, per unit mass; actuator-delay model only).
   double bristle_stiffness_per_s2 = 1e6;  ///< [1/s^2] s0 > 0
   double bristle_damping_per_s = 1000;    ///< [1/s] s1 >= 0
   FrictionBranch forward;                 ///< branch for v > 0
   FrictionBranch backward;                ///< branch for v < 0 (all values positive)
+
+  /// As VelocitySourcePlant::Validate (the dead zone below `saturation_v` [V]).
+  void Validate(double saturation_v) const;
+  /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
+  double DriveMap(double u_v) const;
+  /// [m/s] steady sliding velocity under a held voltage u_v [V] (clipped by the DAC and the
+  /// driver): a3 M(|u| - dz) = g(v) + s2 |v| by bisection, 0 when a3 M <= Fs.
+  double SteadyVelocity(double u_v) const;
+};
+
+/// Every parameter of the virtual stage, SI units: one plant (the velocity source or the
+/// actuator delay, each with its own fields and Validate) over the settings both share: the
+/// driver's clip, delay and lag, the rig (DAC, encoder, end stops, rates) and the integrator.
+/// The JSON file carries the unit in each key.
+struct StageParameters {
+  std::string name = "virtual PLS8/HR-8 (velocity source)";
+  /// The plant's own parameters; which one is held is the stage's model().
+  std::variant<VelocitySourcePlant, ActuatorDelayPlant> plant;
+  // Driver (both plants: saturation, transport delay, lag).
+  double saturation_v = 10.0;           ///< [V] driver input clip, > 0 and above the dead zones
+  double transport_delay_s = 0.0;       ///< [s] >= 0, any multiple of the sample time
+  double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
   // Rig.
   /// [Hz] control rate: the DAC hold, the encoder's reads and the controller's loop, > 0
   /// (file: rig.control_rate_hz, or rig.sample_rate_hz, which sets both rates)
@@ -216,8 +252,15 @@ struct StageParameters {
   int max_steps_per_sample = kDefaultMaxStepsPerSample;
   static constexpr int kDefaultMaxStepsPerSample = 20000;
 
+  StageModel model() const;  ///< which plant `plant` holds
+  /// The plant's parameters; OptionsError naming the stage's model when it holds the other.
+  VelocitySourcePlant& velocity_source();
+  const VelocitySourcePlant& velocity_source() const;
+  ActuatorDelayPlant& actuator_delay();
+  const ActuatorDelayPlant& actuator_delay() const;
+
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
-  /// Checks the rig, the driver and the parameters of `model` (the other model's are unused).
+  /// Checks the driver, the rig and the integrator, then the plant (its own Validate).
   void Validate() const;
   /// The calibrated virtual stage (identical to datasets/virtual/stage.json): the preset
   /// "drive-hysteresis", VelocitySource() plus the ceramic's asymmetric play operators whose
@@ -250,27 +293,10 @@ struct StageParameters {
   double RecordRateHz() const { return record_rate_hz > 0 ? record_rate_hz : sample_rate_hz; }
   /// Control samples per recorded sample, sample_rate_hz / RecordRateHz() (>= 1).
   long RecordStride() const;
-  /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
-  double DriveMap(double u_v) const;
-  /// [m/s] no-load speed v_f(u) of the velocity-source motor (0 inside the dead zone).
-  double NoLoadSpeed(double u_v) const;
   /// [m/s] steady sliding velocity under a constant voltage reached from rest (ignoring noise
-  /// and limits), found by bisection on the model's steady force balance; 0 when the drive
-  /// does not break away (velocity source: |p v_f(u)| <= Fs; actuator delay: a3 M <= Fs).
-  /// With drive hysteresis the voltage is reached from 0 V (a rise for u > 0, a fall for
-  /// u < 0, of at least 2 r_max): v_f is read at u -+ HeldDriveLag.
+  /// and limits): u_v clipped by the DAC's range and the driver, then the plant's
+  /// SteadyVelocity.
   double SteadyVelocity(double u_v) const;
-  /// Velocity source: sets the speed map's knots so that a held voltage u_i settles at v_i for
-  /// each (u_i [V], v_i [m/s]) (steady law T(p (v_f - v)) = g(|v|), so
-  /// v_f(u_i) = v_i + sgn(v_i) T^-1(g(|v_i|)) / p), for the current pole, thrust limit and rail.
-  /// With drive hysteresis the knot sits at the held u_h: u_i reached from 0 V by a rise
-  /// (u_i > 0) or a fall (u_i < 0) of at least 2 r_max, u_i -+ HeldDriveLag.
-  /// Default() calls it with the paper's pulse table.
-  void SetSpeedMapThrough(const std::vector<std::pair<double, double>>& steady_points);
-  /// [V] Velocity source: the drive's lag of a voltage held after a rise (rising) or a fall of
-  /// at least 2 r_max from 0 V: the hysteresis' HeldLag, of which the creep's loop share has
-  /// relaxed, (1 - k_l) HeldLag (0 without hysteresis).
-  double HeldDriveLag(bool rising) const;
   /// Velocity source: sets the creep `c` and moves the dead zones and the speed map's knots by
   /// the change of HeldDriveLag, as SetDriveHysteresis does (the voltage share does not move
   /// them: a held voltage has relaxed). Throws OptionsError (Validate) as SetDriveHysteresis.
@@ -285,12 +311,8 @@ struct StageParameters {
   static std::vector<std::pair<double, double>> PaperPulseTable();
 
  private:
-  void ValidateVelocitySource() const;
-  void ValidateHysteresis() const;
-  void ValidateCreep() const;
   /// Moves the dead zones and knots by the change of HeldDriveLag from (forward, backward).
   void MoveForHeldLag(double forward_before, double backward_before);
-  void ValidateDriveMap() const;
 };
 
 /// Parses a stage file's JSON text; `source` names it in errors ("FILE:LINE:COLUMN: ...").

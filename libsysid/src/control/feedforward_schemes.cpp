@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -111,6 +112,21 @@ Feedforward HysteresisStepperFeedforward(const HysteresisModel& model, double dt
   };
 }
 
+// The virtual stage, rebuilt for each scheme with the same seed: the same plant and noise.
+class StagePlant final : public internal::TrackedPlant {
+ public:
+  StagePlant(const StageParameters& stage, std::uint64_t seed) : stage_(stage), seed_(seed) {}
+  void Reset() override { plant_.emplace(stage_, seed_); }
+  double Step(double u_v) override { return plant_->Step(u_v); }
+  double measured_position_m() const override { return plant_->measured_position_m(); }
+  std::string DescribeLimits() const override { return plant_->status().Describe(); }
+
+ private:
+  const StageParameters& stage_;
+  std::uint64_t seed_;
+  std::optional<VirtualStage> plant_;
+};
+
 }  // namespace
 
 Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference& reference,
@@ -139,16 +155,19 @@ Feedforward SchemeFeedforward(FeedforwardScheme scheme, const PositionReference&
 namespace internal {
 
 std::vector<SchemeTracking> TrackEachScheme(
-    const PositionReference& reference, const PiOptions& pi,
+    TrackedPlant& plant, const PositionReference& reference, const PiOptions& pi,
     const std::vector<FeedforwardScheme>& schemes, const InverseModels& models,
-    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme,
-    const std::function<void(const Feedforward& ff, SchemeTracking* run)>& run_on_fresh_plant) {
+    const std::function<void(FeedforwardScheme, std::size_t)>& on_scheme) {
   std::vector<SchemeTracking> runs;
   for (std::size_t i = 0; i < schemes.size(); ++i) {
     if (on_scheme) on_scheme(schemes[i], i);
     SchemeTracking run;
     run.scheme = schemes[i];
-    run_on_fresh_plant(SchemeFeedforward(schemes[i], reference, pi.sample_time_s, models), &run);
+    const Feedforward ff = SchemeFeedforward(schemes[i], reference, pi.sample_time_s, models);
+    plant.Reset();
+    run.result = RunClosedLoop([&plant](double u) { return plant.Step(u); },
+                               plant.measured_position_m(), reference, pi, ff);
+    run.stage_limits = plant.DescribeLimits();
     runs.push_back(std::move(run));
   }
   return runs;
@@ -168,12 +187,8 @@ std::vector<SchemeTracking> TrackSchemes(
           "the hysteresis scheme inverts a voltage-to-position model: it is for the piezo stack "
           "(--plant piezo-stack), not the stage",
           "schemes");
-  return internal::TrackEachScheme(
-      reference, pi, schemes, models, on_scheme, [&](const Feedforward& ff, SchemeTracking* run) {
-        VirtualStage plant(stage, seed);  // the same plant and noise for every scheme
-        run->result = RunClosedLoop(plant, reference, pi, ff);
-        run->stage_limits = plant.status().Describe();
-      });
+  StagePlant plant(stage, seed);
+  return internal::TrackEachScheme(plant, reference, pi, schemes, models, on_scheme);
 }
 
 }  // namespace sysid

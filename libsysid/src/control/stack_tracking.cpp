@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
 
 #include "control/scheme_loop.hpp"
 #include "core/option_rule.hpp"
@@ -18,6 +19,21 @@ namespace {
 [[noreturn]] void Violated(const char* field, double value, const std::string& rule) {
   internal::FailOption("StackReferenceOptions", field, value, rule);
 }
+
+// The stack, rebuilt for each scheme with the same seed: the same plant and noise.
+class StackPlant final : public internal::TrackedPlant {
+ public:
+  StackPlant(const StackParameters& stack, std::uint64_t seed) : stack_(stack), seed_(seed) {}
+  void Reset() override { plant_.emplace(stack_, seed_); }
+  double Step(double u_v) override { return plant_->Step(u_v); }
+  double measured_position_m() const override { return plant_->measured_position_m(); }
+  std::string DescribeLimits() const override { return plant_->DescribeLimits(); }
+
+ private:
+  const StackParameters& stack_;
+  std::uint64_t seed_;
+  std::optional<PiezoStack> plant_;
+};
 
 }  // namespace
 
@@ -127,13 +143,8 @@ std::vector<SchemeTracking> TrackStackSchemes(
       throw OptionsError("the piezo stack takes the schemes none and hysteresis ('" + ToString(s) +
                              "' is the stage's: a friction or network inverse of velocity)",
                          "schemes");
-  return internal::TrackEachScheme(
-      reference, pi, schemes, models, on_scheme, [&](const Feedforward& ff, SchemeTracking* run) {
-        PiezoStack plant(stack, seed);  // the same plant and noise for every scheme
-        run->result = RunClosedLoop([&plant](double u) { return plant.Step(u); },
-                                    plant.measured_position_m(), reference, pi, ff);
-        run->stage_limits = plant.DescribeLimits();
-      });
+  StackPlant plant(stack, seed);
+  return internal::TrackEachScheme(plant, reference, pi, schemes, models, on_scheme);
 }
 
 }  // namespace sysid

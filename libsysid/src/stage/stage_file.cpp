@@ -5,13 +5,14 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
-#include "sysid/stage.hpp"
 #include "sysid/io_output.hpp"
+#include "sysid/stage.hpp"
 
 namespace sysid {
 namespace {
@@ -90,11 +91,11 @@ namespace {
 StageModel FileModel(const internal::JsonNode& root, const StageParameters* preset) {
   const nlohmann::json& j = root.json();
   if (preset) {
-    if (root.Has("model") && root.Get("model").String() != ToString(preset->model))
+    if (root.Has("model") && root.Get("model").String() != ToString(preset->model()))
       root.Get("model").Fail("expected the model of preset '" + root.Get("preset").String() +
-                             "' (" + ToString(preset->model) + "), found '" +
+                             "' (" + ToString(preset->model()) + "), found '" +
                              root.Get("model").String() + "'");
-    return preset->model;
+    return preset->model();
   }
   if (root.Has("model")) {
     const internal::JsonNode m = root.Get("model");
@@ -137,12 +138,15 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   const bool vs = model == StageModel::kVelocitySource;
   StageParameters p =
       preset ? *preset : vs ? StageParameters::Default() : StageParameters::ActuatorDelay();
+  // The plant's own fields: exactly one of these is set, that of `model`.
+  VelocitySourcePlant* const vsp = std::get_if<VelocitySourcePlant>(&p.plant);
+  ActuatorDelayPlant* const adp = std::get_if<ActuatorDelayPlant>(&p.plant);
   // A complete file written before the rail had memory leaves the key out: no memory; one
   // without the drive's hysteresis or creep blocks has none (the default stage has both).
-  if (complete) {
-    p.rail.memory_time_s = 0.0;
-    p.hysteresis = DriveHysteresis{};
-    p.creep = DriveCreep{};
+  if (complete && vsp) {
+    vsp->rail.memory_time_s = 0.0;
+    vsp->hysteresis = DriveHysteresis{};
+    vsp->creep = DriveCreep{};
   }
   const std::string model_name = ToString(model);
   auto other_model = [&](const internal::JsonNode& at) {
@@ -161,76 +165,80 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
       if (vs && value.is_object())
         for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
           if (value.contains(k)) other_model(root.Get(key).Get(k));
-      Section{{{"gain_mps2_per_v", &p.gain_mps2_per_v},
-               {"dead_zone_v", &p.dead_zone_v},
-               {"saturation_v", &p.saturation_v},
-               {"transport_delay_s", &p.transport_delay_s},
-               {"lag_time_constant_s", &p.lag_time_constant_s}},
-              {},
-              {{"map_in_v", &p.drive_map_in_v}, {"map_out_v", &p.drive_map_out_v}},
-              {"hysteresis", "creep"}}
-          .Read(root.Get(key), complete,
-                vs ? std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v", "map_in_v",
-                                              "map_out_v", "hysteresis", "creep"}
-                   : std::vector<std::string>{"hysteresis", "creep"});
+      // The driver's shared keys, and the actuator delay's force actuator in the same block.
+      Section drive{{{"saturation_v", &p.saturation_v},
+                     {"transport_delay_s", &p.transport_delay_s},
+                     {"lag_time_constant_s", &p.lag_time_constant_s}},
+                    {},
+                    {},
+                    {"hysteresis", "creep"}};
+      if (adp) {
+        drive.numbers.insert(drive.numbers.begin(), {{"gain_mps2_per_v", &adp->gain_mps2_per_v},
+                                                     {"dead_zone_v", &adp->dead_zone_v}});
+        drive.arrays = {{"map_in_v", &adp->drive_map_in_v}, {"map_out_v", &adp->drive_map_out_v}};
+      }
+      drive.Read(root.Get(key), complete, {"hysteresis", "creep"});
       if (root.Get(key).Has("hysteresis")) {
         // The ceramic's hysteresis (velocity source only); a file without the block has none.
         const internal::JsonNode h = root.Get(key).Get("hysteresis");
-        if (!vs) other_model(h);
-        Section{{{"rate_time_constant_s", &p.hysteresis.rate_time_constant_s},
-                 {"asymmetry", &p.hysteresis.asymmetry}},
+        if (!vsp) other_model(h);
+        DriveHysteresis& dh = vsp->hysteresis;
+        Section{{{"rate_time_constant_s", &dh.rate_time_constant_s}, {"asymmetry", &dh.asymmetry}},
                 {},
-                {{"thresholds_v", &p.hysteresis.thresholds_v},
-                 {"weights", &p.hysteresis.weights},
-                 {"rate_weights_s_per_v", &p.hysteresis.rate_weights_s_per_v}},
+                {{"thresholds_v", &dh.thresholds_v},
+                 {"weights", &dh.weights},
+                 {"rate_weights_s_per_v", &dh.rate_weights_s_per_v}},
                 {}}
             .Read(h, complete);
       }
       if (root.Get(key).Has("creep")) {
         // The ceramic's creep (velocity source only); a file without the block has none.
         const internal::JsonNode c = root.Get(key).Get("creep");
-        if (!vs) other_model(c);
-        Section{{{"voltage_share", &p.creep.voltage_share},
-                 {"loop_share", &p.creep.loop_share},
-                 {"time_constant_s", &p.creep.time_constant_s}},
+        if (!vsp) other_model(c);
+        DriveCreep& dc = vsp->creep;
+        Section{{{"voltage_share", &dc.voltage_share},
+                 {"loop_share", &dc.loop_share},
+                 {"time_constant_s", &dc.time_constant_s}},
                 {},
                 {},
                 {}}
             .Read(c, complete);
       }
     } else if (key == "motor") {
-      if (!vs) other_model(root.Get(key));
-      Section{{{"pole_per_s", &p.motor.pole_per_s},
-               {"dead_zone_forward_v", &p.motor.dead_zone_forward_v},
-               {"dead_zone_backward_v", &p.motor.dead_zone_backward_v},
-               {"thrust_limit_mps2", &p.motor.thrust_limit_mps2}},
+      if (!vsp) other_model(root.Get(key));
+      MotorParameters& motor = vsp->motor;
+      Section{{{"pole_per_s", &motor.pole_per_s},
+               {"dead_zone_forward_v", &motor.dead_zone_forward_v},
+               {"dead_zone_backward_v", &motor.dead_zone_backward_v},
+               {"thrust_limit_mps2", &motor.thrust_limit_mps2}},
               {},
-              {{"speed_map_in_v", &p.motor.speed_map_in_v},
-               {"speed_map_out_mps", &p.motor.speed_map_out_mps}},
+              {{"speed_map_in_v", &motor.speed_map_in_v},
+               {"speed_map_out_mps", &motor.speed_map_out_mps}},
               {}}
           .Read(root.Get(key), complete, {"thrust_limit_mps2"});
     } else if (key == "rail") {
-      if (!vs) other_model(root.Get(key));
-      Section{{{"coulomb_mps2", &p.rail.coulomb_mps2},
-               {"static_mps2", &p.rail.static_mps2},
-               {"stribeck_velocity_mps", &p.rail.stribeck_velocity_mps},
-               {"memory_time_s", &p.rail.memory_time_s}},
+      if (!vsp) other_model(root.Get(key));
+      RailFriction& rail = vsp->rail;
+      Section{{{"coulomb_mps2", &rail.coulomb_mps2},
+               {"static_mps2", &rail.static_mps2},
+               {"stribeck_velocity_mps", &rail.stribeck_velocity_mps},
+               {"memory_time_s", &rail.memory_time_s}},
               {},
               {},
               {}}
           .Read(root.Get(key), complete, {"memory_time_s"});
     } else if (key == "friction") {
-      if (vs) other_model(root.Get(key));
-      Section{{{"bristle_stiffness_per_s2", &p.bristle_stiffness_per_s2},
-               {"bristle_damping_per_s", &p.bristle_damping_per_s}},
+      if (!adp) other_model(root.Get(key));
+      Section{{{"bristle_stiffness_per_s2", &adp->bristle_stiffness_per_s2},
+               {"bristle_damping_per_s", &adp->bristle_damping_per_s}},
               {},
               {},
               {"forward", "backward"}}
           .Read(root.Get(key), complete);
       if (root.Get(key).Has("forward"))
-        BranchSection(p.forward).Read(root.Get(key).Get("forward"), complete);
+        BranchSection(adp->forward).Read(root.Get(key).Get("forward"), complete);
       if (root.Get(key).Has("backward"))
-        BranchSection(p.backward).Read(root.Get(key).Get("backward"), complete);
+        BranchSection(adp->backward).Read(root.Get(key).Get("backward"), complete);
     } else if (key == "rig") {
       // The rates: sample_rate_hz sets the control and the record rate alike (files written
       // before the two rates existed); control_rate_hz and record_rate_hz set them apart.
@@ -313,64 +321,65 @@ std::string StageParametersToJson(const StageParameters& p) {
     o["viscous_per_s"] = b.viscous_per_s;
     return o;
   };
-  const bool vs = p.model == StageModel::kVelocitySource;
+  const VelocitySourcePlant* const vs = std::get_if<VelocitySourcePlant>(&p.plant);
+  const ActuatorDelayPlant* const ad = std::get_if<ActuatorDelayPlant>(&p.plant);
   OJ j;
   j["name"] = p.name;
-  j["model"] = ToString(p.model);
+  j["model"] = ToString(p.model());
   j["note"] =
       "Virtual piezo stage for libsysid (docs/virtual_stage.md). SI units; each key ends with "
       "its unit (mps = m/s, mps2 = m/s^2, per_s = 1/s, per_s2 = 1/s^2, v = V). Forces are per "
       "unit mass. Only the sections of this model are written.";
   OJ drive;
-  if (!vs) {
-    drive["gain_mps2_per_v"] = p.gain_mps2_per_v;
-    drive["dead_zone_v"] = p.dead_zone_v;
+  if (ad) {
+    drive["gain_mps2_per_v"] = ad->gain_mps2_per_v;
+    drive["dead_zone_v"] = ad->dead_zone_v;
   }
   drive["saturation_v"] = p.saturation_v;
   drive["transport_delay_s"] = p.transport_delay_s;
   drive["lag_time_constant_s"] = p.lag_time_constant_s;
-  if (vs && p.hysteresis.enabled()) {
+  if (vs && vs->hysteresis.enabled()) {
     OJ h;
-    h["thresholds_v"] = p.hysteresis.thresholds_v;
-    h["weights"] = p.hysteresis.weights;
-    h["rate_weights_s_per_v"] = p.hysteresis.rate_weights_s_per_v;
-    h["rate_time_constant_s"] = p.hysteresis.rate_time_constant_s;
-    h["asymmetry"] = p.hysteresis.asymmetry;
+    h["thresholds_v"] = vs->hysteresis.thresholds_v;
+    h["weights"] = vs->hysteresis.weights;
+    h["rate_weights_s_per_v"] = vs->hysteresis.rate_weights_s_per_v;
+    h["rate_time_constant_s"] = vs->hysteresis.rate_time_constant_s;
+    h["asymmetry"] = vs->hysteresis.asymmetry;
     drive["hysteresis"] = h;
   }
-  if (vs && p.creep.enabled()) {
+  if (vs && vs->creep.enabled()) {
     OJ c;
-    c["voltage_share"] = p.creep.voltage_share;
-    c["loop_share"] = p.creep.loop_share;
-    c["time_constant_s"] = p.creep.time_constant_s;
+    c["voltage_share"] = vs->creep.voltage_share;
+    c["loop_share"] = vs->creep.loop_share;
+    c["time_constant_s"] = vs->creep.time_constant_s;
     drive["creep"] = c;
   }
-  if (!vs) {
-    drive["map_in_v"] = p.drive_map_in_v;
-    drive["map_out_v"] = p.drive_map_out_v;
+  if (ad) {
+    drive["map_in_v"] = ad->drive_map_in_v;
+    drive["map_out_v"] = ad->drive_map_out_v;
   }
   j["drive"] = drive;
   if (vs) {
     OJ motor;
-    motor["pole_per_s"] = p.motor.pole_per_s;
-    motor["dead_zone_forward_v"] = p.motor.dead_zone_forward_v;
-    motor["dead_zone_backward_v"] = p.motor.dead_zone_backward_v;
-    motor["speed_map_in_v"] = p.motor.speed_map_in_v;
-    motor["speed_map_out_mps"] = p.motor.speed_map_out_mps;
-    if (p.motor.thrust_limit_mps2 > 0) motor["thrust_limit_mps2"] = p.motor.thrust_limit_mps2;
+    motor["pole_per_s"] = vs->motor.pole_per_s;
+    motor["dead_zone_forward_v"] = vs->motor.dead_zone_forward_v;
+    motor["dead_zone_backward_v"] = vs->motor.dead_zone_backward_v;
+    motor["speed_map_in_v"] = vs->motor.speed_map_in_v;
+    motor["speed_map_out_mps"] = vs->motor.speed_map_out_mps;
+    if (vs->motor.thrust_limit_mps2 > 0) motor["thrust_limit_mps2"] = vs->motor.thrust_limit_mps2;
     j["motor"] = motor;
     OJ rail;
-    rail["coulomb_mps2"] = p.rail.coulomb_mps2;
-    rail["static_mps2"] = p.rail.static_mps2;
-    rail["stribeck_velocity_mps"] = p.rail.stribeck_velocity_mps;
-    rail["memory_time_s"] = p.rail.memory_time_s;
+    rail["coulomb_mps2"] = vs->rail.coulomb_mps2;
+    rail["static_mps2"] = vs->rail.static_mps2;
+    rail["stribeck_velocity_mps"] = vs->rail.stribeck_velocity_mps;
+    rail["memory_time_s"] = vs->rail.memory_time_s;
     j["rail"] = rail;
   } else {
     OJ friction;
-    friction["bristle_stiffness_per_s2"] = p.bristle_stiffness_per_s2;
-    friction["bristle_damping_per_s"] = p.bristle_damping_per_s;
-    friction["forward"] = branch(p.forward);
-    friction["backward"] = branch(p.backward);
+    friction["bristle_stiffness_per_s2"] = ad->bristle_stiffness_per_s2;
+    friction["bristle_damping_per_s"] = ad->bristle_damping_per_s;
+    friction["forward"] = branch(ad->forward);
+    friction["backward"] = branch(ad->backward);
     j["friction"] = friction;
   }
   OJ rig;

@@ -20,7 +20,7 @@ StageParameters VelocitySourceAtMemberDefaults() {
   StageParameters p;  // velocity source: the member defaults are the calibrated values
   // Speed map through the paper's ten pulse points: a held pulse settles where
   // p (v_f(u_i) - v) = g(v), so v_f(u_i) = v_i + sgn(v_i) g(|v_i|) / p gives exactly v_i.
-  p.SetSpeedMapThrough(StageParameters::PaperPulseTable());
+  p.velocity_source().SetSpeedMapThrough(StageParameters::PaperPulseTable());
   return p;
 }
 
@@ -146,20 +146,20 @@ StageParameters StageParameters::Preset(const std::string& name) {
 StageParameters StageParameters::ActuatorDelay() {
   StageParameters p;
   p.name = "virtual PLS8/HR-8 (actuator delay)";
-  p.model = StageModel::kActuatorDelay;
+  ActuatorDelayPlant& ad = p.plant.emplace<ActuatorDelayPlant>();
   p.transport_delay_s = 0.002;
   p.lag_time_constant_s = 0.0015;
   // Friction branches near the paper's rough model (a1 ~ s2, a2 ~ Fc + a3 dz) with a Stribeck
   // dip the rough model lacks; breakaway at dz + Fs/a3 = 0.63 V forward, 1.32 V backward.
-  p.forward = {2.2, 2.9, 0.004, 104.0};
-  p.backward = {5.9, 7.0, 0.004, 117.0};
+  ad.forward = {2.2, 2.9, 0.004, 104.0};
+  ad.backward = {5.9, 7.0, 0.004, 117.0};
   // The driver's static characteristic, calibrated to the paper's pulse table: the knot at
   // |u| - dz holds (g(v) + s2 v) / a3 for the paper's measured v at that amplitude u, so a
   // held pulse settles at the paper's velocity (a near-identity map: corrections of <= 4 %).
-  p.drive_map_in_v = {-10.0, -2.35, -2.15, -1.95, -1.85, -1.65, 0.0,
-                      1.15,  1.35,  1.45,  1.55,  1.85,  10.0};
-  p.drive_map_out_v = {-10.0,  -2.37173, -2.06792, -1.95658, -1.88462, -1.64497, 0.0,
-                       1.1406, 1.36195,  1.44515,  1.55625,  1.84329,  10.0};
+  ad.drive_map_in_v = {-10.0, -2.35, -2.15, -1.95, -1.85, -1.65, 0.0,
+                       1.15,  1.35,  1.45,  1.55,  1.85,  10.0};
+  ad.drive_map_out_v = {-10.0,  -2.37173, -2.06792, -1.95658, -1.88462, -1.64497, 0.0,
+                        1.1406, 1.36195,  1.44515,  1.55625,  1.84329,  10.0};
   return p;
 }
 

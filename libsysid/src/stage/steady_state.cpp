@@ -1,10 +1,11 @@
 // The stage's steady-state physics: the motor's thrust and droop, the rail's sliding friction,
-// the static drive map, the no-load speed and the steady sliding velocity (a bisection on the
-// friction branch).
+// the static drive map, the no-load speed and each plant's steady sliding velocity (a bisection
+// on its steady force balance).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "sysid/stage.hpp"
@@ -44,7 +45,7 @@ double RailFriction::SlidingSlope(double speed_mps) const {
   return (static_mps2 - coulomb_mps2) * std::exp(-r * r) * (-2.0 * r) / stribeck_velocity_mps;
 }
 
-double StageParameters::DriveMap(double u) const {
+double ActuatorDelayPlant::DriveMap(double u) const {
   const auto& in = drive_map_in_v;
   const auto& out = drive_map_out_v;
   // Segment [k, k+1] containing u; the end segments extrapolate linearly.
@@ -54,7 +55,7 @@ double StageParameters::DriveMap(double u) const {
   return out[k] + s * (out[k + 1] - out[k]);
 }
 
-double StageParameters::NoLoadSpeed(double u) const {
+double VelocitySourcePlant::NoLoadSpeed(double u) const {
   const auto& in = motor.speed_map_in_v;
   const auto& out = motor.speed_map_out_mps;
   const bool forward = u > 0;
@@ -84,21 +85,26 @@ double StageParameters::NoLoadSpeed(double u) const {
 double StageParameters::SteadyVelocity(double u_v) const {
   const double u =
       std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
-  if (model == StageModel::kVelocitySource) {
-    const double vf = NoLoadSpeed(u > 0   ? u - HeldDriveLag(true)
-                                  : u < 0 ? u + HeldDriveLag(false)
-                                          : 0.0);
-    const double p = motor.pole_per_s;
-    if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
-    // h(s) = T(p (|v_f| - s)) - g(s) falls through zero wherever it is zero (Validate), h(0) > 0
-    // and h(|v_f|) < 0, so one root in (0, |v_f|).
-    double lo = 0, hi = std::abs(vf);
-    for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (motor.Thrust(p * (std::abs(vf) - mid)) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
-    }
-    return (vf > 0 ? 1.0 : -1.0) * 0.5 * (lo + hi);
+  return std::visit([u](const auto& p) { return p.SteadyVelocity(u); }, plant);
+}
+
+double VelocitySourcePlant::SteadyVelocity(double u) const {
+  const double vf = NoLoadSpeed(u > 0   ? u - HeldDriveLag(true)
+                                : u < 0 ? u + HeldDriveLag(false)
+                                        : 0.0);
+  const double p = motor.pole_per_s;
+  if (std::abs(motor.Thrust(p * vf)) <= rail.static_mps2) return 0.0;
+  // h(s) = T(p (|v_f| - s)) - g(s) falls through zero wherever it is zero (Validate), h(0) > 0
+  // and h(|v_f|) < 0, so one root in (0, |v_f|).
+  double lo = 0, hi = std::abs(vf);
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (motor.Thrust(p * (std::abs(vf) - mid)) - rail.Sliding(mid) > 0 ? lo : hi) = mid;
   }
+  return (vf > 0 ? 1.0 : -1.0) * 0.5 * (lo + hi);
+}
+
+double ActuatorDelayPlant::SteadyVelocity(double u) const {
   if (std::abs(u) <= dead_zone_v) return 0.0;
   const double sign = u > 0 ? 1.0 : -1.0;
   const FrictionBranch& b = u > 0 ? forward : backward;

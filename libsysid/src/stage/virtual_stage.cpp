@@ -46,6 +46,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/cvode_solver.hpp"
@@ -98,14 +99,16 @@ class VirtualStage::Impl {
     // short ("0.0123456"), which keeps the bundled CSV files small.
     encoder_divisor_ = std::abs(inv_q - std::round(inv_q)) < 1e-9 * inv_q ? std::round(inv_q) : 0;
 
-    vs_ = p_.model == StageModel::kVelocitySource;
+    vs_ = std::get_if<VelocitySourcePlant>(&p_.plant);
+    ad_ = std::get_if<ActuatorDelayPlant>(&p_.plant);
     if (vs_) {
-      hysteresis_ = p_.hysteresis;
+      hysteresis_ = vs_->hysteresis;
       play_.assign(hysteresis_.thresholds_v.size(), 0.0);
       rate_gain_ = hysteresis_.rate_time_constant_s > 0
                        ? -std::expm1(-ts_ / hysteresis_.rate_time_constant_s)
                        : 1.0;
       rate_limit_ = hysteresis_.SaturationRate();
+      creep_time_constant_s_ = vs_->creep.time_constant_s;
     }
     const std::array<double, kStates> y0{p_.initial_position_m, 0.0, 0.0, 0.0};
     cv_.emplace(kStates, internal::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
@@ -142,17 +145,17 @@ class VirtualStage::Impl {
     const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
     if (vs_) {
       const double pi = hysteresis_.enabled() ? Hysteresis(s) : s;
-      return p_.creep.enabled() ? Creep(s, pi) : DriveInput{pi, 0, 0};
+      return vs_->creep.enabled() ? Creep(s, pi) : DriveInput{pi, 0, 0};
     }
-    if (std::abs(s) <= p_.dead_zone_v) return {};
-    return {p_.DriveMap(s > 0 ? s - p_.dead_zone_v : s + p_.dead_zone_v), 0, 0};
+    if (std::abs(s) <= ad_->dead_zone_v) return {};
+    return {ad_->DriveMap(s > 0 ? s - ad_->dead_zone_v : s + ad_->dead_zone_v), 0, 0};
   }
 
   // DriveCreep for the clipped command s and the hysteresis' output pi: z relaxes to
   // q = k_v pi + k_l (s - pi), u_h = (1 - k_v) pi + z. A new anchor where q changes (z there
   // from the old anchor's closed form), the old one while q is held.
   DriveInput Creep(double s, double pi) {
-    const DriveCreep& c = p_.creep;
+    const DriveCreep& c = vs_->creep;
     const double t = static_cast<double>(k_) * ts_;
     const double q = c.voltage_share * pi + c.loop_share * (s - pi);
     if (q != creep_target_) {
@@ -213,7 +216,7 @@ class VirtualStage::Impl {
 
   StageState State() const {
     const double* y = cv_->state();
-    const bool memory = vs_ && p_.rail.memory_time_s > 0;
+    const bool memory = vs_ && vs_->rail.memory_time_s > 0;
     return {y[kX], y[kV], vs_ ? 0.0 : y[kZ], y[kW], vs_ && (stuck_ || stop_ != 0),
             memory ? y[kZ] : (vs_ ? std::abs(y[kV]) : 0.0)};
   }
@@ -232,7 +235,7 @@ class VirtualStage::Impl {
   // Integrates to `t_end` with driver input `drive` (after dead zone and map).
   void Advance(double t_end, const DriveInput& drive) {
     double* y = cv_->state();
-    const double pull = vs_ ? p_.NoLoadSpeed(y[kW]) : y[kW];
+    const double pull = vs_ ? vs_->NoLoadSpeed(y[kW]) : y[kW];
     if (stop_ != 0 && pull * stop_ < 0) {
       // The drive pulls away from the end stop: free the stage again.
       stop_ = 0;
@@ -265,7 +268,7 @@ class VirtualStage::Impl {
           if (which[2] > 0) BreakAway();
         } else {
           y[kV] = 0;
-          const int pull = p_.NoLoadSpeed(y[kW]) > 0 ? 1 : -1;
+          const int pull = vs_->NoLoadSpeed(y[kW]) > 0 ? 1 : -1;
           if (Breakaway(y[kW]) <= 0 || pull == direction_) {
             // At rest. A drive that pulls on in the sliding direction with |p v_f| > Fs >= g
             // cannot bring the stage to rest (v' > 0 at v = 0): it reaches v = 0 only where the
@@ -301,8 +304,8 @@ class VirtualStage::Impl {
   // Velocity source: |p v_f(u_d)| - Fs, > 0 when the fingertips' stall force beats the rail's
   // static friction.
   double Breakaway(double w) const {
-    return std::abs(p_.motor.Thrust(p_.motor.pole_per_s * p_.NoLoadSpeed(w))) -
-           p_.rail.static_mps2;
+    return std::abs(vs_->motor.Thrust(vs_->motor.pole_per_s * vs_->NoLoadSpeed(w))) -
+           vs_->rail.static_mps2;
   }
 
   // The sample needed more than its work budget: the stage cannot be integrated here.
@@ -315,7 +318,7 @@ class VirtualStage::Impl {
                                    : stuck_   ? "stuck"
                                               : (direction_ > 0 ? "sliding forward"
                                                                 : "sliding backward"));
-      if (p_.rail.memory_time_s > 0) state += ", slip memory s = " + Num(y[kZ]) + " m/s";
+      if (vs_->rail.memory_time_s > 0) state += ", slip memory s = " + Num(y[kZ]) + " m/s";
     } else {
       state += ", bristle z = " + Num(y[kZ]) + " m";
     }
@@ -332,7 +335,7 @@ class VirtualStage::Impl {
 
   void BreakAway() {
     stuck_ = false;
-    direction_ = p_.NoLoadSpeed(cv_->state()[kW]) > 0 ? 1 : -1;
+    direction_ = vs_->NoLoadSpeed(cv_->state()[kW]) > 0 ? 1 : -1;
     cv_->state()[kV] = 0;
     Restart();
   }
@@ -354,14 +357,14 @@ class VirtualStage::Impl {
     return std::round(x / p_.encoder_resolution_m) * p_.encoder_resolution_m;
   }
 
-  const FrictionBranch& Branch(double v) const { return v < 0 ? p_.backward : p_.forward; }
+  const FrictionBranch& Branch(double v) const { return v < 0 ? ad_->backward : ad_->forward; }
 
   static int Rhs(double t, N_Vector yv, N_Vector ydot, void* data) {
     const Impl& s = *static_cast<const Impl*>(data);
     const double* y = N_VGetArrayPointer(yv);
     double* d = N_VGetArrayPointer(ydot);
-    d[kW] = (s.drive_.At(t, s.p_.creep.time_constant_s) - y[kW]) / s.p_.lag_time_constant_s;
-    const double tm = s.vs_ ? s.p_.rail.memory_time_s : 0.0;
+    d[kW] = (s.drive_.At(t, s.creep_time_constant_s_) - y[kW]) / s.p_.lag_time_constant_s;
+    const double tm = s.vs_ ? s.vs_->rail.memory_time_s : 0.0;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) {
       d[kX] = d[kV] = 0;
       d[kZ] = tm > 0 ? -y[kZ] / tm : 0.0;  // at rest the memory fades
@@ -369,22 +372,22 @@ class VirtualStage::Impl {
     }
     const double v = y[kV];
     if (s.vs_) {
-      const double p = s.p_.motor.pole_per_s;
+      const double p = s.vs_->motor.pole_per_s;
       const double slip = tm > 0 ? y[kZ] : std::abs(v);
       d[kX] = v;
-      d[kV] = s.p_.motor.Thrust(p * (s.p_.NoLoadSpeed(y[kW]) - v)) -
-              s.direction_ * s.p_.rail.Sliding(slip);
+      d[kV] = s.vs_->motor.Thrust(p * (s.vs_->NoLoadSpeed(y[kW]) - v)) -
+              s.direction_ * s.vs_->rail.Sliding(slip);
       d[kZ] = tm > 0 ? (s.direction_ * v - y[kZ]) / tm : 0.0;
       return 0;
     }
     const FrictionBranch& b = s.Branch(v);
     const double r = v / b.stribeck_velocity_mps;
     const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * std::exp(-r * r);
-    const double s0 = s.p_.bristle_stiffness_per_s2;
+    const double s0 = s.ad_->bristle_stiffness_per_s2;
     const double dz = v - s0 * std::abs(v) * y[kZ] / g;
-    const double friction = s0 * y[kZ] + s.p_.bristle_damping_per_s * dz + b.viscous_per_s * v;
+    const double friction = s0 * y[kZ] + s.ad_->bristle_damping_per_s * dz + b.viscous_per_s * v;
     d[kX] = v;
-    d[kV] = s.p_.gain_mps2_per_v * y[kW] - friction;
+    d[kV] = s.ad_->gain_mps2_per_v * y[kW] - friction;
     d[kZ] = dz;
     return 0;
   }
@@ -397,17 +400,17 @@ class VirtualStage::Impl {
     SUNMatZero(J);
     const double inv_t = 1.0 / s.p_.lag_time_constant_s;
     SM_ELEMENT_D(J, kW, kW) = -inv_t;
-    const double tm = s.vs_ ? s.p_.rail.memory_time_s : 0.0;
+    const double tm = s.vs_ ? s.vs_->rail.memory_time_s : 0.0;
     if (tm > 0) SM_ELEMENT_D(J, kZ, kZ) = -1.0 / tm;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) return 0;
     if (s.vs_) {
       const double v = y[kV], w = y[kW];
-      const double p = s.p_.motor.pole_per_s;
-      const RailFriction& r = s.p_.rail;
+      const double p = s.vs_->motor.pole_per_s;
+      const RailFriction& r = s.vs_->rail;
       const double h = 1e-6;  // [V] v_f is piecewise linear: a difference is its slope
-      const double slope = (s.p_.NoLoadSpeed(w + h) - s.p_.NoLoadSpeed(w - h)) / (2 * h);
+      const double slope = (s.vs_->NoLoadSpeed(w + h) - s.vs_->NoLoadSpeed(w - h)) / (2 * h);
       // v' = T(p (v_f - v)) - d g(.): the droop's slope scales both partial derivatives.
-      const double dt = s.p_.motor.ThrustSlope(p * (s.p_.NoLoadSpeed(w) - v));
+      const double dt = s.vs_->motor.ThrustSlope(p * (s.vs_->NoLoadSpeed(w) - v));
       SM_ELEMENT_D(J, kX, kV) = 1.0;
       SM_ELEMENT_D(J, kV, kW) = dt * p * slope;
       if (tm > 0) {
@@ -429,7 +432,7 @@ class VirtualStage::Impl {
     const double e = std::exp(-r * r);
     const double g = b.coulomb_mps2 + (b.static_mps2 - b.coulomb_mps2) * e;
     const double dg_dv = (b.static_mps2 - b.coulomb_mps2) * e * (-2.0 * v / (vs * vs));
-    const double s0 = s.p_.bristle_stiffness_per_s2, s1 = s.p_.bristle_damping_per_s;
+    const double s0 = s.ad_->bristle_stiffness_per_s2, s1 = s.ad_->bristle_damping_per_s;
     const double sgn = v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
     // dz = v - s0 |v| z / g
     const double ddz_dv = 1.0 - s0 * z * (sgn * g - std::abs(v) * dg_dv) / (g * g);
@@ -438,7 +441,7 @@ class VirtualStage::Impl {
     SM_ELEMENT_D(J, kZ, kV) = ddz_dv;
     SM_ELEMENT_D(J, kZ, kZ) = ddz_dz;
     // dv = a3 w - s0 z - s1 dz - s2 v
-    SM_ELEMENT_D(J, kV, kW) = s.p_.gain_mps2_per_v;
+    SM_ELEMENT_D(J, kV, kW) = s.ad_->gain_mps2_per_v;
     SM_ELEMENT_D(J, kV, kV) = -s1 * ddz_dv - b.viscous_per_s;
     SM_ELEMENT_D(J, kV, kZ) = -s0 - s1 * ddz_dz;
     return 0;
@@ -465,7 +468,10 @@ class VirtualStage::Impl {
   double t_ = 0;
   DriveInput drive_;
   int stop_ = 0;
-  bool vs_ = false;        // velocity-source model
+  const VelocitySourcePlant* vs_ = nullptr;  // in p_: the velocity-source model, or null
+  const ActuatorDelayPlant* ad_ = nullptr;   // in p_: the actuator-delay model, or null
+  // [s] T_c of DriveInput::At (its relax is 0 without creep, where T_c is not read)
+  double creep_time_constant_s_ = 1.0;
   bool stuck_ = true;      // velocity source: held by the rail's static friction
   int direction_ = 1;      // velocity source: sliding direction d while not stuck
   double reading_ = 0;
