@@ -4,27 +4,40 @@
 // one and written again. The reference is the perturbed struct itself: the second text must
 // equal the first, and every key must differ from the default's text, so a field the reader
 // drops, or that the writer leaves out, fails here.
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/json_fields.hpp"
 #include "delay/delay_json.hpp"
+#include "dominance/dominance_json.hpp"
 #include "identify/identify_json.hpp"
 #include "motion/motion_json.hpp"
+#include "nn/nn_json.hpp"
 #include "signal/signal_json.hpp"
+#include "sysid/compare.hpp"
 #include "sysid/delay.hpp"
+#include "sysid/dominance.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/motion.hpp"
+#include "sysid/nn.hpp"
 #include "sysid/signal.hpp"
 
 namespace {
 
 using sysid::NameValue;
 using sysid::internal::IsDescribed;
+
+template <class V>
+struct IsOptional : std::false_type {};
+template <class V>
+struct IsOptional<std::optional<V>> : std::true_type {};
 
 class PerturbArchive {
  public:
@@ -48,10 +61,17 @@ class PerturbArchive {
       v = static_cast<V>(static_cast<int>(v) ^ 1);  // enums count from 0: 0 <-> 1, 2 <-> 3
     } else if constexpr (std::is_same_v<V, std::string>) {
       v += "x";
-    } else if constexpr (std::is_same_v<V, std::vector<std::string>>) {
-      v.push_back("extra");
-    } else {
-      v.push_back(typename V::value_type(3));
+    } else if constexpr (std::is_same_v<V, std::pair<double, double>>) {
+      v = {v.first - 0.5, v.second + 1.5};
+    } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+      v.conservativeResize(v.size() + 1);
+      v(v.size() - 1) = 0.5;
+    } else if constexpr (IsOptional<V>::value) {
+      if (!v) v.emplace();
+      Perturb(*v);
+    } else {  // a list: one element more, itself moved off its default
+      v.emplace_back();
+      Perturb(v.back());
     }
   }
 };
@@ -104,6 +124,10 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::SegmentOptions>("SegmentOptions");
   CheckRoundTrip<sysid::DelayTuningOptions>("DelayTuningOptions");
   CheckRoundTrip<sysid::RefineOptions>("RefineOptions");
+  CheckRoundTrip<sysid::NeuralTrainingOptions>("NeuralTrainingOptions");
+  CheckRoundTrip<sysid::HiddenSweepOptions>("HiddenSweepOptions");
+  CheckRoundTrip<sysid::DominanceOptions>("DominanceOptions");
+  CheckRoundTrip<sysid::CompareOptions>("CompareOptions");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

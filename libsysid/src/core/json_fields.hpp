@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -158,6 +159,57 @@ struct JsonForm<std::vector<std::string>> {
   static void Read(const JsonNode& list, std::vector<std::string>& names) {
     ReadNames(list, names);
   }
+};
+
+/// A range: [low, high].
+template <>
+struct JsonForm<std::pair<double, double>> {
+  static nlohmann::ordered_json Write(const std::pair<double, double>& r) {
+    return nlohmann::ordered_json::array({r.first, r.second});
+  }
+  static void Read(const JsonNode& node, std::pair<double, double>& r) {
+    const std::vector<double> v = node.Numbers(2);
+    r = {v[0], v[1]};
+  }
+};
+
+/// A list of values of a type with a JsonForm (ranges): an array that replaces the list.
+template <class V>
+struct JsonForm<std::vector<V>> {
+  static nlohmann::ordered_json Write(const std::vector<V>& list) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const V& v : list) j.push_back(JsonForm<V>::Write(v));
+    return j;
+  }
+  static void Read(const JsonNode& node, std::vector<V>& list) {
+    node.ExpectArray();
+    list.assign(node.Size(), V{});
+    for (size_t i = 0; i < node.Size(); ++i) JsonForm<V>::Read(node.Element(i), list[i]);
+  }
+};
+
+/// An optional value: null when unset, and read back from null.
+template <class V>
+struct JsonForm<std::optional<V>> {
+  static nlohmann::ordered_json Write(const std::optional<V>& v) {
+    return v ? JsonForm<V>::Write(*v) : nlohmann::ordered_json(nullptr);
+  }
+  static void Read(const JsonNode& node, std::optional<V>& v) {
+    if (node.json().is_null()) {
+      v.reset();
+    } else {
+      V value{};
+      JsonForm<V>::Read(node, value);
+      v = std::move(value);
+    }
+  }
+};
+
+/// A vector of numbers, NaN as null.
+template <>
+struct JsonForm<Eigen::VectorXd> {
+  static nlohmann::ordered_json Write(const Eigen::VectorXd& v) { return VectorJson(v); }
+  static void Read(const JsonNode& node, Eigen::VectorXd& v) { v = VectorFromJson(node); }
 };
 
 }  // namespace sysid::internal
