@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -130,13 +131,8 @@ void BindDominance(py::module_& m) {
   py::class_<DominanceOptions> dominance_options(m, "DominanceOptions");
   AddKeywordInit(dominance_options);
   AddOptionsJson(dominance_options, &DominanceOptionsFromJson);
-  dominance_options.def_readwrite("motion", &DominanceOptions::motion)
-      .def_readwrite("min_speed_mps", &DominanceOptions::min_speed_mps)
-      .def_readwrite("negligible_ratio", &DominanceOptions::negligible_ratio)
-      .def_readwrite("bound_quantile", &DominanceOptions::bound_quantile)
-      .def_readwrite("candidates", &DominanceOptions::candidates)
-      .def_readwrite("threads", &DominanceOptions::threads)
-      .def("validate", &DominanceOptions::Validate);
+  DefFields(dominance_options);
+  dominance_options.def("validate", &DominanceOptions::Validate);
   py::class_<TermStats>(m, "TermStats")
       .def_readonly("name", &TermStats::name)
       .def_readonly("rms", &TermStats::rms)

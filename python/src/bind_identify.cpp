@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/error.hpp"
@@ -30,25 +31,19 @@ void BindPulses(py::module_& m) {
   py::class_<PulseDetectionOptions> detection(m, "PulseDetectionOptions");
   AddKeywordInit(detection);
   AddOptionsJson(detection, &PulseDetectionOptionsFromJson);
-  detection.def_readwrite("min_duration_s", &PulseDetectionOptions::min_duration_s)
-      .def_readwrite("u_tolerance_v", &PulseDetectionOptions::u_tolerance_v)
-      .def_readwrite("zero_tolerance_v", &PulseDetectionOptions::zero_tolerance_v)
-      .def("validate", &PulseDetectionOptions::Validate);
+  DefFields(detection);
+  detection.def("validate", &PulseDetectionOptions::Validate);
   py::class_<PlateauOptions> plateau(m, "PlateauOptions");
   AddKeywordInit(plateau);
   AddOptionsJson(plateau, &PlateauOptionsFromJson);
-  plateau.def_readwrite("window_fraction", &PlateauOptions::window_fraction)
-      .def_readwrite("settle_tolerance", &PlateauOptions::settle_tolerance)
-      .def_readwrite("min_speed_mps", &PlateauOptions::min_speed_mps)
-      .def_readwrite("max_speed_mps", &PlateauOptions::max_speed_mps)
-      .def_readwrite("travel_min_m", &PlateauOptions::travel_min_m)
-      .def_readwrite("travel_max_m", &PlateauOptions::travel_max_m)
-      .def_readwrite("min_window_samples", &PlateauOptions::min_window_samples)
-      .def("validate", &PlateauOptions::Validate);
+  DefFields(plateau);
+  plateau.def("validate", &PlateauOptions::Validate);
   py::class_<PulseFitOptions> fit_options(m, "PulseFitOptions");
   AddKeywordInit(fit_options);
   AddOptionsJson(fit_options, &PulseFitOptionsFromJson);
+  DefFields(fit_options);
   // Setting a3 gives it (a3_given); the default is the paper's HR-8 value, which reports say.
+  // a3_given is not a file field (a file gives a3 by naming it), so it is an attribute of its own.
   fit_options
       .def_property(
           "a3", [](const PulseFitOptions& o) { return o.a3; },
@@ -58,14 +53,12 @@ void BindPulses(py::module_& m) {
           })
       .def_readwrite("a3_given", &PulseFitOptions::a3_given)
       .def("validate", &PulseFitOptions::Validate);
+  fit_options.attr("__fields__") = py::make_tuple("a3", "a3_given");
   py::class_<PulseIdentificationOptions> pulse_options(m, "PulseIdentificationOptions");
   AddKeywordInit(pulse_options);
   AddOptionsJson(pulse_options, &PulseIdentificationOptionsFromJson);
-  pulse_options.def_readwrite("motion", &PulseIdentificationOptions::motion)
-      .def_readwrite("detection", &PulseIdentificationOptions::detection)
-      .def_readwrite("plateau", &PulseIdentificationOptions::plateau)
-      .def_readwrite("fit", &PulseIdentificationOptions::fit)
-      .def("validate", &PulseIdentificationOptions::Validate);
+  DefFields(pulse_options);
+  pulse_options.def("validate", &PulseIdentificationOptions::Validate);
 
   py::class_<Pulse>(m, "Pulse")
       .def_readonly("source", &Pulse::source)
@@ -170,17 +163,8 @@ void BindTrajectory(py::module_& m) {
   py::class_<TrajectoryOptions> trajectory_options(m, "TrajectoryOptions");
   AddKeywordInit(trajectory_options);
   AddOptionsJson(trajectory_options, &TrajectoryOptionsFromJson);
-  trajectory_options.def_readwrite("motion", &TrajectoryOptions::motion)
-      .def_readwrite("tau_s", &TrajectoryOptions::tau_s)
-      .def_readwrite("tune_delay", &TrajectoryOptions::tune_delay)
-      .def_readwrite("tau_min_s", &TrajectoryOptions::tau_min_s)
-      .def_readwrite("tau_max_s", &TrajectoryOptions::tau_max_s)
-      .def_readwrite("decimation", &TrajectoryOptions::decimation)
-      .def_readwrite("min_speed_mps", &TrajectoryOptions::min_speed_mps)
-      .def_readwrite("trim_samples", &TrajectoryOptions::trim_samples)
-      .def_readwrite("offset", &TrajectoryOptions::offset)
-      .def_readwrite("symmetric_viscous", &TrajectoryOptions::symmetric_viscous)
-      .def("validate", &TrajectoryOptions::Validate);
+  DefFields(trajectory_options);
+  trajectory_options.def("validate", &TrajectoryOptions::Validate);
   py::class_<TrajectoryIdentificationResult> trajectory_result(m,
                                                               "TrajectoryIdentificationResult");
   trajectory_result
@@ -215,25 +199,13 @@ void BindDelayTuning(py::module_& m) {
   py::class_<SegmentOptions> segments(m, "SegmentOptions");
   AddKeywordInit(segments);
   AddOptionsJson(segments, &SegmentOptionsFromJson);
-  segments.def_readwrite("detection", &SegmentOptions::detection)
-      .def_readwrite("rest_speed_mps", &SegmentOptions::rest_speed_mps)
-      .def_readwrite("reuse_identical_segments", &SegmentOptions::reuse_identical_segments)
-      .def("validate", &SegmentOptions::Validate);
+  DefFields(segments);
+  segments.def("validate", &SegmentOptions::Validate);
   py::class_<DelayTuningOptions> delay_options(m, "DelayTuningOptions");
   AddKeywordInit(delay_options);
   AddOptionsJson(delay_options, &DelayTuningOptionsFromJson);
-  delay_options.def_readwrite("tau_min_s", &DelayTuningOptions::tau_min_s)
-      .def_readwrite("tau_max_s", &DelayTuningOptions::tau_max_s)
-      .def_readwrite("x_tolerance_s", &DelayTuningOptions::x_tolerance_s)
-      .def_readwrite("coarse_evaluations", &DelayTuningOptions::coarse_evaluations)
-      .def_readwrite("max_evaluations", &DelayTuningOptions::max_evaluations)
-      .def_readwrite("curve_points", &DelayTuningOptions::curve_points)
-      .def_readwrite("motion", &DelayTuningOptions::motion)
-      .def_readwrite("segments", &DelayTuningOptions::segments)
-      .def_readwrite("sim_rtol", &DelayTuningOptions::sim_rtol)
-      .def_readwrite("sim_atol", &DelayTuningOptions::sim_atol)
-      .def_readwrite("threads", &DelayTuningOptions::threads)
-      .def("validate", &DelayTuningOptions::Validate);
+  DefFields(delay_options);
+  delay_options.def("validate", &DelayTuningOptions::Validate);
   py::class_<DelayTuningResult>(m, "DelayTuningResult")
       .def("to_json", py::overload_cast<const DelayTuningResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid tune-delay --json`'s text")
@@ -264,15 +236,8 @@ void BindRefinement(py::module_& m) {
   py::class_<RefineOptions> refine_options(m, "RefineOptions");
   AddKeywordInit(refine_options);
   AddOptionsJson(refine_options, &RefineOptionsFromJson);
-  refine_options.def_readwrite("motion", &RefineOptions::motion)
-      .def_readwrite("detection", &RefineOptions::detection)
-      .def_readwrite("refine_a3", &RefineOptions::refine_a3)
-      .def_readwrite("refine_tau", &RefineOptions::refine_tau)
-      .def_readwrite("tau_max_s", &RefineOptions::tau_max_s)
-      .def_readwrite("max_iterations", &RefineOptions::max_iterations)
-      .def_readwrite("threads", &RefineOptions::threads)
-      .def_readwrite("sim_rtol", &RefineOptions::sim_rtol)
-      .def("validate", &RefineOptions::Validate);
+  DefFields(refine_options);
+  refine_options.def("validate", &RefineOptions::Validate);
   py::class_<RefineResult>(m, "RefineResult")
       .def("to_json", py::overload_cast<const RefineResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid refine --json`'s text (a model file too)")

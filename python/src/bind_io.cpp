@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/error.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
@@ -342,12 +343,8 @@ void BindIo(py::module_& m) {
                                            "How v and a come from x (method: 'central', "
                                            "'butterworth', 'savgol').");
   AddKeywordInit(derivative);
-  derivative.def_readwrite("method", &DerivativeOptions::method)
-      .def_readwrite("cutoff_hz", &DerivativeOptions::cutoff_hz)
-      .def_readwrite("butterworth_order", &DerivativeOptions::butterworth_order)
-      .def_readwrite("savgol_window", &DerivativeOptions::savgol_window)
-      .def_readwrite("savgol_order", &DerivativeOptions::savgol_order)
-      .def("validate", &DerivativeOptions::Validate, py::arg("dt_s"));
+  DefFields(derivative);
+  derivative.def("validate", &DerivativeOptions::Validate, py::arg("dt_s"));
 
   py::class_<Derivatives>(m, "Derivatives")
       .def_readonly("x_m", &Derivatives::x_m)
@@ -370,11 +367,8 @@ void BindIo(py::module_& m) {
                                    "How velocity and acceleration are obtained from a recording.");
   AddKeywordInit(motion);
   AddOptionsJson(motion, &MotionOptionsFromJson);
-  motion.def_readwrite("derivative", &MotionOptions::derivative)
-      .def_readwrite("velocity_column", &MotionOptions::velocity_column)
-      .def_readwrite("prefer_velocity_column", &MotionOptions::prefer_velocity_column)
-      .def_readwrite("max_relative_jitter", &MotionOptions::max_relative_jitter)
-      .def("validate", &MotionOptions::Validate);
+  DefFields(motion);
+  motion.def("validate", &MotionOptions::Validate);
 
   py::class_<MotionSignals>(m, "MotionSignals")
       .def_readonly("source", &MotionSignals::source)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 #include "sysid/nn_irreducible.hpp"
@@ -169,27 +170,8 @@ void BindNeural(py::module_& m) {
   py::class_<NeuralTrainingOptions> training(m, "TrainingOptions");
   AddKeywordInit(training);
   AddOptionsJson(training, &NeuralTrainingOptionsFromJson);
-  training.def_readwrite("hidden", &NeuralTrainingOptions::hidden)
-      .def_readwrite("trainer", &NeuralTrainingOptions::trainer)
-      .def_readwrite("init", &NeuralTrainingOptions::init)
-      .def_readwrite("momentum", &NeuralTrainingOptions::momentum)
-      .def_readwrite("solve_output_layer", &NeuralTrainingOptions::solve_output_layer)
-      .def_readwrite("mu_initial", &NeuralTrainingOptions::mu_initial)
-      .def_readwrite("mu_decrease", &NeuralTrainingOptions::mu_decrease)
-      .def_readwrite("mu_increase", &NeuralTrainingOptions::mu_increase)
-      .def_readwrite("mu_max", &NeuralTrainingOptions::mu_max)
-      .def_readwrite("gradient_tolerance", &NeuralTrainingOptions::gradient_tolerance)
-      .def_readwrite("max_epochs", &NeuralTrainingOptions::max_epochs)
-      .def_readwrite("max_validation_failures", &NeuralTrainingOptions::max_validation_failures)
-      .def_readwrite("goal_mse", &NeuralTrainingOptions::goal_mse)
-      .def_readwrite("seed", &NeuralTrainingOptions::seed)
-      .def_readwrite("restarts", &NeuralTrainingOptions::restarts)
-      .def_readwrite("input_ranges", &NeuralTrainingOptions::input_ranges)
-      .def_readwrite("output_range", &NeuralTrainingOptions::output_range)
-      .def_readwrite("initial_parameters", &NeuralTrainingOptions::initial_parameters)
-      .def_readwrite("ceres_block_size", &NeuralTrainingOptions::ceres_block_size)
-      .def_readwrite("threads", &NeuralTrainingOptions::threads)
-      .def("validate", &NeuralTrainingOptions::Validate);
+  DefFields(training);
+  training.def("validate", &NeuralTrainingOptions::Validate);
 
   py::class_<EpochRecord>(m, "EpochRecord")
       .def_readonly("epoch", &EpochRecord::epoch)
@@ -219,10 +201,8 @@ void BindNeural(py::module_& m) {
   py::class_<HiddenSweepOptions> sweep(m, "SweepOptions");
   AddKeywordInit(sweep);
   AddOptionsJson(sweep, &HiddenSweepOptionsFromJson);
-  sweep.def_readwrite("hidden_sizes", &HiddenSweepOptions::hidden_sizes)
-      .def_readwrite("training", &HiddenSweepOptions::training)
-      .def_readwrite("threads", &HiddenSweepOptions::threads)
-      .def("validate", &HiddenSweepOptions::Validate);
+  DefFields(sweep);
+  sweep.def("validate", &HiddenSweepOptions::Validate);
   py::class_<HiddenSweepRow>(m, "SweepRow")
       .def_readonly("hidden", &HiddenSweepRow::hidden)
       .def_readonly("epochs", &HiddenSweepRow::epochs)

@@ -53,8 +53,11 @@ OPTION_TYPES = (
 
 
 def fields(obj_or_type):
-    """Names of the writable fields of a bound struct, in declaration order."""
+    """Names of the writable fields of a bound struct, in declaration order: a described struct's
+    __fields__ (its C++ Serialize list), else its writable properties."""
     cls = obj_or_type if isinstance(obj_or_type, type) else type(obj_or_type)
+    if "__fields__" in vars(cls):
+        return list(cls.__fields__)
     return [n for n, v in vars(cls).items()
             if isinstance(v, property) and v.fset is not None and not n.startswith("_")]
 
@@ -90,8 +93,14 @@ def _repr(self):
     return f"{type(self).__name__}({body})"
 
 
+def _eq(self, other):
+    return type(self) is type(other) and _to_plain(self) == _to_plain(other)
+
+
 for _cls in OPTION_TYPES:
     _cls.to_dict = _to_dict
+    _cls.__eq__ = _eq
+    _cls.__hash__ = None  # mutable, compared by value
     _cls.__reduce__ = _reduce
     _cls.__repr__ = _repr
 

@@ -16,6 +16,7 @@
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {
@@ -77,6 +78,13 @@ struct CompareOptions {
   bool use_recorded_columns = true;
   /// Samples dropped at each end before scoring (derivative start-up) [samples].
   int trim_samples = 5;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(derivative));
+    a->Visit(SYSID_NVP(use_recorded_columns));
+    a->Visit(SYSID_NVP(trim_samples));
+  }
   void Validate() const;
 };
 

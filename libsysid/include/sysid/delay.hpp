@@ -14,15 +14,16 @@
 #define SYSID_DELAY_HPP_
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
-#include <limits>
 #include <vector>
 
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/termination.hpp"
 
 namespace sysid {
@@ -38,6 +39,13 @@ struct SegmentOptions {
   /// Pieces with the same input pattern, start state and relative sample times (the repeats of
   /// a pulse train) are simulated once: the model is time-invariant, so this is exact.
   bool reuse_identical_segments = true;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(detection));
+    a->Visit(SYSID_NVP(rest_speed_mps));
+    a->Visit(SYSID_NVP(reuse_identical_segments));
+  }
   void Validate() const;
 };
 
@@ -53,6 +61,21 @@ struct DelayTuningOptions {
   double sim_rtol = 1e-6;  ///< CVODE relative tolerance of each simulation
   double sim_atol = 1e-9;  ///< CVODE absolute tolerance [m, m/s]
   int threads = 0;         ///< simulation threads (0: hardware concurrency)
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(tau_min_s));
+    a->Visit(SYSID_NVP(tau_max_s));
+    a->Visit(SYSID_NVP(x_tolerance_s));
+    a->Visit(SYSID_NVP(coarse_evaluations));
+    a->Visit(SYSID_NVP(max_evaluations));
+    a->Visit(SYSID_NVP(curve_points));
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(segments));
+    a->Visit(SYSID_NVP(sim_rtol));
+    a->Visit(SYSID_NVP(sim_atol));
+    a->Visit(SYSID_NVP(threads));
+  }
   void Validate() const;   ///< throws OptionsError naming the field and the rule
   /// [s] Largest delay searched: a viscous-term delay of more than a second is no actuator's,
   /// and each simulation keeps tau of velocity history.
@@ -104,6 +127,18 @@ struct RefineOptions {
   int max_iterations = 50;
   int threads = 0;         ///< simulation threads (0: hardware concurrency)
   double sim_rtol = 1e-7;  ///< CVODE relative tolerance of each simulation
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(detection));
+    a->Visit(SYSID_NVP(refine_a3));
+    a->Visit(SYSID_NVP(refine_tau));
+    a->Visit(SYSID_NVP(tau_max_s));
+    a->Visit(SYSID_NVP(max_iterations));
+    a->Visit(SYSID_NVP(threads));
+    a->Visit(SYSID_NVP(sim_rtol));
+  }
   void Validate() const;
 };
 

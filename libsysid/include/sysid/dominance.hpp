@@ -22,9 +22,10 @@
 #include <string_view>
 #include <vector>
 
-#include "sysid/motion.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/motion.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -42,6 +43,13 @@ struct CandidateTerm {
   std::string variable;  ///< name in the ranking
   std::string column;    ///< recording column
   double gain = 1.0;     ///< [m/s^2 per column unit]
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(variable));
+    a->Visit(SYSID_NVP(column));
+    a->Visit(SYSID_NVP(gain));
+  }
 };
 
 struct DominanceOptions {
@@ -55,6 +63,16 @@ struct DominanceOptions {
   double bound_quantile = 0.99;
   std::vector<CandidateTerm> candidates;  ///< further candidate variables
   int threads = 0;                        ///< recordings analysed in parallel (0: hardware threads)
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(min_speed_mps));
+    a->Visit(SYSID_NVP(negligible_ratio));
+    a->Visit(SYSID_NVP(bound_quantile));
+    a->Visit(SYSID_NVP(candidates));
+    a->Visit(SYSID_NVP(threads));
+  }
   void Validate() const;
 };
 

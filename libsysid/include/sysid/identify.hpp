@@ -22,6 +22,7 @@
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/motion.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {
@@ -102,6 +103,13 @@ struct PulseDetectionOptions {
   double min_duration_s = 0.2;     ///< [s] a pulse holds u for at least this long
   double u_tolerance_v = 1e-3;     ///< [V] |u_k - u_first| <= this counts as "held"
   double zero_tolerance_v = 1e-3;  ///< [V] |u| <= this is "off" (no pulse)
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(min_duration_s));
+    a->Visit(SYSID_NVP(u_tolerance_v));
+    a->Visit(SYSID_NVP(zero_tolerance_v));
+  }
   void Validate() const;
 };
 
@@ -145,6 +153,17 @@ struct PlateauOptions {
   double travel_min_m = -std::numeric_limits<double>::infinity();  ///< [m] travel limits; a
   double travel_max_m = std::numeric_limits<double>::infinity();   ///< pulse reaching them fails
   int min_window_samples = 8;  ///< fewer samples in the plateau window: excluded
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(window_fraction));
+    a->Visit(SYSID_NVP(settle_tolerance));
+    a->Visit(SYSID_NVP(min_speed_mps));
+    a->Visit(SYSID_NVP(max_speed_mps).UpperLimit());
+    a->Visit(SYSID_NVP(travel_min_m).LowerLimit());
+    a->Visit(SYSID_NVP(travel_max_m).UpperLimit());
+    a->Visit(SYSID_NVP(min_window_samples));
+  }
   void Validate() const;
 };
 
@@ -208,6 +227,11 @@ struct PulseFitOptions {
   /// the paper's HR-8 data-sheet value, which another stage does not share: a1 and a2 scale with
   /// a3, so the report says which it is.
   bool a3_given = false;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(a3));
+  }
   void Validate() const;
 };
 
@@ -237,6 +261,14 @@ struct PulseIdentificationOptions {
   PulseDetectionOptions detection;
   PlateauOptions plateau;
   PulseFitOptions fit;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(detection));
+    a->Visit(SYSID_NVP(plateau));
+    a->Visit(SYSID_NVP(fit));
+  }
   void Validate() const;
 };
 
@@ -265,6 +297,20 @@ struct TrajectoryOptions {
   bool offset = false;
   /// One viscous coefficient a1 = a1p = a1n for both directions (as the EMPS reference model).
   bool symmetric_viscous = false;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(tau_s));
+    a->Visit(SYSID_NVP(tune_delay));
+    a->Visit(SYSID_NVP(tau_min_s));
+    a->Visit(SYSID_NVP(tau_max_s));
+    a->Visit(SYSID_NVP(decimation));
+    a->Visit(SYSID_NVP(min_speed_mps));
+    a->Visit(SYSID_NVP(trim_samples));
+    a->Visit(SYSID_NVP(offset));
+    a->Visit(SYSID_NVP(symmetric_viscous));
+  }
   void Validate() const;
   static MotionOptions DefaultMotion();
 };

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "sysid/io.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {
@@ -29,6 +30,14 @@ struct MotionOptions {
   bool prefer_velocity_column = true;
   /// Sampling must be uniform: max |dt_k - dt| / dt must not exceed this [dimensionless].
   double max_relative_jitter = 0.01;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(derivative));
+    a->Visit(SYSID_NVP(velocity_column));
+    a->Visit(SYSID_NVP(prefer_velocity_column));
+    a->Visit(SYSID_NVP(max_relative_jitter));
+  }
   void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
 

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "sysid/io.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/termination.hpp"
 
 namespace sysid {
@@ -211,6 +212,30 @@ struct NeuralTrainingOptions {
   /// train side by side): use HiddenSweepOptions::on_network there.
   std::function<void(const EpochRecord&)> on_epoch;
   /// Throws OptionsError naming the field and the violated rule.
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(hidden));
+    a->Visit(SYSID_NVP(trainer));
+    a->Visit(SYSID_NVP(init));
+    a->Visit(SYSID_NVP(momentum));
+    a->Visit(SYSID_NVP(solve_output_layer));
+    a->Visit(SYSID_NVP(mu_initial));
+    a->Visit(SYSID_NVP(mu_decrease));
+    a->Visit(SYSID_NVP(mu_increase));
+    a->Visit(SYSID_NVP(mu_max));
+    a->Visit(SYSID_NVP(gradient_tolerance));
+    a->Visit(SYSID_NVP(max_epochs));
+    a->Visit(SYSID_NVP(max_validation_failures));
+    a->Visit(SYSID_NVP(goal_mse));
+    a->Visit(SYSID_NVP(seed));
+    a->Visit(SYSID_NVP(restarts));
+    a->Visit(SYSID_NVP(input_ranges));
+    a->Visit(SYSID_NVP(output_range));
+    a->Visit(SYSID_NVP(initial_parameters));
+    a->Visit(SYSID_NVP(ceres_block_size));
+    a->Visit(SYSID_NVP(threads));
+  }
   void Validate() const;
 };
 
@@ -261,6 +286,13 @@ struct HiddenSweepOptions {
   /// Called when a network has finished, with its row and how many of `total` are done (in
   /// completion order, one call at a time; it must not throw). Does not change the result.
   std::function<void(const HiddenSweepRow& row, size_t done, size_t total)> on_network;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(hidden_sizes));
+    a->Visit(SYSID_NVP(training));
+    a->Visit(SYSID_NVP(threads));
+  }
   void Validate() const;
 };
 

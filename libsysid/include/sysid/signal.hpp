@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sysid/io.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -48,6 +49,15 @@ struct DerivativeOptions {
   /// chosen method uses: 0 < cutoff_hz < 0.5/dt_s and 1 <= butterworth_order <=
   /// kMaxButterworthOrder (kButterworthCentral); savgol_window odd and >= 3, 2 <= savgol_order
   /// < savgol_window (kSavitzkyGolay).
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(method));
+    a->Visit(SYSID_NVP(cutoff_hz));
+    a->Visit(SYSID_NVP(butterworth_order));
+    a->Visit(SYSID_NVP(savgol_window));
+    a->Visit(SYSID_NVP(savgol_order));
+  }
   void Validate(double dt_s) const;
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "signal/signal_json.hpp"
 #include "sysid/compare.hpp"
@@ -60,29 +61,12 @@ std::string ToJson(const InverseComparison& c, int indent) {
   return internal::DumpJson(j, indent);
 }
 
-namespace {
-// The options' field table (internal::FieldList): writer, allowed keys and reader.
-const internal::FieldList<CompareOptions>& CompareFields() {
-  static const internal::FieldList<CompareOptions> fields =
-      internal::FieldList<CompareOptions>()
-          .Nested("derivative", &CompareOptions::derivative, internal::DerivativeOptionsJson,
-                  internal::ReadDerivativeOptions)
-          .Add("use_recorded_columns", &CompareOptions::use_recorded_columns)
-          .Add("trim_samples", &CompareOptions::trim_samples);
-  return fields;
-}
-
-void ReadCompareOptions(const internal::JsonNode& node, CompareOptions& o) {
-  CompareFields().Read(node, o);
-}
-}  // namespace
-
 std::string ToJson(const CompareOptions& o, int indent) {
-  return internal::DumpJson(CompareFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 CompareOptions CompareOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<CompareOptions>(text, source_name, ReadCompareOptions);
+  return internal::FieldsFromJson<CompareOptions>(text, source_name);
 }
 
 std::string ComparisonTableCsv(const std::vector<InverseComparison>& comparisons) {

@@ -1,11 +1,13 @@
 // JSON of the delay-tuning and refinement options and results (docs/cli.md: tune-delay, refine).
+#include "delay/delay_json.hpp"
+
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
-#include "delay/delay_json.hpp"
 #include "identify/identify_json.hpp"
 #include "model/model_json.hpp"
 #include "motion/motion_json.hpp"
@@ -129,98 +131,37 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
 
 // ---- Options ----
 
-namespace {
-
-
-// One field table per options type (internal::FieldList): writer, allowed keys and reader.
-const internal::FieldList<SegmentOptions>& SegmentFields() {
-  static const internal::FieldList<SegmentOptions> fields =
-      internal::FieldList<SegmentOptions>()
-          .Nested("detection", &SegmentOptions::detection, internal::PulseDetectionOptionsJson,
-                  internal::ReadPulseDetectionOptions)
-          .Add("rest_speed_mps", &SegmentOptions::rest_speed_mps)
-          .Add("reuse_identical_segments", &SegmentOptions::reuse_identical_segments);
-  return fields;
-}
-
-Json SegmentOptionsJson(const SegmentOptions& o) { return SegmentFields().Write(o); }
-
-void ReadSegmentOptions(const JsonNode& node, SegmentOptions& o) { SegmentFields().Read(node, o); }
-
-const internal::FieldList<RefineOptions>& RefineFields() {
-  static const internal::FieldList<RefineOptions> fields =
-      internal::FieldList<RefineOptions>()
-          .Nested("motion", &RefineOptions::motion, internal::MotionOptionsJson,
-                  internal::ReadMotionOptions)
-          .Nested("detection", &RefineOptions::detection, internal::PulseDetectionOptionsJson,
-                  internal::ReadPulseDetectionOptions)
-          .Add("refine_a3", &RefineOptions::refine_a3)
-          .Add("refine_tau", &RefineOptions::refine_tau)
-          .Add("tau_max_s", &RefineOptions::tau_max_s)
-          .Add("max_iterations", &RefineOptions::max_iterations)
-          .Add("threads", &RefineOptions::threads)
-          .Add("sim_rtol", &RefineOptions::sim_rtol);
-  return fields;
-}
-
-void ReadRefineOptions(const JsonNode& node, RefineOptions& o) { RefineFields().Read(node, o); }
-
-const internal::FieldList<DelayTuningOptions>& DelayTuningFields() {
-  using O = DelayTuningOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Add("tau_min_s", &O::tau_min_s)
-          .Add("tau_max_s", &O::tau_max_s)
-          .Add("x_tolerance_s", &O::x_tolerance_s)
-          .Add("coarse_evaluations", &O::coarse_evaluations)
-          .Add("max_evaluations", &O::max_evaluations)
-          .Add("curve_points", &O::curve_points)
-          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
-          .Nested("segments", &O::segments, SegmentOptionsJson, ReadSegmentOptions)
-          .Add("sim_rtol", &O::sim_rtol)
-          .Add("sim_atol", &O::sim_atol)
-          .Add("threads", &O::threads);
-  return fields;
-}
-
-}  // namespace
-
 namespace internal {
 
 nlohmann::ordered_json DelayTuningOptionsJson(const DelayTuningOptions& o) {
-  return DelayTuningFields().Write(o);
+  return WriteFields(o);
 }
 
-void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& o) {
-  DelayTuningFields().Read(node, o);
-}
+void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& o) { ReadFields(node, o); }
 
 }  // namespace internal
 
 std::string ToJson(const SegmentOptions& o, int indent) {
-  return internal::DumpJson(SegmentOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 SegmentOptions SegmentOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<SegmentOptions>(text, source_name, ReadSegmentOptions);
+  return internal::FieldsFromJson<SegmentOptions>(text, source_name);
 }
 
 std::string ToJson(const DelayTuningOptions& o, int indent) {
-  return internal::DumpJson(internal::DelayTuningOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 DelayTuningOptions DelayTuningOptionsFromJson(std::string_view text,
                                               const std::string& source_name) {
-  return internal::OptionsFromJson<DelayTuningOptions>(text, source_name,
-                                                       internal::ReadDelayTuningOptions);
+  return internal::FieldsFromJson<DelayTuningOptions>(text, source_name);
 }
 
-std::string ToJson(const RefineOptions& o, int indent) {
-  return internal::DumpJson(RefineFields().Write(o), indent);
-}
+std::string ToJson(const RefineOptions& o, int indent) { return internal::FieldsToJson(o, indent); }
 
 RefineOptions RefineOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<RefineOptions>(text, source_name, ReadRefineOptions);
+  return internal::FieldsFromJson<RefineOptions>(text, source_name);
 }
 
 }  // namespace sysid

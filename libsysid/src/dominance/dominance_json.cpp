@@ -1,4 +1,6 @@
 // JSON of the dominant-variable analysis and its options (docs/cli.md: dominance --json).
+#include "dominance/dominance_json.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -181,57 +183,38 @@ DominanceSummary DominanceSummaryFromJson(std::string_view text, const std::stri
   return s;
 }
 
-namespace {
+namespace internal {
 
-using Candidates = std::vector<CandidateTerm>;
-
-Json CandidatesJson(const Candidates& candidates) {
+Json JsonForm<std::vector<CandidateTerm>>::Write(const std::vector<CandidateTerm>& candidates) {
   Json j = Json::array();
   for (const auto& c : candidates)
     j.push_back({{"variable", c.variable}, {"column", c.column}, {"gain", c.gain}});
   return j;
 }
 
-void ReadCandidates(const internal::JsonNode& list, Candidates& candidates) {
+void JsonForm<std::vector<CandidateTerm>>::Read(const JsonNode& list,
+                                                std::vector<CandidateTerm>& candidates) {
   list.ExpectArray();
   candidates.clear();
   for (size_t i = 0; i < list.Size(); ++i) {
-    const internal::JsonNode c = list.Element(i);
+    const JsonNode c = list.Element(i);
     c.ExpectObject({"variable", "column", "gain"});
     CandidateTerm term;
     term.variable = c.Get("variable").String(true);
     term.column = c.Get("column").String(true);
-    internal::ReadOptional(c, "gain", term.gain);
+    ReadOptional(c, "gain", term.gain);
     candidates.push_back(term);
   }
 }
 
-// The options' field table (internal::FieldList): writer, allowed keys and reader.
-const internal::FieldList<DominanceOptions>& DominanceFields() {
-  using O = DominanceOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
-          .Add("min_speed_mps", &O::min_speed_mps)
-          .Add("negligible_ratio", &O::negligible_ratio)
-          .Add("bound_quantile", &O::bound_quantile)
-          .Nested("candidates", &O::candidates, CandidatesJson, ReadCandidates)
-          .Add("threads", &O::threads);
-  return fields;
-}
-
-void ReadDominanceOptions(const internal::JsonNode& node, DominanceOptions& o) {
-  DominanceFields().Read(node, o);
-}
-
-}  // namespace
+}  // namespace internal
 
 std::string ToJson(const DominanceOptions& o, int indent) {
-  return internal::DumpJson(DominanceFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 DominanceOptions DominanceOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<DominanceOptions>(text, source_name, ReadDominanceOptions);
+  return internal::FieldsFromJson<DominanceOptions>(text, source_name);
 }
 
 }  // namespace sysid

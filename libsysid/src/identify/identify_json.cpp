@@ -1,6 +1,8 @@
 // JSON of the identification options (every field; each key optional when read) and results: the model file's text (ModelToJson) with a "diagnostics"
 // object, the form `sysid identify --json` prints and `-o` writes (docs/cli.md). The readers
 // take that text back (any model file reader also accepts it: "diagnostics" rides along).
+#include "identify/identify_json.hpp"
+
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -8,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
-#include "identify/identify_json.hpp"
 #include "model/model_json.hpp"
 #include "motion/motion_json.hpp"
 #include "sysid/identify.hpp"
@@ -245,132 +247,53 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
 }
 
 // ---- Options ----
-// One field table per options type (internal::FieldList): writer, allowed keys and reader.
-
-namespace {
-
-const internal::FieldList<PulseDetectionOptions>& PulseDetectionFields() {
-  using O = PulseDetectionOptions;
-  static const internal::FieldList<O> fields = internal::FieldList<O>()
-                                                   .Add("min_duration_s", &O::min_duration_s)
-                                                   .Add("u_tolerance_v", &O::u_tolerance_v)
-                                                   .Add("zero_tolerance_v", &O::zero_tolerance_v);
-  return fields;
-}
-
-}  // namespace
 
 namespace internal {
 
 nlohmann::ordered_json PulseDetectionOptionsJson(const PulseDetectionOptions& o) {
-  return PulseDetectionFields().Write(o);
+  return WriteFields(o);
 }
 
 void ReadPulseDetectionOptions(const JsonNode& node, PulseDetectionOptions& o) {
-  PulseDetectionFields().Read(node, o);
+  ReadFields(node, o);
 }
 
 }  // namespace internal
 
 namespace {
 
-// The limits' default "none" is an infinity, which JSON writes as null (and reads back).
-Json LimitJson(const double& v) { return internal::NumberOrNull(v); }
-void ReadUpperLimit(const JsonNode& node, double& field) {
-  field = node.json().is_null() ? std::numeric_limits<double>::infinity() : node.Number();
-}
-void ReadLowerLimit(const JsonNode& node, double& field) {
-  field = node.json().is_null() ? -std::numeric_limits<double>::infinity() : node.Number();
-}
-
-const internal::FieldList<PlateauOptions>& PlateauFields() {
-  using O = PlateauOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Add("window_fraction", &O::window_fraction)
-          .Add("settle_tolerance", &O::settle_tolerance)
-          .Add("min_speed_mps", &O::min_speed_mps)
-          .Nested("max_speed_mps", &O::max_speed_mps, LimitJson, ReadUpperLimit)
-          .Nested("travel_min_m", &O::travel_min_m, LimitJson, ReadLowerLimit)
-          .Nested("travel_max_m", &O::travel_max_m, LimitJson, ReadUpperLimit)
-          .Add("min_window_samples", &O::min_window_samples);
-  return fields;
-}
-
-Json PlateauOptionsJson(const PlateauOptions& o) { return PlateauFields().Write(o); }
-void ReadPlateauOptions(const JsonNode& node, PlateauOptions& o) { PlateauFields().Read(node, o); }
-
-const internal::FieldList<PulseFitOptions>& PulseFitFields() {
-  static const internal::FieldList<PulseFitOptions> fields =
-      internal::FieldList<PulseFitOptions>().Add("a3", &PulseFitOptions::a3);
-  return fields;
-}
-
-Json PulseFitOptionsJson(const PulseFitOptions& o) { return PulseFitFields().Write(o); }
-void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
-  PulseFitFields().Read(node, o);
-  if (node.Has("a3")) o.a3_given = true;  // a file that names a3 gives it
-}
-
-const internal::FieldList<PulseIdentificationOptions>& PulseIdentificationFields() {
-  using O = PulseIdentificationOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
-          .Nested("detection", &O::detection, internal::PulseDetectionOptionsJson,
-                  internal::ReadPulseDetectionOptions)
-          .Nested("plateau", &O::plateau, PlateauOptionsJson, ReadPlateauOptions)
-          .Nested("fit", &O::fit, PulseFitOptionsJson, ReadPulseFitOptions);
-  return fields;
-}
-
 void ReadPulseIdentificationOptions(const JsonNode& node, PulseIdentificationOptions& o) {
-  PulseIdentificationFields().Read(node, o);
+  internal::ReadFields(node, o);
+  // A file that names the fit's a3 gives it (PulseFitOptions::a3_given).
+  if (node.Has("fit") && node.Get("fit").Has("a3")) o.fit.a3_given = true;
 }
 
-const internal::FieldList<TrajectoryOptions>& TrajectoryFields() {
-  using O = TrajectoryOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Nested("motion", &O::motion, internal::MotionOptionsJson, internal::ReadMotionOptions)
-          .Add("tau_s", &O::tau_s)
-          .Add("tune_delay", &O::tune_delay)
-          .Add("tau_min_s", &O::tau_min_s)
-          .Add("tau_max_s", &O::tau_max_s)
-          .Add("decimation", &O::decimation)
-          .Add("min_speed_mps", &O::min_speed_mps)
-          .Add("trim_samples", &O::trim_samples)
-          .Add("offset", &O::offset)
-          .Add("symmetric_viscous", &O::symmetric_viscous);
-  return fields;
-}
-
-void ReadTrajectoryOptions(const JsonNode& node, TrajectoryOptions& o) {
-  TrajectoryFields().Read(node, o);
+void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
+  internal::ReadFields(node, o);
+  if (node.Has("a3")) o.a3_given = true;
 }
 
 }  // namespace
 
 std::string ToJson(const PulseDetectionOptions& o, int indent) {
-  return internal::DumpJson(internal::PulseDetectionOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 PulseDetectionOptions PulseDetectionOptionsFromJson(std::string_view text,
                                                     const std::string& source_name) {
-  return internal::OptionsFromJson<PulseDetectionOptions>(text, source_name,
-                                                          internal::ReadPulseDetectionOptions);
+  return internal::FieldsFromJson<PulseDetectionOptions>(text, source_name);
 }
 
 std::string ToJson(const PlateauOptions& o, int indent) {
-  return internal::DumpJson(PlateauOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 PlateauOptions PlateauOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<PlateauOptions>(text, source_name, ReadPlateauOptions);
+  return internal::FieldsFromJson<PlateauOptions>(text, source_name);
 }
 
 std::string ToJson(const PulseFitOptions& o, int indent) {
-  return internal::DumpJson(PulseFitOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 PulseFitOptions PulseFitOptionsFromJson(std::string_view text, const std::string& source_name) {
@@ -378,7 +301,7 @@ PulseFitOptions PulseFitOptionsFromJson(std::string_view text, const std::string
 }
 
 std::string ToJson(const PulseIdentificationOptions& o, int indent) {
-  return internal::DumpJson(PulseIdentificationFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view text,
@@ -388,11 +311,11 @@ PulseIdentificationOptions PulseIdentificationOptionsFromJson(std::string_view t
 }
 
 std::string ToJson(const TrajectoryOptions& o, int indent) {
-  return internal::DumpJson(TrajectoryFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 TrajectoryOptions TrajectoryOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<TrajectoryOptions>(text, source_name, ReadTrajectoryOptions);
+  return internal::FieldsFromJson<TrajectoryOptions>(text, source_name);
 }
 
 }  // namespace sysid

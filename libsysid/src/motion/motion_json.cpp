@@ -11,22 +11,9 @@
 namespace sysid {
 namespace internal {
 
-namespace {
-const FieldList<MotionOptions>& MotionFields() {
-  static const FieldList<MotionOptions> fields =
-      FieldList<MotionOptions>()
-          .Nested("derivative", &MotionOptions::derivative, DerivativeOptionsJson,
-                  ReadDerivativeOptions)
-          .Add("velocity_column", &MotionOptions::velocity_column)
-          .Add("prefer_velocity_column", &MotionOptions::prefer_velocity_column)
-          .Add("max_relative_jitter", &MotionOptions::max_relative_jitter);
-  return fields;
-}
-}  // namespace
+nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) { return WriteFields(o); }
 
-nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) { return MotionFields().Write(o); }
-
-void ReadMotionOptions(const JsonNode& node, MotionOptions& o) { MotionFields().Read(node, o); }
+void ReadMotionOptions(const JsonNode& node, MotionOptions& o) { ReadFields(node, o); }
 
 }  // namespace internal
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/json_text.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/motion.hpp"
 
 namespace sysid::internal {

@@ -159,8 +159,6 @@ std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int 
 }
 
 // ---- Options ----
-// One field table per options type (internal::FieldList): writer, allowed keys and reader. The
-// enums, ranges and optional members convert through the small functions below.
 
 namespace {
 
@@ -168,126 +166,49 @@ std::string InitName(NeuralInit init) {
   return init == NeuralInit::kUniform ? "uniform" : "nguyen-widrow";
 }
 
-Json TrainerJson(const NeuralTrainer& t) { return ToString(t); }
-void ReadTrainer(const JsonNode& node, NeuralTrainer& t) { t = TrainerFromJson(node); }
+}  // namespace
 
-Json InitJson(const NeuralInit& init) { return InitName(init); }
-void ReadInit(const JsonNode& node, NeuralInit& init) {
+namespace internal {
+
+Json JsonForm<NeuralTrainer>::Write(const NeuralTrainer& trainer) { return ToString(trainer); }
+void JsonForm<NeuralTrainer>::Read(const JsonNode& node, NeuralTrainer& trainer) {
+  trainer = TrainerFromJson(node);
+}
+
+Json JsonForm<NeuralInit>::Write(const NeuralInit& init) { return InitName(init); }
+void JsonForm<NeuralInit>::Read(const JsonNode& node, NeuralInit& init) {
   const std::string s = node.String();
   if (s == InitName(NeuralInit::kNguyenWidrow)) init = NeuralInit::kNguyenWidrow;
   else if (s == InitName(NeuralInit::kUniform)) init = NeuralInit::kUniform;
   else node.Expected("\"nguyen-widrow\" or \"uniform\"");
 }
 
-Json RangeJson(const std::pair<double, double>& r) { return Json::array({r.first, r.second}); }
-
-std::pair<double, double> RangeFromJson(const JsonNode& node) {
-  const std::vector<double> v = node.Numbers(2);
-  return {v[0], v[1]};
-}
-
-using Ranges = std::vector<std::pair<double, double>>;
-Json RangesJson(const Ranges& ranges) {
-  Json j = Json::array();
-  for (const auto& r : ranges) j.push_back(RangeJson(r));
-  return j;
-}
-void ReadRanges(const JsonNode& list, Ranges& ranges) {
-  list.ExpectArray();
-  ranges.clear();
-  for (size_t i = 0; i < list.Size(); ++i) ranges.push_back(RangeFromJson(list.Element(i)));
-}
-
-// Unset optionals are written as null and read back from null.
-Json OptionalRangeJson(const std::optional<std::pair<double, double>>& r) {
-  return r ? RangeJson(*r) : Json(nullptr);
-}
-void ReadOptionalRange(const JsonNode& node, std::optional<std::pair<double, double>>& r) {
-  if (node.json().is_null()) r.reset();
-  else r = RangeFromJson(node);
-}
-Json OptionalVectorJson(const std::optional<Eigen::VectorXd>& v) {
-  return v ? internal::VectorJson(*v) : Json(nullptr);
-}
-void ReadOptionalVector(const JsonNode& node, std::optional<Eigen::VectorXd>& v) {
-  if (node.json().is_null()) v.reset();
-  else v = internal::VectorFromJson(node);
-}
-
-const internal::FieldList<NeuralTrainingOptions>& NeuralTrainingFields() {
-  using O = NeuralTrainingOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Add("hidden", &O::hidden)
-          .Nested("trainer", &O::trainer, TrainerJson, ReadTrainer)
-          .Nested("init", &O::init, InitJson, ReadInit)
-          .Add("momentum", &O::momentum)
-          .Add("solve_output_layer", &O::solve_output_layer)
-          .Add("mu_initial", &O::mu_initial)
-          .Add("mu_decrease", &O::mu_decrease)
-          .Add("mu_increase", &O::mu_increase)
-          .Add("mu_max", &O::mu_max)
-          .Add("gradient_tolerance", &O::gradient_tolerance)
-          .Add("max_epochs", &O::max_epochs)
-          .Add("max_validation_failures", &O::max_validation_failures)
-          .Add("goal_mse", &O::goal_mse)
-          .Add("seed", &O::seed)
-          .Add("restarts", &O::restarts)
-          .Nested("input_ranges", &O::input_ranges, RangesJson, ReadRanges)
-          .Nested("output_range", &O::output_range, OptionalRangeJson, ReadOptionalRange)
-          .Nested("initial_parameters", &O::initial_parameters, OptionalVectorJson,
-                  ReadOptionalVector)
-          .Add("ceres_block_size", &O::ceres_block_size)
-          .Add("threads", &O::threads);
-  return fields;
-}
-
-const internal::FieldList<HiddenSweepOptions>& HiddenSweepFields() {
-  using O = HiddenSweepOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Add("hidden_sizes", &O::hidden_sizes)
-          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson,
-                  internal::ReadNeuralTrainingOptions)
-          .Add("threads", &O::threads);
-  return fields;
-}
-
-void ReadHiddenSweepOptions(const JsonNode& node, HiddenSweepOptions& o) {
-  HiddenSweepFields().Read(node, o);
-}
-
-}  // namespace
-
-namespace internal {
-
 nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& o) {
-  return NeuralTrainingFields().Write(o);
+  return WriteFields(o);
 }
 
 void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& o) {
-  NeuralTrainingFields().Read(node, o);
+  ReadFields(node, o);
 }
 
 }  // namespace internal
 
 std::string ToJson(const NeuralTrainingOptions& o, int indent) {
-  return internal::DumpJson(internal::NeuralTrainingOptionsJson(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 NeuralTrainingOptions NeuralTrainingOptionsFromJson(std::string_view text,
                                                     const std::string& source_name) {
-  return internal::OptionsFromJson<NeuralTrainingOptions>(text, source_name,
-                                                          internal::ReadNeuralTrainingOptions);
+  return internal::FieldsFromJson<NeuralTrainingOptions>(text, source_name);
 }
 
 std::string ToJson(const HiddenSweepOptions& o, int indent) {
-  return internal::DumpJson(HiddenSweepFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 HiddenSweepOptions HiddenSweepOptionsFromJson(std::string_view text,
                                               const std::string& source_name) {
-  return internal::OptionsFromJson<HiddenSweepOptions>(text, source_name, ReadHiddenSweepOptions);
+  return internal::FieldsFromJson<HiddenSweepOptions>(text, source_name);
 }
 
 std::string ToJson(const NetworkPrediction& p, int indent) {

@@ -5,10 +5,25 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "sysid/nn.hpp"
 
 namespace sysid::internal {
+
+/// "lm", ... (ToString's names).
+template <>
+struct JsonForm<NeuralTrainer> {
+  static nlohmann::ordered_json Write(const NeuralTrainer& trainer);
+  static void Read(const JsonNode& node, NeuralTrainer& trainer);
+};
+
+/// "nguyen-widrow" or "uniform".
+template <>
+struct JsonForm<NeuralInit> {
+  static nlohmann::ordered_json Write(const NeuralInit& init);
+  static void Read(const JsonNode& node, NeuralInit& init);
+};
 
 /// Every field but the on_epoch callback.
 nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& options);

@@ -6,10 +6,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_text.hpp"
+#include "core/json_fields.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid::internal {
+
+/// "central", "butterworth" or "savgol".
+template <>
+struct JsonForm<DerivativeMethod> {
+  static nlohmann::ordered_json Write(const DerivativeMethod& method);
+  static void Read(const JsonNode& node, DerivativeMethod& method);
+};
 
 /// {"method", "cutoff_hz", "butterworth_order", "savgol_window", "savgol_order"}.
 nlohmann::ordered_json DerivativeOptionsJson(const DerivativeOptions& options);

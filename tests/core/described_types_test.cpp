@@ -1,0 +1,144 @@
+// Every described struct (sysid/serialize.hpp) against its own field list: each field is moved
+// off its default by a rule that knows nothing of the struct (numbers shifted, flags flipped,
+// strings and lists extended, enums stepped), the struct is written, read back over a default
+// one and written again. The reference is the perturbed struct itself: the second text must
+// equal the first, and every key must differ from the default's text, so a field the reader
+// drops, or that the writer leaves out, fails here.
+#include <Eigen/Core>
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "core/json_fields.hpp"
+#include "delay/delay_json.hpp"
+#include "dominance/dominance_json.hpp"
+#include "identify/identify_json.hpp"
+#include "motion/motion_json.hpp"
+#include "nn/nn_json.hpp"
+#include "signal/signal_json.hpp"
+#include "sysid/compare.hpp"
+#include "sysid/delay.hpp"
+#include "sysid/dominance.hpp"
+#include "sysid/identify.hpp"
+#include "sysid/motion.hpp"
+#include "sysid/nn.hpp"
+#include "sysid/signal.hpp"
+
+namespace {
+
+using sysid::NameValue;
+using sysid::internal::IsDescribed;
+
+template <class V>
+struct IsOptional : std::false_type {};
+template <class V>
+struct IsOptional<std::optional<V>> : std::true_type {};
+
+class PerturbArchive {
+ public:
+  template <class V>
+  void Visit(const NameValue<V>& nv) {
+    Perturb(*nv.value());
+  }
+
+ private:
+  template <class V>
+  void Perturb(V& v) {
+    if constexpr (IsDescribed<V>::value) {
+      v.Serialize(this);
+    } else if constexpr (std::is_same_v<V, double>) {
+      v = std::isfinite(v) ? 1.5 * v + 0.25 : 2.5;
+    } else if constexpr (std::is_same_v<V, bool>) {
+      v = !v;
+    } else if constexpr (std::is_integral_v<V>) {
+      v = static_cast<V>(v + 1);
+    } else if constexpr (std::is_enum_v<V>) {
+      v = static_cast<V>(static_cast<int>(v) ^ 1);  // enums count from 0: 0 <-> 1, 2 <-> 3
+    } else if constexpr (std::is_same_v<V, std::string>) {
+      v += "x";
+    } else if constexpr (std::is_same_v<V, std::pair<double, double>>) {
+      v = {v.first - 0.5, v.second + 1.5};
+    } else if constexpr (std::is_same_v<V, Eigen::VectorXd>) {
+      v.conservativeResize(v.size() + 1);
+      v(v.size() - 1) = 0.5;
+    } else if constexpr (IsOptional<V>::value) {
+      if (!v) v.emplace();
+      Perturb(*v);
+    } else {  // a list: one element more, itself moved off its default
+      v.emplace_back();
+      Perturb(v.back());
+    }
+  }
+};
+
+// The keys of `a` whose value equals `b`'s, recursing into objects.
+void SameKeys(const nlohmann::ordered_json& a, const nlohmann::ordered_json& b,
+              const std::string& path, std::vector<std::string>* same) {
+  for (auto it = a.begin(); it != a.end(); ++it) {
+    const std::string key = path + "/" + it.key();
+    if (it.value().is_object())
+      SameKeys(it.value(), b.at(it.key()), key, same);
+    else if (it.value() == b.at(it.key()))
+      same->push_back(key);
+  }
+}
+
+template <class T>
+void CheckRoundTrip(const char* name) {
+  INFO(name);
+  T perturbed{};
+  PerturbArchive perturb;
+  perturbed.Serialize(&perturb);
+  const nlohmann::ordered_json written = sysid::internal::WriteFields(perturbed);
+
+  std::vector<std::string> same;
+  SameKeys(written, sysid::internal::WriteFields(T{}), "", &same);
+  CAPTURE(same);
+  CHECK(same.empty());
+
+  const sysid::internal::JsonDocument doc(written.dump(2), "perturbed.json");
+  T read{};
+  sysid::internal::ReadFields(doc.Root(), read);
+  CHECK(sysid::internal::WriteFields(read).dump() == written.dump());
+
+  std::vector<std::string> keys;
+  for (auto it = written.begin(); it != written.end(); ++it) keys.push_back(it.key());
+  CHECK(keys == sysid::internal::FieldNamesOf(T{}));
+}
+
+}  // namespace
+
+TEST_CASE("every described options struct round-trips each of its fields through JSON") {
+  CheckRoundTrip<sysid::DerivativeOptions>("DerivativeOptions");
+  CheckRoundTrip<sysid::MotionOptions>("MotionOptions");
+  CheckRoundTrip<sysid::PulseDetectionOptions>("PulseDetectionOptions");
+  CheckRoundTrip<sysid::PlateauOptions>("PlateauOptions");
+  CheckRoundTrip<sysid::PulseFitOptions>("PulseFitOptions");
+  CheckRoundTrip<sysid::PulseIdentificationOptions>("PulseIdentificationOptions");
+  CheckRoundTrip<sysid::TrajectoryOptions>("TrajectoryOptions");
+  CheckRoundTrip<sysid::SegmentOptions>("SegmentOptions");
+  CheckRoundTrip<sysid::DelayTuningOptions>("DelayTuningOptions");
+  CheckRoundTrip<sysid::RefineOptions>("RefineOptions");
+  CheckRoundTrip<sysid::NeuralTrainingOptions>("NeuralTrainingOptions");
+  CheckRoundTrip<sysid::HiddenSweepOptions>("HiddenSweepOptions");
+  CheckRoundTrip<sysid::DominanceOptions>("DominanceOptions");
+  CheckRoundTrip<sysid::CompareOptions>("CompareOptions");
+}
+
+TEST_CASE("a limit written as null reads back as the infinity of its side") {
+  sysid::PlateauOptions o;
+  o.travel_min_m = -0.5;
+  const auto j = sysid::internal::WriteFields(sysid::PlateauOptions{});
+  CHECK(j.at("max_speed_mps").is_null());
+  CHECK(j.at("travel_min_m").is_null());
+  const sysid::internal::JsonDocument doc(j.dump(), "limits.json");
+  sysid::internal::ReadFields(doc.Root(), o);
+  CHECK(o.travel_min_m == -std::numeric_limits<double>::infinity());
+  CHECK(o.travel_max_m == std::numeric_limits<double>::infinity());
+  CHECK(o.max_speed_mps == std::numeric_limits<double>::infinity());
+}
