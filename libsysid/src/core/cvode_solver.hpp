@@ -12,7 +12,7 @@
 #ifndef SYSID_SRC_CORE_CVODE_SOLVER_HPP_
 #define SYSID_SRC_CORE_CVODE_SOLVER_HPP_
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 
 #include <string>
