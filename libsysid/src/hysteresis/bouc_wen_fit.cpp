@@ -70,8 +70,9 @@ std::vector<Series> ReadSeries(BoucWenForm form, const std::vector<Recording>& r
   return data;
 }
 
-// BoucWenFitOptions::choose_input: band-limited when every recording is whole periods of a
-// band-limited signal, else linear, into layout->sim.input; returns the summary's note.
+// The mechanical form's input kAuto: band-limited when every recording is whole periods of a
+// band-limited signal and the integrator takes it (CVODE has a work bound for it), else linear,
+// into layout->sim.input; returns the summary's note.
 std::string ChooseInput(const std::vector<Series>& data, Layout* layout) {
   bool band_limited = true;
   double worst_wrap = 0, worst_high = 0;
@@ -81,14 +82,44 @@ std::string ChooseInput(const std::vector<Series>& data, Layout* layout) {
     worst_wrap = std::max(worst_wrap, wrap / std::max(s.u.cwiseAbs().maxCoeff(), 1e-300));
     worst_high = std::max(worst_high, high);
   }
+  std::string refused;
+  if (band_limited && layout->sim.integrator == BoucWenIntegrator::kCvode) {
+    try {
+      for (const auto& s : data)
+        internal::SampledInput(s.u, s.dt_s, InputInterpolation::kBandLimited);
+    } catch (const InputError& e) {
+      refused = fmt::format("; CVODE refuses it: {}", e.what());
+      band_limited = false;
+    }
+  }
   layout->sim.input = band_limited ? InputInterpolation::kBandLimited : InputInterpolation::kLinear;
   return fmt::format(
       "; input {} between samples (chosen: {}; largest wrap step {:.3g} of max|u|, power above "
-      "a quarter of the sampling rate {:.3g} of the variance, band-limited at most {:g})",
+      "a quarter of the sampling rate {:.3g} of the variance, band-limited at most {:g}{})",
       band_limited ? "band-limited" : "linear",
-      band_limited ? "every recording is whole periods of a band-limited signal"
-                   : "not every recording is whole periods of a band-limited signal",
-      worst_wrap, worst_high, internal::kBandLimitedPower);
+      band_limited || !refused.empty()
+          ? "every recording is whole periods of a band-limited signal"
+          : "not every recording is whole periods of a band-limited signal",
+      worst_wrap, worst_high, internal::kBandLimitedPower, refused);
+}
+
+// BoucWenFitOptions' kAuto resolved (its rules are there); returns the input's note.
+std::string ResolveAuto(BoucWenForm form, const std::vector<Series>& data, Layout* layout) {
+  std::string note;
+  if (layout->sim.input == InputInterpolation::kAuto) {
+    // The chain takes its input band-limited whatever `input` says (and records linear).
+    if (form == BoucWenForm::kMechanical &&
+        layout->sim.integrator != BoucWenIntegrator::kBenchmarkChain)
+      note = ChooseInput(data, layout);
+    else
+      layout->sim.input = InputInterpolation::kLinear;
+  }
+  if (layout->sim.integrator == BoucWenIntegrator::kAuto)
+    layout->sim.integrator =
+        form == BoucWenForm::kMechanical && layout->sim.input != InputInterpolation::kHold
+            ? BoucWenIntegrator::kFixedStep
+            : BoucWenIntegrator::kCvode;
+  return note;
 }
 
 // The fixed step's steps per sample m: the fine inputs at m (the work bound checked first: a
@@ -149,12 +180,20 @@ struct FixedStepPlan {
 
 // The fixed step checked on the final model: past its tolerance, twice the steps and the fit
 // continues from where it is (a fresh evaluation cache: the residuals changed with m). Returns
-// the summary's note.
+// the summary's note. The check (a CVODE simulation of every recording) runs only while the
+// time bound has not passed: past it, the note says it was skipped (the fit's summary says the
+// bound stopped it).
 std::string CheckFixedStep(const FixedStepPlan& plan, const BoucWenFitOptions& options,
                            const FitClock& clock, Eigen::Index n, std::vector<Series>* data,
                            Layout* layout, Work* work, Solved* s,
                            std::unique_ptr<ceres::Problem>* owner) {
   for (;;) {
+    if (clock.Bounded() && (s->timed_out || clock.Remaining() <= 0))
+      return fmt::format(
+          "; fixed step: {} steps per sample (step doubling at the start: {:.3g} m RMS, "
+          "tolerance {:.3g} m); the final model's check against CVODE skipped: the time bound "
+          "max_time_s = {:g} s had passed",
+          layout->sim.upsampling, plan.start_estimate_m, plan.tolerance_m, options.max_time_s);
     std::string how;
     const double error_m = internal::bouc_wen_fit::FixedStepCheck(
         MechanicalParameters(layout->Full(s->x.data())), *data, layout->sim, &how);
@@ -239,7 +278,8 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   FitClock clock{std::chrono::steady_clock::now(), options.max_time_s};
   options.Validate();
   if (recordings.empty()) throw OptionsError("FitBoucWen: no recordings given", "recordings");
-  if (form == BoucWenForm::kPiezo && options.simulation.integrator != BoucWenIntegrator::kCvode)
+  if (form == BoucWenForm::kPiezo && options.simulation.integrator != BoucWenIntegrator::kCvode &&
+      options.simulation.integrator != BoucWenIntegrator::kAuto)
     internal::FailOption("BoucWenFitOptions", "simulation.integrator",
                          options.simulation.integrator == BoucWenIntegrator::kFixedStep
                              ? "fixed-step"
@@ -248,13 +288,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   Eigen::Index n = 0;
   std::vector<Series> data = ReadSeries(form, recordings, options, &n);
   Layout layout = internal::bouc_wen_fit::MakeLayout(form, data, options);
-  std::string input_note;
-  // The chain takes its input band-limited whatever `input` says.
-  if (options.choose_input && form == BoucWenForm::kMechanical &&
-      layout.sim.integrator != BoucWenIntegrator::kBenchmarkChain)
-    input_note = ChooseInput(data, &layout);
+  const std::string input_note = ResolveAuto(form, data, &layout);
   const bool fixed_step = form == BoucWenForm::kMechanical &&
-                          options.simulation.integrator == BoucWenIntegrator::kFixedStep;
+                          layout.sim.integrator == BoucWenIntegrator::kFixedStep;
   const bool exact = options.jacobian == BoucWenJacobian::kSensitivities &&
                      (form == BoucWenForm::kMechanical ||
                       layout.sim.input != InputInterpolation::kBandLimited);

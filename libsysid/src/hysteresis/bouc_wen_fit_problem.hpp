@@ -52,6 +52,12 @@ struct Layout {
   }
   std::unique_ptr<HysteresisModel> Model(const Eigen::VectorXd& p,
                                          std::vector<double> errors = {}) const;
+  /// True when the fit simulates by CVODE (to its rtol, not to rounding): the mechanical form's
+  /// CVODE, the piezo form's for a band-limited input (else its exact closed-form step).
+  bool SimulatedByCvode() const {
+    return sim.integrator == BoucWenIntegrator::kCvode &&
+           (form == BoucWenForm::kMechanical || sim.input == InputInterpolation::kBandLimited);
+  }
 };
 
 /// The free parameters, their scales and bounds, and the starting values (the options' or, for

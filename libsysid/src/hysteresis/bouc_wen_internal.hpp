@@ -45,6 +45,9 @@ inline constexpr double kBandLimitedPower = 1e-6;
 /// measured (NaN: not measured: fewer than 8 samples, or an FFT past kMaxFftWork).
 bool PeriodicBandLimited(const Eigen::VectorXd& u, double* wrap_step, double* high_fraction);
 
+/// A model's simulation options: Validate, and OptionsError for kAuto (a fit's choice).
+void CheckModelSimulation(const BoucWenSimulationOptions& o);
+
 /// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
 /// at the first non-finite sample; `kind` starts the message ("bouc-wen").
 void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);

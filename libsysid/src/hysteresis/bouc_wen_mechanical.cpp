@@ -26,7 +26,7 @@ MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
                                      std::vector<double> std_errors)
     : p_(p), options_(options), std_errors_(std::move(std_errors)) {
   p_.Validate();
-  options_.Validate();
+  internal::CheckModelSimulation(options_);
 }
 
 Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
