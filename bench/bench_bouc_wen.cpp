@@ -16,6 +16,12 @@
 //     simulation, CPU; then the fit itself: CPU [s] (user + system of every thread), wall
 //     [s], simulations. Prints "simulation ...", "jacobian ..." and "fit ..." lines. The
 //     options after --repeats are this build's (a baseline binary is run without them).
+//   bench_bouc_wen cvode-jacobian REC.csv [--input linear|hold|band-limited] [--rtol R]
+//                  [--repeats R]
+//     The CVODE path's Jacobian: one CVODE simulation of REC's u (true parameters) against one
+//     pass of CVODES with the sensitivities of the fit's six default free parameters (m, c, k,
+//     alpha, gamma, delta; internal::MechanicalCvode), best CPU of R; central differences cost 13
+//     simulations. Prints a "cvode-jacobian ..." line.
 //   bench_bouc_wen fixed-step REC.csv
 //     The Newmark/trapezoidal step (the chain's) on the input linear between samples, 5 to 80
 //     substeps per sample, against CVODE at rtol 1e-12 on REC's u (true parameters): max and
@@ -196,6 +202,52 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+int CvodeJacobianCommand(const std::vector<std::string>& args) {
+  std::string path;
+  sysid::BoucWenSimulationOptions o;
+  int repeats = 3;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--input" && i + 1 < args.size()) {
+      const std::string& v = args[++i];
+      o.input = v == "hold"           ? InputInterpolation::kHold
+                : v == "band-limited" ? InputInterpolation::kBandLimited
+                                      : InputInterpolation::kLinear;
+    } else if (args[i] == "--rtol" && i + 1 < args.size()) {
+      o.rtol = std::atof(args[++i].c_str());
+    } else if (args[i] == "--repeats" && i + 1 < args.size()) {
+      repeats = std::max(1, std::atoi(args[++i].c_str()));
+    } else {
+      path = args[i];
+    }
+  }
+  if (path.empty()) {
+    fmt::print(stderr, "usage: bench_bouc_wen cvode-jacobian REC.csv [--input I] [--rtol R]\n");
+    return 1;
+  }
+  const sysid::Recording rec = sysid::ReadRecording(path);
+  const Eigen::VectorXd u = rec.column("u");
+  const double dt = rec.column("t")[1] - rec.column("t")[0];
+  const sysid::MechanicalBoucWenParameters p;  // the benchmark's true system
+  auto best_cpu = [&](const std::vector<int>& which) {
+    double best = 1e300;
+    for (int r = 0; r < repeats; ++r) {
+      Eigen::VectorXd y;
+      Eigen::MatrixXd dy;
+      const std::clock_t t0 = std::clock();
+      sysid::internal::MechanicalCvode(p, u, dt, o, which, &y, &dy);
+      best = std::min(best, static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC);
+    }
+    return best;
+  };
+  const double simulation = best_cpu({});
+  const double jacobian = best_cpu({0, 1, 2, 3, 5, 6});
+  fmt::print(
+      "cvode-jacobian samples={} input={} rtol={:g} simulation_cpu_s={:.4f} "
+      "sensitivities_cpu_s={:.4f} in_simulations={:.2f} central_differences_in_simulations=13\n",
+      u.size(), static_cast<int>(o.input), o.rtol, simulation, jacobian, jacobian / simulation);
+  return 0;
+}
+
 // The Newmark/trapezoidal step on the linearly interpolated input, m substeps per sample and no
 // decimation, against CVODE at rtol 1e-12 (the reference) and at the fit's 1e-9: error and CPU.
 int FixedStepCommand(const std::vector<std::string>& args) {
@@ -295,6 +347,7 @@ int main(int argc, char** argv) {
     if (command == "score") return ScoreCommand(args);
     if (command == "throughput") return ThroughputCommand(args);
     if (command == "fit-speed") return FitSpeedCommand(args);
+    if (command == "cvode-jacobian") return CvodeJacobianCommand(args);
     if (command == "fixed-step") return FixedStepCommand(args);
   } catch (const sysid::Error& e) {
     fmt::print(stderr, "bench_bouc_wen: {}\n", e.what());

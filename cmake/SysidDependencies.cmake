@@ -2,7 +2,7 @@
 # scripts/setup.sh installs the packages (the list lives there and in docs/building.md).
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(Ceres 2.0 REQUIRED)
-find_package(SUNDIALS 6 REQUIRED COMPONENTS cvode nvecserial)
+find_package(SUNDIALS 6 REQUIRED COMPONENTS cvodes nvecserial)
 find_package(NLopt 2.7 REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(fmt 9 REQUIRED)

@@ -95,20 +95,18 @@ void RunFit(const HysteresisCli& o) {
   HysteresisFitOptions options = o.options;
   options.pi.offset = !o.no_offset;
   BoucWenSimulationOptions& sim = options.bouc_wen.simulation;
+  // auto: the library's choice (BoucWenFitOptions: the mechanical form's fixed step, CVODE for
+  // a held input; the input band-limited or linear from the recordings), shared with Python.
   sim.input = o.input_model == "hold"           ? InputInterpolation::kHold
               : o.input_model == "band-limited" ? InputInterpolation::kBandLimited
-                                                : InputInterpolation::kLinear;
-  options.bouc_wen.choose_input = o.input_model == "auto" && o.kind == "bouc-wen";
-  // auto: the mechanical form's fixed step (its steps per sample chosen by step doubling and
-  // checked against CVODE), CVODE for a held input; the piezo form's closed-form step (cvode's
-  // setting: CVODE only for a band-limited input).
-  sim.integrator =
-      o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
-      : o.integrator == "fixed-step"    ? BoucWenIntegrator::kFixedStep
-      : o.integrator == "auto" && o.kind == "bouc-wen" && sim.input != InputInterpolation::kHold
-          ? BoucWenIntegrator::kFixedStep
-          : BoucWenIntegrator::kCvode;
-  if (o.kind != "bouc-wen" && sim.integrator != BoucWenIntegrator::kCvode)
+              : o.input_model == "linear"       ? InputInterpolation::kLinear
+                                                : InputInterpolation::kAuto;
+  sim.integrator = o.integrator == "benchmark-chain" ? BoucWenIntegrator::kBenchmarkChain
+                   : o.integrator == "fixed-step"    ? BoucWenIntegrator::kFixedStep
+                   : o.integrator == "cvode"         ? BoucWenIntegrator::kCvode
+                                                     : BoucWenIntegrator::kAuto;
+  if (o.kind != "bouc-wen" && sim.integrator != BoucWenIntegrator::kCvode &&
+      sim.integrator != BoucWenIntegrator::kAuto)
     throw OptionsError("--integrator " + o.integrator +
                        ": only for --model bouc-wen (the mechanical form; bouc-wen-piezo takes "
                        "its exact closed-form step, or CVODE for a band-limited input)");
@@ -317,9 +315,10 @@ void AddFitSubcommand(CLI::App& h, const std::shared_ptr<HysteresisCli>& o) {
       ->capture_default_str();
   fit->add_option("--jacobian", o->jacobian,
                   "bouc-wen, bouc-wen-piezo: how the fit differentiates the simulation: "
-                  "sensitivities (exact: the fixed step's, the chain's or the piezo closed form's "
-                  "step differentiated; CVODE: central differences) or central-differences "
-                  "(2p+1 simulations)")
+                  "sensitivities (the fixed step's, the chain's or the piezo closed form's step "
+                  "differentiated; bouc-wen by CVODE: CVODES' forward sensitivities; "
+                  "bouc-wen-piezo by CVODE: central differences) or central-differences (2p+1 "
+                  "simulations)")
       ->check(CLI::IsMember({"sensitivities", "central-differences"}))
       ->capture_default_str();
   fit->add_option("--max-time", o->options.bouc_wen.max_time_s,

@@ -1,5 +1,6 @@
 """sysid.hysteresis: fit, simulate, invert from Python, against the library's own closed forms
 and the CLI of the same build."""
+import json
 import math
 
 import numpy as np
@@ -8,6 +9,7 @@ import pytest
 
 import sysid
 import sysid.hysteresis as hy
+from conftest import run_cli
 
 
 def _pi_recording(n=1500, dt=0.005):
@@ -147,3 +149,32 @@ def test_hysteresis_batch_on_dask_equals_threads():
     serial = sysid.hysteresis_batch([rec, rec], models=models, threads=1)
     pandas.testing.assert_frame_equal(table.drop(columns="fit_time_s"),
                                       serial.drop(columns="fit_time_s"))
+
+
+def test_bouc_wen_fit_defaults_are_the_clis(tmp_path):
+    # The library resolves `auto` (integrator and input) for the CLI and Python alike: a
+    # mechanical Bouc-Wen fit from Python with no option takes the fixed step and the input
+    # chosen from the recording (a whole period of a multisine: band-limited), and gives the
+    # CLI's model with no flag, to the last digit.
+    n, dt = 512, 1.0 / 750
+    t = np.arange(n) * dt
+    u = sum(6.0 * np.cos(2 * np.pi * l * t / (n * dt) + 2.39996 * l * l) for l in range(7, 60))
+    truth = sysid._sysid.hysteresis_model_from_json(
+        '{"kind": "bouc-wen", "parameters": {"m": 2, "c": 10, "k": 5e4, "alpha": 5e4, '
+        '"beta": 1e3, "gamma": 0.8, "delta": -1.1, "nu": 1}, '
+        '"simulation": {"integrator": "cvode", "input": "band-limited"}}', "truth.json")
+    x = truth.simulate(u, dt)
+    rec = sysid.recording(t=t, u=u, x=x)
+    fit = hy.fit([rec], model="bouc-wen")
+    model = json.loads(fit.model.to_json())
+    assert model["simulation"]["integrator"] == "fixed-step"
+    assert model["simulation"]["input"] == "band-limited"
+    assert "fixed step:" in fit.summary.message
+    assert "input band-limited between samples (chosen" in fit.summary.message
+    path = tmp_path / "rec.csv"
+    pandas.DataFrame({"t": t, "u": u, "x": x}).to_csv(path, index=False)
+    run_cli("hysteresis", "fit", "--model", "bouc-wen", path, "-o", tmp_path / "m.json")
+    cli = json.loads((tmp_path / "m.json").read_text())
+    assert cli["simulation"] == model["simulation"]
+    for name, value in cli["parameters"].items():
+        assert model["parameters"][name] == pytest.approx(value, rel=1e-9), name

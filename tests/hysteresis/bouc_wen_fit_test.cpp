@@ -202,6 +202,7 @@ TEST_CASE("bouc-wen: the fixed-step fit recovers the system from CVODE's data",
   const Eigen::VectorXd y = MechanicalBoucWen(truth, cv).Simulate(u, dt);
   BoucWenFitOptions o;
   o.simulation.integrator = BoucWenIntegrator::kFixedStep;
+  o.simulation.input = InputInterpolation::kLinear;  // the data's
   o.mechanical_initial = truth;
   o.mechanical_initial.m_kg *= 1.25;
   o.mechanical_initial.k_n_per_m *= 0.75;
@@ -227,6 +228,35 @@ TEST_CASE("bouc-wen: the fixed-step fit recovers the system from CVODE's data",
   const Eigen::VectorXd yc = MechanicalBoucWen(fitted.values(), cv).Simulate(u, dt);
   const double rms = std::sqrt((y.array() - y.mean()).square().mean());
   CHECK(std::sqrt((ym - yc).squaredNorm() / static_cast<double>(ym.size())) <= 1e-4 * rms);
+}
+
+TEST_CASE("bouc-wen: past the time bound the fixed step's final check is skipped, and said so",
+          "[hysteresis][bouc-wen][fit]") {
+  // The check simulates every recording by CVODE: after a fit the bound stopped, it would run
+  // past the bound. A bound already past: the fit returns its starting point, not converged,
+  // and the message says the check was skipped because of the bound (no error).
+  const MechanicalBoucWenParameters truth;
+  BoucWenSimulationOptions cv;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(512, dt, 7, 100, 6.0);
+  const Eigen::VectorXd y = MechanicalBoucWen(truth, cv).Simulate(u, dt);
+  BoucWenFitOptions o;  // the default: integrator and input chosen (the fixed step here)
+  o.mechanical_initial = truth;
+  o.mechanical_initial.m_kg *= 1.25;
+  o.mechanical_initial_given = true;
+  o.max_time_s = 1e-9;
+  HysteresisFitSummary summary;
+  const auto model = FitBoucWen(BoucWenForm::kMechanical, {MakeRecording(u, y, dt)}, o, &summary);
+  INFO(summary.message);
+  CHECK_FALSE(summary.converged);
+  CHECK(summary.message.find("stopped at the time bound max_time_s = 1e-09 s") !=
+        std::string::npos);
+  CHECK(summary.message.find("the final model's check against CVODE skipped: the time bound "
+                             "max_time_s = 1e-09 s had passed") != std::string::npos);
+  CHECK(summary.message.find("against CVODE rtol 1e-9") == std::string::npos);
+  const auto& fitted = dynamic_cast<const MechanicalBoucWen&>(*model);
+  CHECK(fitted.options().integrator == BoucWenIntegrator::kFixedStep);
+  CHECK(fitted.values().m_kg == o.mechanical_initial.m_kg);
 }
 
 // A piezo recording: decaying loops (a sine sweep down in amplitude), 0..60 V.

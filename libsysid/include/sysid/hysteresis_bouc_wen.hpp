@@ -37,6 +37,8 @@ enum class InputInterpolation {
   kHold,         ///< zero-order hold: u(t) = u_k on [t_k, t_k+1)
   kLinear,       ///< straight lines between samples
   kBandLimited,  ///< the trigonometric interpolant of the record as one period (FFT)
+  /// A fit's choice (BoucWenFitOptions' default; see there); a model refuses it.
+  kAuto,
 };
 
 enum class BoucWenIntegrator {
@@ -46,6 +48,8 @@ enum class BoucWenIntegrator {
   /// on `input` (linear or band-limited) without decimation; second order. A fit chooses the
   /// steps per sample by step doubling (BoucWenFitOptions::fixed_step_tolerance).
   kFixedStep,
+  /// A fit's choice (BoucWenFitOptions' default; see there); a model refuses it.
+  kAuto,
 };
 
 struct BoucWenSimulationOptions {
@@ -58,6 +62,10 @@ struct BoucWenSimulationOptions {
   int upsampling = 20;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
+
+/// BoucWenFitOptions' default simulation: integrator and input kAuto (the CLI's `--integrator
+/// auto --input auto`), the rest BoucWenSimulationOptions' defaults.
+BoucWenSimulationOptions AutoBoucWenSimulation();
 
 /// The mechanical form's parameters (defaults: the benchmark's true system).
 struct MechanicalBoucWenParameters {
@@ -152,10 +160,12 @@ class PiezoBoucWen : public HysteresisModel {
 
 /// How the fit gets the Jacobian of the residuals in the parameters.
 enum class BoucWenJacobian {
-  /// Forward sensitivities of the simulator's own discrete recursion where it has them: exact to
-  /// rounding, one pass. The benchmark chain and the fixed step: the Newmark/trapezoidal step
-  /// differentiated (then the chain's linear FIR decimation); the piezo form's closed-form step
-  /// (held or linear input): differentiated by ceres::Jet. Elsewhere (CVODE) central differences.
+  /// Forward sensitivities, one pass per recording. The benchmark chain and the fixed step: the
+  /// Newmark/trapezoidal step differentiated (then the chain's linear FIR decimation), exact to
+  /// rounding; the mechanical form by CVODE: CVODES' forward sensitivities (the staggered
+  /// corrector, to the simulation's tolerance); the piezo form's closed-form step (held or linear
+  /// input): differentiated by ceres::Jet. The piezo form by CVODE (band-limited input): central
+  /// differences.
   kSensitivities,
   /// Central differences, 2 p + 1 simulations per Jacobian (p free parameters), in parallel.
   kCentralDifferences,
@@ -172,8 +182,17 @@ struct BoucWenFitProgress {
 
 struct BoucWenFitOptions {
   /// How the fit simulates (the benchmark's data: the benchmark chain). With the fixed step its
-  /// `upsampling` is chosen by the fit (fixed_step_tolerance).
-  BoucWenSimulationOptions simulation;
+  /// `upsampling` is chosen by the fit (fixed_step_tolerance). kAuto (the default here, the
+  /// CLI's and the Python binding's; one rule for all three, in FitBoucWen):
+  ///  - input: the mechanical form's (the chain takes its input band-limited anyway, and
+  ///    records linear): band-limited when every recording's u is whole periods of a
+  ///    band-limited signal (it wraps from its last sample to its first by no more than its
+  ///    largest step, and at most 1e-6 of its variance lies above a quarter of the sampling
+  ///    rate) and, with CVODE, CVODE takes it (its band-limited work bound), else linear; the
+  ///    piezo form's: linear. The summary's message says which and why;
+  ///  - integrator: the mechanical form's fixed step, or CVODE for a held input; the piezo
+  ///    form's CVODE setting (its exact closed-form step, CVODE for a band-limited input).
+  BoucWenSimulationOptions simulation = AutoBoucWenSimulation();
   /// [1] The fixed step's tolerance, relative to the recordings' output RMS about its mean
   /// (rms(x - mean x)), in (0, 0.1]. The steps per sample m: the smallest power of two (2 to 512)
   /// whose step-doubling estimate (internal::StepDoublingError, m against 2m, at the starting
@@ -181,13 +200,6 @@ struct BoucWenFitOptions {
   /// input; where CVODE refuses the input, step doubling again): past the tolerance m doubles and
   /// the fit continues from its parameters; the summary's message gives m and both errors.
   double fixed_step_tolerance = 1e-4;
-  /// Mechanical form with CVODE or the fixed step (the chain's input is band-limited anyway):
-  /// the input between samples chosen from the recordings instead of
-  /// simulation.input: band-limited when every recording's u is whole periods of a band-limited
-  /// signal (it wraps from its last sample to its first by no more than its largest step, and at
-  /// most 1e-6 of its variance lies above a quarter of the sampling rate), else linear. The
-  /// summary's message says which and why.
-  bool choose_input = false;
   /// Starting values; the mechanical form's default is the linear fit described in
   /// docs/hysteresis.md when `mechanical_initial_given` is false.
   MechanicalBoucWenParameters mechanical_initial;
@@ -210,7 +222,9 @@ struct BoucWenFitOptions {
   /// [s] wall-time bound of the whole fit (starts included), >= 0; 0: none. Past it the fit
   /// stops with the best parameters so far (the summary: not converged, the message says the
   /// bound stopped it). Ceres checks it between iterations, so the iteration under way still
-  /// runs after it; a start begins only while one iteration's time (the mean so far) is left.
+  /// runs after it; a start begins only while one iteration's time (the mean so far) is left;
+  /// the fixed step's final check against CVODE runs only while the bound has not passed (the
+  /// message says when it was skipped).
   double max_time_s = 0;
   /// Called after every Ceres iteration of every start, on the calling thread (progress
   /// reports; it must not throw). Does not change the result.

@@ -108,6 +108,10 @@ CvodeSolver::~CvodeSolver() { Release(); }
 
 void CvodeSolver::Release() {
   if (mem_) CVodeFree(&mem_);
+  if (sens_fixed_point_) SUNNonlinSolFree(sens_fixed_point_);
+  if (sens_) N_VDestroyVectorArray(sens_, sensitivities_);
+  sens_fixed_point_ = nullptr;
+  sens_ = nullptr;
   if (fixed_point_) SUNNonlinSolFree(fixed_point_);
   if (linear_) SUNLinSolFree(linear_);
   if (matrix_) SUNMatDestroy(matrix_);
@@ -161,7 +165,35 @@ void CvodeSolver::SetStopTime(double t_s) { Check(CVodeSetStopTime(mem_, t_s), "
 
 void CvodeSolver::ReInit(double t_s) {
   before_reinit_ = Counters();
+  // The sensitivities at t_s from the history that the restart discards.
+  if (sensitivities_ > 0) ReadSensitivities();
   Check(CVodeReInit(mem_, t_s, y_), "CVodeReInit");
+  if (sensitivities_ > 0) Check(CVodeSensReInit(mem_, CV_STAGGERED, sens_), "CVodeSensReInit");
+}
+
+void CvodeSolver::EnableSensitivities(int count, CVSensRhsFn rhs, const double* scales,
+                                      bool error_control) {
+  if (method_ != Method::kAdams || sensitivities_ > 0 || count < 1)
+    Throw(CV_ILL_INPUT, "EnableSensitivities");
+  sens_ = N_VCloneVectorArray(count, y_);
+  if (!sens_) Throw(CV_MEM_FAIL, "N_VCloneVectorArray");
+  sensitivities_ = count;
+  for (int i = 0; i < count; ++i) N_VConst(0.0, sens_[i]);
+  sens_scales_.assign(scales, scales + count);
+  Check(CVodeSensInit(mem_, count, CV_STAGGERED, rhs, sens_), "CVodeSensInit");
+  Check(CVodeSetSensParams(mem_, nullptr, sens_scales_.data(), nullptr), "CVodeSetSensParams");
+  Check(CVodeSensEEtolerances(mem_), "CVodeSensEEtolerances");
+  Check(CVodeSetSensErrCon(mem_, error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
+  // CVODES defaults to Newton for the sensitivities, which needs a linear solver.
+  sens_fixed_point_ = SUNNonlinSol_FixedPointSens(count, y_, 0, ctx_);
+  if (!sens_fixed_point_) Throw(CV_MEM_FAIL, "SUNNonlinSol_FixedPointSens");
+  Check(CVodeSetNonlinearSolverSensStg(mem_, sens_fixed_point_),
+        "CVodeSetNonlinearSolverSensStg");
+}
+
+void CvodeSolver::ReadSensitivities() {
+  double t = 0;
+  Check(CVodeGetSens(mem_, &t, sens_), "CVodeGetSens");
 }
 
 const double* CvodeSolver::Dky(double t_s, int k) {

@@ -12,10 +12,11 @@
 #ifndef SYSID_SRC_CORE_CVODE_SOLVER_HPP_
 #define SYSID_SRC_CORE_CVODE_SOLVER_HPP_
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 
 #include <string>
+#include <vector>
 
 namespace sysid::internal {
 
@@ -61,7 +62,19 @@ class CvodeSolver {
   void SetMaxNumSteps(long steps);
   void SetInitStep(double h_s);
   void SetStopTime(double t_s);
-  /// Restarts at t from state() (after a discontinuity): CVODE forgets its history.
+  /// Forward sensitivities (CVODES) of `count` parameters, from zero: the staggered corrector
+  /// (the state's own corrector and steps come first and are unchanged, then the sensitivities'
+  /// linear system by fixed-point iteration) with `rhs` giving every sensitivity's right-hand side
+  /// at once. Tolerances: CVODES' estimate from the state's, scaled by `scales` (`count` typical
+  /// parameter magnitudes). `error_control` false keeps the sensitivities out of the local error
+  /// test (the state's steps alone). Adams only (fixed point needs no Jacobian).
+  void EnableSensitivities(int count, CVSensRhsFn rhs, const double* scales, bool error_control);
+  /// The sensitivities at the last Advance's t (CVodeGetSens: interpolated as the state is),
+  /// into sensitivity(i).
+  void ReadSensitivities();
+  const double* sensitivity(int i) const { return N_VGetArrayPointer(sens_[i]); }
+  /// Restarts at t from state() (after a discontinuity): CVODE forgets its history; the
+  /// sensitivities restart from their values at t (read here).
   void ReInit(double t_s);
   /// One CVode call. Returns its flag; a negative flag is the caller's to handle (Check or
   /// Describe), so a caller that reports failures without throwing can.
@@ -120,6 +133,10 @@ class CvodeSolver {
   SUNMatrix matrix_ = nullptr;
   SUNLinearSolver linear_ = nullptr;
   SUNNonlinearSolver fixed_point_ = nullptr;
+  int sensitivities_ = 0;
+  N_Vector* sens_ = nullptr;  // the sensitivities at the last Advance's t
+  std::vector<double> sens_scales_;
+  SUNNonlinearSolver sens_fixed_point_ = nullptr;
 };
 
 }  // namespace sysid::internal

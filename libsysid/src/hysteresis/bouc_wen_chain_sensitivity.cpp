@@ -20,22 +20,7 @@ namespace sysid::internal {
 
 namespace {
 
-using Vec = Eigen::Matrix<double, kMechanicalParameters, 1>;
-
-// df/dp at (v, z), f = alpha v - beta (gamma |v| |z|^(nu-1) z + delta v |z|^nu).
-Vec RateParameterPartials(const MechanicalBoucWenParameters& p, double v, double z, bool with_nu) {
-  const double av = std::abs(v), az = std::abs(z);
-  const double pow1 = p.nu == 1 ? 1.0 : std::pow(az, p.nu - 1);
-  const double g = av * pow1 * z, d = v * pow1 * az;  // the gamma and delta terms' factors
-  Vec out = Vec::Zero();
-  out[3] = v;
-  out[4] = -(p.gamma * g + p.delta * d);
-  out[5] = -p.beta_per_m * g;
-  out[6] = -p.beta_per_m * d;
-  // d|z|^nu / dnu = |z|^nu ln|z|, which tends to 0 with z.
-  if (with_nu && az > 0) out[7] = out[4] * p.beta_per_m * std::log(az);
-  return out;
-}
+using Vec = MechanicalParameterVector;
 
 }  // namespace
 
@@ -56,13 +41,13 @@ void NewmarkSensitivity(const MechanicalBoucWenParameters& p, const Eigen::Vecto
   (*y)[0] = 0;
   dy_dp->col(0).setZero();
   BoucWenRate r0 = MechanicalRate(p, v0, z0);
-  Vec f0p = RateParameterPartials(p, v0, z0, with_nu);
+  Vec f0p = MechanicalRateParameterPartials(p, v0, z0, with_nu);
   const double j11 = 4 * m / (h * h) + 2 * c / h + k;
   for (Eigen::Index i = 1; i < nf; ++i) {
     double y1 = 0, v1 = 0, a1 = 0, z1 = 0;
     NewmarkAdvance(p, uf[i], h, y0, v0, a0, z0, r0.f, i, &y1, &v1, &a1, &z1);
     const BoucWenRate r1 = MechanicalRate(p, v1, z1);
-    const Vec f1p = RateParameterPartials(p, v1, z1, with_nu);
+    const Vec f1p = MechanicalRateParameterPartials(p, v1, z1, with_nu);
     // R1's derivative without the (y1, z1) terms, moved to the right.
     Vec rhs1 = m * ((4 / (h * h)) * sy + (4 / h) * sv + sa) + c * ((2 / h) * sy + sv);
     rhs1[0] -= a1;

@@ -45,6 +45,9 @@ inline constexpr double kBandLimitedPower = 1e-6;
 /// measured (NaN: not measured: fewer than 8 samples, or an FFT past kMaxFftWork).
 bool PeriodicBandLimited(const Eigen::VectorXd& u, double* wrap_step, double* high_fraction);
 
+/// A model's simulation options: Validate, and OptionsError for kAuto (a fit's choice).
+void CheckModelSimulation(const BoucWenSimulationOptions& o);
+
 /// Throws OptionsError unless dt_s > 0 is finite, InputError naming `what`[i] (e.g. "u[3]")
 /// at the first non-finite sample; `kind` starts the message ("bouc-wen").
 void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const char* what);
@@ -145,6 +148,28 @@ Eigen::VectorXd ChainOutput(const MechanicalBoucWenParameters& p, const Eigen::V
 /// delta, nu.
 inline constexpr int kMechanicalParameters = 8;
 
+/// One value per mechanical parameter, in kMechanicalParameters' order.
+using MechanicalParameterVector = Eigen::Matrix<double, kMechanicalParameters, 1>;
+
+/// The Bouc–Wen z' = f(v, z) differentiated in the parameters at (v, z), f = alpha v - beta
+/// (gamma |v| |z|^(nu-1) z + delta v |z|^nu): entries alpha .. nu (m, c, k: 0). f is continuous
+/// in z and v, so |z| and |v| need no event: the partials are those of the side z and v are on
+/// (at z = 0 the nu entry is its limit 0: |z|^nu ln|z| -> 0). `with_nu` false leaves nu's at 0
+/// (a logarithm per call). Shared by every sensitivity recursion (Newmark, CVODES).
+inline MechanicalParameterVector MechanicalRateParameterPartials(
+    const MechanicalBoucWenParameters& p, double v, double z, bool with_nu) {
+  const double av = std::abs(v), az = std::abs(z);
+  const double pow1 = p.nu == 1 ? 1.0 : std::pow(az, p.nu - 1);
+  const double g = av * pow1 * z, d = v * pow1 * az;  // the gamma and delta terms' factors
+  MechanicalParameterVector out = MechanicalParameterVector::Zero();
+  out[3] = v;
+  out[4] = -(p.gamma * g + p.delta * d);
+  out[5] = -p.beta_per_m * g;
+  out[6] = -p.beta_per_m * d;
+  if (with_nu && az > 0) out[7] = out[4] * p.beta_per_m * std::log(az);
+  return out;
+}
+
 /// dy/dp at the steps a recursion keeps: one column per kept step, rows in kMechanicalParameters'
 /// order.
 using NewmarkJacobian = Eigen::Matrix<double, kMechanicalParameters, Eigen::Dynamic>;
@@ -180,6 +205,15 @@ Eigen::VectorXd FixedStepOutput(const MechanicalBoucWenParameters& p, const Eige
 void FixedStepOutputSensitivity(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& uf,
                                 double dt_s, int substeps, bool with_nu, Eigen::VectorXd* y,
                                 Eigen::MatrixXd* dy_dp);
+/// The mechanical form by CVODE (Adams, `o.rtol`, u between samples as `o.input`; Simulate's
+/// CVODE path): y [m] at the n samples u [N], dt_s apart, from rest. With `which` (indices in
+/// kMechanicalParameters' order) not empty, also dy/dp of those parameters by CVODES' forward
+/// sensitivities (the staggered corrector, the state's steps: y is the plain simulation's),
+/// into *dy_dp (n x 8, the other columns 0); `dy_dp` may be null when `which` is empty.
+void MechanicalCvode(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& u, double dt_s,
+                     const BoucWenSimulationOptions& o, const std::vector<int>& which,
+                     Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
+
 /// Throws InputError, before any allocation, when the fixed step over `rows` samples would take
 /// more than kMaxSignalSamples steps, or its band-limited input's FFT more than kMaxFftWork.
 void CheckFixedStepWork(Eigen::Index rows, int substeps, InputInterpolation how, const char* kind);

@@ -25,6 +25,8 @@ const char* ToString(BoucWenIntegrator i) {
       return "benchmark-chain";
     case BoucWenIntegrator::kFixedStep:
       return "fixed-step";
+    case BoucWenIntegrator::kAuto:
+      return "auto";
   }
   return "?";
 }
@@ -36,6 +38,8 @@ const char* ToString(InputInterpolation i) {
       return "linear";
     case InputInterpolation::kBandLimited:
       return "band-limited";
+    case InputInterpolation::kAuto:
+      return "auto";
   }
   return "?";
 }
@@ -118,6 +122,29 @@ std::vector<double> ErrorsFromJson(const internal::JsonNode& root,
 }
 
 }  // namespace
+
+BoucWenSimulationOptions AutoBoucWenSimulation() {
+  BoucWenSimulationOptions o;
+  o.integrator = BoucWenIntegrator::kAuto;
+  o.input = InputInterpolation::kAuto;
+  return o;
+}
+
+namespace internal {
+
+void CheckModelSimulation(const BoucWenSimulationOptions& o) {
+  o.Validate();
+  if (o.integrator == BoucWenIntegrator::kAuto)
+    FailOption("BoucWenSimulationOptions", "integrator", "auto",
+               "auto is a fit's choice (BoucWenFitOptions); a model takes cvode, "
+               "benchmark-chain or fixed-step");
+  if (o.input == InputInterpolation::kAuto)
+    FailOption("BoucWenSimulationOptions", "input", "auto",
+               "auto is a fit's choice (BoucWenFitOptions); a model takes hold, linear or "
+               "band-limited");
+}
+
+}  // namespace internal
 
 void BoucWenSimulationOptions::Validate() const {
   if (!(rtol > 0 && rtol <= 1e-2))

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/cvode_solver.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -13,25 +12,6 @@
 namespace sysid {
 
 namespace {
-
-struct MechanicalOde {
-  const MechanicalBoucWenParameters* p;
-  const internal::SampledInput* input;
-  Eigen::Index interval = 0;
-};
-
-int MechanicalRhs(double t, N_Vector x, N_Vector dx, void* data) {
-  const auto* ode = static_cast<const MechanicalOde*>(data);
-  const double* s = N_VGetArrayPointer(x);
-  double* d = N_VGetArrayPointer(dx);
-  double u = 0, du = 0;
-  ode->input->Evaluate(t, ode->interval, &u, &du);
-  const auto& p = *ode->p;
-  d[0] = s[1];
-  d[1] = (u - p.c_n_s_per_m * s[1] - p.k_n_per_m * s[0] - s[2]) / p.m_kg;
-  d[2] = internal::MechanicalRate(p, s[1], s[2]).f;
-  return std::isfinite(d[1]) && std::isfinite(d[2]) ? 0 : 1;  // > 0: CVODE retries smaller
-}
 
 [[noreturn]] void ThrowNoInverse() {
   throw NumericalError(
@@ -46,7 +26,7 @@ MechanicalBoucWen::MechanicalBoucWen(const MechanicalBoucWenParameters& p,
                                      std::vector<double> std_errors)
     : p_(p), options_(options), std_errors_(std::move(std_errors)) {
   p_.Validate();
-  options_.Validate();
+  internal::CheckModelSimulation(options_);
 }
 
 Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) const {
@@ -65,31 +45,7 @@ Eigen::VectorXd MechanicalBoucWen::Simulate(const Eigen::VectorXd& u, double dt_
         p_, internal::FixedStepInput(u, options_.input, options_.upsampling), dt_s,
         options_.upsampling);
   }
-  const internal::SampledInput input(u, dt_s, options_.input);
-  MechanicalOde ode{&p_, &input, 0};
-  const double x0[3] = {0, 0, 0};
-  internal::CvodeSolver solver(3, internal::CvodeSolver::Method::kAdams, MechanicalRhs, &ode, 0, x0,
-                               "bouc-wen simulation", "check the parameters, or loosen rtol");
-  // Absolute tolerances from the static scales: y ~ max|u| / (k + alpha), z ~ max|u|.
-  const double umax = std::max(u.cwiseAbs().maxCoeff(), 1e-300);
-  const double ys = umax / (p_.k_n_per_m + p_.alpha_n_per_m);
-  const double vs = ys * std::sqrt((p_.k_n_per_m + p_.alpha_n_per_m) / p_.m_kg);
-  const double atol[3] = {1e-3 * options_.rtol * ys, 1e-3 * options_.rtol * vs,
-                          1e-3 * options_.rtol * umax};
-  solver.SetTolerances(options_.rtol, atol);
-  solver.SetMaxNumSteps(1000000);
-  const bool smooth = options_.input == InputInterpolation::kBandLimited;
-  double t = 0;
-  for (Eigen::Index k = 0; k + 1 < n; ++k) {
-    const double t_next = static_cast<double>(k + 1) * dt_s;
-    ode.interval = k;
-    if (!smooth) solver.SetStopTime(t_next);  // never step past a kink or a jump of u
-    solver.Check(solver.Advance(t_next, &t, CV_NORMAL), "CVode");
-    y[k + 1] = solver.state()[0];
-    // A held input jumps at every sample, a linear one's slope does: CVODE's multistep
-    // history would carry the jump into the next interval, so it restarts there.
-    if (!smooth) solver.ReInit(t_next);
-  }
+  internal::MechanicalCvode(p_, u, dt_s, options_, {}, &y, nullptr);
   return y;
 }
 

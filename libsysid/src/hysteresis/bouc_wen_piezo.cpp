@@ -66,7 +66,7 @@ PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulat
                            std::vector<double> std_errors)
     : p_(p), options_(options), std_errors_(std::move(std_errors)) {
   p_.Validate();
-  options_.Validate();
+  internal::CheckModelSimulation(options_);
   if (options_.integrator != BoucWenIntegrator::kCvode)
     internal::FailOption("BoucWenSimulationOptions", "integrator",
                          options_.integrator == BoucWenIntegrator::kFixedStep ? "fixed-step"
