@@ -6,20 +6,14 @@
 
 #include "core/portable_random.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
+#include "multisine.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
 
 namespace sysid {
 namespace {
 
-Eigen::VectorXd Multisine(Eigen::Index n, double dt, int first, int last, double amplitude) {
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-  const double w0 = 2 * M_PI / (static_cast<double>(n) * dt);
-  for (int l = first; l <= last; ++l)
-    for (Eigen::Index i = 0; i < n; ++i)
-      u[i] += amplitude * std::cos(w0 * l * static_cast<double>(i) * dt + 2.39996 * l * l);
-  return u;
-}
+using test::Multisine;
 
 double* Field(MechanicalBoucWenParameters* p, int j) {
   double* fields[] = {&p->m_kg,       &p->c_n_s_per_m, &p->k_n_per_m, &p->alpha_n_per_m,

@@ -5,12 +5,15 @@
 
 #include "core/portable_random.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
+#include "multisine.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
 
 namespace sysid {
 namespace {
+
+using test::Multisine;
 
 Recording MakeRecording(const Eigen::VectorXd& u, const Eigen::VectorXd& x, double dt) {
   Recording r;
@@ -27,15 +30,6 @@ Eigen::VectorXd Noise(Eigen::Index n, double sigma, std::uint64_t seed) {
   Eigen::VectorXd e(n);
   for (Eigen::Index i = 0; i < n; ++i) e[i] = sigma * random.Normal();
   return e;
-}
-
-Eigen::VectorXd Multisine(Eigen::Index n, double dt, int first, int last, double amplitude) {
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-  const double w0 = 2 * M_PI / (static_cast<double>(n) * dt);
-  for (int l = first; l <= last; ++l)
-    for (Eigen::Index i = 0; i < n; ++i)
-      u[i] += amplitude * std::cos(w0 * l * static_cast<double>(i) * dt + 2.39996 * l * l);
-  return u;
 }
 
 void CheckWithin3Sigma(const HysteresisModel& fitted, const std::vector<double>& truth) {
