@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/control_tuning.hpp"
@@ -50,23 +51,15 @@ void BindControl(py::module_& m) {
   py::class_<PiOptions> pi(s, "PiOptions", "Discrete PI position controller (paper's gains).");
   AddKeywordInit(pi);
   AddOptionsJson(pi, &PiOptionsFromJson);
-  pi.def_readwrite("kp_v_per_m", &PiOptions::kp_v_per_m)
-      .def_readwrite("ki_v_per_m_s", &PiOptions::ki_v_per_m_s)
-      .def_readwrite("sample_time_s", &PiOptions::sample_time_s)
-      .def_readwrite("u_max_v", &PiOptions::u_max_v)
-      .def_readwrite("anti_windup", &PiOptions::anti_windup)
-      .def("validate", &PiOptions::Validate)
+  DefFields(pi);
+  pi.def("validate", &PiOptions::Validate)
       .def_static("for_actuator_delay_stage", &PiOptions::ForActuatorDelayStage);
 
   py::class_<SmoothProfileOptions> profile(s, "SmoothProfileOptions");
   AddKeywordInit(profile);
   AddOptionsJson(profile, &SmoothProfileOptionsFromJson);
-  profile.def_readwrite("frequency_hz", &SmoothProfileOptions::frequency_hz)
-      .def_readwrite("amplitude_m", &SmoothProfileOptions::amplitude_m)
-      .def_readwrite("dwell_fraction", &SmoothProfileOptions::dwell_fraction)
-      .def_readwrite("cycles", &SmoothProfileOptions::cycles)
-      .def_readwrite("sample_rate_hz", &SmoothProfileOptions::sample_rate_hz)
-      .def("validate", &SmoothProfileOptions::Validate);
+  DefFields(profile);
+  profile.def("validate", &SmoothProfileOptions::Validate);
 
   py::class_<PositionReference>(s, "PositionReference")
       .def_readonly("t_s", &PositionReference::t_s)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid::python {
@@ -92,11 +93,8 @@ void BindStage(py::module_& m) {
   py::class_<PulseProcedure> pulse(s, "PulseProcedure");
   AddKeywordInit(pulse);
   AddOptionsJson(pulse, &PulseProcedureFromJson);
-  pulse.def_readwrite("amplitudes_v", &PulseProcedure::amplitudes_v)
-      .def_readwrite("on_s", &PulseProcedure::on_s)
-      .def_readwrite("rest_s", &PulseProcedure::rest_s)
-      .def_readwrite("lead_s", &PulseProcedure::lead_s)
-      .def("validate", &PulseProcedure::Validate);
+  DefFields(pulse);
+  pulse.def("validate", &PulseProcedure::Validate);
 
   py::class_<VelocityWaveform::Term>(s, "WaveformTerm")
       .def_readwrite("omega_rad_s", &VelocityWaveform::Term::omega_rad_s)

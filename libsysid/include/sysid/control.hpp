@@ -22,6 +22,7 @@
 
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -41,6 +42,15 @@ struct PiOptions {
   double sample_time_s = 1e-3;   ///< [s] Ts > 0
   double u_max_v = 10.0;         ///< [V] output saturation +-u_max_v, > 0
   AntiWindup anti_windup = AntiWindup::kConditionalIntegration;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(kp_v_per_m));
+    a->Visit(SYSID_NVP(ki_v_per_m_s));
+    a->Visit(SYSID_NVP(sample_time_s));
+    a->Visit(SYSID_NVP(u_max_v));
+    a->Visit(SYSID_NVP(anti_windup));
+  }
   void Validate() const;  ///< throws OptionsError naming the field and the rule
   /// Gains that are stable on the actuator-delay preset (StageParameters::ActuatorDelay()):
   /// Kp = 3000 V/m, Ki = 104100 V/(m s) (the paper's ratio Ki/Kp = 34.7 1/s). The paper's
@@ -162,6 +172,15 @@ struct SmoothProfileOptions {
   double dwell_fraction = 0.1;   ///< [1] of the period spent at rest at each end, in [0, 0.5)
   int cycles = 2;                ///< >= 1
   double sample_rate_hz = 1000;  ///< [Hz] > 0
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(frequency_hz));
+    a->Visit(SYSID_NVP(amplitude_m));
+    a->Visit(SYSID_NVP(dwell_fraction));
+    a->Visit(SYSID_NVP(cycles));
+    a->Visit(SYSID_NVP(sample_rate_hz));
+  }
   void Validate() const;
 };
 PositionReference MakeSmoothProfile(const SmoothProfileOptions& options = {});

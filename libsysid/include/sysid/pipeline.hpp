@@ -27,6 +27,7 @@
 #include "sysid/identify.hpp"
 #include "sysid/io.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/stage_facts.hpp"
 #include "sysid/validate.hpp"
 
@@ -120,6 +121,30 @@ struct PipelineOptions {
   /// Threads for every long step (delay tuning, dominance, sweep, the typical network); 0: all
   /// cores. Overrides the `threads` of `delay` and `training`; results do not depend on it.
   int threads = 0;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(a3));
+    a->Visit(SYSID_NVP(tune_delay));
+    a->Visit(SYSID_NVP(delay));
+    a->Visit(SYSID_NVP(refine));
+    a->Visit(SYSID_NVP(hidden_sizes));
+    a->Visit(SYSID_NVP(training));
+    a->Visit(SYSID_NVP(nn_inputs));
+    a->Visit(SYSID_NVP(typical));
+    a->Visit(SYSID_NVP(typical_hidden));
+    a->Visit(SYSID_NVP(typical_max_epochs));
+    a->Visit(SYSID_NVP(typical_stride));
+    a->Visit(SYSID_NVP(pulse_fit_fraction));
+    a->Visit(SYSID_NVP(track));
+    a->Visit(SYSID_NVP(track_frequencies_hz));
+    a->Visit(SYSID_NVP(track_amplitude_m));
+    a->Visit(SYSID_NVP(pi));
+    a->Visit(SYSID_NVP(facts));
+    a->Visit(SYSID_NVP(facts_options));
+    a->Visit(SYSID_NVP(reference_path));
+    a->Visit(SYSID_NVP(threads));
+  }
   void Validate() const;
   static NeuralTrainingOptions DefaultTraining();
 };

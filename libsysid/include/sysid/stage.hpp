@@ -62,6 +62,7 @@
 #include <vector>
 
 #include "sysid/io.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/signal.hpp"
 
 namespace sysid {
@@ -402,6 +403,14 @@ struct PulseProcedure {
   double on_s = 0.4;      ///< [s] pulse length, > 0
   double rest_s = 0.3;    ///< [s] 0 V after each pulse, >= 0
   double lead_s = 0.1;    ///< [s] 0 V before the first pulse, >= 0
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(amplitudes_v));
+    a->Visit(SYSID_NVP(on_s));
+    a->Visit(SYSID_NVP(rest_s));
+    a->Visit(SYSID_NVP(lead_s));
+  }
   void Validate() const;  ///< throws OptionsError naming the field and the rule
   /// The command, one value per sample at `sample_rate_hz`.
   Eigen::VectorXd Voltage(double sample_rate_hz) const;

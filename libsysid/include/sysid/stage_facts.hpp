@@ -36,6 +36,7 @@
 #include "sysid/delay.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
@@ -101,6 +102,46 @@ struct FactsOptions {
   /// F8 (d): mean width at the largest amplitude and at the smallest differ by at least this
   /// fraction of the smaller (> 0).
   double loop_min_amplitude_change = 0.1;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(facts));
+    a->Visit(SYSID_NVP(seed));
+    a->Visit(SYSID_NVP(threads));
+    a->Visit(SYSID_NVP(pulse));
+    a->Visit(SYSID_NVP(delay));
+    a->Visit(SYSID_NVP(pi));
+    a->Visit(SYSID_NVP(track_frequencies_hz));
+    a->Visit(SYSID_NVP(track_amplitude_m));
+    a->Visit(SYSID_NVP(track_cycles));
+    a->Visit(SYSID_NVP(ripple_tolerance_m));
+    a->Visit(SYSID_NVP(motion_ripple_tolerance_m));
+    a->Visit(SYSID_NVP(motion_ripple_window_s));
+    a->Visit(SYSID_NVP(training));
+    a->Visit(SYSID_NVP(typical_hidden));
+    a->Visit(SYSID_NVP(typical_max_epochs));
+    a->Visit(SYSID_NVP(typical_stride));
+    a->Visit(SYSID_NVP(collection_kp_v_per_m));
+    a->Visit(SYSID_NVP(network_initializations));
+    a->Visit(SYSID_NVP(dominance_amplitude_v));
+    a->Visit(SYSID_NVP(dominance_omega_rad_s));
+    a->Visit(SYSID_NVP(dominance_offset_v));
+    a->Visit(SYSID_NVP(dominance_duration_s));
+    a->Visit(SYSID_NVP(dominance_min_speed_mps));
+    a->Visit(SYSID_NVP(loop_period_s));
+    a->Visit(SYSID_NVP(loop_peak_forward_v));
+    a->Visit(SYSID_NVP(loop_peak_backward_v));
+    a->Visit(SYSID_NVP(loop_levels_v));
+    a->Visit(SYSID_NVP(loop_min_relative_width));
+    a->Visit(SYSID_NVP(loop_min_start_ratio));
+    a->Visit(SYSID_NVP(loop_sine_offset_v));
+    a->Visit(SYSID_NVP(loop_sine_amplitude_v));
+    a->Visit(SYSID_NVP(loop_sine_frequencies_hz));
+    a->Visit(SYSID_NVP(loop_sine_frequency_hz));
+    a->Visit(SYSID_NVP(loop_sine_amplitudes_v));
+    a->Visit(SYSID_NVP(loop_min_rate_ratio));
+    a->Visit(SYSID_NVP(loop_min_amplitude_change));
+  }
   void Validate() const;                  ///< throws OptionsError naming the field and the rule
   static DelayTuningOptions DefaultDelay();
   static NeuralTrainingOptions DefaultTraining();

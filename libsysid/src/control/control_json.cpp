@@ -68,9 +68,15 @@ std::string AntiWindupName(AntiWindup a) {
   return a == AntiWindup::kNone ? "none" : "conditional-integration";
 }
 
-nlohmann::ordered_json AntiWindupJson(const AntiWindup& a) { return AntiWindupName(a); }
+}  // namespace
 
-void ReadAntiWindup(const internal::JsonNode& node, AntiWindup& a) {
+namespace internal {
+
+nlohmann::ordered_json JsonForm<AntiWindup>::Write(const AntiWindup& a) {
+  return AntiWindupName(a);
+}
+
+void JsonForm<AntiWindup>::Read(const JsonNode& node, AntiWindup& a) {
   const std::string s = node.String();
   if (s == AntiWindupName(AntiWindup::kNone)) a = AntiWindup::kNone;
   else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
@@ -78,59 +84,21 @@ void ReadAntiWindup(const internal::JsonNode& node, AntiWindup& a) {
   else node.Expected("\"none\" or \"conditional-integration\"");
 }
 
-// One field table per options type (internal::FieldList): writer, allowed keys and reader.
-const internal::FieldList<PiOptions>& PiFields() {
-  static const internal::FieldList<PiOptions> fields =
-      internal::FieldList<PiOptions>()
-          .Add("kp_v_per_m", &PiOptions::kp_v_per_m)
-          .Add("ki_v_per_m_s", &PiOptions::ki_v_per_m_s)
-          .Add("sample_time_s", &PiOptions::sample_time_s)
-          .Add("u_max_v", &PiOptions::u_max_v)
-          .Nested("anti_windup", &PiOptions::anti_windup, AntiWindupJson, ReadAntiWindup);
-  return fields;
-}
-
-const internal::FieldList<SmoothProfileOptions>& SmoothProfileFields() {
-  using O = SmoothProfileOptions;
-  static const internal::FieldList<O> fields = internal::FieldList<O>()
-                                                   .Add("frequency_hz", &O::frequency_hz)
-                                                   .Add("amplitude_m", &O::amplitude_m)
-                                                   .Add("dwell_fraction", &O::dwell_fraction)
-                                                   .Add("cycles", &O::cycles)
-                                                   .Add("sample_rate_hz", &O::sample_rate_hz);
-  return fields;
-}
-
-void ReadSmoothProfileOptions(const internal::JsonNode& node, SmoothProfileOptions& o) {
-  SmoothProfileFields().Read(node, o);
-}
-
-}  // namespace
-
-namespace internal {
-
-nlohmann::ordered_json PiOptionsJson(const PiOptions& o) { return PiFields().Write(o); }
-
-void ReadPiOptions(const JsonNode& node, PiOptions& o) { PiFields().Read(node, o); }
-
 }  // namespace internal
 
-std::string ToJson(const PiOptions& o, int indent) {
-  return internal::DumpJson(internal::PiOptionsJson(o), indent);
-}
+std::string ToJson(const PiOptions& o, int indent) { return internal::FieldsToJson(o, indent); }
 
 PiOptions PiOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<PiOptions>(text, source_name, internal::ReadPiOptions);
+  return internal::FieldsFromJson<PiOptions>(text, source_name);
 }
 
 std::string ToJson(const SmoothProfileOptions& o, int indent) {
-  return internal::DumpJson(SmoothProfileFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
                                                   const std::string& source_name) {
-  return internal::OptionsFromJson<SmoothProfileOptions>(text, source_name,
-                                                         ReadSmoothProfileOptions);
+  return internal::FieldsFromJson<SmoothProfileOptions>(text, source_name);
 }
 
 }  // namespace sysid

@@ -1,17 +1,21 @@
-// Private: PiOptions as a JSON object, for the options that hold one (facts, pipeline).
+// Private: the JSON form of the PI's anti-windup rule, for every reader and writer of PiOptions
+// (core/json_fields.hpp), which the facts and pipeline options hold.
 #ifndef SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 #define SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_text.hpp"
+#include "core/json_fields.hpp"
 #include "sysid/control.hpp"
 
 namespace sysid::internal {
 
-nlohmann::ordered_json PiOptionsJson(const PiOptions& options);
-/// Reads the object's keys (each optional) over `options`; no Validate().
-void ReadPiOptions(const JsonNode& node, PiOptions& options);
+/// "none" or "conditional-integration".
+template <>
+struct JsonForm<AntiWindup> {
+  static nlohmann::ordered_json Write(const AntiWindup& a);
+  static void Read(const JsonNode& node, AntiWindup& a);
+};
 
 }  // namespace sysid::internal
 

@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
+#include "motion/motion_json.hpp"
 #include "sysid/delay.hpp"
 
 namespace sysid::internal {

@@ -4,7 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "control/control_json.hpp"
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
+#include "delay/delay_json.hpp"
+#include "nn/nn_json.hpp"
 #include "sysid/stage_facts.hpp"
 
 namespace sysid::internal {

@@ -204,47 +204,14 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
   return r;
 }
 
-namespace {
-// The options' field table (internal::FieldList): writer, allowed keys and reader.
-const internal::FieldList<PipelineOptions>& PipelineFields() {
-  using O = PipelineOptions;
-  static const internal::FieldList<O> fields =
-      internal::FieldList<O>()
-          .Add("a3", &O::a3)
-          .Add("tune_delay", &O::tune_delay)
-          .Nested("delay", &O::delay, internal::DelayTuningOptionsJson,
-                  internal::ReadDelayTuningOptions)
-          .Add("refine", &O::refine)
-          .Add("hidden_sizes", &O::hidden_sizes)
-          .Nested("training", &O::training, internal::NeuralTrainingOptionsJson,
-                  internal::ReadNeuralTrainingOptions)
-          .Nested("nn_inputs", &O::nn_inputs, internal::NamesJson, internal::ReadNames)
-          .Add("typical", &O::typical)
-          .Add("typical_hidden", &O::typical_hidden)
-          .Add("typical_max_epochs", &O::typical_max_epochs)
-          .Add("typical_stride", &O::typical_stride)
-          .Add("pulse_fit_fraction", &O::pulse_fit_fraction)
-          .Add("track", &O::track)
-          .Add("track_frequencies_hz", &O::track_frequencies_hz)
-          .Add("track_amplitude_m", &O::track_amplitude_m)
-          .Nested("pi", &O::pi, internal::PiOptionsJson, internal::ReadPiOptions)
-          .Add("facts", &O::facts)
-          .Nested("facts_options", &O::facts_options, internal::FactsOptionsJson,
-                  internal::ReadFactsOptions)
-          .Add("reference_path", &O::reference_path)
-          .Add("threads", &O::threads);
-  return fields;
-}
-}  // namespace
-
 std::string ToJson(const PipelineOptions& o, int indent) {
-  return internal::DumpJson(PipelineFields().Write(o), indent);
+  return internal::FieldsToJson(o, indent);
 }
 
 PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
   PipelineOptions o;
-  PipelineFields().Read(doc.Root(), o);
+  internal::ReadFields(doc.Root(), o);
   // The facts' options are checked as RunStageFacts checks them, after the pipeline's, and
   // their errors are placed inside "facts_options" (which repeats keys such as delay.*).
   internal::ValidateOptions(doc, [&] { o.Validate(); });
