@@ -24,6 +24,7 @@
 #include "nn/nn_json.hpp"
 #include "paper/facts_json.hpp"
 #include "signal/signal_json.hpp"
+#include "stack/stack_json.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
 #include "sysid/delay.hpp"
@@ -33,6 +34,7 @@
 #include "sysid/nn.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
+#include "sysid/stack.hpp"
 #include "sysid/stage.hpp"
 #include "sysid/stage_facts.hpp"
 
@@ -143,6 +145,11 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::PulseProcedure>("PulseProcedure");
   CheckRoundTrip<sysid::FactsOptions>("FactsOptions");
   CheckRoundTrip<sysid::PipelineOptions>("PipelineOptions");
+  CheckRoundTrip<sysid::StackHysteresis>("StackHysteresis");
+  CheckRoundTrip<sysid::StackCreep>("StackCreep");
+  CheckRoundTrip<sysid::StackMechanics>("StackMechanics");
+  CheckRoundTrip<sysid::StackRig>("StackRig");
+  CheckRoundTrip<sysid::StackIntegrator>("StackIntegrator");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "sysid/hysteresis.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -48,6 +49,14 @@ struct StackHysteresis {
   /// [m s/V^2] q_0 .. q_n >= 0 (n + 1 values): how the slopes grow with the input rate; all 0
   /// makes the hysteresis rate-independent (a classical PI).
   std::vector<double> rate_weights_m_s_per_v2;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(linear_gain_m_per_v));
+    a->Visit(SYSID_NVP(thresholds_v));
+    a->Visit(SYSID_NVP(weights_m_per_v));
+    a->Visit(SYSID_NVP(rate_weights_m_s_per_v2));
+  }
 };
 
 /// The stack's creep: Kelvin–Voigt elements (file section "creep"); both lists equally long
@@ -55,12 +64,24 @@ struct StackHysteresis {
 struct StackCreep {
   std::vector<double> time_constants_s;  ///< [s] tau_j > 0
   std::vector<double> fractions;         ///< [1] kappa_j >= 0, the element's share of a step
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(time_constants_s));
+    a->Visit(SYSID_NVP(fractions));
+  }
 };
 
 /// The stack's second-order mechanics (file section "mechanics").
 struct StackMechanics {
   double resonance_hz = 1000;   ///< [Hz] f_n > 0, below the control rate's Nyquist frequency
   double damping_ratio = 0.05;  ///< [1] zeta in [1e-4, 2]
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(resonance_hz));
+    a->Visit(SYSID_NVP(damping_ratio));
+  }
 };
 
 /// The rig around the stack (file section "rig").
@@ -71,6 +92,16 @@ struct StackRig {
   int dac_bits = 16;                   ///< DAC resolution over the amplifier range, 1..32
   double sensor_resolution_m = 1e-10;  ///< [m] q in [1e-20, 1e-3] (capacitive sensor)
   double sensor_noise_m = 1e-9;        ///< [m] standard deviation of the reading noise, [0, 1e-3]
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(control_rate_hz));
+    a->Visit(SYSID_NVP(voltage_min_v));
+    a->Visit(SYSID_NVP(voltage_max_v));
+    a->Visit(SYSID_NVP(dac_bits));
+    a->Visit(SYSID_NVP(sensor_resolution_m));
+    a->Visit(SYSID_NVP(sensor_noise_m));
+  }
 };
 
 /// How the linear ODE is advanced over a sample (file section "integrator").
@@ -91,6 +122,13 @@ struct StackIntegrator {
   /// [m] atol of x and c_j (x' gets atol w_n), > 0: far below rtol x, because the creep
   /// states are ~1 % of x and their error adds up over the restarts at every sample
   double position_tolerance_m = 1e-20;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(method));
+    a->Visit(SYSID_NVP(relative_tolerance));
+    a->Visit(SYSID_NVP(position_tolerance_m));
+  }
 };
 
 /// Every parameter of the virtual piezo stack, SI units; the file carries the unit in each key.

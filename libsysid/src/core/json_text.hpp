@@ -171,7 +171,7 @@ void ReadOptional(const JsonNode& object, const char* key, std::uint64_t& field)
 void ReadOptional(const JsonNode& object, const char* key, std::vector<double>& field);
 void ReadOptional(const JsonNode& object, const char* key, std::vector<int>& field);
 /// A list of names (fact ids, network inputs): written as an array of strings, read as an array
-/// of non-empty strings that replaces the list (FieldList::Nested conversions).
+/// of non-empty strings that replaces the list (JsonForm<std::vector<std::string>>).
 nlohmann::ordered_json NamesJson(const std::vector<std::string>& names);
 void ReadNames(const JsonNode& list, std::vector<std::string>& names);
 /// A uint64 (a seed): JsonNode::Integer reads longs.
@@ -184,60 +184,6 @@ std::uint64_t Uint64FromJson(const JsonNode& node);
 /// up there first, so a key of the same name elsewhere does not take the error.
 void ValidateOptions(const JsonDocument& doc, const std::function<void()>& validate,
                      const std::string& base = "");
-
-/// The JSON keys of an options struct T, built once per type. One table drives the writer (keys
-/// in table order), the reader's allowed keys (ExpectObject, same order in its error message)
-/// and the reader (every key optional, read in table order through ReadOptional), so a field is
-/// named once instead of three times and the three cannot drift apart.
-///   static const FieldList<MotionOptions> fields = FieldList<MotionOptions>()
-///       .Nested("derivative", &MotionOptions::derivative, DerivativeOptionsJson,
-///               ReadDerivativeOptions)
-///       .Add("velocity_column", &MotionOptions::velocity_column);
-template <class T>
-class FieldList {
- public:
-  /// A member of a type ReadOptional reads (number, bool, string, seed, vector).
-  template <class V>
-  FieldList&& Add(const char* key, V T::*member) && {
-    fields_.push_back(
-        {key, [member](const T& o) { return nlohmann::ordered_json(o.*member); },
-         [member, key](const JsonNode& node, T& o) { ReadOptional(node, key, o.*member); }});
-    return std::move(*this);
-  }
-  /// A sub-struct (or any member with its own writer and reader, e.g. an enum): written by
-  /// `write`, read by `read` from the key's value when the key is present.
-  template <class V>
-  FieldList&& Nested(const char* key, V T::*member, nlohmann::ordered_json (*write)(const V&),
-                     void (*read)(const JsonNode&, V&)) && {
-    fields_.push_back({key, [member, write](const T& o) { return write(o.*member); },
-                       [member, read, key](const JsonNode& node, T& o) {
-                         if (node.Has(key)) read(node.Get(key), o.*member);
-                       }});
-    return std::move(*this);
-  }
-
-  nlohmann::ordered_json Write(const T& o) const {
-    nlohmann::ordered_json j = nlohmann::ordered_json::object();
-    for (const auto& f : fields_) j[f.key] = f.write(o);
-    return j;
-  }
-  /// Checks `node` is an object of these keys (plus `allowed_extra`), then reads each present
-  /// key over `o`'s value.
-  void Read(const JsonNode& node, T& o, const std::vector<std::string>& allowed_extra = {}) const {
-    std::vector<std::string> keys;
-    for (const auto& f : fields_) keys.emplace_back(f.key);
-    node.ExpectObject(keys, allowed_extra);
-    for (const auto& f : fields_) f.read(node, o);
-  }
-
- private:
-  struct Field {
-    const char* key;
-    std::function<nlohmann::ordered_json(const T&)> write;
-    std::function<void(const JsonNode&, T&)> read;
-  };
-  std::vector<Field> fields_;
-};
 
 /// The reader of an options struct T from text: its defaults, overwritten by the document's
 /// keys through `read` (which checks keys and types), then T::Validate() (ValidateOptions).
