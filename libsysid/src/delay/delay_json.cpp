@@ -131,15 +131,6 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
 
 // ---- Options ----
 
-namespace internal {
-
-nlohmann::ordered_json DelayTuningOptionsJson(const DelayTuningOptions& o) {
-  return WriteFields(o);
-}
-
-void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& o) { ReadFields(node, o); }
-
-}  // namespace internal
 
 std::string ToJson(const SegmentOptions& o, int indent) {
   return internal::FieldsToJson(o, indent);

@@ -1,4 +1,5 @@
-// Private: DelayTuningOptions as a JSON object, for the options that hold one (pipeline).
+// Private: what a reader or writer of the delay options needs beside core/json_fields.hpp (the
+// JSON forms of the motion options' enums).
 #ifndef SYSID_SRC_DELAY_DELAY_JSON_HPP_
 #define SYSID_SRC_DELAY_DELAY_JSON_HPP_
 
@@ -8,13 +9,5 @@
 #include "core/json_text.hpp"
 #include "motion/motion_json.hpp"
 #include "sysid/delay.hpp"
-
-namespace sysid::internal {
-
-nlohmann::ordered_json DelayTuningOptionsJson(const DelayTuningOptions& options);
-/// Reads the object's keys (each optional) over `options`; no Validate().
-void ReadDelayTuningOptions(const JsonNode& node, DelayTuningOptions& options);
-
-}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_DELAY_DELAY_JSON_HPP_

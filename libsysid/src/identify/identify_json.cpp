@@ -248,17 +248,6 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
 
 // ---- Options ----
 
-namespace internal {
-
-nlohmann::ordered_json PulseDetectionOptionsJson(const PulseDetectionOptions& o) {
-  return WriteFields(o);
-}
-
-void ReadPulseDetectionOptions(const JsonNode& node, PulseDetectionOptions& o) {
-  ReadFields(node, o);
-}
-
-}  // namespace internal
 
 namespace {
 

@@ -1,19 +1,13 @@
-// Private: PulseDetectionOptions as a JSON object, for the options that cut recordings at
-// pulse starts (delay tuning's segments, refinement).
+// Private: what a reader or writer of the identification options needs beside
+// core/json_fields.hpp (the JSON forms of the motion options' enums).
 #ifndef SYSID_SRC_IDENTIFY_IDENTIFY_JSON_HPP_
 #define SYSID_SRC_IDENTIFY_IDENTIFY_JSON_HPP_
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
+#include "motion/motion_json.hpp"
 #include "sysid/identify.hpp"
-
-namespace sysid::internal {
-
-nlohmann::ordered_json PulseDetectionOptionsJson(const PulseDetectionOptions& options);
-/// Reads the object's keys (each optional) over `options`; no Validate().
-void ReadPulseDetectionOptions(const JsonNode& node, PulseDetectionOptions& options);
-
-}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_IDENTIFY_IDENTIFY_JSON_HPP_

@@ -9,20 +9,13 @@
 #include "sysid/error.hpp"
 
 namespace sysid {
-namespace internal {
-
-nlohmann::ordered_json MotionOptionsJson(const MotionOptions& o) { return WriteFields(o); }
-
-void ReadMotionOptions(const JsonNode& node, MotionOptions& o) { ReadFields(node, o); }
-
-}  // namespace internal
 
 std::string ToJson(const MotionOptions& options, int indent) {
-  return internal::DumpJson(internal::MotionOptionsJson(options), indent);
+  return internal::FieldsToJson(options, indent);
 }
 
 MotionOptions MotionOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<MotionOptions>(text, source_name, internal::ReadMotionOptions);
+  return internal::FieldsFromJson<MotionOptions>(text, source_name);
 }
 
 std::string DerivedRecordingToJson(const Recording& recording, double dt_s,

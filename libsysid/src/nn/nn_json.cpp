@@ -183,14 +183,6 @@ void JsonForm<NeuralInit>::Read(const JsonNode& node, NeuralInit& init) {
   else node.Expected("\"nguyen-widrow\" or \"uniform\"");
 }
 
-nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& o) {
-  return WriteFields(o);
-}
-
-void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& o) {
-  ReadFields(node, o);
-}
-
 }  // namespace internal
 
 std::string ToJson(const NeuralTrainingOptions& o, int indent) {

@@ -25,10 +25,6 @@ struct JsonForm<NeuralInit> {
   static void Read(const JsonNode& node, NeuralInit& init);
 };
 
-/// Every field but the on_epoch callback.
-nlohmann::ordered_json NeuralTrainingOptionsJson(const NeuralTrainingOptions& options);
-/// Reads the object's keys (each optional) over `options`; no Validate().
-void ReadNeuralTrainingOptions(const JsonNode& node, NeuralTrainingOptions& options);
 
 /// A network file's object at `node` (the form NeuralNetworkToJson writes), checked as
 /// ParseNeuralNetwork checks a file; errors name the place in the enclosing document.

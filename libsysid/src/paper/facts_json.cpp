@@ -10,20 +10,13 @@
 #include "nn/nn_json.hpp"
 
 namespace sysid {
-namespace internal {
-
-nlohmann::ordered_json FactsOptionsJson(const FactsOptions& o) { return WriteFields(o); }
-
-void ReadFactsOptions(const JsonNode& node, FactsOptions& o) { ReadFields(node, o); }
-
-}  // namespace internal
 
 std::string ToJson(const FactsOptions& options, int indent) {
-  return internal::DumpJson(internal::FactsOptionsJson(options), indent);
+  return internal::FieldsToJson(options, indent);
 }
 
 FactsOptions FactsOptionsFromJson(std::string_view text, const std::string& source_name) {
-  return internal::OptionsFromJson<FactsOptions>(text, source_name, internal::ReadFactsOptions);
+  return internal::FieldsFromJson<FactsOptions>(text, source_name);
 }
 
 }  // namespace sysid

@@ -1,4 +1,5 @@
-// Private: FactsOptions as a JSON object, for the options that hold one (PipelineOptions).
+// Private: what a reader or writer of the facts options needs beside core/json_fields.hpp (the
+// JSON forms of the PI, delay and training options' enums).
 #ifndef SYSID_SRC_PAPER_FACTS_JSON_HPP_
 #define SYSID_SRC_PAPER_FACTS_JSON_HPP_
 
@@ -10,13 +11,5 @@
 #include "delay/delay_json.hpp"
 #include "nn/nn_json.hpp"
 #include "sysid/stage_facts.hpp"
-
-namespace sysid::internal {
-
-nlohmann::ordered_json FactsOptionsJson(const FactsOptions& options);
-/// Reads the object's keys (each optional) over `options`; no Validate().
-void ReadFactsOptions(const JsonNode& node, FactsOptions& options);
-
-}  // namespace sysid::internal
 
 #endif  // SYSID_SRC_PAPER_FACTS_JSON_HPP_

@@ -19,8 +19,4 @@ void JsonForm<DerivativeMethod>::Read(const JsonNode& node, DerivativeMethod& me
   }
 }
 
-nlohmann::ordered_json DerivativeOptionsJson(const DerivativeOptions& o) { return WriteFields(o); }
-
-void ReadDerivativeOptions(const JsonNode& node, DerivativeOptions& o) { ReadFields(node, o); }
-
 }  // namespace sysid::internal

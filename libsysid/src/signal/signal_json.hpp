@@ -1,6 +1,6 @@
-// Private: DerivativeOptions as a JSON object, for the options that hold one (MotionOptions,
-// CompareOptions). Its rules depend on the sample interval, so it has no reader of its own:
-// the holder's Validate() (or the run) checks it.
+// Private: the derivative method's JSON form, for the options that hold DerivativeOptions
+// (MotionOptions, CompareOptions). Its rules depend on the sample interval, so the holder's
+// Validate() (or the run) checks it.
 #ifndef SYSID_SRC_SIGNAL_SIGNAL_JSON_HPP_
 #define SYSID_SRC_SIGNAL_SIGNAL_JSON_HPP_
 
@@ -18,11 +18,6 @@ struct JsonForm<DerivativeMethod> {
   static void Read(const JsonNode& node, DerivativeMethod& method);
 };
 
-/// {"method", "cutoff_hz", "butterworth_order", "savgol_window", "savgol_order"}.
-nlohmann::ordered_json DerivativeOptionsJson(const DerivativeOptions& options);
-/// Reads that object's keys (each optional) over `options`; a bad type or an unknown method
-/// or key is a positioned InputError.
-void ReadDerivativeOptions(const JsonNode& node, DerivativeOptions& options);
 
 }  // namespace sysid::internal
 
