@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     u_stage[k] = 2.0 * std::sin(2 * M_PI * 1 * t);
   }
   sysid::StageParameters stage = sysid::StageParameters::Default();
-  stage.sample_rate_hz = rate;
+  stage.rig.sample_rate_hz = rate;
   sysid::StackParameters exact = stack;
   exact.integrator.method = sysid::StackMethod::kExact;
   sysid::StackRun cvode_run, exact_run;

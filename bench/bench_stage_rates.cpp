@@ -35,7 +35,7 @@ struct Run {
 
 // The fastest of `repeats` runs (CPU time: the least disturbed by the machine's other load).
 Run MeasureStage(const sysid::StageParameters& stage, double freq_hz, int cycles, int repeats) {
-  const double rate_hz = stage.sample_rate_hz;
+  const double rate_hz = stage.rig.sample_rate_hz;
   sysid::SmoothProfileOptions p;
   p.frequency_hz = freq_hz;
   p.cycles = cycles;
@@ -62,7 +62,7 @@ Run MeasureStage(const sysid::StageParameters& stage, double freq_hz, int cycles
 // records could not follow a loop slower than 1 kHz.
 Run Measure(double rate_hz, double freq_hz, int cycles, int repeats) {
   sysid::StageParameters stage = sysid::StageParameters::Preset("virtual-1khz");
-  stage.sample_rate_hz = rate_hz;
+  stage.rig.sample_rate_hz = rate_hz;
   return MeasureStage(stage, freq_hz, cycles, repeats);
 }
 
@@ -116,11 +116,12 @@ int main(int argc, char** argv) {
     const Run with = MeasureStage(stage, freq, 2, repeats);
     const Run without = MeasureStage(plain, freq, 2, repeats);
     const double sw = with.simulated_s / with.cpu_s, so = without.simulated_s / without.cpu_s;
-    fmt::print("\n{} ({:g} kHz loop), 2 cycles: {:.3g} simulated s per CPU s, {:.2f} CVODE steps "
-               "per sample; vs virtual-1khz at 1 kHz {:.3f}; without its drive hysteresis "
-               "{:.3g} simulated s per CPU s (with / without {:.3f})\n",
-               stage_name, stage.sample_rate_hz / 1000, sw, with.steps_per_sample,
-               sw / base_speed, so, sw / so);
+    fmt::print(
+        "\n{} ({:g} kHz loop), 2 cycles: {:.3g} simulated s per CPU s, {:.2f} CVODE steps "
+        "per sample; vs virtual-1khz at 1 kHz {:.3f}; without its drive hysteresis "
+        "{:.3g} simulated s per CPU s (with / without {:.3f})\n",
+        stage_name, stage.rig.sample_rate_hz / 1000, sw, with.steps_per_sample, sw / base_speed, so,
+        sw / so);
   }
   fmt::print("load average after: {}\n", LoadAverage());
   return 0;

@@ -22,7 +22,7 @@ struct ExciteOptions {
   std::string what;
   std::string output;
   bool force = false;
-  double rate_hz = StageParameters{}.sample_rate_hz;
+  double rate_hz = StageParameters{}.rig.sample_rate_hz;
   std::vector<double> amplitudes_v;  // empty: the procedure's (the paper's ten)
   PulseProcedure pulses;             // on, rest, lead: the flags' defaults are the library's
   std::string set = "training";

@@ -51,7 +51,7 @@ struct TrackCliOptions {
   std::uint64_t seed = 1;
   bool json = false, plots = true, force = false;
   RecordingFlags recording;  // --var, --rate, --scale for --reference
-  double loop_rate_hz = StageParameters::Default().sample_rate_hz;  // a model plant's loop
+  double loop_rate_hz = StageParameters::Default().rig.sample_rate_hz;  // a model plant's loop
   const CLI::Option* loop_rate = nullptr;
 };
 
@@ -311,9 +311,9 @@ void RunTrack(const TrackCliOptions& o) {
   const auto folder = OptionalOutputFolder(
       o.out_dir, o.force, {o.plant, o.model_path, o.nn_path, o.reference_path}, "track");
   const StageParameters stage = LoadStage(o.plant);
-  const SchemesAndReference parsed =
-      ParseSchemesAndReference(o, stage.sample_rate_hz, stage.travel_min_m, stage.travel_max_m,
-                               [&] { return MakeStageProfile(stage, o.profile); });
+  const SchemesAndReference parsed = ParseSchemesAndReference(
+      o, stage.rig.sample_rate_hz, stage.rig.travel_min_m, stage.rig.travel_max_m,
+      [&] { return MakeStageProfile(stage, o.profile); });
   const std::vector<FeedforwardScheme>& schemes = parsed.schemes;
   const PositionReference& ref = parsed.reference;
   std::optional<FrictionModel> model;

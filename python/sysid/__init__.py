@@ -49,6 +49,7 @@ OPTION_TYPES = (
     TrajectoryOptions, SegmentOptions, DelayTuningOptions, RefineOptions, DominanceOptions,
     TrainingOptions, SweepOptions, stage.PulseProcedure, stage.TrackingProcedure,
     stage.PiOptions, stage.SmoothProfileOptions, ResidualTestOptions, ValidationOptions,
+    stage.DriverSettings, stage.RigSettings, stage.IntegratorSettings,
 )
 
 

@@ -206,6 +206,33 @@ def test_stage_model_and_actuator_delay_attributes():
         vs.dead_zone_v = 0.1
 
 
+def test_stage_shared_settings_are_nested_structs():
+    # The driver, rig and integrator are their own structs (one attribute per file key); a
+    # change through the stage's attribute writes through to the file, and the rig's old flat
+    # names are deprecated aliases of rig.*.
+    import json
+    import pickle
+    stage = sysid.stage
+    p = stage.StageParameters.default()
+    assert list(stage.DriverSettings.__fields__) == [
+        "saturation_v", "transport_delay_s", "lag_time_constant_s"]
+    assert "max_steps_per_sample" in stage.IntegratorSettings.__fields__
+    p.driver.saturation_v = 9.0
+    p.rig.dac_bits = 12
+    p.integrator.max_steps_per_sample = 500
+    j = json.loads(p.to_json())
+    assert j["drive"]["saturation_v"] == 9.0
+    assert j["rig"]["dac_bits"] == 12
+    assert j["integrator"]["max_steps_per_sample"] == 500
+    assert p.sample_rate_hz == p.rig.sample_rate_hz == j["rig"]["control_rate_hz"]
+    p.position_noise_m = 0.0
+    assert p.rig.position_noise_m == 0.0
+    rig = stage.RigSettings(dac_bits=14)
+    assert pickle.loads(pickle.dumps(rig)) == rig and "dac_bits=14" in repr(rig)
+    with pytest.raises(sysid.OptionsError, match="lag_time_constant_s"):
+        stage.DriverSettings(lag_time_constant_s=0.0).validate()
+
+
 def test_stage_tracking_matches_bundled_waveform():
     # datasets/virtual/waveform_*.csv are `sysid generate waveforms` with seed 1.
     waves = sysid.stage.paper_test_waveforms()

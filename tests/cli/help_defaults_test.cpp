@@ -174,12 +174,12 @@ TEST_CASE("help defaults are the Options structs' defaults", "[cli]") {
     CHECK(same(ShownNumber(h, "--step"), b.step_m));
     CHECK(same(ShownNumber(h, "--sine-freq"), b.sine_frequency_hz));
     CHECK(same(ShownNumber(Help({"track"}), "--loop-rate"),
-               sysid::StageParameters::Default().sample_rate_hz));
+               sysid::StageParameters::Default().rig.sample_rate_hz));
   }
   {
     const std::string h = Help({"excite"});
     CHECK(same(ShownNumber(h, "--on"), sysid::PulseProcedure{}.on_s));
-    CHECK(same(ShownNumber(h, "--rate"), sysid::StageParameters{}.sample_rate_hz));
+    CHECK(same(ShownNumber(h, "--rate"), sysid::StageParameters{}.rig.sample_rate_hz));
   }
   const sysid::FactsOptions facts;
   CHECK(same(ShownNumber(Help({"stage", "facts"}), "--seed"), static_cast<double>(facts.seed)));

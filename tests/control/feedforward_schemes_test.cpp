@@ -24,7 +24,7 @@ TEST_CASE("TrackSchemes equals the hand-written loop, scheme by scheme", "[contr
   SmoothProfileOptions p;
   p.frequency_hz = 2.0;  // 0.5 s: short
   p.cycles = 1;
-  p.sample_rate_hz = stage.sample_rate_hz;
+  p.sample_rate_hz = stage.rig.sample_rate_hz;
   const PositionReference ref = MakeSmoothProfile(p);
   const FrictionModel model = FrictionModel::Paper();
   const std::uint64_t seed = 3;

@@ -163,7 +163,7 @@ TEST_CASE("tune-pi on the twin's identified model: no limit cycle, no saturation
   const FrictionModel model = ReadModel(test::TestData("control/twin_model.json"));
   const StageParameters twin = StageParameters::Default();
   PiTuningOptions o;
-  o.loop_rate_hz = twin.sample_rate_hz;
+  o.loop_rate_hz = twin.rig.sample_rate_hz;
   const PiTuningResult r = TunePi(model, o);
   for (const double f : {0.5, 1.0}) {
     SmoothProfileOptions p;

@@ -31,9 +31,9 @@ TEST_CASE("feedforward scheme lists parse in order and name their field", "[cont
 TEST_CASE("the stage's profile runs at the stage's rate and stays inside its travel",
           "[control]") {
   sysid::StageParameters stage;
-  stage.sample_rate_hz = 2000;
-  stage.initial_position_m = 0.05;
-  stage.travel_max_m = 0.0575;
+  stage.rig.sample_rate_hz = 2000;
+  stage.rig.initial_position_m = 0.05;
+  stage.rig.travel_max_m = 0.0575;
   sysid::SmoothProfileOptions p;
   p.amplitude_m = 0.005;  // ends at 0.055 m, inside
   p.sample_rate_hz = 1000;

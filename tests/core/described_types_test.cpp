@@ -150,6 +150,16 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::StackMechanics>("StackMechanics");
   CheckRoundTrip<sysid::StackRig>("StackRig");
   CheckRoundTrip<sysid::StackIntegrator>("StackIntegrator");
+  CheckRoundTrip<sysid::DriverSettings>("DriverSettings");
+  CheckRoundTrip<sysid::RigSettings>("RigSettings");
+  CheckRoundTrip<sysid::IntegratorSettings>("IntegratorSettings");
+  CheckRoundTrip<sysid::FrictionBranch>("FrictionBranch");
+  CheckRoundTrip<sysid::RailFriction>("RailFriction");
+  CheckRoundTrip<sysid::MotorParameters>("MotorParameters");
+  CheckRoundTrip<sysid::DriveHysteresis>("DriveHysteresis");
+  CheckRoundTrip<sysid::DriveCreep>("DriveCreep");
+  CheckRoundTrip<sysid::VelocitySourcePlant>("VelocitySourcePlant");
+  CheckRoundTrip<sysid::ActuatorDelayPlant>("ActuatorDelayPlant");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

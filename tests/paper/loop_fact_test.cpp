@@ -42,7 +42,7 @@ StageParameters QuasiStatic() {
   StageParameters s = StageParameters::VelocitySource();
   s.name = "quasi-static";
   s.velocity_source().motor.pole_per_s = 3000;
-  s.lag_time_constant_s = 1e-5;
+  s.driver.lag_time_constant_s = 1e-5;
   s.velocity_source().rail.memory_time_s = 0;
   s.velocity_source().SetSpeedMapThrough(StageParameters::PaperPulseTable());
   return s;
@@ -152,7 +152,7 @@ TEST_CASE("F8 on the default stage: its numbers from the raw runs, its verdict f
   CHECK(Value(f, "triangle start_ratio") == Approx(facts::StartRatio(t)));
   // The 1.6 V, 1 Hz sinusoid recomputed by hand: two periods from rest, the second one's
   // area by the trapezoid rule over the steps moving each way, v by central differences of x.
-  const double rate = stage.sample_rate_hz;
+  const double rate = stage.rig.sample_rate_hz;
   const auto period = static_cast<Eigen::Index>(rate);
   Eigen::VectorXd u(2 * period + 1);
   for (Eigen::Index k = 0; k < u.size(); ++k)

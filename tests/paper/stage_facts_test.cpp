@@ -107,7 +107,8 @@ TEST_CASE("F4 ripple: the last half of each dwell after the first cycle", "[stag
 TEST_CASE("F1 and F2 follow the stage's closed-form steady velocities", "[stage][facts]") {
   for (const double saturation_v : {10.0, 1.9}) {
     StageParameters stage = StageParameters::Default();
-    stage.saturation_v = saturation_v;  // 1.9 V clips the four largest pulses: slower plateaus
+    stage.driver.saturation_v =
+        saturation_v;  // 1.9 V clips the four largest pulses: slower plateaus
     const sysid::StageFacts r = sysid::RunStageFacts(stage, Only({"F1", "F2"}));
     REQUIRE(r.facts.size() == 2);
     REQUIRE(r.results->pulse->plateaus.size() == sysid::paper::PulseTable().size());
@@ -212,7 +213,7 @@ TEST_CASE("F4 and F6 on the bundled stage: the flags follow the numbers", "[stag
   // One lead-in period (the input starts with a -1.8 V step from rest), then the analysed one.
   // The stage runs at its control rate (10 kHz); the positions are read at the record rate
   // (1 kHz, every 10th control sample), as the paper differentiated its logged positions.
-  const double control_rate = stage.sample_rate_hz, rate = stage.RecordRateHz();
+  const double control_rate = stage.rig.sample_rate_hz, rate = stage.RecordRateHz();
   const Eigen::Index stride = stage.RecordStride();
   const Eigen::Index n = static_cast<Eigen::Index>(std::llround(o.dominance_duration_s * rate)) + 1;
   const Eigen::Index lead = n - 1;
@@ -517,11 +518,11 @@ TEST_CASE("F4 in motion on the bundled stage, recomputed from the raw trace", "[
     p.frequency_hz = row.frequency_hz;
     p.amplitude_m = o.track_amplitude_m;
     p.cycles = o.track_cycles;
-    p.sample_rate_hz = stage.sample_rate_hz;
+    p.sample_rate_hz = stage.rig.sample_rate_hz;
     sysid::VirtualStage plant(stage, o.seed);
     const sysid::TrackingResult t = sysid::RunClosedLoop(plant, sysid::MakeSmoothProfile(p), o.pi);
     const Eigen::VectorXd& e = t.e_m;
-    const double rate = stage.sample_rate_hz;
+    const double rate = stage.rig.sample_rate_hz;
     const long first = std::lround(rate / row.frequency_hz), half = std::lround(0.025 * rate);
     const std::vector<bool> mask = BreakawayMask(e, row.frequency_hz, rate, o.track_cycles);
     double sum2 = 0;

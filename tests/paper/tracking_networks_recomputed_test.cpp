@@ -97,7 +97,7 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
     p.frequency_hz = hz;
     p.amplitude_m = o.track_amplitude_m;
     p.cycles = o.track_cycles;
-    p.sample_rate_hz = stage.sample_rate_hz;
+    p.sample_rate_hz = stage.rig.sample_rate_hz;
     const sysid::PositionReference ref = sysid::MakeSmoothProfile(p);
     const auto runs =
         sysid::TrackSchemes(stage, o.seed, ref, o.pi,
@@ -112,7 +112,7 @@ TEST_CASE("F5 and F7 recomputed from the raw traces and networks", "[stage][fact
     }
     // The feedforward voltages from their definitions: the inverse model's equation on the
     // reference (a1 by the sign of v(t - tau), a2 by the sign of v), and the network's output.
-    const double dt = 1.0 / stage.sample_rate_hz, shift = model.tau_s / dt;
+    const double dt = 1.0 / stage.rig.sample_rate_hz, shift = model.tau_s / dt;
     const auto& ua = runs[1].result.u_ff_v;
     const auto& un = runs[2].result.u_ff_v;
     REQUIRE(ua.size() == ref.v_mps.size());

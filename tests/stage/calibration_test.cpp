@@ -48,7 +48,7 @@ TEST_CASE("the paper's 0.4 s pulses settle at the paper's velocities and identif
   for (const auto& r : kPaperPulses) proc.amplitudes_v.push_back(r.u_v);
   // Alternate directions so the stage stays inside its 115 mm travel.
   proc.amplitudes_v = {1.3, -1.8, 1.5, -2.0, 1.6, -2.1, 1.7, -2.3, 2.0, -2.5};
-  const sysid::StageRun run = sysid::RunOpenLoop(p, proc.Voltage(p.sample_rate_hz), 42);
+  const sysid::StageRun run = sysid::RunOpenLoop(p, proc.Voltage(p.rig.sample_rate_hz), 42);
   REQUIRE_FALSE(run.status.travel_limit_hit);
   REQUIRE_FALSE(run.status.velocity_limit_exceeded);
 
@@ -57,7 +57,7 @@ TEST_CASE("the paper's 0.4 s pulses settle at the paper's velocities and identif
     // Steady part: the last 0.15 s of the 0.4 s pulse (the motor's 1/p = 3.3 ms and the
     // 0.3 ms driver lag have long died out by then).
     const auto k0 = static_cast<Eigen::Index>(
-        std::llround((proc.PulseStart(i) + proc.on_s - 0.15) * p.sample_rate_hz));
+        std::llround((proc.PulseStart(i) + proc.on_s - 0.15) * p.rig.sample_rate_hz));
     const Eigen::Index m = 150;
     const double v = Slope(run.t_s.segment(k0, m), run.x_m.segment(k0, m));
     const double u = proc.amplitudes_v[i];

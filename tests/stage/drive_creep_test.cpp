@@ -74,7 +74,7 @@ struct ClosedForm {
 
 sysid::StageParameters Stage(bool hysteresis, const sysid::DriveCreep& c) {
   sysid::StageParameters p = Stage1kHz();
-  p.position_noise_m = 0;
+  p.rig.position_noise_m = 0;
   if (hysteresis) p.SetDriveHysteresis(Ceramic());
   p.SetDriveCreep(c);
   return p;
@@ -113,7 +113,8 @@ TEST_CASE(
   u.resize(200, 0.0);
   std::vector<double> dac;
   const std::vector<double> got = StageLag(p, u, &dac);
-  const ClosedForm ref{p.sample_time_s(), 0, c.time_constant_s, p.lag_time_constant_s, 0.4, 0};
+  const ClosedForm ref{
+      p.sample_time_s(), 0, c.time_constant_s, p.driver.lag_time_constant_s, 0.4, 0};
   const std::vector<double> want = ref.Lag(dac, dac);
   INFO("max |u_d - closed form| " << MaxDiff(got, want) << " V");
   CHECK(MaxDiff(got, want) < 1e-5);  // the lag state's CVODE tolerance
@@ -122,7 +123,7 @@ TEST_CASE(
   CHECK(got[99] == Approx(dac[0]).epsilon(0.4 * std::exp(-4.9)));
   CHECK(got[0] < 0.65 * dac[0]);
   // The first sample's value written out by hand: u_h = u - k u e^(-t/T_c).
-  const double tl = p.lag_time_constant_s, tc = c.time_constant_s, ts = p.sample_time_s();
+  const double tl = p.driver.lag_time_constant_s, tc = c.time_constant_s, ts = p.sample_time_s();
   const double by_hand = dac[0] * (1 - std::exp(-ts / tl)) -
                          0.4 * dac[0] * tc / (tc - tl) * (std::exp(-ts / tc) - std::exp(-ts / tl));
   CHECK(got[0] == Approx(by_hand).epsilon(1e-5));
@@ -138,12 +139,13 @@ TEST_CASE(
   const std::vector<double> u = Commands(2000);
   std::vector<double> dac;
   const std::vector<double> got = StageLag(p, u, &dac);
-  const ClosedForm ref{p.sample_time_s(), 0, c.time_constant_s, p.lag_time_constant_s, kv, 0.6};
+  const ClosedForm ref{
+      p.sample_time_s(), 0, c.time_constant_s, p.driver.lag_time_constant_s, kv, 0.6};
   const std::vector<double> want = ref.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s()));
   INFO("k_v " << kv << ": max |u_d - reference| " << MaxDiff(got, want) << " V");
   CHECK(MaxDiff(got, want) < 1e-5);
   // The creep changes the drive: without it the lag follows the play operators alone.
-  const ClosedForm none{p.sample_time_s(), 0, 1.0, p.lag_time_constant_s, 0, 0};
+  const ClosedForm none{p.sample_time_s(), 0, 1.0, p.driver.lag_time_constant_s, 0, 0};
   CHECK(MaxDiff(none.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s())), want) > 0.03);
 }
 
@@ -153,12 +155,16 @@ TEST_CASE(
     "[stage][creep]") {
   const sysid::DriveCreep c = Creep(0.3, 0.5, 0.01);
   sysid::StageParameters p = Stage(true, c);
-  p.transport_delay_s = 2.4 * p.sample_time_s();
+  p.driver.transport_delay_s = 2.4 * p.sample_time_s();
   const std::vector<double> u = Commands(1500);
   std::vector<double> dac;
   const std::vector<double> got = StageLag(p, u, &dac);
-  const ClosedForm ref{
-      p.sample_time_s(), p.transport_delay_s, c.time_constant_s, p.lag_time_constant_s, 0.3, 0.5};
+  const ClosedForm ref{p.sample_time_s(),
+                       p.driver.transport_delay_s,
+                       c.time_constant_s,
+                       p.driver.lag_time_constant_s,
+                       0.3,
+                       0.5};
   const std::vector<double> want = ref.Lag(dac, Reference(Ceramic(), dac, p.sample_time_s()));
   INFO("max |u_d - reference| " << MaxDiff(got, want) << " V");
   CHECK(MaxDiff(got, want) < 1e-5);
@@ -173,7 +179,7 @@ TEST_CASE("drive creep: a sinusoid's steady state has the closed-form gain and p
   sysid::StageParameters p = Stage(false, Creep(k, 0, tc));
   // 10 kHz: the hold's images near the sample rate, aliased back by sampling the lag state,
   // stay below 1e-5 of the fundamental.
-  p.sample_rate_hz = 10000;
+  p.rig.sample_rate_hz = 10000;
   const double ts = p.sample_time_s(), w = 2 * M_PI * f;
   const int per_period = static_cast<int>(std::lround(1 / (f * ts)));
   std::vector<double> u;
@@ -193,8 +199,9 @@ TEST_CASE("drive creep: a sinusoid's steady state has the closed-form gain and p
   const double creep_gain = std::hypot(1, w * (1 - k) * tc) / std::hypot(1, w * tc);
   const double creep_phase = std::atan(w * (1 - k) * tc) - std::atan(w * tc);
   const double x = w * ts / 2;
-  const double want_gain = creep_gain / std::hypot(1, w * p.lag_time_constant_s) * std::sin(x) / x;
-  const double want_phase = creep_phase - std::atan(w * p.lag_time_constant_s) - x;
+  const double want_gain =
+      creep_gain / std::hypot(1, w * p.driver.lag_time_constant_s) * std::sin(x) / x;
+  const double want_phase = creep_phase - std::atan(w * p.driver.lag_time_constant_s) - x;
   INFO("gain " << gain << " (want " << want_gain << "), phase " << phase << " rad (want "
                << want_phase << ", of which the creep " << creep_phase << ")");
   CHECK(gain == Approx(want_gain).epsilon(1e-4));
@@ -255,8 +262,8 @@ TEST_CASE(
     cmd.resize(1800, u);
     const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
     sysid::StageParameters from = p, plain = def;
-    from.initial_position_m = plain.initial_position_m = u > 0 ? -0.04 : 0.04;
-    plain.position_noise_m = 0;
+    from.rig.initial_position_m = plain.rig.initial_position_m = u > 0 ? -0.04 : 0.04;
+    plain.rig.position_noise_m = 0;
     const double got = sysid::RunOpenLoop(from, command, 1).v_true_mps[1799];
     const double without = sysid::RunOpenLoop(plain, command, 1).v_true_mps[1799];
     INFO("u = " << u << " V");

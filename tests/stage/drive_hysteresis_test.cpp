@@ -25,7 +25,7 @@ using sysid::test::VelocitySourceReference;
 // sample, u_d(t1) = u_h + (u_d(t0) - u_h) e^(-Ts/T_l).
 std::vector<double> StageEffective(const sysid::StageParameters& p, const std::vector<double>& u) {
   sysid::VirtualStage stage(p, 1);
-  const double e = std::exp(-p.sample_time_s() / p.lag_time_constant_s);
+  const double e = std::exp(-p.sample_time_s() / p.driver.lag_time_constant_s);
   std::vector<double> out;
   double w0 = stage.state().w_v;
   for (double x : u) {
@@ -39,7 +39,7 @@ std::vector<double> StageEffective(const sysid::StageParameters& p, const std::v
 
 sysid::StageParameters Stage(const sysid::DriveHysteresis& h) {
   sysid::StageParameters p = Stage1kHz();
-  p.position_noise_m = 0;
+  p.rig.position_noise_m = 0;
   p.SetDriveHysteresis(h);
   return p;
 }
@@ -109,7 +109,7 @@ TEST_CASE("drive hysteresis behind a transport delay: its output is delayed, not
   // output by n samples (the stage's history holds the driven values).
   const sysid::DriveHysteresis h = Ceramic(0.3, 0.004, 0.005);
   sysid::StageParameters p = Stage(h);
-  p.transport_delay_s = 2 * p.sample_time_s();
+  p.driver.transport_delay_s = 2 * p.sample_time_s();
   const std::vector<double> u = Commands(1500);
   std::vector<double> dac;
   sysid::VirtualStage probe(p, 1);
@@ -154,8 +154,8 @@ TEST_CASE("drive hysteresis keeps the pulse table: held pulses from 0 V settle o
     cmd.resize(1800, u);
     const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
     sysid::StageParameters from = p, plain = Stage1kHz();
-    from.initial_position_m = plain.initial_position_m = u > 0 ? -0.04 : 0.04;
-    plain.position_noise_m = 0;
+    from.rig.initial_position_m = plain.rig.initial_position_m = u > 0 ? -0.04 : 0.04;
+    plain.rig.position_noise_m = 0;
     const double got = sysid::RunOpenLoop(from, command, 1).v_true_mps[1799];
     const double without = sysid::RunOpenLoop(plain, command, 1).v_true_mps[1799];
     INFO("u = " << u << " V");
@@ -249,7 +249,7 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
   CHECK(p.velocity_source().hysteresis.enabled());
   // The static one (H2) has no creep; the default one's play lag partly relaxes.
   CHECK(p.velocity_source().creep.enabled() == (name == "drive-hysteresis"));
-  CHECK(p.sample_rate_hz == 10000);
+  CHECK(p.rig.sample_rate_hz == 10000);
   CHECK(p.RecordRateHz() == 1000);
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable())
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
@@ -266,9 +266,9 @@ TEST_CASE("the drive-hysteresis presets: candidate C's loop with the ceramic's l
   // from the 1 kHz preset with C's rates and lag written out.
   sysid::StageParameters c = sysid::LoadStage("virtual-1khz");
   c.name = p.name;
-  c.sample_rate_hz = 10000;
-  c.record_rate_hz = 1000;
-  c.lag_time_constant_s = 0.0001;
+  c.rig.sample_rate_hz = 10000;
+  c.rig.record_rate_hz = 1000;
+  c.driver.lag_time_constant_s = 0.0001;
   c.SetDriveHysteresis(p.velocity_source().hysteresis);
   if (p.velocity_source().creep.enabled()) c.SetDriveCreep(p.velocity_source().creep);
   CHECK(sysid::StageParametersToJson(c) == text);

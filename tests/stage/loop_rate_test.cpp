@@ -19,8 +19,8 @@ namespace {
 // The former default (0.3 ms lag) at another rate: the stage on which the 10 kHz run hung.
 sysid::StageParameters AtRate(double control_hz, double record_hz = 0) {
   sysid::StageParameters p = sysid::test::Stage1kHz();
-  p.sample_rate_hz = control_hz;
-  p.record_rate_hz = record_hz;
+  p.rig.sample_rate_hz = control_hz;
+  p.rig.record_rate_hz = record_hz;
   return p;
 }
 
@@ -87,7 +87,8 @@ TEST_CASE("through the former hang at 10 kHz the stage follows an independent ti
     const double u = controller.Update(ref.x_m[k] - stage.measured_position_m());
     stage.Step(u);
     if (k < k0) continue;
-    const double drive = std::clamp(stage.DacOutput(u), -p.saturation_v, p.saturation_v);
+    const double drive =
+        std::clamp(stage.DacOutput(u), -p.driver.saturation_v, p.driver.saturation_v);
     for (int i = 0; i < 100; ++i) rk4.Step(drive, 1e-6);
     const sysid::StageState s = stage.state();
     worst_x = std::max(worst_x, std::abs(s.x_m - rk4.x));
@@ -109,7 +110,7 @@ TEST_CASE("a stage that cannot be integrated within the work budget ends with th
   sysid::StageParameters p = sysid::test::Stage1kHz();
   // A budget of 10 steps per sample: the start of a 2 V pulse needs ~50 at 1 kHz (BDF restarts
   // at order 1 after every switch), so this stage "cannot be integrated".
-  p.max_steps_per_sample = 10;
+  p.integrator.max_steps_per_sample = 10;
   sysid::VirtualStage stage(p, 1);
   for (int k = 0; k < 5; ++k) stage.Step(0.0);  // at rest: one or two steps per sample
   CHECK_THROWS_AS(stage.Step(2.0), sysid::NumericalError);
@@ -122,7 +123,7 @@ TEST_CASE("a stage that cannot be integrated within the work budget ends with th
                         Catch::Contains("DAC u = 2.0") &&
                         Catch::Contains("cannot be integrated at this rate"));
   // The budget is validated: fewer than 10 steps per sample is refused.
-  p.max_steps_per_sample = 9;
+  p.integrator.max_steps_per_sample = 9;
   CHECK_THROWS_AS(p.Validate(), sysid::OptionsError);
 }
 
@@ -136,7 +137,7 @@ TEST_CASE("the control rate runs apart from the recording rate (every n-th sampl
   const sysid::Recording rec = sysid::RunPulseTest(p, pulses, 3);
   // The recording: 1 kHz samples; each row is the stage at 10 kHz read at every 10th sample,
   // recomputed here from an open-loop run of the same command at the control rate.
-  const Eigen::VectorXd u = pulses.Voltage(p.sample_rate_hz);
+  const Eigen::VectorXd u = pulses.Voltage(p.rig.sample_rate_hz);
   const sysid::StageRun run = sysid::RunOpenLoop(p, u, 3);
   const Eigen::VectorXd t = rec.column("t"), x = rec.column("x"), ur = rec.column("u");
   REQUIRE(t.size() == (u.size() + 9) / 10);
@@ -169,20 +170,20 @@ TEST_CASE("stage files: one rate, or the control and record rates apart", "[stag
   using sysid::ParseStageParameters;
   const sysid::StageParameters apart = ParseStageParameters(
       R"({"preset": "virtual", "rig": {"control_rate_hz": 10000, "record_rate_hz": 1000}})", "a.json");
-  CHECK(apart.sample_rate_hz == 10000);
-  CHECK(apart.record_rate_hz == 1000);
+  CHECK(apart.rig.sample_rate_hz == 10000);
+  CHECK(apart.rig.record_rate_hz == 1000);
   // Written with both keys, read back the same.
   const std::string text = sysid::StageParametersToJson(apart);
   CHECK(text.find("\"control_rate_hz\": 10000") != std::string::npos);
   CHECK(text.find("\"sample_rate_hz\"") == std::string::npos);
   const sysid::StageParameters back = ParseStageParameters(text, "b.json");
-  CHECK(back.sample_rate_hz == 10000);
-  CHECK(back.record_rate_hz == 1000);
+  CHECK(back.rig.sample_rate_hz == 10000);
+  CHECK(back.rig.record_rate_hz == 1000);
   // The alias sets both; a stage with one rate writes it alone (files as before), the default
   // (10 kHz loop, 1 kHz records) both.
   const sysid::StageParameters alias =
       ParseStageParameters(R"({"preset": "virtual", "rig": {"sample_rate_hz": 5000}})", "c.json");
-  CHECK(alias.sample_rate_hz == 5000);
+  CHECK(alias.rig.sample_rate_hz == 5000);
   CHECK(alias.RecordRateHz() == 5000);
   const std::string one = sysid::StageParametersToJson(sysid::test::Stage1kHz());
   CHECK(one.find("\"sample_rate_hz\": 1000") != std::string::npos);
@@ -210,7 +211,7 @@ TEST_CASE("stage files: one rate, or the control and record rates apart", "[stag
       sysid::InputError);  // faster than the 1 kHz control rate
   const sysid::StageParameters budget = ParseStageParameters(
       R"({"preset": "virtual", "integrator": {"max_steps_per_sample": 500}})", "g.json");
-  CHECK(budget.max_steps_per_sample == 500);
+  CHECK(budget.integrator.max_steps_per_sample == 500);
 }
 
 TEST_CASE("sysid track: a stage beyond the work budget exits 3 with the sentence, no output",

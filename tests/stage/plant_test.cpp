@@ -30,7 +30,7 @@ struct Rk4Reference {
     const double f = p.actuator_delay().bristle_stiffness_per_s2 * y[2] +
                      p.actuator_delay().bristle_damping_per_s * dz + b.viscous_per_s * v;
     return {v, p.actuator_delay().gain_mps2_per_v * y[3] - f, dz,
-            (drive - y[3]) / p.lag_time_constant_s};
+            (drive - y[3]) / p.driver.lag_time_constant_s};
   }
   void Step(std::vector<double>& y, double h) const {
     auto add = [](const std::vector<double>& a, const std::vector<double>& b, double s) {
@@ -45,7 +45,7 @@ struct Rk4Reference {
     for (size_t i = 0; i < y.size(); ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
   }
   double Driver(double u_dac) const {
-    const double s = std::clamp(u_dac, -p.saturation_v, p.saturation_v);
+    const double s = std::clamp(u_dac, -p.driver.saturation_v, p.driver.saturation_v);
     if (std::abs(s) <= p.actuator_delay().dead_zone_v) return 0;
     return p.actuator_delay().DriveMap(s > 0 ? s - p.actuator_delay().dead_zone_v
                                              : s + p.actuator_delay().dead_zone_v);
@@ -67,7 +67,8 @@ std::pair<double, double> CompareWithReference(const sysid::StageParameters& p) 
   bool saw_stuck = false, saw_slide_after = false;
   for (int k = 0; k < n; ++k) {
     stage.Step(u[k]);
-    const double drive = std::clamp(stage.DacOutput(u[k]), -p.saturation_v, p.saturation_v);
+    const double drive =
+        std::clamp(stage.DacOutput(u[k]), -p.driver.saturation_v, p.driver.saturation_v);
     for (int i = 0; i < 1000; ++i) ref.Step(drive, 1e-6);
     const sysid::StageState s = stage.state();
     worst_x = std::max(worst_x, std::abs(s.x_m - ref.x));
@@ -94,7 +95,7 @@ TEST_CASE("the velocity-source plant matches a tiny-step reference through stick
           "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
   REQUIRE(p.model() == sysid::StageModel::kVelocitySource);
-  p.position_noise_m = 0;
+  p.rig.position_noise_m = 0;
   SECTION("memoryless rail (Karnopp with g(|v|))") {
     p.velocity_source().rail.memory_time_s = 0;
     const auto [worst_x, worst_v] = CompareWithReference(p);
@@ -128,7 +129,7 @@ TEST_CASE("thrust limit: steady velocities, breakaway and the limit on accelerat
   p.velocity_source().motor.pole_per_s = 2000;
   p.velocity_source().motor.thrust_limit_mps2 = 8;
   p.velocity_source().rail = {0.6, 1.0, 0.005, 0.0};
-  p.position_noise_m = 0;
+  p.rig.position_noise_m = 0;
   p.velocity_source().SetSpeedMapThrough(sysid::StageParameters::PaperPulseTable());
   REQUIRE_NOTHROW(p.Validate());
   // The speed map puts each held pulse on the paper's plateau: L tanh(p (v_f - v) / L) = g(v).
@@ -168,7 +169,7 @@ TEST_CASE("thrust limit: steady velocities, breakaway and the limit on accelerat
 
 TEST_CASE("frictional memory: the lagged slip speed against its closed forms", "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
-  p.position_noise_m = 0;
+  p.rig.position_noise_m = 0;
   p.velocity_source().rail = {0.6, 4.0, 0.01, 0.02};
   const double tm = p.velocity_source().rail.memory_time_s;
   // A long held pulse: steady sliding has s = |v|, so the steady law (and the pulse table) does
@@ -206,7 +207,7 @@ TEST_CASE("the triangle's voltage-velocity loop widens with the rate and with th
   auto width = [](double memory_time_s, double period_s) {
     sysid::StageParameters p = Stage1kHz();
     p.velocity_source().rail.memory_time_s = memory_time_s;
-    p.position_noise_m = 0;
+    p.rig.position_noise_m = 0;
     const int n = static_cast<int>(period_s * 1000);
     const double q = period_s / 4;
     Eigen::VectorXd u(n);
@@ -274,7 +275,7 @@ TEST_CASE("velocity source: speed map, steady velocities and breakaway against c
   CHECK(p.SteadyVelocity(u_start + 1e-3) > 0.0);
   // Held inside the threshold the stage does not move at all (the preload holds it).
   sysid::StageParameters quiet = p;
-  quiet.position_noise_m = 0;
+  quiet.rig.position_noise_m = 0;
   const sysid::StageRun held =
       sysid::RunOpenLoop(quiet, Eigen::VectorXd::Constant(200, u_start - 0.002), 3);
   CHECK(held.x_true_m.cwiseAbs().maxCoeff() == 0.0);
@@ -293,15 +294,15 @@ TEST_CASE("velocity source: speed map, steady velocities and breakaway against c
 TEST_CASE("the actuator-delay plant matches a tiny-step RK4 reference through pulses and reversals",
           "[stage][plant]") {
   sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
-  p.transport_delay_s = 0.0025;  // 2.5 samples: exercises the edge inside the sample
-  p.position_noise_m = 0;
+  p.driver.transport_delay_s = 0.0025;  // 2.5 samples: exercises the edge inside the sample
+  p.rig.position_noise_m = 0;
   const int n = 260;
   std::vector<double> u(n, 0.0);
   for (int k = 10; k < 110; ++k) u[k] = 2.0;
   for (int k = 110; k < 210; ++k) u[k] = -2.3;  // reversal through stick and the Stribeck dip
   sysid::VirtualStage stage(p, 1);
   Rk4Reference ref{p};
-  std::vector<double> y = {p.initial_position_m, 0, 0, 0};
+  std::vector<double> y = {p.rig.initial_position_m, 0, 0, 0};
   std::vector<double> dac;
   double worst_x = 0, worst_v = 0;
   for (int k = 0; k < n; ++k) {
@@ -340,7 +341,7 @@ TEST_CASE("actuator delay: a held voltage settles at the steady velocity found b
 
 TEST_CASE("the transport delay holds the drive back by whole and half samples", "[stage][plant]") {
   sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
-  p.transport_delay_s = 0.003;
+  p.driver.transport_delay_s = 0.003;
   sysid::VirtualStage stage(p, 1);
   for (int k = 0; k < 3; ++k) {
     stage.Step(5.0);
@@ -362,12 +363,12 @@ TEST_CASE("DAC, encoder and noise are what the rig specifies", "[stage][rig]") {
   const sysid::StageRun run = sysid::RunOpenLoop(p, Eigen::VectorXd::Constant(500, 1.5), 5);
   double worst = 0, worst_error = 0;
   for (Eigen::Index k = 0; k < run.x_m.size(); ++k) {
-    const double counts = run.x_m[k] / p.encoder_resolution_m;
+    const double counts = run.x_m[k] / p.rig.encoder_resolution_m;
     worst = std::max(worst, std::abs(counts - std::round(counts)));
     worst_error = std::max(worst_error, std::abs(run.x_m[k] - run.x_true_m[k]));
   }
   // reading = round((x + n)/q) q with |n| <= 6 sigma (Irwin-Hall bound) and q/2 rounding
-  CHECK(worst_error <= 6 * p.position_noise_m + 0.5e-7 + 1e-15);
+  CHECK(worst_error <= 6 * p.rig.position_noise_m + 0.5e-7 + 1e-15);
   CHECK(worst < 1e-6);  // readings are whole encoder counts (up to the double's rounding)  //
                         // readings are whole encoder counts (up to the double's rounding)
 }
@@ -403,16 +404,16 @@ TEST_CASE("end stops hold the stage and are reported, overspeed is reported", "[
                              sysid::StageParameters::ActuatorDelay()}) {
     INFO(preset.name);
     sysid::StageParameters p = preset;
-    p.initial_position_m = 0.055;
+    p.rig.initial_position_m = 0.055;
     Eigen::VectorXd u(600);
     u.head(300).setConstant(3.0);
     u.tail(300).setConstant(-3.0);
     const sysid::StageRun run = sysid::RunOpenLoop(p, u, 1);
     CHECK(run.status.travel_limit_hit);
     CHECK(run.status.first_travel_hit_s > 0.0);
-    CHECK(run.x_true_m.maxCoeff() <= p.travel_max_m);
-    CHECK(run.x_true_m[299] == p.travel_max_m);
-    CHECK(run.x_true_m[599] < p.travel_max_m - 0.01);  // reversed away from the stop
+    CHECK(run.x_true_m.maxCoeff() <= p.rig.travel_max_m);
+    CHECK(run.x_true_m[299] == p.rig.travel_max_m);
+    CHECK(run.x_true_m[599] < p.rig.travel_max_m - 0.01);  // reversed away from the stop
     CHECK_THAT(run.status.Describe(), Catch::Contains("travel limit hit at t = "));
     CHECK_FALSE(run.status.velocity_limit_exceeded);
     const sysid::StageRun fast = sysid::RunOpenLoop(preset, Eigen::VectorXd::Constant(100, 9.0));
@@ -423,8 +424,8 @@ TEST_CASE("end stops hold the stage and are reported, overspeed is reported", "[
 TEST_CASE("an integrator failure is the CVODE wrapper's sentence with the stage's hint",
           "[stage][plant]") {
   sysid::StageParameters p = Stage1kHz();
-  p.relative_tolerance = 1e-300;  // valid (> 0) but below what a double can deliver
-  p.position_tolerance_m = 1e-300;
+  p.integrator.relative_tolerance = 1e-300;  // valid (> 0) but below what a double can deliver
+  p.integrator.position_tolerance_m = 1e-300;
   sysid::VirtualStage stage(p, 1);
   CHECK_THROWS_AS(stage.Step(2.0), sysid::NumericalError);
   sysid::VirtualStage again(p, 1);

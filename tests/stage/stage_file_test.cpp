@@ -1,11 +1,13 @@
 // The stage parameter file: round trip, the bundled file, and error messages.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 #include "sysid/stage.hpp"
 
 TEST_CASE("the bundled stage.json is the built-in calibrated stage", "[stage][file]") {
@@ -20,6 +22,36 @@ TEST_CASE("the bundled stage.json is the built-in calibrated stage", "[stage][fi
   CHECK(back.velocity_source().hysteresis.weights == file.velocity_source().hysteresis.weights);
   // The velocity source has no actuator-delay fields: asking for them is an error.
   CHECK_THROWS_AS(file.actuator_delay(), sysid::OptionsError);
+}
+
+TEST_CASE("the writer's layout is the published file's, byte for byte", "[stage][file]") {
+  // The reference is the bundled file (written before the structs were described), less the
+  // generator key WriteStageParameters adds.
+  std::string bundled = sysid::ReadFile(sysid::test::SourcePath("datasets/virtual/stage.json"));
+  const size_t at = bundled.find("  \"_generator\"");
+  REQUIRE(at != std::string::npos);
+  bundled.erase(at, bundled.find('\n', at) + 1 - at);
+  CHECK(sysid::StageParametersToJson(sysid::StageParameters::Default()) == bundled);
+  // The actuator delay's force actuator sits in "drive" around the driver's keys, its map
+  // without the member's "drive_" prefix; its LuGre rail in "friction".
+  const sysid::StageParameters delay = sysid::StageParameters::ActuatorDelay();
+  const auto ad = nlohmann::ordered_json::parse(sysid::StageParametersToJson(delay));
+  auto keys = [](const nlohmann::ordered_json& o) {
+    std::vector<std::string> k;
+    for (const auto& item : o.items()) k.push_back(item.key());
+    return k;
+  };
+  CHECK(keys(ad) == std::vector<std::string>{"name", "model", "note", "drive", "friction", "rig",
+                                             "integrator"});
+  CHECK(keys(ad["drive"]) == std::vector<std::string>{"gain_mps2_per_v", "dead_zone_v",
+                                                      "saturation_v", "transport_delay_s",
+                                                      "lag_time_constant_s", "map_in_v",
+                                                      "map_out_v"});
+  CHECK(keys(ad["friction"]) == std::vector<std::string>{"bristle_stiffness_per_s2",
+                                                         "bristle_damping_per_s", "forward",
+                                                         "backward"});
+  CHECK(ad["drive"]["map_in_v"] == nlohmann::ordered_json(delay.actuator_delay().drive_map_in_v));
+  CHECK(ad["friction"]["backward"]["coulomb_mps2"] == delay.actuator_delay().backward.coulomb_mps2);
 }
 
 TEST_CASE("the rail's memory: written, read back, 0 when a file predates it", "[stage][file]") {
@@ -60,16 +92,16 @@ TEST_CASE("the thrust limit: written when set, read back, absent means none", "[
 TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 kHz",
           "[stage][file]") {
   const sysid::StageParameters c = sysid::StageParameters::VelocitySource();
-  CHECK(c.sample_rate_hz == 10000);
+  CHECK(c.rig.sample_rate_hz == 10000);
   CHECK(c.RecordRateHz() == 1000);
   CHECK(c.RecordStride() == 10);
-  CHECK(c.lag_time_constant_s == 0.0001);
+  CHECK(c.driver.lag_time_constant_s == 0.0001);
   REQUIRE(sysid::StageParameters::IsPresetName("virtual-1khz"));
   const sysid::StageParameters a = sysid::LoadStage("virtual-1khz");
   CHECK(a.model() == sysid::StageModel::kVelocitySource);
-  CHECK(a.sample_rate_hz == 1000);
+  CHECK(a.rig.sample_rate_hz == 1000);
   CHECK(a.RecordRateHz() == 1000);
-  CHECK(a.lag_time_constant_s == 0.0003);
+  CHECK(a.driver.lag_time_constant_s == 0.0003);
   // Both give the paper's pulse table (the speed map does not depend on the rates or the lag).
   for (const auto& [u, v] : sysid::StageParameters::PaperPulseTable()) {
     CHECK(c.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
@@ -78,9 +110,9 @@ TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 
   // They differ in the two rates, the lag and the name only: the whole file compared.
   sysid::StageParameters moved = a;
   moved.name = c.name;
-  moved.sample_rate_hz = 10000;
-  moved.record_rate_hz = 1000;
-  moved.lag_time_constant_s = 0.0001;
+  moved.rig.sample_rate_hz = 10000;
+  moved.rig.record_rate_hz = 1000;
+  moved.driver.lag_time_constant_s = 0.0001;
   CHECK(sysid::StageParametersToJson(moved) == sysid::StageParametersToJson(c));
   CHECK(sysid::StageParametersToJson(sysid::LoadStage("velocity-source")) ==
         sysid::StageParametersToJson(c));
@@ -88,7 +120,7 @@ TEST_CASE("velocity-source is the loop-rate candidate C, virtual-1khz is C at 1 
   CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual-1khz\", \"rig\": "
                                     "{\"position_noise_m\": 0}}",
                                     "a.json")
-            .lag_time_constant_s == 0.0003);
+            .driver.lag_time_constant_s == 0.0003);
   CHECK_THROWS_WITH(sysid::StageParameters::Preset("fast"), Catch::Contains("virtual-1khz"));
   CHECK_THROWS_WITH(sysid::ParseStageParameters("{\"preset\": \"fast\"}", "p.json"),
                     Catch::Contains("virtual-1khz"));
@@ -181,7 +213,7 @@ TEST_CASE("stage files name their model, presets load by name", "[stage][file]")
   const auto back = sysid::ParseStageParameters(sysid::StageParametersToJson(ad), "ad.json");
   CHECK(back.model() == sysid::StageModel::kActuatorDelay);
   CHECK(sysid::StageParametersToJson(back) == sysid::StageParametersToJson(ad));
-  CHECK(sysid::LoadStage("actuator-delay").transport_delay_s == 0.002);
+  CHECK(sysid::LoadStage("actuator-delay").driver.transport_delay_s == 0.002);
   CHECK(sysid::LoadStage("virtual").model() == sysid::StageModel::kVelocitySource);
   // A file without "model" written before the key existed (it has "friction") is actuator delay.
   std::string old_file = sysid::StageParametersToJson(sysid::StageParameters::ActuatorDelay());
@@ -193,7 +225,8 @@ TEST_CASE("stage files name their model, presets load by name", "[stage][file]")
       "{\"preset\": \"actuator-delay\", \"friction\": {\"bristle_damping_per_s\": 900}}", "p.json");
   CHECK(partial.model() == sysid::StageModel::kActuatorDelay);
   CHECK(partial.actuator_delay().bristle_damping_per_s == 900);
-  CHECK(partial.transport_delay_s == sysid::StageParameters::ActuatorDelay().transport_delay_s);
+  CHECK(partial.driver.transport_delay_s ==
+        sysid::StageParameters::ActuatorDelay().driver.transport_delay_s);
   CHECK(sysid::ParseStageParameters("{\"preset\": \"virtual\", \"rig\": {\"position_noise_m\": 0}}",
                                     "n.json")
             .model() == sysid::StageModel::kVelocitySource);
@@ -242,8 +275,8 @@ TEST_CASE("a stage file without a preset must give every section and key", "[sta
                                       ":3: rig: missing required key 'dac_bits'"));
   // The same file with a preset is complete: the key comes from the preset.
   text.insert(1, "\"preset\": \"virtual\",");
-  CHECK(sysid::ParseStageParameters(text, "k.json").dac_bits ==
-        sysid::StageParameters::Default().dac_bits);
+  CHECK(sysid::ParseStageParameters(text, "k.json").rig.dac_bits ==
+        sysid::StageParameters::Default().rig.dac_bits);
   // The velocity-source drive section does not need the actuator-delay drive keys.
   CHECK_NOTHROW(sysid::ParseStageParameters(
       sysid::StageParametersToJson(sysid::StageParameters::Default()), "vs.json"));
@@ -320,21 +353,43 @@ TEST_CASE("stage file value errors are positioned: key, rule, found value", "[st
 
 TEST_CASE("each plant validates its own fields over the shared driver", "[stage][file]") {
   using Catch::Contains;
-  // The actuator delay: its dead zone must stay below the driver's clip, checked by its own
-  // Validate and by the stage's, which hands it the shared saturation_v.
+  // The actuator delay: its dead zone must stay below the driver's clip, checked over the
+  // driver (ValidateWithDriver) and by the stage's Validate; its own Validate does not see the
+  // driver.
   sysid::StageParameters ad = sysid::StageParameters::ActuatorDelay();
-  ad.actuator_delay().dead_zone_v = ad.saturation_v;
+  ad.actuator_delay().dead_zone_v = ad.driver.saturation_v;
   CHECK_THROWS_WITH(ad.Validate(), Contains("StageParameters::saturation_v") &&
                                        Contains("saturation_v > dead_zone_v"));
-  CHECK_THROWS_WITH(ad.actuator_delay().Validate(ad.saturation_v),
-                    Contains("StageParameters::saturation_v") &&
-                        Contains("saturation_v > dead_zone_v"));
-  CHECK_NOTHROW(ad.actuator_delay().Validate(ad.saturation_v + 1));
+  CHECK_THROWS_WITH(
+      ad.actuator_delay().ValidateWithDriver(ad.driver),
+      Contains("StageParameters::saturation_v") && Contains("saturation_v > dead_zone_v"));
+  CHECK_NOTHROW(ad.actuator_delay().Validate());
+  sysid::DriverSettings wider = ad.driver;
+  wider.saturation_v += 1;
+  CHECK_NOTHROW(ad.actuator_delay().ValidateWithDriver(wider));
   // The velocity source: its dead zones likewise, named by the file's path.
   sysid::StageParameters vs = sysid::StageParameters::VelocitySource();
-  vs.velocity_source().motor.dead_zone_forward_v = vs.saturation_v;
-  CHECK_THROWS_WITH(vs.Validate(), Contains("motor.dead_zone_forward_v"));
-  CHECK_NOTHROW(sysid::StageParameters::VelocitySource().velocity_source().Validate(10.0));
+  vs.driver.saturation_v = vs.velocity_source().motor.dead_zone_forward_v;
+  CHECK_THROWS_WITH(vs.Validate(), Contains("motor.dead_zone_forward_v") &&
+                                       Contains("dead_zone_forward_v < saturation_v"));
+  CHECK_THROWS_WITH(vs.velocity_source().ValidateWithDriver(vs.driver),
+                    Contains("motor.dead_zone_forward_v"));
+  CHECK_NOTHROW(vs.velocity_source().Validate());
+  CHECK_NOTHROW(sysid::StageParameters::VelocitySource().velocity_source().Validate());
+  // Each shared setting validates its own fields.
+  sysid::DriverSettings driver;
+  driver.lag_time_constant_s = 0;
+  CHECK_THROWS_WITH(driver.Validate(), Contains("StageParameters::lag_time_constant_s = 0"));
+  sysid::RigSettings rig;
+  rig.travel_max_m = rig.travel_min_m;
+  CHECK_THROWS_WITH(rig.Validate(), Contains("StageParameters::travel_max_m") &&
+                                        Contains("travel_max_m > travel_min_m"));
+  sysid::IntegratorSettings integrator;
+  integrator.max_steps_per_sample = 9;
+  CHECK_THROWS_WITH(integrator.Validate(), Contains("StageParameters::max_steps_per_sample = 9"));
+  CHECK_NOTHROW(sysid::DriverSettings{}.Validate());
+  CHECK_NOTHROW(sysid::RigSettings{}.Validate());
+  CHECK_NOTHROW(sysid::IntegratorSettings{}.Validate());
   // The stage validates the plant it holds: the velocity source's rig with the actuator
   // delay's plant is a valid actuator-delay stage, and writes only that plant's sections.
   sysid::StageParameters swapped = sysid::StageParameters::VelocitySource();
@@ -347,6 +402,6 @@ TEST_CASE("each plant validates its own fields over the shared driver", "[stage]
   CHECK(text.find("\"motor\"") == std::string::npos);
   CHECK(sysid::StageParametersToJson(sysid::ParseStageParameters(text, "s.json")) == text);
   // The shared settings are checked whichever plant is held.
-  swapped.saturation_v = 0;
+  swapped.driver.saturation_v = 0;
   CHECK_THROWS_WITH(swapped.Validate(), Contains("StageParameters::saturation_v"));
 }

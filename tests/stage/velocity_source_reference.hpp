@@ -43,7 +43,7 @@ struct VelocitySourceReference {
     return vs().rail.memory_time_s > 0 ? (std::abs(vv) - ss) / vs().rail.memory_time_s : 0.0;
   }
   void Step(double u_drive, double h) {
-    const double t = p.lag_time_constant_s;
+    const double t = p.driver.lag_time_constant_s;
     auto dw = [&](double ww) { return (u_drive - ww) / t; };
     if (stuck) {
       const double k1 = dw(w), k2 = dw(w + h / 2 * k1), k3 = dw(w + h / 2 * k2),

@@ -67,12 +67,102 @@
 
 namespace sysid {
 
+/// The driver both plants share (file section "drive"): its input clip, transport delay and
+/// envelope lag.
+struct DriverSettings {
+  double saturation_v = 10.0;           ///< [V] driver input clip, > 0 and above the dead zones
+  double transport_delay_s = 0.0;       ///< [s] in [0, 1], any multiple of the sample time
+  double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(saturation_v));
+    a->Visit(SYSID_NVP(transport_delay_s));
+    a->Visit(SYSID_NVP(lag_time_constant_s));
+  }
+  /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
+  void Validate() const;
+};
+
+/// The rig both plants share (file section "rig"): rates, DAC, encoder, end stops.
+struct RigSettings {
+  /// [Hz] control rate: the DAC hold, the encoder's reads and the controller's loop, > 0
+  /// (file: rig.control_rate_hz, or rig.sample_rate_hz, which sets both rates)
+  double sample_rate_hz = 1000;
+  /// [Hz] the rate of the recordings the procedures return (pulse test, tracking sets,
+  /// waveforms, triangle): every n-th control sample, n = sample_rate_hz / record_rate_hz an
+  /// integer (plain sampling, as a real-time logger's downsampling keeps every n-th value: no
+  /// anti-alias filter, whose delay would shift the delay fact). 0: the control rate.
+  /// File: rig.record_rate_hz.
+  double record_rate_hz = 0;
+  int dac_bits = 16;                   ///< DAC resolution over +-dac_range_v, 1..32
+  double dac_range_v = 10.0;           ///< [V] DAC output range +-dac_range_v, > 0
+  double encoder_resolution_m = 1e-7;  ///< [m] q in [1e-15, the travel]
+  double position_noise_m = 3e-8;      ///< [m] standard deviation of the reading noise, >= 0
+  double travel_min_m = -0.0575;       ///< [m] lower end stop
+  double travel_max_m = 0.0575;        ///< [m] upper end stop, > travel_min_m
+  double max_velocity_mps = 0.23;      ///< [m/s] rated speed, > 0; exceeding it is reported
+  double initial_position_m = 0.0;     ///< [m] position at t = 0, inside the travel
+  /// The fields, in file order (sysid/serialize.hpp; the file writes the two rates as one
+  /// sample_rate_hz when they are equal).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(sample_rate_hz));
+    a->Visit(SYSID_NVP(record_rate_hz));
+    a->Visit(SYSID_NVP(dac_bits));
+    a->Visit(SYSID_NVP(dac_range_v));
+    a->Visit(SYSID_NVP(encoder_resolution_m));
+    a->Visit(SYSID_NVP(position_noise_m));
+    a->Visit(SYSID_NVP(travel_min_m));
+    a->Visit(SYSID_NVP(travel_max_m));
+    a->Visit(SYSID_NVP(max_velocity_mps));
+    a->Visit(SYSID_NVP(initial_position_m));
+  }
+  /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
+  void Validate() const;
+  /// [s] 1 / sample_rate_hz, the control period.
+  double sample_time_s() const { return 1.0 / sample_rate_hz; }
+  /// [Hz] the recordings' rate: record_rate_hz, or sample_rate_hz when that is 0.
+  double RecordRateHz() const { return record_rate_hz > 0 ? record_rate_hz : sample_rate_hz; }
+  /// Control samples per recorded sample, sample_rate_hz / RecordRateHz() (>= 1).
+  long RecordStride() const;
+};
+
+/// The integrator both plants share (SUNDIALS CVODE, BDF; file section "integrator").
+struct IntegratorSettings {
+  double relative_tolerance = 1e-7;     ///< CVODE rtol, in (0, 1e-2]
+  double position_tolerance_m = 1e-10;  ///< [m] CVODE atol of x and z (v, w scaled by 1/Ts), > 0
+  /// The integrator's work budget per control sample: CVODE steps plus stick-slip and end-stop
+  /// switches. A sample that needs more ends the run with NumericalError naming the time and
+  /// the state (a stage that cannot be integrated fails, it never hangs). In [10, 1e8].
+  /// Written to the file only when not the default.
+  int max_steps_per_sample = kDefaultMaxStepsPerSample;
+  static constexpr int kDefaultMaxStepsPerSample = 20000;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(relative_tolerance));
+    a->Visit(SYSID_NVP(position_tolerance_m));
+    a->Visit(SYSID_NVP(max_steps_per_sample));
+  }
+  /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
+  void Validate() const;
+};
+
 /// One direction's friction (LuGre steady state g(v) + s2 v).
 struct FrictionBranch {
   double coulomb_mps2 = 0;           ///< [m/s^2] Fc, sliding friction level
   double static_mps2 = 0;            ///< [m/s^2] Fs >= Fc, breakaway level at v -> 0
   double stribeck_velocity_mps = 0;  ///< [m/s] vs > 0, width of the Stribeck dip
   double viscous_per_s = 0;          ///< [1/s] s2 >= 0, viscous coefficient
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(coulomb_mps2));
+    a->Visit(SYSID_NVP(static_mps2));
+    a->Visit(SYSID_NVP(stribeck_velocity_mps));
+    a->Visit(SYSID_NVP(viscous_per_s));
+  }
 };
 
 /// Which plant equations the virtual stage integrates (see the top of this file).
@@ -94,6 +184,14 @@ struct RailFriction {
   /// friction is g(s) of a lagged slip speed s, T_m s' = |v| - s (s = 0 at rest); 0 = no
   /// memory, g(|v|). Steady sliding has s = |v|, so the steady law does not depend on T_m.
   double memory_time_s = 0.02;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(coulomb_mps2));
+    a->Visit(SYSID_NVP(static_mps2));
+    a->Visit(SYSID_NVP(stribeck_velocity_mps));
+    a->Visit(SYSID_NVP(memory_time_s));
+  }
   /// [m/s^2] g(|v|) = Fc + (Fs - Fc) exp(-(v / vs)^2), the sliding friction magnitude.
   double Sliding(double speed_mps) const;
   /// [m/s^2 / (m/s)] g'(s), the slope of Sliding at speed s >= 0.
@@ -110,6 +208,16 @@ struct MotorParameters {
   /// [m/s^2] L >= 0: the fingertips' thrust saturates at the contact's friction limit,
   /// T(y) = L tanh(y / L) of the linear droop y = p (v_f - v); 0: no limit (T(y) = y).
   double thrust_limit_mps2 = 0;
+  /// The fields, in file order (sysid/serialize.hpp; the file leaves out a thrust limit of 0).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(pole_per_s));
+    a->Visit(SYSID_NVP(dead_zone_forward_v));
+    a->Visit(SYSID_NVP(dead_zone_backward_v));
+    a->Visit(SYSID_NVP(speed_map_in_v));
+    a->Visit(SYSID_NVP(speed_map_out_mps));
+    a->Visit(SYSID_NVP(thrust_limit_mps2));
+  }
   /// T(y) and its slope dT/dy.
   double Thrust(double y) const;
   double ThrustSlope(double y) const;
@@ -135,6 +243,15 @@ struct DriveHysteresis {
   std::vector<double> rate_weights_s_per_v;  ///< s_i [s/V] >= 0: weight per V/s of input rate
   double rate_time_constant_s = 0.01;  ///< [s] tau >= 0: the rate's relaxation (0: last step)
   double asymmetry = 0;  ///< alpha [1] in (-1, 1): rising bands (1 + alpha) r, falling (1 - alpha) r
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(thresholds_v));
+    a->Visit(SYSID_NVP(weights));
+    a->Visit(SYSID_NVP(rate_weights_s_per_v));
+    a->Visit(SYSID_NVP(rate_time_constant_s));
+    a->Visit(SYSID_NVP(asymmetry));
+  }
   bool enabled() const { return !thresholds_v.empty(); }
   /// [V] sum w_i r_i (1 + alpha) (rising) or (1 - alpha) (falling): the held lag.
   double HeldLag(bool rising) const;
@@ -160,6 +277,13 @@ struct DriveCreep {
   double voltage_share = 0;      ///< k_v [1] in [0, 1): the voltage's share that arrives late
   double loop_share = 0;         ///< k_l [1] in [0, 1): the hysteresis lag's share that relaxes
   double time_constant_s = 0.1;  ///< T_c [s] in (0, 100]: the relaxation's time constant
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(voltage_share));
+    a->Visit(SYSID_NVP(loop_share));
+    a->Visit(SYSID_NVP(time_constant_s));
+  }
   bool enabled() const { return voltage_share > 0 || loop_share > 0; }
 };
 
@@ -170,11 +294,22 @@ struct VelocitySourcePlant {
   RailFriction rail;
   DriveHysteresis hysteresis;  ///< before the lag (file: drive.hysteresis, when enabled)
   DriveCreep creep;            ///< after the hysteresis (file: drive.creep, when enabled)
+  /// The fields (sysid/serialize.hpp); the file writes motor and rail as sections and the
+  /// hysteresis and creep inside "drive", each only when enabled.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(motor));
+    a->Visit(SYSID_NVP(rail));
+    a->Visit(SYSID_NVP(hysteresis));
+    a->Visit(SYSID_NVP(creep));
+  }
 
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE" (FIELD as
-  /// the stage file's path: motor.pole_per_s, hysteresis.weights[2], ...); `saturation_v` [V] is
-  /// the driver's clip, which the dead zones must stay below.
-  void Validate(double saturation_v) const;
+  /// the stage file's path: motor.pole_per_s, hysteresis.weights[2], ...).
+  void Validate() const;
+  /// The rules over the shared driver: the dead zones below its clip saturation_v (OptionsError
+  /// as Validate).
+  void ValidateWithDriver(const DriverSettings& driver) const;
   double NoLoadSpeed(double u_v) const;  ///< [m/s] v_f(u) of the motor (0 in the dead zone)
   /// [m/s] steady sliding velocity under a held voltage u_v [V] (clipped by the DAC and the
   /// driver) reached from 0 V: T(p (|v_f| - s)) = g(s) by bisection, 0 when |T(p v_f)| <= Fs;
@@ -203,9 +338,24 @@ struct ActuatorDelayPlant {
   double bristle_damping_per_s = 1000;    ///< [1/s] s1 >= 0
   FrictionBranch forward;                 ///< branch for v > 0
   FrictionBranch backward;                ///< branch for v < 0 (all values positive)
+  /// The fields (sysid/serialize.hpp); the file writes the force actuator's (gain, dead zone,
+  /// map as map_in_v / map_out_v) in "drive" and the rest in "friction".
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(gain_mps2_per_v));
+    a->Visit(SYSID_NVP(dead_zone_v));
+    a->Visit(SYSID_NVP(drive_map_in_v));
+    a->Visit(SYSID_NVP(drive_map_out_v));
+    a->Visit(SYSID_NVP(bristle_stiffness_per_s2));
+    a->Visit(SYSID_NVP(bristle_damping_per_s));
+    a->Visit(SYSID_NVP(forward));
+    a->Visit(SYSID_NVP(backward));
+  }
 
-  /// As VelocitySourcePlant::Validate (the dead zone below `saturation_v` [V]).
-  void Validate(double saturation_v) const;
+  /// As VelocitySourcePlant::Validate.
+  void Validate() const;
+  /// The dead zone below the driver's clip saturation_v (OptionsError naming saturation_v).
+  void ValidateWithDriver(const DriverSettings& driver) const;
   /// The static drive characteristic M(u) [V] (linear extrapolation beyond the end knots).
   double DriveMap(double u_v) const;
   /// [m/s] steady sliding velocity under a held voltage u_v [V] (clipped by the DAC and the
@@ -221,37 +371,9 @@ struct StageParameters {
   std::string name = "virtual PLS8/HR-8 (velocity source)";
   /// The plant's own parameters; which one is held is the stage's model().
   std::variant<VelocitySourcePlant, ActuatorDelayPlant> plant;
-  // Driver (both plants: saturation, transport delay, lag).
-  double saturation_v = 10.0;           ///< [V] driver input clip, > 0 and above the dead zones
-  double transport_delay_s = 0.0;       ///< [s] >= 0, any multiple of the sample time
-  double lag_time_constant_s = 0.0003;  ///< [s] T > 0, first-order lag of the drive
-  // Rig.
-  /// [Hz] control rate: the DAC hold, the encoder's reads and the controller's loop, > 0
-  /// (file: rig.control_rate_hz, or rig.sample_rate_hz, which sets both rates)
-  double sample_rate_hz = 1000;
-  /// [Hz] the rate of the recordings the procedures return (pulse test, tracking sets,
-  /// waveforms, triangle): every n-th control sample, n = sample_rate_hz / record_rate_hz an
-  /// integer (plain sampling, as a real-time logger's downsampling keeps every n-th value: no
-  /// anti-alias filter, whose delay would shift the delay fact). 0: the control rate.
-  /// File: rig.record_rate_hz.
-  double record_rate_hz = 0;
-  int dac_bits = 16;                   ///< DAC resolution over +-dac_range_v, 1..32
-  double dac_range_v = 10.0;           ///< [V] DAC output range +-dac_range_v
-  double encoder_resolution_m = 1e-7;  ///< [m] q > 0
-  double position_noise_m = 3e-8;      ///< [m] standard deviation of the reading noise, >= 0
-  double travel_min_m = -0.0575;       ///< [m] lower end stop
-  double travel_max_m = 0.0575;        ///< [m] upper end stop, > travel_min_m
-  double max_velocity_mps = 0.23;      ///< [m/s] rated speed; exceeding it is reported
-  double initial_position_m = 0.0;     ///< [m] position at t = 0, inside the travel
-  // Integrator (SUNDIALS CVODE, BDF).
-  double relative_tolerance = 1e-7;     ///< CVODE rtol, in (0, 1e-2]
-  double position_tolerance_m = 1e-10;  ///< [m] CVODE atol of x and z (v, w scaled by 1/Ts)
-  /// The integrator's work budget per control sample: CVODE steps plus stick-slip and end-stop
-  /// switches. A sample that needs more ends the run with NumericalError naming the time and
-  /// the state (a stage that cannot be integrated fails, it never hangs). >= 10.
-  /// File: integrator.max_steps_per_sample (written only when not the default).
-  int max_steps_per_sample = kDefaultMaxStepsPerSample;
-  static constexpr int kDefaultMaxStepsPerSample = 20000;
+  DriverSettings driver;
+  RigSettings rig;
+  IntegratorSettings integrator;
 
   StageModel model() const;  ///< which plant `plant` holds
   /// The plant's parameters; OptionsError naming the stage's model when it holds the other.
@@ -261,7 +383,8 @@ struct StageParameters {
   const ActuatorDelayPlant& actuator_delay() const;
 
   /// Throws OptionsError "StageParameters::FIELD = VALUE. Violated constraint: RULE".
-  /// Checks the driver, the rig and the integrator, then the plant (its own Validate).
+  /// Checks the driver, the rig and the integrator, then the plant (its own Validate) and the
+  /// plant over the driver (ValidateWithDriver: its dead zones below the clip).
   void Validate() const;
   /// The calibrated virtual stage (identical to datasets/virtual/stage.json): the preset
   /// "drive-hysteresis", VelocitySource() plus the ceramic's asymmetric play operators whose
@@ -288,12 +411,12 @@ struct StageParameters {
   static const std::vector<std::string>& PresetNames();
   /// PresetNames() for messages: "virtual (= drive-hysteresis), velocity-source, …".
   static std::string PresetNameList();
-  /// [s] 1 / sample_rate_hz, the control period.
-  double sample_time_s() const { return 1.0 / sample_rate_hz; }
-  /// [Hz] the recordings' rate: record_rate_hz, or sample_rate_hz when that is 0.
-  double RecordRateHz() const { return record_rate_hz > 0 ? record_rate_hz : sample_rate_hz; }
-  /// Control samples per recorded sample, sample_rate_hz / RecordRateHz() (>= 1).
-  long RecordStride() const;
+  /// [s] rig.sample_time_s(), the control period.
+  double sample_time_s() const { return rig.sample_time_s(); }
+  /// [Hz] rig.RecordRateHz(), the recordings' rate.
+  double RecordRateHz() const { return rig.RecordRateHz(); }
+  /// rig.RecordStride(), control samples per recorded sample.
+  long RecordStride() const { return rig.RecordStride(); }
   /// [m/s] steady sliding velocity under a constant voltage reached from rest (ignoring noise
   /// and limits): u_v clipped by the DAC's range and the driver, then the plant's
   /// SteadyVelocity.

@@ -35,15 +35,15 @@ void SmoothProfileOptions::Validate() const {
 }
 
 PositionReference MakeStageProfile(const StageParameters& stage, SmoothProfileOptions options) {
-  options.sample_rate_hz = stage.sample_rate_hz;
+  options.sample_rate_hz = stage.rig.sample_rate_hz;
   // The stroke must fit the stage's travel from where it starts.
-  const double end = stage.initial_position_m + options.amplitude_m;
-  if (!(end >= stage.travel_min_m && end <= stage.travel_max_m))
+  const double end = stage.rig.initial_position_m + options.amplitude_m;
+  if (!(end >= stage.rig.travel_min_m && end <= stage.rig.travel_max_m))
     internal::FailOption(
         "SmoothProfileOptions", "amplitude_m", fmt::format("{} m", options.amplitude_m),
         fmt::format("the stroke from the start position {} m stays within the "
                     "stage's travel [{}, {}] m",
-                    stage.initial_position_m, stage.travel_min_m, stage.travel_max_m));
+                    stage.rig.initial_position_m, stage.rig.travel_min_m, stage.rig.travel_max_m));
   return MakeSmoothProfile(options);
 }
 

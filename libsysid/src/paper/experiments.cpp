@@ -78,7 +78,7 @@ SmoothProfileOptions Experiments::Profile(double frequency_hz) const {
   p.frequency_hz = frequency_hz;
   p.amplitude_m = o_.track_amplitude_m;
   p.cycles = o_.track_cycles;
-  p.sample_rate_hz = stage_.sample_rate_hz;
+  p.sample_rate_hz = stage_.rig.sample_rate_hz;
   return p;
 }
 

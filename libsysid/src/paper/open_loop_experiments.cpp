@@ -37,7 +37,7 @@ const DominanceResult& Experiments::Dominance() {
   Step("sinusoidal dominance test (open loop)");
   // The stage runs at the control rate; the analysis reads the record rate's samples (every
   // stride-th), as the paper's differentiation of its logged encoder positions.
-  const double rate = stage_.sample_rate_hz, record_rate = stage_.RecordRateHz();
+  const double rate = stage_.rig.sample_rate_hz, record_rate = stage_.RecordRateHz();
   const long stride = stage_.RecordStride();
   const auto n = static_cast<Eigen::Index>(std::llround(o_.dominance_duration_s * record_rate)) + 1;
   // One lead-in period first: the input starts at 1.5 sin(-pi/2) - 0.3 = -1.8 V, a step from
@@ -65,7 +65,7 @@ const DominanceResult& Experiments::Dominance() {
 // recording.
 LoopSine Experiments::SineLoop(double amplitude_v, double frequency_hz,
                                std::uint64_t stream) const {
-  const double rate = stage_.sample_rate_hz, record_rate = stage_.RecordRateHz();
+  const double rate = stage_.rig.sample_rate_hz, record_rate = stage_.RecordRateHz();
   const long stride = stage_.RecordStride();
   const auto period = static_cast<Eigen::Index>(std::llround(record_rate / frequency_hz));
   Eigen::VectorXd u(2 * period * stride + 1);

@@ -372,10 +372,11 @@ struct PipelineRun {
         std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
                                                FeedforwardScheme::kAnalytic};
         if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
-        TrackAtEachFrequency(stage.sample_rate_hz, &r.tracking, [&](const PositionReference& ref) {
-          return TrackSchemes(stage, 1, ref, options.pi, schemes,
-                              {&r.model, pulses_only ? nullptr : &r.network});
-        });
+        TrackAtEachFrequency(stage.rig.sample_rate_hz, &r.tracking,
+                             [&](const PositionReference& ref) {
+                               return TrackSchemes(stage, 1, ref, options.pi, schemes,
+                                                   {&r.model, pulses_only ? nullptr : &r.network});
+                             });
         for (const TrackingRow& row : r.tracking)
           if (row.scheme == "none") RingingTrace(row, r.figures);
       });

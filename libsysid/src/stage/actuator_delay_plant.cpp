@@ -56,7 +56,7 @@ void ValidateDriveMap(const std::vector<double>& in, const std::vector<double>& 
 
 }  // namespace
 
-void ActuatorDelayPlant::Validate(double saturation_v) const {
+void ActuatorDelayPlant::Validate() const {
   const struct {
     const char* field;
     double value;
@@ -67,8 +67,6 @@ void ActuatorDelayPlant::Validate(double saturation_v) const {
   for (const auto& f : finite) StageRequireFinite(f.field, f.value);
   StageRequire(gain_mps2_per_v > 0, "gain_mps2_per_v", gain_mps2_per_v, "gain_mps2_per_v > 0");
   StageRequire(dead_zone_v >= 0, "dead_zone_v", dead_zone_v, "dead_zone_v >= 0");
-  StageRequire(saturation_v > dead_zone_v, "saturation_v", saturation_v,
-               "saturation_v > dead_zone_v (" + StageFmt(dead_zone_v) + ")");
   StageRequire(bristle_stiffness_per_s2 > 0, "bristle_stiffness_per_s2", bristle_stiffness_per_s2,
                "bristle_stiffness_per_s2 > 0");
   StageRequire(bristle_damping_per_s >= 0, "bristle_damping_per_s", bristle_damping_per_s,
@@ -76,6 +74,11 @@ void ActuatorDelayPlant::Validate(double saturation_v) const {
   ValidateBranch("forward", forward);
   ValidateBranch("backward", backward);
   ValidateDriveMap(drive_map_in_v, drive_map_out_v);
+}
+
+void ActuatorDelayPlant::ValidateWithDriver(const DriverSettings& driver) const {
+  StageRequire(driver.saturation_v > dead_zone_v, "saturation_v", driver.saturation_v,
+               "saturation_v > dead_zone_v (" + StageFmt(dead_zone_v) + ")");
 }
 
 }  // namespace sysid

@@ -52,7 +52,7 @@ void AddCommonMetadata(Recording& r, const StageParameters& stage, const std::st
   // The recording's own rate; the loop's when it runs faster than the recording.
   r.metadata.emplace_back("sample_rate_hz", Fmt(stage.RecordRateHz()));
   if (stage.RecordStride() > 1)
-    r.metadata.emplace_back("control_rate_hz", Fmt(stage.sample_rate_hz));
+    r.metadata.emplace_back("control_rate_hz", Fmt(stage.rig.sample_rate_hz));
 }
 
 // Every stride-th sample of y from 0 (plain sampling, as a real-time logger's downsampling).
@@ -172,7 +172,7 @@ Recording RunPulseTest(const StageParameters& stage, const PulseProcedure& proce
   stage.Validate();
   derivative.Validate(1.0 / stage.RecordRateHz());
   std::string limits;
-  Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
+  Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.rig.sample_rate_hz), seed,
                                   derivative, "pulses", "pulse test", &limits);
   std::string amps;
   for (double a : procedure.amplitudes_v) amps += (amps.empty() ? "" : " ") + Fmt(a);
@@ -222,9 +222,9 @@ Recording RunTriangleTest(const StageParameters& stage, const TriangleProcedure&
   stage.Validate();
   derivative.Validate(1.0 / stage.RecordRateHz());
   std::string limits;
-  Recording r = OpenLoopRecording(stage, procedure.Voltage(stage.sample_rate_hz), seed,
-                                  derivative, "triangle",
-                                  "open-loop triangle (voltage-velocity loop)", &limits);
+  Recording r =
+      OpenLoopRecording(stage, procedure.Voltage(stage.rig.sample_rate_hz), seed, derivative,
+                        "triangle", "open-loop triangle (voltage-velocity loop)", &limits);
   r.metadata.emplace_back("triangle", "period " + Fmt(procedure.period_s) + " s, peaks +" +
                                           Fmt(procedure.peak_forward_v) + " / -" +
                                           Fmt(procedure.peak_backward_v) + " V, " +
@@ -255,9 +255,10 @@ void CheckWaveform(const VelocityWaveform& w, const StageParameters& stage) {
   for (const auto& t : w.terms)
     if (!(t.omega_rad_s > 0))
       Violated("", "waveform '" + w.name + "' omega_rad_s", t.omega_rad_s, "omega_rad_s > 0");
-  if (w.PeakVelocity() > stage.max_velocity_mps)
-    Violated("", "waveform '" + w.name + "' peak velocity [m/s]", w.PeakVelocity(),
-             "peak velocity <= the stage's max_velocity_mps (" + Fmt(stage.max_velocity_mps) + ")");
+  if (w.PeakVelocity() > stage.rig.max_velocity_mps)
+    Violated(
+        "", "waveform '" + w.name + "' peak velocity [m/s]", w.PeakVelocity(),
+        "peak velocity <= the stage's max_velocity_mps (" + Fmt(stage.rig.max_velocity_mps) + ")");
 }
 
 struct Tracked {
@@ -270,7 +271,7 @@ Tracked Track(const StageParameters& stage, const VelocityWaveform& w,
   CheckWaveform(w, stage);
   // The P loop runs at the control rate; the recording keeps every stride-th sample (cut
   // points and derivatives at the record rate).
-  const double record_rate = stage.RecordRateHz(), rate = stage.sample_rate_hz;
+  const double record_rate = stage.RecordRateHz(), rate = stage.rig.sample_rate_hz;
   const long stride = stage.RecordStride();
   const long c0 = Samples(procedure.lead_cycles * w.period_s, record_rate);
   const long c1 =
@@ -284,8 +285,8 @@ Tracked Track(const StageParameters& stage, const VelocityWaveform& w,
     x_ref[k] = w.Position(t);
     v_ref[k] = w.Velocity(t);
     x[k] = plant.measured_position_m();
-    u[k] =
-        std::clamp(procedure.kp_v_per_m * (x_ref[k] - x[k]), -stage.dac_range_v, stage.dac_range_v);
+    u[k] = std::clamp(procedure.kp_v_per_m * (x_ref[k] - x[k]), -stage.rig.dac_range_v,
+                      stage.rig.dac_range_v);
     plant.Step(u[k]);
   }
   // Derivatives over the whole run, then the cut: the filter sees real samples on both sides

@@ -1,21 +1,30 @@
 // The stage file: JSON with the unit in every key, grouped as model, drive, motor + rail
-// (velocity source) or friction (actuator delay), rig, integrator. Unknown keys are errors so that a typo never silently leaves a default.
+// (velocity source) or friction (actuator delay), rig, integrator. A section's keys are the
+// fields of the structs it holds (their Serialize, sysid/serialize.hpp), read and written
+// through the field archives (core/json_fields.hpp); the file's layout (which section holds
+// which struct's fields) is this file's. Unknown keys are errors so that a typo never silently
+// leaves a default.
 #include <algorithm>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_output.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/stage.hpp"
 
 namespace sysid {
 namespace {
+
+using internal::JsonNode;
+using Keys = std::vector<std::string>;
+using OJ = nlohmann::ordered_json;
 
 constexpr double kMaxStageSampleRateHz = 1e6;
 // Why a key or section is required: said in every such message.
@@ -24,37 +33,147 @@ std::string CompleteRule() {
          StageParameters::PresetNameList() + ") whose values fill what it leaves out";
 }
 
-// Reads the object `node`, whose keys must all be in `numbers`, `ints`, `arrays` or `objects`
-// (handled by the caller). With `complete` (a file that names no "preset") every key but those
-// in `optional` must be written; otherwise keys left out keep the preset's value.
-struct Section {
-  std::vector<std::pair<const char*, double*>> numbers;
-  std::vector<std::pair<const char*, int*>> ints;
-  std::vector<std::pair<const char*, std::vector<double>*>> arrays;
-  std::vector<const char*> objects;
+// The key of a struct's field in one section of the file; empty when the field is elsewhere.
+using KeyOf = std::string (*)(const std::string& field);
+std::string SameKey(const std::string& field) { return field; }
 
-  void Read(const internal::JsonNode& node, bool complete,
-            const std::vector<std::string>& optional = {}) const {
-    std::vector<std::string> known;
-    for (const auto& n : numbers) known.push_back(n.first);
-    for (const auto& n : ints) known.push_back(n.first);
-    for (const auto& n : arrays) known.push_back(n.first);
-    for (const char* n : objects) known.push_back(n);
-    node.ExpectObject(known, {"units", "note"});
-    for (const auto& [k, target] : numbers)
-      if (node.Has(k)) *target = node.Get(k).Number();
-    for (const auto& [k, target] : ints)
-      if (node.Has(k))
-        *target = static_cast<int>(node.Get(k).Integer(std::numeric_limits<int>::min(),
-                                                       std::numeric_limits<int>::max()));
-    for (const auto& [k, target] : arrays)
-      if (node.Has(k)) *target = node.Get(k).Numbers();
-    if (!complete) return;
-    for (const auto& k : known)
-      if (!node.Has(k) && std::find(optional.begin(), optional.end(), k) == optional.end())
-        node.Fail("missing required key '" + k + "' (" + CompleteRule() + ")");
+// The actuator-delay plant's force actuator is written in "drive": its gain and dead zone
+// before the driver's keys, its map after them without the "drive_" prefix; its LuGre rail
+// (the other fields) in "friction".
+std::string ActuatorHeadKey(const std::string& field) {
+  return field == "gain_mps2_per_v" || field == "dead_zone_v" ? field : "";
+}
+std::string ActuatorMapKey(const std::string& field) {
+  return field.rfind("drive_", 0) == 0 ? field.substr(6) : "";
+}
+std::string ActuatorDriveKey(const std::string& field) {
+  const std::string head = ActuatorHeadKey(field);
+  return head.empty() ? ActuatorMapKey(field) : head;
+}
+std::string FrictionKey(const std::string& field) {
+  return ActuatorDriveKey(field).empty() ? field : "";
+}
+// The rig's two rates are written as the file's rate keys (FileRates), the rest as they are.
+std::string RigKey(const std::string& field) {
+  return field == "sample_rate_hz" || field == "record_rate_hz" ? "" : field;
+}
+
+// The rig's rates as a file gives them: sample_rate_hz sets the control and the record rate
+// alike (files written before the two rates existed); control_rate_hz and record_rate_hz set
+// them apart.
+struct FileRates {
+  double sample_rate_hz = 0;
+  double control_rate_hz = 0;
+  double record_rate_hz = 0;
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(sample_rate_hz));
+    a->Visit(SYSID_NVP(control_rate_hz));
+    a->Visit(SYSID_NVP(record_rate_hz));
   }
 };
+
+// The fields of a struct that one section holds (`key_of`).
+template <class T>
+struct Share {
+  T* fields;
+  KeyOf key_of;
+};
+template <class T>
+Share<T> ShareOf(T& fields, KeyOf key_of = SameKey) {
+  return {&fields, key_of};
+}
+
+class KeyArchive {
+ public:
+  explicit KeyArchive(KeyOf key_of) : key_of_(key_of) {}
+  template <class V>
+  void Visit(const NameValue<V>& nv) {
+    std::string key = key_of_(nv.name());
+    if (!key.empty()) keys.push_back(std::move(key));
+  }
+  Keys keys;
+
+ private:
+  KeyOf key_of_;
+};
+
+// The keys of a share, in Serialize order.
+template <class T>
+Keys KeysOf(const Share<T>& share) {
+  KeyArchive a(share.key_of);
+  share.fields->Serialize(&a);  // visits the names only
+  return std::move(a.keys);
+}
+
+// The keys of the actuator delay's force actuator in "drive" (map_in_v, not drive_map_in_v).
+const Keys& ActuatorDriveKeys() {
+  static const Keys keys = [] {
+    ActuatorDelayPlant plant;
+    return KeysOf(ShareOf(plant, ActuatorDriveKey));
+  }();
+  return keys;
+}
+
+template <class... T>
+void ReadSection(const JsonNode& node, bool complete, const Keys& optional, const Keys& blocks,
+                 const Share<T>&... shares);
+
+// Reads each key of a share that the section holds over its field; a described field (a
+// friction branch) is a section of its own.
+class ShareReadArchive {
+ public:
+  ShareReadArchive(const JsonNode& node, KeyOf key_of, bool complete)
+      : node_(node), key_of_(key_of), complete_(complete) {}
+  template <class V>
+  void Visit(const NameValue<V>& nv) {
+    const std::string key = key_of_(nv.name());
+    if (key.empty()) return;
+    if constexpr (internal::IsDescribed<V>::value) {
+      if (node_.Has(key)) ReadSection(node_.Get(key), complete_, {}, {}, ShareOf(*nv.value()));
+    } else {
+      internal::ReadField(node_, key.c_str(), *nv.value(), nv.form());
+    }
+  }
+
+ private:
+  JsonNode node_;
+  KeyOf key_of_;
+  bool complete_;
+};
+
+// Reads the object `node`, whose keys must all be the shares' or in `blocks` (objects the
+// caller reads), besides the comments "units" and "note". With `complete` (a file that names no
+// "preset") every share's key but those in `optional` must be written; otherwise keys left out
+// keep the preset's value.
+template <class... T>
+void ReadSection(const JsonNode& node, bool complete, const Keys& optional, const Keys& blocks,
+                 const Share<T>&... shares) {
+  Keys fields;
+  for (Keys share : {KeysOf(shares)...}) fields.insert(fields.end(), share.begin(), share.end());
+  Keys known = fields;
+  known.insert(known.end(), blocks.begin(), blocks.end());
+  node.ExpectObject(known, {"units", "note"});
+  auto read = [&](const auto& share) {
+    ShareReadArchive a(node, share.key_of, complete);
+    share.fields->Serialize(&a);
+  };
+  (read(shares), ...);
+  if (!complete) return;
+  for (const std::string& k : fields)
+    if (!node.Has(k) && std::find(optional.begin(), optional.end(), k) == optional.end())
+      node.Fail("missing required key '" + k + "' (" + CompleteRule() + ")");
+}
+
+// Writes the keys of a share into `section`, in Serialize order.
+template <class T>
+void WriteShare(const Share<T>& share, OJ& section) {
+  const OJ all = internal::WriteFields(*share.fields);
+  for (auto it = all.begin(); it != all.end(); ++it) {
+    const std::string key = share.key_of(it.key());
+    if (!key.empty()) section[key] = it.value();
+  }
+}
 
 // The JSON pointer of the StageParameters field an OptionsError names (its field():
 // "forward.coulomb_mps2", "drive_map_in_v[3]", "sample_rate_hz"); empty when not in the file.
@@ -70,20 +189,6 @@ std::string FieldPointer(const internal::JsonDocument& doc, const std::string& f
   if (p.empty() && suffix.rfind("/drive_", 0) == 0) p = doc.FindSuffix("/" + suffix.substr(7));
   return p;
 }
-
-Section BranchSection(FrictionBranch& b) {
-  return Section{{{"coulomb_mps2", &b.coulomb_mps2},
-                  {"static_mps2", &b.static_mps2},
-                  {"stribeck_velocity_mps", &b.stribeck_velocity_mps},
-                  {"viscous_per_s", &b.viscous_per_s}},
-                 {},
-                 {},
-                 {}};
-}
-
-}  // namespace
-
-namespace {
 
 // The model a file describes: its "model" key, else inferred from its sections (files written
 // before the key existed describe the actuator-delay stage and carry "friction" or the drive's
@@ -108,7 +213,7 @@ StageModel FileModel(const internal::JsonNode& root, const StageParameters* pres
   }
   if (j.contains("friction")) return StageModel::kActuatorDelay;
   if (j.contains("drive") && j["drive"].is_object())
-    for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
+    for (const std::string& k : ActuatorDriveKeys())
       if (j["drive"].contains(k)) return StageModel::kActuatorDelay;
   return StageModel::kVelocitySource;
 }
@@ -116,10 +221,10 @@ StageModel FileModel(const internal::JsonNode& root, const StageParameters* pres
 }  // namespace
 
 // Long function: the stage file's schema, read section by section in the file's order, each
-// section's keys next to the fields they set.
+// section naming the structs whose fields it holds.
 StageParameters ParseStageParameters(std::string_view json_text, const std::string& source) {
   const internal::JsonDocument doc(json_text, source);
-  const internal::JsonNode root = doc.Root();
+  const JsonNode root = doc.Root();
   root.ExpectObject(
       {"name", "preset", "model", "drive", "motor", "rail", "friction", "rig", "integrator"},
       {"units", "note"});
@@ -127,7 +232,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   // it the file must be complete (a missing section or key is an error, never a default).
   std::optional<StageParameters> preset;
   if (root.Has("preset")) {
-    const internal::JsonNode at = root.Get("preset");
+    const JsonNode at = root.Get("preset");
     const std::string name = at.String();
     if (!StageParameters::IsPresetName(name))
       at.Expected("a preset name (" + StageParameters::PresetNameList() + ")");
@@ -149,7 +254,7 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     vsp->creep = DriveCreep{};
   }
   const std::string model_name = ToString(model);
-  auto other_model = [&](const internal::JsonNode& at) {
+  auto other_model = [&](const JsonNode& at) {
     const std::string key = at.pointer().substr(at.pointer().rfind('/') + 1);
     throw InputError(doc.Where(at.pointer()) + ": key '" + key + "' belongs to the " +
                      (vs ? "actuator-delay" : "velocity-source") + " model; this stage's model is " +
@@ -159,128 +264,62 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
     if (key == "units" || key == "note" || key == "model" || key == "preset" ||
         (!key.empty() && key[0] == '_'))
       continue;
+    const JsonNode section = root.Get(key);
     if (key == "name") {
-      p.name = root.Get(key).String();
+      p.name = section.String();
     } else if (key == "drive") {
       if (vs && value.is_object())
-        for (const char* k : {"gain_mps2_per_v", "dead_zone_v", "map_in_v", "map_out_v"})
-          if (value.contains(k)) other_model(root.Get(key).Get(k));
+        for (const std::string& k : ActuatorDriveKeys())
+          if (value.contains(k)) other_model(section.Get(k));
       // The driver's shared keys, and the actuator delay's force actuator in the same block.
-      Section drive{{{"saturation_v", &p.saturation_v},
-                     {"transport_delay_s", &p.transport_delay_s},
-                     {"lag_time_constant_s", &p.lag_time_constant_s}},
-                    {},
-                    {},
-                    {"hysteresis", "creep"}};
-      if (adp) {
-        drive.numbers.insert(drive.numbers.begin(), {{"gain_mps2_per_v", &adp->gain_mps2_per_v},
-                                                     {"dead_zone_v", &adp->dead_zone_v}});
-        drive.arrays = {{"map_in_v", &adp->drive_map_in_v}, {"map_out_v", &adp->drive_map_out_v}};
+      const Keys blocks = {"hysteresis", "creep"};
+      if (adp)
+        ReadSection(section, complete, {}, blocks, ShareOf(*adp, ActuatorHeadKey),
+                    ShareOf(p.driver), ShareOf(*adp, ActuatorMapKey));
+      else
+        ReadSection(section, complete, {}, blocks, ShareOf(p.driver));
+      // The ceramic's hysteresis and creep (velocity source only); a file without a block has
+      // none.
+      if (section.Has("hysteresis")) {
+        if (!vsp) other_model(section.Get("hysteresis"));
+        ReadSection(section.Get("hysteresis"), complete, {}, {}, ShareOf(vsp->hysteresis));
       }
-      drive.Read(root.Get(key), complete, {"hysteresis", "creep"});
-      if (root.Get(key).Has("hysteresis")) {
-        // The ceramic's hysteresis (velocity source only); a file without the block has none.
-        const internal::JsonNode h = root.Get(key).Get("hysteresis");
-        if (!vsp) other_model(h);
-        DriveHysteresis& dh = vsp->hysteresis;
-        Section{{{"rate_time_constant_s", &dh.rate_time_constant_s}, {"asymmetry", &dh.asymmetry}},
-                {},
-                {{"thresholds_v", &dh.thresholds_v},
-                 {"weights", &dh.weights},
-                 {"rate_weights_s_per_v", &dh.rate_weights_s_per_v}},
-                {}}
-            .Read(h, complete);
-      }
-      if (root.Get(key).Has("creep")) {
-        // The ceramic's creep (velocity source only); a file without the block has none.
-        const internal::JsonNode c = root.Get(key).Get("creep");
-        if (!vsp) other_model(c);
-        DriveCreep& dc = vsp->creep;
-        Section{{{"voltage_share", &dc.voltage_share},
-                 {"loop_share", &dc.loop_share},
-                 {"time_constant_s", &dc.time_constant_s}},
-                {},
-                {},
-                {}}
-            .Read(c, complete);
+      if (section.Has("creep")) {
+        if (!vsp) other_model(section.Get("creep"));
+        ReadSection(section.Get("creep"), complete, {}, {}, ShareOf(vsp->creep));
       }
     } else if (key == "motor") {
-      if (!vsp) other_model(root.Get(key));
-      MotorParameters& motor = vsp->motor;
-      Section{{{"pole_per_s", &motor.pole_per_s},
-               {"dead_zone_forward_v", &motor.dead_zone_forward_v},
-               {"dead_zone_backward_v", &motor.dead_zone_backward_v},
-               {"thrust_limit_mps2", &motor.thrust_limit_mps2}},
-              {},
-              {{"speed_map_in_v", &motor.speed_map_in_v},
-               {"speed_map_out_mps", &motor.speed_map_out_mps}},
-              {}}
-          .Read(root.Get(key), complete, {"thrust_limit_mps2"});
+      if (!vsp) other_model(section);
+      ReadSection(section, complete, {"thrust_limit_mps2"}, {}, ShareOf(vsp->motor));
     } else if (key == "rail") {
-      if (!vsp) other_model(root.Get(key));
-      RailFriction& rail = vsp->rail;
-      Section{{{"coulomb_mps2", &rail.coulomb_mps2},
-               {"static_mps2", &rail.static_mps2},
-               {"stribeck_velocity_mps", &rail.stribeck_velocity_mps},
-               {"memory_time_s", &rail.memory_time_s}},
-              {},
-              {},
-              {}}
-          .Read(root.Get(key), complete, {"memory_time_s"});
+      if (!vsp) other_model(section);
+      ReadSection(section, complete, {"memory_time_s"}, {}, ShareOf(vsp->rail));
     } else if (key == "friction") {
-      if (!adp) other_model(root.Get(key));
-      Section{{{"bristle_stiffness_per_s2", &adp->bristle_stiffness_per_s2},
-               {"bristle_damping_per_s", &adp->bristle_damping_per_s}},
-              {},
-              {},
-              {"forward", "backward"}}
-          .Read(root.Get(key), complete);
-      if (root.Get(key).Has("forward"))
-        BranchSection(adp->forward).Read(root.Get(key).Get("forward"), complete);
-      if (root.Get(key).Has("backward"))
-        BranchSection(adp->backward).Read(root.Get(key).Get("backward"), complete);
+      if (!adp) other_model(section);
+      ReadSection(section, complete, {}, {}, ShareOf(*adp, FrictionKey));
     } else if (key == "rig") {
-      // The rates: sample_rate_hz sets the control and the record rate alike (files written
-      // before the two rates existed); control_rate_hz and record_rate_hz set them apart.
-      const internal::JsonNode rig = root.Get(key);
-      double alias = p.sample_rate_hz, control = p.sample_rate_hz, record = p.record_rate_hz;
-      if (rig.Has("sample_rate_hz"))
+      if (section.Has("sample_rate_hz"))
         for (const char* other : {"control_rate_hz", "record_rate_hz"})
-          if (rig.Has(other))
-            rig.Get(other).Fail(std::string("give rig.sample_rate_hz (it sets both rates) or "
-                                            "rig.control_rate_hz and rig.record_rate_hz, not "
-                                            "both; found sample_rate_hz and ") + other);
-      Section{{{"sample_rate_hz", &alias},
-               {"control_rate_hz", &control},
-               {"record_rate_hz", &record},
-               {"dac_range_v", &p.dac_range_v},
-               {"encoder_resolution_m", &p.encoder_resolution_m},
-               {"position_noise_m", &p.position_noise_m},
-               {"travel_min_m", &p.travel_min_m},
-               {"travel_max_m", &p.travel_max_m},
-               {"max_velocity_mps", &p.max_velocity_mps},
-               {"initial_position_m", &p.initial_position_m}},
-              {{"dac_bits", &p.dac_bits}},
-              {},
-              {}}
-          .Read(rig, complete, {"sample_rate_hz", "control_rate_hz", "record_rate_hz"});
-      if (complete && !rig.Has("sample_rate_hz") && !rig.Has("control_rate_hz"))
-        rig.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
-                 CompleteRule() + ")");
-      if (rig.Has("sample_rate_hz")) {
-        p.sample_rate_hz = alias;
-        p.record_rate_hz = 0;  // the control rate
+          if (section.Has(other))
+            section.Get(other).Fail(std::string("give rig.sample_rate_hz (it sets both rates) or "
+                                                "rig.control_rate_hz and rig.record_rate_hz, not "
+                                                "both; found sample_rate_hz and ") +
+                                    other);
+      FileRates rates{p.rig.sample_rate_hz, p.rig.sample_rate_hz, p.rig.record_rate_hz};
+      ReadSection(section, complete, KeysOf(ShareOf(rates)), {}, ShareOf(rates),
+                  ShareOf(p.rig, RigKey));
+      if (complete && !section.Has("sample_rate_hz") && !section.Has("control_rate_hz"))
+        section.Fail(std::string("missing required key 'sample_rate_hz' (or 'control_rate_hz') (") +
+                     CompleteRule() + ")");
+      if (section.Has("sample_rate_hz")) {
+        p.rig.sample_rate_hz = rates.sample_rate_hz;
+        p.rig.record_rate_hz = 0;  // the control rate
       } else {
-        p.sample_rate_hz = control;
-        p.record_rate_hz = record;
+        p.rig.sample_rate_hz = rates.control_rate_hz;
+        p.rig.record_rate_hz = rates.record_rate_hz;
       }
     } else if (key == "integrator") {
-      Section{{{"relative_tolerance", &p.relative_tolerance},
-               {"position_tolerance_m", &p.position_tolerance_m}},
-              {{"max_steps_per_sample", &p.max_steps_per_sample}},
-              {},
-              {}}
-          .Read(root.Get(key), complete, {"max_steps_per_sample"});
+      ReadSection(section, complete, {"max_steps_per_sample"}, {}, ShareOf(p.integrator));
     }
   }
   if (complete) {
@@ -299,8 +338,8 @@ StageParameters ParseStageParameters(std::string_view json_text, const std::stri
   }
   // A bound beyond the physics that keeps every procedure's work finite (1e12 Hz would ask for
   // terabytes); only a file can set it, so it is reported at its place.
-  if (p.sample_rate_hz > kMaxStageSampleRateHz) {
-    const internal::JsonNode rig = root.Get("rig");
+  if (p.rig.sample_rate_hz > kMaxStageSampleRateHz) {
+    const JsonNode rig = root.Get("rig");
     rig.Get(rig.Has("sample_rate_hz") ? "sample_rate_hz" : "control_rate_hz")
         .Expected("a number in (0, 1e+06] (sample rate [Hz])");
   }
@@ -312,99 +351,48 @@ StageParameters ReadStageParameters(const std::string& path) {
 }
 
 std::string StageParametersToJson(const StageParameters& p) {
-  using OJ = nlohmann::ordered_json;
-  auto branch = [](const FrictionBranch& b) {
-    OJ o;
-    o["coulomb_mps2"] = b.coulomb_mps2;
-    o["static_mps2"] = b.static_mps2;
-    o["stribeck_velocity_mps"] = b.stribeck_velocity_mps;
-    o["viscous_per_s"] = b.viscous_per_s;
-    return o;
-  };
-  const VelocitySourcePlant* const vs = std::get_if<VelocitySourcePlant>(&p.plant);
-  const ActuatorDelayPlant* const ad = std::get_if<ActuatorDelayPlant>(&p.plant);
+  // Copies: a share names its struct's fields through a non-const pointer.
+  StageParameters q = p;
+  VelocitySourcePlant* const vs = std::get_if<VelocitySourcePlant>(&q.plant);
+  ActuatorDelayPlant* const ad = std::get_if<ActuatorDelayPlant>(&q.plant);
   OJ j;
-  j["name"] = p.name;
-  j["model"] = ToString(p.model());
+  j["name"] = q.name;
+  j["model"] = ToString(q.model());
   j["note"] =
       "Virtual piezo stage for libsysid (docs/virtual_stage.md). SI units; each key ends with "
       "its unit (mps = m/s, mps2 = m/s^2, per_s = 1/s, per_s2 = 1/s^2, v = V). Forces are per "
       "unit mass. Only the sections of this model are written.";
-  OJ drive;
-  if (ad) {
-    drive["gain_mps2_per_v"] = ad->gain_mps2_per_v;
-    drive["dead_zone_v"] = ad->dead_zone_v;
-  }
-  drive["saturation_v"] = p.saturation_v;
-  drive["transport_delay_s"] = p.transport_delay_s;
-  drive["lag_time_constant_s"] = p.lag_time_constant_s;
-  if (vs && vs->hysteresis.enabled()) {
-    OJ h;
-    h["thresholds_v"] = vs->hysteresis.thresholds_v;
-    h["weights"] = vs->hysteresis.weights;
-    h["rate_weights_s_per_v"] = vs->hysteresis.rate_weights_s_per_v;
-    h["rate_time_constant_s"] = vs->hysteresis.rate_time_constant_s;
-    h["asymmetry"] = vs->hysteresis.asymmetry;
-    drive["hysteresis"] = h;
-  }
-  if (vs && vs->creep.enabled()) {
-    OJ c;
-    c["voltage_share"] = vs->creep.voltage_share;
-    c["loop_share"] = vs->creep.loop_share;
-    c["time_constant_s"] = vs->creep.time_constant_s;
-    drive["creep"] = c;
-  }
-  if (ad) {
-    drive["map_in_v"] = ad->drive_map_in_v;
-    drive["map_out_v"] = ad->drive_map_out_v;
-  }
+  OJ drive = OJ::object();
+  if (ad) WriteShare(ShareOf(*ad, ActuatorHeadKey), drive);
+  WriteShare(ShareOf(q.driver), drive);
+  if (vs && vs->hysteresis.enabled()) drive["hysteresis"] = internal::WriteFields(vs->hysteresis);
+  if (vs && vs->creep.enabled()) drive["creep"] = internal::WriteFields(vs->creep);
+  if (ad) WriteShare(ShareOf(*ad, ActuatorMapKey), drive);
   j["drive"] = drive;
   if (vs) {
-    OJ motor;
-    motor["pole_per_s"] = vs->motor.pole_per_s;
-    motor["dead_zone_forward_v"] = vs->motor.dead_zone_forward_v;
-    motor["dead_zone_backward_v"] = vs->motor.dead_zone_backward_v;
-    motor["speed_map_in_v"] = vs->motor.speed_map_in_v;
-    motor["speed_map_out_mps"] = vs->motor.speed_map_out_mps;
-    if (vs->motor.thrust_limit_mps2 > 0) motor["thrust_limit_mps2"] = vs->motor.thrust_limit_mps2;
+    OJ motor = internal::WriteFields(vs->motor);
+    if (!(vs->motor.thrust_limit_mps2 > 0)) motor.erase("thrust_limit_mps2");  // 0: no limit
     j["motor"] = motor;
-    OJ rail;
-    rail["coulomb_mps2"] = vs->rail.coulomb_mps2;
-    rail["static_mps2"] = vs->rail.static_mps2;
-    rail["stribeck_velocity_mps"] = vs->rail.stribeck_velocity_mps;
-    rail["memory_time_s"] = vs->rail.memory_time_s;
-    j["rail"] = rail;
+    j["rail"] = internal::WriteFields(vs->rail);
   } else {
-    OJ friction;
-    friction["bristle_stiffness_per_s2"] = ad->bristle_stiffness_per_s2;
-    friction["bristle_damping_per_s"] = ad->bristle_damping_per_s;
-    friction["forward"] = branch(ad->forward);
-    friction["backward"] = branch(ad->backward);
+    OJ friction = OJ::object();
+    WriteShare(ShareOf(*ad, FrictionKey), friction);
     j["friction"] = friction;
   }
-  OJ rig;
+  OJ rig = OJ::object();
   // One rate as before (sample_rate_hz sets both), or the two apart.
-  if (p.record_rate_hz > 0 && p.record_rate_hz != p.sample_rate_hz) {
-    rig["control_rate_hz"] = p.sample_rate_hz;
-    rig["record_rate_hz"] = p.record_rate_hz;
+  if (q.rig.record_rate_hz > 0 && q.rig.record_rate_hz != q.rig.sample_rate_hz) {
+    rig["control_rate_hz"] = q.rig.sample_rate_hz;
+    rig["record_rate_hz"] = q.rig.record_rate_hz;
   } else {
-    rig["sample_rate_hz"] = p.sample_rate_hz;
+    rig["sample_rate_hz"] = q.rig.sample_rate_hz;
   }
-  rig["dac_bits"] = p.dac_bits;
-  rig["dac_range_v"] = p.dac_range_v;
-  rig["encoder_resolution_m"] = p.encoder_resolution_m;
-  rig["position_noise_m"] = p.position_noise_m;
-  rig["travel_min_m"] = p.travel_min_m;
-  rig["travel_max_m"] = p.travel_max_m;
-  rig["max_velocity_mps"] = p.max_velocity_mps;
-  rig["initial_position_m"] = p.initial_position_m;
+  WriteShare(ShareOf(q.rig, RigKey), rig);
   j["rig"] = rig;
-  OJ integ;
-  integ["relative_tolerance"] = p.relative_tolerance;
-  integ["position_tolerance_m"] = p.position_tolerance_m;
-  if (p.max_steps_per_sample != StageParameters::kDefaultMaxStepsPerSample)
-    integ["max_steps_per_sample"] = p.max_steps_per_sample;
-  j["integrator"] = integ;
+  OJ integrator = internal::WriteFields(q.integrator);
+  if (q.integrator.max_steps_per_sample == IntegratorSettings::kDefaultMaxStepsPerSample)
+    integrator.erase("max_steps_per_sample");
+  j["integrator"] = integrator;
   return j.dump(2) + "\n";
 }
 

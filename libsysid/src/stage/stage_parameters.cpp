@@ -112,29 +112,30 @@ StageModel ParseStageModel(const std::string& text) {
   throw OptionsError("stage model '" + text + "' is not one of velocity-source, actuator-delay");
 }
 
-void StageParameters::Validate() const {
+void DriverSettings::Validate() const {
+  StageRequireFinite("saturation_v", saturation_v);
+  StageRequireFinite("transport_delay_s", transport_delay_s);
+  StageRequireFinite("lag_time_constant_s", lag_time_constant_s);
+  StageRequire(saturation_v > 0, "saturation_v", saturation_v, "saturation_v > 0");
+  StageRequire(transport_delay_s >= 0 && transport_delay_s <= 1.0, "transport_delay_s",
+               transport_delay_s, "0 <= transport_delay_s <= 1");
+  StageRequire(lag_time_constant_s > 0, "lag_time_constant_s", lag_time_constant_s,
+               "lag_time_constant_s > 0");
+}
+
+void RigSettings::Validate() const {
   const struct {
     const char* field;
     double value;
-  } finite[] = {{"saturation_v", saturation_v},
-                {"transport_delay_s", transport_delay_s},
-                {"lag_time_constant_s", lag_time_constant_s},
-                {"sample_rate_hz", sample_rate_hz},
+  } finite[] = {{"sample_rate_hz", sample_rate_hz},
                 {"dac_range_v", dac_range_v},
                 {"encoder_resolution_m", encoder_resolution_m},
                 {"position_noise_m", position_noise_m},
                 {"travel_min_m", travel_min_m},
                 {"travel_max_m", travel_max_m},
                 {"max_velocity_mps", max_velocity_mps},
-                {"initial_position_m", initial_position_m},
-                {"relative_tolerance", relative_tolerance},
-                {"position_tolerance_m", position_tolerance_m}};
+                {"initial_position_m", initial_position_m}};
   for (const auto& f : finite) StageRequireFinite(f.field, f.value);
-  StageRequire(saturation_v > 0, "saturation_v", saturation_v, "saturation_v > 0");
-  StageRequire(transport_delay_s >= 0 && transport_delay_s <= 1.0, "transport_delay_s",
-               transport_delay_s, "0 <= transport_delay_s <= 1");
-  StageRequire(lag_time_constant_s > 0, "lag_time_constant_s", lag_time_constant_s,
-               "lag_time_constant_s > 0");
   StageRequire(sample_rate_hz > 0, "sample_rate_hz", sample_rate_hz, "sample_rate_hz > 0");
   StageRequireFinite("record_rate_hz", record_rate_hz);
   StageRequire(record_rate_hz >= 0 && record_rate_hz <= sample_rate_hz, "record_rate_hz",
@@ -148,9 +149,6 @@ void StageParameters::Validate() const {
                      ") is an integer multiple of record_rate_hz (recordings keep every n-th "
                      "sample)");
   }
-  StageRequire(max_steps_per_sample >= 10 && max_steps_per_sample <= 100000000,
-               "max_steps_per_sample", static_cast<double>(max_steps_per_sample),
-               "10 <= max_steps_per_sample <= 1e8");
   StageRequire(dac_bits >= 1 && dac_bits <= 32, "dac_bits", dac_bits, "1 <= dac_bits <= 32");
   StageRequire(dac_range_v > 0, "dac_range_v", dac_range_v, "dac_range_v > 0");
   StageRequire(travel_max_m > travel_min_m, "travel_max_m", travel_max_m,
@@ -167,14 +165,33 @@ void StageParameters::Validate() const {
                "initial_position_m", initial_position_m,
                "travel_min_m <= initial_position_m <= travel_max_m");
   StageRequire(max_velocity_mps > 0, "max_velocity_mps", max_velocity_mps, "max_velocity_mps > 0");
+}
+
+void IntegratorSettings::Validate() const {
+  StageRequireFinite("relative_tolerance", relative_tolerance);
+  StageRequireFinite("position_tolerance_m", position_tolerance_m);
   StageRequire(relative_tolerance > 0 && relative_tolerance <= 1e-2, "relative_tolerance",
                relative_tolerance, "0 < relative_tolerance <= 1e-2");
   StageRequire(position_tolerance_m > 0, "position_tolerance_m", position_tolerance_m,
                "position_tolerance_m > 0");
-  std::visit([this](const auto& p) { p.Validate(saturation_v); }, plant);
+  StageRequire(max_steps_per_sample >= 10 && max_steps_per_sample <= 100000000,
+               "max_steps_per_sample", static_cast<double>(max_steps_per_sample),
+               "10 <= max_steps_per_sample <= 1e8");
 }
 
-long StageParameters::RecordStride() const {
+void StageParameters::Validate() const {
+  driver.Validate();
+  rig.Validate();
+  integrator.Validate();
+  std::visit(
+      [this](const auto& p) {
+        p.Validate();
+        p.ValidateWithDriver(driver);
+      },
+      plant);
+}
+
+long RigSettings::RecordStride() const {
   return std::max(1L, std::lround(sample_rate_hz / RecordRateHz()));
 }
 

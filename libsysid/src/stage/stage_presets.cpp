@@ -34,9 +34,9 @@ StageParameters VelocitySourceAtMemberDefaults() {
 // default moves again.
 StageParameters LoopRateC() {
   StageParameters p = VelocitySourceAtMemberDefaults();
-  p.sample_rate_hz = 10000;
-  p.record_rate_hz = 1000;
-  p.lag_time_constant_s = 0.0001;
+  p.rig.sample_rate_hz = 10000;
+  p.rig.record_rate_hz = 1000;
+  p.driver.lag_time_constant_s = 0.0001;
   return p;
 }
 
@@ -147,8 +147,8 @@ StageParameters StageParameters::ActuatorDelay() {
   StageParameters p;
   p.name = "virtual PLS8/HR-8 (actuator delay)";
   ActuatorDelayPlant& ad = p.plant.emplace<ActuatorDelayPlant>();
-  p.transport_delay_s = 0.002;
-  p.lag_time_constant_s = 0.0015;
+  p.driver.transport_delay_s = 0.002;
+  p.driver.lag_time_constant_s = 0.0015;
   // Friction branches near the paper's rough model (a1 ~ s2, a2 ~ Fc + a3 dz) with a Stribeck
   // dip the rough model lacks; breakaway at dz + Fs/a3 = 0.63 V forward, 1.32 V backward.
   ad.forward = {2.2, 2.9, 0.004, 104.0};

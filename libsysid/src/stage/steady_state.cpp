@@ -83,8 +83,8 @@ double VelocitySourcePlant::NoLoadSpeed(double u) const {
 }
 
 double StageParameters::SteadyVelocity(double u_v) const {
-  const double u =
-      std::clamp(std::clamp(u_v, -dac_range_v, dac_range_v), -saturation_v, saturation_v);
+  const double u = std::clamp(std::clamp(u_v, -rig.dac_range_v, rig.dac_range_v),
+                              -driver.saturation_v, driver.saturation_v);
   return std::visit([u](const auto& p) { return p.SteadyVelocity(u); }, plant);
 }
 

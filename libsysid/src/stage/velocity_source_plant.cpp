@@ -74,7 +74,7 @@ void ValidateCreep(const DriveCreep& creep, const DriveHysteresis& hysteresis) {
 
 }  // namespace
 
-void VelocitySourcePlant::Validate(double saturation_v) const {
+void VelocitySourcePlant::Validate() const {
   StageRequireFinite("motor.pole_per_s", motor.pole_per_s);
   StageRequireFinite("motor.dead_zone_forward_v", motor.dead_zone_forward_v);
   StageRequireFinite("motor.dead_zone_backward_v", motor.dead_zone_backward_v);
@@ -83,12 +83,10 @@ void VelocitySourcePlant::Validate(double saturation_v) const {
   StageRequire(motor.thrust_limit_mps2 == 0 || motor.thrust_limit_mps2 > rail.static_mps2,
                "motor.thrust_limit_mps2", motor.thrust_limit_mps2,
                "thrust_limit_mps2 = 0 (no limit) or > rail.static_mps2 (the stage can break away)");
-  StageRequire(motor.dead_zone_forward_v >= 0 && motor.dead_zone_forward_v < saturation_v,
-               "motor.dead_zone_forward_v", motor.dead_zone_forward_v,
-               "0 <= dead_zone_forward_v < saturation_v");
-  StageRequire(motor.dead_zone_backward_v >= 0 && motor.dead_zone_backward_v < saturation_v,
-               "motor.dead_zone_backward_v", motor.dead_zone_backward_v,
-               "0 <= dead_zone_backward_v < saturation_v");
+  StageRequire(motor.dead_zone_forward_v >= 0, "motor.dead_zone_forward_v",
+               motor.dead_zone_forward_v, "dead_zone_forward_v >= 0");
+  StageRequire(motor.dead_zone_backward_v >= 0, "motor.dead_zone_backward_v",
+               motor.dead_zone_backward_v, "dead_zone_backward_v >= 0");
   {
     const auto& in = motor.speed_map_in_v;
     const auto& out = motor.speed_map_out_mps;
@@ -145,6 +143,14 @@ void VelocitySourcePlant::Validate(double saturation_v) const {
         "vs = " +
             StageFmt(slope) + " (a single steady speed per voltage)");
   }
+}
+
+void VelocitySourcePlant::ValidateWithDriver(const DriverSettings& driver) const {
+  const double clip = driver.saturation_v;
+  StageRequire(motor.dead_zone_forward_v < clip, "motor.dead_zone_forward_v",
+               motor.dead_zone_forward_v, "0 <= dead_zone_forward_v < saturation_v");
+  StageRequire(motor.dead_zone_backward_v < clip, "motor.dead_zone_backward_v",
+               motor.dead_zone_backward_v, "0 <= dead_zone_backward_v < saturation_v");
 }
 
 void VelocitySourcePlant::SetSpeedMapThrough(

@@ -87,14 +87,14 @@ class VirtualStage::Impl {
  public:
   Impl(const StageParameters& p, std::uint64_t seed) : p_(p), noise_(seed) {
     p_.Validate();
-    ts_ = 1.0 / p_.sample_rate_hz;
-    const double d = p_.transport_delay_s / ts_;
+    ts_ = 1.0 / p_.rig.sample_rate_hz;
+    const double d = p_.driver.transport_delay_s / ts_;
     delay_samples_ = static_cast<long>(std::floor(d + 1e-9));
     delay_fraction_ = d - static_cast<double>(delay_samples_);
     if (delay_fraction_ < 1e-9) delay_fraction_ = 0;
     history_.assign(static_cast<size_t>(delay_samples_) + 2, DriveInput{});
-    dac_step_ = 2.0 * p_.dac_range_v / std::ldexp(1.0, p_.dac_bits);
-    const double inv_q = 1.0 / p_.encoder_resolution_m;
+    dac_step_ = 2.0 * p_.rig.dac_range_v / std::ldexp(1.0, p_.rig.dac_bits);
+    const double inv_q = 1.0 / p_.rig.encoder_resolution_m;
     // Readings as n / (1/q) when 1/q is an integer: the decimal text of the reading is then
     // short ("0.0123456"), which keeps the bundled CSV files small.
     encoder_divisor_ = std::abs(inv_q - std::round(inv_q)) < 1e-9 * inv_q ? std::round(inv_q) : 0;
@@ -110,21 +110,22 @@ class VirtualStage::Impl {
       rate_limit_ = hysteresis_.SaturationRate();
       creep_time_constant_s_ = vs_->creep.time_constant_s;
     }
-    const std::array<double, kStates> y0{p_.initial_position_m, 0.0, 0.0, 0.0};
+    const std::array<double, kStates> y0{p_.rig.initial_position_m, 0.0, 0.0, 0.0};
     cv_.emplace(kStates, internal::CvodeSolver::Method::kBdf, &Impl::Rhs, this, 0.0, y0.data(),
                 "virtual stage",
                 "try a larger integrator.relative_tolerance or a smaller "
                 "friction.bristle_stiffness_per_s2");
     std::array<double, kStates> atol{};
-    atol[kX] = p_.position_tolerance_m;
-    atol[kV] = p_.position_tolerance_m / ts_;
-    atol[kZ] = vs_ ? p_.position_tolerance_m / ts_ : 0.1 * p_.position_tolerance_m;
-    atol[kW] = p_.position_tolerance_m / ts_;
-    cv_->SetTolerances(p_.relative_tolerance, atol.data());
+    atol[kX] = p_.integrator.position_tolerance_m;
+    atol[kV] = p_.integrator.position_tolerance_m / ts_;
+    atol[kZ] =
+        vs_ ? p_.integrator.position_tolerance_m / ts_ : 0.1 * p_.integrator.position_tolerance_m;
+    atol[kW] = p_.integrator.position_tolerance_m / ts_;
+    cv_->SetTolerances(p_.integrator.relative_tolerance, atol.data());
     cv_->SetJacobian(&Impl::Jacobian);
     // One CVode call never takes more than the whole sample's budget (CV_TOO_MUCH_WORK then
     // reads as the budget's error, WorkExceeded).
-    cv_->SetMaxNumSteps(p_.max_steps_per_sample);
+    cv_->SetMaxNumSteps(p_.integrator.max_steps_per_sample);
     EnableRoots(true);
     reading_ = Measure();
   }
@@ -132,9 +133,10 @@ class VirtualStage::Impl {
   double Dac(double u) const {
     if (!std::isfinite(u))
       internal::FailOption("VirtualStage::Step", "u_command_v", Num(u), "u_command_v is finite");
-    const double levels = std::ldexp(1.0, p_.dac_bits);
-    const double code = std::clamp(std::round((u + p_.dac_range_v) / dac_step_), 0.0, levels - 1);
-    return code * dac_step_ - p_.dac_range_v;
+    const double levels = std::ldexp(1.0, p_.rig.dac_bits);
+    const double code =
+        std::clamp(std::round((u + p_.rig.dac_range_v) / dac_step_), 0.0, levels - 1);
+    return code * dac_step_ - p_.rig.dac_range_v;
   }
 
   // Driver input after clipping, dead zone and the static map, for a DAC value u (velocity
@@ -142,7 +144,7 @@ class VirtualStage::Impl {
   // voltage through v_f). Called once per sample, in order: the hysteresis and the creep have
   // state.
   DriveInput Drive(double u) {
-    const double s = std::clamp(u, -p_.saturation_v, p_.saturation_v);
+    const double s = std::clamp(u, -p_.driver.saturation_v, p_.driver.saturation_v);
     if (vs_) {
       const double pi = hysteresis_.enabled() ? Hysteresis(s) : s;
       return vs_->creep.enabled() ? Creep(s, pi) : DriveInput{pi, 0, 0};
@@ -164,7 +166,8 @@ class VirtualStage::Impl {
       creep_target_ = q;
       creep_from_ = t;
     }
-    return {(1 - c.voltage_share) * pi + q, creep_z_ - q, creep_from_ + p_.transport_delay_s};
+    return {(1 - c.voltage_share) * pi + q, creep_z_ - q,
+            creep_from_ + p_.driver.transport_delay_s};
   }
 
   // u_h of DriveHysteresis for the clipped command s: the play operators' states and the
@@ -204,7 +207,7 @@ class VirtualStage::Impl {
     }
     ++k_;
     const double v = cv_->state()[kV];
-    if (std::abs(v) > p_.max_velocity_mps && !status_.velocity_limit_exceeded) {
+    if (std::abs(v) > p_.rig.max_velocity_mps && !status_.velocity_limit_exceeded) {
       status_.velocity_limit_exceeded = true;
       status_.first_velocity_exceed_s = time_s();
     }
@@ -257,7 +260,7 @@ class VirtualStage::Impl {
         cv_->GetRootInfo(which);
         ++sample_switches_;
         if (cv_->Counters().steps - sample_start_steps_ + sample_switches_ >
-            p_.max_steps_per_sample)
+            p_.integrator.max_steps_per_sample)
           WorkExceeded();
       }
       if (flag == CV_ROOT_RETURN && vs_ && which[0] == 0 && which[1] == 0) {
@@ -285,8 +288,8 @@ class VirtualStage::Impl {
         cv_->SetStopTime(t_end);
       } else if (flag == CV_ROOT_RETURN) {
         // At an end stop: the stage stops dead and stays until the drive reverses.
-        stop_ = y[kX] >= p_.travel_max_m ? 1 : -1;
-        y[kX] = stop_ > 0 ? p_.travel_max_m : p_.travel_min_m;
+        stop_ = y[kX] >= p_.rig.travel_max_m ? 1 : -1;
+        y[kX] = stop_ > 0 ? p_.rig.travel_max_m : p_.rig.travel_min_m;
         y[kV] = 0;
         if (!status_.travel_limit_hit) {
           status_.travel_limit_hit = true;
@@ -325,7 +328,7 @@ class VirtualStage::Impl {
     throw NumericalError(
         "virtual stage: the integrator's work in the sample from t = " + Num(time_s()) +
         " s exceeded integrator.max_steps_per_sample = " +
-        std::to_string(p_.max_steps_per_sample) + " (" +
+        std::to_string(p_.integrator.max_steps_per_sample) + " (" +
         std::to_string(cv_->Counters().steps - sample_start_steps_) + " CVODE steps, " +
         std::to_string(sample_switches_) + " switches; reached t = " + Num(t_) +
         " s); state: " + state + ", DAC u = " + Num(sample_u_) +
@@ -352,9 +355,9 @@ class VirtualStage::Impl {
   void EnableRoots(bool on) { cv_->SetRoots(on ? (vs_ ? 3 : 2) : 0, &Impl::Roots); }
 
   double Measure() {
-    const double x = cv_->state()[kX] + p_.position_noise_m * noise_.IrwinHallGaussian();
+    const double x = cv_->state()[kX] + p_.rig.position_noise_m * noise_.IrwinHallGaussian();
     if (encoder_divisor_ > 0) return std::round(x * encoder_divisor_) / encoder_divisor_;
-    return std::round(x / p_.encoder_resolution_m) * p_.encoder_resolution_m;
+    return std::round(x / p_.rig.encoder_resolution_m) * p_.rig.encoder_resolution_m;
   }
 
   const FrictionBranch& Branch(double v) const { return v < 0 ? ad_->backward : ad_->forward; }
@@ -363,7 +366,7 @@ class VirtualStage::Impl {
     const Impl& s = *static_cast<const Impl*>(data);
     const double* y = N_VGetArrayPointer(yv);
     double* d = N_VGetArrayPointer(ydot);
-    d[kW] = (s.drive_.At(t, s.creep_time_constant_s_) - y[kW]) / s.p_.lag_time_constant_s;
+    d[kW] = (s.drive_.At(t, s.creep_time_constant_s_) - y[kW]) / s.p_.driver.lag_time_constant_s;
     const double tm = s.vs_ ? s.vs_->rail.memory_time_s : 0.0;
     if (s.stop_ != 0 || (s.vs_ && s.stuck_)) {
       d[kX] = d[kV] = 0;
@@ -398,7 +401,7 @@ class VirtualStage::Impl {
     const Impl& s = *static_cast<const Impl*>(data);
     const double* y = N_VGetArrayPointer(yv);
     SUNMatZero(J);
-    const double inv_t = 1.0 / s.p_.lag_time_constant_s;
+    const double inv_t = 1.0 / s.p_.driver.lag_time_constant_s;
     SM_ELEMENT_D(J, kW, kW) = -inv_t;
     const double tm = s.vs_ ? s.vs_->rail.memory_time_s : 0.0;
     if (tm > 0) SM_ELEMENT_D(J, kZ, kZ) = -1.0 / tm;
@@ -450,8 +453,8 @@ class VirtualStage::Impl {
   static int Roots(double, N_Vector yv, double* g, void* data) {
     const Impl& s = *static_cast<const Impl*>(data);
     const double x = N_VGetArrayPointer(yv)[kX];
-    g[0] = x - s.p_.travel_max_m;
-    g[1] = x - s.p_.travel_min_m;
+    g[0] = x - s.p_.rig.travel_max_m;
+    g[1] = x - s.p_.rig.travel_min_m;
     if (s.vs_) g[2] = s.stuck_ ? s.Breakaway(N_VGetArrayPointer(yv)[kW]) : N_VGetArrayPointer(yv)[kV];
     return 0;
   }
@@ -517,7 +520,7 @@ StageRun RunOpenLoop(const StageParameters& parameters, const Eigen::VectorXd& u
   run.x_true_m.resize(n);
   run.v_true_mps.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) {
-    run.t_s[k] = static_cast<double>(k) / parameters.sample_rate_hz;
+    run.t_s[k] = static_cast<double>(k) / parameters.rig.sample_rate_hz;
     run.x_m[k] = stage.measured_position_m();
     const StageState s = stage.state();
     run.x_true_m[k] = s.x_m;

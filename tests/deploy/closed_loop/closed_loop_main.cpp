@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     const auto step = reinterpret_cast<StepFn2>(step_symbol);
     const sysid::FrictionModel model = sysid::ReadModel(argv[2]);
     const sysid::StageParameters stage = sysid::StageParameters::Default();
-    dt_s = 1.0 / stage.sample_rate_hz;
+    dt_s = 1.0 / stage.rig.sample_rate_hz;
     if (std::stod(argv[5]) != dt_s) {
       std::fprintf(stderr, "the export's dt %s s is not the stage's control period %.17g s\n",
                    argv[5], dt_s);
