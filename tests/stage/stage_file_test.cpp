@@ -50,6 +50,14 @@ TEST_CASE("the writer's layout is the published file's, byte for byte", "[stage]
   CHECK(keys(ad["friction"]) == std::vector<std::string>{"bristle_stiffness_per_s2",
                                                          "bristle_damping_per_s", "forward",
                                                          "backward"});
+  // One rate (record = control) is written as sample_rate_hz alone; the default work budget is
+  // not written.
+  CHECK(keys(ad["rig"]) == std::vector<std::string>{"sample_rate_hz", "dac_bits", "dac_range_v",
+                                                    "encoder_resolution_m", "position_noise_m",
+                                                    "travel_min_m", "travel_max_m",
+                                                    "max_velocity_mps", "initial_position_m"});
+  CHECK(keys(ad["integrator"]) ==
+        std::vector<std::string>{"relative_tolerance", "position_tolerance_m"});
   CHECK(ad["drive"]["map_in_v"] == nlohmann::ordered_json(delay.actuator_delay().drive_map_in_v));
   CHECK(ad["friction"]["backward"]["coulomb_mps2"] == delay.actuator_delay().backward.coulomb_mps2);
 }
