@@ -186,7 +186,9 @@ std::string FieldPointer(const internal::JsonDocument& doc, const std::string& f
   std::string p = doc.FindSuffix(suffix);
   // The control rate is written either as sample_rate_hz (both rates) or as control_rate_hz.
   if (p.empty() && suffix == "/sample_rate_hz") p = doc.FindSuffix("/control_rate_hz");
-  if (p.empty() && suffix.rfind("/drive_", 0) == 0) p = doc.FindSuffix("/" + suffix.substr(7));
+  // The actuator delay's map is written without its "drive_" prefix.
+  const std::string map_key = ActuatorMapKey(suffix.substr(1));
+  if (p.empty() && !map_key.empty()) p = doc.FindSuffix("/" + map_key);
   return p;
 }
 
