@@ -106,7 +106,7 @@ EpochTrials TryStepsUntilOneLowersTheError(const NormalizedData& train, int H,
       continue;
     }
     it->mu *= o.mu_increase;
-    factored = false;
+    factored = false;  // a new mu: a new factorisation
   }
   return out;
 }
