@@ -83,7 +83,7 @@ TEST_CASE("task pool: two threads share the cores until one runs alone, then it 
   CHECK(large_got_all);
 }
 
-TEST_CASE("task pool: a failed task stops the pool; the first added failure is rethrown",
+TEST_CASE("task pool: a failed task stops the pool, and the failure added first is rethrown",
           "[core][task_pool]") {
   SECTION("one thread: the tasks after the failure do not start") {
     TaskPool pool(1);
