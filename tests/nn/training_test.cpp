@@ -92,7 +92,8 @@ TEST_CASE("training is deterministic per seed, restarts keep the best", "[nn][tr
   CHECK(best.restart == (c.train_mse < a.train_mse ? 1 : 0));
 }
 
-TEST_CASE("training on 1, 2 or a varying number of threads gives byte-identical networks", "[nn][train][threads]") {
+TEST_CASE("training on 1, 2 or a varying number of threads gives byte-identical networks",
+          "[nn][train][threads]") {
   const auto train = MakeSet(3000, 21u, kSigma, &Smooth);
   const auto validation = MakeSet(500, 22u, kSigma, &Smooth);
   for (bool solve_output_layer : {false, true}) {

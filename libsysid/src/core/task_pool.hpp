@@ -30,7 +30,8 @@ class TaskPool {
 
   explicit TaskPool(int threads)
       : threads_(threads > 0 ? threads
-                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {}
+                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {
+  }
 
   /// `cost`: any unit, the same for every task of the pool (e.g. flops); equal costs keep the
   /// order of Add.
@@ -46,13 +47,15 @@ class TaskPool {
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return tasks_[a].cost > tasks_[b].cost; });
-    const int workers = static_cast<int>(std::min<std::size_t>(
-        static_cast<std::size_t>(threads_), std::max<std::size_t>(count, 1)));
+    const int workers = static_cast<int>(
+        std::min<std::size_t>(static_cast<std::size_t>(threads_), std::max<std::size_t>(count, 1)));
     // Workers that still have a task: one finding the queue empty leaves its threads to the
     // others.
     std::atomic<int> running{workers};
     const int total = threads_;
-    const ThreadsNow now = [&running, total] { return std::max(1, total / std::max(1, running.load())); };
+    const ThreadsNow now = [&running, total] {
+      return std::max(1, total / std::max(1, running.load()));
+    };
     std::atomic<std::size_t> next{0};
     std::atomic<bool> failed{false};
     std::mutex error_mutex;

@@ -77,8 +77,8 @@ namespace internal::nn {
 
 double TrainingCost(const NeuralTrainingOptions& o, int inputs, std::size_t rows) {
   const double P = ParameterCount(inputs, o.hidden);
-  return static_cast<double>(o.restarts) * std::max(o.max_epochs, 1) *
-         static_cast<double>(rows) * P * P;
+  return static_cast<double>(o.restarts) * std::max(o.max_epochs, 1) * static_cast<double>(rows) *
+         P * P;
 }
 
 SweepTasks::SweepTasks(const NeuralDataset& train, const NeuralDataset* validation,

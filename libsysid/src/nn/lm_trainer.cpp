@@ -40,7 +40,9 @@ struct Iterate {
 };
 
 // Threads for the next parallel pass: the caller's current share when it gives one.
-int ThreadsNow(const NeuralTrainingOptions& o) { return o.threads_now ? o.threads_now() : o.threads; }
+int ThreadsNow(const NeuralTrainingOptions& o) {
+  return o.threads_now ? o.threads_now() : o.threads;
+}
 
 struct EpochTrials {
   bool accepted = false;
@@ -80,10 +82,9 @@ EpochTrials TryStepsUntilOneLowersTheError(const NormalizedData& train, int H,
     if (with_momentum) it->step += o.momentum * it->dw_prev;
     it->candidate = it->theta + it->step;
     const int threads = ThreadsNow(o);
-    double sse_new =
-        o.solve_output_layer
-            ? SolveOutputLayer(train.Z, train.y, H, &it->candidate, &it->hidden, threads)
-            : SumSquares(train.Z, train.y, H, it->candidate, threads);
+    double sse_new = o.solve_output_layer ? SolveOutputLayer(train.Z, train.y, H, &it->candidate,
+                                                             &it->hidden, threads)
+                                          : SumSquares(train.Z, train.y, H, it->candidate, threads);
     // From here the hidden layer is the candidate's (when the solve succeeded), not theta's.
     const bool hidden_is_candidate = o.solve_output_layer && std::isfinite(sse_new);
     it->hidden_is_theta = false;

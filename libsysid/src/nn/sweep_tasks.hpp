@@ -21,8 +21,8 @@ double TrainingCost(const NeuralTrainingOptions& o, int inputs, std::size_t rows
 class SweepTasks {
  public:
   /// Validates the options. The data sets must outlive the pool's Run().
-  SweepTasks(const NeuralDataset& train, const NeuralDataset* validation,
-             const NeuralDataset* test, const HiddenSweepOptions& options);
+  SweepTasks(const NeuralDataset& train, const NeuralDataset* validation, const NeuralDataset* test,
+             const HiddenSweepOptions& options);
   /// One task per hidden size; each network's passes use the pool's ThreadsNow.
   void AddTo(TaskPool* pool);
   /// The sweep's result once the pool has run every task: the rows in hidden_sizes order, the
