@@ -92,7 +92,8 @@ TEST_CASE("training is deterministic per seed, restarts keep the best", "[nn][tr
   CHECK(best.restart == (c.train_mse < a.train_mse ? 1 : 0));
 }
 
-TEST_CASE("training on 1 and 2 threads gives byte-identical networks", "[nn][train][threads]") {
+TEST_CASE("training on 1, 2 or a varying number of threads gives byte-identical networks",
+          "[nn][train][threads]") {
   const auto train = MakeSet(3000, 21u, kSigma, &Smooth);
   const auto validation = MakeSet(500, 22u, kSigma, &Smooth);
   for (bool solve_output_layer : {false, true}) {
@@ -108,6 +109,15 @@ TEST_CASE("training on 1 and 2 threads gives byte-identical networks", "[nn][tra
     CHECK(one.epochs == two.epochs);
     CHECK(one.train_mse == two.train_mse);
     CHECK(one.validation_mse == two.validation_mse);
+    // A share that changes from one pass to the next (a pool's tasks finishing): 1, 2, 3, ...
+    int calls = 0;
+    o.threads = 1;
+    o.threads_now = [&calls] { return 1 + calls++ % 3; };
+    const auto varying = sysid::TrainNeuralNetwork(train, &validation, o);
+    CHECK(calls > 3 * varying.epochs);  // asked before every pass, not once
+    CHECK(one.network.parameters() == varying.network.parameters());
+    CHECK(one.epochs == varying.epochs);
+    CHECK(one.validation_mse == varying.validation_mse);
   }
 }
 

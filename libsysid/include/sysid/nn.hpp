@@ -207,6 +207,10 @@ struct NeuralTrainingOptions {
   /// Results are identical for any value (fixed-order reductions). The Ceres trainer runs on
   /// one thread (its parallel evaluator's sums depend on the schedule).
   int threads = 0;
+  /// When set, asked before each parallel pass of the LM trainer for its thread count instead
+  /// of `threads`: a network trained beside others (SweepHiddenSize, the pipeline) takes over
+  /// their threads when they finish. Results are identical for any answer.
+  std::function<int()> threads_now;
   /// Called after every epoch of every restart, on the training thread (progress reports; it
   /// must not throw). Does not change the result. SweepHiddenSize ignores it (its networks
   /// train side by side): use HiddenSweepOptions::on_network there.

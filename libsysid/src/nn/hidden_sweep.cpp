@@ -1,17 +1,17 @@
-// SweepHiddenSize: one network per hidden size, trained in parallel threads.
+// SweepHiddenSize: one network per hidden size, trained side by side (nn/sweep_tasks.hpp).
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
 #include <mutex>
-#include <numeric>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/option_rule.hpp"
+#include "core/task_pool.hpp"
+#include "nn/mlp_kernels.hpp"
+#include "nn/sweep_tasks.hpp"
 #include "sysid/error.hpp"
 #include "sysid/nn.hpp"
 
@@ -73,91 +73,99 @@ std::vector<int> ParseHiddenSizes(const std::string& spec) {
   return out;
 }
 
-HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDataset* validation,
-                                  const NeuralDataset* test, const HiddenSweepOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  options.Validate();
-  const size_t count = options.hidden_sizes.size();
-  HiddenSweepResult result;
-  result.rows.resize(count);
-  result.runs.resize(count);
-  // Networks run side by side; each one's epoch gets the threads left over (results do not
-  // depend on either count).
-  const unsigned all = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                           : std::max(1u, std::thread::hardware_concurrency());
-  const unsigned threads = std::max(1u, std::min<unsigned>(all, static_cast<unsigned>(count)));
-  const int inner = static_cast<int>(std::max(1u, all / threads));
-  // Largest networks first: an LM epoch grows with the square of the parameter count, and the
-  // largest size started last leaves the other threads idle while it finishes.
-  std::vector<size_t> order(count);
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return options.hidden_sizes[a] > options.hidden_sizes[b];
-  });
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::mutex progress_mutex;
-  size_t done = 0;  // networks finished, under progress_mutex
-  auto worker = [&] {
-    for (size_t i; (i = next++) < count;) {
-      const size_t k = order[i];
-      try {
-        NeuralTrainingOptions o = options.training;
-        o.hidden = options.hidden_sizes[k];
-        o.threads = inner;
-        // An initial theta only fits one size: a sweep always initialises from the seed.
-        o.initial_parameters.reset();
-        o.on_epoch = nullptr;  // networks train side by side: on_network reports
-        const auto w0 = std::chrono::steady_clock::now();
-        NeuralTrainingResult run = TrainNeuralNetwork(train, validation, o);
-        HiddenSweepRow& row = result.rows[k];
-        row.hidden = o.hidden;
-        row.epochs = run.epochs;
-        row.train_mse = run.train_mse;
-        row.validation_mse = run.validation_mse;
-        row.test_mse =
-            test ? MeanSquaredError(run.network, *test) : std::numeric_limits<double>::quiet_NaN();
-        row.stop = run.stop;
-        row.still_falling = run.still_falling;
-        row.wall_time_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-        result.runs[k] = std::move(run);
-        if (options.on_network) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          options.on_network(row, ++done, count);
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next = count;  // the first error ends the sweep
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+namespace internal::nn {
 
+double TrainingCost(const NeuralTrainingOptions& o, int inputs, std::size_t rows) {
+  const double P = ParameterCount(inputs, o.hidden);
+  return static_cast<double>(o.restarts) * std::max(o.max_epochs, 1) * static_cast<double>(rows) *
+         P * P;
+}
+
+SweepTasks::SweepTasks(const NeuralDataset& train, const NeuralDataset* validation,
+                       const NeuralDataset* test, const HiddenSweepOptions& options)
+    : train_(train),
+      validation_(validation),
+      test_(test),
+      options_(options),
+      t0_(std::chrono::steady_clock::now()) {
+  options.Validate();
+  result_.rows.resize(options.hidden_sizes.size());
+  result_.runs.resize(options.hidden_sizes.size());
+}
+
+void SweepTasks::AddTo(TaskPool* pool) {
+  const int inputs = static_cast<int>(train_.input_names.size());
+  for (std::size_t k = 0; k < options_.hidden_sizes.size(); ++k) {
+    NeuralTrainingOptions o = options_.training;
+    o.hidden = options_.hidden_sizes[k];
+    pool->Add(TrainingCost(o, inputs, static_cast<std::size_t>(train_.size())),
+              [this, k](const ThreadsNow& threads_now) { Train(k, threads_now); });
+  }
+}
+
+void SweepTasks::Train(std::size_t k, const ThreadsNow& threads_now) {
+  NeuralTrainingOptions o = options_.training;
+  o.hidden = options_.hidden_sizes[k];
+  o.threads_now = threads_now;
+  // An initial theta only fits one size: a sweep always initialises from the seed.
+  o.initial_parameters.reset();
+  o.on_epoch = nullptr;  // networks train side by side: on_network reports
+  const auto w0 = std::chrono::steady_clock::now();
+  NeuralTrainingResult run = TrainNeuralNetwork(train_, validation_, o);
+  HiddenSweepRow& row = result_.rows[k];
+  row.hidden = o.hidden;
+  row.epochs = run.epochs;
+  row.train_mse = run.train_mse;
+  row.validation_mse = run.validation_mse;
+  row.test_mse =
+      test_ ? MeanSquaredError(run.network, *test_) : std::numeric_limits<double>::quiet_NaN();
+  row.stop = run.stop;
+  row.still_falling = run.still_falling;
+  row.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  result_.runs[k] = std::move(run);
+  if (options_.on_network) {
+    std::lock_guard<std::mutex> lock(progress_mutex_);
+    options_.on_network(row, ++done_, options_.hidden_sizes.size());
+  }
+}
+
+HiddenSweepResult SweepTasks::Finish() {
+  HiddenSweepResult result = std::move(result_);
+  const size_t count = result.rows.size();
   auto score = [&](const HiddenSweepRow& r) {
-    const double s = validation ? r.validation_mse : test ? r.test_mse : r.train_mse;
+    const double s = validation_ ? r.validation_mse : test_ ? r.test_mse : r.train_mse;
     return std::isfinite(s) ? s : std::numeric_limits<double>::infinity();
   };
-  result.rule = validation ? "min validation MSE" : test ? "min test MSE" : "min training MSE";
+  result.rule = validation_ ? "min validation MSE" : test_ ? "min test MSE" : "min training MSE";
   result.chosen = 0;
   for (size_t k = 1; k < count; ++k)
     if (score(result.rows[k]) < score(result.rows[result.chosen]))
       result.chosen = static_cast<int>(k);
   for (const auto& row : result.rows)
-    if (row.stop == TrainingStop::kMaxEpochs && options.training.max_epochs > 0 &&
+    if (row.stop == TrainingStop::kMaxEpochs && options_.training.max_epochs > 0 &&
         row.still_falling)
       result.warnings.push_back("H = " + std::to_string(row.hidden) + " stopped at --max-epochs " +
-                                std::to_string(options.training.max_epochs) +
+                                std::to_string(options_.training.max_epochs) +
                                 " while its training MSE was still falling; it may be "
                                 "under-trained");
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
   return result;
+}
+
+}  // namespace internal::nn
+
+// Networks run side by side, the largest first (an LM epoch grows with the square of the
+// parameter count, and the largest size started last would leave the other threads idle while it
+// finishes); each network's passes use the threads the others leave (results do not depend on
+// either count).
+HiddenSweepResult SweepHiddenSize(const NeuralDataset& train, const NeuralDataset* validation,
+                                  const NeuralDataset* test, const HiddenSweepOptions& options) {
+  internal::nn::SweepTasks sweep(train, validation, test, options);
+  internal::TaskPool pool(options.threads);
+  sweep.AddTo(&pool);
+  pool.Run();
+  return sweep.Finish();
 }
 
 }  // namespace sysid

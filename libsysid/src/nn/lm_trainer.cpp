@@ -35,8 +35,14 @@ struct Iterate {
   bool hidden_is_theta = false;
   Eigen::MatrixXd damped;
   Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt;
+  Eigen::VectorXd lm_step;  ///< -(J'J + mu I)^-1 J'e for the mu llt holds
   Eigen::VectorXd step, candidate;
 };
+
+// Threads for the next parallel pass: the caller's current share when it gives one.
+int ThreadsNow(const NeuralTrainingOptions& o) {
+  return o.threads_now ? o.threads_now() : o.threads;
+}
 
 struct EpochTrials {
   bool accepted = false;
@@ -52,33 +58,39 @@ EpochTrials TryStepsUntilOneLowersTheError(const NormalizedData& train, int H,
   EpochTrials out;
   // The momentum term is tried first at each mu; when that trial fails the same mu is
   // retried without it (a constant momentum term would otherwise keep the step from
-  // shrinking as mu grows, and no mu could rescue the epoch).
+  // shrinking as mu grows, and no mu could rescue the epoch). That retry reuses the
+  // factorisation and the LM step of the momentum trial (same mu, same bits).
   bool with_momentum = o.momentum != 0.0 && it->dw_prev.squaredNorm() > 0;
+  bool factored = false;  // lm_step is the step for the current mu
   while (it->mu <= o.mu_max) {
     ++out.trials;
-    it->damped = JtJ;
-    it->damped.diagonal().array() += it->mu;
-    it->llt.compute(it->damped);
-    if (it->llt.info() != Eigen::Success) {
-      // J'J + mu I is positive definite in exact arithmetic; failing means rounding or
-      // non-finite entries dominate: more damping is the fallback.
-      ++out.non_finite;
-      it->mu *= o.mu_increase;
-      continue;
+    if (!factored) {
+      it->damped = JtJ;
+      it->damped.diagonal().array() += it->mu;
+      it->llt.compute(it->damped);
+      if (it->llt.info() != Eigen::Success) {
+        // J'J + mu I is positive definite in exact arithmetic; failing means rounding or
+        // non-finite entries dominate: more damping is the fallback.
+        ++out.non_finite;
+        it->mu *= o.mu_increase;
+        continue;
+      }
+      it->lm_step = -it->llt.solve(g);
+      factored = true;
     }
-    it->step = -it->llt.solve(g);
+    it->step = it->lm_step;
     if (with_momentum) it->step += o.momentum * it->dw_prev;
     it->candidate = it->theta + it->step;
-    double sse_new =
-        o.solve_output_layer
-            ? SolveOutputLayer(train.Z, train.y, H, &it->candidate, &it->hidden, o.threads)
-            : SumSquares(train.Z, train.y, H, it->candidate, o.threads);
+    const int threads = ThreadsNow(o);
+    double sse_new = o.solve_output_layer ? SolveOutputLayer(train.Z, train.y, H, &it->candidate,
+                                                             &it->hidden, threads)
+                                          : SumSquares(train.Z, train.y, H, it->candidate, threads);
     // From here the hidden layer is the candidate's (when the solve succeeded), not theta's.
     const bool hidden_is_candidate = o.solve_output_layer && std::isfinite(sse_new);
     it->hidden_is_theta = false;
     if (o.solve_output_layer && !std::isfinite(sse_new)) {
       it->candidate = it->theta + it->step;  // keep the plain LM trial when the solve fails
-      sse_new = SumSquares(train.Z, train.y, H, it->candidate, o.threads);
+      sse_new = SumSquares(train.Z, train.y, H, it->candidate, threads);
     }
     if (!std::isfinite(sse_new)) ++out.non_finite;
     if (std::isfinite(sse_new) && sse_new < it->sse) {
@@ -95,6 +107,7 @@ EpochTrials TryStepsUntilOneLowersTheError(const NormalizedData& train, int H,
       continue;
     }
     it->mu *= o.mu_increase;
+    factored = false;  // a new mu: a new factorisation
   }
   return out;
 }
@@ -128,7 +141,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   const double N = static_cast<double>(train.y.size());
   const int P = static_cast<int>(theta0.size());
   auto val_mse = [&](const Eigen::VectorXd& th) {
-    return validation ? mse_scale * SumSquares(validation->Z, validation->y, H, th, o.threads) /
+    return validation ? mse_scale * SumSquares(validation->Z, validation->y, H, th, ThreadsNow(o)) /
                             static_cast<double>(validation->y.size())
                       : nan;
   };
@@ -136,11 +149,11 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   TrainerRun run;
   Iterate it;
   it.theta = theta0;
-  it.sse = SumSquares(train.Z, train.y, H, it.theta, o.threads);
+  it.sse = SumSquares(train.Z, train.y, H, it.theta, ThreadsNow(o));
   if (o.solve_output_layer) {
     Eigen::VectorXd solved = it.theta;
     const double sse_solved =
-        SolveOutputLayer(train.Z, train.y, H, &solved, &it.hidden, o.threads);
+        SolveOutputLayer(train.Z, train.y, H, &solved, &it.hidden, ThreadsNow(o));
     it.hidden_is_theta = std::isfinite(sse_solved);  // solved keeps theta's W1 and b1
     if (std::isfinite(sse_solved) && sse_solved < it.sse) {
       it.theta = solved;
@@ -166,7 +179,7 @@ TrainerRun RunLevenbergMarquardt(const NormalizedData& train, const NormalizedDa
   while (!StopsBeforeTheStep(o, epoch, mse_scale * it.sse / N, validation != nullptr, val_fails,
                              best_val, &run)) {
     double sse_check = 0;
-    NormalEquations(train.Z, train.y, H, it.theta, &JtJ, &g, &sse_check, 0, o.threads,
+    NormalEquations(train.Z, train.y, H, it.theta, &JtJ, &g, &sse_check, 0, ThreadsNow(o),
                     it.hidden_is_theta ? &it.hidden : nullptr);
     const double grad_norm = 2.0 * g.norm() / N;
     if (!(grad_norm >= o.gradient_tolerance)) {

@@ -1,10 +1,16 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/parallel_for.hpp"
+#include "core/task_pool.hpp"
+#include "nn/sweep_tasks.hpp"
 #include "paper/measures.hpp"
 #include "pipeline/timed_step.hpp"
 #include "sysid/control_tuning.hpp"
@@ -175,23 +181,34 @@ struct PipelineRun {
     internal::TimedStep(r, progress, name, body);
   }
 
-  // `track` on the smooth profile at each tracking frequency, sampled at `rate_hz`; the
-  // frequencies are independent, so they run side by side (--threads) and their rows are
-  // appended to `rows` in frequency order.
+  // `track` of each scheme on the smooth profile at each tracking frequency, sampled at
+  // `rate_hz`. Every (frequency, scheme) run is independent (the trackers reset the plant
+  // before each scheme), so they run side by side (--threads), the lowest frequency's first
+  // (its profile lasts longest: `cycles` periods); their rows are appended to `rows` in
+  // frequency, then scheme order.
   template <typename Track>
-  void TrackAtEachFrequency(double rate_hz, std::vector<TrackingRow>* rows, const Track& track) {
+  void TrackAtEachFrequency(double rate_hz, const std::vector<FeedforwardScheme>& schemes,
+                            std::vector<TrackingRow>* rows, const Track& track) {
     const auto& freqs = options.track_frequencies_hz;
-    std::vector<std::vector<SchemeTracking>> runs(freqs.size());
-    internal::ParallelFor(static_cast<long>(freqs.size()), options.threads, [&](long i) {
+    std::vector<std::size_t> by_length(freqs.size());
+    std::iota(by_length.begin(), by_length.end(), std::size_t{0});
+    std::stable_sort(by_length.begin(), by_length.end(),
+                     [&](std::size_t a, std::size_t b) { return freqs[a] < freqs[b]; });
+    const std::size_t S = schemes.size();
+    std::vector<SchemeTracking> runs(freqs.size() * S);
+    internal::ParallelFor(static_cast<long>(runs.size()), options.threads, [&](long item) {
+      const std::size_t f = by_length[static_cast<std::size_t>(item) / S];
+      const std::size_t s = static_cast<std::size_t>(item) % S;
       SmoothProfileOptions p;
-      p.frequency_hz = freqs[static_cast<std::size_t>(i)];
+      p.frequency_hz = freqs[f];
       p.amplitude_m = options.track_amplitude_m;
       p.sample_rate_hz = rate_hz;
-      runs[static_cast<std::size_t>(i)] = track(MakeSmoothProfile(p));
+      std::vector<SchemeTracking> one = track(MakeSmoothProfile(p), schemes[s]);
+      runs[f * S + s] = std::move(one.at(0));
     });
-    for (std::size_t i = 0; i < freqs.size(); ++i)
-      for (const auto& run : runs[i])
-        rows->push_back({freqs[i], ToString(run.scheme), run.result});
+    for (std::size_t f = 0; f < freqs.size(); ++f)
+      for (std::size_t s = 0; s < S; ++s)
+        rows->push_back({freqs[f], ToString(runs[f * S + s].scheme), runs[f * S + s].result});
   }
 
   // Read the recordings; identify a1, a2 from the pulses, then the delay (and the refinement).
@@ -249,6 +266,42 @@ struct PipelineRun {
     }
   }
 
+  // The sweep's networks and the typical one side by side in one pool, the largest first (the
+  // typical network: several times the sweep's largest), each on the threads the others leave;
+  // trained one step after the other, the end of each left a core idle.
+  void TrainNetworks(const NeuralDataset& test_set) {
+    internal::TaskPool pool(options.threads);
+    const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
+    HiddenSweepOptions so;
+    so.hidden_sizes = options.hidden_sizes;
+    so.training = options.training;
+    so.threads = options.threads;
+    internal::nn::SweepTasks sweep(train_set, nullptr, &test_set, so);
+    sweep.AddTo(&pool);
+    NeuralDataset train_va, test_va;
+    NeuralTrainingOptions t = options.training;
+    if (options.typical) {
+      train_va =
+          SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
+      test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
+      t.hidden = options.typical_hidden;
+      t.max_epochs = options.typical_max_epochs;
+      const double cost = internal::nn::TrainingCost(
+          t, static_cast<int>(train_va.input_names.size()), static_cast<size_t>(train_va.size()));
+      pool.Add(cost, [&](const internal::ThreadsNow& threads_now) {
+        NeuralTrainingOptions own = t;
+        own.threads_now = threads_now;
+        r.typical = TrainNeuralNetwork(train_va, nullptr, own);
+        r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
+      });
+    }
+    pool.Run();
+    r.sweep = sweep.Finish();
+    const auto chosen = static_cast<size_t>(r.sweep.chosen);
+    r.network = r.sweep.runs[chosen].network;
+    r.network_test_mse = r.sweep.rows[chosen].test_mse;
+  }
+
   // The dominant variable, the hidden-size sweep, the typical network, the inverse comparison.
   void InverseNetworks() {
     step("dominance analysis", [&] {
@@ -263,31 +316,9 @@ struct PipelineRun {
     });
 
     const NeuralDataset test_set = MakeNeuralDataset(test, r.nn_inputs, "u");
-    step("NN hidden-size sweep (LM)", [&] {
-      const NeuralDataset train_set = MakeNeuralDataset(training, r.nn_inputs, "u");
-      HiddenSweepOptions so;
-      so.hidden_sizes = options.hidden_sizes;
-      so.training = options.training;
-      so.threads = options.threads;
-      r.sweep = SweepHiddenSize(train_set, nullptr, &test_set, so);
-      const auto chosen = static_cast<size_t>(r.sweep.chosen);
-      r.network = r.sweep.runs[chosen].network;
-      r.network_test_mse = r.sweep.rows[chosen].test_mse;
-    });
-
-    if (options.typical) {
-      step("typical (v, a) network", [&] {
-        const NeuralDataset train_va =
-            SubsampleRows(MakeNeuralDataset(training, {"v", "a"}, "u"), options.typical_stride);
-        const NeuralDataset test_va = MakeNeuralDataset(test, {"v", "a"}, "u");
-        NeuralTrainingOptions t = options.training;
-        t.hidden = options.typical_hidden;
-        t.max_epochs = options.typical_max_epochs;
-        t.threads = options.threads;
-        r.typical = TrainNeuralNetwork(train_va, nullptr, t);
-        r.typical_test_mse = MeanSquaredError(r.typical->network, test_va);
-      });
-    }
+    step(options.typical ? "NN hidden-size sweep and typical (v, a) network (LM)"
+                         : "NN hidden-size sweep (LM)",
+         [&] { TrainNetworks(test_set); });
 
     step("compare inverse models", [&] {
       r.comparisons.push_back(CompareInverseModels(test, r.model, &r.network));
@@ -303,12 +334,20 @@ struct PipelineRun {
       if (!pulses_only) held_out = {&training, &test};
       for (const auto& p : held_out_pulses) held_out.push_back(&p);
       for (const auto& w : waveforms) held_out.push_back(&w);
-      for (const Recording* rec : held_out) {
+      // Recordings side by side (--threads), their results and notes kept in recording order.
+      std::vector<std::optional<Validation>> scored(held_out.size());
+      std::vector<std::string> failed(held_out.size());
+      internal::ParallelFor(static_cast<long>(held_out.size()), options.threads, [&](long i) {
+        const auto k = static_cast<std::size_t>(i);
         try {
-          r.validations.push_back(ValidateFrictionModel(*rec, r.model));
+          scored[k] = ValidateFrictionModel(*held_out[k], r.model);
         } catch (const NumericalError& e) {
-          r.notes.push_back("validation of " + rec->source + " skipped: " + e.what());
+          failed[k] = "validation of " + held_out[k]->source + " skipped: " + e.what();
         }
+      });
+      for (std::size_t k = 0; k < held_out.size(); ++k) {
+        if (scored[k]) r.validations.push_back(std::move(*scored[k]));
+        if (!failed[k].empty()) r.notes.push_back(failed[k]);
       }
     });
 
@@ -358,11 +397,12 @@ struct PipelineRun {
       });
       step("PI tracking on the identified model", [&] {
         const PiOptions pi = r.tuning ? r.tuning->pi : r.margins->pi;
-        TrackAtEachFrequency(1 / pi.sample_time_s, &r.model_tracking, [&](const PositionReference& ref) {
-          return TrackModelSchemes(r.model, pi.sample_time_s, ref, pi,
-                                   {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic},
-                                   {&r.model, nullptr});
-        });
+        TrackAtEachFrequency(
+            1 / pi.sample_time_s, {FeedforwardScheme::kNone, FeedforwardScheme::kAnalytic},
+            &r.model_tracking, [&](const PositionReference& ref, FeedforwardScheme scheme) {
+              return TrackModelSchemes(r.model, pi.sample_time_s, ref, pi, {scheme},
+                                       {&r.model, nullptr});
+            });
       });
     }
 
@@ -372,9 +412,9 @@ struct PipelineRun {
         std::vector<FeedforwardScheme> schemes{FeedforwardScheme::kNone,
                                                FeedforwardScheme::kAnalytic};
         if (!pulses_only) schemes.push_back(FeedforwardScheme::kNetwork);
-        TrackAtEachFrequency(stage.rig.sample_rate_hz, &r.tracking,
-                             [&](const PositionReference& ref) {
-                               return TrackSchemes(stage, 1, ref, options.pi, schemes,
+        TrackAtEachFrequency(stage.rig.sample_rate_hz, schemes, &r.tracking,
+                             [&](const PositionReference& ref, FeedforwardScheme scheme) {
+                               return TrackSchemes(stage, 1, ref, options.pi, {scheme},
                                                    {&r.model, pulses_only ? nullptr : &r.network});
                              });
         for (const TrackingRow& row : r.tracking)
