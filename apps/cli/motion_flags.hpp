@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/field_flag.hpp"
 #include "cli/recording_flags.hpp"
 #include "sysid/io.hpp"
 #include "sysid/motion.hpp"
@@ -39,6 +40,16 @@ struct MotionFlags {
   /// what the filter is for, `default_filter` names the filter the algorithm's options choose
   /// (shown as the default).
   void Add(CLI::App* cmd, const std::string& derivative_help, const std::string& default_filter);
+  /// Records (cli/field_flag.hpp) the fields of `motion`, a member of the command's described
+  /// `options`, that the flags set through ApplyTo. Call after Add.
+  template <class Options>
+  void Bind(CLI::App* cmd, Options& options, const MotionOptions& motion) const {
+    CLI::Option* derivative_flag = cmd->get_option("--derivative");
+    BindField(cmd, derivative_flag, options, motion.derivative.method);
+    BindField(cmd, derivative_flag, options, motion.prefer_velocity_column);
+    BindField(cmd, cmd->get_option("--cutoff"), options, motion.derivative.cutoff_hz);
+    BindField(cmd, cmd->get_option("--velocity-column"), options, motion.velocity_column);
+  }
   /// Sets the filter, cut-off, velocity column and the column rule of `motion`, and keeps a
   /// copy for ReadRecordings' note.
   void ApplyTo(MotionOptions& motion) const;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/recording_flags.hpp"
@@ -38,7 +39,7 @@ struct CompareCliOptions {
   std::string derivative;  // empty: the recordings' v, a columns (else central from x)
   bool json = false;
   bool plots = true;
-  int trim = 5;
+  CompareOptions options;  // trim_samples; the derivative comes from `derivative`
   std::string traces = "csv";  // csv or mat: the per-recording traces files
   RecordingFlags recording;
 };
@@ -105,10 +106,9 @@ void RunCompare(const CompareCliOptions& o) {
   const std::vector<HysteresisEntry> hysteresis = ReadHysteresisModels(o.hysteresis_paths);
   std::vector<NamedHysteresisModel> named;
   for (const auto& h : hysteresis) named.push_back({h.label, h.model.get()});
-  CompareOptions co;
+  CompareOptions co = o.options;
   co.derivative.method = ParseDerivativeMethod(o.derivative.empty() ? "central" : o.derivative);
   co.use_recorded_columns = o.derivative.empty();  // the one rule (MotionOptions)
-  co.trim_samples = o.trim;
   // Everything is computed before anything is written: a bad file leaves no partial output.
   std::vector<InverseComparison> results;
   for (size_t i = 0; i < o.files.size(); ++i) {
@@ -200,13 +200,21 @@ void AddCompareCommand(CLI::App& app) {
                   "recordings: t [s], u [V] and x [m] (or v [m/s] and a [m/s^2] columns)")
       ->required()
       ->type_name("DATA.csv");
-  cmd->add_option("--derivative", o->derivative,
-                  "derive v, a from x with this filter even when the file has v, a columns "
-                  "(without it: the columns, else central): central | butterworth | savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
-      ->default_str("central");
-  cmd->add_option("--trim", o->trim, "samples dropped at each end before scoring [samples]")
-      ->check(NonNegativeNumber());
+  // Given, --derivative sets the filter and turns use_recorded_columns off when the command runs.
+  CompareOptions& co = o->options;
+  CLI::Option* derivative =
+      cmd->add_option("--derivative", o->derivative,
+                      "derive v, a from x with this filter even when the file has v, a columns "
+                      "(without it: the columns, else central): central | butterworth | savgol")
+          ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+          ->default_str("central");
+  BindField(cmd, derivative, co, co.derivative.method);
+  BindField(cmd, derivative, co, co.use_recorded_columns);
+  BindField(cmd,
+            cmd->add_option("--trim", co.trim_samples,
+                            "samples dropped at each end before scoring [samples]")
+                ->check(NonNegativeNumber()),
+            co, co.trim_samples);
   AddOutputOption(cmd, o->out_dir,
                   "new folder for <name>_traces.csv, summary.csv, summary.json and the plots "
                   "(<name>.png, <name>_error.png, <name>_zoom.png, <name>_loop.png; plots.json "

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
@@ -103,30 +104,35 @@ void AddDeriveCommand(CLI::App& app) {
                   "write the recording with v [m/s] and a [m/s^2] added (replaced if present) "
                   "to FILE (MAT v5 when it ends in .mat); without -o the CSV goes to stdout");
   GuardOutputFiles(cmd, {{&o->output, "-o"}});
-  cmd->add_option("--method", o->method,
-                  "central: (x[k+1]-x[k-1])/(2 dt), as the paper; butterworth: zero-phase "
-                  "Butterworth low-pass of x then central differences; savgol: Savitzky-Golay "
-                  "fit derivative")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
-      ->capture_default_str();
-  cmd->add_option("--cutoff", o->derivative.cutoff_hz,
-                  "butterworth: cut-off frequency [Hz], 0 < HZ < Nyquist of the (decimated) "
-                  "rate")
-      ->type_name("HZ")
-      ->capture_default_str();
-  cmd->add_option("--order", o->order,
-                  fmt::format("butterworth: filter order [1, {}]; savgol: polynomial order "
-                              "[2, min({}, window - 1)] [dimensionless]",
-                              kMaxButterworthOrder, kMaxSavitzkyGolayOrder))
-      ->type_name("N")
-      ->default_str(fmt::format("{} (butterworth), {} (savgol)",
-                                o->derivative.butterworth_order, o->derivative.savgol_order));
-  cmd->add_option("--window", o->derivative.savgol_window,
-                  fmt::format("savgol: window length [samples], odd, in [3, {}] (at 1 kHz, 21 "
-                              "samples = 20 ms)",
-                              kMaxSavitzkyGolayWindow))
-      ->type_name("N")
-      ->capture_default_str();
+  // --method is parsed into method, and --order into the method's order, when the command runs.
+  DerivativeOptions& d = o->derivative;
+  BindField(cmd,
+            cmd->add_option("--method", o->method,
+                            "central: (x[k+1]-x[k-1])/(2 dt), as the paper; butterworth: "
+                            "zero-phase Butterworth low-pass of x then central differences; "
+                            "savgol: Savitzky-Golay fit derivative")
+                ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+                ->capture_default_str(),
+            d, d.method);
+  AddFieldOption(cmd, "--cutoff", d, d.cutoff_hz,
+                 "butterworth: cut-off frequency [Hz], 0 < HZ < Nyquist of the (decimated) "
+                 "rate")
+      ->type_name("HZ");
+  CLI::Option* order =
+      cmd->add_option("--order", o->order,
+                      fmt::format("butterworth: filter order [1, {}]; savgol: polynomial order "
+                                  "[2, min({}, window - 1)] [dimensionless]",
+                                  kMaxButterworthOrder, kMaxSavitzkyGolayOrder))
+          ->type_name("N")
+          ->default_str(fmt::format("{} (butterworth), {} (savgol)", d.butterworth_order,
+                                    d.savgol_order));
+  BindField(cmd, order, d, d.butterworth_order);
+  BindField(cmd, order, d, d.savgol_order);
+  AddFieldOption(cmd, "--window", d, d.savgol_window,
+                 fmt::format("savgol: window length [samples], odd, in [3, {}] (at 1 kHz, 21 "
+                             "samples = 20 ms)",
+                             kMaxSavitzkyGolayWindow))
+      ->type_name("N");
   cmd->add_option("--decimate", o->decimate,
                   fmt::format("keep every K-th sample after a zero-phase order-{} Butterworth "
                               "anti-alias low-pass at {} x the new Nyquist frequency (all "

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/registry.hpp"
@@ -92,16 +93,21 @@ void AddDominanceCommand(CLI::App& app) {
       "[m/s^2]; batch over many recordings in parallel");
   AddModelAndRecordings(cmd, o->model, "model file (JSON: a1p, a1n, a2p, a2n, a3, tau)",
                         o->recordings);
-  cmd->add_option("--candidate", o->candidates,
-                  "further candidate variable NAME=COLUMN*GAIN: term GAIN*COLUMN [m/s^2]")
-      ->type_name("NAME=COL*GAIN");
-  cmd->add_option("--min-speed", o->options.min_speed_mps, "moving part: |v| >= this [m/s]")
-      ->capture_default_str();
-  cmd->add_option("--negligible", o->options.negligible_ratio,
-                  "a variable with rms <= this x the top's is negligible [dimensionless]")
-      ->capture_default_str();
-  AddThreadsOption(cmd, o->options.threads,
-                   "recordings analysed in parallel [count]; 0 = all cores");
+  DominanceOptions& d = o->options;
+  // Each --candidate is parsed into a CandidateTerm appended to `candidates` when the command runs.
+  BindField(cmd,
+            cmd->add_option("--candidate", o->candidates,
+                            "further candidate variable NAME=COLUMN*GAIN: term GAIN*COLUMN "
+                            "[m/s^2]")
+                ->type_name("NAME=COL*GAIN"),
+            d, d.candidates);
+  AddFieldOption(cmd, "--min-speed", d, d.min_speed_mps, "moving part: |v| >= this [m/s]");
+  AddFieldOption(cmd, "--negligible", d, d.negligible_ratio,
+                 "a variable with rms <= this x the top's is negligible [dimensionless]");
+  BindField(cmd,
+            AddThreadsOption(cmd, d.threads,
+                             "recordings analysed in parallel [count]; 0 = all cores"),
+            d, d.threads);
   AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
                 "print {ranking: [{variable, rms, peak, ratio_to_top}], dominant, summary, "
@@ -110,6 +116,7 @@ void AddDominanceCommand(CLI::App& app) {
   GuardOutputFiles(cmd, {{&o->output, "-o"}});
   o->motion.Add(cmd, "filter for v and x'' from x",
                 ToString(DominanceOptions{}.motion.derivative.method));
+  o->motion.Bind(cmd, d, d.motion);
   cmd->callback([o] { RunDominance(*o); });
 }
 

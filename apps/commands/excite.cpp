@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/registry.hpp"
@@ -117,19 +118,19 @@ void AddExciteCommand(CLI::App& app) {
   cmd->add_option("--rate", o->rate_hz, "sample rate [Hz]")
       ->check(PositiveNumber())
       ->capture_default_str();
-  cmd->add_option("--amplitudes", o->amplitudes_v,
-                  "pulse amplitudes [V], in order (default: the paper's ten, alternating "
-                  "direction)")
-      ->delimiter(',');
-  cmd->add_option("--on", o->pulses.on_s, "pulse length [s]")
-      ->check(PositiveNumber())
-      ->capture_default_str();
-  cmd->add_option("--rest", o->pulses.rest_s, "rest after each pulse [s]")
-      ->check(NonNegativeNumber())
-      ->capture_default_str();
-  cmd->add_option("--lead", o->pulses.lead_s, "0 V before the first pulse [s]")
-      ->check(NonNegativeNumber())
-      ->capture_default_str();
+  PulseProcedure& pulses = o->pulses;
+  // Given, the amplitudes replace the procedure's when the command runs.
+  BindField(cmd,
+            cmd->add_option("--amplitudes", o->amplitudes_v,
+                            "pulse amplitudes [V], in order (default: the paper's ten, "
+                            "alternating direction)")
+                ->delimiter(','),
+            pulses, pulses.amplitudes_v);
+  AddFieldOption(cmd, "--on", pulses, pulses.on_s, "pulse length [s]")->check(PositiveNumber());
+  AddFieldOption(cmd, "--rest", pulses, pulses.rest_s, "rest after each pulse [s]")
+      ->check(NonNegativeNumber());
+  AddFieldOption(cmd, "--lead", pulses, pulses.lead_s, "0 V before the first pulse [s]")
+      ->check(NonNegativeNumber());
   cmd->add_option("--set", o->set, "tracking grid: training or test")
       ->check(CLI::IsMember({"training", "test"}))
       ->capture_default_str();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
@@ -96,10 +97,9 @@ void AddIdentifyCommand(CLI::App& app) {
       ->check(CLI::IsMember({"pulse", "trajectory"}))
       ->capture_default_str();
   CLI::Option* a3 =
-      cmd->add_option("--a3", o->pulse.fit.a3,
-                      "actuator gain for --method pulse [m/(s^2 V)]; the default is the "
-                      "paper's HR-8 data-sheet value, not your stage's")
-          ->capture_default_str();
+      AddFieldOption(cmd, "--a3", o->pulse, o->pulse.fit.a3,
+                     "actuator gain for --method pulse [m/(s^2 V)]; the default is the "
+                     "paper's HR-8 data-sheet value, not your stage's");
   a3->each([o](const std::string&) { o->pulse.fit.a3_given = true; });
   cmd->add_option("--table", o->table,
                   "pulse table CSV with columns u [V] and v [m/s] instead of recordings")
@@ -112,45 +112,40 @@ void AddIdentifyCommand(CLI::App& app) {
   o->motion.Add(cmd, "velocity filter",
                 ToString(PulseIdentificationOptions{}.motion.derivative.method) + " (pulse), " +
                     ToString(TrajectoryOptions{}.motion.derivative.method) + " (trajectory)");
+  o->motion.Bind(cmd, o->pulse, o->pulse.motion);
+  o->motion.Bind(cmd, o->trajectory, o->trajectory.motion);
   o->fit_fraction.Add(cmd);
   auto& pulse = o->pulse;
-  cmd->add_option("--min-duration", pulse.detection.min_duration_s,
-                  "pulse: shortest pulse [s]")
-      ->check(PositiveNumber())
-      ->capture_default_str();
-  cmd->add_option("--window-fraction", pulse.plateau.window_fraction,
-                  "pulse: plateau = this last fraction of each pulse [dimensionless]")
-      ->capture_default_str();
-  cmd->add_option("--settle-tolerance", pulse.plateau.settle_tolerance,
-                  "pulse: allowed drift across the plateau relative to |v| [dimensionless]")
-      ->capture_default_str();
-  cmd->add_option("--pulse-min-speed", pulse.plateau.min_speed_mps,
-                  "pulse: |v| below this is stuck [m/s]")
-      ->capture_default_str();
-  cmd->add_option("--max-speed", o->max_speed,
-                  "pulse: stage velocity limit [m/s]; pulses reaching it are excluded; 0 = no "
-                  "limit")
-      ->capture_default_str();
+  AddFieldOption(cmd, "--min-duration", pulse, pulse.detection.min_duration_s,
+                 "pulse: shortest pulse [s]")
+      ->check(PositiveNumber());
+  AddFieldOption(cmd, "--window-fraction", pulse, pulse.plateau.window_fraction,
+                 "pulse: plateau = this last fraction of each pulse [dimensionless]");
+  AddFieldOption(cmd, "--settle-tolerance", pulse, pulse.plateau.settle_tolerance,
+                 "pulse: allowed drift across the plateau relative to |v| [dimensionless]");
+  AddFieldOption(cmd, "--pulse-min-speed", pulse, pulse.plateau.min_speed_mps,
+                 "pulse: |v| below this is stuck [m/s]");
+  BindField(cmd,
+            cmd->add_option("--max-speed", o->max_speed,
+                            "pulse: stage velocity limit [m/s]; pulses reaching it are "
+                            "excluded; 0 = no limit")
+                ->capture_default_str(),
+            pulse, pulse.plateau.max_speed_mps);
   auto& traj = o->trajectory;
-  cmd->add_option("--tau", traj.tau_s, "trajectory: delay of the viscous term [s]")
-      ->capture_default_str();
-  cmd->add_flag("--tune-delay", traj.tune_delay,
-                "trajectory: choose tau in [--tau-min, --tau-max] minimising the residual");
-  cmd->add_option("--tau-min", traj.tau_min_s, "trajectory: lower tau bound [s]")
-      ->capture_default_str();
-  cmd->add_option("--tau-max", traj.tau_max_s, "trajectory: upper tau bound [s]")
-      ->capture_default_str();
-  cmd->add_option("--decimate", traj.decimation,
-                  "trajectory: keep every n-th sample after anti-alias filtering [samples]")
-      ->check(PositiveNumber())
-      ->capture_default_str();
-  cmd->add_flag("--offset", traj.offset,
-                "trajectory: add a constant offset c0 [m/s^2]; Coulomb becomes symmetric a2");
-  cmd->add_flag("--symmetric-viscous", traj.symmetric_viscous,
-                "trajectory: one viscous coefficient a1 [1/s] for both directions");
-  cmd->add_option("--min-speed", traj.min_speed_mps,
-                  "trajectory: samples with |v| below this are excluded [m/s]")
-      ->capture_default_str();
+  AddFieldOption(cmd, "--tau", traj, traj.tau_s, "trajectory: delay of the viscous term [s]");
+  AddFieldFlag(cmd, "--tune-delay", traj, traj.tune_delay,
+               "trajectory: choose tau in [--tau-min, --tau-max] minimising the residual");
+  AddFieldOption(cmd, "--tau-min", traj, traj.tau_min_s, "trajectory: lower tau bound [s]");
+  AddFieldOption(cmd, "--tau-max", traj, traj.tau_max_s, "trajectory: upper tau bound [s]");
+  AddFieldOption(cmd, "--decimate", traj, traj.decimation,
+                 "trajectory: keep every n-th sample after anti-alias filtering [samples]")
+      ->check(PositiveNumber());
+  AddFieldFlag(cmd, "--offset", traj, traj.offset,
+               "trajectory: add a constant offset c0 [m/s^2]; Coulomb becomes symmetric a2");
+  AddFieldFlag(cmd, "--symmetric-viscous", traj, traj.symmetric_viscous,
+               "trajectory: one viscous coefficient a1 [1/s] for both directions");
+  AddFieldOption(cmd, "--min-speed", traj, traj.min_speed_mps,
+                 "trajectory: samples with |v| below this are excluded [m/s]");
   cmd->callback([o] { RunIdentify(*o); });
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/pi_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/control.hpp"
@@ -62,10 +63,16 @@ void AddMarginsCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile)
       ->type_name("M.json");
-  AddPiGainOptions(cmd, o->pi, "PI ");
-  cmd->add_option("--rate", o->rate_hz, "controller sample rate [Hz]")
-      ->check(FiniteRange(1e-3, 1e7))
-      ->capture_default_str();
+  PiOptions& pi = o->pi;
+  const auto [kp, ki] = AddPiGainOptions(cmd, pi, "PI ");
+  BindField(cmd, kp, pi, pi.kp_v_per_m);
+  BindField(cmd, ki, pi, pi.ki_v_per_m_s);
+  // The rate sets sample_time_s = 1 / rate when the command runs.
+  BindField(cmd,
+            cmd->add_option("--rate", o->rate_hz, "controller sample rate [Hz]")
+                ->check(FiniteRange(1e-3, 1e7))
+                ->capture_default_str(),
+            pi, pi.sample_time_s);
   cmd->add_option("--extra-delay", o->extra_delay_s,
                   "actuator delay beyond the sample-and-hold, e.g. a driver lag [s]")
       ->check(FiniteRange(0.0, 10.0))

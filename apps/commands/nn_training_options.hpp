@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/fit_fraction_flag.hpp"
 #include "cli/recording_flags.hpp"
 #include "sysid/error.hpp"
@@ -127,39 +128,47 @@ inline void AddNeuralOptions(CLI::App* cmd, NeuralCliOptions& o) {
       ->capture_default_str();
   cmd->add_option("--output", o.output, "output (target) column [SI unit, u in V]")
       ->capture_default_str();
-  cmd->add_option("--trainer", o.trainer,
-                  "lm (the paper's LM with momentum, trainlm mu schedule) or ceres (Ceres LM "
-                  "reference)")
-      ->check(CLI::IsMember({"lm", "ceres"}))
-      ->capture_default_str();
-  cmd->add_option("--momentum", o.training.momentum,
-                  "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm")
-      ->capture_default_str();
-  AddSeedOption(cmd, o.training.seed, "initialisation seed; restart r uses seed + r");
-  cmd->add_option("--restarts", o.training.restarts,
-                  "random initialisations, best kept (by validation MSE, else training MSE)")
-      ->capture_default_str();
-  cmd->add_option("--max-epochs", o.training.max_epochs, "epoch limit")->capture_default_str();
-  cmd->add_option("--goal-mse", o.training.goal_mse,
-                  "stop when training MSE <= this [output unit^2, V^2]")
-      ->capture_default_str();
-  cmd->add_option("--min-gradient", o.training.gradient_tolerance,
-                  "stop when ||2 J'e/N|| < this [normalised units]")
-      ->capture_default_str();
-  cmd->add_option("--init", o.init, "nguyen-widrow or uniform")
-      ->check(CLI::IsMember({"nguyen-widrow", "uniform"}))
-      ->capture_default_str();
-  cmd->add_flag("--solve-output-layer", o.training.solve_output_layer,
-                "lm only: after each trial step set the linear output layer to its least-squares "
-                "optimum (much faster convergence; off = the paper's rule exactly)");
-  cmd->add_option("--input-range", o.input_ranges,
-                  "fixed mapminmax range NAME=MIN:MAX of an input [its SI unit], e.g. "
-                  "v=-0.1:0.1; default: the training data's min/max")
-      ->type_name("NAME=MIN:MAX");
-  cmd->add_option("--output-range", o.output_range,
-                  "fixed mapminmax range MIN:MAX of the output [V]; -1:1 leaves it unscaled; "
-                  "default: the training targets' min/max")
-      ->type_name("MIN:MAX");
+  // --trainer, --init, --input-range and --output-range are text, parsed into their fields by
+  // ResolveNeuralOptions.
+  NeuralTrainingOptions& t = o.training;
+  BindField(cmd,
+            cmd->add_option("--trainer", o.trainer,
+                            "lm (the paper's LM with momentum, trainlm mu schedule) or ceres "
+                            "(Ceres LM reference)")
+                ->check(CLI::IsMember({"lm", "ceres"}))
+                ->capture_default_str(),
+            t, t.trainer);
+  AddFieldOption(cmd, "--momentum", t, t.momentum,
+                 "momentum alpha in [0, 1) [dimensionless]; 0 = plain trainlm");
+  BindField(cmd, AddSeedOption(cmd, t.seed, "initialisation seed; restart r uses seed + r"), t,
+            t.seed);
+  AddFieldOption(cmd, "--restarts", t, t.restarts,
+                 "random initialisations, best kept (by validation MSE, else training MSE)");
+  AddFieldOption(cmd, "--max-epochs", t, t.max_epochs, "epoch limit");
+  AddFieldOption(cmd, "--goal-mse", t, t.goal_mse,
+                 "stop when training MSE <= this [output unit^2, V^2]");
+  AddFieldOption(cmd, "--min-gradient", t, t.gradient_tolerance,
+                 "stop when ||2 J'e/N|| < this [normalised units]");
+  BindField(cmd,
+            cmd->add_option("--init", o.init, "nguyen-widrow or uniform")
+                ->check(CLI::IsMember({"nguyen-widrow", "uniform"}))
+                ->capture_default_str(),
+            t, t.init);
+  AddFieldFlag(cmd, "--solve-output-layer", t, t.solve_output_layer,
+               "lm only: after each trial step set the linear output layer to its least-squares "
+               "optimum (much faster convergence; off = the paper's rule exactly)");
+  BindField(cmd,
+            cmd->add_option("--input-range", o.input_ranges,
+                            "fixed mapminmax range NAME=MIN:MAX of an input [its SI unit], e.g. "
+                            "v=-0.1:0.1; default: the training data's min/max")
+                ->type_name("NAME=MIN:MAX"),
+            t, t.input_ranges);
+  BindField(cmd,
+            cmd->add_option("--output-range", o.output_range,
+                            "fixed mapminmax range MIN:MAX of the output [V]; -1:1 leaves it "
+                            "unscaled; default: the training targets' min/max")
+                ->type_name("MIN:MAX"),
+            t, t.output_range);
   cmd->add_flag("--json", o.json, "print one JSON object to stdout");
 }
 

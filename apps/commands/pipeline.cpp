@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
 #include "cli/recording_flags.hpp"
@@ -177,49 +178,63 @@ void AddPipelineCommand(CLI::App& app) {
                 "replace an earlier sysid report folder (one holding .sysid-output)");
   PipelineOptions& p = o->options;
   o->hidden = FormatHiddenSizes(p.hidden_sizes);
-  cmd->add_option("--a3", p.a3,
-                  "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins); the "
-                  "default is the paper's HR-8 data-sheet value, not your stage's")
+  AddFieldOption(cmd, "--a3", p, p.a3,
+                 "actuator gain for the pulse method [m/(s^2 V)] (a manifest's a3 wins); the "
+                 "default is the paper's HR-8 data-sheet value, not your stage's")
       ->check(PositiveNumber())
-      ->capture_default_str()
       ->each([&p](const std::string&) { p.a3_given = true; });
-  cmd->add_option("--hidden", o->hidden, "hidden sizes to sweep: first:last:step or a list")
-      ->capture_default_str();
-  cmd->add_option("--inputs", o->inputs,
-                  "network inputs, comma separated (v, a); default: the dominant variable");
-  cmd->add_option("--max-epochs", p.training.max_epochs, "LM epoch limit per network")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
-  cmd->add_option("--typical-epochs", p.typical_max_epochs,
-                  fmt::format("LM epoch limit of the typical {}-unit (v, a) network",
-                              p.typical_hidden))
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))  // CLI11 would wrap -1
-      ->capture_default_str();
-  cmd->add_option("--typical-stride", p.typical_stride,
-                  "train the typical network on every n-th training row")
-      ->check(PositiveNumber())
-      ->capture_default_str();
-  AddOffFlag(cmd, "--no-typical", p.typical, "skip the typical (v, a) network");
-  AddOffFlag(cmd, "--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)");
-  cmd->add_flag("--refine", p.refine, "refine all parameters by output error (Ceres)");
-  AddOffFlag(cmd, "--no-track", p.track, "skip the PI tracking experiment");
-  cmd->add_option("--fit-fraction", p.pulse_fit_fraction,
-                  "with pulse recordings alone: identify on the first fraction F of each pulse "
-                  "recording's duration and validate on the rest, 0 < F <= 1 (unused with a "
-                  "training set)")
+  // --hidden and --inputs are text, parsed into hidden_sizes and nn_inputs when the command runs.
+  BindField(cmd,
+            cmd->add_option("--hidden", o->hidden,
+                            "hidden sizes to sweep: first:last:step or a list")
+                ->capture_default_str(),
+            p, p.hidden_sizes);
+  BindField(cmd,
+            cmd->add_option("--inputs", o->inputs,
+                            "network inputs, comma separated (v, a); default: the dominant "
+                            "variable"),
+            p, p.nn_inputs);
+  AddFieldOption(cmd, "--max-epochs", p, p.training.max_epochs, "LM epoch limit per network")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+  AddFieldOption(cmd, "--typical-epochs", p, p.typical_max_epochs,
+                 fmt::format("LM epoch limit of the typical {}-unit (v, a) network",
+                             p.typical_hidden))
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));  // CLI11 would wrap -1
+  AddFieldOption(cmd, "--typical-stride", p, p.typical_stride,
+                 "train the typical network on every n-th training row")
+      ->check(PositiveNumber());
+  BindField(cmd, AddOffFlag(cmd, "--no-typical", p.typical, "skip the typical (v, a) network"),
+            p, p.typical);
+  BindField(cmd, AddOffFlag(cmd, "--no-delay", p.tune_delay, "keep tau = 0 (no delay tuning)"),
+            p, p.tune_delay);
+  AddFieldFlag(cmd, "--refine", p, p.refine, "refine all parameters by output error (Ceres)");
+  BindField(cmd, AddOffFlag(cmd, "--no-track", p.track, "skip the PI tracking experiment"), p,
+            p.track);
+  AddFieldOption(cmd, "--fit-fraction", p, p.pulse_fit_fraction,
+                 "with pulse recordings alone: identify on the first fraction F of each pulse "
+                 "recording's duration and validate on the rest, 0 < F <= 1 (unused with a "
+                 "training set)")
       ->type_name("F")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  cmd->add_flag("--facts", p.facts,
-                "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
-                "table in the report, facts.json");
-  AddPiGainOptions(cmd, p.pi, "PI ");
-  AddSeedOption(cmd, p.training.seed, "seed of the network initialisations");
-  AddThreadsOption(cmd, p.threads,
-                   "threads for every long step; 0 = all cores; results do not depend on it");
-  cmd->add_option("--reference", p.reference_path,
-                  "JSON of reference numbers to set beside ours (experiments/paper_numbers.json)")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::Range(0.0, 1.0));
+  AddFieldFlag(cmd, "--facts", p, p.facts,
+               "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
+               "table in the report, facts.json");
+  const auto [kp, ki] = AddPiGainOptions(cmd, p.pi, "PI ");
+  BindField(cmd, kp, p, p.pi.kp_v_per_m);
+  BindField(cmd, ki, p, p.pi.ki_v_per_m_s);
+  BindField(cmd, AddSeedOption(cmd, p.training.seed, "seed of the network initialisations"), p,
+            p.training.seed);
+  BindField(cmd,
+            AddThreadsOption(cmd, p.threads,
+                             "threads for every long step; 0 = all cores; results do not "
+                             "depend on it"),
+            p, p.threads);
+  BindField(cmd,
+            cmd->add_option("--reference", p.reference_path,
+                            "JSON of reference numbers to set beside ours "
+                            "(experiments/paper_numbers.json)")
+                ->check(CLI::ExistingFile),
+            p, p.reference_path);
   o->recording.Add(cmd);
   cmd->add_flag("--json", o->json,
                 "print a JSON summary (model, dominant, MSEs, tracking, the PI gains' margins, "

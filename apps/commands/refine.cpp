@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/output_file.hpp"
@@ -62,19 +63,22 @@ void AddRefineCommand(CLI::App& app) {
   AddVerboseFlag(cmd, o->verbose);
   AddOutputOption(cmd, o->output, "write the refined model file (same JSON as --json)");
   GuardOutputFiles(cmd, {{&o->output, "-o"}});
-  cmd->add_flag("--fix-a3", o->fix_a3, "keep a3 at the starting value");
-  cmd->add_flag("--fix-tau", o->fix_tau, "keep tau at the starting value");
   RefineOptions& r = o->options;
-  cmd->add_option("--tau-max", r.tau_max_s, "upper bound of tau [s]")->capture_default_str();
-  cmd->add_option("--max-iterations", r.max_iterations,
-                  "Levenberg-Marquardt iterations [count]")
-      ->capture_default_str();
-  AddThreadsOption(cmd, r.threads, "simulation threads [count]; 0 = all cores");
+  // --fix-a3 and --fix-tau set refine_a3 and refine_tau to their negation when the command runs.
+  BindField(cmd, cmd->add_flag("--fix-a3", o->fix_a3, "keep a3 at the starting value"), r,
+            r.refine_a3);
+  BindField(cmd, cmd->add_flag("--fix-tau", o->fix_tau, "keep tau at the starting value"), r,
+            r.refine_tau);
+  AddFieldOption(cmd, "--tau-max", r, r.tau_max_s, "upper bound of tau [s]");
+  AddFieldOption(cmd, "--max-iterations", r, r.max_iterations,
+                 "Levenberg-Marquardt iterations [count]");
+  BindField(cmd, AddThreadsOption(cmd, r.threads, "simulation threads [count]; 0 = all cores"), r,
+            r.threads);
   o->fit_fraction.Add(cmd);
-  cmd->add_option("--min-duration", r.detection.min_duration_s,
-                  "pulses (cut points) last at least this long [s]")
-      ->capture_default_str();
+  AddFieldOption(cmd, "--min-duration", r, r.detection.min_duration_s,
+                 "pulses (cut points) last at least this long [s]");
   o->motion.Add(cmd, "filter for velocity from x", ToString(r.motion.derivative.method));
+  o->motion.Bind(cmd, r, r.motion);
   cmd->callback([o] { RunRefine(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
 #include "sysid/stage.hpp"
@@ -100,31 +101,36 @@ void AddStageCommand(CLI::App& app) {
   cmd->add_option("--stage", o->stage_path,
                   std::string("stage parameter file (JSON) or a preset: ") + cli::kStagePresets)
       ->type_name("S.json|PRESET");
-  cmd->add_option("--facts", o->facts, "only these facts (and what they need), e.g. F1,F3")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"}))
-      ->type_name("ID,...");
-  auto* seed =
-      AddSeedOption(cmd, o->options.seed, "noise seed of every experiment [integer]");
+  FactsOptions& f = o->options;
+  // Copied into facts when the command runs (over FactsOptions::Reduced() with --reduced).
+  BindField(cmd,
+            cmd->add_option("--facts", o->facts,
+                            "only these facts (and what they need), e.g. F1,F3")
+                ->delimiter(',')
+                ->check(CLI::IsMember({"F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8"}))
+                ->type_name("ID,..."),
+            f, f.facts);
+  auto* seed = BindField(
+      cmd, AddSeedOption(cmd, f.seed, "noise seed of every experiment [integer]"), f, f.seed);
   cmd->add_option("--seeds", o->seeds,
                   "run the facts at each of these seeds (A-B or A,B,...; at most 1000) and "
                   "print, per fact, the seeds at which it is met (Markdown, or --json)")
       ->excludes(seed)
       ->type_name("A-B|A,B,...");
-  AddThreadsOption(cmd, o->options.threads,
-                   "threads for delay tuning; 0 = all cores (the networks train on one thread: "
-                   "repeatable)");
-  cmd->add_option("--nn-inits", o->options.network_initializations,
-                  "F5: also train the dominant network from this many initial weights and "
-                  "report each one's tracking error and how many beat the analytic inverse "
-                  "(the verdict stays the first network's)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  cmd->add_option("--collect-kp", o->options.collection_kp_v_per_m,
-                  "[V/m] P gain of the controller that collects the networks' training and test "
-                  "sets (F5's NN, F7); the paper does not print it")
-      ->check(FiniteRange(1.0, 1e6))
-      ->capture_default_str();
+  BindField(cmd,
+            AddThreadsOption(cmd, f.threads,
+                             "threads for delay tuning; 0 = all cores (the networks train on "
+                             "one thread: repeatable)"),
+            f, f.threads);
+  AddFieldOption(cmd, "--nn-inits", f, f.network_initializations,
+                 "F5: also train the dominant network from this many initial weights and "
+                 "report each one's tracking error and how many beat the analytic inverse "
+                 "(the verdict stays the first network's)")
+      ->check(CLI::Range(1, 100));
+  AddFieldOption(cmd, "--collect-kp", f, f.collection_kp_v_per_m,
+                 "[V/m] P gain of the controller that collects the networks' training and test "
+                 "sets (F5's NN, F7); the paper does not print it")
+      ->check(FiniteRange(1.0, 1e6));
   cmd->add_flag("--reduced", o->reduced,
                 "small networks and short training, for tests (F5's NN row and F7 are then not "
                 "the paper's experiment)");

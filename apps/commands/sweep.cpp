@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "commands/nn_training_options.hpp"
@@ -18,14 +19,13 @@ namespace {
 
 struct SweepCliOptions {
   NeuralCliOptions nn;
-  std::string hidden;  // set from HiddenSweepOptions::hidden_sizes
-  int threads = 0;
+  HiddenSweepOptions sweep;  // the flags' defaults are the library's; training comes from nn
+  std::string hidden;        // set from sweep.hidden_sizes
 };
 
 void RunSweep(SweepCliOptions& o) {
-  HiddenSweepOptions so;
+  HiddenSweepOptions so = o.sweep;
   so.hidden_sizes = ParseHiddenSizes(o.hidden);
-  so.threads = o.threads;
   ResolveNeuralOptions(o.nn);
   so.training = o.nn.training;
   const auto names = SplitComma(o.nn.inputs);
@@ -78,12 +78,16 @@ void AddSweepCommand(CLI::App& app) {
       "and test MSE [output unit^2], as the paper's Table; picks H by min validation "
       "MSE, else min test MSE");
   AddNeuralOptions(cmd, o->nn);
-  const HiddenSweepOptions defaults;
-  o->hidden = FormatHiddenSizes(defaults.hidden_sizes);
-  o->threads = defaults.threads;
-  cmd->add_option("--hidden", o->hidden, "hidden sizes FIRST:LAST:STEP or a list H1,H2,...")
-      ->capture_default_str();
-  AddThreadsOption(cmd, o->threads, "worker threads; 0 = all cores");
+  HiddenSweepOptions& so = o->sweep;
+  o->hidden = FormatHiddenSizes(so.hidden_sizes);
+  // Parsed into hidden_sizes when the command runs.
+  BindField(cmd,
+            cmd->add_option("--hidden", o->hidden,
+                            "hidden sizes FIRST:LAST:STEP or a list H1,H2,...")
+                ->capture_default_str(),
+            so, so.hidden_sizes);
+  BindField(cmd, AddThreadsOption(cmd, so.threads, "worker threads; 0 = all cores"), so,
+            so.threads);
   cmd->add_option("-o", o->nn.model_path, "the chosen network's model file (JSON, atomic)")
       ->type_name("NN.json");
   GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});

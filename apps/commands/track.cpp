@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_folder.hpp"
 #include "cli/pi_flags.hpp"
 #include "cli/recording_flags.hpp"
@@ -375,13 +376,13 @@ void AddTrackCommand(CLI::App& app) {
                   "neural inverse model JSON on v [m/s] (and a [m/s^2]) "
                   "(for --ff nn)")
       ->check(CLI::ExistingFile);
+  SmoothProfileOptions& profile = o->profile;
   auto* freq =
-      cmd->add_option("--freq", o->profile.frequency_hz,
-                      fmt::format("frequency of the smooth back-and-forth profile [Hz] (piezo "
-                                  "stack: of its waveform, {:g} when not given)",
-                                  StackReferenceOptions{}.frequency_hz))
-          ->check(PositiveNumber())
-          ->capture_default_str();
+      AddFieldOption(cmd, "--freq", profile, profile.frequency_hz,
+                     fmt::format("frequency of the smooth back-and-forth profile [Hz] (piezo "
+                                 "stack: of its waveform, {:g} when not given)",
+                                 StackReferenceOptions{}.frequency_hz))
+          ->check(PositiveNumber());
   o->freq = freq;
   cmd->add_option("--reference", o->reference_path,
                   "position reference CSV with t [s] and x_ref [m] (or x) columns, sampled "
@@ -390,23 +391,23 @@ void AddTrackCommand(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->excludes(freq);
   o->amplitude =
-      cmd->add_option("--amplitude", o->profile.amplitude_m,
-                      fmt::format("stroke of the profile [m] (piezo stack: {:g} when not given)",
-                                  StackReferenceOptions{}.stroke_m))
-          ->capture_default_str();
-  cmd->add_option("--cycles", o->profile.cycles, "profile periods to run")
-      ->check(PositiveNumber())
-      ->capture_default_str();
-  const auto [kp, ki] = AddPiGainOptions(cmd, o->pi, "");
+      AddFieldOption(cmd, "--amplitude", profile, profile.amplitude_m,
+                     fmt::format("stroke of the profile [m] (piezo stack: {:g} when not given)",
+                                 StackReferenceOptions{}.stroke_m));
+  AddFieldOption(cmd, "--cycles", profile, profile.cycles, "profile periods to run")
+      ->check(PositiveNumber());
+  PiOptions& pi = o->pi;
+  const auto [kp, ki] = AddPiGainOptions(cmd, pi, "");
+  BindField(cmd, kp, pi, pi.kp_v_per_m);
+  BindField(cmd, ki, pi, pi.ki_v_per_m_s);
   kp->check(FiniteRange(0.0, 1e9));
   ki->check(FiniteRange(0.0, 1e12));
   o->kp = kp;
   o->ki = ki;
-  o->u_max = cmd->add_option("--u-max", o->pi.u_max_v,
-                             "output saturation [V] (piezo stack: default its amplifier's upper "
-                             "end; its gains default to StackPiOptions, docs/piezo_stack.md)")
-                 ->check(PositiveNumber())
-                 ->capture_default_str();
+  o->u_max = AddFieldOption(cmd, "--u-max", pi, pi.u_max_v,
+                            "output saturation [V] (piezo stack: default its amplifier's upper "
+                            "end; its gains default to StackPiOptions, docs/piezo_stack.md)")
+                 ->check(PositiveNumber());
   AddSeedOption(cmd, o->seed, "seed of the stage's encoder noise");
   AddOutputOption(cmd, o->out_dir,
                   "new folder for track_<ff>.csv traces, plots and summary.json")

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "commands/nn_training_options.hpp"
@@ -87,12 +88,14 @@ void AddTrainCommand(CLI::App& app) {
                          "Train a neural inverse model (inputs -> H tanh units -> output) by "
                          "Levenberg-Marquardt; MSE in the output's unit squared (V^2)");
   AddNeuralOptions(cmd, o->nn);
-  cmd->add_option("--hidden", o->nn.training.hidden, "hidden tanh units H")
-      ->check(CLI::Range(1, kMaxHiddenUnits))
-      ->capture_default_str();
-  AddThreadsOption(cmd, o->nn.training.threads,
-                   "threads for each epoch (lm trainer); 0 = all cores; results do not depend on "
-                   "it");
+  NeuralTrainingOptions& t = o->nn.training;
+  AddFieldOption(cmd, "--hidden", t, t.hidden, "hidden tanh units H")
+      ->check(CLI::Range(1, kMaxHiddenUnits));
+  BindField(cmd,
+            AddThreadsOption(cmd, t.threads,
+                             "threads for each epoch (lm trainer); 0 = all cores; results do "
+                             "not depend on it"),
+            t, t.threads);
   cmd->add_option("-o", o->nn.model_path, "network model file (JSON, written atomically)")
       ->type_name("NN.json");
   GuardOutputFiles(cmd, {{&o->nn.model_path, "-o"}});

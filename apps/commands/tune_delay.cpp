@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/fit_fraction_flag.hpp"
 #include "cli/motion_flags.hpp"
 #include "cli/output_file.hpp"
@@ -56,29 +57,29 @@ void AddTuneDelayCommand(CLI::App& app) {
   DelayTuningOptions& d = o->options;
   const double tau_limit = DelayTuningOptions::kMaxTau_s;
   const CLI::Range tau_range(0.0, tau_limit);
-  CLI::Option* tau_min = cmd->add_option("--tau-min", d.tau_min_s, "lower bound of tau [s]")
-                             ->check(tau_range)
-                             ->capture_default_str();
+  CLI::Option* tau_min =
+      AddFieldOption(cmd, "--tau-min", d, d.tau_min_s, "lower bound of tau [s]")
+          ->check(tau_range);
   CLI::Option* tau_max =
-      cmd->add_option("--tau-max", d.tau_max_s,
-                      fmt::format("upper bound of tau [s], <= {}", tau_limit))
-          ->check(tau_range)
-          ->capture_default_str();
+      AddFieldOption(cmd, "--tau-max", d, d.tau_max_s,
+                     fmt::format("upper bound of tau [s], <= {}", tau_limit))
+          ->check(tau_range);
   // The names identify and refine use; the first spellings stay for one release.
-  AddDeprecatedAlias(cmd, "--min", tau_min, d.tau_min_s, tau_range);
-  AddDeprecatedAlias(cmd, "--max", tau_max, d.tau_max_s, tau_range);
-  cmd->add_option("--xtol", d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
-      ->check(FiniteRange(1e-12, 1.0))
-      ->capture_default_str();
-  cmd->add_option("--curve", d.curve_points,
-                  fmt::format("also evaluate the cost on this many evenly spaced tau values "
-                              "[count], <= {}; each costs one simulation of the recordings "
-                              "(about 10 ms for the bundled pulse test: the maximum takes "
-                              "about 15 s)",
-                              DelayTuningOptions::kMaxCurvePoints))
-      ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints))
-      ->capture_default_str();
-  AddThreadsOption(cmd, d.threads, "simulation threads [count]; 0 = all cores");
+  BindField(cmd, AddDeprecatedAlias(cmd, "--min", tau_min, d.tau_min_s, tau_range), d,
+            d.tau_min_s);
+  BindField(cmd, AddDeprecatedAlias(cmd, "--max", tau_max, d.tau_max_s, tau_range), d,
+            d.tau_max_s);
+  AddFieldOption(cmd, "--xtol", d, d.x_tolerance_s, "stop when BOBYQA steps are below this [s]")
+      ->check(FiniteRange(1e-12, 1.0));
+  AddFieldOption(cmd, "--curve", d, d.curve_points,
+                 fmt::format("also evaluate the cost on this many evenly spaced tau values "
+                             "[count], <= {}; each costs one simulation of the recordings "
+                             "(about 10 ms for the bundled pulse test: the maximum takes "
+                             "about 15 s)",
+                             DelayTuningOptions::kMaxCurvePoints))
+      ->check(CLI::Range(0, DelayTuningOptions::kMaxCurvePoints));
+  BindField(cmd, AddThreadsOption(cmd, d.threads, "simulation threads [count]; 0 = all cores"), d,
+            d.threads);
   o->fit_fraction.Add(cmd);
   AddVerboseFlag(cmd, o->verbose);
   cmd->add_flag("--json", o->json,
@@ -86,6 +87,7 @@ void AddTuneDelayCommand(CLI::App& app) {
   AddOutputOption(cmd, o->output, "write the model with tau filled in");
   GuardOutputFiles(cmd, {{&o->output, "-o"}});
   o->motion.Add(cmd, "filter for velocity from x", ToString(d.motion.derivative.method));
+  o->motion.Bind(cmd, d, d.motion);
   cmd->callback([o] { RunTuneDelay(*o); });
 }
 

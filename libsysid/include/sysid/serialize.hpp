@@ -12,6 +12,9 @@
 #ifndef SYSID_SERIALIZE_HPP_
 #define SYSID_SERIALIZE_HPP_
 
+#include <type_traits>
+#include <utility>
+
 namespace sysid {
 
 /// How an archive shows a number that may be unbounded. JSON has no infinity: a limit whose
@@ -44,6 +47,21 @@ class NameValue {
   T* value_;
   FieldForm form_ = FieldForm::kPlain;
 };
+
+namespace internal {
+/// An archive that visits nothing: the probe of IsDescribed.
+struct NullArchive {
+  template <class V>
+  void Visit(const NameValue<V>&) {}
+};
+}  // namespace internal
+
+/// Whether T lists its fields in Serialize.
+template <class T, class = void>
+struct IsDescribed : std::false_type {};
+template <class T>
+struct IsDescribed<T, std::void_t<decltype(std::declval<T&>().Serialize(
+                          std::declval<internal::NullArchive*>()))>> : std::true_type {};
 
 }  // namespace sysid
 

@@ -36,13 +36,7 @@ class FieldNameArchive {
   std::vector<std::string> names;
 };
 
-/// Whether T lists its fields in Serialize (sysid/serialize.hpp).
-template <class T, class = void>
-struct IsDescribed : std::false_type {};
-template <class T>
-struct IsDescribed<
-    T, std::void_t<decltype(std::declval<T&>().Serialize(std::declval<FieldNameArchive*>()))>>
-    : std::true_type {};
+using ::sysid::IsDescribed;
 
 template <class T>
 std::vector<std::string> FieldNamesOf(const T& o) {
