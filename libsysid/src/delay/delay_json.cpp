@@ -77,7 +77,6 @@ RefineResult RefineResultFromJson(std::string_view text, const std::string& sour
 
 // ---- Options ----
 
-
 std::string ToJson(const SegmentOptions& o, int indent) {
   return internal::FieldsToJson(o, indent);
 }

@@ -131,12 +131,10 @@ std::string ResultText(const FrictionModel& model, const char* method, const Jso
 
 // The model (checked as a model file) and the "diagnostics" object of `method`, whose keys are
 // read by the caller.
-JsonNode Diagnostics(const internal::JsonDocument& doc, const char* method,
-                     FrictionModel& model) {
+JsonNode Diagnostics(const internal::JsonDocument& doc, const char* method, FrictionModel& model) {
   model = internal::ModelFromJson(doc, doc.Root(), {kDiagnostics});
   const JsonNode d = doc.Root().Get(kDiagnostics);
-  if (d.Get(kMethod).String() != method)
-    d.Get(kMethod).Expected(std::string("\"") + method + "\"");
+  if (d.Get(kMethod).String() != method) d.Get(kMethod).Expected(std::string("\"") + method + "\"");
   return d;
 }
 
@@ -155,8 +153,7 @@ PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view tex
   PulseIdentificationResult r;
   const internal::JsonDocument doc(text, source_name);
   const JsonNode d = Diagnostics(doc, "pulse", r.model);
-  internal::ReadFields(d, r,
-                       {kMethod, kA3Given, kParameters, kOrder, kCovariance, kEquations});
+  internal::ReadFields(d, r, {kMethod, kA3Given, kParameters, kOrder, kCovariance, kEquations});
   ReadParameters(d, r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance);
   ReadEquations(d.Get(kEquations), r.points, r.fit.residuals);
   return r;
@@ -182,7 +179,6 @@ TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
 }
 
 // ---- Options ----
-
 
 namespace {
 

@@ -6,8 +6,8 @@
 
 #include "core/json_fields.hpp"
 #include "signal/signal_json.hpp"
-#include "sysid/motion.hpp"
 #include "sysid/error.hpp"
+#include "sysid/motion.hpp"
 
 namespace sysid {
 
