@@ -14,6 +14,19 @@ TEST_CASE("a model file round-trips and validates", "[model]") {
   CHECK(back.tau_s == paper.tau_s);
 }
 
+TEST_CASE("a model file keeps its published keys, order and units", "[model]") {
+  // The text the hand-written writer produced before the model was described (Serialize).
+  CHECK(sysid::ModelToJson(sysid::FrictionModel::Paper(), -1) ==
+        R"j({"a1p":104.0154,"a1n":117.1441,"a2p":3.1023,"a2n":6.8216,"a3":6.0,"tau":0.0035,)j"
+        R"j("units":{"a1p":"1/s","a1n":"1/s","a2p":"m/s^2","a2n":"m/s^2","a3":"m/(s^2 V)",)j"
+        R"j("tau":"s"}})j"
+        "\n");
+  // tau may be left out (no delay); the coefficients may not.
+  CHECK(sysid::ParseModel(R"({"a1p":1,"a1n":1,"a2p":1,"a2n":1,"a3":6})", "m.json").tau_s == 0.0);
+  CHECK_THROWS_WITH(sysid::ParseModel(R"({"a1n":1,"a2p":1,"a2n":1,"a3":6,"tau":0})", "m.json"),
+                    Catch::StartsWith("m.json:1:1: missing required key 'a1p'"));
+}
+
 TEST_CASE("model file errors name the place and the rule", "[model][errors]") {
   CHECK_THROWS_WITH(sysid::ParseModel("{\"a1p\": 1,\n \"a1n\": }", "m.json"),
                     Catch::StartsWith("m.json:2:9: invalid JSON"));

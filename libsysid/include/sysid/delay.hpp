@@ -104,6 +104,24 @@ struct DelayTuningResult {
   /// interval, or the recordings do not determine tau).
   std::vector<std::string> warnings;
   double wall_time_s = 0;
+  /// The fields of tune-delay's JSON, in file order (sysid/serialize.hpp); the model is a model
+  /// file's object.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(NameValue<double>("tau", &tau_s).Minimum(0));
+    a->Visit(SYSID_NVP(cost).Minimum(0));
+    a->Visit(SYSID_NVP(rms_error_mps).Minimum(0));
+    a->Visit(SYSID_NVP(evaluations).Minimum(0).Maximum(1 << 30));
+    a->Visit(SYSID_NVP(simulations).Minimum(0));
+    a->Visit(SYSID_NVP(segments).Minimum(0).Maximum(1 << 30));
+    a->Visit(SYSID_NVP(samples).Minimum(0));
+    a->Visit(SYSID_NVP(termination));
+    a->Visit(SYSID_NVP(message));
+    a->Visit(SYSID_NVP(wall_time_s).Minimum(0));
+    a->Visit(SYSID_NVP(warnings));
+    a->Visit(SYSID_NVP(curve).PairKeys("tau", "cost"));
+    a->Visit(SYSID_NVP(model));
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: the model, the search bounds' warnings and the cost
   /// curve (tau [s], cost [m^2/s^2]).
@@ -161,6 +179,19 @@ struct RefineResult {
   /// disagree.
   std::vector<std::string> warnings;
   double wall_time_s = 0;  ///< [s] not serialised (files stay identical run to run)
+  /// The fields of refine's "diagnostics" object after its std_error (of `names`), in file order
+  /// (sysid/serialize.hpp); `model` is the file's own keys, `initial` is not written.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(initial_cost).Minimum(0));
+    a->Visit(SYSID_NVP(final_cost).Minimum(0));
+    a->Visit(SYSID_NVP(rms_error_mps).Minimum(0));
+    a->Visit(SYSID_NVP(iterations).Minimum(0).Maximum(1 << 30));
+    a->Visit(SYSID_NVP(simulations).Minimum(0));
+    a->Visit(SYSID_NVP(termination));
+    a->Visit(SYSID_NVP(message));
+    a->Visit(SYSID_NVP(warnings));
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: the initial model, each parameter's change and
   /// relative standard error, and the warnings.

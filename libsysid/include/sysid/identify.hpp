@@ -124,6 +124,15 @@ struct Pulse {
   double amplitude_v = 0;        ///< [V] mean u over the pulse
   bool at_record_start = false;  ///< no sample before the pulse
   bool at_record_end = false;    ///< no sample after the pulse
+  /// The fields an identification's "pulses" entries hold, in file order
+  /// (sysid/serialize.hpp); the rows and the record-end flags are not written.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(source));
+    a->Visit(SYSID_NVP(t_start_s));
+    a->Visit(SYSID_NVP(duration_s).Minimum(0));
+    a->Visit(SYSID_NVP(amplitude_v));
+  }
 };
 
 /// Finds the pulses in a voltage record.
@@ -176,6 +185,17 @@ struct PulseEstimate {
   PulseStatus status = PulseStatus::kOk;
   std::string reason;  ///< why excluded, in words (empty when ok)
   bool usable() const { return status == PulseStatus::kOk; }
+  /// The fields of an identification's "pulses" entry, the pulse's first, in file order
+  /// (sysid/serialize.hpp); window_samples is not written.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(pulse).Inline());
+    a->Visit(SYSID_NVP(v_mps).NaNAsNull());
+    a->Visit(SYSID_NVP(v_stderr_mps).NaNAsNull());
+    a->Visit(SYSID_NVP(drift_mps).NaNAsNull());
+    a->Visit(SYSID_NVP(status));
+    a->Visit(SYSID_NVP(reason));
+  }
 };
 
 /// Steady-state velocity of each pulse, with the checks of PlateauOptions.
@@ -203,6 +223,18 @@ struct LinearFit {
   /// |R_ii| of the pivoted QR with the parameter of each pivot, largest first: the
   /// identifiability ranking (small entries are poorly identified).
   std::vector<std::pair<std::string, double>> r_diagonal;
+  /// The fit's statistics as an identification's diagnostics hold them, in file order
+  /// (sysid/serialize.hpp); the estimates are written by parameter name beside them.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(rows).Minimum(0));
+    a->Visit(SYSID_NVP(rank).Minimum(0).Maximum(1000));
+    a->Visit(SYSID_NVP(dof).Minimum(-1000));
+    a->Visit(SYSID_NVP(condition_number).NaNAsNull());
+    a->Visit(SYSID_NVP(rms_residual).NaNAsNull());
+    a->Visit(SYSID_NVP(relative_error).NaNAsNull());
+    a->Visit(SYSID_NVP(r_diagonal).PairKeys("parameter", "abs_r"));
+  }
 };
 
 // ----------------------------------------------------------------------------------------------
@@ -214,6 +246,13 @@ struct PulsePoint {
   double u_v = 0;     ///< [V] pulse amplitude (signed)
   double v_mps = 0;   ///< [m/s] steady-state velocity (signed)
   std::string label;  ///< where it came from ("table.csv:3", "rec.csv pulse 2")
+  /// The fields of a pulse fit's "equations" entry, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(label));
+    a->Visit(SYSID_NVP(u_v));
+    a->Visit(SYSID_NVP(v_mps));
+  }
 };
 
 /// Reads a pulse table: CSV with columns u [V] and v [m/s] (or MAT/HDF5 through `mapping`).
@@ -245,6 +284,14 @@ struct PulseIdentificationResult {
   LinearFit fit;                      ///< theta = [a1p, a2p, a1n, a2n]; residuals in [m/s^2]
   std::vector<PulsePoint> points;     ///< the equations used, in row order
   std::vector<PulseEstimate> pulses;  ///< every detected pulse, excluded ones with reasons
+  /// The plain fields of the pulse fit's diagnostics, in file order (sysid/serialize.hpp): the
+  /// fit's statistics and the pulses (none from a pulse table); the estimates are written by
+  /// name, the points with their residuals as "equations".
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(fit).Inline());
+    a->Visit(SYSID_NVP(pulses).OmitEmpty());
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: the fit (rank, dof, condition number, R diagonal,
   /// residuals) and every pulse with its status and reason.
@@ -331,6 +378,16 @@ struct TrajectoryIdentificationResult {
   std::vector<std::pair<double, double>> tau_curve;
   /// The velocity filter used (TrajectoryOptions::motion), recorded for the diagnostics.
   DerivativeMethod derivative = DerivativeMethod::kButterworthCentral;
+  /// The plain fields of the trajectory fit's diagnostics, in file order
+  /// (sysid/serialize.hpp); the estimates are written by name, the fit as "linear_fit".
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(derivative));
+    a->Visit(SYSID_NVP(offset_mps2));
+    a->Visit(SYSID_NVP(samples_used).Minimum(0));
+    a->Visit(SYSID_NVP(relative_error).NaNAsNull());
+    a->Visit(SYSID_NVP(tau_curve).OmitEmpty());
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: estimates with standard errors, the fit (rank, dof,
   /// condition number, R diagonal), the velocity filter and the delay curve.

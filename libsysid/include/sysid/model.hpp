@@ -12,6 +12,8 @@
 #include <string>
 #include <string_view>
 
+#include "sysid/serialize.hpp"
+
 namespace sysid {
 
 struct FrictionModel {
@@ -21,6 +23,19 @@ struct FrictionModel {
   double a2n = 0;    ///< [m/s^2] Coulomb level for motion in -x (breakaway threshold backward)
   double a3 = 6.0;   ///< [m/(s^2 V)] actuator gain
   double tau_s = 0;  ///< [s] delay of the viscous term, >= 0
+
+  /// The model file's fields, in file order (sysid/serialize.hpp): every coefficient must be
+  /// written, tau may be left out (0: no delay), and a delay of more than a second is no
+  /// actuator's.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(a1p).Required().Minimum(0).Unit("1/s"));
+    a->Visit(SYSID_NVP(a1n).Required().Minimum(0).Unit("1/s"));
+    a->Visit(SYSID_NVP(a2p).Required().Minimum(0).Unit("m/s^2"));
+    a->Visit(SYSID_NVP(a2n).Required().Minimum(0).Unit("m/s^2"));
+    a->Visit(SYSID_NVP(a3).Required().ExclusiveMinimum(0).Unit("m/(s^2 V)"));
+    a->Visit(NameValue<double>("tau", &tau_s).Minimum(0).Maximum(1).Unit("s"));
+  }
 
   /// Throws OptionsError naming the field and the violated rule (finite, a1 >= 0, a2 >= 0,
   /// a3 != 0, tau_s >= 0).

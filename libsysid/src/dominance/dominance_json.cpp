@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/json_text.hpp"
-#include "motion/motion_json.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/error.hpp"
 

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "core/json_fields.hpp"
-#include "motion/motion_json.hpp"
 #include "sysid/dominance.hpp"
 
 namespace sysid::internal {

@@ -1,10 +1,10 @@
-// JSON of the identification options (every field; each key optional when read) and results: the model file's text (ModelToJson) with a "diagnostics"
-// object, the form `sysid identify --json` prints and `-o` writes (docs/cli.md). The readers
-// take that text back (any model file reader also accepts it: "diagnostics" rides along).
+// JSON of the identification options (every field; each key optional when read) and results:
+// the model file's object with a "diagnostics" object, the form `sysid identify --json` prints
+// and `-o` writes (docs/cli.md). The readers take that text back (any model file reader also
+// accepts it: "diagnostics" rides along).
 #include "identify/identify_json.hpp"
 
-#include <cmath>
-#include <limits>
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -13,51 +13,46 @@
 #include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "model/model_json.hpp"
-#include "motion/motion_json.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/model.hpp"
 
 namespace sysid {
+
+nlohmann::ordered_json internal::JsonForm<PulseStatus>::Write(const PulseStatus& status) {
+  return ToString(status);
+}
+
+void internal::JsonForm<PulseStatus>::Read(const JsonNode& node, PulseStatus& status) {
+  const std::string s = node.String();
+  for (auto each : {PulseStatus::kOk, PulseStatus::kUnsettled, PulseStatus::kStuck,
+                    PulseStatus::kWrongDirection, PulseStatus::kVelocityLimit,
+                    PulseStatus::kTravelLimit, PulseStatus::kTooFewSamples})
+    if (ToString(each) == s) {
+      status = each;
+      return;
+    }
+  node.Expected(
+      "a pulse status (ok, unsettled, stuck, wrong-direction, velocity-limit, "
+      "travel-limit, too-few-samples)");
+}
+
 namespace {
 
 using internal::JsonNode;
-using internal::NumberOrNull;
 using Json = nlohmann::ordered_json;
 
-// The model's keys first (a valid model file), the diagnostics after them.
-Json ModelObject(const FrictionModel& m) { return Json::parse(ModelToJson(m, -1)); }
-
-// Fit statistics shared by both methods.
-Json FitStatistics(const LinearFit& f) {
-  Json j;
-  j["rows"] = f.rows;
-  j["rank"] = f.rank;
-  j["dof"] = f.dof;
-  j["condition_number"] = f.condition_number;
-  j["rms_residual"] = f.rms_residual;
-  j["relative_error"] = f.relative_error;
-  Json rd = Json::array();
-  for (const auto& [name, value] : f.r_diagonal)
-    rd.push_back({{"parameter", name}, {"abs_r", value}});
-  j["r_diagonal"] = rd;
-  return j;
-}
-
-void ReadFitStatistics(const JsonNode& d, LinearFit& f) {
-  f.rows = d.Get("rows").Integer(0, std::numeric_limits<long>::max());
-  f.rank = static_cast<int>(d.Get("rank").Integer(0, 1000));
-  f.dof = static_cast<int>(d.Get("dof").Integer(-1000, std::numeric_limits<int>::max()));
-  f.condition_number = d.Get("condition_number").NumberOrNaN();
-  f.rms_residual = d.Get("rms_residual").NumberOrNaN();
-  f.relative_error = d.Get("relative_error").NumberOrNaN();
-  const JsonNode rd = d.Get("r_diagonal");
-  rd.ExpectArray();
-  for (size_t i = 0; i < rd.Size(); ++i) {
-    const JsonNode e = rd.Element(i);
-    e.ExpectObject({"parameter", "abs_r"});
-    f.r_diagonal.emplace_back(e.Get("parameter").String(), e.Get("abs_r").NumberOrNaN());
-  }
-}
+// The keys a result's JSON adds around its described fields.
+constexpr char kDiagnostics[] = "diagnostics";
+constexpr char kMethod[] = "method";
+constexpr char kParameters[] = "parameters";
+constexpr char kOrder[] = "covariance_order";
+constexpr char kCovariance[] = "covariance";
+constexpr char kEquations[] = "equations";
+constexpr char kResidual[] = "residual_mps2";
+constexpr char kLinearFit[] = "linear_fit";
+// The a3 the pulse fit was given [m/(s^2 V)] (the model's: steady states cannot separate it).
+constexpr char kA3Given[] = "a3_given";
 
 // Estimates with standard errors by name, and their covariance.
 Json Parameters(const std::vector<std::string>& names, const Eigen::VectorXd& est,
@@ -65,21 +60,21 @@ Json Parameters(const std::vector<std::string>& names, const Eigen::VectorXd& es
   Json p = Json::object();
   for (size_t i = 0; i < names.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    p[names[i]] = {{"estimate", est[k]}, {"std_error", NumberOrNull(se[k])}};
+    p[names[i]] = {{"estimate", est[k]}, {"std_error", internal::NumberOrNull(se[k])}};
   }
-  return {{"parameters", p}, {"covariance_order", names}, {"covariance", internal::MatrixJson(cov)}};
+  return {{kParameters, p}, {kOrder, names}, {kCovariance, internal::MatrixJson(cov)}};
 }
 
 void ReadParameters(const JsonNode& d, std::vector<std::string>& names, Eigen::VectorXd& est,
                     Eigen::VectorXd& se, Eigen::MatrixXd& cov) {
-  const JsonNode order = d.Get("covariance_order");
+  const JsonNode order = d.Get(kOrder);
   order.ExpectArray();
   names.clear();
   for (size_t i = 0; i < order.Size(); ++i) names.push_back(order.Element(i).String(true));
   const auto n = static_cast<Eigen::Index>(names.size());
   est.resize(n);
   se.resize(n);
-  const JsonNode p = d.Get("parameters");
+  const JsonNode p = d.Get(kParameters);
   p.ExpectObject(names);
   for (Eigen::Index k = 0; k < n; ++k) {
     const JsonNode e = p.Get(names[static_cast<size_t>(k)]);
@@ -87,179 +82,115 @@ void ReadParameters(const JsonNode& d, std::vector<std::string>& names, Eigen::V
     est[k] = e.Get("estimate").Number();
     se[k] = e.Get("std_error").NumberOrNaN();
   }
-  cov = internal::MatrixFromJson(d.Get("covariance"), names.size(), names.size());
+  cov = internal::MatrixFromJson(d.Get(kCovariance), names.size(), names.size());
 }
 
-PulseStatus PulseStatusFromJson(const JsonNode& node) {
-  const std::string s = node.String();
-  for (auto status : {PulseStatus::kOk, PulseStatus::kUnsettled, PulseStatus::kStuck,
-                      PulseStatus::kWrongDirection, PulseStatus::kVelocityLimit,
-                      PulseStatus::kTravelLimit, PulseStatus::kTooFewSamples})
-    if (ToString(status) == s) return status;
-  node.Expected(
-      "a pulse status (ok, unsettled, stuck, wrong-direction, velocity-limit, "
-      "travel-limit, too-few-samples)");
+// The pulse fit's equations: each point with its residual [m/s^2].
+Json Equations(const std::vector<PulsePoint>& points, const Eigen::VectorXd& residuals) {
+  Json eq = Json::array();
+  for (size_t i = 0; i < points.size(); ++i) {
+    Json e = internal::WriteFields(points[i]);
+    e[kResidual] = residuals[static_cast<Eigen::Index>(i)];
+    eq.push_back(e);
+  }
+  return eq;
 }
 
-// The model (checked as a model file) and the "diagnostics" object of `method` with `keys`.
-JsonNode Diagnostics(const internal::JsonDocument& doc, const std::string& method,
-                     const std::vector<std::string>& keys, FrictionModel& model) {
-  model = internal::ModelFromJson(doc, doc.Root(), {"units", "diagnostics"});
-  const JsonNode d = doc.Root().Get("diagnostics");
-  d.ExpectObject(keys);
-  if (d.Get("method").String() != method) d.Get("method").Expected("\"" + method + "\"");
+void ReadEquations(const JsonNode& eq, std::vector<PulsePoint>& points,
+                   Eigen::VectorXd& residuals) {
+  eq.ExpectArray();
+  points.assign(eq.Size(), PulsePoint{});
+  residuals.resize(static_cast<Eigen::Index>(eq.Size()));
+  for (size_t i = 0; i < eq.Size(); ++i) {
+    const JsonNode e = eq.Element(i);
+    internal::ReadFields(e, points[i], {kResidual});
+    residuals[static_cast<Eigen::Index>(i)] = e.Get(kResidual).NumberOrNaN();
+  }
+}
+
+// The trajectory fit in u-space: its statistics, then the coefficients by name.
+struct TrajectoryFit {
+  LinearFit* fit;
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(NameValue<LinearFit>("fit", fit).Inline());
+    a->Visit(NameValue<std::vector<std::string>>("theta_names", &fit->names));
+    a->Visit(NameValue<Eigen::VectorXd>("theta", &fit->theta));
+  }
+};
+
+// A result's text: the model file's object, then the diagnostics of `method`.
+std::string ResultText(const FrictionModel& model, const char* method, const Json& fields,
+                       int indent) {
+  Json j = internal::ModelJson(model);
+  Json d = {{kMethod, method}};
+  d.update(fields);
+  j[kDiagnostics] = d;
+  return internal::DumpJson(j, indent);
+}
+
+// The model (checked as a model file) and the "diagnostics" object of `method`, whose keys are
+// read by the caller.
+JsonNode Diagnostics(const internal::JsonDocument& doc, const char* method, FrictionModel& model) {
+  model = internal::ModelFromJson(doc, doc.Root(), {kDiagnostics});
+  const JsonNode d = doc.Root().Get(kDiagnostics);
+  if (d.Get(kMethod).String() != method) d.Get(kMethod).Expected(std::string("\"") + method + "\"");
   return d;
 }
 
 }  // namespace
 
 std::string ToJson(const PulseIdentificationResult& r, int indent) {
-  Json j = ModelObject(r.model);
-  Json d;
-  d["method"] = "pulse";
-  d["a3_given"] = r.model.a3;
+  Json d = {{kA3Given, r.model.a3}};
   d.update(Parameters(r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance));
-  d.update(FitStatistics(r.fit));
-  Json eq = Json::array();
-  for (size_t i = 0; i < r.points.size(); ++i)
-    eq.push_back({{"label", r.points[i].label},
-                  {"u_v", r.points[i].u_v},
-                  {"v_mps", r.points[i].v_mps},
-                  {"residual_mps2", r.fit.residuals[static_cast<Eigen::Index>(i)]}});
-  d["equations"] = eq;
-  if (!r.pulses.empty()) {
-    Json pulses = Json::array();
-    for (const auto& e : r.pulses)
-      pulses.push_back({{"source", e.pulse.source},
-                        {"t_start_s", e.pulse.t_start_s},
-                        {"duration_s", e.pulse.duration_s},
-                        {"amplitude_v", e.pulse.amplitude_v},
-                        {"v_mps", e.v_mps},
-                        {"v_stderr_mps", NumberOrNull(e.v_stderr_mps)},
-                        {"drift_mps", e.drift_mps},
-                        {"status", ToString(e.status)},
-                        {"reason", e.reason}});
-    d["pulses"] = pulses;
-  }
-  j["diagnostics"] = d;
-  return internal::DumpJson(j, indent);
+  d.update(internal::WriteFields(r));
+  d[kEquations] = Equations(r.points, r.fit.residuals);
+  return ResultText(r.model, "pulse", d, indent);
 }
 
 PulseIdentificationResult PulseIdentificationResultFromJson(std::string_view text,
                                                             const std::string& source_name) {
   PulseIdentificationResult r;
   const internal::JsonDocument doc(text, source_name);
-  const JsonNode d = Diagnostics(
-      doc, "pulse",
-      {"method", "a3_given", "parameters", "covariance_order", "covariance", "rows", "rank", "dof",
-       "condition_number", "rms_residual", "relative_error", "r_diagonal", "equations", "pulses"},
-      r.model);
+  const JsonNode d = Diagnostics(doc, "pulse", r.model);
+  internal::ReadFields(d, r, {kMethod, kA3Given, kParameters, kOrder, kCovariance, kEquations});
   ReadParameters(d, r.fit.names, r.fit.theta, r.fit.std_error, r.fit.covariance);
-  ReadFitStatistics(d, r.fit);
-  const JsonNode eq = d.Get("equations");
-  eq.ExpectArray();
-  r.fit.residuals.resize(static_cast<Eigen::Index>(eq.Size()));
-  for (size_t i = 0; i < eq.Size(); ++i) {
-    const JsonNode e = eq.Element(i);
-    e.ExpectObject({"label", "u_v", "v_mps", "residual_mps2"});
-    r.points.push_back({e.Get("u_v").Number(), e.Get("v_mps").Number(), e.Get("label").String()});
-    r.fit.residuals[static_cast<Eigen::Index>(i)] = e.Get("residual_mps2").NumberOrNaN();
-  }
-  if (d.Has("pulses")) {
-    const JsonNode pulses = d.Get("pulses");
-    pulses.ExpectArray();
-    for (size_t i = 0; i < pulses.Size(); ++i) {
-      const JsonNode p = pulses.Element(i);
-      p.ExpectObject({"source", "t_start_s", "duration_s", "amplitude_v", "v_mps", "v_stderr_mps",
-                      "drift_mps", "status", "reason"});
-      PulseEstimate e;
-      e.pulse.source = p.Get("source").String();
-      e.pulse.t_start_s = p.Get("t_start_s").Number();
-      e.pulse.duration_s = p.Get("duration_s").Number(internal::NumberRule::NonNegative());
-      e.pulse.amplitude_v = p.Get("amplitude_v").Number();
-      e.v_mps = p.Get("v_mps").NumberOrNaN();
-      e.v_stderr_mps = p.Get("v_stderr_mps").NumberOrNaN();
-      e.drift_mps = p.Get("drift_mps").NumberOrNaN();
-      e.status = PulseStatusFromJson(p.Get("status"));
-      e.reason = p.Get("reason").String();
-      r.pulses.push_back(e);
-    }
-  }
+  ReadEquations(d.Get(kEquations), r.points, r.fit.residuals);
   return r;
 }
 
 std::string ToJson(const TrajectoryIdentificationResult& r, int indent) {
-  Json j = ModelObject(r.model);
-  Json d;
-  d["method"] = "trajectory";
-  d["derivative"] = ToString(r.derivative);
+  Json d = internal::WriteFields(r);
   d.update(Parameters(r.names, r.estimate, r.std_error, r.covariance));
-  d["offset_mps2"] = r.offset_mps2;
-  d["samples_used"] = r.samples_used;
-  d["linear_fit"] = FitStatistics(r.fit);
-  d["linear_fit"]["theta_names"] = r.fit.names;
-  d["linear_fit"]["theta"] = internal::VectorJson(r.fit.theta);
-  d["relative_error"] = r.relative_error;
-  if (!r.tau_curve.empty()) {
-    Json c = Json::array();
-    for (const auto& [t, f] : r.tau_curve) c.push_back({t, f});
-    d["tau_curve"] = c;
-  }
-  j["diagnostics"] = d;
-  return internal::DumpJson(j, indent);
+  d[kLinearFit] = internal::WriteFields(TrajectoryFit{const_cast<LinearFit*>(&r.fit)});
+  return ResultText(r.model, "trajectory", d, indent);
 }
 
 TrajectoryIdentificationResult TrajectoryIdentificationResultFromJson(
     std::string_view text, const std::string& source_name) {
   TrajectoryIdentificationResult r;
   const internal::JsonDocument doc(text, source_name);
-  const JsonNode d =
-      Diagnostics(doc, "trajectory",
-                  {"method", "derivative", "parameters", "covariance_order", "covariance",
-                   "offset_mps2", "samples_used", "linear_fit", "relative_error", "tau_curve"},
-                  r.model);
-  try {
-    r.derivative = ParseDerivativeMethod(d.Get("derivative").String());
-  } catch (const std::exception&) {
-    d.Get("derivative").Expected("central, butterworth or savgol");
-  }
+  const JsonNode d = Diagnostics(doc, "trajectory", r.model);
+  internal::ReadFields(d, r, {kMethod, kParameters, kOrder, kCovariance, kLinearFit});
   ReadParameters(d, r.names, r.estimate, r.std_error, r.covariance);
-  r.offset_mps2 = d.Get("offset_mps2").Number();
-  r.samples_used = d.Get("samples_used").Integer(0, std::numeric_limits<long>::max());
-  const JsonNode f = d.Get("linear_fit");
-  f.ExpectObject({"rows", "rank", "dof", "condition_number", "rms_residual", "relative_error",
-                  "r_diagonal", "theta_names", "theta"});
-  ReadFitStatistics(f, r.fit);
-  const JsonNode names = f.Get("theta_names");
-  names.ExpectArray();
-  for (size_t i = 0; i < names.Size(); ++i) r.fit.names.push_back(names.Element(i).String(true));
-  r.fit.theta = internal::VectorFromJson(f.Get("theta"), r.fit.names.size());
-  r.relative_error = d.Get("relative_error").NumberOrNaN();
-  if (d.Has("tau_curve")) {
-    const JsonNode c = d.Get("tau_curve");
-    c.ExpectArray();
-    for (size_t i = 0; i < c.Size(); ++i) {
-      const auto tf = c.Element(i).Numbers(2);
-      r.tau_curve.emplace_back(tf[0], tf[1]);
-    }
-  }
+  TrajectoryFit fit{&r.fit};
+  internal::ReadFields(d.Get(kLinearFit), fit);
   return r;
 }
 
 // ---- Options ----
 
-
 namespace {
 
-void ReadPulseIdentificationOptions(const JsonNode& node, PulseIdentificationOptions& o) {
-  internal::ReadFields(node, o);
-  // A file that names the fit's a3 gives it (PulseFitOptions::a3_given).
-  if (node.Has("fit") && node.Get("fit").Has("a3")) o.fit.a3_given = true;
-}
-
+// A file that names the fit's a3 gives it (PulseFitOptions::a3_given).
 void ReadPulseFitOptions(const JsonNode& node, PulseFitOptions& o) {
   internal::ReadFields(node, o);
   if (node.Has("a3")) o.a3_given = true;
+}
+
+void ReadPulseIdentificationOptions(const JsonNode& node, PulseIdentificationOptions& o) {
+  internal::ReadFields(node, o);
+  if (node.Has("fit")) ReadPulseFitOptions(node.Get("fit"), o.fit);
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
 // JSON of the motion options and of a recording extended with derivatives.
-#include "motion/motion_json.hpp"
-
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
+#include "core/json_fields.hpp"
 #include "signal/signal_json.hpp"
 #include "sysid/error.hpp"
+#include "sysid/motion.hpp"
 
 namespace sysid {
 

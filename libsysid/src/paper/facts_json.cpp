@@ -1,13 +1,13 @@
 // JSON of the stage-facts options (the facts' results are StageFacts::ToJson).
-#include "paper/facts_json.hpp"
-
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "control/control_json.hpp"
-#include "delay/delay_json.hpp"
+#include "core/json_fields.hpp"
 #include "nn/nn_json.hpp"
+#include "signal/signal_json.hpp"
+#include "sysid/stage_facts.hpp"
 
 namespace sysid {
 

@@ -8,10 +8,10 @@
 
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
-#include "delay/delay_json.hpp"
-#include "paper/facts_json.hpp"
+#include "core/json_fields.hpp"
 #include "model/model_json.hpp"
 #include "nn/nn_json.hpp"
+#include "signal/signal_json.hpp"
 #include "sysid/pipeline.hpp"
 
 namespace sysid {
@@ -23,7 +23,7 @@ using Rule = internal::NumberRule;
 
 std::string ToJson(const PipelineResult& r, int indent) {
   Json j;
-  j["model"] = Json::parse(ModelToJson(r.model, -1));
+  j["model"] = internal::ModelJson(r.model);
   // A pulse-only run has no dominance and no network (its "skipped" says why).
   if (r.skipped.empty()) {
     j["dominant"] = r.dominance.dominant;

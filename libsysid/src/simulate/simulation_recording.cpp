@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "model/model_json.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_csv_table.hpp"
 #include "sysid/model.hpp"
@@ -27,7 +28,7 @@ Recording TrajectoryRecording(const SimulationResult& result, const FrictionMode
                               const std::string& input_description,
                               const SimulationOptions& options) {
   Recording out = TrajectoryRecording(result.trajectory, std::string());
-  out.metadata = {{"model", nlohmann::json::parse(ModelToJson(model, -1)).dump()},
+  out.metadata = {{"model", nlohmann::json(internal::ModelJson(model)).dump()},  // keys sorted
                   {"input", input_description},
                   {"simulator", fmt::format("CVODE {} rtol {} atol {}", ToString(options.method),
                                             options.rtol, options.atol)}};
