@@ -1,10 +1,12 @@
 // The fixed-length vector operations (core/small_vector_ops.hpp) against SUNDIALS' own serial
-// operations, bit for bit: every special case of N_VLinearSum_Serial, in place and not.
+// operations, bit for bit: every special case of N_VLinearSum_Serial, in place and not, and the
+// vector-array operations CVODES calls on its sensitivities.
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <utility>
 #include <vector>
@@ -121,6 +123,118 @@ TEST_CASE("small vector operations are bit-identical to SUNDIALS' serial ones", 
       }
   }
   CHECK(cases == 4 * 17 * 3);
+  SUNContext_Free(&ctx);
+}
+
+// CVODES' vector-array operations on its sensitivities (one vector per parameter): arrays of 1
+// to 3 vectors of each length, every linear-sum special case, apart and in place.
+TEST_CASE("small vector-array operations are bit-identical to SUNDIALS' serial ones",
+          "[core][cvode]") {
+  SUNContext ctx = nullptr;
+  REQUIRE(SUNContext_Create(nullptr, &ctx) == 0);
+  std::mt19937 rng(11);
+  const double a = 0.3718, b = -1.9;
+  const std::vector<std::pair<double, double>> coefficients = {
+      {1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {a, a}, {a, -a}, {-a, a}, {1, b}, {b, 1},
+      {-1, b}, {b, -1}, {a, b}, {0, b}, {a, 0}, {0, 0}, {1, 0}, {0, -1}};
+  // Array k of `ours` / `theirs` is vector k of every Vectors in `sets` (k = 0..3).
+  struct Arrays {
+    std::vector<std::unique_ptr<Vectors>> sets;
+    std::vector<N_Vector> ours[4], theirs[4];
+    Arrays(int n, int nvec, SUNContext ctx, std::mt19937& rng) {
+      for (int i = 0; i < nvec; ++i) {
+        sets.push_back(std::make_unique<Vectors>(n, ctx, rng));
+        for (int k = 0; k < 4; ++k) {
+          ours[k].push_back(sets.back()->ours[k]);
+          theirs[k].push_back(sets.back()->theirs[k]);
+        }
+      }
+    }
+    bool Same(int k) const {
+      for (const auto& v : sets)
+        if (!v->Same(k)) return false;
+      return true;
+    }
+  };
+  int cases = 0;
+  for (int n = 1; n <= 4; ++n)
+    for (int nvec = 1; nvec <= 3; ++nvec) {
+      INFO("n = " << n << ", nvec = " << nvec);
+      for (const auto& [ca, cb] : coefficients)
+        for (int alias = 0; alias < 3; ++alias) {  // Z apart, Z = X, Z = Y
+          Arrays v(n, nvec, ctx, rng);
+          const int z = alias == 0 ? 2 : alias == 1 ? 0 : 1;
+          INFO("a = " << ca << ", b = " << cb << ", alias " << alias);
+          REQUIRE(N_VLinearSumVectorArray(nvec, ca, v.ours[0].data(), cb, v.ours[1].data(),
+                                          v.ours[z].data()) == 0);
+          REQUIRE(N_VLinearSumVectorArray_Serial(nvec, ca, v.theirs[0].data(), cb,
+                                                 v.theirs[1].data(), v.theirs[z].data()) == 0);
+          CHECK(v.Same(z));
+          ++cases;
+        }
+      for (int alias = 0; alias < 2; ++alias) {
+        Arrays v(n, nvec, ctx, rng);
+        const int z = alias == 0 ? 1 : 0;
+        double c[3] = {a, -1.0, b};
+        REQUIRE(N_VScaleVectorArray(nvec, c, v.ours[0].data(), v.ours[z].data()) == 0);
+        REQUIRE(N_VScaleVectorArray_Serial(nvec, c, v.theirs[0].data(), v.theirs[z].data()) == 0);
+        CHECK(v.Same(z));
+        REQUIRE(N_VConstVectorArray(nvec, b, v.ours[2].data()) == 0);
+        REQUIRE(N_VConstVectorArray_Serial(nvec, b, v.theirs[2].data()) == 0);
+        CHECK(v.Same(2));
+      }
+      {
+        Arrays v(n, nvec, ctx, rng);
+        double ours[3] = {}, theirs[3] = {};
+        REQUIRE(N_VWrmsNormVectorArray(nvec, v.ours[0].data(), v.ours[1].data(), ours) == 0);
+        REQUIRE(N_VWrmsNormVectorArray_Serial(nvec, v.theirs[0].data(), v.theirs[1].data(),
+                                              theirs) == 0);
+        CHECK(std::memcmp(ours, theirs, sizeof ours) == 0);
+        N_VConstVectorArray(nvec, 0.0, v.ours[2].data());
+        REQUIRE(N_VWrmsNormVectorArray(nvec, v.ours[2].data(), v.ours[1].data(), ours) == 0);
+        for (int i = 0; i < nvec; ++i) CHECK(ours[i] == 0.0);
+      }
+      // Z[j][i] = a[j] X[i] + Y[j][i] for 1 to 3 sums, apart and in place.
+      for (int nsum = 1; nsum <= 3; ++nsum)
+        for (double c0 : {1.0, -1.0, a}) {
+          Arrays v(n, nvec, ctx, rng), w(n, nvec, ctx, rng);
+          double c[3] = {c0, b, -1.0};
+          N_Vector* yo[3] = {v.ours[1].data(), v.ours[2].data(), w.ours[1].data()};
+          N_Vector* yt[3] = {v.theirs[1].data(), v.theirs[2].data(), w.theirs[1].data()};
+          N_Vector* zo[3] = {v.ours[3].data(), w.ours[0].data(), w.ours[2].data()};
+          N_Vector* zt[3] = {v.theirs[3].data(), w.theirs[0].data(), w.theirs[2].data()};
+          INFO("nsum = " << nsum << ", a0 = " << c0);
+          REQUIRE(N_VScaleAddMultiVectorArray(nvec, nsum, c, v.ours[0].data(), yo, zo) == 0);
+          REQUIRE(N_VScaleAddMultiVectorArray_Serial(nvec, nsum, c, v.theirs[0].data(), yt,
+                                                     zt) == 0);
+          CHECK(v.Same(3));
+          CHECK(w.Same(0));
+          CHECK(w.Same(2));
+          REQUIRE(N_VScaleAddMultiVectorArray(nvec, nsum, c, v.ours[0].data(), yo, yo) == 0);
+          REQUIRE(N_VScaleAddMultiVectorArray_Serial(nvec, nsum, c, v.theirs[0].data(), yt,
+                                                     yt) == 0);
+          CHECK(v.Same(1));
+          CHECK(v.Same(2));
+          CHECK(w.Same(1));
+        }
+      // Z[j] = sum over i of c[i] X[i][j], 1 to 3 terms (two: the linear-sum cases), and
+      // Z = X[0] with c[0] = 1 and not.
+      for (const auto& [ca, cb] : coefficients)
+        for (int nsum = 1; nsum <= 3; ++nsum)
+          for (int alias = 0; alias < 2; ++alias) {
+            Arrays v(n, nvec, ctx, rng);
+            double c[3] = {ca, cb, a};
+            const int z = alias == 0 ? 3 : 0;
+            N_Vector* xo[3] = {v.ours[0].data(), v.ours[1].data(), v.ours[2].data()};
+            N_Vector* xt[3] = {v.theirs[0].data(), v.theirs[1].data(), v.theirs[2].data()};
+            INFO("nsum = " << nsum << ", c = " << ca << ", " << cb << ", alias " << alias);
+            REQUIRE(N_VLinearCombinationVectorArray(nvec, nsum, c, xo, v.ours[z].data()) == 0);
+            REQUIRE(N_VLinearCombinationVectorArray_Serial(nvec, nsum, c, xt,
+                                                           v.theirs[z].data()) == 0);
+            CHECK(v.Same(z));
+          }
+    }
+  CHECK(cases == 4 * 3 * 17 * 3);
   // Other lengths keep SUNDIALS' operations.
   N_Vector big = N_VNew_Serial(5, ctx);
   CHECK_FALSE(internal::UseSmallVectorOps(big));

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/portable_random.hpp"
+#include "hysteresis/bouc_wen_fit_problem.hpp"
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "multisine.hpp"
 #include "sysid/error.hpp"
@@ -353,6 +354,113 @@ TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same
   }
 }
 
+TEST_CASE("bouc-wen: the fit's evaluation cache answers the last two points with a Jacobian",
+          "[hysteresis][bouc-wen][fit]") {
+  // CVODES on 300 samples: every exact pass is counted. The reference for each answer is a
+  // fresh cost function (its own cache) at the same point: bit for bit the same numbers.
+  namespace bw = internal::bouc_wen_fit;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(300, dt, 7, 200, 6.0);
+  BoucWenFitOptions o;
+  o.simulation.integrator = BoucWenIntegrator::kCvode;
+  o.simulation.input = InputInterpolation::kLinear;
+  const Eigen::VectorXd y = MechanicalBoucWen({}, o.simulation).Simulate(u, dt);
+  const std::vector<bw::Series> data = {{u, y, dt, {}}};
+  const bw::Layout layout = bw::MakeLayout(BoucWenForm::kMechanical, data, o);
+  const int np = static_cast<int>(layout.free.size());
+  const Eigen::Index n = u.size();
+  auto point = [&](double f) {
+    std::vector<double> x(static_cast<size_t>(np));
+    for (int i = 0; i < np; ++i)
+      x[static_cast<size_t>(i)] = layout.all[layout.free[static_cast<size_t>(i)]] /
+                                  layout.scale[static_cast<size_t>(i)] * (1 + f * (i + 1));
+    return x;
+  };
+  const std::vector<double> x1 = point(0.01), x2 = point(-0.02), x3 = point(0.03);
+  bw::Work work;
+  bw::OutputError cost(&layout, &data, n, 1, BoucWenJacobian::kSensitivities, &work,
+                       std::make_shared<bw::EvaluationCache>());
+  struct Answer {
+    Eigen::VectorXd r;
+    bw::EvaluationCache::RowMajor j;
+  };
+  auto evaluate = [&](const bw::OutputError& c, const std::vector<double>& x, bool jacobian) {
+    Answer a{Eigen::VectorXd(n), bw::EvaluationCache::RowMajor(n, np)};
+    const double* xs[] = {x.data()};
+    double* js[] = {a.j.data()};
+    REQUIRE(c.Evaluate(xs, a.r.data(), jacobian ? js : nullptr));
+    return a;
+  };
+  auto fresh = [&](const std::vector<double>& x) {
+    bw::Work w;
+    bw::OutputError c(&layout, &data, n, 1, BoucWenJacobian::kSensitivities, &w,
+                      std::make_shared<bw::EvaluationCache>());
+    return evaluate(c, x, true);
+  };
+  auto same = [](const Answer& a, const Answer& b, bool jacobian) {
+    return a.r == b.r && (!jacobian || a.j == b.j);
+  };
+  const Answer ref1 = fresh(x1), ref2 = fresh(x2), ref3 = fresh(x3);
+  CHECK(same(evaluate(cost, x1, true), ref1, true));
+  CHECK(same(evaluate(cost, x2, true), ref2, true));
+  CHECK(work.sensitivity_passes == 2);
+  // Back to the point before (Ceres' point when its candidate is not taken), and forth.
+  CHECK(same(evaluate(cost, x1, true), ref1, true));
+  CHECK(same(evaluate(cost, x2, false), ref2, false));
+  CHECK(same(evaluate(cost, x1, false), ref1, false));
+  CHECK(work.sensitivity_passes == 2);
+  CHECK(work.simulations == 0);
+  // A residual-only point keeps the last point with a Jacobian (x1), which drops x2.
+  CHECK(same(evaluate(cost, x3, false), ref3, false));
+  CHECK(work.simulations == 1);
+  CHECK(same(evaluate(cost, x1, true), ref1, true));
+  CHECK(work.sensitivity_passes == 2);
+  CHECK(same(evaluate(cost, x2, true), ref2, true));
+  CHECK(work.sensitivity_passes == 3);
+  // x3 had residuals only: its Jacobian is computed.
+  CHECK(same(evaluate(cost, x3, true), ref3, true));
+  CHECK(work.sensitivity_passes == 4);
+}
+
+TEST_CASE("bouc-wen: starts side by side give the fit the starts in turn give",
+          "[hysteresis][bouc-wen][fit]") {
+  // One recording and the exact Jacobian: on 4 threads the 4 starts run at once (the cost
+  // itself is one pass), on 1 in turn. The reference is the fit in turn: the same parameters,
+  // standard errors and work, bit for bit, and every start's reports in start order.
+  ChainFitCase c = MakeChainFitCase();
+  c.options.starts = 4;
+  c.options.start_iterations = 2;
+  std::vector<BoucWenFitProgress> seen[2];
+  HysteresisFitSummary summary[2];
+  std::vector<HysteresisParameter> parameters[2];
+  for (int run = 0; run < 2; ++run) {
+    c.options.threads = run == 0 ? 1 : 4;
+    c.options.on_iteration = [&seen, run](const BoucWenFitProgress& p) {
+      seen[run].push_back(p);
+    };
+    parameters[run] =
+        FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &summary[run])
+            ->parameters();
+  }
+  INFO(summary[0].message);
+  CHECK(summary[1].message == summary[0].message);
+  CHECK(summary[1].training_rms == summary[0].training_rms);
+  REQUIRE(parameters[1].size() == parameters[0].size());
+  for (size_t i = 0; i < parameters[0].size(); ++i) {
+    INFO(parameters[0][i].name);
+    CHECK(parameters[1][i].value == parameters[0][i].value);
+    if (!std::isnan(parameters[0][i].std_error))
+      CHECK(parameters[1][i].std_error == parameters[0][i].std_error);
+  }
+  REQUIRE(seen[1].size() == seen[0].size());
+  for (size_t i = 0; i < seen[0].size(); ++i) {
+    INFO("report " << i);
+    CHECK(seen[1][i].start == seen[0][i].start);
+    CHECK(seen[1][i].iteration == seen[0][i].iteration);
+    CHECK(seen[1][i].rms_m == seen[0][i].rms_m);
+  }
+}
+
 TEST_CASE("bouc-wen: progress reports every iteration, a time bound stops the fit cleanly",
           "[hysteresis][bouc-wen][fit]") {
   ChainFitCase c = MakeChainFitCase();
@@ -361,18 +469,25 @@ TEST_CASE("bouc-wen: progress reports every iteration, a time bound stops the fi
   HysteresisFitSummary full;
   FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &full);
   REQUIRE(seen.size() >= 4);
-  // Starts 1 and 2, then the final fit (0), each from its iteration 0; the clock runs on.
+  // Starts 1 and 2, then the final fit (0), each from its iteration 0, in that order even
+  // when the starts run side by side (threads 0: all cores); the clock runs on within a start
+  // and the final fit comes after every start.
   CHECK(seen.front().start == 1);
   CHECK(seen.front().iteration == 0);
   CHECK(seen.back().start == 0);
+  double starts_end_s = 0;
   for (size_t i = 1; i < seen.size(); ++i) {
     INFO("report " << i);
-    CHECK(seen[i].elapsed_s >= seen[i - 1].elapsed_s);
     CHECK(seen[i].starts == 2);
-    if (seen[i].start == seen[i - 1].start)
+    if (seen[i].start == seen[i - 1].start) {
       CHECK(seen[i].iteration == seen[i - 1].iteration + 1);
-    else
+      CHECK(seen[i].elapsed_s >= seen[i - 1].elapsed_s);
+    } else {
       CHECK(seen[i].iteration == 0);
+      CHECK((seen[i].start == 0 || seen[i].start == seen[i - 1].start + 1));
+    }
+    if (seen[i].start == 0) CHECK(seen[i].elapsed_s >= starts_end_s);
+    else starts_end_s = std::max(starts_end_s, seen[i].elapsed_s);
   }
   // The final fit's last report is the summary's training RMS (Ceres' cost is sse / 2).
   CHECK(seen.back().rms_m == Approx(full.training_rms).epsilon(1e-12));

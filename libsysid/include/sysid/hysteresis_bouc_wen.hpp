@@ -216,7 +216,8 @@ struct BoucWenFitOptions {
   int max_iterations = 100;   ///< Ceres iterations of the final fit, in [1, 10000]
   std::uint64_t seed = 1;     ///< for the perturbed starts
   /// Threads (0: all cores): the central-difference Jacobian's simulations, or the recordings'
-  /// sensitivity passes, in parallel.
+  /// sensitivity passes, in parallel; threads those leave idle run starts side by side (the
+  /// same result).
   int threads = 0;
   BoucWenJacobian jacobian = BoucWenJacobian::kSensitivities;
   /// [s] wall-time bound of the whole fit (starts included), >= 0; 0: none. Past it the fit
@@ -226,7 +227,8 @@ struct BoucWenFitOptions {
   /// the fixed step's final check against CVODE runs only while the bound has not passed (the
   /// message says when it was skipped).
   double max_time_s = 0;
-  /// Called after every Ceres iteration of every start, on the calling thread (progress
+  /// Called after every Ceres iteration of every start, on the calling thread, start by start
+  /// (starts run side by side report once the earlier starts' reports are out; progress
   /// reports; it must not throw). Does not change the result.
   std::function<void(const BoucWenFitProgress&)> on_iteration;
   void Validate() const;      ///< throws OptionsError naming the field and the rule

@@ -108,6 +108,101 @@ void Inv(N_Vector x, N_Vector z) {
 }
 
 template <int N>
+void Const(double c, N_Vector z) {
+  double* zd = Data<N>(z);
+  for (int i = 0; i < N; ++i) zd[i] = c;
+}
+
+// The vector-array operations, for CVODES' sensitivities (one vector per parameter). Each is
+// the single-vector operation above on every vector of the array: N_VLinearSumVectorArray_Serial's
+// special cases (axpy in place, a = 1, a = -1) give the same numbers as LinearSum's formulas, as
+// the single ones do.
+
+template <int N>
+int LinearSumVectorArray(int nvec, double a, N_Vector* X, double b, N_Vector* Y, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  if (a == b) {
+    for (int i = 0; i < nvec; ++i) {
+      const double* xd = Data<N>(X[i]);
+      const double* yd = Data<N>(Y[i]);
+      double* zd = Data<N>(Z[i]);
+      for (int j = 0; j < N; ++j) zd[j] = a * (xd[j] + yd[j]);
+    }
+  } else if (a == -b) {
+    for (int i = 0; i < nvec; ++i) {
+      const double* xd = Data<N>(X[i]);
+      const double* yd = Data<N>(Y[i]);
+      double* zd = Data<N>(Z[i]);
+      for (int j = 0; j < N; ++j) zd[j] = a * (xd[j] - yd[j]);
+    }
+  } else {
+    for (int i = 0; i < nvec; ++i) {
+      const double* xd = Data<N>(X[i]);
+      const double* yd = Data<N>(Y[i]);
+      double* zd = Data<N>(Z[i]);
+      for (int j = 0; j < N; ++j) zd[j] = a * xd[j] + b * yd[j];
+    }
+  }
+  return 0;
+}
+
+template <int N>
+int ScaleVectorArray(int nvec, double* c, N_Vector* X, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) Scale<N>(c[i], X[i], Z[i]);
+  return 0;
+}
+
+template <int N>
+int ConstVectorArray(int nvec, double c, N_Vector* Z) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) Const<N>(c, Z[i]);
+  return 0;
+}
+
+template <int N>
+int WrmsNormVectorArray(int nvec, N_Vector* X, N_Vector* W, double* norms) {
+  if (nvec < 1) return -1;
+  for (int i = 0; i < nvec; ++i) norms[i] = WrmsNorm<N>(X[i], W[i]);
+  return 0;
+}
+
+// Z[j][i] = a[j] X[i] + Y[j][i]. With b = 1 every special case of the serial linear sum
+// equals a x + y (a = 1: x + y; a = -1: y - x), so there is one formula.
+template <int N>
+int ScaleAddMultiVectorArray(int nvec, int nsum, double* a, N_Vector* X, N_Vector** Y,
+                             N_Vector** Z) {
+  if (nvec < 1 || nsum < 1) return -1;
+  for (int i = 0; i < nvec; ++i) {
+    const double* xd = Data<N>(X[i]);
+    for (int j = 0; j < nsum; ++j) {
+      const double* yd = Data<N>(Y[j][i]);
+      double* zd = Data<N>(Z[j][i]);
+      for (int k = 0; k < N; ++k) zd[k] = a[j] * xd[k] + yd[k];
+    }
+  }
+  return 0;
+}
+
+// Z[j] = c[0] X[0][j] + c[1] X[1][j] + ... in that order; two terms are a linear sum, as in
+// LinearCombination.
+template <int N>
+int LinearCombinationVectorArray(int nvec, int nsum, double* c, N_Vector** X, N_Vector* Z) {
+  if (nvec < 1 || nsum < 1) return -1;
+  if (nsum == 2) return LinearSumVectorArray<N>(nvec, c[0], X[0], c[1], X[1], Z);
+  for (int j = 0; j < nvec; ++j) {
+    double* zd = Data<N>(Z[j]);
+    const double* x0 = Data<N>(X[0][j]);
+    for (int k = 0; k < N; ++k) zd[k] = c[0] * x0[k];
+    for (int i = 1; i < nsum; ++i) {
+      const double* xi = Data<N>(X[i][j]);
+      for (int k = 0; k < N; ++k) zd[k] += c[i] * xi[k];
+    }
+  }
+  return 0;
+}
+
+template <int N>
 void Install(N_Vector v) {
   v->ops->nvlinearsum = &LinearSum<N>;
   v->ops->nvscale = &Scale<N>;
@@ -117,6 +212,13 @@ void Install(N_Vector v) {
   v->ops->nvabs = &Abs<N>;
   v->ops->nvaddconst = &AddConst<N>;
   v->ops->nvinv = &Inv<N>;
+  v->ops->nvconst = &Const<N>;
+  v->ops->nvlinearsumvectorarray = &LinearSumVectorArray<N>;
+  v->ops->nvscalevectorarray = &ScaleVectorArray<N>;
+  v->ops->nvconstvectorarray = &ConstVectorArray<N>;
+  v->ops->nvwrmsnormvectorarray = &WrmsNormVectorArray<N>;
+  v->ops->nvscaleaddmultivectorarray = &ScaleAddMultiVectorArray<N>;
+  v->ops->nvlinearcombinationvectorarray = &LinearCombinationVectorArray<N>;
 }
 
 }  // namespace

@@ -5,7 +5,9 @@
 // With 2 states each operation is a handful of flops behind three calls (the generic
 // dispatcher, the serial operation, its special-case helper), and they took about a third of
 // the simulator batch's profile. These replace the serial operations with one function per
-// operation and a loop of fixed length, for the operations that showed in the profile.
+// operation and a loop of fixed length, for the operations that showed in the profile. CVODES
+// keeps one such vector per sensitivity parameter and works on them with the vector-array
+// operations (N_VScaleVectorArray, N_VScaleAddMultiVectorArray, ...): those are replaced too.
 //
 // Results are bit-identical to the serial ones: the same products and sums in the same order,
 // including N_VLinearSum_Serial's special cases that round differently from a x + b y

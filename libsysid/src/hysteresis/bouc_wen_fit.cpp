@@ -5,12 +5,19 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 #include "core/option_rule.hpp"
+#include "core/parallel_for.hpp"
 #include "core/portable_random.hpp"
 #include "hysteresis/bouc_wen_fit_problem.hpp"
 #include "sysid/error.hpp"
@@ -132,37 +139,148 @@ void SetSubsteps(int m, std::vector<Series>* data, Layout* layout) {
   }
 }
 
+// How many starts run side by side on `threads`: as many as the threads the cost function
+// leaves idle. Its exact Jacobian is one pass per recording (parallel over recordings), so one
+// recording on 2 threads runs 2 starts at once; central differences fill the threads with their
+// 2 np + 1 simulations, so starts run in turn.
+int ConcurrentStarts(const BoucWenFitOptions& options, bool exact, size_t recordings, int np) {
+  const int threads = internal::ResolveThreads(options.threads, options.starts);
+  const long width = exact ? static_cast<long>(recordings) : 2L * np + 1;
+  return std::max(1, threads / internal::ResolveThreads(threads, width));
+}
+
+// The starts' progress reports, handed to the caller's on_iteration on the calling thread in
+// start order (all of start 1's, then start 2's, ...): the starts' threads queue them here.
+class StartReports {
+ public:
+  explicit StartReports(int starts)
+      : pending_(static_cast<size_t>(starts)), done_(static_cast<size_t>(starts), false) {}
+  void Add(int k, const BoucWenFitProgress& p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_[static_cast<size_t>(k)].push_back(p);
+    changed_.notify_one();
+  }
+  void Done(int k) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_[static_cast<size_t>(k)] = true;
+    changed_.notify_one();
+  }
+  // Until every start is done: each report as soon as the earlier starts' are out.
+  void Deliver(const std::function<void(const BoucWenFitProgress&)>& to) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (size_t head = 0; head < pending_.size();) {
+      changed_.wait(lock, [&] { return !pending_[head].empty() || done_[head]; });
+      std::vector<BoucWenFitProgress> out;
+      out.swap(pending_[head]);
+      const bool finished = done_[head];
+      lock.unlock();
+      if (to)
+        for (const auto& p : out) to(p);
+      lock.lock();
+      if (finished && pending_[head].empty()) ++head;
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<std::vector<BoucWenFitProgress>> pending_;
+  std::vector<bool> done_;
+};
+
 // Starting points: the initial values, then perturbed copies; each gets a few iterations and
-// the cheapest continues. *best: its scaled parameters, *best_cache: its last evaluation.
+// the cheapest continues (the first of equals). *best: its scaled parameters, *best_cache: its
+// last evaluation. Starts run side by side when the cost leaves threads idle
+// (ConcurrentStarts); every start's result is the same as in turn (its point is drawn in start
+// order beforehand, its solve does not depend on the thread count).
 void RunStarts(const Layout& layout, const std::vector<Series>& data, Eigen::Index n,
-               const BoucWenFitOptions& options, const FitClock& clock, Work* work,
+               const BoucWenFitOptions& options, bool exact, const FitClock& clock, Work* work,
                std::vector<double>* best, std::shared_ptr<EvaluationCache>* best_cache) {
   const int np = static_cast<int>(layout.free.size());
+  const int starts = options.starts;
   internal::PortableRandom random(options.seed);
-  double best_cost = std::numeric_limits<double>::infinity();
-  const std::vector<double> x0 = *best;
+  std::vector<std::vector<double>> points(static_cast<size_t>(starts), *best);
+  for (int k = 1; k < starts; ++k)
+    for (int i = 0; i < np; ++i) {
+      auto& v = points[static_cast<size_t>(k)][static_cast<size_t>(i)];
+      v *= std::exp(options.start_spread * random.Normal());
+      v = std::clamp(v, layout.lower[static_cast<size_t>(i)],
+                     layout.upper[static_cast<size_t>(i)]);
+    }
+  const int concurrent = ConcurrentStarts(options, exact, data.size(), np);
+  BoucWenFitOptions each = options;
+  if (concurrent > 1)
+    each.threads = std::max(1, internal::ResolveThreads(options.threads, starts) / concurrent);
+  StartReports reports(starts);
+  std::mutex mutex;  // guards the rest
   double iterations_so_far = 0;  // Ceres' iterations 0 included: each evaluates a Jacobian
-  for (int k = 0; k < options.starts; ++k) {
-    // A start begins only with one iteration's time (the mean so far) left: Ceres checks the
-    // bound between iterations, so a start begun later overruns it by its first Jacobian.
-    if (clock.Bounded() &&
-        clock.Remaining() <= (iterations_so_far > 0 ? clock.Elapsed() / iterations_so_far : 0))
-      break;  // the final fit says so
-    std::vector<double> x = x0;
-    if (k > 0)
-      for (int i = 0; i < np; ++i) {
-        auto& v = x[static_cast<size_t>(i)];
-        v *= std::exp(options.start_spread * random.Normal());
-        v = std::clamp(v, layout.lower[static_cast<size_t>(i)],
-                       layout.upper[static_cast<size_t>(i)]);
+  std::vector<std::unique_ptr<Solved>> solved(static_cast<size_t>(starts));
+  std::vector<Work> works(static_cast<size_t>(starts));
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(starts));
+  std::atomic<int> next{0};
+  // No start begins after this (the ones under way finish).
+  auto stop = [&] {
+    for (int j = next.exchange(starts); j < starts; ++j) reports.Done(j);
+  };
+  auto run = [&] {
+    for (int k; (k = next.fetch_add(1)) < starts;) {
+      {
+        // A start begins only with one iteration's time (the mean so far) left: Ceres checks
+        // the bound between iterations, so a start begun later overruns it by its first
+        // Jacobian.
+        std::lock_guard<std::mutex> lock(mutex);
+        const bool late =
+            clock.Bounded() &&
+            clock.Remaining() <= (iterations_so_far > 0 ? clock.Elapsed() / iterations_so_far : 0);
+        if (late) {
+          reports.Done(k);
+          stop();  // the final fit says so
+          continue;
+        }
       }
-    const Solved s = Solve(layout, data, n, x, options.start_iterations, options, clock, k + 1,
-                           work, std::make_shared<EvaluationCache>());
-    iterations_so_far += static_cast<double>(s.summary.iterations.size());
-    if (s.summary.final_cost < best_cost && std::isfinite(s.summary.final_cost)) {
-      best_cost = s.summary.final_cost;
-      *best = s.x;
-      *best_cache = s.cache;
+      BoucWenFitOptions mine = each;
+      if (concurrent > 1 && options.on_iteration)
+        mine.on_iteration = [&reports, k](const BoucWenFitProgress& p) { reports.Add(k, p); };
+      else if (concurrent > 1)
+        mine.on_iteration = nullptr;
+      try {
+        auto s = std::make_unique<Solved>(Solve(layout, data, n, points[static_cast<size_t>(k)],
+                                                options.start_iterations, mine, clock, k + 1,
+                                                &works[static_cast<size_t>(k)],
+                                                std::make_shared<EvaluationCache>()));
+        std::lock_guard<std::mutex> lock(mutex);
+        iterations_so_far += static_cast<double>(s->summary.iterations.size());
+        solved[static_cast<size_t>(k)] = std::move(s);
+      } catch (...) {
+        errors[static_cast<size_t>(k)] = std::current_exception();
+        reports.Done(k);
+        stop();
+        continue;
+      }
+      reports.Done(k);
+    }
+  };
+  if (concurrent <= 1) {
+    run();
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < concurrent; ++t) pool.emplace_back(run);
+    reports.Deliver(options.on_iteration);
+    for (auto& t : pool) t.join();
+  }
+  for (int k = 0; k < starts; ++k) {
+    const auto& w = works[static_cast<size_t>(k)];
+    work->simulations += w.simulations;
+    work->sensitivity_passes += w.sensitivity_passes;
+  }
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < starts; ++k) {
+    if (errors[static_cast<size_t>(k)]) std::rethrow_exception(errors[static_cast<size_t>(k)]);
+    const Solved* s = solved[static_cast<size_t>(k)].get();
+    if (s && s->summary.final_cost < best_cost && std::isfinite(s->summary.final_cost)) {
+      best_cost = s->summary.final_cost;
+      *best = s->x;
+      *best_cache = s->cache;
     }
   }
 }
@@ -314,7 +432,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     best[static_cast<size_t>(i)] =
         layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
   if (options.starts > 1)
-    RunStarts(layout, data, n, options, clock, &work, &best, &best_cache);
+    RunStarts(layout, data, n, options, exact, clock, &work, &best, &best_cache);
   ceres::Problem* problem = nullptr;
   Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &work,
                    best_cache, &problem);

@@ -3,6 +3,7 @@
 // parallel).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/parallel_for.hpp"
 #include "hysteresis/bouc_wen_fit_problem.hpp"
@@ -58,13 +59,31 @@ bool OutputError::Evaluate(double const* const* x, double* residuals, double** j
   const int np = static_cast<int>(l_->free.size());
   const Eigen::Index n = num_residuals();
   const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-  const bool same =
-      c_->x.size() == static_cast<size_t>(np) && std::equal(c_->x.begin(), c_->x.end(), x[0]);
+  auto at = [&](const std::vector<double>& y) {
+    return y.size() == static_cast<size_t>(np) && std::equal(y.begin(), y.end(), x[0]);
+  };
+  if (!at(c_->x) && c_->before_has_jacobian && at(c_->x_before)) {
+    // The point before the last, with its Jacobian: it becomes the last (and the last, when it
+    // has its Jacobian, the one before).
+    const bool keep_last = c_->ok && c_->has_jacobian;
+    std::swap(c_->x, c_->x_before);
+    c_->r.swap(c_->r_before);
+    c_->j.swap(c_->j_before);
+    c_->ok = c_->has_jacobian = true;
+    c_->before_has_jacobian = keep_last;
+  }
+  const bool same = at(c_->x);
   if (same && (!c_->ok || !want_jacobian || c_->has_jacobian)) {
     if (!c_->ok) return false;
     Eigen::Map<Eigen::VectorXd>(residuals, n) = c_->r;
     if (want_jacobian) Jacobian(jacobians[0], n, np) = c_->j;
     return true;
+  }
+  if (c_->ok && c_->has_jacobian && !same) {
+    std::swap(c_->x, c_->x_before);
+    c_->r.swap(c_->r_before);
+    c_->j.swap(c_->j_before);
+    c_->before_has_jacobian = true;
   }
   c_->x.assign(x[0], x[0] + np);
   c_->has_jacobian = false;

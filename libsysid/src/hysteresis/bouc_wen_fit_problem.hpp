@@ -79,7 +79,10 @@ struct Work {
 /// evaluation is kept and answered from: 13 simulations per iteration instead of 27, with
 /// identical numbers (a simulation is a deterministic function of the parameters). The cache can
 /// outlive its cost function: the final fit starts with the best start's, whose last evaluation
-/// is usually its last point.
+/// is usually its last point. The evaluation before the last is kept too when it had its
+/// Jacobian: when Ceres' last candidate is not taken (rejected, or the function tolerance met
+/// there), the point it returns is that one, and the standard errors (and the final fit after
+/// the best start) ask for its Jacobian again: one exact pass less per solve.
 struct EvaluationCache {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   std::vector<double> x;
@@ -87,6 +90,10 @@ struct EvaluationCache {
   RowMajor j;
   bool ok = false;
   bool has_jacobian = false;
+  std::vector<double> x_before;  // empty: none kept
+  Eigen::VectorXd r_before;
+  RowMajor j_before;
+  bool before_has_jacobian = false;
 };
 
 /// y_model - x over every recording, stacked, in the scaled free parameters; the Jacobian by
