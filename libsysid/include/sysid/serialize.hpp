@@ -105,6 +105,13 @@ class NameValue {
   }
   const char* unit() const { return unit_; }
 
+  /// The same field under another key (a file whose sections name fields their own way).
+  NameValue Renamed(const char* key) const {
+    NameValue nv = *this;
+    nv.name_ = key;
+    return nv;
+  }
+
  private:
   NameValue WithLow(double lo, bool open) const {
     NameValue nv = *this;

@@ -132,7 +132,7 @@ class ShareReadArchive {
     if constexpr (internal::IsDescribed<V>::value) {
       if (node_.Has(key)) ReadSection(node_.Get(key), complete_, {}, {}, ShareOf(*nv.value()));
     } else {
-      internal::ReadField(node_, key.c_str(), *nv.value(), nv.form());
+      internal::ReadField(node_, nv.Renamed(key.c_str()));
     }
   }
 
