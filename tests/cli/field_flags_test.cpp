@@ -322,7 +322,9 @@ TEST_CASE("every command's flags and every field of the options structs it expos
   for (const auto& [name, cmd] : commands) built.insert(name);
   CHECK(built == listed);  // a new command needs its entry here
 
-  for (const auto& [name, cmd] : commands) {
+  for (const auto& [command_name, cmd] : commands) {
+    // A lambda cannot capture a structured binding in C++17 (clang refuses): a plain copy.
+    const std::string name = command_name;
     INFO("sysid " << name);
     const auto spec = std::find_if(Specs().begin(), Specs().end(),
                                    [&](const CommandSpec& s) { return s.command == name; });
