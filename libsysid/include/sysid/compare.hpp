@@ -27,6 +27,14 @@ struct PredictionErrors {
   double peak_error_v = 0;  ///< [V] max |u_hat - u|
   double nrmse_range = 0;         ///< rmse_v / (max u - min u) [dimensionless]
   double r2 = 0;            ///< 1 - SSE / SST (coefficient of determination)
+  /// The fields, in file order (sysid/serialize.hpp): NaN (no samples to compare) is null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(rmse_v).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(peak_error_v).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_range).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(r2).NaNAsNull().Required());
+  }
 };
 
 /// Errors of `predicted` against `measured` (same length, at least 2 samples).
