@@ -73,6 +73,14 @@ struct HysteresisInverseResult {
   std::string kind;       ///< HysteresisModel::kind()
   Eigen::VectorXd u_v;    ///< [V] the inverse's voltage, trimmed like u_measured_v
   PredictionErrors errors;
+  /// The fields of a `compare --json` "hysteresis" entry, in file order (sysid/serialize.hpp):
+  /// the errors beside the label; u_v goes to the traces, not the JSON.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(label).Required());
+    a->Visit(SYSID_NVP(kind).Required());
+    a->Visit(SYSID_NVP(errors).Inline());
+  }
   /// The traces' column for u_v: "u_" + the label with every character outside [A-Za-z0-9_]
   /// replaced by '_' (a MATLAB variable name for --traces mat).
   std::string TraceColumn() const;

@@ -39,13 +39,7 @@ std::string ToJson(const InverseComparison& c, int indent) {
   if (c.has_analytic) j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
   if (!c.hysteresis.empty()) {
-    Json list = Json::array();
-    for (const auto& h : c.hysteresis) {
-      Json row = {{"label", h.label}, {"kind", h.kind}};
-      row.update(ErrorsJson(h.errors));
-      list.push_back(std::move(row));
-    }
-    j["hysteresis"] = std::move(list);
+    j["hysteresis"] = internal::JsonForm<std::vector<HysteresisInverseResult>>::Write(c.hysteresis);
   }
   return internal::DumpJson(j, indent);
 }
