@@ -185,6 +185,10 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::TrajectoryIdentificationResult>("TrajectoryIdentificationResult");
   CheckRoundTrip<sysid::DelayTuningResult>("DelayTuningResult");
   CheckRoundTrip<sysid::RefineResult>("RefineResult");
+  CheckRoundTrip<sysid::TermStats>("TermStats");
+  CheckRoundTrip<sysid::DominanceResult>("DominanceResult");
+  CheckRoundTrip<sysid::PredictionErrors>("PredictionErrors");
+  CheckRoundTrip<sysid::HysteresisInverseResult>("HysteresisInverseResult");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

@@ -27,6 +27,14 @@ struct PredictionErrors {
   double peak_error_v = 0;  ///< [V] max |u_hat - u|
   double nrmse_range = 0;         ///< rmse_v / (max u - min u) [dimensionless]
   double r2 = 0;            ///< 1 - SSE / SST (coefficient of determination)
+  /// The fields, in file order (sysid/serialize.hpp): NaN (no samples to compare) is null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(rmse_v).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(peak_error_v).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_range).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(r2).NaNAsNull().Required());
+  }
 };
 
 /// Errors of `predicted` against `measured` (same length, at least 2 samples).
@@ -65,6 +73,14 @@ struct HysteresisInverseResult {
   std::string kind;       ///< HysteresisModel::kind()
   Eigen::VectorXd u_v;    ///< [V] the inverse's voltage, trimmed like u_measured_v
   PredictionErrors errors;
+  /// The fields of a `compare --json` "hysteresis" entry, in file order (sysid/serialize.hpp):
+  /// the errors beside the label; u_v goes to the traces, not the JSON.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(label).Required());
+    a->Visit(SYSID_NVP(kind).Required());
+    a->Visit(SYSID_NVP(errors).Inline());
+  }
   /// The traces' column for u_v: "u_" + the label with every character outside [A-Za-z0-9_]
   /// replaced by '_' (a MATLAB variable name for --traces mat).
   std::string TraceColumn() const;

@@ -85,6 +85,18 @@ struct TermStats {
   double ratio_bound = 0;   ///< quantile of |term(t)| / |top(t)| over the moving part
   double ratio_max = 0;     ///< max of |term(t)| / |top(t)| over the moving part
   bool negligible = false;  ///< ratio_to_top <= negligible_ratio
+  /// The fields of a ranked variable, in file order (sysid/serialize.hpp). A term of the inverse
+  /// model and a pooled variable are written by dominance_json.cpp with fewer keys.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(name).Renamed("variable").Required());
+    a->Visit(SYSID_NVP(rms).Minimum(0).Required());
+    a->Visit(SYSID_NVP(peak).Minimum(0).Required());
+    a->Visit(SYSID_NVP(ratio_to_top).Minimum(0).Required());
+    a->Visit(SYSID_NVP(ratio_bound).Minimum(0).Required());
+    a->Visit(SYSID_NVP(ratio_max).Minimum(0).Required());
+    a->Visit(SYSID_NVP(negligible).Required());
+  }
 };
 
 struct DominanceResult {
@@ -100,6 +112,20 @@ struct DominanceResult {
   /// bound_quantile quantile of the pointwise ratio |x''(t)| / |a1 v(t - tau)| (not the paper's)
   double pointwise_ratio_quantile = 0;
   double pointwise_ratio_max = 0;  ///< max of the pointwise ratio |x''(t)| / |a1 v(t - tau)|
+  /// The fields, in file order (sysid/serialize.hpp); `terms` (fewer keys than a ranked
+  /// variable) is written between margin and peak_ratio by dominance_json.cpp.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(source).Required());
+    a->Visit(SYSID_NVP(ranking).Required());
+    a->Visit(SYSID_NVP(dominant).Required());
+    a->Visit(SYSID_NVP(margin).UpperLimit().Minimum(0).Required());
+    a->Visit(SYSID_NVP(peak_ratio).Minimum(0).Required());
+    a->Visit(SYSID_NVP(pointwise_ratio_quantile).Minimum(0).Required());
+    a->Visit(SYSID_NVP(pointwise_ratio_max).Minimum(0).Required());
+    a->Visit(SYSID_NVP(samples).Minimum(0).Maximum(static_cast<double>(1L << 40)).Required());
+    a->Visit(SYSID_NVP(moving_samples).Minimum(0).Required());
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: each term's and variable's rms, peak and ratios, the
   /// pointwise ratio quantile and maximum.

@@ -17,28 +17,17 @@ namespace sysid {
 namespace {
 using Json = nlohmann::ordered_json;
 
-Json ErrorsJson(const PredictionErrors& e) {
-  return {{"rmse_v", internal::NumberOrNull(e.rmse_v)},
-          {"peak_error_v", internal::NumberOrNull(e.peak_error_v)},
-          {"nrmse_range", internal::NumberOrNull(e.nrmse_range)},
-          {"r2", internal::NumberOrNull(e.r2)}};
-}
+Json ErrorsJson(const PredictionErrors& e) { return internal::WriteFields(e); }
 }  // namespace
 
 std::string ToJson(const PredictionErrors& errors, int indent) {
-  return internal::DumpJson(ErrorsJson(errors), indent);
+  return internal::FieldsToJson(errors, indent);
 }
 
 PredictionErrors PredictionErrorsFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
-  const internal::JsonNode root = doc.Root();
-  root.ExpectObject({"rmse_v", "peak_error_v", "nrmse_range", "r2"});
-  using Rule = internal::NumberRule;
   PredictionErrors e;
-  e.rmse_v = root.Get("rmse_v").NumberOrNaN(Rule::NonNegative());
-  e.peak_error_v = root.Get("peak_error_v").NumberOrNaN(Rule::NonNegative());
-  e.nrmse_range = root.Get("nrmse_range").NumberOrNaN(Rule::NonNegative());
-  e.r2 = root.Get("r2").NumberOrNaN();
+  internal::ReadFields(doc.Root(), e);
   return e;
 }
 
@@ -50,13 +39,7 @@ std::string ToJson(const InverseComparison& c, int indent) {
   if (c.has_analytic) j["analytic"] = ErrorsJson(c.analytic);
   if (c.has_nn) j["nn"] = ErrorsJson(c.nn);
   if (!c.hysteresis.empty()) {
-    Json list = Json::array();
-    for (const auto& h : c.hysteresis) {
-      Json row = {{"label", h.label}, {"kind", h.kind}};
-      row.update(ErrorsJson(h.errors));
-      list.push_back(std::move(row));
-    }
-    j["hysteresis"] = std::move(list);
+    j["hysteresis"] = internal::JsonForm<std::vector<HysteresisInverseResult>>::Write(c.hysteresis);
   }
   return internal::DumpJson(j, indent);
 }

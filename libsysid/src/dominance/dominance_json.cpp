@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "signal/signal_json.hpp"
 #include "sysid/dominance.hpp"
@@ -17,56 +18,44 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// A ranked variable (with its ratio bounds) or a term of the inverse model.
-Json StatsJson(const TermStats& s, bool ranking) {
+// A term of the inverse model: no pointwise ratios.
+Json TermJson(const TermStats& s) {
   Json j;
-  j[ranking ? "variable" : "term"] = s.name;
+  j["term"] = s.name;
   j["rms"] = s.rms;
   j["peak"] = s.peak;
   j["ratio_to_top"] = s.ratio_to_top;
-  if (ranking) {
-    j["ratio_bound"] = s.ratio_bound;
-    j["ratio_max"] = s.ratio_max;
-    j["negligible"] = s.negligible;
-  }
   return j;
 }
 
+// The described fields, with the terms written after the margin (their own, shorter form).
 Json ResultJson(const DominanceResult& r) {
   Json j;
-  j["source"] = r.source;
-  Json rank = Json::array();
-  for (const auto& s : r.ranking) rank.push_back(StatsJson(s, true));
-  j["ranking"] = rank;
-  j["dominant"] = r.dominant;
-  j["margin"] = internal::NumberOrNull(r.margin);
-  Json terms = Json::array();
-  for (const auto& s : r.terms) terms.push_back(StatsJson(s, false));
-  j["terms"] = terms;
-  j["peak_ratio"] = r.peak_ratio;
-  j["pointwise_ratio_quantile"] = r.pointwise_ratio_quantile;
-  j["pointwise_ratio_max"] = r.pointwise_ratio_max;
-  j["samples"] = r.samples;
-  j["moving_samples"] = r.moving_samples;
+  const Json fields = internal::WriteFields(r);
+  for (auto it = fields.begin(); it != fields.end(); ++it) {
+    j[it.key()] = *it;
+    if (it.key() == "margin") {
+      Json terms = Json::array();
+      for (const auto& s : r.terms) terms.push_back(TermJson(s));
+      j["terms"] = terms;
+    }
+  }
   return j;
 }
 
 using internal::JsonNode;
 using Rule = internal::NumberRule;
 
-// What a TermStats entry carries: a recording's ranked variable (with its ratio bounds), a term
-// of the inverse model, or a variable of the pooled ranking (no pointwise ratios).
-enum class StatsKind { kRanking, kTerm, kPooled };
+// What a TermStats entry carries beside a ranked variable's described fields: a term of the
+// inverse model or a variable of the pooled ranking (no pointwise ratios).
+enum class StatsKind { kTerm, kPooled };
 
 std::vector<TermStats> StatsFromJson(const JsonNode& list, StatsKind kind) {
   list.ExpectArray();
   std::vector<TermStats> out;
   for (size_t i = 0; i < list.Size(); ++i) {
     const JsonNode e = list.Element(i);
-    if (kind == StatsKind::kRanking)
-      e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "ratio_bound", "ratio_max",
-                      "negligible"});
-    else if (kind == StatsKind::kTerm)
+    if (kind == StatsKind::kTerm)
       e.ExpectObject({"term", "rms", "peak", "ratio_to_top"});
     else
       e.ExpectObject({"variable", "rms", "peak", "ratio_to_top", "negligible"});
@@ -75,17 +64,13 @@ std::vector<TermStats> StatsFromJson(const JsonNode& list, StatsKind kind) {
     t.rms = e.Get("rms").Number(Rule::NonNegative());
     t.peak = e.Get("peak").Number(Rule::NonNegative());
     t.ratio_to_top = e.Get("ratio_to_top").Number(Rule::NonNegative());
-    if (kind == StatsKind::kRanking) {
-      t.ratio_bound = e.Get("ratio_bound").Number(Rule::NonNegative());
-      t.ratio_max = e.Get("ratio_max").Number(Rule::NonNegative());
-    }
     if (kind != StatsKind::kTerm) t.negligible = e.Get("negligible").Boolean();
     out.push_back(t);
   }
   return out;
 }
 
-// A margin (or a margin statistic) written as null when infinite (a single candidate).
+// A margin statistic written as null when infinite (a single candidate).
 double MarginFromJson(const JsonNode& node) {
   const double m = node.NumberOrNaN(Rule::NonNegative());
   return std::isnan(m) ? std::numeric_limits<double>::infinity() : m;
@@ -93,20 +78,10 @@ double MarginFromJson(const JsonNode& node) {
 
 // One recording's object: the whole text of ToJson(DominanceResult), or a `recordings` entry.
 DominanceResult ResultFromJson(const JsonNode& root) {
-  root.ExpectObject({"source", "ranking", "dominant", "margin", "terms", "peak_ratio",
-                     "pointwise_ratio_quantile", "pointwise_ratio_max", "samples",
-                     "moving_samples"});
   DominanceResult r;
-  r.source = root.Get("source").String();
-  r.ranking = StatsFromJson(root.Get("ranking"), StatsKind::kRanking);
-  r.dominant = root.Get("dominant").String();
-  r.margin = MarginFromJson(root.Get("margin"));
+  internal::ReadFields(root, r, {"terms"});
   r.terms = StatsFromJson(root.Get("terms"), StatsKind::kTerm);
-  r.peak_ratio = root.Get("peak_ratio").Number(Rule::NonNegative());
-  r.pointwise_ratio_quantile = root.Get("pointwise_ratio_quantile").Number(Rule::NonNegative());
-  r.pointwise_ratio_max = root.Get("pointwise_ratio_max").Number(Rule::NonNegative());
-  r.samples = root.Get("samples").Integer(0, 1L << 40);
-  r.moving_samples = root.Get("moving_samples").Integer(0, r.samples);
+  root.Get("moving_samples").Integer(0, r.samples);  // a part of the record: checked, not kept
   return r;
 }
 
