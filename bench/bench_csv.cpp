@@ -16,13 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.hpp"
 #include "sysid/io.hpp"
 
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string MakeFile(double megabytes) {
   const auto path = std::filesystem::temp_directory_path() / "sysid_bench_csv.csv";
@@ -91,15 +88,7 @@ int main(int argc, char** argv) {
   const double size_mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
   std::fprintf(stderr, "file %s: %.1f MB\n", path.c_str(), size_mb);
 
-  auto best = [&](auto&& fn) {
-    double b = 1e300;
-    for (int r = 0; r < repeats; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      fn();
-      b = std::min(b, Seconds(t0));
-    }
-    return b;
-  };
+  auto best = [&](auto&& fn) { return sysid::bench::BestWallSeconds(repeats, fn); };
   Eigen::Index rows = 0;
   const double t_ours = best([&] { rows = sysid::ReadRecording(path).rows(); });
   std::vector<double> sink;

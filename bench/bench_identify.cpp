@@ -113,33 +113,32 @@ int main(int argc, char** argv) {
   sysid::DelayTuningOptions d;
   d.motion.velocity_column = "v_meas";
   d.x_tolerance_s = 1e-6;  // the peer's xatol
-  std::vector<double> walls;
   sysid::DelayTuningResult res;
-  for (int k = 0; k < repeats; ++k) {
-    const auto t1 = std::chrono::steady_clock::now();
-    res = sysid::TuneDelay(sysid::FrictionModel::Paper(), {rec}, d);
-    walls.push_back(Seconds(t1));
-  }
-  std::sort(walls.begin(), walls.end());
+  // The median wall time [s] of `repeats` tunings with d as it is; res holds the last.
+  auto median_wall = [&] {
+    std::vector<double> walls;
+    for (int k = 0; k < repeats; ++k) {
+      const auto t1 = std::chrono::steady_clock::now();
+      res = sysid::TuneDelay(sysid::FrictionModel::Paper(), {rec}, d);
+      walls.push_back(Seconds(t1));
+    }
+    std::sort(walls.begin(), walls.end());
+    return walls[walls.size() / 2];
+  };
+  double wall_s = median_wall();
   fmt::print(
       "delay tuning (sysid): tau = {:.4f} ms (true 3.5 ms, error {:.2f} us), {} "
       "evaluations, {} segment simulations, median wall {:.4f} s\n",
       1e3 * res.tau_s, 1e6 * (res.tau_s - 0.0035), res.evaluations, res.simulations,
-      walls[walls.size() / 2]);
-  fmt::print("SYSID_DELAY_WALL_S={:.6f}\n", walls[walls.size() / 2]);
+      wall_s);
+  fmt::print("SYSID_DELAY_WALL_S={:.6f}\n", wall_s);
   // The same without reusing the simulations of repeated pulses (every piece simulated).
   d.segments.reuse_identical_segments = false;
-  walls.clear();
-  for (int k = 0; k < repeats; ++k) {
-    const auto t1 = std::chrono::steady_clock::now();
-    res = sysid::TuneDelay(sysid::FrictionModel::Paper(), {rec}, d);
-    walls.push_back(Seconds(t1));
-  }
-  std::sort(walls.begin(), walls.end());
+  wall_s = median_wall();
   fmt::print(
       "delay tuning (sysid, no reuse of repeated pulses): tau = {:.4f} ms, {} segment "
       "simulations, median wall {:.4f} s\n",
-      1e3 * res.tau_s, res.simulations, walls[walls.size() / 2]);
-  fmt::print("SYSID_DELAY_NOREUSE_WALL_S={:.6f}\n", walls[walls.size() / 2]);
+      1e3 * res.tau_s, res.simulations, wall_s);
+  fmt::print("SYSID_DELAY_NOREUSE_WALL_S={:.6f}\n", wall_s);
   return 0;
 }

@@ -12,16 +12,9 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_clock.hpp"
 #include "sysid/io.hpp"
 #include "sysid/io_containers.hpp"
-
-namespace {
-
-double Seconds(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   long samples = 1000000;
@@ -46,15 +39,7 @@ int main(int argc, char** argv) {
   const std::string mat = (dir / "sysid_bench_mat.mat").string();
   sysid::WriteRecording(csv, rec);
   sysid::WriteRecordingMat(mat, rec);
-  auto best = [&](auto&& fn) {
-    double b = 1e300;
-    for (int r = 0; r < repeats; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      fn();
-      b = std::min(b, Seconds(t0));
-    }
-    return b;
-  };
+  auto best = [&](auto&& fn) { return sysid::bench::BestWallSeconds(repeats, fn); };
   Eigen::Index rows_csv = 0, rows_mat = 0;
   bool same = false;
   const double t_csv = best([&] { rows_csv = sysid::ReadRecording(csv).rows(); });

@@ -5,6 +5,25 @@
 #include "sysid/control.hpp"
 #include "sysid/stage.hpp"
 
+namespace {
+
+// The stage's own steady-state inverse, by bisection on SteadyVelocity: the voltage [V] whose
+// steady velocity is the reference's.
+auto SteadyStateInverse(const sysid::StageParameters& p) {
+  return [&p](const sysid::ReferenceSample& r) {
+    const double v = r.v_mps;
+    if (v == 0) return 0.0;
+    double lo = 0, hi = 10;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (std::abs(p.SteadyVelocity(v > 0 ? mid : -mid)) < std::abs(v) ? lo : hi) = mid;
+    }
+    return v > 0 ? hi : -hi;
+  };
+}
+
+}  // namespace
+
 TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile, feedforward helps",
           "[control][stage]") {
   const sysid::StageParameters p = sysid::StageParameters::ActuatorDelay();
@@ -21,16 +40,7 @@ TEST_CASE("PI with the actuator-delay gains tracks the 0.5 Hz profile, feedforwa
   CHECK(pi_only.max_error_m < 0.25e-3);
   CHECK(pi_only.saturated_samples == 0);
   // The stage's own steady-state inverse (bisection on SteadyVelocity) as a feedforward.
-  auto inverse = [&p](const sysid::ReferenceSample& r) {
-    const double v = r.v_mps;
-    if (v == 0) return 0.0;
-    double lo = 0, hi = 10;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (std::abs(p.SteadyVelocity(v > 0 ? mid : -mid)) < std::abs(v) ? lo : hi) = mid;
-    }
-    return v > 0 ? hi : -hi;
-  };
+  const auto inverse = SteadyStateInverse(p);
   sysid::VirtualStage ff_stage(p, 7);
   const auto with_ff =
       sysid::RunClosedLoop(ff_stage, ref, sysid::PiOptions::ForActuatorDelayStage(), inverse);
@@ -54,17 +64,8 @@ TEST_CASE("the paper's gains track the 0.5 Hz profile on the default stage, feed
   CHECK(pi_only.max_error_m < 0.10651e-3);
   CHECK(pi_only.saturated_samples == 0);
   CHECK(pi_only.max_abs_u_v < 5.0);
-  // The stage's own steady-state inverse as a feedforward (bisection on SteadyVelocity).
-  auto inverse = [&p](const sysid::ReferenceSample& r) {
-    const double v = r.v_mps;
-    if (v == 0) return 0.0;
-    double lo = 0, hi = 10;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (std::abs(p.SteadyVelocity(v > 0 ? mid : -mid)) < std::abs(v) ? lo : hi) = mid;
-    }
-    return v > 0 ? hi : -hi;
-  };
+  // The stage's own steady-state inverse as a feedforward.
+  const auto inverse = SteadyStateInverse(p);
   sysid::VirtualStage ff_stage(p, 7);
   const auto with_ff = sysid::RunClosedLoop(ff_stage, ref, sysid::PiOptions{}, inverse);
   INFO("PI + inverse feedforward: " << with_ff.BriefReport());

@@ -9,6 +9,7 @@
 #include "sysid/delay.hpp"
 #include "sysid/input.hpp"
 #include "sysid/simulate.hpp"
+#include "support/standard_error_tally.hpp"
 
 // About 100 refinements of ~50 simulations each (20 s on one core): hidden from the default
 // run ("[.slow]") and registered in CTest with the label "slow" (tests/CMakeLists.txt).
@@ -44,14 +45,13 @@ TEST_CASE("refinement: standard errors match the Monte-Carlo spread over noise s
   sysid::RefineOptions ro;
   ro.detection.min_duration_s = 0.05;
   ro.threads = 2;
-  // Seeds: each refinement is ~50 simulations of the record. 4 sampling errors of a standard
-  // deviation from N estimates, 4 / sqrt(2 (N - 1)), is the agreement required.
+  // Seeds: each refinement is ~50 simulations of the record (the agreement required is the
+  // tally's, 4 / sqrt(2 (N - 1))).
   const int seeds = 100;
-  const double agreement = 4.0 / std::sqrt(2.0 * (seeds - 1));
   std::mt19937 rng(31);
   std::normal_distribution<double> noise(0.0, sigma_v);
   const size_t np = 6;
-  std::vector<double> sum(np, 0.0), sum2(np, 0.0), se2(np, 0.0);
+  sysid::test::StandardErrorTally tally({"a1p", "a1n", "a2p", "a2n", "a3", "tau"});
   for (int s = 0; s < seeds; ++s) {
     sysid::Recording rec;
     rec.source = "mc";
@@ -63,21 +63,7 @@ TEST_CASE("refinement: standard errors match the Monte-Carlo spread over noise s
     REQUIRE(r.names.size() == np);
     const double p[] = {r.model.a1p, r.model.a1n, r.model.a2p, r.model.a2n, r.model.a3,
                         r.model.tau_s};
-    for (size_t i = 0; i < np; ++i) {
-      sum[i] += p[i];
-      sum2[i] += p[i] * p[i];
-      const double se = r.std_error[static_cast<Eigen::Index>(i)];
-      REQUIRE(std::isfinite(se));
-      se2[i] += se * se;
-    }
+    for (size_t i = 0; i < np; ++i) tally.Add(i, p[i], r.std_error[static_cast<Eigen::Index>(i)]);
   }
-  const char* names[] = {"a1p", "a1n", "a2p", "a2n", "a3", "tau"};
-  for (size_t i = 0; i < np; ++i) {
-    const double mean = sum[i] / seeds;
-    const double sd = std::sqrt(std::max(0.0, (sum2[i] - seeds * mean * mean) / (seeds - 1)));
-    const double reported = std::sqrt(se2[i] / seeds);
-    INFO(names[i] << ": Monte-Carlo sd " << sd << ", reported " << reported << ", mean " << mean
-                  << ", agreement +-" << agreement);
-    CHECK(reported / sd == Approx(1.0).margin(agreement));
-  }
+  tally.CheckAgreement();
 }

@@ -8,6 +8,7 @@
 #include "core/portable_random.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
 #include "sysid/io.hpp"
+#include "support/standard_error_tally.hpp"
 
 namespace sysid {
 namespace {
@@ -36,13 +37,11 @@ TEST_CASE("bouc-wen: standard errors from the exact Jacobian match the Monte-Car
   o.starts = 1;
   o.threads = 1;
   const double sigma = 7.4e-6;  // [m]
-  // 4 sampling errors of a standard deviation from N estimates, 4 / sqrt(2 (N - 1)), is the
-  // agreement required.
+  // The agreement required is the tally's, 4 / sqrt(2 (N - 1)).
   const int seeds = 100;
-  const double agreement = 4.0 / std::sqrt(2.0 * (seeds - 1));
   internal::PortableRandom random(2041);
   const int free[] = {0, 1, 2, 3, 5, 6};  // m, c, k, alpha, gamma, delta (beta, nu fixed)
-  std::vector<double> sum(8, 0.0), sum2(8, 0.0), se2(8, 0.0);
+  test::StandardErrorTally tally({"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"});
   for (int s = 0; s < seeds; ++s) {
     Recording rec;
     rec.source = "mc";
@@ -54,21 +53,10 @@ TEST_CASE("bouc-wen: standard errors from the exact Jacobian match the Monte-Car
     const auto ps = model->parameters();
     for (int i : free) {
       const auto& p = ps[static_cast<size_t>(i)];
-      REQUIRE(std::isfinite(p.std_error));
-      sum[i] += p.value;
-      sum2[i] += p.value * p.value;
-      se2[i] += p.std_error * p.std_error;
+      tally.Add(static_cast<size_t>(i), p.value, p.std_error);
     }
   }
-  const char* names[] = {"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"};
-  for (int i : free) {
-    const double mean = sum[i] / seeds;
-    const double sd = std::sqrt(std::max(0.0, (sum2[i] - seeds * mean * mean) / (seeds - 1)));
-    const double reported = std::sqrt(se2[i] / seeds);
-    INFO(names[i] << ": Monte-Carlo sd " << sd << ", reported " << reported << ", mean " << mean
-                  << ", agreement +-" << agreement);
-    CHECK(reported / sd == Approx(1.0).margin(agreement));
-  }
+  tally.CheckAgreement();
 }
 
 }  // namespace

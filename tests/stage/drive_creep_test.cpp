@@ -257,15 +257,8 @@ TEST_CASE(
     CHECK(p.SteadyVelocity(u) == Approx(v).epsilon(1e-10));
     // From the opposite direction, back to 0 V, then the pulse held 1.2 s: the plateau is the
     // stage's without hysteresis and creep (the same run), and the paper's (F1).
-    std::vector<double> cmd(300, u > 0 ? -2.0 : 2.0);
-    cmd.resize(600, 0.0);
-    cmd.resize(1800, u);
-    const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
-    sysid::StageParameters from = p, plain = def;
-    from.rig.initial_position_m = plain.rig.initial_position_m = u > 0 ? -0.04 : 0.04;
-    plain.rig.position_noise_m = 0;
-    const double got = sysid::RunOpenLoop(from, command, 1).v_true_mps[1799];
-    const double without = sysid::RunOpenLoop(plain, command, 1).v_true_mps[1799];
+    const double got = sysid::test::HeldPulseVelocity(p, u, true);
+    const double without = sysid::test::HeldPulseVelocity(def, u, false);
     INFO("u = " << u << " V");
     CHECK(got == Approx(without).epsilon(1e-6));
   }

@@ -30,6 +30,20 @@ inline std::vector<double> Commands(int n) {
   return u;
 }
 
+// [m/s] The true velocity after the held-pulse run the drive tests compare plateaus with:
+// 0.3 s at 2 V against u's direction, 0.3 s at 0 V, then u [V] held 1.2 s (1800 samples of a
+// 1 kHz control loop), from 4 cm on the side u moves away from; `noisy` false zeroes the
+// position noise.
+inline double HeldPulseVelocity(sysid::StageParameters p, double u, bool noisy) {
+  std::vector<double> cmd(300, u > 0 ? -2.0 : 2.0);
+  cmd.resize(600, 0.0);
+  cmd.resize(1800, u);
+  const Eigen::Map<const Eigen::VectorXd> command(cmd.data(), 1800);
+  p.rig.initial_position_m = u > 0 ? -0.04 : 0.04;
+  if (!noisy) p.rig.position_noise_m = 0;
+  return sysid::RunOpenLoop(p, command, 1).v_true_mps[1799];
+}
+
 inline sysid::DriveHysteresis Ceramic(double alpha, double rate_weight, double tau) {
   sysid::DriveHysteresis h;
   h.thresholds_v = {0.05, 0.12, 0.25};

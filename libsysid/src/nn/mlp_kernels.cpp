@@ -107,18 +107,27 @@ bool SetKernelIsa(const char* name) {
 
 int DefaultBlock(int P) { return std::clamp(32768 / std::max(P, 1), 32, 1024); }
 
+namespace {
+
+// f(first, count) for the consecutive blocks of DefaultBlock(P) samples out of N, in order.
+template <class F>
+void ForEachBlock(Index N, int P, F&& f) {
+  const Index B = DefaultBlock(P);
+  for (Index first = 0; first < N; first += B) f(first, std::min(B, N - first));
+}
+
+}  // namespace
+
 void Residuals(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, VectorXd* r) {
   const int n = static_cast<int>(Z.rows());
   const Index N = Z.cols();
   r->resize(N);
   MatrixXd A;
   VectorXd rb;
-  const Index B = DefaultBlock(ParameterCount(n, H));
-  for (Index first = 0; first < N; first += B) {
-    const Index count = std::min(B, N - first);
+  ForEachBlock(N, ParameterCount(n, H), [&](Index first, Index count) {
     ForwardBlock(Z, y, H, theta, first, count, &A, &rb);
     r->segment(first, count) = rb;
-  }
+  });
 }
 
 void ResidualBlock(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta, Index first,
@@ -158,12 +167,10 @@ void Jacobian(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta
   J->resize(N, P);
   MatrixXd JT, A;
   VectorXd r;
-  const Index B = DefaultBlock(P);
-  for (Index first = 0; first < N; first += B) {
-    const Index count = std::min(B, N - first);
+  ForEachBlock(N, P, [&](Index first, Index count) {
     JacobianTransposeBlock(Z, y, H, theta, first, count, &JT, &A, &r);
     J->middleRows(first, count) = JT.transpose();
-  }
+  });
 }
 
 void NormalEquations(const MatrixXd& Z, const VectorXd& y, int H, const VectorXd& theta,
