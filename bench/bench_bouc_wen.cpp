@@ -21,7 +21,8 @@
 //     The CVODE path's Jacobian: one CVODE simulation of REC's u (true parameters) against one
 //     pass of CVODES with the sensitivities of the fit's six default free parameters (m, c, k,
 //     alpha, gamma, delta; internal::MechanicalCvode), best CPU of R; central differences cost 13
-//     simulations. Prints a "cvode-jacobian ..." line.
+//     simulations. Prints a "cvode-jacobian ..." line (with a band-limited input: its table's grid
+//     points per sample and error bound, 0 when the lines are summed).
 //   bench_bouc_wen fixed-step REC.csv
 //     The Newmark/trapezoidal step (the chain's) on the input linear between samples, 5 to 80
 //     substeps per sample, against CVODE at rtol 1e-12 on REC's u (true parameters): max and
@@ -241,10 +242,13 @@ int CvodeJacobianCommand(const std::vector<std::string>& args) {
   };
   const double simulation = best_cpu({});
   const double jacobian = best_cpu({0, 1, 2, 3, 5, 6});
+  const sysid::internal::SampledInput input(u, dt, o.input);
   fmt::print(
       "cvode-jacobian samples={} input={} rtol={:g} simulation_cpu_s={:.4f} "
-      "sensitivities_cpu_s={:.4f} in_simulations={:.2f} central_differences_in_simulations=13\n",
-      u.size(), static_cast<int>(o.input), o.rtol, simulation, jacobian, jacobian / simulation);
+      "sensitivities_cpu_s={:.4f} in_simulations={:.2f} central_differences_in_simulations=13 "
+      "input_grid_per_sample={} input_grid_error_bound={:.3g}\n",
+      u.size(), static_cast<int>(o.input), o.rtol, simulation, jacobian, jacobian / simulation,
+      input.fine(), input.grid_error_bound());
   return 0;
 }
 

@@ -265,6 +265,62 @@ TEST_CASE("bouc-wen: band-limited upsampling and input are the multisine itself"
   CHECK(worst_du <= 1e-10);  // relative to max |u'|
 }
 
+TEST_CASE("bouc-wen: the tabulated band-limited input is within its stated bound of the lines' sum",
+          "[hysteresis][bouc-wen]") {
+  // Past kMaxBandLimitedWork the input is tabulated (max_line_work 0 forces it here): u and u'
+  // against the analytic multisine and the summed lines, at points between the grid's, in
+  // the first period and two periods on (the interpolant is periodic). A slow and a rough
+  // input: the grid's refinement follows the top line.
+  const double dt = 1.0 / 750;
+  const Eigen::Index n = 512;
+  for (int top : {60, 255}) {
+    const double amplitude = 3.0;
+    const Eigen::VectorXd coarse = Multisine(n, dt, 2, top, amplitude);
+    const internal::SampledInput sum(coarse, dt, InputInterpolation::kBandLimited);
+    const internal::SampledInput table(coarse, dt, InputInterpolation::kBandLimited, 0.0);
+    REQUIRE(sum.fine() == 0);
+    REQUIRE(table.fine() >= 2);
+    // Hermite's remainder h^6 M6 / 46080 with M6 = sum a_l w_l^6 (each line's amplitude a_l
+    // is `amplitude`), A = sum a_l; the grid is the smallest power of two within 1e-11 A.
+    const double w0 = 2 * M_PI / (static_cast<double>(n) * dt), w_top = w0 * top;
+    double m6 = 0;
+    for (int l = 2; l <= top; ++l) m6 += amplitude * std::pow(w0 * l, 6);
+    const double lines_sum = amplitude * (top - 1);
+    auto hermite = [&](int points) { return std::pow(dt / points, 6) * m6 / 46080; };
+    CHECK(hermite(table.fine()) <= internal::kBandLimitedGridTolerance * lines_sum);
+    CHECK(hermite(table.fine() / 2) > internal::kBandLimitedGridTolerance * lines_sum);
+    const double bound = table.grid_error_bound();
+    CHECK(bound == Approx(hermite(table.fine())).epsilon(1e-9));
+    double worst_u = 0, worst_du = 0, worst_vs_sum = 0;
+    for (int periods : {0, 2}) {
+      for (double frac : {0.13, 0.37, 0.5, 0.91}) {
+        const double shift = (periods * static_cast<double>(n) + frac) * dt;
+        Eigen::VectorXd du_exact;
+        const Eigen::VectorXd exact = Multisine(n, dt, 2, top, amplitude, shift, &du_exact);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const double t = static_cast<double>(i) * dt + shift;
+          double u = 0, du = 0, us = 0, dus = 0;
+          table.Evaluate(t, i, &u, &du);
+          sum.Evaluate(t, i, &us, &dus);
+          worst_u = std::max(worst_u, std::abs(u - exact[i]));
+          worst_vs_sum = std::max(worst_vs_sum, std::abs(u - us));
+          worst_du = std::max(worst_du, std::abs(du - du_exact[i]));
+        }
+      }
+    }
+    INFO("top line " << top << ": " << table.fine() << " points a sample, bound " << bound
+                     << ", worst u error " << worst_u << ", against the sum " << worst_vs_sum
+                     << ", worst u' error " << worst_du);
+    // The bound plus the FFT's and the multisine's rounding (~1e-14 of A).
+    CHECK(worst_u <= bound + 1e-13 * lines_sum);
+    CHECK(worst_vs_sum <= bound + 1e-13 * lines_sum);
+    // u': Hermite's derivative remainder, below h^5 M6 / 1920 (3 max|(s(1-s))^2 (2s-1)| / 720
+    // = 1 / 13400 of it, with room for the mean-value point's own motion).
+    const double h = dt / table.fine();
+    CHECK(worst_du <= std::pow(h, 5) * m6 / 1920 + 1e-13 * w_top * lines_sum);
+  }
+}
+
 TEST_CASE("bouc-wen: MATLAB's decimate(x, r, 'fir') keeps a slow sine and its phase",
           "[hysteresis][bouc-wen]") {
   // fir1(30, 1/r) has unit DC gain and, delay-compensated, zero phase: a sine at 1/50 of the

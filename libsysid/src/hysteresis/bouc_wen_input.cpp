@@ -8,6 +8,7 @@
 
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid::internal {
 
@@ -21,7 +22,8 @@ void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const
           fmt::format("{}: {}[{}]: expected a finite number, found {}", kind, what, i, v[i]));
 }
 
-SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how)
+SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how,
+                           double max_line_work)
     : u_(u), dt_(dt_s), how_(how) {
   if (how_ != InputInterpolation::kBandLimited || u.size() < 2) return;
   const Eigen::Index n = u.size();
@@ -44,15 +46,63 @@ SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpola
     lines_.push_back(static_cast<int>(j));
     coeff_.push_back(c);
   }
-  // Each evaluation sums every kept line, and CVODE evaluates a few to hundreds of times a
-  // sample: lines x samples is the work's scale (a rough 4000-sample input, 2000 lines: 9 s).
-  const double work = static_cast<double>(lines_.size()) * nd;
-  if (work > kMaxBandLimitedWork)
+  // Each evaluation of the sum costs every kept line, and CVODE evaluates a few to hundreds of
+  // times a sample: lines x samples is the work's scale (4000 samples, 2000 lines: 9 s).
+  if (!lines_.empty() && static_cast<double>(lines_.size()) * nd > max_line_work) Tabulate();
+}
+
+// The grid: the smallest power of two L of points per sample whose Hermite bound is within
+// kBandLimitedGridTolerance A; u, u' and u'' at the n L points of one period are inverse FFTs of
+// the lines placed at their harmonic numbers (with their conjugates at n L - l, so the
+// transforms are real): one transform gives u + i u', a second u''.
+void SampledInput::Tabulate() {
+  const Eigen::Index n = u_.size();
+  // A = sum |2 c_j| and |u^(6)| <= M6 = sum |2 c_j| w_j^6: the lines' own weights, so that
+  // rounding-level lines near the Nyquist frequency do not refine the grid.
+  double amplitude = 0, m6 = 0;
+  for (size_t j = 0; j < lines_.size(); ++j) {
+    const double a = 2 * std::abs(coeff_[j]);
+    amplitude += a;
+    m6 += a * std::pow(omega_ * lines_[j], 6);
+  }
+  auto bound = [&](int points) { return std::pow(dt_ / points, 6) * m6 / 46080; };
+  int L = 2;
+  while (L < kMaxGridPerSample && bound(L) > kBandLimitedGridTolerance * amplitude) L *= 2;
+  const double points = static_cast<double>(n) * L;
+  if (3 * points > kMaxSignalSamples || FftWork(n * L) > kMaxFftWork)
     throw InputError(fmt::format(
-        "bouc-wen: the band-limited input of {} samples keeps {} spectral lines: {:.3g} "
-        "line-samples, more than the {:.0e} a simulation may evaluate (kMaxBandLimitedWork); "
-        "use the linear or held input, or a shorter recording",
-        n, lines_.size(), work, kMaxBandLimitedWork));
+        "bouc-wen: the band-limited input of {} samples ({} spectral lines) would be tabulated "
+        "at {} points a sample: 3 values (u, u', u'') at {:.4g} points, more than the {:.0e} a "
+        "simulation may hold (kMaxSignalSamples), or an FFT of more than {:.0e} operations "
+        "(kMaxFftWork); use the linear or held input, or a shorter recording",
+        n, lines_.size(), L, points, kMaxSignalSamples, kMaxFftWork));
+  fine_ = L;
+  grid_error_bound_ = bound(L);
+  const Eigen::Index N = n * L;
+  std::vector<std::complex<double>> first(static_cast<size_t>(N)), second(first.size()), out;
+  const std::complex<double> i(0, 1);
+  for (size_t j = 0; j < lines_.size(); ++j) {
+    const auto l = static_cast<size_t>(lines_[j]);
+    const double w = omega_ * lines_[j];
+    const std::complex<double> c = coeff_[j], dc = i * w * c, d2c = -w * w * c;
+    // 2 Re(a e^(i w l t)) is the pair (a at l, conj(a) at N - l); u and u' share a transform
+    // as its real and imaginary parts.
+    first[l] += c + i * dc;
+    first[static_cast<size_t>(N) - l] += std::conj(c) + i * std::conj(dc);
+    second[l] += d2c;
+    second[static_cast<size_t>(N) - l] += std::conj(d2c);
+  }
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::Unscaled);
+  grid_.resize(static_cast<size_t>(3 * N));
+  fft.inv(out, first);
+  for (Eigen::Index m = 0; m < N; ++m) {
+    grid_[static_cast<size_t>(3 * m)] = mean_ + out[static_cast<size_t>(m)].real();
+    grid_[static_cast<size_t>(3 * m + 1)] = out[static_cast<size_t>(m)].imag();
+  }
+  fft.inv(out, second);
+  for (Eigen::Index m = 0; m < N; ++m)
+    grid_[static_cast<size_t>(3 * m + 2)] = out[static_cast<size_t>(m)].real();
 }
 
 void SampledInput::Evaluate(double t, Eigen::Index k, double* u, double* du) const {
@@ -72,6 +122,28 @@ void SampledInput::Evaluate(double t, Eigen::Index k, double* u, double* du) con
   if (lines_.empty()) {
     *u = mean_;
     *du = 0;
+    return;
+  }
+  if (fine_ > 0) {
+    // Quintic Hermite between grid points m and m + 1 (one period, wrapped), at x in [0, 1].
+    const Eigen::Index N = n * fine_;
+    const double h = dt_ / fine_;
+    const double pos = t / h;
+    const double base = std::floor(pos);
+    const double x = pos - base;
+    Eigen::Index m = static_cast<Eigen::Index>(base) % N;
+    if (m < 0) m += N;
+    const double* a = &grid_[static_cast<size_t>(3 * m)];
+    const double* b = &grid_[static_cast<size_t>(3 * ((m + 1) % N))];
+    const double x2 = x * x, x3 = x2 * x, x4 = x3 * x, x5 = x4 * x;
+    const double h0 = 1 - 10 * x3 + 15 * x4 - 6 * x5, h5 = 1 - h0;
+    const double h1 = x - 6 * x3 + 8 * x4 - 3 * x5, h4 = -4 * x3 + 7 * x4 - 3 * x5;
+    const double h2 = 0.5 * (x2 - 3 * x3 + 3 * x4 - x5), h3 = 0.5 * (x3 - 2 * x4 + x5);
+    const double g0 = -30 * x2 + 60 * x3 - 30 * x4;  // dh0/dx; dh5/dx = -g0
+    const double g1 = 1 - 18 * x2 + 32 * x3 - 15 * x4, g4 = -12 * x2 + 28 * x3 - 15 * x4;
+    const double g2 = 0.5 * (2 * x - 9 * x2 + 12 * x3 - 5 * x4), g3 = 0.5 * (3 * x2 - 8 * x3 + 5 * x4);
+    *u = a[0] * h0 + b[0] * h5 + h * (a[1] * h1 + b[1] * h4) + h * h * (a[2] * h2 + b[2] * h3);
+    *du = (a[0] - b[0]) * g0 / h + a[1] * g1 + b[1] * g4 + h * (a[2] * g2 + b[2] * g3);
     return;
   }
   const std::complex<double> step = std::polar(1.0, omega_ * t);

@@ -11,19 +11,46 @@
 
 namespace sysid::internal {
 
+/// The most (spectral lines kept) x (samples) for which SampledInput sums a band-limited input's
+/// lines at each of CVODE's evaluations; past it the input is tabulated (a sum would cost
+/// minutes: 40960 samples keep about 1600 lines).
+inline constexpr double kMaxBandLimitedWork = 2e7;
+
+/// [1] The tabulated band-limited input's error bound, relative to the sum of its lines'
+/// amplitudes: far below what CVODE's default rtol 1e-9 resolves.
+inline constexpr double kBandLimitedGridTolerance = 1e-11;
+
+/// The most grid points per sample of a tabulated band-limited input (a line at the Nyquist
+/// frequency needs 64).
+inline constexpr int kMaxGridPerSample = 1024;
+
 /// u(t) and u'(t) between the samples u_k = u(k dt), t in [0, n dt], as InputInterpolation says.
 /// Band-limited: the trigonometric interpolant of the n samples as one period (lines with
-/// negligible amplitude, below 1e-15 of the largest, are dropped).
+/// negligible amplitude, below 1e-15 of the largest, are dropped). While (lines x samples) is
+/// within `max_line_work` every evaluation sums the lines; past it u, u' and u'' are tabulated
+/// once on a grid `fine()` times finer than the samples (inverse FFTs of the lines) and
+/// evaluated by quintic Hermite interpolation, whose error is at most
+/// h^6 M6 / 46080 <= kBandLimitedGridTolerance A (h the grid's step, A = sum of the lines'
+/// amplitudes a_j, M6 = sum a_j w_j^6 >= |u^(6)| with w_j a line's angular frequency: Hermite's
+/// remainder).
 class SampledInput {
  public:
-  SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how);
+  SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how,
+               double max_line_work = kMaxBandLimitedWork);
   /// u [input unit] and its time derivative at t [s], inside the sample interval
   /// [t_k, t_k+1] (held and linear inputs use interval k's formula even at its ends, so a
   /// solver stopping at t_k+1 sees no jump).
   void Evaluate(double t_s, Eigen::Index k, double* u, double* du) const;
   InputInterpolation how() const { return how_; }
+  /// Grid points per sample of the tabulated band-limited input (the smallest power of two
+/// within the tolerance); 0 when the lines are summed.
+  int fine() const { return fine_; }
+  /// [input unit] The bound on the tabulated input's error stated above; 0 when not tabulated.
+  double grid_error_bound() const { return grid_error_bound_; }
 
  private:
+  void Tabulate();
+
   Eigen::VectorXd u_;
   double dt_;
   InputInterpolation how_;
@@ -31,6 +58,9 @@ class SampledInput {
   std::vector<int> lines_;                   // harmonic numbers kept
   std::vector<std::complex<double>> coeff_;  // u(t) = mean + sum 2 Re(c_j e^(i w l_j t))
   double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
+  int fine_ = 0;
+  double grid_error_bound_ = 0;
+  std::vector<double> grid_;  // (u, u' [1/s], u'' [1/s^2]) at each grid point, one period
 };
 
 /// The most power above a quarter of the sampling rate, as a fraction of u's variance, that a
@@ -245,9 +275,6 @@ int ChooseFixedSteps(const MechanicalBoucWenParameters& p, const SampledRecordin
 /// 2e9 is a few seconds: n = 2e7 = 2^8 5^7 costs 1e9.
 inline constexpr double kMaxFftWork = 2e9;
 
-/// The most (spectral lines kept) x (samples) a band-limited input may have: each of CVODE's
-/// evaluations of u(t) sums every line (SampledInput throws InputError past it).
-inline constexpr double kMaxBandLimitedWork = 2e7;
 
 /// n x (the sum of n's prime factors, with multiplicity): the work of a length-n FFT.
 double FftWork(Eigen::Index n);
