@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-namespace sysid::cli {
+namespace sysid::cli::internal {
 
-std::pair<CLI::Option*, CLI::Option*> AddPiGainOptions(CLI::App* cmd, PiOptions& pi,
-                                                       const std::string& prefix) {
+std::pair<CLI::Option*, CLI::Option*> AddPiGainFlags(CLI::App* cmd, PiOptions& pi,
+                                                     const std::string& prefix) {
   const PiOptions delay_stage = PiOptions::ForActuatorDelayStage();
   CLI::Option* kp =
       cmd->add_option("--kp", pi.kp_v_per_m,
@@ -23,4 +23,4 @@ std::pair<CLI::Option*, CLI::Option*> AddPiGainOptions(CLI::App* cmd, PiOptions&
   return {kp, ki};
 }
 
-}  // namespace sysid::cli
+}  // namespace sysid::cli::internal

@@ -64,9 +64,7 @@ void AddMarginsCommand(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->type_name("M.json");
   PiOptions& pi = o->pi;
-  const auto [kp, ki] = AddPiGainOptions(cmd, pi, "PI ");
-  BindField(cmd, kp, pi, pi.kp_v_per_m);
-  BindField(cmd, ki, pi, pi.ki_v_per_m_s);
+  AddPiGainOptions(cmd, pi, "PI ");
   // The rate sets sample_time_s = 1 / rate when the command runs.
   BindField(cmd,
             cmd->add_option("--rate", o->rate_hz, "controller sample rate [Hz]")

@@ -219,9 +219,7 @@ void AddPipelineCommand(CLI::App& app) {
   AddFieldFlag(cmd, "--facts", p, p.facts,
                "also check the paper's facts F1-F8 on the stage file (sysid stage facts, ~10 s): "
                "table in the report, facts.json");
-  const auto [kp, ki] = AddPiGainOptions(cmd, p.pi, "PI ");
-  BindField(cmd, kp, p, p.pi.kp_v_per_m);
-  BindField(cmd, ki, p, p.pi.ki_v_per_m_s);
+  AddPiGainOptions(cmd, p, p.pi, "PI ");
   BindField(cmd, AddSeedOption(cmd, p.training.seed, "seed of the network initialisations"), p,
             p.training.seed);
   BindField(cmd,

@@ -398,8 +398,6 @@ void AddTrackCommand(CLI::App& app) {
       ->check(PositiveNumber());
   PiOptions& pi = o->pi;
   const auto [kp, ki] = AddPiGainOptions(cmd, pi, "");
-  BindField(cmd, kp, pi, pi.kp_v_per_m);
-  BindField(cmd, ki, pi, pi.ki_v_per_m_s);
   kp->check(FiniteRange(0.0, 1e9));
   ki->check(FiniteRange(0.0, 1e12));
   o->kp = kp;

@@ -70,23 +70,24 @@ void RunTunePi(const TunePiCli& o) {
                     OrNone(m.phase_margin_deg, "{:.2f}"),
                     OrNone(20 * std::log10(m.gain_margin), "{:.2f}"), m.Stable() ? "yes" : "no"});
   Table behaviour({"on the model", "result"});
-  behaviour.AddRow({fmt::format("step {:g} mm: overshoot", 1e3 * b.step_m),
-                    fmt::format("{:.3g} %", 100 * b.overshoot)});
-  behaviour.AddRow({"rise 10-90 % [ms]", OrNone(1e3 * b.rise_time_s, "{:.4g}")});
-  behaviour.AddRow({"settling to 2 % [ms]", OrNone(1e3 * b.settling_time_s, "{:.4g}")});
-  behaviour.AddRow({"final error [um]", Num(1e6 * b.step_final_error_m, 4)});
+  behaviour.AddRow({fmt::format("step {:g} mm: overshoot", 1e3 * b.step.step_m),
+                    fmt::format("{:.3g} %", 100 * b.step.overshoot)});
+  behaviour.AddRow({"rise 10-90 % [ms]", OrNone(1e3 * b.step.rise_time_s, "{:.4g}")});
+  behaviour.AddRow({"settling to 2 % [ms]", OrNone(1e3 * b.step.settling_time_s, "{:.4g}")});
+  behaviour.AddRow({"final error [um]", Num(1e6 * b.step.final_error_m, 4)});
   behaviour.AddRow({"step: max |u| [V], saturated samples",
-                    fmt::format("{:.4g}, {}", b.step_max_abs_u_v, b.step_saturated_samples)});
-  behaviour.AddRow({fmt::format("sine {:g} mm at {:g} Hz: RMS e [um]", 1e3 * b.sine_amplitude_m,
-                                b.sine_frequency_hz),
-                    Num(1e6 * b.sine.rms_error_m, 4)});
-  behaviour.AddRow({"sine: max |e| [um]", Num(1e6 * b.sine.max_error_m, 4)});
-  behaviour.AddRow({"sine: max |u| [V], saturated samples",
-                    fmt::format("{:.4g}, {}", b.sine.max_abs_u_v, b.sine.saturated_samples)});
+                    fmt::format("{:.4g}, {}", b.step.max_abs_u_v, b.step.saturated_samples)});
+  behaviour.AddRow({fmt::format("sine {:g} mm at {:g} Hz: RMS e [um]", 1e3 * b.sine.amplitude_m,
+                                b.sine.frequency_hz),
+                    Num(1e6 * b.sine.run.rms_error_m, 4)});
+  behaviour.AddRow({"sine: max |e| [um]", Num(1e6 * b.sine.run.max_error_m, 4)});
+  behaviour.AddRow(
+      {"sine: max |u| [V], saturated samples",
+       fmt::format("{:.4g}, {}", b.sine.run.max_abs_u_v, b.sine.run.saturated_samples)});
   behaviour.AddRow({fmt::format("hold after the sine: e peak-to-peak [um] (last {:g} s)",
-                                b.sine_hold.window_s),
-                    fmt::format("{:.4g} ({})", 1e6 * b.sine_hold.error_peak_to_peak_m,
-                                b.sine_hold.limit_cycle ? "limit cycle" : "settled")});
+                                b.sine.limit_cycle.window_s),
+                    fmt::format("{:.4g} ({})", 1e6 * b.sine.limit_cycle.error_peak_to_peak_m,
+                                b.sine.limit_cycle.limit_cycle ? "limit cycle" : "settled")});
   std::cout << margins.Render() << '\n' << behaviour.Render()
             << "\nMargins: the linear loop around steady sliding (sysid margins). Step and sine: "
                "the model simulated with stick-slip, PI alone.\n";

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "support/test_support.hpp"
@@ -240,4 +241,39 @@ TEST_CASE("sysid margins: table, JSON and bad input", "[control][cli]") {
   const auto bad = sysid::test::RunCli({"margins", "--model", dir / "bad.json"});
   CHECK(bad.exit_code == 2);
   CHECK_THAT(bad.err, Catch::Contains("bad.json:2:") && Catch::Contains("a3"));
+}
+
+TEST_CASE("margins JSON: the published keys in order, the derived ones from the margins",
+          "[control][json]") {
+  sysid::PiMarginsReport r =
+      sysid::AnalyzePiMargins(sysid::FrictionModel::Paper(), sysid::PiOptions{});
+  r.backward = sysid::LoopMargins{};  // no crossing found
+  const auto j = nlohmann::ordered_json::parse(sysid::ToJson(r));
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  CHECK(keys == std::vector<std::string>{"kp_v_per_m", "ki_v_per_m_s", "sample_time_s",
+                                         "extra_delay_s", "tau_s", "a3_mps2_per_v",
+                                         "directions"});
+  REQUIRE(j["directions"].size() == 2);
+  const auto& f = j["directions"][0];
+  keys.clear();
+  for (auto it = f.begin(); it != f.end(); ++it) keys.push_back(it.key());
+  CHECK(keys == std::vector<std::string>{"direction", "a1_per_s", "crossover_rad_s",
+                                         "crossover_hz", "phase_margin_deg",
+                                         "phase_crossover_rad_s", "gain_margin",
+                                         "gain_margin_db", "stable"});
+  // The derived keys by their definitions, to the last bits of the division and the log.
+  const sysid::LoopMargins& m = r.forward;
+  REQUIRE(std::isfinite(m.crossover_rad_s));
+  CHECK(f["crossover_hz"].get<double>() ==
+        Approx(m.crossover_rad_s / (2 * kPi)).epsilon(1e-15));
+  CHECK(f["gain_margin_db"].get<double>() ==
+        Approx(20 * std::log10(m.gain_margin)).epsilon(1e-15));
+  CHECK(f["phase_margin_deg"].get<double>() == m.phase_margin_deg);
+  CHECK(f["a1_per_s"].get<double>() == sysid::FrictionModel::Paper().a1p);
+  const auto& b = j["directions"][1];
+  for (const char* key : {"crossover_rad_s", "crossover_hz", "phase_margin_deg",
+                          "phase_crossover_rad_s", "gain_margin", "gain_margin_db"})
+    CHECK(b[key].is_null());
+  CHECK(b["stable"] == false);
 }

@@ -2,7 +2,10 @@
 // travel check, the traces as a recording and the summary JSON.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
 
+#include "control/control_json.hpp"
+#include "core/json_fields.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
@@ -106,4 +109,29 @@ TEST_CASE("tracking: FullReport adds every metric", "[control][report]") {
   CHECK_THAT(full, Catch::Contains("max |e| 0.00125 m"));
   CHECK_THAT(full, Catch::Contains("total variation of u 17.5 V"));
   CHECK_THAT(full, Catch::Contains("saturated samples 3"));
+}
+
+TEST_CASE("a scheme entry read through its description: the scheme by name, a bad one placed",
+          "[control][json]") {
+  sysid::SchemeTracking run;
+  run.scheme = FeedforwardScheme::kHysteresis;
+  run.stage_limits = "none";
+  run.result.saturated_samples = 7;
+  const std::string text = sysid::ToJson(run);
+  {
+    const sysid::internal::JsonDocument doc(text, "entry.json");
+    sysid::SchemeTracking back;
+    sysid::internal::ReadFields(doc.Root(), back);
+    CHECK(back.scheme == FeedforwardScheme::kHysteresis);
+    CHECK(back.result.saturated_samples == 7);
+    CHECK(sysid::ToJson(back) == text);
+  }
+  auto j = nlohmann::ordered_json::parse(text);
+  j["ff"] = "fast";
+  const std::string bad = j.dump(2);  // the document keeps a reference to its text
+  const sysid::internal::JsonDocument doc(bad, "bad.json");
+  sysid::SchemeTracking back;
+  CHECK_THROWS_WITH(sysid::internal::ReadFields(doc.Root(), back),
+                    Catch::StartsWith("bad.json:2:") && Catch::Contains("ff") &&
+                        Catch::Contains("\"analytic\"") && Catch::Contains("\"fast\""));
 }

@@ -24,6 +24,7 @@
 #include "stack/stack_json.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
+#include "sysid/control_tuning.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
 #include "sysid/identify.hpp"
@@ -189,6 +190,13 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::DominanceResult>("DominanceResult");
   CheckRoundTrip<sysid::PredictionErrors>("PredictionErrors");
   CheckRoundTrip<sysid::HysteresisInverseResult>("HysteresisInverseResult");
+  CheckRoundTrip<sysid::TrackingResult>("TrackingResult");
+  CheckRoundTrip<sysid::SchemeTracking>("SchemeTracking");
+  CheckRoundTrip<sysid::LoopMargins>("LoopMargins");
+  CheckRoundTrip<sysid::LimitCycleCheck>("LimitCycleCheck");
+  CheckRoundTrip<sysid::PiStepResponse>("PiStepResponse");
+  CheckRoundTrip<sysid::PiSineResponse>("PiSineResponse");
+  CheckRoundTrip<sysid::PiBehaviour>("PiBehaviour");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

@@ -68,6 +68,16 @@ struct LoopMargins {
   double phase_margin_deg = kNone;       ///< [deg] 180 + arg L there, in (-180, 180]
   double phase_crossover_rad_s = kNone;  ///< [rad/s] the first arg L = -180 (mod 360) going down
   double gain_margin = kNone;            ///< 1 / |L| there (> 1: the loop has gain to spare)
+  /// The fields, in file order (sysid/serialize.hpp): a crossing the sweep did not find is null.
+  /// A `sysid margins --json` direction adds the derived crossover_hz, gain_margin_db and
+  /// stable around them (loop_margins.cpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(crossover_rad_s).NaNAsNull().ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(phase_margin_deg).NaNAsNull().Minimum(-180).Maximum(180).Required());
+    a->Visit(SYSID_NVP(phase_crossover_rad_s).NaNAsNull().ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(gain_margin).NaNAsNull().ExclusiveMinimum(0).Required());
+  }
   /// A gain crossover with phase margin > 0, and gain margin > 1 or no phase crossover.
   bool Stable() const;
 };
@@ -225,6 +235,17 @@ struct TrackingResult {
   double max_abs_u_v = 0;                               ///< [V] max |u_k|
   double total_variation_v = 0;                         ///< [V] sum |u_k - u_{k-1}| (chattering)
   long saturated_samples = 0;                           ///< samples where the PI output was clipped
+  /// The metrics, in file order (sysid/serialize.hpp); the traces are not in the JSON.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(max_error_m).Minimum(0).Required());
+    a->Visit(SYSID_NVP(rms_error_m).Minimum(0).Required());
+    a->Visit(SYSID_NVP(rms_u_v).Minimum(0).Required());
+    a->Visit(SYSID_NVP(max_abs_u_v).Minimum(0).Required());
+    a->Visit(SYSID_NVP(total_variation_v).Minimum(0).Required());
+    a->Visit(
+        SYSID_NVP(saturated_samples).Minimum(0).Maximum(static_cast<double>(1L << 40)).Required());
+  }
   std::string BriefReport() const;
   /// BriefReport plus every metric: max |u|, total variation, saturated samples, samples.
   std::string FullReport() const;
@@ -309,6 +330,14 @@ struct SchemeTracking {
   FeedforwardScheme scheme = FeedforwardScheme::kNone;
   TrackingResult result;
   std::string stage_limits;  ///< StageStatus::Describe() of the run's stage
+  /// The fields of a `sysid track --json` "schemes" entry, in file order (sysid/serialize.hpp):
+  /// the scheme's name (ToString) as "ff", the result's metrics beside it.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(scheme).Renamed("ff").Required());
+    a->Visit(SYSID_NVP(result).Inline());
+    a->Visit(SYSID_NVP(stage_limits).Required());
+  }
 };
 /// {"ff", the result's metrics (ToJson(TrackingResult)), "stage_limits"}: one entry of
 /// `sysid track --json`'s "schemes".

@@ -66,6 +66,15 @@ struct LimitCycleCheck {
   double error_peak_to_peak_m = 0;    ///< [m] max e - min e over the window
   double control_peak_to_peak_v = 0;  ///< [V] max u - min u over the window
   bool limit_cycle = false;           ///< error_peak_to_peak_m > threshold_m
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(window_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(threshold_m).Minimum(0).Required());
+    a->Visit(SYSID_NVP(error_peak_to_peak_m).Minimum(0).Required());
+    a->Visit(SYSID_NVP(control_peak_to_peak_v).Minimum(0).Required());
+    a->Visit(SYSID_NVP(limit_cycle).Required());
+  }
 };
 /// window_s > 0 and no longer than the run; threshold_m > 0 (OptionsError otherwise).
 LimitCycleCheck CheckLimitCycle(const TrackingResult& run, double window_s, double threshold_m);
@@ -84,24 +93,62 @@ struct PiBehaviourOptions {
   void Validate() const;
 };
 
+/// The step of the gains on the model plant: x_ref from 0 to step_m at the first sample.
+struct PiStepResponse {
+  double step_m = 0;           ///< [m]
+  double overshoot = 0;        ///< [1] (max x - step) / step, >= 0
+  double rise_time_s = 0;      ///< [s] 10 % to 90 % of the step (NaN if never reached)
+  double settling_time_s = 0;  ///< [s] last exit from +-2 % of the step (NaN if outside at the end)
+  double final_error_m = 0;    ///< [m] e at the end of the step run
+  long saturated_samples = 0;  ///< samples where the PI output was clipped
+  double max_abs_u_v = 0;      ///< [V] max |u|
+  /// The fields, in file order (sysid/serialize.hpp): a time never reached is null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(step_m).Required());
+    a->Visit(SYSID_NVP(overshoot).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(rise_time_s).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(settling_time_s).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(final_error_m).Required());
+    a->Visit(
+        SYSID_NVP(saturated_samples).Minimum(0).Maximum(static_cast<double>(1L << 40)).Required());
+    a->Visit(SYSID_NVP(max_abs_u_v).Minimum(0).Required());
+  }
+};
+
+/// The sine of the gains on the model plant, x_ref = A sin(2 pi f t), then a hold of one
+/// period.
+struct PiSineResponse {
+  double amplitude_m = 0;       ///< [m] A
+  double frequency_hz = 0;      ///< [Hz] f
+  TrackingResult run;           ///< the sine run with its hold (metrics over the whole run)
+  LimitCycleCheck limit_cycle;  ///< over the second half of the hold
+  /// The fields, in file order (sysid/serialize.hpp): the run's metrics beside A and f.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(amplitude_m).Required());
+    a->Visit(SYSID_NVP(frequency_hz).ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(run).Inline());
+    a->Visit(SYSID_NVP(limit_cycle).Required());
+  }
+};
+
 /// Step and sine of the gains on the model plant (TrackModelSchemes' plant, no feedforward).
 struct PiBehaviour {
-  double step_m = 0;                ///< [m]
-  double overshoot = 0;             ///< [1] (max x - step) / step, >= 0
-  double rise_time_s = 0;           ///< [s] 10 % to 90 % of the step (NaN if never reached)
-  double settling_time_s = 0;       ///< [s] last exit from +-2 % of the step (NaN if outside at the end)
-  double step_final_error_m = 0;    ///< [m] e at the end of the step run
-  long step_saturated_samples = 0;
-  double step_max_abs_u_v = 0;      ///< [V]
-  double sine_amplitude_m = 0, sine_frequency_hz = 0;
-  TrackingResult sine;              ///< the sine run with its hold (metrics over the whole run)
-  LimitCycleCheck sine_hold;        ///< over the second half of the hold
+  PiStepResponse step;
+  PiSineResponse sine;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(step).Required());
+    a->Visit(SYSID_NVP(sine).Required());
+  }
 };
 PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
                                 const PiBehaviourOptions& options = {});
 /// {"step": {"step_m", "overshoot", "rise_time_s", "settling_time_s", "final_error_m",
 /// "saturated_samples", "max_abs_u_v"}, "sine": {"amplitude_m", "frequency_hz", the run's
-/// metrics, "limit_cycle": {...}}}; NaN as null.
+/// metrics, "limit_cycle": {...}}}: the described fields; NaN as null.
 std::string ToJson(const PiBehaviour& behaviour, int indent = 2);
 /// `sysid tune-pi --json`: {"plant", "tuning": ToJson(result, options), "behaviour":
 /// ToJson(behaviour)}.

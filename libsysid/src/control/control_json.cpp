@@ -1,7 +1,9 @@
-// JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries) and of the
-// controller and reference-profile options.
+// JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries), of the PI
+// tuning and its behaviour (tune-pi --json), and of the controller and reference-profile
+// options: the described structs through their field lists, the frames around them by hand.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "control/control_json.hpp"
 #include "core/json_text.hpp"
@@ -12,37 +14,18 @@
 namespace sysid {
 
 std::string ToJson(const TrackingResult& r, int indent) {
-  nlohmann::ordered_json j;
-  j["max_error_m"] = r.max_error_m;
-  j["rms_error_m"] = r.rms_error_m;
-  j["rms_u_v"] = r.rms_u_v;
-  j["max_abs_u_v"] = r.max_abs_u_v;
-  j["total_variation_v"] = r.total_variation_v;
-  j["saturated_samples"] = r.saturated_samples;
-  return internal::DumpJson(j, indent);
+  return internal::FieldsToJson(r, indent);
 }
 
 TrackingResult TrackingResultFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
-  const internal::JsonNode root = doc.Root();
-  root.ExpectObject({"max_error_m", "rms_error_m", "rms_u_v", "max_abs_u_v", "total_variation_v",
-                     "saturated_samples"});
-  using Rule = internal::NumberRule;
   TrackingResult r;
-  r.max_error_m = root.Get("max_error_m").Number(Rule::NonNegative());
-  r.rms_error_m = root.Get("rms_error_m").Number(Rule::NonNegative());
-  r.rms_u_v = root.Get("rms_u_v").Number(Rule::NonNegative());
-  r.max_abs_u_v = root.Get("max_abs_u_v").Number(Rule::NonNegative());
-  r.total_variation_v = root.Get("total_variation_v").Number(Rule::NonNegative());
-  r.saturated_samples = root.Get("saturated_samples").Integer(0, 1L << 40);
+  internal::ReadFields(doc.Root(), r);
   return r;
 }
 
 std::string ToJson(const SchemeTracking& run, int indent) {
-  nlohmann::ordered_json j = {{"ff", ToString(run.scheme)}};
-  j.update(nlohmann::ordered_json::parse(ToJson(run.result, -1)));
-  j["stage_limits"] = run.stage_limits;
-  return internal::DumpJson(j, indent);
+  return internal::FieldsToJson(run, indent);
 }
 
 std::string TrackingSummaryToJson(const std::string& plant, const PositionReference& reference,
@@ -53,8 +36,7 @@ std::string TrackingSummaryToJson(const std::string& plant, const PositionRefere
   j["reference"] = reference.description;
   j["kp_v_per_m"] = pi.kp_v_per_m;
   j["ki_v_per_m_s"] = pi.ki_v_per_m_s;
-  j["schemes"] = nlohmann::ordered_json::array();
-  for (const auto& run : runs) j["schemes"].push_back(nlohmann::ordered_json::parse(ToJson(run)));
+  j["schemes"] = internal::JsonForm<std::vector<SchemeTracking>>::Write(runs);
   if (runs.size() == 1) {
     j["max_error_m"] = runs[0].result.max_error_m;
     j["rms_error_m"] = runs[0].result.rms_error_m;
@@ -71,6 +53,19 @@ std::string AntiWindupName(AntiWindup a) {
 }  // namespace
 
 namespace internal {
+
+nlohmann::ordered_json JsonForm<FeedforwardScheme>::Write(const FeedforwardScheme& s) {
+  return ToString(s);
+}
+
+void JsonForm<FeedforwardScheme>::Read(const JsonNode& node, FeedforwardScheme& s) {
+  const std::string name = node.String();
+  try {
+    s = ParseFeedforwardScheme(name);
+  } catch (const OptionsError&) {
+    node.Expected("one of \"none\", \"analytic\", \"nn\", \"hysteresis\"");
+  }
+}
 
 nlohmann::ordered_json JsonForm<AntiWindup>::Write(const AntiWindup& a) {
   return AntiWindupName(a);
@@ -104,8 +99,11 @@ SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
 }  // namespace sysid
 
 namespace sysid {
+namespace {
 
-std::string ToJson(const PiTuningResult& r, const PiTuningOptions& o, int indent) {
+// The gains (not anti_windup, always on), the options' targets and the margins report: a frame
+// around the described margins, its keys drawn from three structs.
+nlohmann::ordered_json TuningJson(const PiTuningResult& r, const PiTuningOptions& o) {
   nlohmann::ordered_json j;
   j["kp_v_per_m"] = r.pi.kp_v_per_m;
   j["ki_v_per_m_s"] = r.pi.ki_v_per_m_s;
@@ -115,46 +113,29 @@ std::string ToJson(const PiTuningResult& r, const PiTuningOptions& o, int indent
                   {"gain_margin_db", o.gain_margin_db},
                   {"crossover_per_integral_corner", o.crossover_per_integral_corner}};
   j["design_crossover_rad_s"] = r.design_crossover_rad_s;
-  j["margins"] = nlohmann::ordered_json::parse(ToJson(r.margins));
-  return internal::DumpJson(j, indent);
+  j["margins"] = internal::MarginsReportJson(r.margins);
+  return j;
+}
+
+}  // namespace
+
+std::string ToJson(const PiTuningResult& r, const PiTuningOptions& o, int indent) {
+  return internal::DumpJson(TuningJson(r, o), indent);
 }
 
 std::string ToJson(const LimitCycleCheck& c, int indent) {
-  nlohmann::ordered_json j;
-  j["window_s"] = c.window_s;
-  j["threshold_m"] = c.threshold_m;
-  j["error_peak_to_peak_m"] = c.error_peak_to_peak_m;
-  j["control_peak_to_peak_v"] = c.control_peak_to_peak_v;
-  j["limit_cycle"] = c.limit_cycle;
-  return internal::DumpJson(j, indent);
+  return internal::FieldsToJson(c, indent);
 }
 
-std::string ToJson(const PiBehaviour& b, int indent) {
-  using internal::NumberOrNull;
-  nlohmann::ordered_json j;
-  j["step"] = {{"step_m", b.step_m},
-               {"overshoot", NumberOrNull(b.overshoot)},
-               {"rise_time_s", NumberOrNull(b.rise_time_s)},
-               {"settling_time_s", NumberOrNull(b.settling_time_s)},
-               {"final_error_m", b.step_final_error_m},
-               {"saturated_samples", b.step_saturated_samples},
-               {"max_abs_u_v", b.step_max_abs_u_v}};
-  nlohmann::ordered_json sine = {{"amplitude_m", b.sine_amplitude_m},
-                                 {"frequency_hz", b.sine_frequency_hz}};
-  const nlohmann::ordered_json metrics = nlohmann::ordered_json::parse(ToJson(b.sine));
-  for (auto it = metrics.begin(); it != metrics.end(); ++it) sine[it.key()] = it.value();
-  sine["limit_cycle"] = nlohmann::ordered_json::parse(ToJson(b.sine_hold));
-  j["sine"] = sine;
-  return internal::DumpJson(j, indent);
-}
+std::string ToJson(const PiBehaviour& b, int indent) { return internal::FieldsToJson(b, indent); }
 
 std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
                          const PiTuningOptions& options, const PiBehaviour& behaviour,
                          int indent) {
   nlohmann::ordered_json j;
   j["plant"] = plant;
-  j["tuning"] = nlohmann::ordered_json::parse(ToJson(result, options));
-  j["behaviour"] = nlohmann::ordered_json::parse(ToJson(behaviour));
+  j["tuning"] = TuningJson(result, options);
+  j["behaviour"] = internal::WriteFields(behaviour);
   return internal::DumpJson(j, indent);
 }
 

@@ -1,5 +1,7 @@
-// Private: the JSON form of the PI's anti-windup rule, for every reader and writer of PiOptions
-// (core/json_fields.hpp), which the facts and pipeline options hold.
+// Private: the JSON forms of the control module's enums for the described structs that hold
+// them (core/json_fields.hpp): the PI's anti-windup rule (PiOptions, which the facts and
+// pipeline options hold) and a tracking run's feedforward scheme (SchemeTracking); and the
+// object of a margins report, which the tuning result nests.
 #ifndef SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 #define SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 
@@ -16,6 +18,16 @@ struct JsonForm<AntiWindup> {
   static nlohmann::ordered_json Write(const AntiWindup& a);
   static void Read(const JsonNode& node, AntiWindup& a);
 };
+
+/// "none", "analytic", "nn" or "hysteresis" (ToString).
+template <>
+struct JsonForm<FeedforwardScheme> {
+  static nlohmann::ordered_json Write(const FeedforwardScheme& s);
+  static void Read(const JsonNode& node, FeedforwardScheme& s);
+};
+
+/// The object ToJson(PiMarginsReport) writes.
+nlohmann::ordered_json MarginsReportJson(const PiMarginsReport& report);
 
 }  // namespace sysid::internal
 

@@ -7,7 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/json_text.hpp"
+#include "control/control_json.hpp"
+#include "core/json_fields.hpp"
 #include "sysid/control.hpp"
 #include "sysid/error.hpp"
 #include "sysid/model.hpp"
@@ -129,8 +130,12 @@ PiMarginsReport AnalyzePiMargins(const FrictionModel& model, const PiOptions& pi
           RoughModelPiMargins(model, -1, pi, extra_delay_s)};
 }
 
-std::string ToJson(const PiMarginsReport& r, int indent) {
-  using internal::NumberOrNull;
+namespace internal {
+
+// The gains and the model's parameters the margins depend on, then per direction its name and
+// a1 and the described margins with the derived crossover_hz (after crossover_rad_s),
+// gain_margin_db (after gain_margin) and stable (last): a frame no field list states.
+nlohmann::ordered_json MarginsReportJson(const PiMarginsReport& r) {
   nlohmann::ordered_json j;
   j["kp_v_per_m"] = r.pi.kp_v_per_m;
   j["ki_v_per_m_s"] = r.pi.ki_v_per_m_s;
@@ -143,16 +148,24 @@ std::string ToJson(const PiMarginsReport& r, int indent) {
     nlohmann::ordered_json d;
     d["direction"] = name;
     d["a1_per_s"] = a1;
-    d["crossover_rad_s"] = NumberOrNull(m.crossover_rad_s);
-    d["crossover_hz"] = NumberOrNull(m.crossover_rad_s / (2 * kPi));
-    d["phase_margin_deg"] = NumberOrNull(m.phase_margin_deg);
-    d["phase_crossover_rad_s"] = NumberOrNull(m.phase_crossover_rad_s);
-    d["gain_margin"] = NumberOrNull(m.gain_margin);
-    d["gain_margin_db"] = NumberOrNull(20 * std::log10(m.gain_margin));
+    const nlohmann::ordered_json fields = WriteFields(m);
+    for (auto it = fields.begin(); it != fields.end(); ++it) {
+      d[it.key()] = *it;
+      if (it.key() == "crossover_rad_s")
+        d["crossover_hz"] = NumberOrNull(m.crossover_rad_s / (2 * kPi));
+      else if (it.key() == "gain_margin")
+        d["gain_margin_db"] = NumberOrNull(20 * std::log10(m.gain_margin));
+    }
     d["stable"] = m.Stable();
     j["directions"].push_back(d);
   }
-  return internal::DumpJson(j, indent);
+  return j;
+}
+
+}  // namespace internal
+
+std::string ToJson(const PiMarginsReport& r, int indent) {
+  return internal::DumpJson(internal::MarginsReportJson(r), indent);
 }
 
 }  // namespace sysid

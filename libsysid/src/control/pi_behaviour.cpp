@@ -89,7 +89,7 @@ PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
   const double ts = pi.sample_time_s;
   const std::vector<FeedforwardScheme> none = {FeedforwardScheme::kNone};
   PiBehaviour b;
-  b.step_m = o.step_m;
+  b.step.step_m = o.step_m;
   {
     const auto n = static_cast<Eigen::Index>(std::llround(o.step_duration_s / ts)) + 1;
     if (!(static_cast<double>(n) <= kMaxSignalSamples))
@@ -102,26 +102,26 @@ PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
     const TrackingResult r = TrackModelSchemes(model, ts, ref, pi, none, {})[0].result;
     const double s = o.step_m, sign = s > 0 ? 1 : -1;
     const Eigen::VectorXd y = sign * r.x_m / s;  // the normalised response, 0 -> 1
-    b.overshoot = std::max(0.0, y.maxCoeff() - 1);
+    b.step.overshoot = std::max(0.0, y.maxCoeff() - 1);
     double t10 = kNaN, t90 = kNaN;
     for (Eigen::Index k = 0; k < n; ++k) {
       if (std::isnan(t10) && y[k] >= 0.1) t10 = r.t_s[k];
       if (std::isnan(t90) && y[k] >= 0.9) t90 = r.t_s[k];
     }
-    b.rise_time_s = t90 - t10;
-    b.settling_time_s = kNaN;
+    b.step.rise_time_s = t90 - t10;
+    b.step.settling_time_s = kNaN;
     if (std::abs(y[n - 1] - 1) <= 0.02) {
       Eigen::Index k = n - 1;
       while (k > 0 && std::abs(y[k - 1] - 1) <= 0.02) --k;
-      b.settling_time_s = r.t_s[k];
+      b.step.settling_time_s = r.t_s[k];
     }
-    b.step_final_error_m = r.e_m[n - 1];
-    b.step_saturated_samples = r.saturated_samples;
-    b.step_max_abs_u_v = r.max_abs_u_v;
+    b.step.final_error_m = r.e_m[n - 1];
+    b.step.saturated_samples = r.saturated_samples;
+    b.step.max_abs_u_v = r.max_abs_u_v;
   }
   {
-    b.sine_amplitude_m = o.sine_amplitude_m;
-    b.sine_frequency_hz = o.sine_frequency_hz;
+    b.sine.amplitude_m = o.sine_amplitude_m;
+    b.sine.frequency_hz = o.sine_frequency_hz;
     const double period = 1 / o.sine_frequency_hz;
     const auto n = static_cast<Eigen::Index>(std::llround(o.sine_cycles * period / ts)) + 1;
     if (!(static_cast<double>(n) * 1.5 <= kMaxSignalSamples))
@@ -130,8 +130,8 @@ PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
     for (Eigen::Index k = 0; k < n; ++k)
       x[k] = o.sine_amplitude_m * std::sin(2 * M_PI * o.sine_frequency_hz * ts * static_cast<double>(k));
     const PositionReference ref = AppendHold(Sampled(x, ts, "sine"), period);
-    b.sine = TrackModelSchemes(model, ts, ref, pi, none, {})[0].result;
-    b.sine_hold = CheckLimitCycle(b.sine, period / 2, o.limit_cycle_threshold_m);
+    b.sine.run = TrackModelSchemes(model, ts, ref, pi, none, {})[0].result;
+    b.sine.limit_cycle = CheckLimitCycle(b.sine.run, period / 2, o.limit_cycle_threshold_m);
   }
   return b;
 }
