@@ -127,7 +127,8 @@ void CheckRoundTrip(const char* name) {
   CAPTURE(same);
   CHECK(same.empty());
 
-  const sysid::internal::JsonDocument doc(written.dump(2), "perturbed.json");
+  const std::string text = written.dump(2);  // the document keeps a reference to its text
+  const sysid::internal::JsonDocument doc(text, "perturbed.json");
   auto read = std::make_unique<T>();
   sysid::internal::ReadFields(doc.Root(), *read);
   CHECK(sysid::internal::WriteFields(*read).dump() == written.dump());
