@@ -319,6 +319,18 @@ TEST_CASE("bouc-wen: CVODE's starts screened at a looser rtol reach the full-tol
   CHECK(final_first(seen[1]) == best_last(seen[1]));
   CHECK(final_first(seen[0]) != best_last(seen[0]));
   CHECK(final_first(seen[0]) == Approx(best_last(seen[0])).epsilon(1e-3));
+  // Central differences keep the final tolerance (their step would drown in the looser one's
+  // error): no screening, whatever start_rtol says.
+  o.start_rtol = 1e-6;
+  o.jacobian = BoucWenJacobian::kCentralDifferences;
+  o.start_iterations = 1;
+  o.max_iterations = 1;
+  o.on_iteration = nullptr;
+  HysteresisFitSummary fd;
+  FitBoucWen(BoucWenForm::kMechanical, {MakeRecording(u, x, dt)}, o, &fd);
+  INFO(fd.message);
+  CHECK(fd.message.find("Jacobian by central differences") != std::string::npos);
+  CHECK(fd.message.find("screened") == std::string::npos);
 }
 
 TEST_CASE("bouc-wen: past the time bound the fixed step's final check is skipped, and said so",

@@ -433,9 +433,10 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
         layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
   // Tolerance continuation (BoucWenFitOptions::start_rtol): the starts screen at the looser
   // tolerance; their evaluations are not the final tolerance's, so the final fit begins with a
-  // fresh cache.
-  const bool continuation =
-      options.starts > 1 && layout.SimulatedByCvode() && options.start_rtol > layout.sim.rtol;
+  // fresh cache. Central differences keep the final tolerance: their step (1e-6 of a parameter)
+  // would drown in the looser simulation's error.
+  const bool continuation = options.starts > 1 && exact && layout.SimulatedByCvode() &&
+                            options.start_rtol > layout.sim.rtol;
   if (options.starts > 1) {
     Layout screen = layout;
     if (continuation) screen.sim.rtol = options.start_rtol;
