@@ -8,7 +8,7 @@
 //     for the fitted model (chain, and CVODE with band-limited input) and the true system.
 //   bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats R]
 //                  [--jacobian sensitivities|central-differences] [--integrator chain|cvode]
-//                  [--max-time S]
+//                  [--max-time S] [--start-rtol R]
 //     What the benchmark fit costs: one chain simulation of TRAIN's u (true parameters) as the
 //     fit ran it before (Simulate: the input upsampled on every call) against the fit's path now
 //     (the upsampled input computed once, internal::ChainOutput), best CPU time of R, the outputs
@@ -139,13 +139,15 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
           args[++i] == "cvode" ? BoucWenIntegrator::kCvode : BoucWenIntegrator::kBenchmarkChain;
     else if (args[i] == "--max-time" && i + 1 < args.size())
       o.max_time_s = std::atof(args[++i].c_str());
+    else if (args[i] == "--start-rtol" && i + 1 < args.size())
+      o.start_rtol = std::atof(args[++i].c_str());
     else
       train = args[i];
   }
   if (train.empty()) {
     fmt::print(stderr,
                "usage: bench_bouc_wen fit-speed TRAIN.csv [--threads T] [--starts S] [--repeats "
-               "R]\n");
+               "R] [--jacobian J] [--integrator I] [--max-time S] [--start-rtol R]\n");
     return 1;
   }
   const sysid::Recording tr = sysid::ReadRecording(train);
@@ -153,6 +155,7 @@ int FitSpeedCommand(const std::vector<std::string>& args) {
   const double dt = tr.column("t")[1] - tr.column("t")[0];
   sysid::BoucWenSimulationOptions chain_options = o.simulation;
   chain_options.integrator = BoucWenIntegrator::kBenchmarkChain;
+  chain_options.input = InputInterpolation::kLinear;  // a model's (the chain ignores it)
   const sysid::MechanicalBoucWen truth({}, chain_options);
   const Eigen::VectorXd chain_u = sysid::internal::ChainInput(u, o.simulation.upsampling);
   auto best_of = [&](auto&& simulate, Eigen::VectorXd* y) {

@@ -213,6 +213,14 @@ struct BoucWenFitOptions {
   int starts = 4;  ///< starting points: the initial values and starts-1 perturbed, in [1, 64]
   double start_spread = 0.3;  ///< [1] perturbation of the extra starts, factor exp(+-spread)
   int start_iterations = 3;   ///< Ceres iterations per start before the best continues
+  /// [1] CVODE's relative tolerance while the starts screen, in [simulation.rtol, 1e-2]: when the
+  /// mechanical form is fitted by CVODE with CVODES' sensitivities, the starts' iterations run at
+  /// it and the best start then continues at simulation.rtol (tolerance continuation: a CVODES
+  /// pass on the benchmark costs half at 1e-6 what it costs at 1e-9, and ranking the starts
+  /// does not need the last digits). Equal to simulation.rtol: the starts run at the final
+  /// tolerance. Unused by the other integrators (exact to rounding), by central differences
+  /// (their step would drown in the looser simulation's error) and with one start.
+  double start_rtol = 1e-6;
   int max_iterations = 100;   ///< Ceres iterations of the final fit, in [1, 10000]
   std::uint64_t seed = 1;     ///< for the perturbed starts
   /// Threads (0: all cores): the central-difference Jacobian's simulations, or the recordings'

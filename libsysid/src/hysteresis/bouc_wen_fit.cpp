@@ -431,8 +431,18 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   for (int i = 0; i < np; ++i)
     best[static_cast<size_t>(i)] =
         layout.all[layout.free[static_cast<size_t>(i)]] / layout.scale[static_cast<size_t>(i)];
-  if (options.starts > 1)
-    RunStarts(layout, data, n, options, exact, clock, &work, &best, &best_cache);
+  // Tolerance continuation (BoucWenFitOptions::start_rtol): the starts screen at the looser
+  // tolerance; their evaluations are not the final tolerance's, so the final fit begins with a
+  // fresh cache. Central differences keep the final tolerance: their step (1e-6 of a parameter)
+  // would drown in the looser simulation's error.
+  const bool continuation = options.starts > 1 && exact && layout.SimulatedByCvode() &&
+                            options.start_rtol > layout.sim.rtol;
+  if (options.starts > 1) {
+    Layout screen = layout;
+    if (continuation) screen.sim.rtol = options.start_rtol;
+    RunStarts(screen, data, n, options, exact, clock, &work, &best, &best_cache);
+    if (continuation) best_cache = std::make_shared<EvaluationCache>();
+  }
   ceres::Problem* problem = nullptr;
   Solved s = Solve(layout, data, n, best, options.max_iterations, options, clock, 0, &work,
                    best_cache, &problem);
@@ -442,6 +452,10 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   if (fixed_step)
     fixed_step_note =
         CheckFixedStep(plan, options, clock, n, &data, &layout, &work, &s, &owner);
+  const std::string continuation_note =
+      continuation ? fmt::format("; the starts screened at CVODE rtol {:g}, the best continued at {:g}",
+                                 options.start_rtol, layout.sim.rtol)
+                   : std::string();
   const Eigen::VectorXd p = layout.Full(s.x.data());
   auto model = layout.Model(p, StandardErrors(layout, s, n));
   if (summary != nullptr) {
@@ -451,7 +465,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     summary->converged = s.summary.termination_type == ceres::CONVERGENCE;
     summary->message = FitMessage(form, options, layout, s, work,
                                   exact ? "forward sensitivities" : "central differences",
-                                  input_note + fixed_step_note);
+                                  input_note + fixed_step_note + continuation_note);
     summary->fit_time_s = clock.Elapsed();
   }
   return model;

@@ -27,6 +27,8 @@ void BoucWenFitOptions::Validate() const {
     rule("start_spread", start_spread, "0 <= start_spread <= 3");
   if (start_iterations < 1 || start_iterations > 10000)
     rule("start_iterations", start_iterations, "1 <= start_iterations <= 10000");
+  if (!(start_rtol >= simulation.rtol && start_rtol <= 1e-2))
+    rule("start_rtol", start_rtol, "simulation.rtol <= start_rtol <= 1e-2");
   if (max_iterations < 1 || max_iterations > 10000)
     rule("max_iterations", max_iterations, "1 <= max_iterations <= 10000");
   if (threads < 0) rule("threads", threads, "threads >= 0");
