@@ -35,6 +35,7 @@
 #include "sysid/stack.hpp"
 #include "sysid/stage.hpp"
 #include "sysid/stage_facts.hpp"
+#include "sysid/validate.hpp"
 
 namespace {
 
@@ -189,6 +190,10 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::DominanceResult>("DominanceResult");
   CheckRoundTrip<sysid::PredictionErrors>("PredictionErrors");
   CheckRoundTrip<sysid::HysteresisInverseResult>("HysteresisInverseResult");
+  CheckRoundTrip<sysid::FitScores>("FitScores");
+  CheckRoundTrip<sysid::CorrelationTest>("CorrelationTest");
+  CheckRoundTrip<sysid::OutputValidation>("OutputValidation");
+  CheckRoundTrip<sysid::Validation>("Validation");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

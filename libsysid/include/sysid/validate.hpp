@@ -32,6 +32,7 @@
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/motion.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -41,6 +42,15 @@ struct FitScores {
   double rmse = 0;         ///< sqrt(mean (y - ŷ)^2) [the output's unit]
   double nrmse_std = 0;    ///< rmse / std y (population std) [dimensionless]
   double nrmse_range = 0;  ///< rmse / (max y - min y) [dimensionless]
+  /// The fields, in file order (sysid/serialize.hpp): a score a constant y leaves undefined
+  /// (NaN) or a fit of -inf is null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(fit_percent).NaNAsNull().Maximum(100).Required());
+    a->Visit(SYSID_NVP(rmse).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_std).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_range).NaNAsNull().Minimum(0).Required());
+  }
 };
 
 /// Scores `simulated` against `measured` (same length, at least 2 samples, all finite). Throws
@@ -81,6 +91,21 @@ struct CorrelationTest {
   bool tested = true;
   bool pass = false;
   std::string verdict;  ///< one sentence: "pass: 1 of 25 lags outside ±0.0816 ..."
+  /// The fields, in file order (sysid/serialize.hpp): an untested test's numbers are null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(name).Required());
+    a->Visit(SYSID_NVP(lags).Required());
+    a->Visit(SYSID_NVP(r).Required());
+    a->Visit(SYSID_NVP(bound).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(strong_bound).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(outside).Minimum(0).Required());
+    a->Visit(SYSID_NVP(allowed_outside).Minimum(0).Required());
+    a->Visit(SYSID_NVP(max_abs_r).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(tested).Required());
+    a->Visit(SYSID_NVP(pass).Required());
+    a->Visit(SYSID_NVP(verdict).Required());
+  }
 };
 
 /// Rule (a)'s allowance: the smallest k with P(Binomial(lags, p) > k) <= level. Throws
@@ -105,6 +130,16 @@ struct OutputValidation {
   FitScores scores;
   CorrelationTest autocorrelation;
   CorrelationTest cross_correlation;
+  /// The fields, in file order (sysid/serialize.hpp): the scores beside the output's name; the
+  /// signals go to the plots, not the JSON.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(output).Required());
+    a->Visit(SYSID_NVP(unit).Required());
+    a->Visit(SYSID_NVP(scores).Inline());
+    a->Visit(SYSID_NVP(autocorrelation).Required());
+    a->Visit(SYSID_NVP(cross_correlation).Required());
+  }
 };
 
 /// A model validated on one recording.
@@ -114,6 +149,14 @@ struct Validation {
   Eigen::VectorXd t_s;     ///< [s]
   Eigen::VectorXd u_v;     ///< [V] (or the input's unit)
   std::vector<OutputValidation> outputs;
+  /// The fields, in file order (sysid/serialize.hpp); ToJson writes the samples (t_s's
+  /// length) after the model, the signals go to the plots.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(source).Required());
+    a->Visit(SYSID_NVP(model_kind).Renamed("model").Required());
+    a->Visit(SYSID_NVP(outputs).Required());
+  }
 };
 
 struct ValidationOptions {
