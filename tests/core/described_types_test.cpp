@@ -21,6 +21,7 @@
 #include "identify/identify_json.hpp"
 #include "nn/nn_json.hpp"
 #include "signal/signal_json.hpp"
+#include "simulate/simulate_json.hpp"
 #include "stack/stack_json.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
@@ -32,6 +33,7 @@
 #include "sysid/nn.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
+#include "sysid/simulate.hpp"
 #include "sysid/stack.hpp"
 #include "sysid/stage.hpp"
 #include "sysid/stage_facts.hpp"
@@ -174,6 +176,7 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::DriveCreep>("DriveCreep");
   CheckRoundTrip<sysid::VelocitySourcePlant>("VelocitySourcePlant");
   CheckRoundTrip<sysid::ActuatorDelayPlant>("ActuatorDelayPlant");
+  CheckRoundTrip<sysid::SimulationOptions>("SimulationOptions");
 }
 
 TEST_CASE("every described model and result type round-trips each of its fields through JSON") {
@@ -194,6 +197,8 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::CorrelationTest>("CorrelationTest");
   CheckRoundTrip<sysid::OutputValidation>("OutputValidation");
   CheckRoundTrip<sysid::Validation>("Validation");
+  CheckRoundTrip<sysid::SimulationEvent>("SimulationEvent");
+  CheckRoundTrip<sysid::SimulationSummary>("SimulationSummary");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {
