@@ -74,6 +74,14 @@ struct ResidualTestOptions {
   double lag_probability = 0.01;  ///< chance a white residual's lag leaves the band; (0, 0.5)
   double test_level = 0.01;       ///< each verdict rule's false-alarm rate; in (0, 0.5)
   void Validate() const;          ///< throws OptionsError naming the field and the rule
+  /// The fields (sysid/serialize.hpp); the rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(max_lag));
+    a->Visit(SYSID_NVP(z));
+    a->Visit(SYSID_NVP(lag_probability));
+    a->Visit(SYSID_NVP(test_level));
+  }
 };
 
 /// One correlation test with its bounds and verdict.
@@ -166,6 +174,14 @@ struct ValidationOptions {
   double sim_rtol = 1e-8;   ///< CVODE relative tolerance of the friction simulation
   double sim_atol = 1e-12;  ///< CVODE absolute tolerance [m, m/s]
   void Validate() const;    ///< throws OptionsError naming the field and the rule
+  /// The fields (sysid/serialize.hpp); the rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(residual));
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(sim_rtol));
+    a->Visit(SYSID_NVP(sim_atol));
+  }
 };
 
 /// The friction model simulated free-run from the recording's u (zero-order hold between
