@@ -177,6 +177,8 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::VelocitySourcePlant>("VelocitySourcePlant");
   CheckRoundTrip<sysid::ActuatorDelayPlant>("ActuatorDelayPlant");
   CheckRoundTrip<sysid::SimulationOptions>("SimulationOptions");
+  CheckRoundTrip<sysid::ResidualTestOptions>("ResidualTestOptions");
+  CheckRoundTrip<sysid::ValidationOptions>("ValidationOptions");
 }
 
 TEST_CASE("every described model and result type round-trips each of its fields through JSON") {
@@ -199,6 +201,8 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::Validation>("Validation");
   CheckRoundTrip<sysid::SimulationEvent>("SimulationEvent");
   CheckRoundTrip<sysid::SimulationSummary>("SimulationSummary");
+  CheckRoundTrip<sysid::TrackingRow>("TrackingRow");
+  CheckRoundTrip<sysid::PipelineResult>("PipelineResult");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {
