@@ -30,7 +30,7 @@ struct DeriveCliOptions {
   std::optional<int> order;      // the method's order field when given
   int decimate = 1;
   std::optional<double> resample_hz;
-  double jitter_tolerance = MotionOptions{}.max_relative_jitter;
+  MotionOptions motion;  // its sampling check (max_relative_jitter) only: the filter is above
   bool json = false;
   RecordingFlags recording;
 };
@@ -54,7 +54,7 @@ void RunDerive(const DeriveCliOptions& o) {
       RethrowWithFlag(e, {{"rate_hz", "--resample"}});
     }
   }
-  double dt_s = UniformSampleInterval(rec, o.jitter_tolerance);
+  double dt_s = UniformSampleInterval(rec, o.motion.max_relative_jitter);
   try {
     dt_s = AddDerivatives(rec, dt_s, opt, o.decimate);
   } catch (const OptionsError& e) {
@@ -145,11 +145,10 @@ void AddDeriveCommand(CLI::App& app) {
                   "interpolation (for irregular time stamps)")
       ->type_name("HZ")
       ->check(PositiveNumber());
-  cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
-                  "relative sampling jitter above which the recording is rejected as irregular "
-                  "[dimensionless]")
-      ->check(PositiveNumber())
-      ->capture_default_str();
+  AddFieldOption(cmd, "--jitter-tolerance", o->motion, o->motion.max_relative_jitter,
+                 "relative sampling jitter above which the recording is rejected as irregular "
+                 "[dimensionless]")
+      ->check(PositiveNumber());
   cmd->add_flag("--json", o->json,
                 "print one JSON object (file, output, method, settings, rows, columns, dt_s, "
                 "sample_rate_hz, v_mps and a_mps2 min/max/rms) instead of the CSV or a summary");

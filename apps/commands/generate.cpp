@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/output_file.hpp"
 #include "cli/registry.hpp"
 #include "sysid/error.hpp"
@@ -27,7 +28,8 @@ struct GenerateOptions {
   std::string stage_path;
   std::uint64_t seed = 1;
   std::string out_dir = ".";
-  std::string derivative = ToString(TrackingProcedure{}.derivative.method);
+  DerivativeOptions derivative_options = TrackingProcedure{}.derivative;  // the procedure's
+  std::string derivative = ToString(derivative_options.method);  // parsed into it when run
   std::string format = "csv";  // csv or mat: the recordings' file format
   bool json = false;
   bool force = false;
@@ -58,6 +60,7 @@ void RunGenerate(const GenerateOptions& o) {
   const StageParameters stage =
       o.stage_path.empty() ? StageParameters::Default() : LoadStage(o.stage_path);
   TrackingProcedure tracking;
+  tracking.derivative = o.derivative_options;
   tracking.derivative.method = ParseDerivativeMethod(o.derivative);
   tracking.Validate(stage);
   const bool all = o.what == "all";
@@ -170,11 +173,13 @@ void AddGenerateCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "replace files of the same names in the folder that generate did not write "
                 "(a user's own pulses.csv)");
-  cmd->add_option("--derivative", o->derivative,
-                  "how v [m/s] and a [m/s^2] come from x [m]: central (as the paper), "
-                  "butterworth or savgol")
-      ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
-      ->capture_default_str();
+  BindField(cmd,
+            cmd->add_option("--derivative", o->derivative,
+                            "how v [m/s] and a [m/s^2] come from x [m]: central (as the "
+                            "paper), butterworth or savgol")
+                ->check(CLI::IsMember({"central", "butterworth", "savgol"}))
+                ->capture_default_str(),
+            o->derivative_options, o->derivative_options.method);
   cmd->add_flag("--json", o->json,
                 "print one JSON object: stage, seed, files (path, limits, samples, "
                 "duration_s, columns, units)");

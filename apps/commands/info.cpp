@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "cli/common.hpp"
+#include "cli/field_flag.hpp"
 #include "cli/recording_flags.hpp"
 #include "cli/registry.hpp"
 #include "sysid/io.hpp"
@@ -22,7 +23,7 @@ namespace {
 struct InfoOptions {
   std::string path;
   bool json = false;
-  double jitter_tolerance = MotionOptions{}.max_relative_jitter;
+  MotionOptions motion;  // its sampling check (max_relative_jitter) only: info derives nothing
   RecordingFlags recording;
 };
 
@@ -64,7 +65,7 @@ void RunInfo(const InfoOptions& o) {
   }
   const Recording rec = ReadRecording(o.path, ro);  // its source is o.path
   for (const auto& w : UnitSanityWarnings(rec)) std::cerr << "sysid info: warning: " << w << '\n';
-  const std::string text = RecordingSummaryToJson(rec, o.jitter_tolerance);
+  const std::string text = RecordingSummaryToJson(rec, o.motion.max_relative_jitter);
   if (o.json) {
     std::cout << text;
     return;
@@ -107,11 +108,10 @@ void AddInfoCommand(CLI::App& app) {
   cmd->add_flag("--json", o->json,
                 "print one JSON object (rows, columns, duration_s, sample_rate_hz, sampling, "
                 "column_stats, metadata)");
-  cmd->add_option("--jitter-tolerance", o->jitter_tolerance,
-                  "relative sampling jitter above which sampling is reported irregular "
-                  "[dimensionless]")
-      ->check(PositiveNumber())
-      ->capture_default_str();
+  AddFieldOption(cmd, "--jitter-tolerance", o->motion, o->motion.max_relative_jitter,
+                 "relative sampling jitter above which sampling is reported irregular "
+                 "[dimensionless]")
+      ->check(PositiveNumber());
   o->recording.Add(cmd);
   cmd->callback([o] { RunInfo(*o); });
 }

@@ -21,6 +21,7 @@ struct LoopCli {
   std::string path;
   VoltageLoopOptions loop;  // the flags' defaults are the library's
   MotionFlags motion;
+  MotionOptions motion_options;  // the flags' fields; the rest the library's defaults
   bool json = false;
 };
 
@@ -33,7 +34,7 @@ std::string VOrDash(double u_v) {
 }
 
 void RunLoop(const LoopCli& o) {
-  MotionOptions motion;
+  MotionOptions motion = o.motion_options;
   o.motion.ApplyTo(motion);
   const Recording rec = o.motion.ReadRecordings({o.path}).front();
   const VoltageLoop loop = AnalyzeVoltageLoop(rec, o.loop, motion);
@@ -90,6 +91,7 @@ void AddLoopCommand(CLI::App& app) {
       ->check(PositiveNumber())
       ->capture_default_str();
   o->motion.Add(cmd, "how v is obtained from x", "central");
+  o->motion.Bind(cmd, o->motion_options, o->motion_options);
   cmd->add_flag("--json", o->json,
                 "print {\"source\", \"peak_forward_v\", \"peak_backward_v\", \"start_forward_v\", "
                 "\"start_backward_v\", \"stop_forward_v\", \"stop_backward_v\", \"area_forward_v_mps\", "

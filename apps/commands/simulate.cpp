@@ -63,17 +63,7 @@ void RunSimulate(SimulateCliOptions o) {
   if (!o.output.empty()) WriteRecordingByExtension(o.output, out);
 
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["model"] = nlohmann::json::parse(ModelToJson(model, -1));  // keys sorted, as the CSV
-    j["input"] = input.description;
-    j["t_end_s"] = sim.t_end_s;
-    const auto run = nlohmann::ordered_json::parse(ToJson(r, sim));
-    j["samples"] = run["samples"];
-    j["output"] = o.output.empty() ? nullptr : nlohmann::ordered_json(o.output);
-    j["events_file"] = o.events_path.empty() ? nullptr : nlohmann::ordered_json(o.events_path);
-    j["events"] = run["events"];
-    j["summary"] = run["summary"];
-    std::cout << j.dump(2) << '\n';
+    std::cout << SimulationReportJson(r, model, input.description, sim, o.output, o.events_path);
   } else if (o.output.empty()) {
     std::cout << FormatRecording(out);
   } else {

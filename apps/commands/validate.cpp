@@ -139,9 +139,8 @@ void AddValidateCommand(CLI::App& app) {
   cmd->add_option("files", o->files, "held-out recordings: t [s], u [V], x [m] (or v [m/s])")
       ->required()
       ->type_name("REC");
-  cmd->add_option("--lags", o->validation.residual.max_lag,
-                  "largest lag L of the residual tests [samples], in [1, 1000]")
-      ->capture_default_str();
+  AddFieldOption(cmd, "--lags", o->validation, o->validation.residual.max_lag,
+                 "largest lag L of the residual tests [samples], in [1, 1000]");
   AddOutputOption(cmd, o->out_dir,
                   "new folder for summary.json and the plots <name>_<y>.png, "
                   "<name>_<y>_residual_tests.png")
@@ -152,6 +151,7 @@ void AddValidateCommand(CLI::App& app) {
   AddOffFlag(cmd, "--no-plots", o->plots, "skip the PNG plots in the output folder");
   o->motion.Add(cmd, "filter for the measured velocity from x",
                 ToString(o->validation.motion.derivative.method));
+  o->motion.Bind(cmd, o->validation, o->validation.motion);
   cmd->callback([o] { RunValidate(*o); });
 }
 

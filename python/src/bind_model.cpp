@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/input.hpp"
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
@@ -144,21 +145,8 @@ void BindModel(py::module_& m) {
 
   py::class_<SimulationOptions> sim(m, "SimulationOptions");
   AddKeywordInit(sim);
-  sim.def_readwrite("t0_s", &SimulationOptions::t0_s)
-      .def_readwrite("t_end_s", &SimulationOptions::t_end_s)
-      .def_readwrite("dt_out_s", &SimulationOptions::dt_out_s)
-      .def_readwrite("output_times_s", &SimulationOptions::output_times_s)
-      .def_readwrite("x0_m", &SimulationOptions::x0_m)
-      .def_readwrite("v0_mps", &SimulationOptions::v0_mps)
-      .def_readwrite("history_v_mps", &SimulationOptions::history_v_mps)
-      .def_readwrite("rtol", &SimulationOptions::rtol)
-      .def_readwrite("atol", &SimulationOptions::atol)
-      .def_readwrite("method", &SimulationOptions::method)
-      .def_readwrite("max_steps", &SimulationOptions::max_steps)
-      .def_readwrite("max_step_s", &SimulationOptions::max_step_s)
-      .def_readwrite("breakpoint_order", &SimulationOptions::breakpoint_order)
-      .def_readwrite("max_order", &SimulationOptions::max_order)
-      .def("validate", &SimulationOptions::Validate);
+  DefFields(sim);
+  sim.def("validate", &SimulationOptions::Validate);
 
   py::class_<Trajectory>(m, "Trajectory")
       .def_readonly("t_s", &Trajectory::t_s)

@@ -1,6 +1,7 @@
 // sysid/validate.hpp: a model simulated free-run on a recording and scored as MATLAB's compare
 // and resid do (fit %, RMSE, nrmse_std, nrmse_range, residual correlations and their verdicts).
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/validate.hpp"
 
 namespace sysid::python {
@@ -82,18 +83,12 @@ void BindValidate(py::module_& m) {
 
   py::class_<ResidualTestOptions> residual(m, "ResidualTestOptions");
   AddKeywordInit(residual);
-  residual.def_readwrite("max_lag", &ResidualTestOptions::max_lag)
-      .def_readwrite("z", &ResidualTestOptions::z)
-      .def_readwrite("lag_probability", &ResidualTestOptions::lag_probability)
-      .def_readwrite("test_level", &ResidualTestOptions::test_level)
-      .def("validate", &ResidualTestOptions::Validate);
+  DefFields(residual);
+  residual.def("validate", &ResidualTestOptions::Validate);
   py::class_<ValidationOptions> options(m, "ValidationOptions");
   AddKeywordInit(options);
-  options.def_readwrite("residual", &ValidationOptions::residual)
-      .def_readwrite("motion", &ValidationOptions::motion)
-      .def_readwrite("sim_rtol", &ValidationOptions::sim_rtol)
-      .def_readwrite("sim_atol", &ValidationOptions::sim_atol)
-      .def("validate", &ValidationOptions::Validate);
+  DefFields(options);
+  options.def("validate", &ValidationOptions::Validate);
   m.def("validate_friction", &ValidateFrictionModel, py::arg("recording"), py::arg("model"),
         py::arg("options") = ValidationOptions{}, ReleaseGil());
   m.def("validate_hysteresis", &ValidateHysteresisModel, py::arg("recording"), py::arg("model"),

@@ -61,6 +61,12 @@ std::vector<Excluded> MotionUnflagged(const std::string& prefix) {
           {prefix + "max_relative_jitter", "the sampling check: the library's tolerance"}};
 }
 
+// The MotionOptions fields besides the sampling check (--jitter-tolerance) of a command that
+// takes no --derivative: `why` it sets none.
+std::vector<Excluded> SamplingOnly(const std::string& why) {
+  return Same(why, "", {"derivative", "velocity_column", "prefer_velocity_column"});
+}
+
 // The NeuralTrainingOptions fields cli's training flags (commands/nn_training_options.hpp)
 // leave at the library's defaults.
 std::vector<Excluded> TrainingUnflagged(const std::string& prefix) {
@@ -73,21 +79,20 @@ std::vector<Excluded> TrainingUnflagged(const std::string& prefix) {
 
 const std::vector<std::string> kRecording = {"--var", "--rate", "--scale", "--t-start",
                                              "--t-end"};
-const std::vector<std::string> kMotion = {"--derivative", "--cutoff", "--velocity-column"};
 
 const std::vector<CommandSpec>& Specs() {
   static const std::vector<CommandSpec> specs = {
-      {"info", {}, Flags({"file", "--json", "--jitter-tolerance"}, kRecording)},
+      {"info",
+       {{"MotionOptions", SamplingOnly("info derives no v or a")}},
+       Flags({"file", "--json"}, kRecording)},
       {"import", {}, {"--column", "--rate", "--scale", "--unit", "--output", "--force"}},
       {"derive",
-       {{"DerivativeOptions", {}}},
-       Flags({"file", "--output", "--force", "--decimate", "--resample", "--jitter-tolerance",
-              "--json"},
-             kRecording)},
+       {{"DerivativeOptions", {}},
+        {"MotionOptions", SamplingOnly("its filter flags set the DerivativeOptions above")}},
+       Flags({"file", "--output", "--force", "--decimate", "--resample", "--json"}, kRecording)},
       {"loop",
-       {},
-       Flags(Flags({"file", "--levels", "--half-window", "--cycles", "--moving-speed", "--json"},
-                   kMotion),
+       {{"MotionOptions", MotionUnflagged("")}},
+       Flags({"file", "--levels", "--half-window", "--cycles", "--moving-speed", "--json"},
              kRecording)},
       {"simulate",
        {},
@@ -129,8 +134,11 @@ const std::vector<CommandSpec>& Specs() {
        Flags({"--model", "recordings", "--json", "--verbose", "--output", "--force",
               "--fit-fraction"},
              kRecording)},
-      {"generate", {}, {"what", "--stage", "--seed", "--output", "--format", "--force",
-                        "--derivative", "--json"}},
+      {"generate",
+       {{"DerivativeOptions",
+         Same("the tracking procedure's filter settings: the library's", "",
+              {"cutoff_hz", "butterworth_order", "savgol_window", "savgol_order"})}},
+       {"what", "--stage", "--seed", "--output", "--format", "--force", "--json"}},
       {"excite",
        {{"PulseProcedure", {}}},
        {"what", "--output", "--force", "--rate", "--set", "--cycles", "--json"}},
@@ -222,10 +230,12 @@ const std::vector<CommandSpec>& Specs() {
               "--no-plots", "--traces"},
              kRecording)},
       {"validate",
-       {},
-       Flags(Flags({"--model", "--hysteresis", "files", "--lags", "--output", "--force", "--json",
-                    "--no-plots"},
-                   kMotion),
+       {{"ValidationOptions",
+         Join({Same("the residual tests' band and levels: the library's (99 %)", "residual.",
+                    {"z", "lag_probability", "test_level"}),
+               MotionUnflagged("motion."),
+               Same("the simulator's tolerances: the library's", "", {"sim_rtol", "sim_atol"})})}},
+       Flags({"--model", "--hysteresis", "files", "--output", "--force", "--json", "--no-plots"},
              kRecording)},
       {"track",
        {{"SmoothProfileOptions",

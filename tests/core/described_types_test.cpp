@@ -21,6 +21,7 @@
 #include "identify/identify_json.hpp"
 #include "nn/nn_json.hpp"
 #include "signal/signal_json.hpp"
+#include "simulate/simulate_json.hpp"
 #include "stack/stack_json.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/control.hpp"
@@ -33,9 +34,11 @@
 #include "sysid/nn.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
+#include "sysid/simulate.hpp"
 #include "sysid/stack.hpp"
 #include "sysid/stage.hpp"
 #include "sysid/stage_facts.hpp"
+#include "sysid/validate.hpp"
 
 namespace {
 
@@ -175,6 +178,9 @@ TEST_CASE("every described options struct round-trips each of its fields through
   CheckRoundTrip<sysid::DriveCreep>("DriveCreep");
   CheckRoundTrip<sysid::VelocitySourcePlant>("VelocitySourcePlant");
   CheckRoundTrip<sysid::ActuatorDelayPlant>("ActuatorDelayPlant");
+  CheckRoundTrip<sysid::SimulationOptions>("SimulationOptions");
+  CheckRoundTrip<sysid::ResidualTestOptions>("ResidualTestOptions");
+  CheckRoundTrip<sysid::ValidationOptions>("ValidationOptions");
 }
 
 TEST_CASE("every described model and result type round-trips each of its fields through JSON") {
@@ -198,6 +204,14 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::PiStepResponse>("PiStepResponse");
   CheckRoundTrip<sysid::PiSineResponse>("PiSineResponse");
   CheckRoundTrip<sysid::PiBehaviour>("PiBehaviour");
+  CheckRoundTrip<sysid::FitScores>("FitScores");
+  CheckRoundTrip<sysid::CorrelationTest>("CorrelationTest");
+  CheckRoundTrip<sysid::OutputValidation>("OutputValidation");
+  CheckRoundTrip<sysid::Validation>("Validation");
+  CheckRoundTrip<sysid::SimulationEvent>("SimulationEvent");
+  CheckRoundTrip<sysid::SimulationSummary>("SimulationSummary");
+  CheckRoundTrip<sysid::TrackingRow>("TrackingRow");
+  CheckRoundTrip<sysid::PipelineResult>("PipelineResult");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

@@ -1,8 +1,10 @@
 // simulate_json.cpp: options round-trip with positioned errors; `sysid simulate --json`
 // reports the library's summary.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/error.hpp"
@@ -61,4 +63,52 @@ TEST_CASE("simulate --json carries the library's run summary", "[simulate][json]
   CHECK(lib["events"].size() == r.events.size());
   for (const auto& [key, value] : lib["summary"].items()) CHECK(j["summary"].contains(key));
   CHECK(j["summary"].size() == lib["summary"].size());
+}
+
+TEST_CASE("a run's summary states the stop only when the run stopped short", "[simulate][json]") {
+  sysid::PulseTrainSpec spec;
+  spec.amplitudes_v = {1.6};
+  spec.repeats = 1;
+  const auto input = sysid::MakePulseTrain(spec);
+  sysid::SimulationOptions o;
+  o.t_end_s = 1.0;
+  const std::vector<std::string> counts = {"steps", "rhs_evaluations", "root_evaluations",
+                                           "events", "reinitialisations", "wall_time_s"};
+  auto keys = [](const nlohmann::ordered_json& j) {
+    std::vector<std::string> k;
+    for (auto it = j.begin(); it != j.end(); ++it) k.push_back(it.key());
+    return k;
+  };
+  std::vector<std::string> usable = {"termination", "method", "rtol", "atol"};
+  usable.insert(usable.end(), counts.begin(), counts.end());
+  const auto done = sysid::Simulate(sysid::FrictionModel::Paper(), input, o);
+  REQUIRE(done.summary.IsSolutionUsable());
+  CHECK(keys(nlohmann::ordered_json::parse(sysid::ToJson(done, o))["summary"]) == usable);
+
+  o.max_steps = 5;  // far fewer than the pulse's edges need: CV_TOO_MUCH_WORK
+  const auto stopped = sysid::Simulate(sysid::FrictionModel::Paper(), input, o);
+  REQUIRE_FALSE(stopped.summary.IsSolutionUsable());
+  const auto s = nlohmann::ordered_json::parse(sysid::ToJson(stopped, o))["summary"];
+  std::vector<std::string> with_stop = usable;
+  with_stop.insert(with_stop.end(), {"message", "cvode_flag", "failure_time_s"});
+  CHECK(keys(s) == with_stop);
+  CHECK(s["termination"] == sysid::ToString(stopped.summary.termination));
+  CHECK(s["cvode_flag"] == stopped.summary.cvode_flag);
+  CHECK(s["failure_time_s"] == stopped.summary.failure_time_s);
+}
+
+TEST_CASE("simulate --json's model is the model file's object, keys sorted", "[simulate][json]") {
+  const auto cli = sysid::test::RunCli(
+      {"simulate", "--json", "--paper-model", "--pulses", "1.6", "--t-end", "1"});
+  REQUIRE(cli.exit_code == 0);
+  const auto j = nlohmann::ordered_json::parse(cli.out);
+  const auto file = nlohmann::json::parse(sysid::ModelToJson(sysid::FrictionModel::Paper()));
+  CHECK(j["model"] == nlohmann::ordered_json(file));
+  std::vector<std::string> keys;
+  for (auto it = j["model"].begin(); it != j["model"].end(); ++it) keys.push_back(it.key());
+  CHECK(std::is_sorted(keys.begin(), keys.end()));
+  std::vector<std::string> top;
+  for (auto it = j.begin(); it != j.end(); ++it) top.push_back(it.key());
+  CHECK(top == std::vector<std::string>{"model", "input", "t_end_s", "samples", "output",
+                                        "events_file", "events", "summary"});
 }

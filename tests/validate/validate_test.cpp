@@ -7,8 +7,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <unsupported/Eigen/FFT>
+#include <string>
 #include <vector>
 
 #include "core/portable_random.hpp"
@@ -396,4 +398,53 @@ TEST_CASE("sysid validate --hysteresis: the library's numbers on x, no motion no
   expected["source"] = dir / "pi.csv";
   CHECK(j["recordings"][0] == expected);
   CHECK(j["recordings"][0]["outputs"].size() == 1);
+}
+
+TEST_CASE("a validation's JSON holds the keys validate.hpp documents, in that order",
+          "[validate][json]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  sysid::Validation v;
+  v.source = "held_out.csv";
+  v.model_kind = "friction";
+  v.t_s = Eigen::VectorXd::LinSpaced(7, 0.0, 0.6);
+  sysid::OutputValidation o;
+  o.output = "v";
+  o.unit = "m/s";
+  o.scores = {93.5, 1e-4, 0.065, nan};  // a constant y leaves nrmse_range undefined
+  o.autocorrelation.name = "autocorrelation";
+  o.autocorrelation.lags = {1, 2};
+  o.autocorrelation.r = Eigen::Vector2d(0.25, nan);
+  o.autocorrelation.bound = 0.5;
+  o.autocorrelation.strong_bound = 0.75;
+  o.autocorrelation.outside = 1;
+  o.autocorrelation.allowed_outside = 2;
+  o.autocorrelation.max_abs_r = 0.25;
+  o.autocorrelation.pass = true;
+  o.autocorrelation.verdict = "pass";
+  o.cross_correlation = o.autocorrelation;
+  o.cross_correlation.tested = false;
+  v.outputs = {o};
+  const auto j = nlohmann::ordered_json::parse(sysid::ToJson(v));
+  auto keys = [](const nlohmann::ordered_json& object) {
+    std::vector<std::string> k;
+    for (auto it = object.begin(); it != object.end(); ++it) k.push_back(it.key());
+    return k;
+  };
+  CHECK(keys(j) == std::vector<std::string>{"source", "model", "samples", "outputs"});
+  CHECK(j["model"] == "friction");
+  CHECK(j["samples"] == 7);
+  const auto& out = j["outputs"][0];
+  CHECK(keys(out) == std::vector<std::string>{"output", "unit", "fit_percent", "rmse",
+                                              "nrmse_std", "nrmse_range", "autocorrelation",
+                                              "cross_correlation"});
+  CHECK(out["fit_percent"] == 93.5);
+  CHECK(out["nrmse_range"].is_null());
+  const auto& test = out["cross_correlation"];
+  CHECK(keys(test) == std::vector<std::string>{"name", "lags", "r", "bound", "strong_bound",
+                                               "outside", "allowed_outside", "max_abs_r",
+                                               "tested", "pass", "verdict"});
+  CHECK(test["lags"] == nlohmann::ordered_json::array({1, 2}));
+  CHECK(test["r"] == nlohmann::ordered_json::array({0.25, nullptr}));
+  CHECK(test["tested"] == false);
+  CHECK(out["autocorrelation"]["tested"] == true);
 }

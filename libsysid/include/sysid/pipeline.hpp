@@ -157,9 +157,18 @@ std::string ToJson(const PipelineOptions& options, int indent = 2);
 PipelineOptions PipelineOptionsFromJson(std::string_view text, const std::string& source_name);
 
 struct TrackingRow {
-  double frequency_hz = 0;
-  std::string scheme;  ///< "none", "analytic", "nn"
+  double frequency_hz = 0;  ///< [Hz]
+  std::string scheme;       ///< "none", "analytic", "nn"
   TrackingResult result;
+  /// The fields of a summary's row, in file order (sysid/serialize.hpp): the scheme as "ff",
+  /// the result's two errors beside it; the traces and other metrics are the report's.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(frequency_hz).ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(scheme).Renamed("ff").Required());
+    a->Visit(NameValue<double>("max_error_m", &result.max_error_m).Minimum(0).Required());
+    a->Visit(NameValue<double>("rms_error_m", &result.rms_error_m).Minimum(0).Required());
+  }
 };
 
 /// The traces behind the report's figures, computed by RunPipeline from the data and models it
@@ -280,6 +289,18 @@ struct PipelineResult {
   std::optional<PipelineReference> reference;  ///< with options.reference_path
   std::vector<std::pair<std::string, double>> step_seconds;  ///< wall time per step
   std::vector<std::string> notes;                            ///< honest remarks for the report
+  /// The summary's described keys, in file order (sysid/serialize.hpp): model, skipped (a
+  /// pulse-only run's), tracking, model_tracking (pulse-only), steps [{name, wall_time_s}].
+  /// ToJson(PipelineResult) writes the derived and conditional keys between them (the
+  /// network's, the typical network's MSEs, tuned_pi, the margins' and facts' verdicts).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(model).Required());
+    a->Visit(SYSID_NVP(skipped).OmitEmpty());
+    a->Visit(SYSID_NVP(tracking).Required());
+    a->Visit(SYSID_NVP(model_tracking).OmitEmpty());
+    a->Visit(SYSID_NVP(step_seconds).Renamed("steps").PairKeys("name", "wall_time_s").Required());
+  }
 };
 
 using PipelineProgress = std::function<void(const std::string& step)>;

@@ -17,6 +17,7 @@
 
 #include "sysid/input.hpp"
 #include "sysid/model.hpp"
+#include "sysid/serialize.hpp"
 #include "sysid/termination.hpp"
 
 namespace sysid {
@@ -53,6 +54,24 @@ struct SimulationOptions {
   /// 5 for BDF. In [0, 12] for Adams, [0, 5] for BDF.
   int max_order = 0;
   void Validate() const;  ///< throws OptionsError naming the field and the rule
+  /// The fields, in file order (sysid/serialize.hpp); the rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(t0_s));
+    a->Visit(SYSID_NVP(t_end_s));
+    a->Visit(SYSID_NVP(dt_out_s));
+    a->Visit(SYSID_NVP(output_times_s));
+    a->Visit(SYSID_NVP(x0_m));
+    a->Visit(SYSID_NVP(v0_mps));
+    a->Visit(SYSID_NVP(history_v_mps));
+    a->Visit(SYSID_NVP(rtol));
+    a->Visit(SYSID_NVP(atol));
+    a->Visit(SYSID_NVP(method));
+    a->Visit(SYSID_NVP(max_steps).Minimum(1));
+    a->Visit(SYSID_NVP(max_step_s));
+    a->Visit(SYSID_NVP(breakpoint_order).Minimum(-1000).Maximum(1000));
+    a->Visit(SYSID_NVP(max_order).Minimum(-1000).Maximum(1000));
+  }
 };
 
 /// Sampled trajectory; all vectors have the same length.
@@ -68,8 +87,14 @@ enum class EventKind { kStick, kSlipForward, kSlipBackward, kReverse, kViscousSw
 std::string ToString(EventKind kind);  ///< "stick", "slip+", "slip-", "reverse", "a1-switch"
 
 struct SimulationEvent {
-  double t_s = 0;
+  double t_s = 0;  ///< [s]
   EventKind kind = EventKind::kStick;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(t_s).Required());
+    a->Visit(SYSID_NVP(kind).Required());
+  }
 };
 
 struct SimulationSummary {
@@ -91,6 +116,22 @@ struct SimulationSummary {
   std::string BriefReport() const;
   /// BriefReport plus the stop's details: message, CVODE flag and failure time.
   std::string FullReport() const;
+  /// The fields, in file order (sysid/serialize.hpp). ToJson(SimulationResult) writes the
+  /// integrator's method and tolerances after the termination, and the stop's details (message,
+  /// cvode_flag, failure_time_s) only for a run that stopped short of t_end.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(termination).Required());
+    a->Visit(SYSID_NVP(steps).Minimum(0).Required());
+    a->Visit(SYSID_NVP(rhs_evaluations).Minimum(0).Required());
+    a->Visit(SYSID_NVP(root_evaluations).Minimum(0).Required());
+    a->Visit(SYSID_NVP(events).Minimum(0).Required());
+    a->Visit(SYSID_NVP(reinitialisations).Minimum(0).Required());
+    a->Visit(SYSID_NVP(wall_time_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(message));
+    a->Visit(SYSID_NVP(cvode_flag));
+    a->Visit(SYSID_NVP(failure_time_s));
+  }
 };
 
 struct SimulationResult {
@@ -148,6 +189,15 @@ SimulationOptions SimulationOptionsFromJson(std::string_view text,
 /// message, cvode_flag and failure_time_s).
 std::string ToJson(const SimulationResult& result, const SimulationOptions& options,
                    int indent = 2);
+/// The run as `sysid simulate --json` prints it: "model" (the model file's fields and units,
+/// keys sorted as in the trajectory's metadata), "input" (`input_description`), "t_end_s"
+/// (options'), "samples", "output" and "events_file" (the paths written, null when empty),
+/// then ToJson(result, options)'s "events" and "summary".
+std::string SimulationReportJson(const SimulationResult& result, const FrictionModel& model,
+                                 const std::string& input_description,
+                                 const SimulationOptions& options,
+                                 const std::string& output_path, const std::string& events_path,
+                                 int indent = 2);
 
 /// A trajectory's columns t [s], u [V], x [m], v [m/s], a [m/s^2] as a recording named
 /// `source`, without metadata.

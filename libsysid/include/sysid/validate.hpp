@@ -32,6 +32,7 @@
 #include "sysid/io.hpp"
 #include "sysid/model.hpp"
 #include "sysid/motion.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -41,6 +42,15 @@ struct FitScores {
   double rmse = 0;         ///< sqrt(mean (y - ŷ)^2) [the output's unit]
   double nrmse_std = 0;    ///< rmse / std y (population std) [dimensionless]
   double nrmse_range = 0;  ///< rmse / (max y - min y) [dimensionless]
+  /// The fields, in file order (sysid/serialize.hpp): a score a constant y leaves undefined
+  /// (NaN) or a fit of -inf is null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(fit_percent).NaNAsNull().Maximum(100).Required());
+    a->Visit(SYSID_NVP(rmse).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_std).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(nrmse_range).NaNAsNull().Minimum(0).Required());
+  }
 };
 
 /// Scores `simulated` against `measured` (same length, at least 2 samples, all finite). Throws
@@ -64,6 +74,14 @@ struct ResidualTestOptions {
   double lag_probability = 0.01;  ///< chance a white residual's lag leaves the band; (0, 0.5)
   double test_level = 0.01;       ///< each verdict rule's false-alarm rate; in (0, 0.5)
   void Validate() const;          ///< throws OptionsError naming the field and the rule
+  /// The fields (sysid/serialize.hpp); the rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(max_lag));
+    a->Visit(SYSID_NVP(z));
+    a->Visit(SYSID_NVP(lag_probability));
+    a->Visit(SYSID_NVP(test_level));
+  }
 };
 
 /// One correlation test with its bounds and verdict.
@@ -81,6 +99,21 @@ struct CorrelationTest {
   bool tested = true;
   bool pass = false;
   std::string verdict;  ///< one sentence: "pass: 1 of 25 lags outside ±0.0816 ..."
+  /// The fields, in file order (sysid/serialize.hpp): an untested test's numbers are null.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(name).Required());
+    a->Visit(SYSID_NVP(lags).Required());
+    a->Visit(SYSID_NVP(r).Required());
+    a->Visit(SYSID_NVP(bound).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(strong_bound).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(outside).Minimum(0).Required());
+    a->Visit(SYSID_NVP(allowed_outside).Minimum(0).Required());
+    a->Visit(SYSID_NVP(max_abs_r).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(tested).Required());
+    a->Visit(SYSID_NVP(pass).Required());
+    a->Visit(SYSID_NVP(verdict).Required());
+  }
 };
 
 /// Rule (a)'s allowance: the smallest k with P(Binomial(lags, p) > k) <= level. Throws
@@ -105,6 +138,16 @@ struct OutputValidation {
   FitScores scores;
   CorrelationTest autocorrelation;
   CorrelationTest cross_correlation;
+  /// The fields, in file order (sysid/serialize.hpp): the scores beside the output's name; the
+  /// signals go to the plots, not the JSON.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(output).Required());
+    a->Visit(SYSID_NVP(unit).Required());
+    a->Visit(SYSID_NVP(scores).Inline());
+    a->Visit(SYSID_NVP(autocorrelation).Required());
+    a->Visit(SYSID_NVP(cross_correlation).Required());
+  }
 };
 
 /// A model validated on one recording.
@@ -114,6 +157,14 @@ struct Validation {
   Eigen::VectorXd t_s;     ///< [s]
   Eigen::VectorXd u_v;     ///< [V] (or the input's unit)
   std::vector<OutputValidation> outputs;
+  /// The fields, in file order (sysid/serialize.hpp); ToJson writes the samples (t_s's
+  /// length) after the model, the signals go to the plots.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(source).Required());
+    a->Visit(SYSID_NVP(model_kind).Renamed("model").Required());
+    a->Visit(SYSID_NVP(outputs).Required());
+  }
 };
 
 struct ValidationOptions {
@@ -123,6 +174,14 @@ struct ValidationOptions {
   double sim_rtol = 1e-8;   ///< CVODE relative tolerance of the friction simulation
   double sim_atol = 1e-12;  ///< CVODE absolute tolerance [m, m/s]
   void Validate() const;    ///< throws OptionsError naming the field and the rule
+  /// The fields (sysid/serialize.hpp); the rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(residual));
+    a->Visit(SYSID_NVP(motion));
+    a->Visit(SYSID_NVP(sim_rtol));
+    a->Visit(SYSID_NVP(sim_atol));
+  }
 };
 
 /// The friction model simulated free-run from the recording's u (zero-order hold between

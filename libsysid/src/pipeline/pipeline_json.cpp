@@ -22,37 +22,33 @@ using Rule = internal::NumberRule;
 }  // namespace
 
 std::string ToJson(const PipelineResult& r, int indent) {
+  // The described keys (PipelineResult::Serialize) in their places, the derived and
+  // conditional ones between them.
+  Json described = internal::WriteFields(r);
+  auto take = [&](Json& j, const char* key) {
+    if (described.contains(key)) j[key] = std::move(described[key]);
+  };
   Json j;
-  j["model"] = internal::ModelJson(r.model);
+  take(j, "model");
   // A pulse-only run has no dominance and no network (its "skipped" says why).
   if (r.skipped.empty()) {
     j["dominant"] = r.dominance.dominant;
     j["nn_inputs"] = r.nn_inputs;
     j["hidden"] = r.network.hidden_size();
-    j["network"] = Json::parse(NeuralNetworkToJson(r.network, -1));
+    j["network"] = Json::parse(NeuralNetworkToJson(r.network, -1));  // nn writes text only
     j["nn_test_mse"] = internal::NumberOrNull(r.network_test_mse);
-  } else {
-    j["skipped"] = r.skipped;
   }
+  take(j, "skipped");
   if (r.typical) {
     j["typical_train_mse"] = internal::NumberOrNull(r.typical->train_mse);
     j["typical_test_mse"] = internal::NumberOrNull(r.typical_test_mse);
   }
-  auto rows = [](const std::vector<TrackingRow>& tracking) {
-    Json a = Json::array();
-    for (const auto& t : tracking)
-      a.push_back({{"frequency_hz", t.frequency_hz},
-                   {"ff", t.scheme},
-                   {"max_error_m", t.result.max_error_m},
-                   {"rms_error_m", t.result.rms_error_m}});
-    return a;
-  };
-  j["tracking"] = rows(r.tracking);
+  take(j, "tracking");
   if (r.tuning)
     j["tuned_pi"] = {{"kp_v_per_m", r.tuning->pi.kp_v_per_m},
                      {"ki_v_per_m_s", r.tuning->pi.ki_v_per_m_s},
                      {"sample_time_s", r.tuning->pi.sample_time_s}};
-  if (!r.model_tracking.empty()) j["model_tracking"] = rows(r.model_tracking);
+  take(j, "model_tracking");
   if (r.margins) {
     // The PI gains' verdict per direction: margins.json (the report) holds the whole analysis.
     j["margins"] = Json::array();
@@ -70,9 +66,7 @@ std::string ToJson(const PipelineResult& r, int indent) {
     j["facts_required_met"] = r.facts->RequiredMet();
   }
   // An array in run order (an object's keys would be re-sorted by readers that sort them).
-  j["steps"] = Json::array();
-  for (const auto& [name, s] : r.step_seconds)
-    j["steps"].push_back({{"name", name}, {"wall_time_s", s}});
+  take(j, "steps");
   return internal::DumpJson(j, indent);
 }
 
@@ -129,23 +123,21 @@ void ReadFactVerdicts(const JsonNode& root, PipelineResult& r) {
 PipelineResult PipelineResultFromJson(std::string_view text, const std::string& source_name) {
   const internal::JsonDocument doc(text, source_name);
   const JsonNode root = doc.Root();
-  // "report" is the path `sysid pipeline --json` adds in front of the library's summary.
-  root.ExpectObject({"model", "dominant", "nn_inputs", "hidden", "network", "nn_test_mse",
-                     "skipped", "typical_train_mse", "typical_test_mse", "tracking", "tuned_pi",
-                     "model_tracking", "margins", "facts", "facts_required_met", "steps"},
-                    {"report"});
   PipelineResult r;
+  // The described keys, then the frame's. "report" is the path `sysid pipeline --json` adds in
+  // front of the library's summary.
+  internal::ReadFields(root, r,
+                       {"dominant", "nn_inputs", "hidden", "network", "nn_test_mse",
+                        "typical_train_mse", "typical_test_mse", "tuned_pi", "margins", "facts",
+                        "facts_required_met", "report"});
+  // The model once more through the model file's reader: its rules, placed in the text.
   r.model = internal::ModelFromJson(doc, root.Get("model"), {"units"});
   if (root.Has("skipped")) {
     // A pulse-only run: the network's keys are absent.
     for (const char* key : {"dominant", "nn_inputs", "hidden", "network", "nn_test_mse"})
       if (root.Has(key))
         root.Get(key).Expected("no network key in a run that skipped the network (\"skipped\")");
-    const JsonNode skipped = root.Get("skipped");
-    skipped.ExpectArray();
-    for (size_t i = 0; i < skipped.Size(); ++i)
-      r.skipped.push_back(skipped.Element(i).String(true));
-    if (r.skipped.empty()) skipped.Expected("the steps skipped (a non-empty list)");
+    if (r.skipped.empty()) root.Get("skipped").Expected("the steps skipped (a non-empty list)");
   } else {
     r.dominance.dominant = root.Get("dominant").String();
     const JsonNode inputs = root.Get("nn_inputs");
@@ -167,21 +159,6 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
     r.typical->train_mse = root.Get("typical_train_mse").NumberOrNaN(Rule::NonNegative());
     r.typical_test_mse = root.Get("typical_test_mse").NumberOrNaN(Rule::NonNegative());
   }
-  auto read_rows = [](const JsonNode& tracking, std::vector<TrackingRow>& out) {
-    tracking.ExpectArray();
-    for (size_t i = 0; i < tracking.Size(); ++i) {
-      const JsonNode t = tracking.Element(i);
-      t.ExpectObject({"frequency_hz", "ff", "max_error_m", "rms_error_m"});
-      TrackingRow row;
-      row.frequency_hz = t.Get("frequency_hz").Number(Rule::Positive());
-      row.scheme = t.Get("ff").String(true);
-      row.result.max_error_m = t.Get("max_error_m").Number(Rule::NonNegative());
-      row.result.rms_error_m = t.Get("rms_error_m").Number(Rule::NonNegative());
-      out.push_back(row);
-    }
-  };
-  read_rows(root.Get("tracking"), r.tracking);
-  if (root.Has("model_tracking")) read_rows(root.Get("model_tracking"), r.model_tracking);
   if (root.Has("tuned_pi")) {
     // The gains only: the tuning's targets and margins are in the report (tuned_pi.json).
     const JsonNode t = root.Get("tuned_pi");
@@ -193,14 +170,10 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
   }
   if (root.Has("margins")) ReadMarginVerdicts(root.Get("margins"), r);
   ReadFactVerdicts(root, r);
+  // A step's wall time is a duration (the pair's reader takes any number).
   const JsonNode steps = root.Get("steps");
-  steps.ExpectArray();
-  for (size_t i = 0; i < steps.Size(); ++i) {
-    const JsonNode s = steps.Element(i);
-    s.ExpectObject({"name", "wall_time_s"});
-    r.step_seconds.emplace_back(s.Get("name").String(true),
-                                s.Get("wall_time_s").Number(Rule::NonNegative()));
-  }
+  for (size_t i = 0; i < steps.Size(); ++i)
+    steps.Element(i).Get("wall_time_s").Number(Rule::NonNegative());
   return r;
 }
 
