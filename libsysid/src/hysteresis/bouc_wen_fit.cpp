@@ -462,7 +462,9 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
     summary->kind = model->kind();
     summary->samples = static_cast<int>(n);
     summary->training_rms = std::sqrt(2 * s.summary.final_cost / static_cast<double>(n));
-    summary->converged = s.summary.termination_type == ceres::CONVERGENCE;
+    // USER_SUCCESS: the noise floor's stop (bouc_wen_fit_solve.cpp), a convergence.
+    summary->converged = s.summary.termination_type == ceres::CONVERGENCE ||
+                         s.summary.termination_type == ceres::USER_SUCCESS;
     summary->message = FitMessage(form, options, layout, s, work,
                                   exact ? "forward sensitivities" : "central differences",
                                   input_note + fixed_step_note + continuation_note);

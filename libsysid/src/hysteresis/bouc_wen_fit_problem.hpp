@@ -134,6 +134,10 @@ struct FitClock {
   double Remaining() const { return std::max(0.0, max_time_s - Elapsed()); }
 };
 
+/// [standard errors] The Gauss–Newton step below which a CVODE-simulated fit with exact
+/// Jacobians stops (the solve's NoiseFloorCallback): past it only CVODE's noise moves.
+inline constexpr double kNoiseFloorStep = 0.05;
+
 struct Solved {
   std::vector<double> x;
   ceres::Solver::Summary summary;
