@@ -89,18 +89,13 @@ void RunIrreducible(const IrreducibleCli& o) {
     }
   if (o.json) {
     nlohmann::json j = nlohmann::json::array();
-    for (size_t i = 0; i < rows.size(); ++i)
-      j.push_back({{"file", files[i]},
-                   {"inputs", rows[i].input_names},
-                   {"output", rows[i].output_name},
-                   {"rows", rows[i].rows},
-                   {"neighbours", rows[i].neighbours},
-                   {"output_variance", rows[i].output_variance},
-                   {"irreducible_mse_estimate", rows[i].mse},
-                   {"interval95", {rows[i].mse_low, rows[i].mse_high}},
-                   {"unexplained_share", rows[i].unexplained_share()},
-                   {"estimate_above_subset",
-                    exceeds[i].empty() ? nlohmann::json(nullptr) : nlohmann::json(exceeds[i])}});
+    for (size_t i = 0; i < rows.size(); ++i) {
+      nlohmann::json row = nlohmann::json::parse(ToJson(rows[i], -1));
+      row["file"] = files[i];
+      row["estimate_above_subset"] =
+          exceeds[i].empty() ? nlohmann::json(nullptr) : nlohmann::json(exceeds[i]);
+      j.push_back(row);
+    }
     PrintJson({{"unit", "output unit squared (V^2 for u)"},
                {"bias",
                 "upward: the estimate may exceed the floor, never the reverse in "

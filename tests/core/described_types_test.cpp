@@ -18,6 +18,7 @@
 #include "control/control_json.hpp"
 #include "core/json_fields.hpp"
 #include "dominance/dominance_json.hpp"
+#include "hysteresis/hysteresis_json.hpp"
 #include "identify/identify_json.hpp"
 #include "nn/nn_json.hpp"
 #include "signal/signal_json.hpp"
@@ -28,10 +29,14 @@
 #include "sysid/control_tuning.hpp"
 #include "sysid/delay.hpp"
 #include "sysid/dominance.hpp"
+#include "sysid/hysteresis.hpp"
+#include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/hysteresis_model.hpp"
 #include "sysid/identify.hpp"
 #include "sysid/model.hpp"
 #include "sysid/motion.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/nn_irreducible.hpp"
 #include "sysid/pipeline.hpp"
 #include "sysid/signal.hpp"
 #include "sysid/simulate.hpp"
@@ -212,6 +217,17 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::SimulationSummary>("SimulationSummary");
   CheckRoundTrip<sysid::TrackingRow>("TrackingRow");
   CheckRoundTrip<sysid::PipelineResult>("PipelineResult");
+  CheckRoundTrip<sysid::EpochRecord>("EpochRecord");
+  CheckRoundTrip<sysid::NeuralTrainingResult>("NeuralTrainingResult");
+  CheckRoundTrip<sysid::HiddenSweepRow>("HiddenSweepRow");
+  CheckRoundTrip<sysid::HiddenSweepResult>("HiddenSweepResult");
+  CheckRoundTrip<sysid::ScaledVariable>("ScaledVariable");
+  CheckRoundTrip<sysid::IrreducibleError>("IrreducibleError");
+  CheckRoundTrip<sysid::HysteresisParameter>("HysteresisParameter");
+  CheckRoundTrip<sysid::BoucWenSimulationOptions>("BoucWenSimulationOptions");
+  CheckRoundTrip<sysid::MechanicalBoucWenParameters>("MechanicalBoucWenParameters");
+  CheckRoundTrip<sysid::PiezoBoucWenParameters>("PiezoBoucWenParameters");
+  CheckRoundTrip<sysid::PiParameters>("PiParameters");
 }
 
 TEST_CASE("a limit written as null reads back as the infinity of its side") {

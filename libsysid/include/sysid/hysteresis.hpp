@@ -37,6 +37,7 @@
 
 #include "sysid/hysteresis_model.hpp"
 #include "sysid/io.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -79,6 +80,22 @@ struct PiParameters {
   std::vector<double> initial_state;
   double input_min_v = 0;           ///< [V] the training input range (Invert's domain)
   double input_max_v = 0;           ///< [V] > input_min_v
+  /// A PI model file's fields, in file order (sysid/serialize.hpp): the form is the file's
+  /// "kind", rate_weights is written for rdpi only, the initial state and input may be left out
+  /// (at rest at 0 V); the sizes and rules are Validate()'s.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(form).Renamed("kind").Required());
+    a->Visit(SYSID_NVP(thresholds).Required());
+    a->Visit(SYSID_NVP(weights).Required());
+    a->Visit(SYSID_NVP(polynomial).Required());
+    a->Visit(SYSID_NVP(rate_weights).OmitEmpty());
+    a->Visit(SYSID_NVP(offset_m).Required());
+    a->Visit(SYSID_NVP(initial_input_v));
+    a->Visit(SYSID_NVP(initial_state));
+    a->Visit(SYSID_NVP(input_min_v).Required());
+    a->Visit(SYSID_NVP(input_max_v).Required());
+  }
   /// Validate() and throw OptionsError naming the field ("thresholds[3]") and the rule.
   void Validate() const;
 };

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "sysid/hysteresis_model.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -60,6 +61,15 @@ struct BoucWenSimulationOptions {
   /// chain's decimation runs MATLAB's decimate(..., 'fir') once per prime factor, largest last.
   /// In [1, 1000].
   int upsampling = 20;
+  /// A model file's "simulation" object, in file order (sysid/serialize.hpp): every key
+  /// optional; a model file takes no kAuto (its reader refuses "auto").
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(integrator));
+    a->Visit(SYSID_NVP(input));
+    a->Visit(SYSID_NVP(rtol).ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(upsampling).Minimum(1).Maximum(1000));
+  }
   void Validate() const;  ///< throws OptionsError naming the field and the rule
 };
 
@@ -77,6 +87,20 @@ struct MechanicalBoucWenParameters {
   double gamma = 0.8;          ///< [1] loop shape, finite
   double delta = -1.1;         ///< [1] loop shape, finite
   double nu = 1;               ///< [1] sharpness, in [1, 10]
+  /// A "bouc-wen" model file's "parameters" object, in file order (sysid/serialize.hpp): the
+  /// keys are the equation's symbols (units in the file's "units", parameters()); nu may be
+  /// left out (1), the ranges are Validate()'s, checked as read.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(NameValue<double>("m", &m_kg).Required().ExclusiveMinimum(0));
+    a->Visit(NameValue<double>("c", &c_n_s_per_m).Required().Minimum(0));
+    a->Visit(NameValue<double>("k", &k_n_per_m).Required().Minimum(0));
+    a->Visit(NameValue<double>("alpha", &alpha_n_per_m).Required().ExclusiveMinimum(0));
+    a->Visit(NameValue<double>("beta", &beta_per_m).Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(gamma).Required());
+    a->Visit(SYSID_NVP(delta).Required());
+    a->Visit(SYSID_NVP(nu).Minimum(1).Maximum(10));
+  }
   void Validate() const;       ///< throws OptionsError naming the field and the rule
 };
 
@@ -87,6 +111,17 @@ struct PiezoBoucWenParameters {
   double beta_per_v = 0.05;   ///< [1/V] loop shape, finite
   double gamma_per_v = 0.01;  ///< [1/V] loop shape, finite
   double offset_m = 0;        ///< [m] sensor offset y0, finite
+  /// A "bouc-wen-piezo" model file's "parameters" object, in file order (sysid/serialize.hpp):
+  /// the keys are the equation's symbols (units in the file's "units"); offset may be left out
+  /// (0).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(NameValue<double>("d", &d_m_per_v).Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(alpha).Required());
+    a->Visit(NameValue<double>("beta", &beta_per_v).Required());
+    a->Visit(NameValue<double>("gamma", &gamma_per_v).Required());
+    a->Visit(NameValue<double>("offset", &offset_m));
+  }
   void Validate() const;      ///< throws OptionsError naming the field and the rule
 };
 

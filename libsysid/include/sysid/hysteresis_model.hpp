@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "sysid/serialize.hpp"
+
 namespace sysid {
 
 /// One fitted parameter with its unit and standard error (NaN when the fit gives none).
@@ -19,6 +21,15 @@ struct HysteresisParameter {
   std::string unit;       ///< SI unit, "1" for a pure number
   double value = 0;
   double std_error = 0;   ///< NaN when unknown (not estimated, or the normal matrix is singular)
+  /// An entry of a model file's or a fit's "parameters" table, in file order
+  /// (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(name));
+    a->Visit(SYSID_NVP(unit));
+    a->Visit(SYSID_NVP(value).NaNAsNull());
+    a->Visit(SYSID_NVP(std_error).NaNAsNull());
+  }
 };
 
 /// What a fit did, for every model alike (the Ceres-style summary).

@@ -39,6 +39,15 @@ struct ScaledVariable {
 
   double Normalize(double x) const { return 2.0 * (x - min) / (max - min) - 1.0; }
   double Denormalize(double z) const { return min + 0.5 * (z + 1.0) * (max - min); }
+  /// A network file's variable object, in file order (sysid/serialize.hpp); a file without
+  /// "unit" takes DefaultUnit(name), and max > min is the file reader's check.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(name).Required());
+    a->Visit(SYSID_NVP(unit));
+    a->Visit(SYSID_NVP(min).Required());
+    a->Visit(SYSID_NVP(max).Required());
+  }
 };
 
 /// The SI unit of a well-known symbol (t, u, x, v, a), or "" when unknown.
@@ -172,6 +181,16 @@ struct EpochRecord {
   double train_mse = 0;       ///< [output unit^2]
   double validation_mse = 0;  ///< [output unit^2], NaN without a validation set
   double gradient_norm = 0;   ///< ||2 J'e / N||_2 in normalised units at the epoch's start
+  /// The fields of a training report's "history" entry, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(restart).Minimum(0).Required());
+    a->Visit(SYSID_NVP(epoch).Minimum(0).Required());
+    a->Visit(SYSID_NVP(mu).Minimum(0).Required());
+    a->Visit(SYSID_NVP(train_mse).Minimum(0).Required());
+    a->Visit(SYSID_NVP(validation_mse).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(gradient_norm).Minimum(0).Required());
+  }
 };
 
 struct NeuralTrainingOptions {
@@ -269,6 +288,22 @@ struct NeuralTrainingResult {
   /// Doubts in words: stopped by the epoch budget while the training MSE was still falling
   /// (under-trained). A budget stop on a plateau is not a doubt and gives no warning.
   std::vector<std::string> warnings;
+  /// The fields of `sysid train --json` after the options' (hidden, parameters, trainer, ...),
+  /// in file order (sysid/serialize.hpp); the network lives in its own file and still_falling
+  /// is said by the warnings.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(restart).Minimum(0).Required());
+    a->Visit(SYSID_NVP(epochs).Minimum(0).Required());
+    a->Visit(SYSID_NVP(train_mse).Minimum(0).Required());
+    a->Visit(SYSID_NVP(validation_mse).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(termination).Required());
+    a->Visit(SYSID_NVP(stop).Renamed("stop_reason").Required());
+    a->Visit(SYSID_NVP(message).Required());
+    a->Visit(SYSID_NVP(warnings).Required());
+    a->Visit(SYSID_NVP(wall_time_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(history).Required());
+  }
   std::string BriefReport() const;
   /// BriefReport plus every diagnostic: stopping rule, kept restart, MSEs, warnings and the
   /// last epoch of every restart.
@@ -309,6 +344,18 @@ struct HiddenSweepRow {
   TrainingStop stop = TrainingStop::kMaxEpochs;
   bool still_falling = false;  ///< NeuralTrainingResult::still_falling of this network
   double wall_time_s = 0;  ///< [s]
+  /// The fields of a sweep's "rows" entry, in file order (sysid/serialize.hpp); still_falling is
+  /// said by the sweep's warnings.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(hidden).Minimum(1).Maximum(kMaxHiddenUnits));
+    a->Visit(SYSID_NVP(epochs).Minimum(0));
+    a->Visit(SYSID_NVP(train_mse).Minimum(0));
+    a->Visit(SYSID_NVP(validation_mse).NaNAsNull().Minimum(0));
+    a->Visit(SYSID_NVP(test_mse).NaNAsNull().Minimum(0));
+    a->Visit(SYSID_NVP(stop).Renamed("stop_reason"));
+    a->Visit(SYSID_NVP(wall_time_s).Minimum(0));
+  }
 };
 
 struct HiddenSweepResult {
@@ -320,6 +367,16 @@ struct HiddenSweepResult {
   std::string rule;
   double wall_time_s = 0;  ///< [s]
   std::vector<std::string> warnings;  ///< one per hidden size stopped by the budget while falling
+  /// The fields of `sysid sweep --json` after the options' (trainer, momentum, seed), in file
+  /// order (sysid/serialize.hpp); the chosen row is written as its "chosen_hidden" after the
+  /// rows, the trained networks are not written.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(rows));
+    a->Visit(SYSID_NVP(rule));
+    a->Visit(SYSID_NVP(wall_time_s).Minimum(0));
+    a->Visit(SYSID_NVP(warnings));
+  }
 };
 
 /// Trains one network per hidden size, in parallel threads, and picks one by `rule`.

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sysid/nn.hpp"
+#include "sysid/serialize.hpp"
 
 namespace sysid {
 
@@ -51,7 +52,22 @@ struct IrreducibleError {
   double mse_low = 0, mse_high = 0;
   /// mse / output_variance: the share of the output's variance the inputs leave unexplained.
   double unexplained_share() const { return output_variance > 0 ? mse / output_variance : 0.0; }
+  /// The fields of a `sysid irreducible --json` row, in file order (sysid/serialize.hpp); the
+  /// interval and the unexplained share are written after them (ToJson).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(input_names).Renamed("inputs"));
+    a->Visit(SYSID_NVP(output_name).Renamed("output"));
+    a->Visit(SYSID_NVP(rows).Minimum(0));
+    a->Visit(SYSID_NVP(neighbours).Minimum(0));
+    a->Visit(SYSID_NVP(output_variance).Minimum(0));
+    a->Visit(SYSID_NVP(mse).Renamed("irreducible_mse_estimate").Minimum(0));
+  }
 };
+
+/// The estimate as JSON: its fields (Serialize), "interval95": [mse_low, mse_high] and
+/// "unexplained_share".
+std::string ToJson(const IrreducibleError& estimate, int indent = 2);
 
 /// The estimate on `data` (its inputs standardised by their own standard deviations; a
 /// constant input is left as it is). InputError when the data has fewer rows than neighbours

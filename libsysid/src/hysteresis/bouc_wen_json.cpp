@@ -4,7 +4,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
+#include "hysteresis/hysteresis_json.hpp"
 #include "core/option_rule.hpp"
 #include "sysid/error.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
@@ -44,30 +46,24 @@ const char* ToString(InputInterpolation i) {
   return "?";
 }
 
-nlohmann::ordered_json SimulationJson(const BoucWenSimulationOptions& o) {
-  nlohmann::ordered_json j;
-  j["integrator"] = ToString(o.integrator);
-  j["input"] = ToString(o.input);
-  j["rtol"] = o.rtol;
-  j["upsampling"] = o.upsampling;
-  return j;
-}
-
-nlohmann::ordered_json ModelJson(const char* kind, const std::vector<HysteresisParameter>& ps,
+template <class Parameters>
+nlohmann::ordered_json ModelJson(const char* kind, const Parameters& p,
+                                 const std::vector<HysteresisParameter>& ps,
                                  const BoucWenSimulationOptions& o, const char* note) {
-  nlohmann::ordered_json j, values, errors, units;
+  // The described parameters and simulation, framed by the kind, the standard errors (when the
+  // fit gave any) and units of parameters(), and the equations.
+  nlohmann::ordered_json j, errors, units;
   j["kind"] = kind;
   bool any_error = false;
-  for (const auto& p : ps) {
-    values[p.name] = p.value;
-    errors[p.name] = internal::NumberOrNull(p.std_error);
-    units[p.name] = p.unit;
-    any_error = any_error || std::isfinite(p.std_error);
+  for (const auto& q : ps) {
+    errors[q.name] = internal::NumberOrNull(q.std_error);
+    units[q.name] = q.unit;
+    any_error = any_error || std::isfinite(q.std_error);
   }
-  j["parameters"] = values;
+  j["parameters"] = internal::WriteFields(p);
   if (any_error) j["std_errors"] = errors;
   j["units"] = units;
-  j["simulation"] = SimulationJson(o);
+  j["simulation"] = internal::WriteFields(o);
   j["note"] = note;
   return j;
 }
@@ -75,34 +71,7 @@ nlohmann::ordered_json ModelJson(const char* kind, const std::vector<HysteresisP
 BoucWenSimulationOptions SimulationFromJson(const internal::JsonDocument& doc,
                                             const internal::JsonNode& node) {
   BoucWenSimulationOptions o;
-  node.ExpectObject({"integrator", "input", "rtol", "upsampling"});
-  if (node.Has("integrator")) {
-    const auto n = node.Get("integrator");
-    const std::string s = n.String();
-    if (s == "cvode")
-      o.integrator = BoucWenIntegrator::kCvode;
-    else if (s == "benchmark-chain")
-      o.integrator = BoucWenIntegrator::kBenchmarkChain;
-    else if (s == "fixed-step")
-      o.integrator = BoucWenIntegrator::kFixedStep;
-    else
-      n.Expected("\"cvode\", \"benchmark-chain\" or \"fixed-step\"");
-  }
-  if (node.Has("input")) {
-    const auto n = node.Get("input");
-    const std::string s = n.String();
-    if (s == "hold")
-      o.input = InputInterpolation::kHold;
-    else if (s == "linear")
-      o.input = InputInterpolation::kLinear;
-    else if (s == "band-limited")
-      o.input = InputInterpolation::kBandLimited;
-    else
-      n.Expected("\"hold\", \"linear\" or \"band-limited\"");
-  }
-  if (node.Has("rtol")) o.rtol = node.Get("rtol").Number(internal::NumberRule::Positive());
-  if (node.Has("upsampling"))
-    o.upsampling = static_cast<int>(node.Get("upsampling").Integer(1, 1000));
+  internal::ReadFields(node, o);
   internal::ValidateOptions(
       doc, [&] { o.Validate(); }, node.pointer());
   return o;
@@ -122,6 +91,38 @@ std::vector<double> ErrorsFromJson(const internal::JsonNode& root,
 }
 
 }  // namespace
+
+namespace internal {
+
+nlohmann::ordered_json JsonForm<BoucWenIntegrator>::Write(const BoucWenIntegrator& integrator) {
+  return ToString(integrator);
+}
+void JsonForm<BoucWenIntegrator>::Read(const JsonNode& node, BoucWenIntegrator& integrator) {
+  const std::string s = node.String();
+  for (auto i : {BoucWenIntegrator::kCvode, BoucWenIntegrator::kBenchmarkChain,
+                 BoucWenIntegrator::kFixedStep})
+    if (s == ToString(i)) {
+      integrator = i;
+      return;
+    }
+  node.Expected("\"cvode\", \"benchmark-chain\" or \"fixed-step\"");
+}
+
+nlohmann::ordered_json JsonForm<InputInterpolation>::Write(const InputInterpolation& input) {
+  return ToString(input);
+}
+void JsonForm<InputInterpolation>::Read(const JsonNode& node, InputInterpolation& input) {
+  const std::string s = node.String();
+  for (auto i : {InputInterpolation::kHold, InputInterpolation::kLinear,
+                 InputInterpolation::kBandLimited})
+    if (s == ToString(i)) {
+      input = i;
+      return;
+    }
+  node.Expected("\"hold\", \"linear\" or \"band-limited\"");
+}
+
+}  // namespace internal
 
 BoucWenSimulationOptions AutoBoucWenSimulation() {
   BoucWenSimulationOptions o;
@@ -185,7 +186,7 @@ void PiezoBoucWenParameters::Validate() const {
 }
 
 std::string MechanicalBoucWen::ToJson(int indent) const {
-  return ModelJson("bouc-wen", parameters(), options_,
+  return ModelJson("bouc-wen", p_, parameters(), options_,
                    "m y'' + c y' + k y + z = u, z' = alpha y' - beta (gamma |y'| |z|^(nu-1) z + "
                    "delta y' |z|^nu); u [N], y [m], z [N]")
              .dump(indent) +
@@ -193,7 +194,7 @@ std::string MechanicalBoucWen::ToJson(int indent) const {
 }
 
 std::string PiezoBoucWen::ToJson(int indent) const {
-  return ModelJson("bouc-wen-piezo", parameters(), options_,
+  return ModelJson("bouc-wen-piezo", p_, parameters(), options_,
                    "y = d u - h + offset, h' = alpha d u' - beta |u'| h - gamma u' |h|; u [V], "
                    "y [m], h [m]")
              .dump(indent) +
@@ -212,36 +213,20 @@ std::unique_ptr<HysteresisModel> BoucWenModelFromJson(const std::string& text,
   BoucWenSimulationOptions sim;
   if (root.Has("simulation")) sim = SimulationFromJson(doc, root.Get("simulation"));
   const auto ps = root.Get("parameters");
-  using Rule = internal::NumberRule;
-  // The number rules below are the parameters' Validate() rules, so a bad value is reported
-  // at its place in the file.
+  // The fields' ranges are the parameters' Validate() rules, so a bad value is reported at its
+  // place in the file.
   if (kind == "bouc-wen") {
-    const std::vector<std::string> names = {"m", "c", "k", "alpha", "beta", "gamma", "delta", "nu"};
-    ps.ExpectObject(names);
     MechanicalBoucWenParameters p;
-    p.m_kg = ps.Get("m").Number(Rule::Positive());
-    p.c_n_s_per_m = ps.Get("c").Number(Rule::NonNegative());
-    p.k_n_per_m = ps.Get("k").Number(Rule::NonNegative());
-    p.alpha_n_per_m = ps.Get("alpha").Number(Rule::Positive());
-    p.beta_per_m = ps.Get("beta").Number(Rule::Positive());
-    p.gamma = ps.Get("gamma").Number();
-    p.delta = ps.Get("delta").Number();
-    p.nu = ps.Has("nu") ? ps.Get("nu").Number(Rule::Closed(1, 10)) : 1.0;
-    return std::make_unique<MechanicalBoucWen>(p, sim, ErrorsFromJson(root, names));
+    internal::ReadFields(ps, p);
+    return std::make_unique<MechanicalBoucWen>(p, sim,
+                                               ErrorsFromJson(root, internal::FieldNamesOf(p)));
   }
-  const std::vector<std::string> names = {"d", "alpha", "beta", "gamma", "offset"};
-  ps.ExpectObject(names);
   PiezoBoucWenParameters p;
-  p.d_m_per_v = ps.Get("d").Number(Rule::Positive());
-  p.alpha = ps.Get("alpha").Number();
-  p.beta_per_v = ps.Get("beta").Number();
-  p.gamma_per_v = ps.Get("gamma").Number();
-  p.offset_m = ps.Has("offset") ? ps.Get("offset").Number() : 0.0;
+  internal::ReadFields(ps, p);
   if (sim.integrator != BoucWenIntegrator::kCvode && root.Has("simulation"))
     root.Get("simulation")
         .Get("integrator")
         .Expected("\"cvode\" (the chain and the fixed step are the mechanical form's)");
-  return std::make_unique<PiezoBoucWen>(p, sim, ErrorsFromJson(root, names));
+  return std::make_unique<PiezoBoucWen>(p, sim, ErrorsFromJson(root, internal::FieldNamesOf(p)));
 }
-
 }  // namespace sysid

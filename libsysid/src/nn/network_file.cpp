@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "nn/nn_json.hpp"
 #include "nn/mlp_kernels.hpp"
@@ -16,15 +17,13 @@ namespace sysid {
 namespace {
 
 ScaledVariable ReadVariable(const internal::JsonNode& v) {
-  v.ExpectObject({"name", "unit", "min", "max"});
   ScaledVariable s;
-  s.name = v.Get("name").String(/*non_empty=*/true);
-  s.unit = v.Has("unit") ? v.Get("unit").String() : DefaultUnit(s.name);
-  s.min = v.Get("min").Number();
-  const internal::JsonNode max = v.Get("max");
-  s.max = max.Number();
+  internal::ReadFields(v, s);
+  v.Get("name").String(/*non_empty=*/true);
+  if (!v.Has("unit")) s.unit = DefaultUnit(s.name);
   if (!(s.min < s.max) || !std::isfinite(s.max - s.min))  // the scaling divides by max - min
-    max.Expected("a number > min (" + nlohmann::json(s.min).dump() + "), max - min finite");
+    v.Get("max").Expected("a number > min (" + nlohmann::json(s.min).dump() +
+                          "), max - min finite");
   return s;
 }
 
@@ -78,13 +77,8 @@ std::string NeuralNetworkToJson(const NeuralNetwork& net, int indent,
                                 const std::string& extra_json) {
   nlohmann::ordered_json j;
   j["type"] = "tanh-mlp";
-  auto var = [](const ScaledVariable& s) {
-    return nlohmann::ordered_json{
-        {"name", s.name}, {"unit", s.unit}, {"min", s.min}, {"max", s.max}};
-  };
-  j["inputs"] = nlohmann::ordered_json::array();
-  for (const auto& in : net.inputs()) j["inputs"].push_back(var(in));
-  j["output"] = var(net.output());
+  j["inputs"] = internal::JsonForm<std::vector<ScaledVariable>>::Write(net.inputs());
+  j["output"] = internal::WriteFields(net.output());
   j["hidden"] = net.hidden_size();
   if (!net.note.empty()) j["note"] = net.note;
   j["W1"] = nlohmann::ordered_json::array();

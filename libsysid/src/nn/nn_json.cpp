@@ -12,11 +12,11 @@
 #include "core/json_text.hpp"
 #include "nn/nn_json.hpp"
 #include "sysid/nn.hpp"
+#include "sysid/nn_irreducible.hpp"
 
 namespace sysid {
 namespace {
 using internal::JsonNode;
-using internal::NumberOrNull;
 using Json = nlohmann::ordered_json;
 
 TrainingStop StopFromJson(const JsonNode& node) {
@@ -44,6 +44,7 @@ NeuralTrainer TrainerFromJson(const JsonNode& node) {
 }  // namespace
 
 std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o, int indent) {
+  // The options the run used and the network's size, then the described fields.
   Json j;
   j["hidden"] = o.hidden;
   j["parameters"] = r.network.parameter_count();
@@ -51,24 +52,7 @@ std::string ToJson(const NeuralTrainingResult& r, const NeuralTrainingOptions& o
   j["momentum"] = o.momentum;
   j["solve_output_layer"] = o.solve_output_layer;
   j["seed"] = o.seed;
-  j["restart"] = r.restart;
-  j["epochs"] = r.epochs;
-  j["train_mse"] = r.train_mse;
-  j["validation_mse"] = NumberOrNull(r.validation_mse);
-  j["termination"] = ToString(r.termination);
-  j["stop_reason"] = ToString(r.stop);
-  j["message"] = r.message;
-  j["warnings"] = r.warnings;
-  j["wall_time_s"] = r.wall_time_s;
-  Json h = Json::array();
-  for (const auto& e : r.history)
-    h.push_back({{"restart", e.restart},
-                 {"epoch", e.epoch},
-                 {"mu", e.mu},
-                 {"train_mse", e.train_mse},
-                 {"validation_mse", NumberOrNull(e.validation_mse)},
-                 {"gradient_norm", e.gradient_norm}});
-  j["history"] = h;
+  j.update(internal::WriteFields(r));
   return internal::DumpJson(j, indent);
 }
 
@@ -77,11 +61,10 @@ NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
                                                   NeuralTrainingOptions* options) {
   const internal::JsonDocument doc(text, source_name);
   const JsonNode root = doc.Root();
-  root.ExpectObject({"hidden", "parameters", "trainer", "momentum", "solve_output_layer", "seed",
-                     "restart", "epochs", "train_mse", "validation_mse", "termination",
-                     "stop_reason", "message", "warnings", "wall_time_s", "history"});
-  using Rule = internal::NumberRule;
-  constexpr long kMaxEpochs = std::numeric_limits<int>::max();
+  NeuralTrainingResult r;
+  internal::ReadFields(root, r,
+                       {"hidden", "parameters", "trainer", "momentum", "solve_output_layer",
+                        "seed"});
   // The options part is read (and checked) always, stored only when asked for.
   NeuralTrainingOptions o;
   o.hidden = static_cast<int>(root.Get("hidden").Integer(1, kMaxHiddenUnits));
@@ -93,7 +76,7 @@ NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
         .Expected("H n + 2 H + 1 parameters for hidden = " + std::to_string(o.hidden) +
                   " and some n >= 1 inputs");
   o.trainer = TrainerFromJson(root.Get("trainer"));
-  o.momentum = root.Get("momentum").Number(Rule{0.0, 1.0, false, true});
+  o.momentum = root.Get("momentum").Number(internal::NumberRule{0.0, 1.0, false, true});
   o.solve_output_layer = root.Get("solve_output_layer").Boolean();
   o.seed = internal::Uint64FromJson(root.Get("seed"));
   if (options) {
@@ -103,36 +86,10 @@ NeuralTrainingResult NeuralTrainingResultFromJson(std::string_view text,
     options->solve_output_layer = o.solve_output_layer;
     options->seed = o.seed;
   }
-  NeuralTrainingResult r;
-  r.restart = static_cast<int>(root.Get("restart").Integer(0, kMaxEpochs));
-  r.epochs = static_cast<int>(root.Get("epochs").Integer(0, kMaxEpochs));
-  r.train_mse = root.Get("train_mse").Number(Rule::NonNegative());
-  r.validation_mse = root.Get("validation_mse").NumberOrNaN(Rule::NonNegative());
-  r.termination = internal::TerminationFromJson(root.Get("termination"));
-  r.stop = StopFromJson(root.Get("stop_reason"));
   if (r.termination != TerminationOf(r.stop))
     root.Get("termination")
         .Expected("\"" + ToString(TerminationOf(r.stop)) + "\" (stop_reason \"" +
                   ToString(r.stop) + "\")");
-  r.message = root.Get("message").String();
-  const JsonNode w = root.Get("warnings");
-  w.ExpectArray();
-  for (size_t i = 0; i < w.Size(); ++i) r.warnings.push_back(w.Element(i).String());
-  r.wall_time_s = root.Get("wall_time_s").Number(Rule::NonNegative());
-  const JsonNode h = root.Get("history");
-  h.ExpectArray();
-  for (size_t i = 0; i < h.Size(); ++i) {
-    const JsonNode e = h.Element(i);
-    e.ExpectObject({"restart", "epoch", "mu", "train_mse", "validation_mse", "gradient_norm"});
-    EpochRecord rec;
-    rec.restart = static_cast<int>(e.Get("restart").Integer(0, kMaxEpochs));
-    rec.epoch = static_cast<int>(e.Get("epoch").Integer(0, kMaxEpochs));
-    rec.mu = e.Get("mu").Number(Rule::NonNegative());
-    rec.train_mse = e.Get("train_mse").Number(Rule::NonNegative());
-    rec.validation_mse = e.Get("validation_mse").NumberOrNaN(Rule::NonNegative());
-    rec.gradient_norm = e.Get("gradient_norm").Number(Rule::NonNegative());
-    r.history.push_back(rec);
-  }
   return r;
 }
 
@@ -141,20 +98,21 @@ std::string ToJson(const HiddenSweepResult& r, const HiddenSweepOptions& o, int 
   j["trainer"] = ToString(o.training.trainer);
   j["momentum"] = o.training.momentum;
   j["seed"] = o.training.seed;
-  j["rows"] = Json::array();
-  for (const auto& row : r.rows)
-    j["rows"].push_back({{"hidden", row.hidden},
-                         {"epochs", row.epochs},
-                         {"train_mse", row.train_mse},
-                         {"validation_mse", NumberOrNull(row.validation_mse)},
-                         {"test_mse", NumberOrNull(row.test_mse)},
-                         {"stop_reason", ToString(row.stop)},
-                         {"wall_time_s", row.wall_time_s}});
-  j["chosen_hidden"] =
-      r.chosen >= 0 ? Json(r.rows[static_cast<size_t>(r.chosen)].hidden) : Json(nullptr);
-  j["rule"] = r.rule;
-  j["wall_time_s"] = r.wall_time_s;
-  j["warnings"] = r.warnings;
+  // The described fields, with the chosen row's hidden size after the rows.
+  const Json fields = internal::WriteFields(r);
+  for (auto it = fields.begin(); it != fields.end(); ++it) {
+    j[it.key()] = *it;
+    if (it.key() == "rows")
+      j["chosen_hidden"] =
+          r.chosen >= 0 ? Json(r.rows[static_cast<size_t>(r.chosen)].hidden) : Json(nullptr);
+  }
+  return internal::DumpJson(j, indent);
+}
+
+std::string ToJson(const IrreducibleError& e, int indent) {
+  Json j = internal::WriteFields(e);
+  j["interval95"] = {e.mse_low, e.mse_high};
+  j["unexplained_share"] = e.unexplained_share();
   return internal::DumpJson(j, indent);
 }
 
@@ -173,6 +131,11 @@ namespace internal {
 Json JsonForm<NeuralTrainer>::Write(const NeuralTrainer& trainer) { return ToString(trainer); }
 void JsonForm<NeuralTrainer>::Read(const JsonNode& node, NeuralTrainer& trainer) {
   trainer = TrainerFromJson(node);
+}
+
+Json JsonForm<TrainingStop>::Write(const TrainingStop& stop) { return ToString(stop); }
+void JsonForm<TrainingStop>::Read(const JsonNode& node, TrainingStop& stop) {
+  stop = StopFromJson(node);
 }
 
 Json JsonForm<NeuralInit>::Write(const NeuralInit& init) { return InitName(init); }

@@ -18,6 +18,13 @@ struct JsonForm<NeuralTrainer> {
   static void Read(const JsonNode& node, NeuralTrainer& trainer);
 };
 
+/// "max_epochs", ... (ToString's names).
+template <>
+struct JsonForm<TrainingStop> {
+  static nlohmann::ordered_json Write(const TrainingStop& stop);
+  static void Read(const JsonNode& node, TrainingStop& stop);
+};
+
 /// "nguyen-widrow" or "uniform".
 template <>
 struct JsonForm<NeuralInit> {
