@@ -30,6 +30,14 @@ Recording MakeRecording(const Eigen::VectorXd& u, const Eigen::VectorXd& x, doub
   return r;
 }
 
+// [m] The exact ODE's output for u [N] at dt [s]: CVODE at rtol 1e-10, the input linear.
+Eigen::VectorXd ExactOutput(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& u,
+                            double dt) {
+  BoucWenSimulationOptions cv;
+  cv.rtol = 1e-10;
+  return MechanicalBoucWen(p, cv).Simulate(u, dt);
+}
+
 Eigen::VectorXd Noise(Eigen::Index n, double sigma, std::uint64_t seed) {
   internal::PortableRandom random(seed);
   Eigen::VectorXd e(n);
@@ -194,11 +202,9 @@ TEST_CASE("bouc-wen: the fixed-step fit recovers the system from CVODE's data",
   // Data from the exact ODE (CVODE at rtol 1e-10, linear input) with the benchmark's noise; the
   // fixed-step fit chooses its steps, checks its model against CVODE and recovers the parameters.
   const MechanicalBoucWenParameters truth;
-  BoucWenSimulationOptions cv;
-  cv.rtol = 1e-10;
   const double dt = 1.0 / 750;
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0).replicate(2, 1);
-  const Eigen::VectorXd y = MechanicalBoucWen(truth, cv).Simulate(u, dt);
+  const Eigen::VectorXd y = ExactOutput(truth, u, dt);
   BoucWenFitOptions o;
   o.simulation.integrator = BoucWenIntegrator::kFixedStep;
   o.simulation.input = InputInterpolation::kLinear;  // the data's
@@ -224,7 +230,7 @@ TEST_CASE("bouc-wen: the fixed-step fit recovers the system from CVODE's data",
   // The chosen steps keep the model within its tolerance of CVODE (the fit's own check, repeated
   // here from the model file's settings).
   const Eigen::VectorXd ym = model->Simulate(u, dt);
-  const Eigen::VectorXd yc = MechanicalBoucWen(fitted.values(), cv).Simulate(u, dt);
+  const Eigen::VectorXd yc = ExactOutput(fitted.values(), u, dt);
   const double rms = std::sqrt((y.array() - y.mean()).square().mean());
   CHECK(std::sqrt((ym - yc).squaredNorm() / static_cast<double>(ym.size())) <= 1e-4 * rms);
 }
@@ -236,12 +242,9 @@ TEST_CASE("bouc-wen: a CVODE fit stops where the Gauss-Newton step is within 0.0
   // Gauss-Newton step g' (J'J)^-1 g / sigma^2 in standard errors (any parameter scaling gives
   // the same length), which must be within the stop's 0.05 (plus the fit's own CVODE noise).
   const MechanicalBoucWenParameters truth;
-  BoucWenSimulationOptions cv;
-  cv.rtol = 1e-10;
   const double dt = 1.0 / 750;
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0);
-  const Eigen::VectorXd x = MechanicalBoucWen(truth, cv).Simulate(u, dt) +
-                            Noise(u.size(), 7.4e-6, 43);
+  const Eigen::VectorXd x = ExactOutput(truth, u, dt) + Noise(u.size(), 7.4e-6, 43);
   BoucWenFitOptions o;
   o.simulation.integrator = BoucWenIntegrator::kCvode;
   o.simulation.input = InputInterpolation::kLinear;
@@ -289,11 +292,9 @@ TEST_CASE("bouc-wen: CVODE's starts screened at a looser rtol reach the full-tol
   // tolerance is checked against CVODE itself: start 1's first report is the RMS of the initial
   // parameters simulated at start_rtol.
   const MechanicalBoucWenParameters truth;
-  BoucWenSimulationOptions cv;
-  cv.rtol = 1e-10;
   const double dt = 1.0 / 750;
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0);
-  const Eigen::VectorXd y = MechanicalBoucWen(truth, cv).Simulate(u, dt);
+  const Eigen::VectorXd y = ExactOutput(truth, u, dt);
   const Eigen::VectorXd x = y + Noise(y.size(), 7.4e-6, 42);
   BoucWenFitOptions o;
   o.simulation.integrator = BoucWenIntegrator::kCvode;
