@@ -38,6 +38,19 @@ Eigen::VectorXd ExactOutput(const MechanicalBoucWenParameters& p, const Eigen::V
   return MechanicalBoucWen(p, cv).Simulate(u, dt);
 }
 
+// A CVODE fit (linear input, as ExactOutput's data) started from `truth` with m 5 % above and k
+// 5 % below.
+BoucWenFitOptions CvodeFitFromNearTruth(const MechanicalBoucWenParameters& truth) {
+  BoucWenFitOptions o;
+  o.simulation.integrator = BoucWenIntegrator::kCvode;
+  o.simulation.input = InputInterpolation::kLinear;
+  o.mechanical_initial = truth;
+  o.mechanical_initial.m_kg *= 1.05;
+  o.mechanical_initial.k_n_per_m *= 0.95;
+  o.mechanical_initial_given = true;
+  return o;
+}
+
 Eigen::VectorXd Noise(Eigen::Index n, double sigma, std::uint64_t seed) {
   internal::PortableRandom random(seed);
   Eigen::VectorXd e(n);
@@ -245,13 +258,7 @@ TEST_CASE("bouc-wen: a CVODE fit stops where the Gauss-Newton step is within 0.0
   const double dt = 1.0 / 750;
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0);
   const Eigen::VectorXd x = ExactOutput(truth, u, dt) + Noise(u.size(), 7.4e-6, 43);
-  BoucWenFitOptions o;
-  o.simulation.integrator = BoucWenIntegrator::kCvode;
-  o.simulation.input = InputInterpolation::kLinear;
-  o.mechanical_initial = truth;
-  o.mechanical_initial.m_kg *= 1.05;
-  o.mechanical_initial.k_n_per_m *= 0.95;
-  o.mechanical_initial_given = true;
+  BoucWenFitOptions o = CvodeFitFromNearTruth(truth);
   o.starts = 1;
   o.threads = 1;
   HysteresisFitSummary summary;
@@ -296,14 +303,8 @@ TEST_CASE("bouc-wen: CVODE's starts screened at a looser rtol reach the full-tol
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0);
   const Eigen::VectorXd y = ExactOutput(truth, u, dt);
   const Eigen::VectorXd x = y + Noise(y.size(), 7.4e-6, 42);
-  BoucWenFitOptions o;
-  o.simulation.integrator = BoucWenIntegrator::kCvode;
-  o.simulation.input = InputInterpolation::kLinear;
-  o.mechanical_initial = truth;
-  o.mechanical_initial.m_kg *= 1.05;
-  o.mechanical_initial.k_n_per_m *= 0.95;
+  BoucWenFitOptions o = CvodeFitFromNearTruth(truth);
   o.mechanical_initial.gamma *= 0.95;
-  o.mechanical_initial_given = true;
   o.starts = 2;
   o.start_spread = 0.05;
   o.start_iterations = 2;
