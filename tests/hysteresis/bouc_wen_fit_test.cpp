@@ -51,6 +51,22 @@ BoucWenFitOptions CvodeFitFromNearTruth(const MechanicalBoucWenParameters& truth
   return o;
 }
 
+// Parameter j of p in the sensitivities' order (m, c, k, alpha, beta, gamma, delta, nu).
+double& Parameter(MechanicalBoucWenParameters& p, int j) {
+  double* fields[] = {&p.m_kg,       &p.c_n_s_per_m, &p.k_n_per_m, &p.alpha_n_per_m,
+                      &p.beta_per_m, &p.gamma,       &p.delta,     &p.nu};
+  return *fields[j];
+}
+
+// The benchmark's parameters but nu, each scaled by exp(0.2 U(-1, 1)); nu 1 when `nu_one`,
+// else in [1, 1.3).
+MechanicalBoucWenParameters RandomParameters(internal::PortableRandom* random, bool nu_one) {
+  MechanicalBoucWenParameters p;
+  for (int j = 0; j < 7; ++j) Parameter(p, j) *= std::exp(0.2 * random->Symmetric());
+  p.nu = nu_one ? 1.0 : 1 + 0.3 * random->Uniform();
+  return p;
+}
+
 Eigen::VectorXd Noise(Eigen::Index n, double sigma, std::uint64_t seed) {
   internal::PortableRandom random(seed);
   Eigen::VectorXd e(n);
@@ -116,22 +132,18 @@ TEST_CASE("bouc-wen: the chain's forward sensitivities agree with central differ
   const Eigen::VectorXd ufx = internal::ChainInput(u, up);
   internal::PortableRandom random(11);
   for (int draw = 0; draw < 3; ++draw) {
-    MechanicalBoucWenParameters p;
-    double* fields[] = {&p.m_kg,       &p.c_n_s_per_m, &p.k_n_per_m, &p.alpha_n_per_m,
-                        &p.beta_per_m, &p.gamma,       &p.delta,     &p.nu};
-    for (int j = 0; j < 7; ++j) *fields[j] *= std::exp(0.2 * random.Symmetric());
-    p.nu = draw == 0 ? 1.0 : 1 + 0.3 * random.Uniform();
+    MechanicalBoucWenParameters p = RandomParameters(&random, draw == 0);
     Eigen::VectorXd y;
     Eigen::MatrixXd dy;
     internal::ChainOutputSensitivity(p, ufx, u.size(), dt, up, true, &y, &dy);
     // The same steps as the simulation: the residuals do not change with the Jacobian's method.
     CHECK(y == internal::ChainOutput(p, ufx, u.size(), dt, up));
     for (int j = 0; j < internal::kMechanicalParameters; ++j) {
-      const double value = *fields[j];
+      const double value = Parameter(p, j);
       const double h = 1e-6 * std::abs(value);
       auto at = [&](double offset) {
         MechanicalBoucWenParameters q = p;
-        *(&q.m_kg + (fields[j] - &p.m_kg)) = value + offset;
+        Parameter(q, j) = value + offset;
         return internal::ChainOutput(q, ufx, u.size(), dt, up);
       };
       // nu = 1 is its lower bound: the one-sided second-order difference there.
@@ -171,11 +183,7 @@ TEST_CASE("bouc-wen: the fixed step's forward sensitivities agree with central d
     const Eigen::VectorXd uf = internal::FixedStepInput(u, how, m);
     REQUIRE(uf.size() == 299 * m + 1);
     for (int draw = 0; draw < 2; ++draw) {
-      MechanicalBoucWenParameters p;
-      double* fields[] = {&p.m_kg,       &p.c_n_s_per_m, &p.k_n_per_m, &p.alpha_n_per_m,
-                          &p.beta_per_m, &p.gamma,       &p.delta,     &p.nu};
-      for (int j = 0; j < 7; ++j) *fields[j] *= std::exp(0.2 * random.Symmetric());
-      p.nu = draw == 0 ? 1.0 : 1 + 0.3 * random.Uniform();
+      MechanicalBoucWenParameters p = RandomParameters(&random, draw == 0);
       Eigen::VectorXd y;
       Eigen::MatrixXd dy;
       internal::FixedStepOutputSensitivity(p, uf, dt, m, true, &y, &dy);
@@ -188,11 +196,11 @@ TEST_CASE("bouc-wen: the fixed step's forward sensitivities agree with central d
       sim.upsampling = m;
       CHECK(y == MechanicalBoucWen(p, sim).Simulate(u, dt));
       for (int j = 0; j < internal::kMechanicalParameters; ++j) {
-        const double value = *fields[j];
+        const double value = Parameter(p, j);
         const double h = 1e-6 * std::abs(value);
         auto at = [&](double offset) {
           MechanicalBoucWenParameters q = p;
-          *(&q.m_kg + (fields[j] - &p.m_kg)) = value + offset;
+          Parameter(q, j) = value + offset;
           return internal::FixedStepOutput(q, uf, dt, m);
         };
         const Eigen::VectorXd fd = j == 7 && p.nu == 1
