@@ -58,6 +58,22 @@ double& Parameter(MechanicalBoucWenParameters& p, int j) {
   return *fields[j];
 }
 
+// d y / d parameter j at p by central differences of simulate (a step of 1e-6 of the value);
+// at nu = 1, its lower bound, the one-sided second-order difference from y = simulate(p).
+template <class Simulate>
+Eigen::VectorXd CentralDifference(const MechanicalBoucWenParameters& p, int j,
+                                  const Eigen::VectorXd& y, Simulate simulate) {
+  MechanicalBoucWenParameters q = p;
+  const double value = Parameter(q, j);
+  const double h = 1e-6 * std::abs(value);
+  auto at = [&](double offset) {
+    Parameter(q, j) = value + offset;
+    return Eigen::VectorXd(simulate(q));
+  };
+  if (j == 7 && p.nu == 1) return (4 * at(h) - at(2 * h) - 3 * y) / (2 * h);
+  return (at(h) - at(-h)) / (2 * h);
+}
+
 // The benchmark's parameters but nu, each scaled by exp(0.2 U(-1, 1)); nu 1 when `nu_one`,
 // else in [1, 1.3).
 MechanicalBoucWenParameters RandomParameters(internal::PortableRandom* random, bool nu_one) {
@@ -87,10 +103,13 @@ void CheckWithin3Sigma(const HysteresisModel& fitted, const std::vector<double>&
   }
 }
 
-TEST_CASE("bouc-wen: the mechanical fit recovers the benchmark's system from noisy data",
-          "[hysteresis][bouc-wen][fit]") {
-  // The benchmark's system, a short multisine (2 periods of 1024 samples at 750 Hz), the chain at
-  // 4x upsampling (fast), the benchmark's noise level.
+// The benchmark's system, a short multisine (2 periods of 1024 samples at 750 Hz), the chain at
+// 4x upsampling (fast), the benchmark's noise level; started with m, k and gamma 25 % off.
+struct ChainFitCase {
+  Recording recording;
+  BoucWenFitOptions options;
+};
+ChainFitCase MakeChainFitCase() {
   const MechanicalBoucWenParameters truth;
   BoucWenSimulationOptions sim;
   sim.integrator = BoucWenIntegrator::kBenchmarkChain;
@@ -98,20 +117,27 @@ TEST_CASE("bouc-wen: the mechanical fit recovers the benchmark's system from noi
   const double dt = 1.0 / 750;
   const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0).replicate(2, 1);
   const Eigen::VectorXd y = MechanicalBoucWen(truth, sim).Simulate(u, dt);
-  const Eigen::VectorXd x = y + Noise(y.size(), 7.4e-6, 42);
-  BoucWenFitOptions o;
-  o.simulation = sim;
-  o.mechanical_initial = truth;  // beta (fixed) stays true; the rest starts 25 % off
-  o.mechanical_initial.m_kg *= 1.25;
+  ChainFitCase c{MakeRecording(u, y + Noise(y.size(), 7.4e-6, 42), dt), {}};
+  c.options.simulation = sim;
+  c.options.mechanical_initial = truth;
+  c.options.mechanical_initial.m_kg *= 1.25;
+  c.options.mechanical_initial.k_n_per_m *= 0.75;
+  c.options.mechanical_initial.gamma *= 0.75;
+  c.options.mechanical_initial_given = true;
+  c.options.starts = 2;
+  return c;
+}
+
+TEST_CASE("bouc-wen: the mechanical fit recovers the benchmark's system from noisy data",
+          "[hysteresis][bouc-wen][fit]") {
+  const MechanicalBoucWenParameters truth;
+  ChainFitCase c = MakeChainFitCase();
+  BoucWenFitOptions& o = c.options;  // beta (fixed) stays true; the rest starts 25 % off
   o.mechanical_initial.c_n_s_per_m *= 0.75;
-  o.mechanical_initial.k_n_per_m *= 0.75;
   o.mechanical_initial.alpha_n_per_m *= 1.25;
-  o.mechanical_initial.gamma *= 0.75;
   o.mechanical_initial.delta *= 1.25;
-  o.mechanical_initial_given = true;
-  o.starts = 2;
   HysteresisFitSummary summary;
-  const auto model = FitBoucWen(BoucWenForm::kMechanical, {MakeRecording(u, x, dt)}, o, &summary);
+  const auto model = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, o, &summary);
   INFO(summary.message);
   CHECK(model->kind() == "bouc-wen");
   CHECK(summary.samples == 2048);
@@ -139,17 +165,9 @@ TEST_CASE("bouc-wen: the chain's forward sensitivities agree with central differ
     // The same steps as the simulation: the residuals do not change with the Jacobian's method.
     CHECK(y == internal::ChainOutput(p, ufx, u.size(), dt, up));
     for (int j = 0; j < internal::kMechanicalParameters; ++j) {
-      const double value = Parameter(p, j);
-      const double h = 1e-6 * std::abs(value);
-      auto at = [&](double offset) {
-        MechanicalBoucWenParameters q = p;
-        Parameter(q, j) = value + offset;
+      const Eigen::VectorXd fd = CentralDifference(p, j, y, [&](const auto& q) {
         return internal::ChainOutput(q, ufx, u.size(), dt, up);
-      };
-      // nu = 1 is its lower bound: the one-sided second-order difference there.
-      const Eigen::VectorXd fd = j == 7 && p.nu == 1
-                                     ? Eigen::VectorXd((4 * at(h) - at(2 * h) - 3 * y) / (2 * h))
-                                     : Eigen::VectorXd((at(h) - at(-h)) / (2 * h));
+      });
       const double scale = fd.cwiseAbs().maxCoeff();
       INFO("draw " << draw << ", parameter " << j << ", nu " << p.nu << ", max |dy/dp| " << scale
                    << ", max difference " << (dy.col(j) - fd).cwiseAbs().maxCoeff());
@@ -196,16 +214,8 @@ TEST_CASE("bouc-wen: the fixed step's forward sensitivities agree with central d
       sim.upsampling = m;
       CHECK(y == MechanicalBoucWen(p, sim).Simulate(u, dt));
       for (int j = 0; j < internal::kMechanicalParameters; ++j) {
-        const double value = Parameter(p, j);
-        const double h = 1e-6 * std::abs(value);
-        auto at = [&](double offset) {
-          MechanicalBoucWenParameters q = p;
-          Parameter(q, j) = value + offset;
-          return internal::FixedStepOutput(q, uf, dt, m);
-        };
-        const Eigen::VectorXd fd = j == 7 && p.nu == 1
-                                       ? Eigen::VectorXd((4 * at(h) - at(2 * h) - 3 * y) / (2 * h))
-                                       : Eigen::VectorXd((at(h) - at(-h)) / (2 * h));
+        const Eigen::VectorXd fd = CentralDifference(
+            p, j, y, [&](const auto& q) { return internal::FixedStepOutput(q, uf, dt, m); });
         const double scale = fd.cwiseAbs().maxCoeff();
         INFO("input " << static_cast<int>(how) << ", draw " << draw << ", parameter " << j
                       << ", nu " << p.nu << ", max |dy/dp| " << scale << ", max difference "
@@ -488,38 +498,16 @@ TEST_CASE(
   }
 }
 
-// The benchmark's system on a short multisine at 4x upsampling (as the recovery test), started
-// 25 % off.
-struct ChainFitCase {
-  Recording recording;
-  BoucWenFitOptions options;
-};
-ChainFitCase MakeChainFitCase() {
-  const MechanicalBoucWenParameters truth;
-  BoucWenSimulationOptions sim;
-  sim.integrator = BoucWenIntegrator::kBenchmarkChain;
-  sim.upsampling = 4;
-  const double dt = 1.0 / 750;
-  const Eigen::VectorXd u = Multisine(1024, dt, 7, 200, 6.0).replicate(2, 1);
-  const Eigen::VectorXd y = MechanicalBoucWen(truth, sim).Simulate(u, dt);
-  ChainFitCase c{MakeRecording(u, y + Noise(y.size(), 7.4e-6, 42), dt), {}};
-  c.options.simulation = sim;
-  c.options.mechanical_initial = truth;
-  c.options.mechanical_initial.m_kg *= 1.25;
-  c.options.mechanical_initial.k_n_per_m *= 0.75;
-  c.options.mechanical_initial.gamma *= 0.75;
-  c.options.mechanical_initial_given = true;
-  c.options.starts = 2;
-  return c;
-}
-
-TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same fit",
-          "[hysteresis][bouc-wen][fit]") {
-  ChainFitCase c = MakeChainFitCase();
+// The fit of r with the exact Jacobian against the same fit by central differences: both
+// converge to the same minimum to Ceres' tolerances (1e-12 in the cost), far inside a standard
+// error; the standard errors agree to the differences' error (1e-7 relative, the sensitivity
+// tests) and the two optima's distance.
+void CheckExactAgreesWithCentralDifferences(BoucWenForm form, const Recording& r,
+                                            BoucWenFitOptions o) {
   HysteresisFitSummary exact_summary, fd_summary;
-  const auto exact = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &exact_summary);
-  c.options.jacobian = BoucWenJacobian::kCentralDifferences;
-  const auto fd = FitBoucWen(BoucWenForm::kMechanical, {c.recording}, c.options, &fd_summary);
+  const auto exact = FitBoucWen(form, {r}, o, &exact_summary);
+  o.jacobian = BoucWenJacobian::kCentralDifferences;
+  const auto fd = FitBoucWen(form, {r}, o, &fd_summary);
   CHECK(exact_summary.message.find("Jacobian by forward sensitivities") != std::string::npos);
   CHECK(fd_summary.message.find("Jacobian by central differences") != std::string::npos);
   const auto pe = exact->parameters(), pf = fd->parameters();
@@ -530,12 +518,15 @@ TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same
       CHECK(std::isnan(pf[i].std_error));
       continue;
     }
-    // Both converge to the same minimum to Ceres' tolerances (1e-12 in the cost): far inside
-    // a standard error. The standard errors agree to the differences' error (1e-7 relative,
-    // the sensitivity test) and the two optima's distance.
     CHECK(std::abs(pe[i].value - pf[i].value) <= 1e-3 * pe[i].std_error);
     CHECK(pe[i].std_error == Approx(pf[i].std_error).epsilon(1e-4));
   }
+}
+
+TEST_CASE("bouc-wen: the exact and the central-difference Jacobian give the same fit",
+          "[hysteresis][bouc-wen][fit]") {
+  const ChainFitCase c = MakeChainFitCase();
+  CheckExactAgreesWithCentralDifferences(BoucWenForm::kMechanical, c.recording, c.options);
 }
 
 TEST_CASE("bouc-wen: the fit's evaluation cache answers the last two points with a Jacobian",
@@ -696,17 +687,20 @@ TEST_CASE("bouc-wen: progress reports every iteration, a time bound stops the fi
   CHECK_THROWS_WITH(c.options.Validate(), Catch::Contains("max_time_s"));
 }
 
+// PiezoTruth on 3 s of PiezoInput at 1 kHz, with 20 nm of noise (a capacitive sensor's).
+Recording PiezoRecording() {
+  const double dt = 1e-3;
+  const Eigen::VectorXd u = PiezoInput(3000, dt);
+  const Eigen::VectorXd y = PiezoBoucWen(PiezoTruth()).Simulate(u, dt);
+  return MakeRecording(u, y + Noise(y.size(), 2e-8, 7), dt);
+}
+
 TEST_CASE("bouc-wen-piezo: the fit recovers d, alpha, beta, gamma and the offset",
           "[hysteresis][bouc-wen][fit]") {
   const PiezoBoucWenParameters truth = PiezoTruth();
-  const double dt = 1e-3;
-  // Decaying loops of several amplitudes (a sine sweep down in amplitude), 0..60 V.
-  const Eigen::VectorXd u = PiezoInput(3000, dt);
-  const Eigen::VectorXd y = PiezoBoucWen(truth).Simulate(u, dt);
-  const Eigen::VectorXd x = y + Noise(y.size(), 2e-8, 7);  // 20 nm: a capacitive sensor's noise
   BoucWenFitOptions o;  // the automatic start: the straight line and a mild loop
   HysteresisFitSummary summary;
-  const auto model = FitBoucWen(BoucWenForm::kPiezo, {MakeRecording(u, x, dt)}, o, &summary);
+  const auto model = FitBoucWen(BoucWenForm::kPiezo, {PiezoRecording()}, o, &summary);
   INFO(summary.message);
   CHECK(model->kind() == "bouc-wen-piezo");
   CHECK(summary.training_rms == Approx(2e-8).epsilon(0.05));  // the noise, 3000 samples
@@ -716,25 +710,7 @@ TEST_CASE("bouc-wen-piezo: the fit recovers d, alpha, beta, gamma and the offset
 
 TEST_CASE("bouc-wen-piezo: the exact and the central-difference Jacobian give the same fit",
           "[hysteresis][bouc-wen][fit]") {
-  const PiezoBoucWenParameters truth = PiezoTruth();
-  const double dt = 1e-3;
-  const Eigen::VectorXd u = PiezoInput(3000, dt);
-  const Eigen::VectorXd y = PiezoBoucWen(truth).Simulate(u, dt);
-  const Recording r = MakeRecording(u, y + Noise(y.size(), 2e-8, 7), dt);
-  BoucWenFitOptions o;
-  HysteresisFitSummary exact_summary, fd_summary;
-  const auto exact = FitBoucWen(BoucWenForm::kPiezo, {r}, o, &exact_summary);
-  o.jacobian = BoucWenJacobian::kCentralDifferences;
-  const auto fd = FitBoucWen(BoucWenForm::kPiezo, {r}, o, &fd_summary);
-  CHECK(exact_summary.message.find("Jacobian by forward sensitivities") != std::string::npos);
-  CHECK(fd_summary.message.find("Jacobian by central differences") != std::string::npos);
-  const auto pe = exact->parameters(), pf = fd->parameters();
-  for (size_t i = 0; i < pe.size(); ++i) {
-    INFO(pe[i].name << ": " << pe[i].value << " +- " << pe[i].std_error << " against "
-                    << pf[i].value << " +- " << pf[i].std_error);
-    CHECK(std::abs(pe[i].value - pf[i].value) <= 1e-3 * pe[i].std_error);
-    CHECK(pe[i].std_error == Approx(pf[i].std_error).epsilon(1e-4));
-  }
+  CheckExactAgreesWithCentralDifferences(BoucWenForm::kPiezo, PiezoRecording(), {});
 }
 
 TEST_CASE("bouc-wen: fit options are checked", "[hysteresis][bouc-wen][fit]") {
