@@ -224,6 +224,7 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::ScaledVariable>("ScaledVariable");
   CheckRoundTrip<sysid::IrreducibleError>("IrreducibleError");
   CheckRoundTrip<sysid::HysteresisParameter>("HysteresisParameter");
+  CheckRoundTrip<sysid::HysteresisFitSummary>("HysteresisFitSummary");
   CheckRoundTrip<sysid::BoucWenSimulationOptions>("BoucWenSimulationOptions");
   CheckRoundTrip<sysid::MechanicalBoucWenParameters>("MechanicalBoucWenParameters");
   CheckRoundTrip<sysid::PiezoBoucWenParameters>("PiezoBoucWenParameters");

@@ -40,6 +40,16 @@ struct HysteresisFitSummary {
   double training_rms = 0;          ///< RMS of y_model - y on the training samples, in y's unit
   bool converged = true;
   std::string message;              ///< why the fit stopped; warnings (ill-conditioning, bounds)
+  /// `hysteresis fit --json`'s keys before the model's parameters (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(kind));
+    a->Visit(SYSID_NVP(samples).Minimum(0));
+    a->Visit(SYSID_NVP(fit_time_s).Minimum(0));
+    a->Visit(NameValue<double>("training_rms_m", &training_rms).NaNAsNull());
+    a->Visit(SYSID_NVP(converged));
+    a->Visit(SYSID_NVP(message));
+  }
 };
 
 /// A model's inverse run causally, one sample at a time, as a real-time controller runs it:

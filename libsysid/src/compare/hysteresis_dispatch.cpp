@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/json_fields.hpp"
 #include "core/json_text.hpp"
 #include "core/option_rule.hpp"
 #include "sysid/compare_hysteresis.hpp"
@@ -85,18 +86,10 @@ std::unique_ptr<HysteresisModel> ReadHysteresisModel(const std::string& path) {
 
 std::string HysteresisFitSummaryJson(const HysteresisFitSummary& s, const HysteresisModel& model,
                                      int indent) {
-  using internal::NumberOrNull;
-  nlohmann::ordered_json j;
-  j["kind"] = s.kind;
-  j["samples"] = s.samples;
-  j["fit_time_s"] = s.fit_time_s;
-  j["training_rms_m"] = NumberOrNull(s.training_rms);
-  j["converged"] = s.converged;
-  j["message"] = s.message;
+  // The summary's fields, then the model's parameters table (both described).
+  nlohmann::ordered_json j = internal::WriteFields(s);
   nlohmann::ordered_json params = nlohmann::ordered_json::array();
-  for (const auto& p : model.parameters())
-    params.push_back({{"name", p.name}, {"unit", p.unit}, {"value", NumberOrNull(p.value)},
-                      {"std_error", NumberOrNull(p.std_error)}});
+  for (const auto& p : model.parameters()) params.push_back(internal::WriteFields(p));
   j["parameters"] = params;
   return internal::DumpJson(j, indent);
 }
