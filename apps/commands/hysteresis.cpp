@@ -147,6 +147,7 @@ void RunFit(const HysteresisCli& o) {
                           {"starts", "--starts"},
                           {"threads", "--threads"},
                           {"max_time_s", "--max-time"},
+                          {"start_rtol", "--start-rtol"},
                           {"fixed_step_tolerance", "--step-tolerance"}});
     }
   }
@@ -312,6 +313,12 @@ void AddFitSubcommand(CLI::App& h, const std::shared_ptr<HysteresisCli>& o) {
       ->capture_default_str();
   fit->add_option("--starts", o->options.bouc_wen.starts,
                   "bouc-wen, bouc-wen-piezo: starting points (1..64)")
+      ->capture_default_str();
+  fit->add_option("--start-rtol", o->options.bouc_wen.start_rtol,
+                  "bouc-wen by CVODE with sensitivities: the CVODE relative tolerance of the "
+                  "starts' iterations; the best start continues at the fit's 1e-9 (1e-9 <= R <= "
+                  "1e-2; 1e-9: no screening)")
+      ->type_name("R")
       ->capture_default_str();
   fit->add_option("--jacobian", o->jacobian,
                   "bouc-wen, bouc-wen-piezo: how the fit differentiates the simulation: "
