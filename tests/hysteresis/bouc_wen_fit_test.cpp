@@ -540,7 +540,7 @@ TEST_CASE("bouc-wen: the fit's evaluation cache answers the last two points with
   o.simulation.integrator = BoucWenIntegrator::kCvode;
   o.simulation.input = InputInterpolation::kLinear;
   const Eigen::VectorXd y = MechanicalBoucWen({}, o.simulation).Simulate(u, dt);
-  const std::vector<bw::Series> data = {{u, y, dt, {}}};
+  const std::vector<bw::Series> data = {{u, y, dt, {}, {}}};
   const bw::Layout layout = bw::MakeLayout(BoucWenForm::kMechanical, data, o);
   const int np = static_cast<int>(layout.free.size());
   const Eigen::Index n = u.size();

@@ -65,12 +65,19 @@ int MechanicalSensitivityRhs(int count, double, N_Vector x, N_Vector dx, N_Vecto
 void MechanicalCvode(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& u, double dt_s,
                      const BoucWenSimulationOptions& o, const std::vector<int>& which,
                      Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp) {
+  MechanicalCvode(p, SampledInput(u, dt_s, o.input), o, which, y, dy_dp);
+}
+
+void MechanicalCvode(const MechanicalBoucWenParameters& p, const SampledInput& input,
+                     const BoucWenSimulationOptions& o, const std::vector<int>& which,
+                     Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp) {
+  const Eigen::VectorXd& u = input.samples();
+  const double dt_s = input.dt_s();
   const Eigen::Index n = u.size();
   *y = Eigen::VectorXd::Zero(n);
   const int ns = static_cast<int>(which.size());
   if (ns > 0) *dy_dp = Eigen::MatrixXd::Zero(n, kMechanicalParameters);
   if (n == 0) return;
-  const SampledInput input(u, dt_s, o.input);
   MechanicalOde ode{&p, &input, 0, &which, false};
   for (int q : which) ode.with_nu = ode.with_nu || q == 7;
   const double x0[3] = {0, 0, 0};
@@ -92,7 +99,7 @@ void MechanicalCvode(const MechanicalBoucWenParameters& p, const Eigen::VectorXd
     for (int q : which) scales.push_back(std::max(std::abs(values[q]), 1e-300));
     solver.EnableSensitivities(ns, MechanicalSensitivityRhs, scales.data(), false);
   }
-  const bool smooth = o.input == InputInterpolation::kBandLimited;
+  const bool smooth = input.how() == InputInterpolation::kBandLimited;
   double t = 0;
   for (Eigen::Index k = 0; k + 1 < n; ++k) {
     const double t_next = static_cast<double>(k + 1) * dt_s;

@@ -46,7 +46,7 @@ std::vector<Series> ReadSeries(BoucWenForm form, const std::vector<Recording>& r
   for (const auto& r : recordings) {
     if (r.rows() < 3)
       throw InputError(fmt::format("{}: {} samples: a fit needs at least 3", r.source, r.rows()));
-    Series s{r.column("u"), r.column("x"), UniformSampleInterval(r, 1e-3), {}};
+    Series s{r.column("u"), r.column("x"), UniformSampleInterval(r, 1e-3), {}, {}};
     for (Eigen::Index i = 0; i < s.u.size(); ++i)
       if (!std::isfinite(s.u[i]) || !std::isfinite(s.x[i]))
         throw InputError(fmt::format("{}:{}: column '{}': expected a finite number", r.source,
@@ -92,8 +92,7 @@ std::string ChooseInput(const std::vector<Series>& data, Layout* layout) {
   std::string refused;
   if (band_limited && layout->sim.integrator == BoucWenIntegrator::kCvode) {
     try {
-      for (const auto& s : data)
-        internal::SampledInput(s.u, s.dt_s, InputInterpolation::kBandLimited);
+      for (const auto& s : data) internal::SampledInput::GridPerSample(s.u, s.dt_s);
     } catch (const InputError& e) {
       refused = fmt::format("; CVODE refuses it: {}", e.what());
       band_limited = false;
@@ -127,6 +126,21 @@ std::string ResolveAuto(BoucWenForm form, const std::vector<Series>& data, Layou
             ? BoucWenIntegrator::kFixedStep
             : BoucWenIntegrator::kCvode;
   return note;
+}
+
+// The CVODE simulations' input, built once per recording when the fit simulates by CVODE
+// (Series::input); InputError naming the recording where CVODE refuses it.
+void ShareCvodeInputs(const std::vector<Recording>& recordings, const Layout& layout,
+                      std::vector<Series>* data) {
+  if (!layout.SimulatedByCvode()) return;
+  for (size_t i = 0; i < data->size(); ++i) {
+    Series& s = (*data)[i];
+    try {
+      s.input = std::make_shared<const internal::SampledInput>(s.u, s.dt_s, layout.sim.input);
+    } catch (const InputError& e) {
+      throw InputError(recordings[i].source + ": " + e.what());
+    }
+  }
 }
 
 // The fixed step's steps per sample m: the fine inputs at m (the work bound checked first: a
@@ -407,6 +421,7 @@ std::unique_ptr<HysteresisModel> FitBoucWen(BoucWenForm form,
   std::vector<Series> data = ReadSeries(form, recordings, options, &n);
   Layout layout = internal::bouc_wen_fit::MakeLayout(form, data, options);
   const std::string input_note = ResolveAuto(form, data, &layout);
+  ShareCvodeInputs(recordings, layout, &data);
   const bool fixed_step = form == BoucWenForm::kMechanical &&
                           layout.sim.integrator == BoucWenIntegrator::kFixedStep;
   const bool exact = options.jacobian == BoucWenJacobian::kSensitivities &&

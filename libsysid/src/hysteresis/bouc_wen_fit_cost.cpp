@@ -13,8 +13,18 @@ namespace sysid::internal::bouc_wen_fit {
 
 namespace {
 
-// The model's y at a recording's samples, from its fine input when the fit keeps one.
+// The model's y at a recording's samples, from its fine input or its CVODE input when the fit
+// keeps one (Simulate's result to the bit).
 Eigen::VectorXd SimulateSeries(const Layout& l, const HysteresisModel& model, const Series& s) {
+  if (s.input && l.form == BoucWenForm::kPiezo)
+    return internal::PiezoCvode(static_cast<const PiezoBoucWen&>(model).values(), *s.input,
+                                l.sim.rtol);
+  if (s.input) {
+    Eigen::VectorXd y;
+    internal::MechanicalCvode(static_cast<const MechanicalBoucWen&>(model).values(), *s.input,
+                              l.sim, {}, &y, nullptr);
+    return y;
+  }
   if (s.fine_u.size() == 0) return model.Simulate(s.u, s.dt_s);
   const auto& p = static_cast<const MechanicalBoucWen&>(model).values();
   if (l.sim.integrator == BoucWenIntegrator::kBenchmarkChain)
@@ -187,6 +197,8 @@ bool OutputError::ResidualsAndSensitivities(const double* x, double* residuals,
     try {
       if (l_->form == BoucWenForm::kPiezo)
         internal::PiezoOutputSensitivity(z, s.u, &y, &dy);
+      else if (l_->sim.integrator == BoucWenIntegrator::kCvode && s.input)
+        internal::MechanicalCvode(m, *s.input, l_->sim, l_->free, &y, &dy);
       else if (l_->sim.integrator == BoucWenIntegrator::kCvode)
         internal::MechanicalCvode(m, s.u, s.dt_s, l_->sim, l_->free, &y, &dy);
       else if (l_->sim.integrator == BoucWenIntegrator::kBenchmarkChain)

@@ -32,6 +32,10 @@ struct Series {
   // parameters, and recomputing it (for the chain an FFT of 20 n points) was a fifth of every
   // simulation. Empty otherwise.
   Eigen::VectorXd fine_u;
+  // The CVODE simulations' input between samples (u, dt_s and the layout's input), when the fit
+  // simulates by CVODE: a band-limited input's table (two inverse FFTs of n L points) is built
+  // once here instead of at every simulation and CVODES pass. Null otherwise.
+  std::shared_ptr<const SampledInput> input;
 };
 
 /// The parameters as one vector: mechanical m, c, k, alpha, beta, gamma, delta, nu; piezo d,

@@ -23,18 +23,33 @@ void CheckSamples(const Eigen::VectorXd& v, double dt_s, const char* kind, const
 }
 
 SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how,
-                           double max_line_work)
+                           double max_line_work, double max_table_values)
     : u_(u), dt_(dt_s), how_(how) {
   if (how_ != InputInterpolation::kBandLimited || u.size() < 2) return;
+  CheckBandLimitedWork(u.size(), "bouc-wen");
+  s_ = Spectrum(u, dt_s);
+  fine_ = Grid(s_, u.size(), dt_s, max_line_work, max_table_values, &grid_error_bound_);
+  if (fine_ > 0) Tabulate();
+}
+
+int SampledInput::GridPerSample(const Eigen::VectorXd& u, double dt_s, double max_line_work,
+                                double max_table_values) {
+  if (u.size() < 2) return 0;
+  CheckBandLimitedWork(u.size(), "bouc-wen");
+  double bound = 0;
+  return Grid(Spectrum(u, dt_s), u.size(), dt_s, max_line_work, max_table_values, &bound);
+}
+
+SampledInput::Lines SampledInput::Spectrum(const Eigen::VectorXd& u, double dt_s) {
   const Eigen::Index n = u.size();
-  CheckBandLimitedWork(n, "bouc-wen");
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> in(static_cast<size_t>(n)), x;
   for (Eigen::Index i = 0; i < n; ++i) in[static_cast<size_t>(i)] = u[i];
   fft.fwd(x, in);
   const double nd = static_cast<double>(n);
-  mean_ = x[0].real() / nd;
-  omega_ = 2 * M_PI / (nd * dt_s);
+  Lines s;
+  s.mean = x[0].real() / nd;
+  s.omega = 2 * M_PI / (nd * dt_s);
   double largest = 0;
   for (const auto& c : x) largest = std::max(largest, std::abs(c));
   const Eigen::Index top = n / 2;
@@ -43,48 +58,55 @@ SampledInput::SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpola
     if (2 * j == n) c *= 0.5;  // the Nyquist line: half of it on each side
     // Lines below 1e-15 of the largest are rounding noise of the FFT.
     if (std::abs(c) * nd <= 1e-15 * largest) continue;
-    lines_.push_back(static_cast<int>(j));
-    coeff_.push_back(c);
+    s.line.push_back(static_cast<int>(j));
+    s.coeff.push_back(c);
   }
-  // Each evaluation of the sum costs every kept line, and CVODE evaluates a few to hundreds of
-  // times a sample: lines x samples is the work's scale (4000 samples, 2000 lines: 9 s).
-  if (!lines_.empty() && static_cast<double>(lines_.size()) * nd > max_line_work) Tabulate();
+  return s;
 }
 
 // The grid: the smallest power of two L of points per sample whose Hermite bound is within
-// kBandLimitedGridTolerance A; u, u' and u'' at the n L points of one period are inverse FFTs of
-// the lines placed at their harmonic numbers (with their conjugates at n L - l, so the
-// transforms are real): one transform gives u + i u', a second u''.
-void SampledInput::Tabulate() {
-  const Eigen::Index n = u_.size();
+// kBandLimitedGridTolerance A.
+int SampledInput::Grid(const Lines& s, Eigen::Index n, double dt_s, double max_line_work,
+                       double max_table_values, double* bound_out) {
+  *bound_out = 0;
+  // Each evaluation of the sum costs every kept line, and CVODE evaluates a few to hundreds of
+  // times a sample: lines x samples is the work's scale (4000 samples, 2000 lines: 9 s).
+  if (s.line.empty() || static_cast<double>(s.line.size()) * static_cast<double>(n) <= max_line_work)
+    return 0;
   // A = sum |2 c_j| and |u^(6)| <= M6 = sum |2 c_j| w_j^6: the lines' own weights, so that
   // rounding-level lines near the Nyquist frequency do not refine the grid.
   double amplitude = 0, m6 = 0;
-  for (size_t j = 0; j < lines_.size(); ++j) {
-    const double a = 2 * std::abs(coeff_[j]);
+  for (size_t j = 0; j < s.line.size(); ++j) {
+    const double a = 2 * std::abs(s.coeff[j]);
     amplitude += a;
-    m6 += a * std::pow(omega_ * lines_[j], 6);
+    m6 += a * std::pow(s.omega * s.line[j], 6);
   }
-  auto bound = [&](int points) { return std::pow(dt_ / points, 6) * m6 / 46080; };
+  auto bound = [&](int points) { return std::pow(dt_s / points, 6) * m6 / 46080; };
   int L = 2;
   while (L < kMaxGridPerSample && bound(L) > kBandLimitedGridTolerance * amplitude) L *= 2;
   const double points = static_cast<double>(n) * L;
-  if (3 * points > kMaxSignalSamples || FftWork(n * L) > kMaxFftWork)
+  if (3 * points > max_table_values || FftWork(n * L) > kMaxFftWork)
     throw InputError(fmt::format(
         "bouc-wen: the band-limited input of {} samples ({} spectral lines) would be tabulated "
         "at {} points a sample: 3 values (u, u', u'') at {:.4g} points, more than the {:.0e} a "
         "simulation may hold (kMaxSignalSamples), or an FFT of more than {:.0e} operations "
         "(kMaxFftWork); use the linear or held input, or a shorter recording",
-        n, lines_.size(), L, points, kMaxSignalSamples, kMaxFftWork));
-  fine_ = L;
-  grid_error_bound_ = bound(L);
-  const Eigen::Index N = n * L;
+        n, s.line.size(), L, points, max_table_values, kMaxFftWork));
+  *bound_out = bound(L);
+  return L;
+}
+
+// u, u' and u'' at the n L points of one period are inverse FFTs of the lines placed at their
+// harmonic numbers (with their conjugates at n L - l, so the transforms are real): one transform
+// gives u + i u', a second u''.
+void SampledInput::Tabulate() {
+  const Eigen::Index N = u_.size() * fine_;
   std::vector<std::complex<double>> first(static_cast<size_t>(N)), second(first.size()), out;
   const std::complex<double> i(0, 1);
-  for (size_t j = 0; j < lines_.size(); ++j) {
-    const auto l = static_cast<size_t>(lines_[j]);
-    const double w = omega_ * lines_[j];
-    const std::complex<double> c = coeff_[j], dc = i * w * c, d2c = -w * w * c;
+  for (size_t j = 0; j < s_.line.size(); ++j) {
+    const auto l = static_cast<size_t>(s_.line[j]);
+    const double w = s_.omega * s_.line[j];
+    const std::complex<double> c = s_.coeff[j], dc = i * w * c, d2c = -w * w * c;
     // 2 Re(a e^(i w l t)) is the pair (a at l, conj(a) at N - l); u and u' share a transform
     // as its real and imaginary parts.
     first[l] += c + i * dc;
@@ -97,7 +119,7 @@ void SampledInput::Tabulate() {
   grid_.resize(static_cast<size_t>(3 * N));
   fft.inv(out, first);
   for (Eigen::Index m = 0; m < N; ++m) {
-    grid_[static_cast<size_t>(3 * m)] = mean_ + out[static_cast<size_t>(m)].real();
+    grid_[static_cast<size_t>(3 * m)] = s_.mean + out[static_cast<size_t>(m)].real();
     grid_[static_cast<size_t>(3 * m + 1)] = out[static_cast<size_t>(m)].imag();
   }
   fft.inv(out, second);
@@ -119,8 +141,8 @@ void SampledInput::Evaluate(double t, Eigen::Index k, double* u, double* du) con
     *du = slope;
     return;
   }
-  if (lines_.empty()) {
-    *u = mean_;
+  if (s_.line.empty()) {
+    *u = s_.mean;
     *du = 0;
     return;
   }
@@ -146,17 +168,17 @@ void SampledInput::Evaluate(double t, Eigen::Index k, double* u, double* du) con
     *du = (a[0] - b[0]) * g0 / h + a[1] * g1 + b[1] * g4 + h * (a[2] * g2 + b[2] * g3);
     return;
   }
-  const std::complex<double> step = std::polar(1.0, omega_ * t);
-  std::complex<double> p = std::polar(1.0, omega_ * lines_[0] * t);
-  int at = lines_[0];
+  const std::complex<double> step = std::polar(1.0, s_.omega * t);
+  std::complex<double> p = std::polar(1.0, s_.omega * s_.line[0] * t);
+  int at = s_.line[0];
   double su = 0, sdu = 0;
-  for (size_t j = 0; j < lines_.size(); ++j) {
-    for (; at < lines_[j]; ++at) p *= step;
-    const std::complex<double> cp = coeff_[j] * p;
+  for (size_t j = 0; j < s_.line.size(); ++j) {
+    for (; at < s_.line[j]; ++at) p *= step;
+    const std::complex<double> cp = s_.coeff[j] * p;
     su += cp.real();
-    sdu -= omega_ * lines_[j] * cp.imag();  // Re(i w l c p) = -w l Im(c p)
+    sdu -= s_.omega * s_.line[j] * cp.imag();  // Re(i w l c p) = -w l Im(c p)
   }
-  *u = mean_ + 2 * su;
+  *u = s_.mean + 2 * su;
   *du = 2 * sdu;
 }
 

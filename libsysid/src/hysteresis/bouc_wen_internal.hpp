@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid::internal {
 
@@ -32,32 +33,52 @@ inline constexpr int kMaxGridPerSample = 1024;
 /// evaluated by quintic Hermite interpolation, whose error is at most
 /// h^6 M6 / 46080 <= kBandLimitedGridTolerance A (h the grid's step, A = sum of the lines'
 /// amplitudes a_j, M6 = sum a_j w_j^6 >= |u^(6)| with w_j a line's angular frequency: Hermite's
-/// remainder).
+/// remainder). The table's 3 n fine() values are bounded by `max_table_values` (InputError before
+/// they are allocated). A table depends on u, dt_s and `how` alone: a fit builds it once per
+/// recording and hands it to every simulation (the MechanicalCvode and PiezoCvode overloads).
 class SampledInput {
  public:
   SampledInput(const Eigen::VectorXd& u, double dt_s, InputInterpolation how,
-               double max_line_work = kMaxBandLimitedWork);
+               double max_line_work = kMaxBandLimitedWork,
+               double max_table_values = kMaxSignalSamples);
+  /// fine() of a band-limited SampledInput of u, without tabulating (one forward FFT of u): the
+  /// constructor's rule, with its InputError where the constructor would refuse the table.
+  static int GridPerSample(const Eigen::VectorXd& u, double dt_s,
+                           double max_line_work = kMaxBandLimitedWork,
+                           double max_table_values = kMaxSignalSamples);
   /// u [input unit] and its time derivative at t [s], inside the sample interval
   /// [t_k, t_k+1] (held and linear inputs use interval k's formula even at its ends, so a
   /// solver stopping at t_k+1 sees no jump).
   void Evaluate(double t_s, Eigen::Index k, double* u, double* du) const;
   InputInterpolation how() const { return how_; }
+  /// The samples u_k [input unit] and their spacing [s], as given to the constructor.
+  const Eigen::VectorXd& samples() const { return u_; }
+  double dt_s() const { return dt_; }
   /// Grid points per sample of the tabulated band-limited input (the smallest power of two
-/// within the tolerance); 0 when the lines are summed.
+  /// within the tolerance); 0 when the lines are summed.
   int fine() const { return fine_; }
   /// [input unit] The bound on the tabulated input's error stated above; 0 when not tabulated.
   double grid_error_bound() const { return grid_error_bound_; }
 
  private:
+  // The interpolant's kept lines: u(t) = mean + sum 2 Re(coeff_j e^(i omega line_j t)).
+  struct Lines {
+    double mean = 0;
+    double omega = 0;                         // [rad/s] 2 pi / (n dt)
+    std::vector<int> line;                    // harmonic numbers kept
+    std::vector<std::complex<double>> coeff;
+  };
+  static Lines Spectrum(const Eigen::VectorXd& u, double dt_s);
+  // The grid points per sample for the lines of n samples (0: summed) and *bound, the Hermite
+  // bound there; InputError past max_table_values or kMaxFftWork.
+  static int Grid(const Lines& s, Eigen::Index n, double dt_s, double max_line_work,
+                  double max_table_values, double* bound);
   void Tabulate();
 
   Eigen::VectorXd u_;
   double dt_;
   InputInterpolation how_;
-  double mean_ = 0;
-  std::vector<int> lines_;                   // harmonic numbers kept
-  std::vector<std::complex<double>> coeff_;  // u(t) = mean + sum 2 Re(c_j e^(i w l_j t))
-  double omega_ = 0;                         // [rad/s] 2 pi / (n dt)
+  Lines s_;
   int fine_ = 0;
   double grid_error_bound_ = 0;
   std::vector<double> grid_;  // (u, u' [1/s], u'' [1/s^2]) at each grid point, one period
@@ -246,6 +267,16 @@ void FixedStepOutputSensitivity(const MechanicalBoucWenParameters& p, const Eige
 void MechanicalCvode(const MechanicalBoucWenParameters& p, const Eigen::VectorXd& u, double dt_s,
                      const BoucWenSimulationOptions& o, const std::vector<int>& which,
                      Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
+/// The same on a SampledInput built beforehand (u, dt_s and the input between samples are its
+/// own; `o.input` is not read): the result is the overload above's to the bit when `input` is
+/// SampledInput(u, dt_s, o.input).
+void MechanicalCvode(const MechanicalBoucWenParameters& p, const SampledInput& input,
+                     const BoucWenSimulationOptions& o, const std::vector<int>& which,
+                     Eigen::VectorXd* y, Eigen::MatrixXd* dy_dp);
+
+/// The piezo form by CVODE (Adams, `rtol`; PiezoBoucWen::SimulateCvode's, which builds `input`
+/// with a held input taken linear): y [m] at the samples [V] of `input`, from h = 0.
+Eigen::VectorXd PiezoCvode(const PiezoBoucWenParameters& p, const SampledInput& input, double rtol);
 
 /// Throws InputError, before any allocation, when the fixed step over `rows` samples would take
 /// more than kMaxSignalSamples steps, or its band-limited input's FFT more than kMaxFftWork.

@@ -62,6 +62,40 @@ int PiezoRhs(double t, N_Vector x, N_Vector dx, void* data) {
 
 }  // namespace
 
+namespace internal {
+
+Eigen::VectorXd PiezoCvode(const PiezoBoucWenParameters& p, const SampledInput& input,
+                           double rtol) {
+  const Eigen::VectorXd& u = input.samples();
+  const double dt_s = input.dt_s();
+  const InputInterpolation how = input.how();
+  const Eigen::Index n = u.size();
+  Eigen::VectorXd y(n);
+  if (n == 0) return y;
+  PiezoOde ode{&p, &input, 0};
+  const double h0 = 0;
+  CvodeSolver solver(1, CvodeSolver::Method::kAdams, PiezoRhs, &ode, 0, &h0,
+                     "bouc-wen-piezo simulation", "check the parameters");
+  const double hs = p.d_m_per_v * std::max(u.cwiseAbs().maxCoeff(), 1e-300);
+  const double atol = 1e-3 * rtol * hs;
+  solver.SetTolerances(rtol, &atol);
+  solver.SetMaxNumSteps(1000000);
+  double t = 0;
+  y[0] = p.d_m_per_v * u[0] + p.offset_m;
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const double t_next = static_cast<double>(k + 1) * dt_s;
+    ode.interval = k;
+    if (how != InputInterpolation::kBandLimited) solver.SetStopTime(t_next);
+    solver.Check(solver.Advance(t_next, &t, CV_NORMAL), "CVode");
+    y[k + 1] = p.d_m_per_v * u[k + 1] - solver.state()[0] + p.offset_m;
+    // u' jumps at every sample of a linear input, and with it h': restart there.
+    if (how != InputInterpolation::kBandLimited) solver.ReInit(t_next);
+  }
+  return y;
+}
+
+}  // namespace internal
+
 PiezoBoucWen::PiezoBoucWen(const PiezoBoucWenParameters& p, const BoucWenSimulationOptions& options,
                            std::vector<double> std_errors)
     : p_(p), options_(options), std_errors_(std::move(std_errors)) {
@@ -91,34 +125,11 @@ Eigen::VectorXd PiezoBoucWen::Simulate(const Eigen::VectorXd& u, double dt_s) co
 
 Eigen::VectorXd PiezoBoucWen::SimulateCvode(const Eigen::VectorXd& u, double dt_s) const {
   internal::CheckSamples(u, dt_s, "bouc-wen-piezo", "u");
-  const Eigen::Index n = u.size();
-  Eigen::VectorXd y(n);
-  if (n == 0) return y;
   // A held input moves along the same straight segment as a linear one, only instantly: the
   // rate-independent model cannot tell them apart.
   const InputInterpolation how =
       options_.input == InputInterpolation::kHold ? InputInterpolation::kLinear : options_.input;
-  const internal::SampledInput input(u, dt_s, how);
-  PiezoOde ode{&p_, &input, 0};
-  const double h0 = 0;
-  internal::CvodeSolver solver(1, internal::CvodeSolver::Method::kAdams, PiezoRhs, &ode, 0, &h0,
-                               "bouc-wen-piezo simulation", "check the parameters");
-  const double hs = p_.d_m_per_v * std::max(u.cwiseAbs().maxCoeff(), 1e-300);
-  const double atol = 1e-3 * options_.rtol * hs;
-  solver.SetTolerances(options_.rtol, &atol);
-  solver.SetMaxNumSteps(1000000);
-  double t = 0;
-  y[0] = p_.d_m_per_v * u[0] + p_.offset_m;
-  for (Eigen::Index k = 0; k + 1 < n; ++k) {
-    const double t_next = static_cast<double>(k + 1) * dt_s;
-    ode.interval = k;
-    if (how != InputInterpolation::kBandLimited) solver.SetStopTime(t_next);
-    solver.Check(solver.Advance(t_next, &t, CV_NORMAL), "CVode");
-    y[k + 1] = p_.d_m_per_v * u[k + 1] - solver.state()[0] + p_.offset_m;
-    // u' jumps at every sample of a linear input, and with it h': restart there.
-    if (how != InputInterpolation::kBandLimited) solver.ReInit(t_next);
-  }
-  return y;
+  return internal::PiezoCvode(p_, internal::SampledInput(u, dt_s, how), options_.rtol);
 }
 
 bool PiezoBoucWen::invertible() const {
