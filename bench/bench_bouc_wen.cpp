@@ -22,7 +22,12 @@
 //     pass of CVODES with the sensitivities of the fit's six default free parameters (m, c, k,
 //     alpha, gamma, delta; internal::MechanicalCvode), best CPU of R; central differences cost 13
 //     simulations. Prints a "cvode-jacobian ..." line (with a band-limited input: its table's grid
-//     points per sample and error bound, 0 when the lines are summed).
+//     points per sample and error bound, 0 when the lines are summed), each pass building its own
+//     input as a standalone simulation does; then a "cvode-jacobian-shared-input ..." line: the
+//     input (a band-limited input's table) built once, best CPU of R, and the same two passes on
+//     it as the fit runs them, their outputs compared with the others bit for bit (exit 1 if not);
+//     with a band-limited input a "cvode-jacobian-auto-rule ..." line: the fit's --input auto
+//     check of the table's bound (SampledInput::GridPerSample, no table) against building it.
 //   bench_bouc_wen fixed-step REC.csv
 //     The Newmark/trapezoidal step (the chain's) on the input linear between samples, 5 to 80
 //     substeps per sample, against CVODE at rtol 1e-12 on REC's u (true parameters): max and
@@ -36,6 +41,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -232,27 +238,69 @@ int CvodeJacobianCommand(const std::vector<std::string>& args) {
   const Eigen::VectorXd u = rec.column("u");
   const double dt = rec.column("t")[1] - rec.column("t")[0];
   const sysid::MechanicalBoucWenParameters p;  // the benchmark's true system
-  auto best_cpu = [&](const std::vector<int>& which) {
+  using sysid::internal::SampledInput;
+  auto cpu_since = [](std::clock_t t0) {
+    return static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+  };
+  // The input between samples (a band-limited input's table) built once, as the fit does.
+  double table = 1e300;
+  std::unique_ptr<SampledInput> input;
+  for (int r = 0; r < repeats; ++r) {
+    input.reset();
+    const std::clock_t t0 = std::clock();
+    input = std::make_unique<SampledInput>(u, dt, o.input);
+    table = std::min(table, cpu_since(t0));
+  }
+  // The fit's --input auto rule: the table's size and bound without the table.
+  double rule = 1e300;
+  int rule_grid = 0;
+  if (o.input == InputInterpolation::kBandLimited)
+    for (int r = 0; r < repeats; ++r) {
+      const std::clock_t t0 = std::clock();
+      rule_grid = SampledInput::GridPerSample(u, dt);
+      rule = std::min(rule, cpu_since(t0));
+    }
+  // One pass, best CPU of R: `shared` on the table built above, else building its own.
+  Eigen::VectorXd y_own, y_shared;
+  Eigen::MatrixXd dy_own, dy_shared;
+  auto best_cpu = [&](const std::vector<int>& which, bool shared) {
     double best = 1e300;
     for (int r = 0; r < repeats; ++r) {
-      Eigen::VectorXd y;
-      Eigen::MatrixXd dy;
+      Eigen::VectorXd& y = shared ? y_shared : y_own;
+      Eigen::MatrixXd& dy = shared ? dy_shared : dy_own;
       const std::clock_t t0 = std::clock();
-      sysid::internal::MechanicalCvode(p, u, dt, o, which, &y, &dy);
-      best = std::min(best, static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC);
+      if (shared)
+        sysid::internal::MechanicalCvode(p, *input, o, which, &y, &dy);
+      else
+        sysid::internal::MechanicalCvode(p, u, dt, o, which, &y, &dy);
+      best = std::min(best, cpu_since(t0));
     }
     return best;
   };
-  const double simulation = best_cpu({});
-  const double jacobian = best_cpu({0, 1, 2, 3, 5, 6});
-  const sysid::internal::SampledInput input(u, dt, o.input);
+  const double simulation = best_cpu({}, false);
+  const double shared_simulation = best_cpu({}, true);
+  const bool simulation_same = y_own == y_shared;
+  const std::vector<int> six = {0, 1, 2, 3, 5, 6};
+  const double jacobian = best_cpu(six, false);
+  const double shared_jacobian = best_cpu(six, true);
+  const bool jacobian_same = y_own == y_shared && dy_own == dy_shared;
   fmt::print(
       "cvode-jacobian samples={} input={} rtol={:g} simulation_cpu_s={:.4f} "
       "sensitivities_cpu_s={:.4f} in_simulations={:.2f} central_differences_in_simulations=13 "
       "input_grid_per_sample={} input_grid_error_bound={:.3g}\n",
       u.size(), static_cast<int>(o.input), o.rtol, simulation, jacobian, jacobian / simulation,
-      input.fine(), input.grid_error_bound());
-  return 0;
+      input->fine(), input->grid_error_bound());
+  fmt::print(
+      "cvode-jacobian-shared-input input_table_cpu_s={:.4f} simulation_cpu_s={:.4f} "
+      "sensitivities_cpu_s={:.4f} sensitivities_ratio_own/shared={:.3f} identical={}\n",
+      table, shared_simulation, shared_jacobian, jacobian / shared_jacobian,
+      simulation_same && jacobian_same ? "yes" : "NO");
+  const bool rule_same = rule_grid == input->fine();
+  if (o.input == InputInterpolation::kBandLimited)
+    fmt::print("cvode-jacobian-auto-rule grid_rule_cpu_s={:.4f} grid_per_sample={} "
+               "table_cpu_s={:.4f} ratio_table/rule={:.1f} agrees={}\n",
+               rule, rule_grid, table, table / rule, rule_same ? "yes" : "NO");
+  return simulation_same && jacobian_same && rule_same ? 0 : 1;
 }
 
 // The Newmark/trapezoidal step on the linearly interpolated input, m substeps per sample and no
