@@ -5,6 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "support/test_support.hpp"
@@ -318,6 +320,94 @@ TEST_CASE("bouc-wen: the tabulated band-limited input is within its stated bound
     // = 1 / 13400 of it, with room for the mean-value point's own motion).
     const double h = dt / table.fine();
     CHECK(worst_du <= std::pow(h, 5) * m6 / 1920 + 1e-13 * w_top * lines_sum);
+  }
+}
+
+TEST_CASE("bouc-wen: the table's bound is checked without the table, on either side of it",
+          "[hysteresis][bouc-wen]") {
+  // SampledInput::GridPerSample (the fit's --input auto rule) against the constructor and
+  // against L from Hermite's remainder written out here; the table's bound lowered to 3 n L
+  // values (max_line_work 0 forces the table): 3 n L fit, 3 n L - 1 are refused, both ways.
+  const double dt = 1.0 / 750;
+  const Eigen::Index n = 256;
+  const int top = 60;
+  const double amplitude = 3.0;
+  const Eigen::VectorXd u = Multisine(n, dt, 2, top, amplitude);
+  const double w0 = 2 * M_PI / (static_cast<double>(n) * dt);
+  double m6 = 0;
+  for (int l = 2; l <= top; ++l) m6 += amplitude * std::pow(w0 * l, 6);
+  const double lines_sum = amplitude * (top - 1);
+  int L = 1;
+  do L *= 2;
+  while (std::pow(dt / L, 6) * m6 / 46080 > internal::kBandLimitedGridTolerance * lines_sum);
+  REQUIRE(L < internal::kMaxGridPerSample);
+  using internal::SampledInput;
+  const auto band = InputInterpolation::kBandLimited;
+  const double values = 3.0 * static_cast<double>(n) * L;
+  CHECK(SampledInput::GridPerSample(u, dt, 0.0, values) == L);
+  CHECK(SampledInput(u, dt, band, 0.0, values).fine() == L);
+  CHECK_THROWS_AS(SampledInput::GridPerSample(u, dt, 0.0, values - 1), InputError);
+  CHECK_THROWS_AS(SampledInput(u, dt, band, 0.0, values - 1), InputError);
+  CHECK_THROWS_WITH(SampledInput::GridPerSample(u, dt, 0.0, values - 1),
+                    Catch::Contains(std::to_string(L) + " points a sample"));
+  // The default bounds: 59 lines x 256 samples are summed, no table to bound.
+  CHECK(SampledInput::GridPerSample(u, dt) == 0);
+  CHECK(SampledInput(u, dt, band).fine() == 0);
+  CHECK(SampledInput::GridPerSample(u, dt, 1e300, 0.0) == 0);
+}
+
+TEST_CASE("bouc-wen: CVODE on an input built beforehand is the self-built simulation's",
+          "[hysteresis][bouc-wen]") {
+  // The fit builds each recording's SampledInput once and hands it to every simulation: the
+  // outputs (and CVODES' sensitivities) are the standalone simulations' to the bit, the input's
+  // own interpolation taken (not the options'). A table (forced: max_line_work 0) agrees with
+  // the summed lines to CVODE's tolerance.
+  MechanicalBoucWenParameters p;
+  const double dt = 1.0 / 750;
+  const Eigen::VectorXd u = Multisine(200, dt, 3, 40, 15.0);
+  const std::vector<int> which = {0, 2, 5};
+  Eigen::VectorXd y_band;
+  for (auto how :
+       {InputInterpolation::kHold, InputInterpolation::kLinear, InputInterpolation::kBandLimited}) {
+    INFO("input " << static_cast<int>(how));
+    BoucWenSimulationOptions o;
+    o.input = how;
+    Eigen::VectorXd y_own, y_shared, y_sens_own, y_sens_shared;
+    Eigen::MatrixXd dy_own, dy_shared;
+    const internal::SampledInput input(u, dt, how);
+    internal::MechanicalCvode(p, u, dt, o, {}, &y_own, nullptr);
+    internal::MechanicalCvode(p, input, o, {}, &y_shared, nullptr);
+    CHECK(y_own == y_shared);
+    CHECK(y_own == MechanicalBoucWen(p, o).Simulate(u, dt));
+    internal::MechanicalCvode(p, u, dt, o, which, &y_sens_own, &dy_own);
+    internal::MechanicalCvode(p, input, o, which, &y_sens_shared, &dy_shared);
+    CHECK(y_sens_own == y_sens_shared);
+    CHECK(dy_own == dy_shared);
+    // The input's interpolation, whatever the options say.
+    BoucWenSimulationOptions other = o;
+    other.input = how == InputInterpolation::kLinear ? InputInterpolation::kHold
+                                                     : InputInterpolation::kLinear;
+    Eigen::VectorXd y_other;
+    internal::MechanicalCvode(p, input, other, {}, &y_other, nullptr);
+    CHECK(y_other == y_own);
+    if (how == InputInterpolation::kBandLimited) y_band = y_own;
+  }
+  BoucWenSimulationOptions band;
+  band.input = InputInterpolation::kBandLimited;
+  const internal::SampledInput table(u, dt, InputInterpolation::kBandLimited, 0.0);
+  REQUIRE(table.fine() > 0);
+  Eigen::VectorXd y_table;
+  internal::MechanicalCvode(p, table, band, {}, &y_table, nullptr);
+  CHECK(RelativeMax(y_table, y_band) <= 1e-7);  // rtol 1e-9 twice; the table's 1e-11
+  // The piezo form: SimulateCvode (a held input taken linear) against PiezoCvode.
+  const PiezoBoucWenParameters pz = PiezoExample();
+  for (auto how :
+       {InputInterpolation::kHold, InputInterpolation::kLinear, InputInterpolation::kBandLimited}) {
+    BoucWenSimulationOptions o;
+    o.input = how;
+    const auto taken = how == InputInterpolation::kHold ? InputInterpolation::kLinear : how;
+    CHECK(PiezoBoucWen(pz, o).SimulateCvode(u, dt) ==
+          internal::PiezoCvode(pz, internal::SampledInput(u, dt, taken), o.rtol));
   }
 }
 

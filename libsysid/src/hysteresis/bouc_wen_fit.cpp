@@ -33,6 +33,7 @@ using internal::bouc_wen_fit::FitClock;
 using internal::bouc_wen_fit::Layout;
 using internal::bouc_wen_fit::MechanicalParameters;
 using internal::bouc_wen_fit::Series;
+using internal::bouc_wen_fit::ShareCvodeInputs;
 using internal::bouc_wen_fit::Solve;
 using internal::bouc_wen_fit::Solved;
 using internal::bouc_wen_fit::Work;
@@ -126,21 +127,6 @@ std::string ResolveAuto(BoucWenForm form, const std::vector<Series>& data, Layou
             ? BoucWenIntegrator::kFixedStep
             : BoucWenIntegrator::kCvode;
   return note;
-}
-
-// The CVODE simulations' input, built once per recording when the fit simulates by CVODE
-// (Series::input); InputError naming the recording where CVODE refuses it.
-void ShareCvodeInputs(const std::vector<Recording>& recordings, const Layout& layout,
-                      std::vector<Series>* data) {
-  if (!layout.SimulatedByCvode()) return;
-  for (size_t i = 0; i < data->size(); ++i) {
-    Series& s = (*data)[i];
-    try {
-      s.input = std::make_shared<const internal::SampledInput>(s.u, s.dt_s, layout.sim.input);
-    } catch (const InputError& e) {
-      throw InputError(recordings[i].source + ": " + e.what());
-    }
-  }
 }
 
 // The fixed step's steps per sample m: the fine inputs at m (the work bound checked first: a

@@ -8,6 +8,8 @@
 
 #include "core/option_rule.hpp"
 #include "hysteresis/bouc_wen_fit_problem.hpp"
+#include "sysid/error.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid {
 
@@ -210,6 +212,19 @@ SampledRecordings Inputs(const std::vector<Series>& data) {
     r.dt_s.push_back(s.dt_s);
   }
   return r;
+}
+
+void ShareCvodeInputs(const std::vector<Recording>& recordings, const Layout& layout,
+                      std::vector<Series>* data) {
+  if (!layout.SimulatedByCvode()) return;
+  for (size_t i = 0; i < data->size(); ++i) {
+    Series& s = (*data)[i];
+    try {
+      s.input = std::make_shared<const SampledInput>(s.u, s.dt_s, layout.sim.input);
+    } catch (const InputError& e) {
+      throw InputError(recordings[i].source + ": " + e.what());
+    }
+  }
 }
 
 }  // namespace internal::bouc_wen_fit

@@ -15,6 +15,7 @@
 
 #include "hysteresis/bouc_wen_internal.hpp"
 #include "sysid/hysteresis_bouc_wen.hpp"
+#include "sysid/io.hpp"
 
 namespace sysid::internal::bouc_wen_fit {
 
@@ -70,6 +71,11 @@ Layout MakeLayout(BoucWenForm form, const std::vector<Series>& data, const BoucW
 
 /// The recordings' inputs and sample times, as the fixed step's helpers take them.
 SampledRecordings Inputs(const std::vector<Series>& data);
+
+/// Series::input of every recording when the fit simulates by CVODE (after kAuto is resolved:
+/// the layout's input); InputError naming the recording's source where CVODE refuses it.
+void ShareCvodeInputs(const std::vector<Recording>& recordings, const Layout& layout,
+                      std::vector<Series>* data);
 
 /// What the fit computed: plain simulations, and passes with their sensitivities.
 struct Work {
