@@ -338,8 +338,9 @@ TEST_CASE("bouc-wen: the table's bound is checked without the table, on either s
   for (int l = 2; l <= top; ++l) m6 += amplitude * std::pow(w0 * l, 6);
   const double lines_sum = amplitude * (top - 1);
   int L = 1;
-  do L *= 2;
-  while (std::pow(dt / L, 6) * m6 / 46080 > internal::kBandLimitedGridTolerance * lines_sum);
+  do {
+    L *= 2;
+  } while (std::pow(dt / L, 6) * m6 / 46080 > internal::kBandLimitedGridTolerance * lines_sum);
   REQUIRE(L < internal::kMaxGridPerSample);
   using internal::SampledInput;
   const auto band = InputInterpolation::kBandLimited;
