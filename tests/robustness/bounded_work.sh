@@ -50,6 +50,13 @@ timed 20 2 "bwp.json: on rnd300k.csv: bouc-wen: the band-limited input of 300000
   hysteresis simulate --model bwp.json rnd300k.csv -o o.csv
 [ ! -e o.csv ] || fail "hysteresis simulate wrote o.csv after refusing the table"
 rm -f rnd300k.csv
+# A CVODE fit builds each recording's table once, before its first simulation: the same refusal,
+# naming the recording (was: every evaluation failing, "bouc-wen fit failed", exit 3).
+awk 'BEGIN { srand(2); print "t,u,x"; for (k = 0; k < 300000; k++) printf "%g,%.9g,%.9g\n", k / 1000, 10 * rand(), 1e-6 * rand() }' > rnd300kx.csv
+timed 20 2 "rnd300kx.csv: bouc-wen: the band-limited input of 300000 samples (.* spectral lines) would be tabulated at .* points a sample" \
+  hysteresis fit --model bouc-wen --integrator cvode --input band-limited --starts 1 rnd300kx.csv -o fit.json
+[ ! -e fit.json ] || fail "hysteresis fit wrote fit.json after refusing the table"
+rm -f rnd300kx.csv
 
 # The periodic search's work: the undamped (c = 0) CVODE form never settles; it now stops at a
 # bounded number of samples (was > 120 s), and a period too long for two runs is refused.
