@@ -7,7 +7,9 @@
 
 #include "sysid/error.hpp"
 
+using sysid::internal::JsonDocument;
 using sysid::internal::ParseJsonText;
+using sysid::internal::ReadName;
 
 TEST_CASE("duplicate keys are an error naming both positions", "[core][json]") {
   CHECK_THROWS_WITH(ParseJsonText("{\"a\": 1,\n  \"a\": 2}", "f.json"),
@@ -30,4 +32,30 @@ TEST_CASE("bytes after the JSON text are an error, a NUL included", "[core][json
   CHECK_THROWS_AS(ParseJsonText("{} x", "f.json"), sysid::InputError);  // nlohmann's own check
   CHECK_NOTHROW(ParseJsonText("{\"a\": \"x\\\"}\"} \n\t\r\n", "f.json"));  // trailing blanks
   CHECK_NOTHROW(ParseJsonText("\xEF\xBB\xBF{\"a\": 1}", "f.json"));      // a BOM
+}
+
+namespace {
+enum class Colour { kRed, kGreen, kBlue };
+std::string ColourName(Colour c) {
+  return c == Colour::kRed ? "red" : c == Colour::kGreen ? "green" : "blue";
+}
+}  // namespace
+
+TEST_CASE("an enum's name is read from the writer's list, which also says what was expected",
+          "[core][json]") {
+  const std::string text = "{\"a\": \"green\", \"b\": \"blue\", \"c\": \"pink\"}";
+  const JsonDocument doc(text, "f.json");
+  const auto root = doc.Root();
+  CHECK(ReadName(root.Get("a"), {Colour::kRed, Colour::kGreen, Colour::kBlue}, ColourName) ==
+        Colour::kGreen);
+  CHECK(ReadName(root.Get("b"), {Colour::kRed, Colour::kGreen, Colour::kBlue}, ColourName) ==
+        Colour::kBlue);
+  CHECK_THROWS_WITH(
+      ReadName(root.Get("c"), {Colour::kRed, Colour::kGreen, Colour::kBlue}, ColourName),
+      Catch::Equals("f.json:1:29: c: expected \"red\", \"green\" or \"blue\", found string \"pink\""));
+  CHECK_THROWS_WITH(ReadName(root.Get("c"), {Colour::kRed, Colour::kGreen}, ColourName, "a colour"),
+                    Catch::EndsWith("c: expected a colour (red or green), found string \"pink\""));
+  // A value the list leaves out is refused though the writer names it.
+  CHECK_THROWS_WITH(ReadName(root.Get("b"), {Colour::kRed}, ColourName),
+                    Catch::EndsWith("b: expected \"red\", found string \"blue\""));
 }

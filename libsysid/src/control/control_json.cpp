@@ -72,11 +72,7 @@ nlohmann::ordered_json JsonForm<AntiWindup>::Write(const AntiWindup& a) {
 }
 
 void JsonForm<AntiWindup>::Read(const JsonNode& node, AntiWindup& a) {
-  const std::string s = node.String();
-  if (s == AntiWindupName(AntiWindup::kNone)) a = AntiWindup::kNone;
-  else if (s == AntiWindupName(AntiWindup::kConditionalIntegration))
-    a = AntiWindup::kConditionalIntegration;
-  else node.Expected("\"none\" or \"conditional-integration\"");
+  a = ReadName(node, {AntiWindup::kNone, AntiWindup::kConditionalIntegration}, AntiWindupName);
 }
 
 }  // namespace internal

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -106,6 +107,34 @@ class JsonNode {
   std::string pointer_;
   std::string name_;
 };
+
+/// The names of `values` as a message lists them: "\"a\", \"b\" or \"c\"" when `quoted`,
+/// else "a, b or c".
+template <class E, class NameOf>
+std::string ListNames(std::initializer_list<E> values, NameOf name_of, bool quoted) {
+  std::string list;
+  size_t i = 0;
+  for (E value : values) {
+    if (i > 0) list += (i + 1 == values.size()) ? " or " : ", ";
+    const std::string name = name_of(value);
+    list += quoted ? "\"" + name + "\"" : name;
+    ++i;
+  }
+  return list;
+}
+
+/// The one of `values` whose name (`name_of`, the writer's: ToString) is `node`'s string, so an
+/// enum's reader and writer share one list. Anything else is "expected \"a\", \"b\" or \"c\"",
+/// or with `what` "expected a trainer (lm or ceres)".
+template <class E, class NameOf>
+E ReadName(const JsonNode& node, std::initializer_list<E> values, NameOf name_of,
+           const char* what = nullptr) {
+  const std::string s = node.String();
+  for (E value : values)
+    if (name_of(value) == s) return value;
+  node.Expected(what ? std::string(what) + " (" + ListNames(values, name_of, false) + ")"
+                     : ListNames(values, name_of, true));
+}
 
 /// A parsed JSON file that can say where each of its values is written.
 class JsonDocument {

@@ -41,12 +41,9 @@ Eigen::MatrixXd MatrixFromJson(const JsonNode& node, size_t rows, size_t cols) {
 }
 
 Termination TerminationFromJson(const JsonNode& node) {
-  const std::string s = node.String();
-  for (auto t : {Termination::kConverged, Termination::kBudgetExhausted, Termination::kFailure})
-    if (ToString(t) == s) return t;
-  node.Expected("a termination (" + ToString(Termination::kConverged) + ", " +
-                ToString(Termination::kBudgetExhausted) + " or " +
-                ToString(Termination::kFailure) + ")");
+  return ReadName(node,
+                  {Termination::kConverged, Termination::kBudgetExhausted, Termination::kFailure},
+                  [](Termination t) { return ToString(t); }, "a termination");
 }
 
 std::string DumpJson(const nlohmann::ordered_json& j, int indent) {

@@ -1,7 +1,7 @@
 // The fixed-step integrator of the mechanical form: the benchmark chain's Newmark/trapezoidal
 // step at m steps per sample on the input between samples, without the chain's decimation. Second
-// order (docs/benchmarks.md, "Issue #41"), with the chain's forward sensitivities; a fit chooses m
-// by step doubling (docs/hysteresis.md, "Fixed step").
+// order (docs/benchmarks.md, "The default path: the fixed step"), with the chain's forward
+// sensitivities; a fit chooses m by step doubling (docs/hysteresis.md, "Fixed step").
 #include <fmt/format.h>
 
 #include <cmath>

@@ -98,28 +98,19 @@ nlohmann::ordered_json JsonForm<BoucWenIntegrator>::Write(const BoucWenIntegrato
   return ToString(integrator);
 }
 void JsonForm<BoucWenIntegrator>::Read(const JsonNode& node, BoucWenIntegrator& integrator) {
-  const std::string s = node.String();
-  for (auto i : {BoucWenIntegrator::kCvode, BoucWenIntegrator::kBenchmarkChain,
-                 BoucWenIntegrator::kFixedStep})
-    if (s == ToString(i)) {
-      integrator = i;
-      return;
-    }
-  node.Expected("\"cvode\", \"benchmark-chain\" or \"fixed-step\"");
+  integrator = ReadName(node,
+                        {BoucWenIntegrator::kCvode, BoucWenIntegrator::kBenchmarkChain,
+                         BoucWenIntegrator::kFixedStep},
+                        [](BoucWenIntegrator i) { return ToString(i); });
 }
 
 nlohmann::ordered_json JsonForm<InputInterpolation>::Write(const InputInterpolation& input) {
   return ToString(input);
 }
 void JsonForm<InputInterpolation>::Read(const JsonNode& node, InputInterpolation& input) {
-  const std::string s = node.String();
-  for (auto i : {InputInterpolation::kHold, InputInterpolation::kLinear,
-                 InputInterpolation::kBandLimited})
-    if (s == ToString(i)) {
-      input = i;
-      return;
-    }
-  node.Expected("\"hold\", \"linear\" or \"band-limited\"");
+  input = ReadName(
+      node, {InputInterpolation::kHold, InputInterpolation::kLinear, InputInterpolation::kBandLimited},
+      [](InputInterpolation i) { return ToString(i); });
 }
 
 }  // namespace internal

@@ -24,17 +24,12 @@ nlohmann::ordered_json internal::JsonForm<PulseStatus>::Write(const PulseStatus&
 }
 
 void internal::JsonForm<PulseStatus>::Read(const JsonNode& node, PulseStatus& status) {
-  const std::string s = node.String();
-  for (auto each : {PulseStatus::kOk, PulseStatus::kUnsettled, PulseStatus::kStuck,
-                    PulseStatus::kWrongDirection, PulseStatus::kVelocityLimit,
-                    PulseStatus::kTravelLimit, PulseStatus::kTooFewSamples})
-    if (ToString(each) == s) {
-      status = each;
-      return;
-    }
-  node.Expected(
-      "a pulse status (ok, unsettled, stuck, wrong-direction, velocity-limit, "
-      "travel-limit, too-few-samples)");
+  status = internal::ReadName(
+      node,
+      {PulseStatus::kOk, PulseStatus::kUnsettled, PulseStatus::kStuck,
+       PulseStatus::kWrongDirection, PulseStatus::kVelocityLimit, PulseStatus::kTravelLimit,
+       PulseStatus::kTooFewSamples},
+      [](PulseStatus s) { return ToString(s); }, "a pulse status");
 }
 
 namespace {

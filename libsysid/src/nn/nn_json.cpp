@@ -20,25 +20,17 @@ using internal::JsonNode;
 using Json = nlohmann::ordered_json;
 
 TrainingStop StopFromJson(const JsonNode& node) {
-  const std::string s = node.String();
-  constexpr TrainingStop kStops[] = {
-      TrainingStop::kMaxEpochs,          TrainingStop::kGoalReached, TrainingStop::kSmallGradient,
-      TrainingStop::kMuTooLarge,         TrainingStop::kValidationFailures,
-      TrainingStop::kConverged,          TrainingStop::kNumericalFailure};
-  std::string names;
-  for (auto stop : kStops) {
-    if (ToString(stop) == s) return stop;
-    names += (names.empty() ? "" : ", ") + ToString(stop);
-  }
-  node.Expected("a stopping rule (" + names + ")");
+  return internal::ReadName(
+      node,
+      {TrainingStop::kMaxEpochs, TrainingStop::kGoalReached, TrainingStop::kSmallGradient,
+       TrainingStop::kMuTooLarge, TrainingStop::kValidationFailures, TrainingStop::kConverged,
+       TrainingStop::kNumericalFailure},
+      [](TrainingStop t) { return ToString(t); }, "a stopping rule");
 }
 
 NeuralTrainer TrainerFromJson(const JsonNode& node) {
-  const std::string s = node.String();
-  for (auto t : {NeuralTrainer::kLevenbergMarquardt, NeuralTrainer::kCeres})
-    if (ToString(t) == s) return t;
-  node.Expected("a trainer (" + ToString(NeuralTrainer::kLevenbergMarquardt) + " or " +
-                ToString(NeuralTrainer::kCeres) + ")");
+  return internal::ReadName(node, {NeuralTrainer::kLevenbergMarquardt, NeuralTrainer::kCeres},
+                            [](NeuralTrainer t) { return ToString(t); }, "a trainer");
 }
 
 }  // namespace
@@ -140,10 +132,7 @@ void JsonForm<TrainingStop>::Read(const JsonNode& node, TrainingStop& stop) {
 
 Json JsonForm<NeuralInit>::Write(const NeuralInit& init) { return InitName(init); }
 void JsonForm<NeuralInit>::Read(const JsonNode& node, NeuralInit& init) {
-  const std::string s = node.String();
-  if (s == InitName(NeuralInit::kNguyenWidrow)) init = NeuralInit::kNguyenWidrow;
-  else if (s == InitName(NeuralInit::kUniform)) init = NeuralInit::kUniform;
-  else node.Expected("\"nguyen-widrow\" or \"uniform\"");
+  init = ReadName(node, {NeuralInit::kNguyenWidrow, NeuralInit::kUniform}, InitName);
 }
 
 }  // namespace internal

@@ -34,15 +34,10 @@ nlohmann::ordered_json JsonForm<EventKind>::Write(const EventKind& kind) {
 }
 
 void JsonForm<EventKind>::Read(const JsonNode& node, EventKind& kind) {
-  const std::string name = node.String();
-  for (EventKind k : {EventKind::kStick, EventKind::kSlipForward, EventKind::kSlipBackward,
-                      EventKind::kReverse, EventKind::kViscousSwitch}) {
-    if (name == ToString(k)) {
-      kind = k;
-      return;
-    }
-  }
-  node.Expected("\"stick\", \"slip+\", \"slip-\", \"reverse\" or \"a1-switch\"");
+  kind = ReadName(node,
+                  {EventKind::kStick, EventKind::kSlipForward, EventKind::kSlipBackward,
+                   EventKind::kReverse, EventKind::kViscousSwitch},
+                  [](EventKind k) { return ToString(k); });
 }
 
 }  // namespace internal
