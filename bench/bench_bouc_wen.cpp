@@ -41,8 +41,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <memory>
 #include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -297,9 +297,10 @@ int CvodeJacobianCommand(const std::vector<std::string>& args) {
       simulation_same && jacobian_same ? "yes" : "NO");
   const bool rule_same = rule_grid == input->fine();
   if (o.input == InputInterpolation::kBandLimited)
-    fmt::print("cvode-jacobian-auto-rule grid_rule_cpu_s={:.4f} grid_per_sample={} "
-               "table_cpu_s={:.4f} ratio_table/rule={:.1f} agrees={}\n",
-               rule, rule_grid, table, table / rule, rule_same ? "yes" : "NO");
+    fmt::print(
+        "cvode-jacobian-auto-rule grid_rule_cpu_s={:.4f} grid_per_sample={} "
+        "table_cpu_s={:.4f} ratio_table/rule={:.1f} agrees={}\n",
+        rule, rule_grid, table, table / rule, rule_same ? "yes" : "NO");
   return simulation_same && jacobian_same && rule_same ? 0 : 1;
 }
 

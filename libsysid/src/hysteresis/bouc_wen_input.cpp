@@ -71,8 +71,8 @@ int SampledInput::Grid(const Lines& s, Eigen::Index n, double dt_s, double max_l
   *bound_out = 0;
   // Each evaluation of the sum costs every kept line, and CVODE evaluates a few to hundreds of
   // times a sample: lines x samples is the work's scale (4000 samples, 2000 lines: 9 s).
-  if (s.line.empty() || static_cast<double>(s.line.size()) * static_cast<double>(n) <= max_line_work)
-    return 0;
+  const double work = static_cast<double>(s.line.size()) * static_cast<double>(n);
+  if (s.line.empty() || work <= max_line_work) return 0;
   // A = sum |2 c_j| and |u^(6)| <= M6 = sum |2 c_j| w_j^6: the lines' own weights, so that
   // rounding-level lines near the Nyquist frequency do not refine the grid.
   double amplitude = 0, m6 = 0;

@@ -64,8 +64,8 @@ class SampledInput {
   // The interpolant's kept lines: u(t) = mean + sum 2 Re(coeff_j e^(i omega line_j t)).
   struct Lines {
     double mean = 0;
-    double omega = 0;                         // [rad/s] 2 pi / (n dt)
-    std::vector<int> line;                    // harmonic numbers kept
+    double omega = 0;       // [rad/s] 2 pi / (n dt)
+    std::vector<int> line;  // harmonic numbers kept
     std::vector<std::complex<double>> coeff;
   };
   static Lines Spectrum(const Eigen::VectorXd& u, double dt_s);
