@@ -177,8 +177,8 @@ void BindTrajectory(py::module_& m) {
           "the fit's size and error in words");
   AddSolvedTermination(trajectory_fields);
   trajectory_result
-      .def("to_json", py::overload_cast<const TrajectoryResult&, int>(&ToJson), py::arg("indent") = 2,
-           "`sysid identify --method trajectory --json`'s text")
+      .def("to_json", py::overload_cast<const TrajectoryResult&, int>(&ToJson),
+           py::arg("indent") = 2, "`sysid identify --method trajectory --json`'s text")
       .def_static("from_json", &TrajectoryIdentificationResultFromJson, py::arg("text"),
                   py::arg("source") = "json")
       .def("brief_report", &TrajectoryResult::BriefReport);

@@ -108,10 +108,11 @@ void BindNeural(py::module_& m) {
       .def_static("from_json", &ParseNeuralNetwork, py::arg("text"), py::arg("source") = "json")
       .def("to_json", &NeuralNetworkToJson, py::arg("indent") = 2, py::arg("training_json") = "")
       // Its file is its state (a training result holding one pickles it with its fields).
-      .def(py::pickle([](const NeuralNetwork& n) { return py::make_tuple(NeuralNetworkToJson(n, -1)); },
-                      [](const py::tuple& state) {
-                        return ParseNeuralNetwork(state[0].cast<std::string>(), "pickle");
-                      }));
+      .def(py::pickle(
+          [](const NeuralNetwork& n) { return py::make_tuple(NeuralNetworkToJson(n, -1)); },
+          [](const py::tuple& state) {
+            return ParseNeuralNetwork(state[0].cast<std::string>(), "pickle");
+          }));
 
   py::class_<NeuralDataset>(m, "NeuralDataset")
       .def_readonly("input_names", &NeuralDataset::input_names)
