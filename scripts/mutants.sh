@@ -126,8 +126,11 @@ echo "mutants.sh: $COUNT mutants ($SUBSET), scratch $SCRATCH; building $TARGETS"
 # Warnings as errors as in the user's build/ (read, never written), so its objects are hits.
 WERROR=OFF
 if grep -q '^SYSID_WERROR:BOOL=ON' "$ROOT/build/CMakeCache.txt" 2>/dev/null; then WERROR=ON; fi
+# The Python bindings only for a mutant of theirs (target _sysid, killed by a python: test).
+PYTHON=OFF
+case " $TARGETS " in *" _sysid "*) PYTHON=ON ;; esac
 # shellcheck disable=SC2086
-cmake -S "$SRC" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSYSID_PYTHON=OFF \
+cmake -S "$SRC" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DSYSID_PYTHON=$PYTHON \
   -DSYSID_BUILD_BENCH=OFF -DSYSID_WERROR=$WERROR ${SYSID_MUTANT_CMAKE_ARGS:-} \
   >"$LOGS/configure.log" 2>&1 ||
   { cat "$LOGS/configure.log" >&2; echo "mutants.sh: configure failed" >&2; exit 2; }

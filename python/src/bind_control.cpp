@@ -78,58 +78,54 @@ void BindControl(py::module_& m) {
       },
       py::arg("t_s"), py::arg("x_m"));
 
-  py::class_<TrackingResult>(s, "TrackingResult")
-      .def_readonly("t_s", &TrackingResult::t_s)
-      .def_readonly("x_ref_m", &TrackingResult::x_ref_m)
-      .def_readonly("x_m", &TrackingResult::x_m)
-      .def_readonly("e_m", &TrackingResult::e_m)
-      .def_readonly("u_v", &TrackingResult::u_v)
-      .def_readonly("u_ff_v", &TrackingResult::u_ff_v)
-      .def_readonly("max_error_m", &TrackingResult::max_error_m)
-      .def_readonly("rms_error_m", &TrackingResult::rms_error_m)
-      .def_readonly("rms_u_v", &TrackingResult::rms_u_v)
-      .def_readonly("max_abs_u_v", &TrackingResult::max_abs_u_v)
-      .def_readonly("total_variation_v", &TrackingResult::total_variation_v)
-      .def_readonly("saturated_samples", &TrackingResult::saturated_samples)
-      .def("brief_report", &TrackingResult::BriefReport)
+  py::class_<TrackingResult> tracking(s, "TrackingResult");
+  constexpr const char* kTrace = "a trace of the run; the JSON holds its metrics only";
+  DefReadOnlyFields(tracking)
+      .Stored("t_s", &TrackingResult::t_s, kTrace)
+      .Stored("x_ref_m", &TrackingResult::x_ref_m, kTrace)
+      .Stored("x_m", &TrackingResult::x_m, kTrace)
+      .Stored("e_m", &TrackingResult::e_m, kTrace)
+      .Stored("u_v", &TrackingResult::u_v, kTrace)
+      .Stored("u_ff_v", &TrackingResult::u_ff_v, kTrace);
+  tracking.def("brief_report", &TrackingResult::BriefReport)
       .def("to_json", py::overload_cast<const TrackingResult&, int>(&ToJson),
            py::arg("indent") = 2, "the metrics as `sysid track --json` lists them")
       .def_static("from_json", &TrackingResultFromJson, py::arg("text"),
                   py::arg("source") = "json", "the metrics back (the traces stay empty)");
-  py::class_<TrackingRow>(s, "TrackingRow")
-      .def_readonly("frequency_hz", &TrackingRow::frequency_hz)
-      .def_readonly("scheme", &TrackingRow::scheme)
-      .def_readonly("result", &TrackingRow::result);
+  py::class_<TrackingRow> tracking_row(s, "TrackingRow");
+  DefReadOnlyFields(tracking_row)
+      .Stored("result", &TrackingRow::result,
+              "the whole run (its traces too); the row's file keys are two of its metrics");
 
   // The pipeline's run summary (`sysid pipeline --json`), read back from its JSON.
-  py::class_<PipelineResult>(m, "PipelineResult",
-                             "A pipeline run's summary: see sysid::PipelineResultFromJson for "
-                             "what the JSON carries.")
-      .def_readonly("model", &PipelineResult::model)
-      .def_property_readonly("dominant",
-                             [](const PipelineResult& r) { return r.dominance.dominant; })
-      .def_readonly("nn_inputs", &PipelineResult::nn_inputs)
-      .def_readonly("network", &PipelineResult::network)
-      .def_readonly("network_test_mse", &PipelineResult::network_test_mse)
-      .def_property_readonly("typical_train_mse",
-                             [](const PipelineResult& r) -> std::optional<double> {
-                               if (!r.typical) return std::nullopt;
-                               return r.typical->train_mse;
-                             })
-      .def_readonly("typical_test_mse", &PipelineResult::typical_test_mse)
-      .def_readonly("tracking", &PipelineResult::tracking)
-      .def_readonly("skipped", &PipelineResult::skipped,
-                    "the steps a pulse-only run skipped and the recordings that enable them")
-      .def_readonly("model_tracking", &PipelineResult::model_tracking,
-                    "tracking on the identified model as the plant (a pulse-only run)")
-      .def_property_readonly(
+  py::class_<PipelineResult> pipeline(m, "PipelineResult",
+                                      "A pipeline run's summary: see "
+                                      "sysid::PipelineResultFromJson for what the JSON carries.");
+  constexpr const char* kSummaryKey = "a key ToJson(PipelineResult) writes beside the fields";
+  DefReadOnlyFields(pipeline)
+      .PickleByJson([](const PipelineResult& r) { return ToJson(r, -1); },
+                    [](const std::string& text) { return PipelineResultFromJson(text, "pickle"); })
+      .Derived(
+          "dominant", [](const PipelineResult& r) { return r.dominance.dominant; }, kSummaryKey)
+      .Stored("nn_inputs", &PipelineResult::nn_inputs, kSummaryKey)
+      .Stored("network", &PipelineResult::network, kSummaryKey)
+      .Stored("network_test_mse", &PipelineResult::network_test_mse, kSummaryKey)
+      .Derived(
+          "typical_train_mse",
+          [](const PipelineResult& r) -> std::optional<double> {
+            if (!r.typical) return std::nullopt;
+            return r.typical->train_mse;
+          },
+          kSummaryKey)
+      .Stored("typical_test_mse", &PipelineResult::typical_test_mse, kSummaryKey)
+      .Derived(
           "tuned_pi",
           [](const PipelineResult& r) -> std::optional<PiOptions> {
             if (!r.tuning) return std::nullopt;
             return r.tuning->pi;
           },
           "the PI gains tuned on the model (a pulse-only run), else None")
-      .def_property_readonly(
+      .Derived(
           "margins",
           [](const PipelineResult& r) -> std::optional<py::dict> {
             if (!r.margins) return std::nullopt;
@@ -145,13 +141,14 @@ void BindControl(py::module_& m) {
             return out;
           },
           "the PI gains' margins on the final model per direction (None without tracking)")
-      .def_property_readonly("facts_required_met",
-                             [](const PipelineResult& r) -> std::optional<bool> {
-                               if (!r.facts) return std::nullopt;
-                               return r.facts->RequiredMet();
-                             })
-      .def_readonly("step_seconds", &PipelineResult::step_seconds,
-                    "[(step, wall time [s])] in run order")
+      .Derived(
+          "facts_required_met",
+          [](const PipelineResult& r) -> std::optional<bool> {
+            if (!r.facts) return std::nullopt;
+            return r.facts->RequiredMet();
+          },
+          kSummaryKey);
+  pipeline
       .def("to_json", py::overload_cast<const PipelineResult&, int>(&ToJson),
            py::arg("indent") = 2)
       .def_static("from_json", &PipelineResultFromJson, py::arg("text"),

@@ -133,33 +133,23 @@ void BindDominance(py::module_& m) {
   AddOptionsJson(dominance_options, &DominanceOptionsFromJson);
   DefFields(dominance_options);
   dominance_options.def("validate", &DominanceOptions::Validate);
-  py::class_<TermStats>(m, "TermStats")
-      .def_readonly("name", &TermStats::name)
-      .def_readonly("rms", &TermStats::rms)
-      .def_readonly("peak", &TermStats::peak)
-      .def_readonly("ratio_to_top", &TermStats::ratio_to_top)
-      .def_readonly("ratio_bound", &TermStats::ratio_bound)
-      .def_readonly("ratio_max", &TermStats::ratio_max)
-      .def_readonly("negligible", &TermStats::negligible);
-  py::class_<DominanceResult>(m, "DominanceResult")
-      .def_readonly("source", &DominanceResult::source)
-      .def_readonly("samples", &DominanceResult::samples)
-      .def_readonly("moving_samples", &DominanceResult::moving_samples)
-      .def_readonly("terms", &DominanceResult::terms)
-      .def_readonly("ranking", &DominanceResult::ranking)
-      .def_readonly("dominant", &DominanceResult::dominant)
-      .def_readonly("margin", &DominanceResult::margin)
-      .def_readonly("peak_ratio", &DominanceResult::peak_ratio)
-      .def_readonly("pointwise_ratio_quantile", &DominanceResult::pointwise_ratio_quantile)
-      .def_readonly("pointwise_ratio_max", &DominanceResult::pointwise_ratio_max)
-      .def_property_readonly("termination", [](const DominanceResult&) { return "analysed"; })
-      .def_property_readonly("message",
-                             [](const DominanceResult& r) {
-                               return DominanceVerdict(
-                                   r.dominant, r.ranking.size() > 1 ? r.ranking[1].name : "",
-                                   r.margin);
-                             })
-      .def("brief_report", &DominanceResult::BriefReport)
+  py::class_<TermStats> term_stats(m, "TermStats");
+  DefReadOnlyFields(term_stats);
+  py::class_<DominanceResult> dominance(m, "DominanceResult");
+  DefReadOnlyFields(dominance)
+      .Stored("terms", &DominanceResult::terms,
+              "every term in fixed order; the JSON holds the ranking (the same terms ranked)")
+      .Derived(
+          "termination", [](const DominanceResult&) { return "analysed"; },
+          "the analysis always ends analysed (the termination every result states)")
+      .Derived(
+          "message",
+          [](const DominanceResult& r) {
+            return DominanceVerdict(r.dominant, r.ranking.size() > 1 ? r.ranking[1].name : "",
+                                    r.margin);
+          },
+          "the verdict in words, from the ranking and margin");
+  dominance.def("brief_report", &DominanceResult::BriefReport)
       .def(
           "to_dict", [](const DominanceResult& r) { return JsonObject(ToJson(r, -1)); },
           "The CLI's JSON object for this recording (`dominance --json` \"recordings\" entry).")

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bind_common.hpp"
+#include "bind_fields.hpp"
 #include "sysid/compare.hpp"
 #include "sysid/compare_hysteresis.hpp"
 #include "sysid/compare_stack.hpp"
@@ -31,24 +32,16 @@ Eigen::VectorXd MapSignal(const HysteresisModel& model, SignalMap map, const py:
 // Long function: a pybind11 registration table, one entry per bound type and field in the
 // header's order; split, it would only scatter the table.
 void BindHysteresis(py::module_& m) {
-  py::class_<HysteresisParameter>(m, "HysteresisParameter")
-      .def_readonly("name", &HysteresisParameter::name)
-      .def_readonly("unit", &HysteresisParameter::unit)
-      .def_readonly("value", &HysteresisParameter::value)
-      .def_readonly("std_error", &HysteresisParameter::std_error)
-      .def("__repr__", [](const HysteresisParameter& p) {
+  py::class_<HysteresisParameter> parameter(m, "HysteresisParameter");
+  DefReadOnlyFields(parameter);
+  parameter.def("__repr__", [](const HysteresisParameter& p) {
         // %.4g, not std::to_string's %f, which prints a 2.264e-6 m/V weight as 0.000002.
         const std::string error =
             std::isfinite(p.std_error) ? fmt::format(" ± {:.2g}", p.std_error) : "";
         return fmt::format("HysteresisParameter({}={:.6g}{} {})", p.name, p.value, error, p.unit);
       });
-  py::class_<HysteresisFitSummary>(m, "HysteresisFitSummary")
-      .def_readonly("kind", &HysteresisFitSummary::kind)
-      .def_readonly("samples", &HysteresisFitSummary::samples)
-      .def_readonly("fit_time_s", &HysteresisFitSummary::fit_time_s)
-      .def_readonly("training_rms", &HysteresisFitSummary::training_rms)
-      .def_readonly("converged", &HysteresisFitSummary::converged)
-      .def_readonly("message", &HysteresisFitSummary::message);
+  py::class_<HysteresisFitSummary> fit_summary(m, "HysteresisFitSummary");
+  DefReadOnlyFields(fit_summary);
   py::class_<HysteresisModel, std::shared_ptr<HysteresisModel>>(m, "HysteresisModel")
       .def_property_readonly("kind", &HysteresisModel::kind)
       .def_property_readonly("invertible", &HysteresisModel::invertible)

@@ -19,10 +19,13 @@ namespace sysid::python {
 namespace {
 
 template <typename R>
-void AddSolvedTermination(py::class_<R>& cls) {
-  // Least squares either returns a solution or throws NumericalError: no other termination.
-  cls.def_property_readonly("termination", [](const R&) { return "solved"; });
+void AddSolvedTermination(ReadOnlyFields<R>& fields) {
+  fields.Derived(
+      "termination", [](const R&) { return "solved"; },
+      "least squares either returns a solution or throws NumericalError: no other termination");
 }
+
+constexpr const char* kFitArrays = "the fit's arrays; its file holds the estimates by name";
 
 // Long function: a pybind11 registration table, one entry per bound type and field in the
 // header's order; split, it would only scatter the table.
@@ -60,15 +63,13 @@ void BindPulses(py::module_& m) {
   DefFields(pulse_options);
   pulse_options.def("validate", &PulseIdentificationOptions::Validate);
 
-  py::class_<Pulse>(m, "Pulse")
-      .def_readonly("source", &Pulse::source)
-      .def_readonly("first_row", &Pulse::first_row)
-      .def_readonly("end_row", &Pulse::end_row)
-      .def_readonly("t_start_s", &Pulse::t_start_s)
-      .def_readonly("duration_s", &Pulse::duration_s)
-      .def_readonly("amplitude_v", &Pulse::amplitude_v)
-      .def_readonly("at_record_start", &Pulse::at_record_start)
-      .def_readonly("at_record_end", &Pulse::at_record_end);
+  py::class_<Pulse> pulse(m, "Pulse");
+  constexpr const char* kRows = "the pulse's place in its recording; a file gives its times";
+  DefReadOnlyFields(pulse)
+      .Stored("first_row", &Pulse::first_row, kRows)
+      .Stored("end_row", &Pulse::end_row, kRows)
+      .Stored("at_record_start", &Pulse::at_record_start, kRows)
+      .Stored("at_record_end", &Pulse::at_record_end, kRows);
   m.def(
       "detect_pulses",
       [](const py::object& t_s, const py::object& u_v, const PulseDetectionOptions& options,
@@ -81,57 +82,48 @@ void BindPulses(py::module_& m) {
       },
       py::arg("t_s"), py::arg("u_v"), py::arg("options") = PulseDetectionOptions{},
       py::arg("source") = "", "Pulses of u [V] sampled at t [s] (equally long 1-D arrays).");
-  py::class_<PulseEstimate>(m, "PulseEstimate")
-      .def_readonly("pulse", &PulseEstimate::pulse)
-      .def_readonly("v_mps", &PulseEstimate::v_mps)
-      .def_readonly("v_stderr_mps", &PulseEstimate::v_stderr_mps)
-      .def_readonly("drift_mps", &PulseEstimate::drift_mps)
-      .def_readonly("window_samples", &PulseEstimate::window_samples)
-      .def_property_readonly("status", [](const PulseEstimate& p) { return ToString(p.status); })
-      .def_readonly("reason", &PulseEstimate::reason)
-      .def_property_readonly("usable", &PulseEstimate::usable);
+  py::class_<PulseEstimate> estimate(m, "PulseEstimate");
+  DefReadOnlyFields(estimate)
+      .Stored("window_samples", &PulseEstimate::window_samples,
+              "the plateau window's length; the file gives the estimate and its error")
+      .Derived("usable", &PulseEstimate::usable, "whether the status is ok");
 
-  py::class_<LinearFit>(m, "LinearFit")
-      .def_readonly("names", &LinearFit::names)
-      .def_readonly("theta", &LinearFit::theta)
-      .def_readonly("std_error", &LinearFit::std_error)
-      .def_readonly("covariance", &LinearFit::covariance)
-      .def_readonly("residuals", &LinearFit::residuals)
-      .def_readonly("rows", &LinearFit::rows)
-      .def_readonly("rank", &LinearFit::rank)
-      .def_readonly("dof", &LinearFit::dof)
-      .def_readonly("rms_residual", &LinearFit::rms_residual)
-      .def_readonly("relative_error", &LinearFit::relative_error)
-      .def_readonly("condition_number", &LinearFit::condition_number)
-      .def_readonly("r_diagonal", &LinearFit::r_diagonal);
-  py::class_<PulsePoint>(m, "PulsePoint")
-      .def(py::init([](double u, double v, std::string label) {
-             return PulsePoint{u, v, std::move(label)};
-           }),
-           py::arg("u_v"), py::arg("v_mps"), py::arg("label") = "")
-      .def_readwrite("u_v", &PulsePoint::u_v)
-      .def_readwrite("v_mps", &PulsePoint::v_mps)
-      .def_readwrite("label", &PulsePoint::label);
+  py::class_<LinearFit> linear_fit(m, "LinearFit");
+  DefReadOnlyFields(linear_fit)
+      .Stored("names", &LinearFit::names, kFitArrays)
+      .Stored("theta", &LinearFit::theta, kFitArrays)
+      .Stored("std_error", &LinearFit::std_error, kFitArrays)
+      .Stored("covariance", &LinearFit::covariance, kFitArrays)
+      .Stored("residuals", &LinearFit::residuals, kFitArrays);
+  // An input (a pulse table's row): read-write, constructed from its three values.
+  py::class_<PulsePoint> point(m, "PulsePoint");
+  point.def(py::init([](double u, double v, std::string label) {
+              return PulsePoint{u, v, std::move(label)};
+            }),
+            py::arg("u_v") = 0.0, py::arg("v_mps") = 0.0, py::arg("label") = "");
+  DefFields(point);
   m.def(
       "read_pulse_table", [](const std::string& path) { return ReadPulseTable(path); },
       py::arg("path"));
 
   py::class_<PulseIdentificationResult> pulse_result(m, "PulseIdentificationResult");
-  pulse_result.def_readonly("model", &PulseIdentificationResult::model)
-      .def_readonly("a3_given", &PulseIdentificationResult::a3_given)
-      .def_readonly("fit", &PulseIdentificationResult::fit)
-      .def_readonly("points", &PulseIdentificationResult::points)
-      .def_readonly("pulses", &PulseIdentificationResult::pulses)
-      .def_property_readonly("message",
-                             [](const PulseIdentificationResult& r) {
-                               return fmt::format("{} equations, rank {}", r.fit.rows, r.fit.rank);
-                             })
-      .def("brief_report", &PulseIdentificationResult::BriefReport)
+  ReadOnlyFields<PulseIdentificationResult> pulse_fields = DefReadOnlyFields(pulse_result);
+  constexpr const char* kModelFile = "written by the model file's writer around the fields";
+  pulse_fields.Stored("model", &PulseIdentificationResult::model, kModelFile)
+      .Stored("a3_given", &PulseIdentificationResult::a3_given, kModelFile)
+      .Stored("points", &PulseIdentificationResult::points, kModelFile)
+      .Derived(
+          "message",
+          [](const PulseIdentificationResult& r) {
+            return fmt::format("{} equations, rank {}", r.fit.rows, r.fit.rank);
+          },
+          "the fit's size in words");
+  AddSolvedTermination(pulse_fields);
+  pulse_result.def("brief_report", &PulseIdentificationResult::BriefReport)
       .def("to_json", py::overload_cast<const PulseIdentificationResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid identify --json`'s text (a model file too)")
       .def_static("from_json", &PulseIdentificationResultFromJson, py::arg("text"),
                   py::arg("source") = "json");
-  AddSolvedTermination(pulse_result);
   m.def("fit_pulse_table", &FitPulseTable, py::arg("points"),
         py::arg("options") = PulseFitOptions{});
   m.def("identify_pulses_recordings", &IdentifyFromPulses, py::arg("recordings"),
@@ -167,28 +159,29 @@ void BindTrajectory(py::module_& m) {
   trajectory_options.def("validate", &TrajectoryOptions::Validate);
   py::class_<TrajectoryIdentificationResult> trajectory_result(m,
                                                               "TrajectoryIdentificationResult");
+  using TrajectoryResult = TrajectoryIdentificationResult;
+  ReadOnlyFields<TrajectoryResult> trajectory_fields = DefReadOnlyFields(trajectory_result);
+  trajectory_fields
+      .Stored("model", &TrajectoryResult::model, "the model file's part of the result's JSON")
+      .Stored("fit", &TrajectoryResult::fit, "written as \"linear_fit\" by the result's JSON")
+      .Stored("names", &TrajectoryResult::names, kFitArrays)
+      .Stored("estimate", &TrajectoryResult::estimate, kFitArrays)
+      .Stored("std_error", &TrajectoryResult::std_error, kFitArrays)
+      .Stored("covariance", &TrajectoryResult::covariance, kFitArrays)
+      .Derived(
+          "message",
+          [](const TrajectoryResult& r) {
+            return fmt::format("{} moving samples, relative error {:.4g}", r.samples_used,
+                               r.relative_error);
+          },
+          "the fit's size and error in words");
+  AddSolvedTermination(trajectory_fields);
   trajectory_result
-      .def("to_json", py::overload_cast<const TrajectoryIdentificationResult&, int>(&ToJson),
+      .def("to_json", py::overload_cast<const TrajectoryResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid identify --method trajectory --json`'s text")
       .def_static("from_json", &TrajectoryIdentificationResultFromJson, py::arg("text"),
                   py::arg("source") = "json")
-      .def_readonly("model", &TrajectoryIdentificationResult::model)
-      .def_readonly("fit", &TrajectoryIdentificationResult::fit)
-      .def_readonly("names", &TrajectoryIdentificationResult::names)
-      .def_readonly("estimate", &TrajectoryIdentificationResult::estimate)
-      .def_readonly("std_error", &TrajectoryIdentificationResult::std_error)
-      .def_readonly("covariance", &TrajectoryIdentificationResult::covariance)
-      .def_readonly("offset_mps2", &TrajectoryIdentificationResult::offset_mps2)
-      .def_readonly("samples_used", &TrajectoryIdentificationResult::samples_used)
-      .def_readonly("relative_error", &TrajectoryIdentificationResult::relative_error)
-      .def_readonly("tau_curve", &TrajectoryIdentificationResult::tau_curve)
-      .def_property_readonly("message",
-                             [](const TrajectoryIdentificationResult& r) {
-                               return fmt::format("{} moving samples, relative error {:.4g}",
-                                                  r.samples_used, r.relative_error);
-                             })
-      .def("brief_report", &TrajectoryIdentificationResult::BriefReport);
-  AddSolvedTermination(trajectory_result);
+      .def("brief_report", &TrajectoryResult::BriefReport);
   m.def("identify_trajectory_recordings", &IdentifyFromTrajectory, py::arg("recordings"),
         py::arg("options") = TrajectoryOptions{}, ReleaseGil());
 
@@ -206,25 +199,13 @@ void BindDelayTuning(py::module_& m) {
   AddOptionsJson(delay_options, &DelayTuningOptionsFromJson);
   DefFields(delay_options);
   delay_options.def("validate", &DelayTuningOptions::Validate);
-  py::class_<DelayTuningResult>(m, "DelayTuningResult")
+  py::class_<DelayTuningResult> delay_result(m, "DelayTuningResult");
+  DefReadOnlyFields(delay_result);
+  delay_result
       .def("to_json", py::overload_cast<const DelayTuningResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid tune-delay --json`'s text")
       .def_static("from_json", &DelayTuningResultFromJson, py::arg("text"),
                   py::arg("source") = "json")
-      .def_readonly("warnings", &DelayTuningResult::warnings)
-      .def_property_readonly("termination",
-                             [](const DelayTuningResult& r) { return ToString(r.termination); })
-      .def_readonly("message", &DelayTuningResult::message)
-      .def_readonly("model", &DelayTuningResult::model)
-      .def_readonly("tau_s", &DelayTuningResult::tau_s)
-      .def_readonly("cost", &DelayTuningResult::cost)
-      .def_readonly("rms_error_mps", &DelayTuningResult::rms_error_mps)
-      .def_readonly("evaluations", &DelayTuningResult::evaluations)
-      .def_readonly("simulations", &DelayTuningResult::simulations)
-      .def_readonly("segments", &DelayTuningResult::segments)
-      .def_readonly("samples", &DelayTuningResult::samples)
-      .def_readonly("curve", &DelayTuningResult::curve)
-      .def_readonly("wall_time_s", &DelayTuningResult::wall_time_s)
       .def("brief_report", &DelayTuningResult::BriefReport);
   m.def("tune_delay_recordings", &TuneDelay, py::arg("model"), py::arg("recordings"),
         py::arg("options") = DelayTuningOptions{}, ReleaseGil());
@@ -238,24 +219,19 @@ void BindRefinement(py::module_& m) {
   AddOptionsJson(refine_options, &RefineOptionsFromJson);
   DefFields(refine_options);
   refine_options.def("validate", &RefineOptions::Validate);
-  py::class_<RefineResult>(m, "RefineResult")
+  py::class_<RefineResult> refine_result(m, "RefineResult");
+  constexpr const char* kRefineFile = "the model file's part of the result's JSON";
+  DefReadOnlyFields(refine_result)
+      .Stored("initial", &RefineResult::initial, kRefineFile)
+      .Stored("model", &RefineResult::model, kRefineFile)
+      .Stored("names", &RefineResult::names, kRefineFile)
+      .Stored("std_error", &RefineResult::std_error, kRefineFile)
+      .Stored("wall_time_s", &RefineResult::wall_time_s,
+              "not in the file, which stays identical run to run");
+  refine_result
       .def("to_json", py::overload_cast<const RefineResult&, int>(&ToJson),
            py::arg("indent") = 2, "`sysid refine --json`'s text (a model file too)")
       .def_static("from_json", &RefineResultFromJson, py::arg("text"), py::arg("source") = "json")
-      .def_readonly("initial", &RefineResult::initial)
-      .def_readonly("model", &RefineResult::model)
-      .def_readonly("names", &RefineResult::names)
-      .def_readonly("std_error", &RefineResult::std_error)
-      .def_readonly("initial_cost", &RefineResult::initial_cost)
-      .def_readonly("final_cost", &RefineResult::final_cost)
-      .def_readonly("rms_error_mps", &RefineResult::rms_error_mps)
-      .def_readonly("iterations", &RefineResult::iterations)
-      .def_readonly("simulations", &RefineResult::simulations)
-      .def_property_readonly("termination",
-                             [](const RefineResult& r) { return ToString(r.termination); })
-      .def_readonly("message", &RefineResult::message)
-      .def_readonly("warnings", &RefineResult::warnings)
-      .def_readonly("wall_time_s", &RefineResult::wall_time_s)
       .def("brief_report", &RefineResult::BriefReport);
   m.def("refine_recordings", &RefineOutputError, py::arg("initial"), py::arg("recordings"),
         py::arg("options") = RefineOptions{}, ReleaseGil());

@@ -154,24 +154,14 @@ void BindModel(py::module_& m) {
       .def_readonly("x_m", &Trajectory::x_m)
       .def_readonly("v_mps", &Trajectory::v_mps)
       .def_readonly("a_mps2", &Trajectory::a_mps2);
-  py::class_<SimulationEvent>(m, "SimulationEvent")
-      .def_readonly("t_s", &SimulationEvent::t_s)
-      .def_property_readonly("kind", [](const SimulationEvent& e) { return ToString(e.kind); })
-      .def("__repr__", [](const SimulationEvent& e) {
+  py::class_<SimulationEvent> event(m, "SimulationEvent");
+  DefReadOnlyFields(event);
+  event.def("__repr__", [](const SimulationEvent& e) {
         return fmt::format("<SimulationEvent {} at {} s>", ToString(e.kind), e.t_s);
       });
-  py::class_<SimulationSummary>(m, "SimulationSummary")
-      .def_property_readonly("termination",
-                             [](const SimulationSummary& s) { return ToString(s.termination); })
-      .def("is_solution_usable", &SimulationSummary::IsSolutionUsable)
-      .def_readonly("message", &SimulationSummary::message)
-      .def_readonly("cvode_flag", &SimulationSummary::cvode_flag)
-      .def_readonly("failure_time_s", &SimulationSummary::failure_time_s)
-      .def_readonly("steps", &SimulationSummary::steps)
-      .def_readonly("rhs_evaluations", &SimulationSummary::rhs_evaluations)
-      .def_readonly("events", &SimulationSummary::events)
-      .def_readonly("reinitialisations", &SimulationSummary::reinitialisations)
-      .def_readonly("wall_time_s", &SimulationSummary::wall_time_s)
+  py::class_<SimulationSummary> summary(m, "SimulationSummary");
+  DefReadOnlyFields(summary);
+  summary.def("is_solution_usable", &SimulationSummary::IsSolutionUsable)
       .def("brief_report", &SimulationSummary::BriefReport);
   py::class_<SimulationResult>(m, "SimulationResult")
       .def_readonly("trajectory", &SimulationResult::trajectory)

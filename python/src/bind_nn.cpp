@@ -106,7 +106,13 @@ void BindNeural(py::module_& m) {
           },
           py::arg("path"), py::arg("training_json") = "", "Writes the network JSON atomically.")
       .def_static("from_json", &ParseNeuralNetwork, py::arg("text"), py::arg("source") = "json")
-      .def("to_json", &NeuralNetworkToJson, py::arg("indent") = 2, py::arg("training_json") = "");
+      .def("to_json", &NeuralNetworkToJson, py::arg("indent") = 2, py::arg("training_json") = "")
+      // Its file is its state (a training result holding one pickles it with its fields).
+      .def(py::pickle(
+          [](const NeuralNetwork& n) { return py::make_tuple(NeuralNetworkToJson(n, -1)); },
+          [](const py::tuple& state) {
+            return ParseNeuralNetwork(state[0].cast<std::string>(), "pickle");
+          }));
 
   py::class_<NeuralDataset>(m, "NeuralDataset")
       .def_readonly("input_names", &NeuralDataset::input_names)
@@ -124,21 +130,21 @@ void BindNeural(py::module_& m) {
       py::arg("path"), py::arg("inputs"), py::arg("output"), ReleaseGil());
   m.def("mean_squared_error", &MeanSquaredError, py::arg("network"), py::arg("data"));
 
-  py::class_<IrreducibleError>(m, "IrreducibleError",
-                               "An estimate of the least MSE any model of the output on these "
-                               "inputs can reach on the data (k-NN, biased upward; interval: 95 %, "
-                               "delete-a-group jackknife; docs/neural.md)")
-      .def_readonly("input_names", &IrreducibleError::input_names)
-      .def_readonly("output_name", &IrreducibleError::output_name)
-      .def_readonly("rows", &IrreducibleError::rows)
-      .def_readonly("neighbours", &IrreducibleError::neighbours)
-      .def_readonly("output_variance", &IrreducibleError::output_variance)
-      .def_readonly("mse", &IrreducibleError::mse)
-      .def_property_readonly(
+  py::class_<IrreducibleError> irreducible(
+      m, "IrreducibleError",
+      "An estimate of the least MSE any model of the output on these inputs can reach on the "
+      "data (k-NN, biased upward; interval: 95 %, delete-a-group jackknife; docs/neural.md)");
+  constexpr const char* kInterval = "the 95 % interval's end; the JSON writes the interval";
+  DefReadOnlyFields(irreducible)
+      .Stored("mse_low", &IrreducibleError::mse_low, kInterval)
+      .Stored("mse_high", &IrreducibleError::mse_high, kInterval)
+      .Derived(
           "interval95",
-          [](const IrreducibleError& e) { return std::make_pair(e.mse_low, e.mse_high); })
-      .def_property_readonly("unexplained_share", &IrreducibleError::unexplained_share)
-      .def("__repr__", [](const IrreducibleError& e) {
+          [](const IrreducibleError& e) { return std::make_pair(e.mse_low, e.mse_high); },
+          "(mse_low, mse_high)")
+      .Derived("unexplained_share", &IrreducibleError::unexplained_share,
+               "mse / output_variance");
+  irreducible.def("__repr__", [](const IrreducibleError& e) {
         return fmt::format(
             "IrreducibleError(inputs={}, mse_estimate={:.4g} [{:.4g}, {:.4g}], "
             "output_variance={:.4g}, rows={})",
@@ -173,28 +179,20 @@ void BindNeural(py::module_& m) {
   DefFields(training);
   training.def("validate", &NeuralTrainingOptions::Validate);
 
-  py::class_<EpochRecord>(m, "EpochRecord")
-      .def_readonly("epoch", &EpochRecord::epoch)
-      .def_readonly("restart", &EpochRecord::restart)
-      .def_readonly("mu", &EpochRecord::mu)
-      .def_readonly("train_mse", &EpochRecord::train_mse)
-      .def_readonly("validation_mse", &EpochRecord::validation_mse)
-      .def_readonly("gradient_norm", &EpochRecord::gradient_norm);
-  py::class_<NeuralTrainingResult>(m, "TrainingResult")
-      .def_readonly("network", &NeuralTrainingResult::network)
-      .def_property_readonly(
-          "termination", [](const NeuralTrainingResult& r) { return ToString(r.termination); })
-      .def_property_readonly("stop_reason",
-                             [](const NeuralTrainingResult& r) { return ToString(r.stop); })
-      .def_readonly("message", &NeuralTrainingResult::message)
-      .def_readonly("epochs", &NeuralTrainingResult::epochs)
-      .def_readonly("restart", &NeuralTrainingResult::restart)
-      .def_readonly("train_mse", &NeuralTrainingResult::train_mse)
-      .def_readonly("validation_mse", &NeuralTrainingResult::validation_mse)
-      .def_readonly("wall_time_s", &NeuralTrainingResult::wall_time_s)
-      .def_readonly("history", &NeuralTrainingResult::history)
-      .def_readonly("still_falling", &NeuralTrainingResult::still_falling)
-      .def("brief_report", &NeuralTrainingResult::BriefReport);
+  py::class_<EpochRecord> epoch(m, "EpochRecord");
+  DefReadOnlyFields(epoch);
+  constexpr const char* kStopReason = "stop under its file key (the name scripts use)";
+  constexpr const char* kStillFalling =
+      "whether the validation MSE still fell at the end; the report says it in words";
+  py::class_<NeuralTrainingResult> training_result(m, "TrainingResult");
+  DefReadOnlyFields(training_result)
+      .Stored("network", &NeuralTrainingResult::network,
+              "the trained network, a file of its own (Network.to_json)")
+      .Stored("still_falling", &NeuralTrainingResult::still_falling, kStillFalling)
+      .Derived(
+          "stop_reason", [](const NeuralTrainingResult& r) { return ToString(r.stop); },
+          kStopReason);
+  training_result.def("brief_report", &NeuralTrainingResult::BriefReport);
   m.def("train_dataset", &TrainNeuralNetwork, py::arg("train"), py::arg("validation"),
         py::arg("options"), ReleaseGil());
 
@@ -203,24 +201,21 @@ void BindNeural(py::module_& m) {
   AddOptionsJson(sweep, &HiddenSweepOptionsFromJson);
   DefFields(sweep);
   sweep.def("validate", &HiddenSweepOptions::Validate);
-  py::class_<HiddenSweepRow>(m, "SweepRow")
-      .def_readonly("hidden", &HiddenSweepRow::hidden)
-      .def_readonly("epochs", &HiddenSweepRow::epochs)
-      .def_readonly("train_mse", &HiddenSweepRow::train_mse)
-      .def_readonly("validation_mse", &HiddenSweepRow::validation_mse)
-      .def_readonly("test_mse", &HiddenSweepRow::test_mse)
-      .def_property_readonly(
-          "termination", [](const HiddenSweepRow& r) { return ToString(TerminationOf(r.stop)); })
-      .def_property_readonly("stop_reason",
-                             [](const HiddenSweepRow& r) { return ToString(r.stop); })
-      .def_readonly("still_falling", &HiddenSweepRow::still_falling)
-      .def_readonly("wall_time_s", &HiddenSweepRow::wall_time_s);
-  py::class_<HiddenSweepResult>(m, "SweepResult")
-      .def_readonly("rows", &HiddenSweepResult::rows)
-      .def_readonly("runs", &HiddenSweepResult::runs)
-      .def_readonly("chosen", &HiddenSweepResult::chosen)
-      .def_readonly("rule", &HiddenSweepResult::rule)
-      .def_readonly("wall_time_s", &HiddenSweepResult::wall_time_s);
+  py::class_<HiddenSweepRow> sweep_row(m, "SweepRow");
+  DefReadOnlyFields(sweep_row)
+      .Stored("still_falling", &HiddenSweepRow::still_falling, kStillFalling)
+      .Derived(
+          "termination",
+          [](const HiddenSweepRow& r) { return ToString(TerminationOf(r.stop)); },
+          "the termination of the stopping rule")
+      .Derived(
+          "stop_reason", [](const HiddenSweepRow& r) { return ToString(r.stop); }, kStopReason);
+  py::class_<HiddenSweepResult> sweep_result(m, "SweepResult");
+  DefReadOnlyFields(sweep_result)
+      .Stored("runs", &HiddenSweepResult::runs,
+              "the trained networks, one per row; the file holds the rows")
+      .Stored("chosen", &HiddenSweepResult::chosen,
+              "the chosen row's index; the file names it by its hidden size");
   m.def("sweep_datasets", &SweepHiddenSize, py::arg("train"), py::arg("validation"),
         py::arg("test"), py::arg("options"), ReleaseGil());
   m.def("parse_hidden_sizes", &ParseHiddenSizes, py::arg("spec"));

@@ -7,12 +7,10 @@
 namespace sysid::python {
 
 void BindValidate(py::module_& m) {
-  py::class_<FitScores>(m, "FitScores", "fit % (MATLAB compare), RMSE and both NRMSEs, named")
-      .def_readonly("fit_percent", &FitScores::fit_percent)
-      .def_readonly("rmse", &FitScores::rmse)
-      .def_readonly("nrmse_std", &FitScores::nrmse_std)
-      .def_readonly("nrmse_range", &FitScores::nrmse_range)
-      .def("__repr__", [](const FitScores& s) {
+  py::class_<FitScores> scores(m, "FitScores",
+                              "fit % (MATLAB compare), RMSE and both NRMSEs, named");
+  DefReadOnlyFields(scores);
+  scores.def("__repr__", [](const FitScores& s) {
         return py::str("FitScores(fit_percent={!r}, rmse={!r}, nrmse_std={!r}, nrmse_range={!r})")
             .format(s.fit_percent, s.rmse, s.nrmse_std, s.nrmse_range);
       });
@@ -37,43 +35,31 @@ void BindValidate(py::module_& m) {
       py::arg("e"), py::arg("u"), py::arg("max_lag"),
       "r_eu(k) = corr(e_t, u_{t-k}), k = 0..max_lag, means removed");
 
-  py::class_<CorrelationTest>(m, "CorrelationTest")
-      .def_readonly("name", &CorrelationTest::name)
-      .def_readonly("lags", &CorrelationTest::lags)
-      .def_readonly("r", &CorrelationTest::r)
-      .def_readonly("bound", &CorrelationTest::bound)
-      .def_readonly("strong_bound", &CorrelationTest::strong_bound)
-      .def_readonly("outside", &CorrelationTest::outside)
-      .def_readonly("allowed_outside", &CorrelationTest::allowed_outside)
-      .def_readonly("max_abs_r", &CorrelationTest::max_abs_r)
-      .def_readonly("tested", &CorrelationTest::tested)
-      .def_readonly("passed", &CorrelationTest::pass)
-      .def_readonly("verdict", &CorrelationTest::verdict)
-      .def("__repr__", [](const CorrelationTest& t) {
+  py::class_<CorrelationTest> correlation(m, "CorrelationTest");
+  DefReadOnlyFields(correlation)
+      .Derived(
+          "passed", [](const CorrelationTest& t) { return t.pass; },
+          "the field pass, whose name is a Python keyword (getattr(test, 'pass') reads it)");
+  correlation.def("__repr__", [](const CorrelationTest& t) {
         return "<CorrelationTest " + t.name + ": " + t.verdict + ">";
       });
-  py::class_<OutputValidation>(m, "OutputValidation")
-      .def_readonly("output", &OutputValidation::output)
-      .def_readonly("unit", &OutputValidation::unit)
-      .def_readonly("measured", &OutputValidation::measured)
-      .def_readonly("simulated", &OutputValidation::simulated)
-      .def_readonly("scores", &OutputValidation::scores)
-      .def_readonly("autocorrelation", &OutputValidation::autocorrelation)
-      .def_readonly("cross_correlation", &OutputValidation::cross_correlation)
-      .def("__repr__", [](const OutputValidation& o) {
+  py::class_<OutputValidation> output(m, "OutputValidation");
+  constexpr const char* kSignal = "a signal of the run; the JSON holds its scores";
+  DefReadOnlyFields(output)
+      .Stored("measured", &OutputValidation::measured, kSignal)
+      .Stored("simulated", &OutputValidation::simulated, kSignal);
+  output.def("__repr__", [](const OutputValidation& o) {
         return py::str(
                    "<OutputValidation {}: fit {:.4g} %, autocorrelation {}, cross-correlation "
                    "{}>")
             .format(o.output, o.scores.fit_percent, o.autocorrelation.pass ? "pass" : "fail",
                     o.cross_correlation.pass ? "pass" : "fail");
       });
-  py::class_<Validation>(m, "Validation")
-      .def_readonly("source", &Validation::source)
-      .def_readonly("model_kind", &Validation::model_kind)
-      .def_readonly("t_s", &Validation::t_s)
-      .def_readonly("u_v", &Validation::u_v)
-      .def_readonly("outputs", &Validation::outputs)
-      .def(
+  py::class_<Validation> validation(m, "Validation");
+  DefReadOnlyFields(validation)
+      .Stored("t_s", &Validation::t_s, kSignal)
+      .Stored("u_v", &Validation::u_v, kSignal);
+  validation.def(
           "to_json", [](const Validation& v, int indent) { return ToJson(v, indent); },
           py::arg("indent") = 2)
       .def("__repr__", [](const Validation& v) {

@@ -41,7 +41,7 @@ from ._sysid import (  # noqa: F401  (re-exported)
 
 __version__ = "0.1.0"
 
-# ---- Option structs: keyword construction (C++ defaults), repr, to_dict, pickling ----------
+# ---- Described structs: keyword construction (C++ defaults), repr, to_dict, equality, pickling --
 
 OPTION_TYPES = (
     ReadOptions, DerivativeOptions, MotionOptions, Model, PulseTrainSpec, SimulationOptions,
@@ -49,12 +49,24 @@ OPTION_TYPES = (
     TrajectoryOptions, SegmentOptions, DelayTuningOptions, RefineOptions, DominanceOptions,
     TrainingOptions, SweepOptions, stage.PulseProcedure, stage.TrackingProcedure,
     stage.PiOptions, stage.SmoothProfileOptions, ResidualTestOptions, ValidationOptions,
-    stage.DriverSettings, stage.RigSettings, stage.IntegratorSettings,
+    stage.DriverSettings, stage.RigSettings, stage.IntegratorSettings, PulsePoint,
 )
 
 
+def _bound_classes():
+    """Every class of the extension module and its submodule sysid.stage."""
+    return [v for module in (_sysid, _sysid.stage) for v in vars(module).values()
+            if isinstance(v, type) and v.__module__.startswith("sysid")]
+
+
+# A result's attributes are read-only: its described fields (__fields__, C++ Serialize order)
+# and the members its description leaves out (__extra_fields__, each with its reason). It pickles
+# in C++ through the same list (python/src/bind_fields.hpp).
+RESULT_TYPES = tuple(c for c in _bound_classes() if "__extra_fields__" in vars(c))
+
+
 def fields(obj_or_type):
-    """Names of the writable fields of a bound struct, in declaration order: a described struct's
+    """Names of the fields of a bound struct, in declaration order: a described struct's
     __fields__ (its C++ Serialize list), else its writable properties."""
     cls = obj_or_type if isinstance(obj_or_type, type) else type(obj_or_type)
     if "__fields__" in vars(cls):
@@ -64,18 +76,32 @@ def fields(obj_or_type):
 
 
 def _to_plain(value):
-    if type(value) in OPTION_TYPES:
+    if "__fields__" in vars(type(value)) or type(value) in OPTION_TYPES:
         return {n: _to_plain(getattr(value, n)) for n in fields(value)}
     if isinstance(value, (list, tuple)):
         return type(value)(_to_plain(v) for v in value)
     if hasattr(type(value), "__members__"):  # a bound enum: its name
         return next(k for k, v in type(value).__members__.items() if v == value)
+    if hasattr(value, "tolist"):  # a NumPy array (an Eigen vector or matrix): nested lists
+        return value.tolist()
     return value
 
 
 def _to_dict(self):
-    """The fields as a plain dict (nested option structs as dicts, enums as names)."""
+    """The fields as a plain dict (nested described structs as dicts, enums as names, arrays as
+    lists)."""
     return _to_plain(self)
+
+
+def _same(a, b):
+    """a == b, with NaN equal to NaN (a result's quantity that does not exist)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float) and a != a and b != b:
+        return True
+    return a == b
 
 
 def _rebuild(cls, state):
@@ -95,7 +121,7 @@ def _repr(self):
 
 
 def _eq(self, other):
-    return type(self) is type(other) and _to_plain(self) == _to_plain(other)
+    return type(self) is type(other) and _same(_to_plain(self), _to_plain(other))
 
 
 for _cls in OPTION_TYPES:
@@ -104,6 +130,13 @@ for _cls in OPTION_TYPES:
     _cls.__hash__ = None  # mutable, compared by value
     _cls.__reduce__ = _reduce
     _cls.__repr__ = _repr
+
+for _cls in RESULT_TYPES:
+    _cls.__eq__ = _eq
+    _cls.__hash__ = None  # compared by value
+    for _name, _method in (("to_dict", _to_dict), ("__repr__", _repr)):
+        if _name not in vars(_cls):  # a result's own summary (the CLI's JSON object) stays
+            setattr(_cls, _name, _method)
 
 def _enum_name(value):
     return next(k for k, v in type(value).__members__.items() if v == value).replace("_", "-")
@@ -426,6 +459,9 @@ SweepResult.brief_report = lambda self: "".join(
     f"H {r['hidden']:>4}  epochs {r['epochs']:>5}  train MSE {r['train_mse']:.6g}  "
     f"validation MSE {r['validation_mse']:.6g}  test MSE {r['test_mse']:.6g}  "
     f"{r['termination']}{'  <- chosen' if r['chosen'] else ''}\n" for r in self.records())
+SweepResult.__extra_fields__.update(
+    termination="whether a network was chosen (the termination every result states)",
+    message="the chosen size and rule in words")
 DominanceSummary.termination = property(lambda self: "analysed")
 DominanceSummary.message = property(
     lambda self: f"{len(self.results)} recordings: dominant {self.dominant}, margin min "

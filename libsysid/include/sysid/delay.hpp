@@ -108,7 +108,7 @@ struct DelayTuningResult {
   /// file's object.
   template <class Archive>
   void Serialize(Archive* a) {
-    a->Visit(NameValue<double>("tau", &tau_s).Minimum(0));
+    a->Visit(SYSID_NVP(tau_s).Renamed("tau").Minimum(0));
     a->Visit(SYSID_NVP(cost).Minimum(0));
     a->Visit(SYSID_NVP(rms_error_mps).Minimum(0));
     a->Visit(SYSID_NVP(evaluations).Minimum(0).Maximum(1 << 30));

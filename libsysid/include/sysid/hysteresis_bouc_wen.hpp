@@ -92,11 +92,11 @@ struct MechanicalBoucWenParameters {
   /// left out (1), the ranges are Validate()'s, checked as read.
   template <class Archive>
   void Serialize(Archive* a) {
-    a->Visit(NameValue<double>("m", &m_kg).Required().ExclusiveMinimum(0));
-    a->Visit(NameValue<double>("c", &c_n_s_per_m).Required().Minimum(0));
-    a->Visit(NameValue<double>("k", &k_n_per_m).Required().Minimum(0));
-    a->Visit(NameValue<double>("alpha", &alpha_n_per_m).Required().ExclusiveMinimum(0));
-    a->Visit(NameValue<double>("beta", &beta_per_m).Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(m_kg).Renamed("m").Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(c_n_s_per_m).Renamed("c").Required().Minimum(0));
+    a->Visit(SYSID_NVP(k_n_per_m).Renamed("k").Required().Minimum(0));
+    a->Visit(SYSID_NVP(alpha_n_per_m).Renamed("alpha").Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(beta_per_m).Renamed("beta").Required().ExclusiveMinimum(0));
     a->Visit(SYSID_NVP(gamma).Required());
     a->Visit(SYSID_NVP(delta).Required());
     a->Visit(SYSID_NVP(nu).Minimum(1).Maximum(10));
@@ -116,11 +116,11 @@ struct PiezoBoucWenParameters {
   /// (0).
   template <class Archive>
   void Serialize(Archive* a) {
-    a->Visit(NameValue<double>("d", &d_m_per_v).Required().ExclusiveMinimum(0));
+    a->Visit(SYSID_NVP(d_m_per_v).Renamed("d").Required().ExclusiveMinimum(0));
     a->Visit(SYSID_NVP(alpha).Required());
-    a->Visit(NameValue<double>("beta", &beta_per_v).Required());
-    a->Visit(NameValue<double>("gamma", &gamma_per_v).Required());
-    a->Visit(NameValue<double>("offset", &offset_m));
+    a->Visit(SYSID_NVP(beta_per_v).Renamed("beta").Required());
+    a->Visit(SYSID_NVP(gamma_per_v).Renamed("gamma").Required());
+    a->Visit(SYSID_NVP(offset_m).Renamed("offset"));
   }
   void Validate() const;      ///< throws OptionsError naming the field and the rule
 };

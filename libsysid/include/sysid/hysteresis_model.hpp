@@ -46,7 +46,7 @@ struct HysteresisFitSummary {
     a->Visit(SYSID_NVP(kind));
     a->Visit(SYSID_NVP(samples).Minimum(0));
     a->Visit(SYSID_NVP(fit_time_s).Minimum(0));
-    a->Visit(NameValue<double>("training_rms_m", &training_rms).NaNAsNull());
+    a->Visit(SYSID_NVP(training_rms).Renamed("training_rms_m").NaNAsNull());
     a->Visit(SYSID_NVP(converged));
     a->Visit(SYSID_NVP(message));
   }

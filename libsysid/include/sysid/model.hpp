@@ -34,7 +34,7 @@ struct FrictionModel {
     a->Visit(SYSID_NVP(a2p).Required().Minimum(0).Unit("m/s^2"));
     a->Visit(SYSID_NVP(a2n).Required().Minimum(0).Unit("m/s^2"));
     a->Visit(SYSID_NVP(a3).Required().ExclusiveMinimum(0).Unit("m/(s^2 V)"));
-    a->Visit(NameValue<double>("tau", &tau_s).Minimum(0).Maximum(1).Unit("s"));
+    a->Visit(SYSID_NVP(tau_s).Renamed("tau").Minimum(0).Maximum(1).Unit("s"));
   }
 
   /// Throws OptionsError naming the field and the violated rule (finite, a1 >= 0, a2 >= 0,

@@ -12,7 +12,7 @@
 //
 // A file whose format predates its struct (the model file: "tau" for tau_s, every key but tau
 // required, its ranges checked as each number is read) says so on the field:
-//   a->Visit(NameValue<double>("tau", &tau_s).Minimum(0).Maximum(1).Unit("s"));
+//   a->Visit(SYSID_NVP(tau_s).Renamed("tau").Minimum(0).Maximum(1).Unit("s"));
 //   a->Visit(SYSID_NVP(a3).Required().ExclusiveMinimum(0).Unit("m/(s^2 V)"));
 #ifndef SYSID_SERIALIZE_HPP_
 #define SYSID_SERIALIZE_HPP_
@@ -38,7 +38,14 @@ class NameValue {
  public:
   using value_type = T;
   NameValue(const char* name, T* value) : name_(name), value_(value) {}
+  /// `member`: the C++ member's name when the key is another (SYSID_NVP gives both).
+  NameValue(const char* name, T* value, const char* member)
+      : name_(name), value_(value), member_(member) {}
+  /// The key in a file.
   const char* name() const { return name_; }
+  /// The member's name, which Python shows (the unit in it: tau_s where a file says "tau"); the
+  /// key when the field was named by its key alone.
+  const char* member_name() const { return member_ != nullptr ? member_ : name_; }
   T* value() const { return value_; }
   FieldForm form() const { return form_; }
   NameValue UpperLimit() const { return WithForm(FieldForm::kUpperLimit); }
@@ -105,7 +112,8 @@ class NameValue {
   }
   const char* unit() const { return unit_; }
 
-  /// The same field under another key (a file whose sections name fields their own way).
+  /// The same field under another key (a file whose sections name fields their own way); the
+  /// member's name stays.
   NameValue Renamed(const char* key) const {
     NameValue nv = *this;
     nv.name_ = key;
@@ -126,6 +134,7 @@ class NameValue {
   }
   const char* name_;
   T* value_;
+  const char* member_ = nullptr;
   FieldForm form_ = FieldForm::kPlain;
   bool required_ = false;
   double lo_ = -std::numeric_limits<double>::infinity();
@@ -156,6 +165,6 @@ struct IsDescribed<T, std::void_t<decltype(std::declval<T&>().Serialize(
 }  // namespace sysid
 
 /// The NameValue of the member `field`, named as it is spelled.
-#define SYSID_NVP(field) ::sysid::NameValue<decltype(field)>(#field, &(field))
+#define SYSID_NVP(field) ::sysid::NameValue<decltype(field)>(#field, &(field), #field)
 
 #endif  // SYSID_SERIALIZE_HPP_
