@@ -19,6 +19,21 @@ def run_cli(*args, cwd=None, expect=0):
     return proc
 
 
+def pulse_only_pipeline_summary():
+    """A pipeline summary of a run on pulse recordings alone: no network keys, the skipped steps,
+    the tuned gains and the tracking on the model."""
+    import sysid
+    return {
+        "model": json.loads(sysid.Model().to_json()),
+        "skipped": ["dominance analysis: needs a training set and a test set"],
+        "tracking": [],
+        "tuned_pi": {"kp_v_per_m": 1571.7, "ki_v_per_m_s": 26720.0, "sample_time_s": 0.001},
+        "model_tracking": [{"frequency_hz": 0.5, "ff": "analytic", "max_error_m": 9.6e-7,
+                            "rms_error_m": 4e-7}],
+        "steps": [{"name": "identify", "wall_time_s": 0.1}],
+    }
+
+
 def cli_json(*args, cwd=None):
     return json.loads(run_cli(*args, "--json", cwd=cwd).stdout)
 

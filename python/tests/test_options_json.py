@@ -5,6 +5,7 @@ import json
 import pytest
 
 import sysid
+from conftest import pulse_only_pipeline_summary
 
 
 @pytest.mark.parametrize("cls, changes", [
@@ -86,17 +87,7 @@ def test_pipeline_summary_round_trip():
 
 
 def test_pulse_only_pipeline_summary_round_trips():
-    # A run on pulse recordings alone: no network keys, the skipped steps, the tuned gains and
-    # the tracking on the model.
-    summary = {
-        "model": json.loads(sysid.Model().to_json()),
-        "skipped": ["dominance analysis: needs a training set and a test set"],
-        "tracking": [],
-        "tuned_pi": {"kp_v_per_m": 1571.7, "ki_v_per_m_s": 26720.0, "sample_time_s": 0.001},
-        "model_tracking": [{"frequency_hz": 0.5, "ff": "analytic", "max_error_m": 9.6e-7,
-                            "rms_error_m": 4e-7}],
-        "steps": [{"name": "identify", "wall_time_s": 0.1}],
-    }
+    summary = pulse_only_pipeline_summary()
     r = sysid.PipelineResult.from_json(json.dumps(summary), "p.json")
     assert r.skipped == summary["skipped"]
     assert r.tuned_pi.kp_v_per_m == 1571.7 and r.tuned_pi.ki_v_per_m_s == 26720.0

@@ -12,7 +12,7 @@ import pytest
 
 import sysid
 from sysid import _sysid
-from conftest import VIRTUAL, ROOT
+from conftest import ROOT, VIRTUAL, pulse_only_pipeline_summary
 
 # Types still bound field by field (no Serialize), each with its reason.
 UNDESCRIBED = {
@@ -75,16 +75,7 @@ def test_python_names_are_the_member_names():
 
 
 def _pipeline():
-    summary = {
-        "model": json.loads(sysid.Model().to_json()),
-        "skipped": ["dominance analysis: needs a training set and a test set"],
-        "tracking": [],
-        "tuned_pi": {"kp_v_per_m": 1571.7, "ki_v_per_m_s": 26720.0, "sample_time_s": 0.001},
-        "model_tracking": [{"frequency_hz": 0.5, "ff": "analytic", "max_error_m": 9.6e-7,
-                            "rms_error_m": 4e-7}],
-        "steps": [{"name": "identify", "wall_time_s": 0.1}],
-    }
-    return sysid.PipelineResult.from_json(json.dumps(summary), "p.json")
+    return sysid.PipelineResult.from_json(json.dumps(pulse_only_pipeline_summary()), "p.json")
 
 
 @pytest.fixture(scope="module")
