@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -91,6 +92,12 @@ class FieldPropertyArchive {
   template <typename V>
   void Visit(const NameValue<V>& nv) {
     const std::ptrdiff_t offset = reinterpret_cast<const char*>(nv.value()) - base_;
+    // A value Serialize computes (a derived key written beside the fields) lives outside the
+    // object and has no offset: bind it by hand, as a Derived extra.
+    if (offset < 0 || offset + static_cast<std::ptrdiff_t>(sizeof(V)) >
+                          static_cast<std::ptrdiff_t>(sizeof(T)))
+      throw std::logic_error(std::string(typeid(T).name()) + ": field '" + nv.name() +
+                             "' is not a member, so it cannot be a Python attribute");
     const auto field = [offset](const T& self) -> const V& {
       return *reinterpret_cast<const V*>(reinterpret_cast<const char*>(&self) + offset);
     };
