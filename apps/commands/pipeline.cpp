@@ -39,10 +39,9 @@ struct PipelineCliOptions {
 // A stack data set's run: the hysteresis models' table (report.md has the same).
 void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) {
   if (json) {
-    nlohmann::ordered_json j;
-    j["report"] = (out / "report.md").string();
-    j.update(nlohmann::ordered_json::parse(StackSummaryJson(r)));
-    std::cout << j.dump(2) << '\n';
+    StackSummary summary = StackSummaryOf(r);
+    summary.report = (out / "report.md").string();
+    std::cout << ToJson(summary);
     return;
   }
   for (const auto& d : r.stack_dominance)
