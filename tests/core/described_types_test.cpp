@@ -209,6 +209,7 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::PiMarginsDirection>("PiMarginsDirection");
   CheckRoundTrip<sysid::PiMarginsReport>("PiMarginsReport");
   CheckRoundTrip<sysid::PiTuningResult>("PiTuningResult");
+  CheckRoundTrip<sysid::TunePiSummary>("TunePiSummary");
   CheckRoundTrip<sysid::LimitCycleCheck>("LimitCycleCheck");
   CheckRoundTrip<sysid::PiStepResponse>("PiStepResponse");
   CheckRoundTrip<sysid::PiSineResponse>("PiSineResponse");

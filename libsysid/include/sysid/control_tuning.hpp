@@ -179,7 +179,20 @@ PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
 /// "saturated_samples", "max_abs_u_v"}, "sine": {"amplitude_m", "frequency_hz", the run's
 /// metrics, "limit_cycle": {...}}}: the described fields; NaN as null.
 std::string ToJson(const PiBehaviour& behaviour, int indent = 2);
-/// `sysid tune-pi --json`: {"plant", "tuning": ToJson(result), "behaviour": ToJson(behaviour)}.
+/// `sysid tune-pi --json`: the plant's name, the tuning and the gains' behaviour on it.
+struct TunePiSummary {
+  std::string plant;  ///< the model file's path, as given
+  PiTuningResult tuning;
+  PiBehaviour behaviour;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(plant).Required());
+    a->Visit(SYSID_NVP(tuning).Required());
+    a->Visit(SYSID_NVP(behaviour).Required());
+  }
+};
+/// {"plant", "tuning": ToJson(result), "behaviour": ToJson(behaviour)}: a TunePiSummary.
 std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
                          const PiBehaviour& behaviour, int indent = 2);
 

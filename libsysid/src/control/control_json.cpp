@@ -1,7 +1,7 @@
 // JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries), of the PI
 // tuning and its behaviour (tune-pi --json), and of the controller and reference-profile
-// options: the described structs through their field lists; the two commands' summaries (a
-// plant's name beside them) by hand.
+// options: the described structs through their field lists; the track summary (a plant's name
+// and the headline metrics of a single run beside them) by hand.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -111,11 +111,7 @@ std::string ToJson(const PiBehaviour& b, int indent) { return internal::FieldsTo
 
 std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
                          const PiBehaviour& behaviour, int indent) {
-  nlohmann::ordered_json j;
-  j["plant"] = plant;
-  j["tuning"] = internal::WriteFields(result);
-  j["behaviour"] = internal::WriteFields(behaviour);
-  return internal::DumpJson(j, indent);
+  return internal::FieldsToJson(TunePiSummary{plant, result, behaviour}, indent);
 }
 
 }  // namespace sysid
