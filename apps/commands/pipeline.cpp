@@ -113,11 +113,8 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   if (!r.pulse.a3_given)
     std::cerr << "sysid pipeline: warning: " << DescribeA3(r.pulse.model.a3, false)
               << "; a1 and a2 scale with it (the report repeats this)\n";
-  nlohmann::ordered_json j;
-  j["report"] = (out / "report.md").string();
-  j.update(nlohmann::ordered_json::parse(ToJson(r)));
   if (o.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << ToJson(r, (out / "report.md").string());
     return;
   }
   std::cout << fmt::format(

@@ -319,6 +319,9 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
 /// required, met}] and facts_required_met, and steps [{name, wall_time_s [s]}] in run order.
 /// NaN MSEs and crossings not found are null.
 std::string ToJson(const PipelineResult& result, int indent = 2);
+/// `sysid pipeline --json`: that summary after {"report": report_path}.
+std::string ToJson(const PipelineResult& result, const std::string& report_path,
+                   int indent = 2);
 /// Reads that summary back (a "report" key, which the CLI adds, is allowed): ToJson of the
 /// result gives the text again. What the summary does not carry stays default: inputs,
 /// options, the pulse, delay and refinement results, the dominance analysis but its dominant

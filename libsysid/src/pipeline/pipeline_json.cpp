@@ -21,14 +21,17 @@ using Json = nlohmann::ordered_json;
 using Rule = internal::NumberRule;
 }  // namespace
 
-std::string ToJson(const PipelineResult& r, int indent) {
-  // The described keys (PipelineResult::Serialize) in their places, the derived and
-  // conditional ones between them.
+namespace {
+
+// The report's path first when given, then the described keys (PipelineResult::Serialize) in
+// their places, the derived and conditional ones between them.
+Json SummaryJson(const PipelineResult& r, const std::string& report_path) {
   Json described = internal::WriteFields(r);
   auto take = [&](Json& j, const char* key) {
     if (described.contains(key)) j[key] = std::move(described[key]);
   };
   Json j;
+  if (!report_path.empty()) j["report"] = report_path;
   take(j, "model");
   // A pulse-only run has no dominance and no network (its "skipped" says why).
   if (r.skipped.empty()) {
@@ -67,7 +70,17 @@ std::string ToJson(const PipelineResult& r, int indent) {
   }
   // An array in run order (an object's keys would be re-sorted by readers that sort them).
   take(j, "steps");
-  return internal::DumpJson(j, indent);
+  return j;
+}
+
+}  // namespace
+
+std::string ToJson(const PipelineResult& r, int indent) {
+  return internal::DumpJson(SummaryJson(r, ""), indent);
+}
+
+std::string ToJson(const PipelineResult& r, const std::string& report_path, int indent) {
+  return internal::DumpJson(SummaryJson(r, report_path), indent);
 }
 
 namespace {
