@@ -37,13 +37,13 @@ void RunMargins(const MarginsCli& o) {
   std::cout << fmt::format(
       "PI Kp = {:g} V/m, Ki = {:g} V/(m s) at {:g} Hz on a3 / (s (s + a1 e^(-s tau))), "
       "a3 = {:g} m/(s^2 V), tau = {:g} s, extra delay {:g} s\n\n",
-      pi.kp_v_per_m, pi.ki_v_per_m_s, o.rate_hz, r.model.a3, r.model.tau_s, o.extra_delay_s);
+      pi.kp_v_per_m, pi.ki_v_per_m_s, o.rate_hz, r.a3_mps2_per_v, r.tau_s, o.extra_delay_s);
   auto num = [](double v, const char* f) {
     return std::isnan(v) ? std::string("none") : fmt::format(fmt::runtime(f), v);
   };
   Table table({"direction", "a1 [1/s]", "crossover [rad/s]", "phase margin [deg]",
                "phase crossover [rad/s]", "gain margin", "stable"});
-  for (const auto& [name, a1, m] : r.Directions())
+  for (const auto& [name, a1, m] : r.directions)
     table.AddRow({name, Num(a1), num(m.crossover_rad_s, "{:.4g}"),
                   num(m.phase_margin_deg, "{:.2f}"), num(m.phase_crossover_rad_s, "{:.4g}"),
                   num(m.gain_margin, "{:.3f}"), m.Stable() ? "yes" : "no"});

@@ -39,10 +39,9 @@ struct PipelineCliOptions {
 // A stack data set's run: the hysteresis models' table (report.md has the same).
 void PrintStackSummary(const PipelineResult& r, const fs::path& out, bool json) {
   if (json) {
-    nlohmann::ordered_json j;
-    j["report"] = (out / "report.md").string();
-    j.update(nlohmann::ordered_json::parse(StackSummaryJson(r)));
-    std::cout << j.dump(2) << '\n';
+    StackSummary summary = StackSummaryOf(r);
+    summary.report = (out / "report.md").string();
+    std::cout << ToJson(summary);
     return;
   }
   for (const auto& d : r.stack_dominance)
@@ -114,11 +113,8 @@ void RunPipelineCommand(const PipelineCliOptions& o) {
   if (!r.pulse.a3_given)
     std::cerr << "sysid pipeline: warning: " << DescribeA3(r.pulse.model.a3, false)
               << "; a1 and a2 scale with it (the report repeats this)\n";
-  nlohmann::ordered_json j;
-  j["report"] = (out / "report.md").string();
-  j.update(nlohmann::ordered_json::parse(ToJson(r)));
   if (o.json) {
-    std::cout << j.dump(2) << '\n';
+    std::cout << ToJson(r, (out / "report.md").string());
     return;
   }
   std::cout << fmt::format(

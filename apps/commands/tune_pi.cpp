@@ -53,7 +53,7 @@ void RunTunePi(const TunePiCli& o) {
   }
   ProgressDone();
   if (o.json) {
-    std::cout << TunePiToJson(o.model_path, r, o.tuning, b) << '\n';
+    std::cout << TunePiToJson(o.model_path, r, b) << '\n';
     return;
   }
   std::cout << fmt::format(
@@ -65,7 +65,7 @@ void RunTunePi(const TunePiCli& o) {
       r.pi.ki_v_per_m_s);
   Table margins({"direction", "a1 [1/s]", "crossover [Hz]", "phase margin [deg]",
                  "gain margin [dB]", "stable"});
-  for (const auto& [name, a1, m] : r.margins.Directions())
+  for (const auto& [name, a1, m] : r.margins.directions)
     margins.AddRow({name, Num(a1), OrNone(m.crossover_rad_s / (2 * M_PI), "{:.4g}"),
                     OrNone(m.phase_margin_deg, "{:.2f}"),
                     OrNone(20 * std::log10(m.gain_margin), "{:.2f}"), m.Stable() ? "yes" : "no"});

@@ -130,13 +130,13 @@ void BindControl(py::module_& m) {
           [](const PipelineResult& r) -> std::optional<py::dict> {
             if (!r.margins) return std::nullopt;
             py::dict out;
-            for (const auto& [name, a1, m] : r.margins->Directions()) {
+            for (const auto& [name, a1, m] : r.margins->directions) {
               py::dict d;
               d["crossover_rad_s"] = m.crossover_rad_s;
               d["phase_margin_deg"] = m.phase_margin_deg;
               d["gain_margin"] = m.gain_margin;
               d["stable"] = m.Stable();
-              out[name] = d;
+              out[py::str(name)] = d;
             }
             return out;
           },
@@ -204,7 +204,7 @@ void BindControl(py::module_& m) {
         o.extra_delay_s = extra_delay_s;
         o.u_max_v = u_max_v;
         const PiTuningResult r = TunePi(model, o);
-        return TunePiToJson(plant, r, o, SimulatePiBehaviour(model, r.pi));
+        return TunePiToJson(plant, r, SimulatePiBehaviour(model, r.pi));
       },
       py::arg("model"), py::arg("plant"), py::arg("loop_rate_hz"), py::arg("phase_margin_deg"),
       py::arg("gain_margin_db"), py::arg("crossover_per_integral_corner"), py::arg("extra_delay_s"),

@@ -213,9 +213,9 @@ TEST_CASE("sysid margins: table, JSON and bad input", "[control][cli]") {
   const auto lib = sysid::AnalyzePiMargins(sysid::FrictionModel::Paper(), sysid::PiOptions{});
   REQUIRE(j["directions"].size() == 2);
   CHECK(j["directions"][0]["direction"] == "forward");
-  CHECK(j["directions"][0]["phase_margin_deg"].get<double>() == lib.forward.phase_margin_deg);
-  CHECK(j["directions"][1]["gain_margin"].get<double>() == lib.backward.gain_margin);
-  CHECK(j["directions"][0]["stable"] == lib.forward.Stable());
+  CHECK(j["directions"][0]["phase_margin_deg"].get<double>() == lib.forward().phase_margin_deg);
+  CHECK(j["directions"][1]["gain_margin"].get<double>() == lib.backward().gain_margin);
+  CHECK(j["directions"][0]["stable"] == lib.forward().Stable());
   CHECK(j["kp_v_per_m"].get<double>() == 19000);
   // Lower gains at a slower rate: the flags reach the library.
   const auto slow = sysid::test::RunCli(
@@ -247,7 +247,7 @@ TEST_CASE("margins JSON: the published keys in order, the derived ones from the 
           "[control][json]") {
   sysid::PiMarginsReport r =
       sysid::AnalyzePiMargins(sysid::FrictionModel::Paper(), sysid::PiOptions{});
-  r.backward = sysid::LoopMargins{};  // no crossing found
+  r.directions[1].margins = sysid::LoopMargins{};  // no crossing found
   const auto j = nlohmann::ordered_json::parse(sysid::ToJson(r));
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
@@ -263,7 +263,7 @@ TEST_CASE("margins JSON: the published keys in order, the derived ones from the 
                                          "phase_crossover_rad_s", "gain_margin",
                                          "gain_margin_db", "stable"});
   // The derived keys by their definitions, to the last bits of the division and the log.
-  const sysid::LoopMargins& m = r.forward;
+  const sysid::LoopMargins& m = r.forward();
   REQUIRE(std::isfinite(m.crossover_rad_s));
   CHECK(f["crossover_hz"].get<double>() ==
         Approx(m.crossover_rad_s / (2 * kPi)).epsilon(1e-15));

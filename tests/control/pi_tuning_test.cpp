@@ -8,7 +8,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/test_support.hpp"
 #include "sysid/control.hpp"
@@ -67,7 +69,7 @@ TEST_CASE("tune-pi: its margins are those of the simulated loop", "[control][tun
   PiTuningOptions o;
   o.loop_rate_hz = 1000;
   const PiTuningResult r = TunePi(model, o);
-  for (const auto& [name, a1, m] : r.margins.Directions()) {
+  for (const auto& [name, a1, m] : r.margins.directions) {
     INFO(name << ": crossover " << m.crossover_rad_s << " rad/s, PM " << m.phase_margin_deg
               << " deg, GM " << 20 * std::log10(m.gain_margin) << " dB");
     CHECK(m.phase_margin_deg >= o.phase_margin_deg - 1e-6);
@@ -82,11 +84,31 @@ TEST_CASE("tune-pi: its margins are those of the simulated loop", "[control][tun
     CHECK(1 / std::abs(at_phase_crossover) == Approx(m.gain_margin).epsilon(0.03));
   }
   // One direction is binding: the target is met with equality there (the highest crossover).
-  const double pm = std::min(r.margins.forward.phase_margin_deg,
-                             r.margins.backward.phase_margin_deg);
-  const double gm = std::min(r.margins.forward.gain_margin, r.margins.backward.gain_margin);
+  const double pm = std::min(r.margins.forward().phase_margin_deg,
+                             r.margins.backward().phase_margin_deg);
+  const double gm = std::min(r.margins.forward().gain_margin, r.margins.backward().gain_margin);
   CHECK((std::abs(pm - o.phase_margin_deg) < 0.05 ||
          std::abs(20 * std::log10(gm) - o.gain_margin_db) < 0.05));
+}
+
+TEST_CASE("tune-pi JSON: four of the gains' fields, the targets it was given, the margins",
+          "[control][tuning]") {
+  PiTuningOptions o;
+  o.phase_margin_deg = 50;
+  o.gain_margin_db = 8;
+  o.crossover_per_integral_corner = 4;
+  const PiTuningResult r = TunePi(Frictionless(2e-3), o);
+  const auto j = nlohmann::ordered_json::parse(ToJson(r));
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  CHECK(keys == std::vector<std::string>{"kp_v_per_m", "ki_v_per_m_s", "sample_time_s",
+                                         "u_max_v", "targets", "design_crossover_rad_s",
+                                         "margins"});
+  CHECK(j["kp_v_per_m"].get<double>() == r.pi.kp_v_per_m);
+  CHECK(j["targets"] == nlohmann::ordered_json{{"phase_margin_deg", 50.0},
+                                               {"gain_margin_db", 8.0},
+                                               {"crossover_per_integral_corner", 4.0}});
+  CHECK(j["margins"] == nlohmann::ordered_json::parse(ToJson(r.margins)));
 }
 
 TEST_CASE("tune-pi: no grid point of (Kp, Ki) meets the targets with a higher crossover",
@@ -95,8 +117,8 @@ TEST_CASE("tune-pi: no grid point of (Kp, Ki) meets the targets with a higher cr
   PiTuningOptions o;
   o.loop_rate_hz = 1000;
   const PiTuningResult r = TunePi(model, o);
-  const double tuned = std::max(r.margins.forward.crossover_rad_s,
-                                r.margins.backward.crossover_rad_s);
+  const double tuned = std::max(r.margins.forward().crossover_rad_s,
+                                r.margins.backward().crossover_rad_s);
   CHECK(tuned == Approx(r.design_crossover_rad_s).epsilon(1e-6));
   double best = 0;
   for (int i = 0; i < 24; ++i) {

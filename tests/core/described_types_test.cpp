@@ -25,6 +25,7 @@
 #include "simulate/simulate_json.hpp"
 #include "stack/stack_json.hpp"
 #include "sysid/compare.hpp"
+#include "sysid/compare_stack.hpp"
 #include "sysid/control.hpp"
 #include "sysid/control_tuning.hpp"
 #include "sysid/delay.hpp"
@@ -205,6 +206,10 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::TrackingResult>("TrackingResult");
   CheckRoundTrip<sysid::SchemeTracking>("SchemeTracking");
   CheckRoundTrip<sysid::LoopMargins>("LoopMargins");
+  CheckRoundTrip<sysid::PiMarginsDirection>("PiMarginsDirection");
+  CheckRoundTrip<sysid::PiMarginsReport>("PiMarginsReport");
+  CheckRoundTrip<sysid::PiTuningResult>("PiTuningResult");
+  CheckRoundTrip<sysid::TunePiSummary>("TunePiSummary");
   CheckRoundTrip<sysid::LimitCycleCheck>("LimitCycleCheck");
   CheckRoundTrip<sysid::PiStepResponse>("PiStepResponse");
   CheckRoundTrip<sysid::PiSineResponse>("PiSineResponse");
@@ -217,6 +222,9 @@ TEST_CASE("every described model and result type round-trips each of its fields 
   CheckRoundTrip<sysid::SimulationSummary>("SimulationSummary");
   CheckRoundTrip<sysid::TrackingRow>("TrackingRow");
   CheckRoundTrip<sysid::PipelineResult>("PipelineResult");
+  CheckRoundTrip<sysid::HysteresisSplitScore>("HysteresisSplitScore");
+  CheckRoundTrip<sysid::StackDominanceRow>("StackDominanceRow");
+  CheckRoundTrip<sysid::StackSummary>("StackSummary");
   CheckRoundTrip<sysid::EpochRecord>("EpochRecord");
   CheckRoundTrip<sysid::NeuralTrainingResult>("NeuralTrainingResult");
   CheckRoundTrip<sysid::HiddenSweepRow>("HiddenSweepRow");

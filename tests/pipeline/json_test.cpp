@@ -76,9 +76,9 @@ TEST_CASE("pipeline summary JSON round-trips", "[pipeline][json]") {
   CHECK(back.facts->RequiredMet());
   CHECK(back.step_seconds == r.step_seconds);
   REQUIRE(back.margins);
-  CHECK(back.margins->forward.phase_margin_deg == r.margins->forward.phase_margin_deg);
-  CHECK(back.margins->backward.gain_margin == r.margins->backward.gain_margin);
-  CHECK_FALSE(back.margins->forward.Stable());  // the paper's gains on its delayed model
+  CHECK(back.margins->forward().phase_margin_deg == r.margins->forward().phase_margin_deg);
+  CHECK(back.margins->backward().gain_margin == r.margins->backward().gain_margin);
+  CHECK_FALSE(back.margins->forward().Stable());  // the paper's gains on its delayed model
   CHECK(sysid::ToJson(back) == text);
   // The CLI's output (the report path in front) reads too.
   auto cli = nlohmann::ordered_json::parse(text);

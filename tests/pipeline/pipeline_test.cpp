@@ -300,8 +300,8 @@ TEST_CASE("the pipeline states the PI gains' loop margins, with or without a sta
   pi.sample_time_s = 1e-3;  // the bundled recordings' 1 kHz
   const auto expected = sysid::AnalyzePiMargins(r.model, pi);
   CHECK(r.margins->pi.sample_time_s == Approx(1e-3).epsilon(1e-9));
-  CHECK(r.margins->forward.phase_margin_deg == Approx(expected.forward.phase_margin_deg));
-  CHECK(r.margins->backward.gain_margin == Approx(expected.backward.gain_margin));
+  CHECK(r.margins->forward().phase_margin_deg == Approx(expected.forward().phase_margin_deg));
+  CHECK(r.margins->backward().gain_margin == Approx(expected.backward().gain_margin));
   TempDir dir;
   sysid::WritePipelineReport(r, dir / "report");
   const std::string md = sysid::test::ReadText(dir / "report/report.md");

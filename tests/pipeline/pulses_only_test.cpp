@@ -85,7 +85,7 @@ TEST_CASE(
   pi.sample_time_s = j["tuned_pi"]["sample_time_s"];
   CHECK(pi.sample_time_s == Approx(1e-3).epsilon(1e-9));  // the recording's 1 kHz
   const sysid::PiMarginsReport margins = sysid::AnalyzePiMargins(model, pi);
-  for (const auto& [name, a1, m] : margins.Directions()) {
+  for (const auto& [name, a1, m] : margins.directions) {
     INFO(name);
     CHECK(m.phase_margin_deg >= 45 - 0.1);
     CHECK(20 * std::log10(m.gain_margin) >= 6 - 0.01);

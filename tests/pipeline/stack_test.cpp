@@ -149,12 +149,25 @@ TEST_CASE("the stack pipeline scores each model as fitting and simulating it dir
   CHECK(f.stack_position[1].y[0] == Approx(xm[800]).epsilon(1e-10));
   CHECK(f.stack_voltage[1].y[599] == Approx(um[1399]).epsilon(1e-10));
   // The summary names the split and carries the table.
-  const auto j = nlohmann::json::parse(sysid::StackSummaryJson(r));
+  const auto j = nlohmann::ordered_json::parse(sysid::ToJson(sysid::StackSummaryOf(r)));
   CHECK(j["dataset"] == "stack");
+  CHECK_FALSE(j.contains("report"));  // the CLI's, set by it
   CHECK(j["train_fraction"] == 0.4);
   CHECK(j["models"].size() == r.stack_models.size());
   CHECK(j["models"][0]["forward_rms_m"].get<double>() == pi.forward_rms_m);
+  // The score's keys, the fit's outcome last (of its summary, converged and message).
+  std::vector<std::string> keys;
+  for (auto it = j["models"][0].begin(); it != j["models"][0].end(); ++it)
+    keys.push_back(it.key());
+  CHECK(keys == std::vector<std::string>{"label", "kind", "parameters", "fit_time_s",
+                                         "train_samples", "test_samples", "forward_rms_m",
+                                         "forward_nrmse_std", "inverse_rms_v",
+                                         "inverse_nrmse_std", "inverse_error", "error",
+                                         "converged", "message"});
+  CHECK(j["models"][0]["converged"] == pi.summary.converged);
+  CHECK(j["models"][0]["message"] == pi.summary.message);
   CHECK(j["dominance"][0]["dominant"] == "x");
+  CHECK(j["dominance"][0]["r2"].get<double>() == r.stack_dominance[0].r2);
 }
 
 TEST_CASE("sysid pipeline on a stack folder writes the model table", "[pipeline][stack][cli]") {

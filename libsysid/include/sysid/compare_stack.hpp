@@ -60,6 +60,25 @@ struct HysteresisSplitScore {
   /// x_model over each whole recording and u_model (empty without an inverse), for plots.
   std::vector<Eigen::VectorXd> x_model;
   std::vector<Eigen::VectorXd> u_model;
+  /// The fields, in file order (sysid/serialize.hpp), a score not computed null; of the fit's
+  /// summary its last two (converged, message). The model and the traces are not visited.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(label).Required());
+    a->Visit(SYSID_NVP(kind).Required());
+    a->Visit(SYSID_NVP(parameters).Minimum(0).Required());
+    a->Visit(SYSID_NVP(fit_time_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(train_samples).Minimum(0).Required());
+    a->Visit(SYSID_NVP(test_samples).Minimum(0).Required());
+    a->Visit(SYSID_NVP(forward_rms_m).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(forward_nrmse_std).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(inverse_rms_v).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(inverse_nrmse_std).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(inverse_error).Required());
+    a->Visit(SYSID_NVP(error).Required());
+    FieldSlice<Archive> outcome(a, 4, 2);
+    summary.Serialize(&outcome);
+  }
 };
 
 /// Fits `spec` on the training parts of `recordings` (columns t [s], u [V], x [m]) and scores

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <functional>
@@ -69,14 +70,22 @@ struct LoopMargins {
   double phase_crossover_rad_s = kNone;  ///< [rad/s] the first arg L = -180 (mod 360) going down
   double gain_margin = kNone;            ///< 1 / |L| there (> 1: the loop has gain to spare)
   /// The fields, in file order (sysid/serialize.hpp): a crossing the sweep did not find is null.
-  /// A `sysid margins --json` direction adds the derived crossover_hz, gain_margin_db and
-  /// stable around them (loop_margins.cpp).
+  /// The derived crossover_hz (after crossover_rad_s), gain_margin_db (after gain_margin) and
+  /// stable (last) are computed as they are written and read into nothing: a reader takes the
+  /// four fields.
   template <class Archive>
   void Serialize(Archive* a) {
+    constexpr double kPi = 3.14159265358979323846;
+    double crossover_hz = crossover_rad_s / (2 * kPi);
+    double gain_margin_db = 20 * std::log10(gain_margin);
+    bool stable = Stable();
     a->Visit(SYSID_NVP(crossover_rad_s).NaNAsNull().ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(crossover_hz).NaNAsNull());
     a->Visit(SYSID_NVP(phase_margin_deg).NaNAsNull().Minimum(-180).Maximum(180).Required());
     a->Visit(SYSID_NVP(phase_crossover_rad_s).NaNAsNull().ExclusiveMinimum(0).Required());
     a->Visit(SYSID_NVP(gain_margin).NaNAsNull().ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(gain_margin_db).NaNAsNull());
+    a->Visit(SYSID_NVP(stable));
   }
   /// A gain crossover with phase margin > 0, and gain margin > 1 or no phase crossover.
   bool Stable() const;
@@ -106,20 +115,38 @@ std::complex<double> RoughModelPiLoop(const FrictionModel& model, int direction,
 LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const PiOptions& pi,
                                 double extra_delay_s = 0);
 
+/// The margins of one direction of sliding, as a margins report lists them.
+struct PiMarginsDirection {
+  std::string direction;  ///< "forward" (a1p) or "backward" (a1n)
+  double a1_per_s = 0;    ///< [1/s] the model's a1p or a1n
+  LoopMargins margins;
+  /// The fields, in file order (sysid/serialize.hpp): the margins beside the name and a1.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(direction).Required());
+    a->Visit(SYSID_NVP(a1_per_s).Required());
+    a->Visit(SYSID_NVP(margins).Inline());
+  }
+};
+
 /// The PI gains' margins on an identified rough model, both directions.
 struct PiMarginsReport {
-  FrictionModel model;
-  PiOptions pi;
-  double extra_delay_s = 0;       ///< [s] actuator delay beyond the sample-and-hold
-  LoopMargins forward, backward;  ///< a1p, a1n
-  struct Direction {
-    const char* name;  ///< "forward", "backward"
-    double a1_per_s;   ///< [1/s] the model's a1p or a1n
-    const LoopMargins& margins;
-  };
-  /// Forward then backward, for writers that list both.
-  std::array<Direction, 2> Directions() const {
-    return {{{"forward", model.a1p, forward}, {"backward", model.a1n, backward}}};
+  PiOptions pi;                ///< the gains and the rate (the saturation plays no part)
+  double extra_delay_s = 0;    ///< [s] actuator delay beyond the sample-and-hold
+  double tau_s = 0;            ///< [s] the model's delay
+  double a3_mps2_per_v = 0;    ///< [m/(s^2 V)] the model's actuator gain
+  std::vector<PiMarginsDirection> directions;  ///< forward (a1p), then backward (a1n)
+  const LoopMargins& forward() const { return directions.at(0).margins; }
+  const LoopMargins& backward() const { return directions.at(1).margins; }
+  /// The fields, in file order (sysid/serialize.hpp): of the PI's, the gains and the rate.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    FieldSlice<Archive> gains(a, 0, 3);
+    pi.Serialize(&gains);
+    a->Visit(SYSID_NVP(extra_delay_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(tau_s).Minimum(0).Required());
+    a->Visit(SYSID_NVP(a3_mps2_per_v).ExclusiveMinimum(0).Required());
+    a->Visit(SYSID_NVP(directions).Required());
   }
 };
 /// RoughModelPiMargins in both directions.

@@ -29,6 +29,13 @@ struct PiTuningOptions {
   double extra_delay_s = 0;         ///< [s] actuator delay beyond the sample-and-hold, [0, 10]
   double u_max_v = 10;              ///< [V] the PI output's saturation (for PiOptions), > 0
   void Validate() const;  ///< OptionsError naming the field and the rule
+  /// The margins the gains must meet, as a tuning result writes them ("targets").
+  template <class Archive>
+  void SerializeTargets(Archive* a) {
+    a->Visit(SYSID_NVP(phase_margin_deg).Required());
+    a->Visit(SYSID_NVP(gain_margin_db).Required());
+    a->Visit(SYSID_NVP(crossover_per_integral_corner).Required());
+  }
 };
 
 struct PiTuningResult {
@@ -36,6 +43,29 @@ struct PiTuningResult {
   PiMarginsReport margins;   ///< AnalyzePiMargins of the gains: what `sysid margins` prints
   double design_crossover_rad_s = 0;  ///< [rad/s] w: the faster direction's crossover
   int evaluations = 0;       ///< candidate w tried
+  PiTuningOptions options;   ///< the options TunePi was given
+  /// The fields, in file order (sysid/serialize.hpp): of the PI's, all but the anti-windup
+  /// (always on); of the options, the targets, as one object. The evaluations are not written.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    FieldSlice<Archive> gains(a, 0, 4);
+    pi.Serialize(&gains);
+    Targets targets{&options};
+    a->Visit(NameValue<Targets>("targets", &targets).Required());
+    a->Visit(SYSID_NVP(design_crossover_rad_s).Required());
+    a->Visit(SYSID_NVP(margins).Required());
+  }
+
+ private:
+  // The options' targets as a described object of their own (they are not the options'
+  // first fields).
+  struct Targets {
+    PiTuningOptions* options;
+    template <class Archive>
+    void Serialize(Archive* a) {
+      options->SerializeTargets(a);
+    }
+  };
 };
 
 /// The tuned gains; throws NumericalError when no candidate w meets both margins in both
@@ -46,8 +76,7 @@ PiTuningResult TunePi(const FrictionModel& model, const PiTuningOptions& options
 /// The tuned result as JSON: {"kp_v_per_m", "ki_v_per_m_s", "sample_time_s", "u_max_v",
 /// "targets": {"phase_margin_deg", "gain_margin_db", "crossover_per_integral_corner"},
 /// "design_crossover_rad_s", "margins": ToJson(PiMarginsReport)}.
-std::string ToJson(const PiTuningResult& result, const PiTuningOptions& options,
-                   int indent = 2);
+std::string ToJson(const PiTuningResult& result, int indent = 2);
 
 // ---- Behaviour of gains on the model plant --------------------------------------------------
 
@@ -150,11 +179,22 @@ PiBehaviour SimulatePiBehaviour(const FrictionModel& model, const PiOptions& pi,
 /// "saturated_samples", "max_abs_u_v"}, "sine": {"amplitude_m", "frequency_hz", the run's
 /// metrics, "limit_cycle": {...}}}: the described fields; NaN as null.
 std::string ToJson(const PiBehaviour& behaviour, int indent = 2);
-/// `sysid tune-pi --json`: {"plant", "tuning": ToJson(result, options), "behaviour":
-/// ToJson(behaviour)}.
+/// `sysid tune-pi --json`: the plant's name, the tuning and the gains' behaviour on it.
+struct TunePiSummary {
+  std::string plant;  ///< the model file's path, as given
+  PiTuningResult tuning;
+  PiBehaviour behaviour;
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(plant).Required());
+    a->Visit(SYSID_NVP(tuning).Required());
+    a->Visit(SYSID_NVP(behaviour).Required());
+  }
+};
+/// {"plant", "tuning": ToJson(result), "behaviour": ToJson(behaviour)}: a TunePiSummary.
 std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
-                         const PiTuningOptions& options, const PiBehaviour& behaviour,
-                         int indent = 2);
+                         const PiBehaviour& behaviour, int indent = 2);
 
 }  // namespace sysid
 

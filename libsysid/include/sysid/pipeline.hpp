@@ -319,6 +319,9 @@ PipelineResult RunPipeline(const PipelineInputs& inputs, const PipelineOptions& 
 /// required, met}] and facts_required_met, and steps [{name, wall_time_s [s]}] in run order.
 /// NaN MSEs and crossings not found are null.
 std::string ToJson(const PipelineResult& result, int indent = 2);
+/// `sysid pipeline --json`: that summary after {"report": report_path}.
+std::string ToJson(const PipelineResult& result, const std::string& report_path,
+                   int indent = 2);
 /// Reads that summary back (a "report" key, which the CLI adds, is allowed): ToJson of the
 /// result gives the text again. What the summary does not carry stays default: inputs,
 /// options, the pulse, delay and refinement results, the dominance analysis but its dominant
@@ -338,10 +341,52 @@ PipelineResult PipelineResultFromJson(std::string_view text, const std::string& 
 PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOptions& options = {},
                                 const PipelineProgress& progress = {});
 
-/// A stack run's summary (`sysid pipeline --json`, summary.json of the report): dataset
-/// "stack", recordings, train_fraction, split (in words), dominance [{source, dominant,
-/// margin, r2}], models [ToJson(HysteresisSplitScore)], steps [{name, wall_time_s}].
-std::string StackSummaryJson(const PipelineResult& result, int indent = 2);
+/// One recording's verdict in a stack run's summary: of its CandidateRanking, the source, the
+/// dominant variable, the margin and the linear model's r2 (NaN as null).
+struct StackDominanceRow {
+  std::string source;
+  std::string dominant;
+  double margin = 0;  ///< rms(top) / rms(second)
+  double r2 = 0;      ///< 1 - SSE / SST of the linear model
+  /// The fields, in file order (sysid/serialize.hpp).
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(source).Required());
+    a->Visit(SYSID_NVP(dominant).Required());
+    a->Visit(SYSID_NVP(margin).NaNAsNull().Minimum(0).Required());
+    a->Visit(SYSID_NVP(r2).NaNAsNull().Required());
+  }
+};
+
+/// A stack run's summary (`sysid pipeline --json`, summary.json of the report), as
+/// StackSummaryOf builds it from the run.
+struct StackSummary {
+  std::string report;             ///< the report's path (`sysid pipeline --json`), else ""
+  std::string dataset = "stack";  ///< the kind of data set
+  std::vector<std::string> recordings;
+  double train_fraction = 0;      ///< [1] kStackTrainFraction
+  std::string split;              ///< the split in words
+  std::vector<StackDominanceRow> dominance;  ///< per recording
+  std::vector<HysteresisSplitScore> models;  ///< per StackModelSpecs row
+  std::vector<std::pair<std::string, double>> steps;  ///< [(step, wall time [s])], run order
+  /// The fields, in file order (sysid/serialize.hpp): the report's path left out when empty.
+  template <class Archive>
+  void Serialize(Archive* a) {
+    a->Visit(SYSID_NVP(report).OmitEmpty());
+    a->Visit(SYSID_NVP(dataset).Required());
+    a->Visit(SYSID_NVP(recordings).Required());
+    a->Visit(SYSID_NVP(train_fraction).ExclusiveMinimum(0).Maximum(1).Required());
+    a->Visit(SYSID_NVP(split).Required());
+    a->Visit(SYSID_NVP(dominance).Required());
+    a->Visit(SYSID_NVP(models).Required());
+    a->Visit(SYSID_NVP(steps).PairKeys("name", "wall_time_s").Required());
+  }
+};
+/// The summary of a stack run (RunStackPipeline), without the report's path.
+StackSummary StackSummaryOf(const PipelineResult& result);
+/// {report (when set), dataset "stack", recordings, train_fraction, split, dominance [{source,
+/// dominant, margin, r2}], models [ToJson(HysteresisSplitScore)], steps [{name, wall_time_s}]}.
+std::string ToJson(const StackSummary& summary, int indent = 2);
 
 // The pipeline's written report (report.md, plots) is WritePipelineReport in report.hpp.
 

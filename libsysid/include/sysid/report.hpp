@@ -120,7 +120,7 @@ std::vector<std::string> WritePipelineReport(const PipelineResult& result,
 
 /// The report of a stack data set (result.inputs.IsStack(); WritePipelineReport calls it):
 /// report.md (the split, the dominance of x, v, a, the hysteresis models' table, forward and
-/// inverse plots), models.csv, summary.json (StackSummaryJson) and model_<row>_<kind>.json.
+/// inverse plots), models.csv, summary.json (ToJson(StackSummaryOf)) and model_<row>_<kind>.json.
 std::vector<std::string> WriteStackReport(const PipelineResult& result, const std::string& out_dir);
 
 /// A GitHub-flavoured markdown table.

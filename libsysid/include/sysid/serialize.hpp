@@ -83,8 +83,8 @@ class NameValue {
   }
   bool inlined() const { return inline_; }
 
-  /// A list left out of the file when it is empty (a delay curve when no delay was searched);
-  /// read back as empty.
+  /// A list or a text left out of the file when it is empty (a delay curve when no delay was
+  /// searched); read back as empty.
   NameValue OmitEmpty() const {
     NameValue nv = *this;
     nv.omit_empty_ = true;
@@ -154,6 +154,28 @@ struct NullArchive {
   void Visit(const NameValue<V>&) {}
 };
 }  // namespace internal
+
+/// `count` of a struct's fields from its `first` (0: the first), for a result that carries a
+/// few of another struct's fields (a margins report the PI's gains and rate, not its
+/// saturation):
+///   FieldSlice<Archive> gains(a, 0, 3);
+///   pi.Serialize(&gains);
+template <class Archive>
+class FieldSlice {
+ public:
+  FieldSlice(Archive* archive, int first, int count)
+      : archive_(archive), first_(first), end_(first + count) {}
+  template <class V>
+  void Visit(const NameValue<V>& nv) {
+    if (index_ >= first_ && index_ < end_) archive_->Visit(nv);
+    ++index_;
+  }
+
+ private:
+  Archive* archive_;
+  int first_, end_;
+  int index_ = 0;
+};
 
 /// Whether T lists its fields in Serialize.
 template <class T, class = void>

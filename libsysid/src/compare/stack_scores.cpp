@@ -5,7 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "core/json_text.hpp"
+#include "core/json_fields.hpp"
 #include "core/option_rule.hpp"
 #include "sysid/compare_stack.hpp"
 #include "sysid/error.hpp"
@@ -136,23 +136,7 @@ HysteresisSplitScore FitAndScoreHysteresis(const HysteresisModelSpec& spec,
 }
 
 std::string ToJson(const HysteresisSplitScore& s, int indent) {
-  using internal::NumberOrNull;
-  nlohmann::ordered_json j;
-  j["label"] = s.label;
-  j["kind"] = s.kind;
-  j["parameters"] = s.parameters;
-  j["fit_time_s"] = s.fit_time_s;
-  j["train_samples"] = s.train_samples;
-  j["test_samples"] = s.test_samples;
-  j["forward_rms_m"] = NumberOrNull(s.forward_rms_m);
-  j["forward_nrmse_std"] = NumberOrNull(s.forward_nrmse_std);
-  j["inverse_rms_v"] = NumberOrNull(s.inverse_rms_v);
-  j["inverse_nrmse_std"] = NumberOrNull(s.inverse_nrmse_std);
-  j["inverse_error"] = s.inverse_error;
-  j["error"] = s.error;
-  j["converged"] = s.summary.converged;
-  j["message"] = s.summary.message;
-  return internal::DumpJson(j, indent);
+  return internal::FieldsToJson(s, indent);
 }
 
 }  // namespace sysid

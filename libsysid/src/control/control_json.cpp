@@ -1,6 +1,7 @@
 // JSON of a tracking run's metrics (docs/cli.md: track --json "schemes" entries), of the PI
 // tuning and its behaviour (tune-pi --json), and of the controller and reference-profile
-// options: the described structs through their field lists, the frames around them by hand.
+// options: the described structs through their field lists; the track summary (a plant's name
+// and the headline metrics of a single run beside them) by hand.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -95,29 +96,8 @@ SmoothProfileOptions SmoothProfileOptionsFromJson(std::string_view text,
 }  // namespace sysid
 
 namespace sysid {
-namespace {
 
-// The gains (not anti_windup, always on), the options' targets and the margins report: a frame
-// around the described margins, its keys drawn from three structs.
-nlohmann::ordered_json TuningJson(const PiTuningResult& r, const PiTuningOptions& o) {
-  nlohmann::ordered_json j;
-  j["kp_v_per_m"] = r.pi.kp_v_per_m;
-  j["ki_v_per_m_s"] = r.pi.ki_v_per_m_s;
-  j["sample_time_s"] = r.pi.sample_time_s;
-  j["u_max_v"] = r.pi.u_max_v;
-  j["targets"] = {{"phase_margin_deg", o.phase_margin_deg},
-                  {"gain_margin_db", o.gain_margin_db},
-                  {"crossover_per_integral_corner", o.crossover_per_integral_corner}};
-  j["design_crossover_rad_s"] = r.design_crossover_rad_s;
-  j["margins"] = internal::MarginsReportJson(r.margins);
-  return j;
-}
-
-}  // namespace
-
-std::string ToJson(const PiTuningResult& r, const PiTuningOptions& o, int indent) {
-  return internal::DumpJson(TuningJson(r, o), indent);
-}
+std::string ToJson(const PiTuningResult& r, int indent) { return internal::FieldsToJson(r, indent); }
 
 std::string ToJson(const LimitCycleCheck& c, int indent) {
   return internal::FieldsToJson(c, indent);
@@ -126,13 +106,8 @@ std::string ToJson(const LimitCycleCheck& c, int indent) {
 std::string ToJson(const PiBehaviour& b, int indent) { return internal::FieldsToJson(b, indent); }
 
 std::string TunePiToJson(const std::string& plant, const PiTuningResult& result,
-                         const PiTuningOptions& options, const PiBehaviour& behaviour,
-                         int indent) {
-  nlohmann::ordered_json j;
-  j["plant"] = plant;
-  j["tuning"] = TuningJson(result, options);
-  j["behaviour"] = internal::WriteFields(behaviour);
-  return internal::DumpJson(j, indent);
+                         const PiBehaviour& behaviour, int indent) {
+  return internal::FieldsToJson(TunePiSummary{plant, result, behaviour}, indent);
 }
 
 }  // namespace sysid

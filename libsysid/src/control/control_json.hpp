@@ -1,7 +1,6 @@
 // Private: the JSON forms of the control module's enums for the described structs that hold
 // them (core/json_fields.hpp): the PI's anti-windup rule (PiOptions, which the facts and
-// pipeline options hold) and a tracking run's feedforward scheme (SchemeTracking); and the
-// object of a margins report, which the tuning result nests.
+// pipeline options hold) and a tracking run's feedforward scheme (SchemeTracking).
 #ifndef SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 #define SYSID_SRC_CONTROL_CONTROL_JSON_HPP_
 
@@ -25,9 +24,6 @@ struct JsonForm<FeedforwardScheme> {
   static nlohmann::ordered_json Write(const FeedforwardScheme& s);
   static void Read(const JsonNode& node, FeedforwardScheme& s);
 };
-
-/// The object ToJson(PiMarginsReport) writes.
-nlohmann::ordered_json MarginsReportJson(const PiMarginsReport& report);
 
 }  // namespace sysid::internal
 

@@ -126,46 +126,16 @@ LoopMargins RoughModelPiMargins(const FrictionModel& model, int direction, const
 
 PiMarginsReport AnalyzePiMargins(const FrictionModel& model, const PiOptions& pi,
                                  double extra_delay_s) {
-  return {model, pi, extra_delay_s, RoughModelPiMargins(model, +1, pi, extra_delay_s),
-          RoughModelPiMargins(model, -1, pi, extra_delay_s)};
+  return {pi,
+          extra_delay_s,
+          model.tau_s,
+          model.a3,
+          {{"forward", model.a1p, RoughModelPiMargins(model, +1, pi, extra_delay_s)},
+           {"backward", model.a1n, RoughModelPiMargins(model, -1, pi, extra_delay_s)}}};
 }
-
-namespace internal {
-
-// The gains and the model's parameters the margins depend on, then per direction its name and
-// a1 and the described margins with the derived crossover_hz (after crossover_rad_s),
-// gain_margin_db (after gain_margin) and stable (last): a frame no field list states.
-nlohmann::ordered_json MarginsReportJson(const PiMarginsReport& r) {
-  nlohmann::ordered_json j;
-  j["kp_v_per_m"] = r.pi.kp_v_per_m;
-  j["ki_v_per_m_s"] = r.pi.ki_v_per_m_s;
-  j["sample_time_s"] = r.pi.sample_time_s;
-  j["extra_delay_s"] = r.extra_delay_s;
-  j["tau_s"] = r.model.tau_s;
-  j["a3_mps2_per_v"] = r.model.a3;
-  j["directions"] = nlohmann::ordered_json::array();
-  for (const auto& [name, a1, m] : r.Directions()) {
-    nlohmann::ordered_json d;
-    d["direction"] = name;
-    d["a1_per_s"] = a1;
-    const nlohmann::ordered_json fields = WriteFields(m);
-    for (auto it = fields.begin(); it != fields.end(); ++it) {
-      d[it.key()] = *it;
-      if (it.key() == "crossover_rad_s")
-        d["crossover_hz"] = NumberOrNull(m.crossover_rad_s / (2 * kPi));
-      else if (it.key() == "gain_margin")
-        d["gain_margin_db"] = NumberOrNull(20 * std::log10(m.gain_margin));
-    }
-    d["stable"] = m.Stable();
-    j["directions"].push_back(d);
-  }
-  return j;
-}
-
-}  // namespace internal
 
 std::string ToJson(const PiMarginsReport& r, int indent) {
-  return internal::DumpJson(internal::MarginsReportJson(r), indent);
+  return internal::FieldsToJson(r, indent);
 }
 
 }  // namespace sysid

@@ -93,6 +93,7 @@ PiTuningResult TunePi(const FrictionModel& model, const PiTuningOptions& o) {
   r.design_crossover_rad_s = good;
   r.pi = gains(good);
   r.margins = AnalyzePiMargins(model, r.pi, o.extra_delay_s);
+  r.options = o;
   return r;
 }
 

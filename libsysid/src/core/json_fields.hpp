@@ -190,7 +190,7 @@ class JsonWriteArchive {
   void Visit(const NameValue<V>& nv) {
     if constexpr (IsDescribed<V>::value)
       if (nv.inlined()) return nv.value()->Serialize(this);
-    if constexpr (IsList<V>::value)
+    if constexpr (IsList<V>::value || std::is_same_v<V, std::string>)
       if (nv.omit_empty() && nv.value()->empty()) return;
     json[nv.name()] = FieldJson(nv);
   }

@@ -21,14 +21,17 @@ using Json = nlohmann::ordered_json;
 using Rule = internal::NumberRule;
 }  // namespace
 
-std::string ToJson(const PipelineResult& r, int indent) {
-  // The described keys (PipelineResult::Serialize) in their places, the derived and
-  // conditional ones between them.
+namespace {
+
+// The report's path first when given, then the described keys (PipelineResult::Serialize) in
+// their places, the derived and conditional ones between them.
+Json SummaryJson(const PipelineResult& r, const std::string& report_path) {
   Json described = internal::WriteFields(r);
   auto take = [&](Json& j, const char* key) {
     if (described.contains(key)) j[key] = std::move(described[key]);
   };
   Json j;
+  if (!report_path.empty()) j["report"] = report_path;
   take(j, "model");
   // A pulse-only run has no dominance and no network (its "skipped" says why).
   if (r.skipped.empty()) {
@@ -52,7 +55,7 @@ std::string ToJson(const PipelineResult& r, int indent) {
   if (r.margins) {
     // The PI gains' verdict per direction: margins.json (the report) holds the whole analysis.
     j["margins"] = Json::array();
-    for (const auto& [name, a1, m] : r.margins->Directions())
+    for (const auto& [name, a1, m] : r.margins->directions)
       j["margins"].push_back({{"direction", name},
                               {"crossover_rad_s", internal::NumberOrNull(m.crossover_rad_s)},
                               {"phase_margin_deg", internal::NumberOrNull(m.phase_margin_deg)},
@@ -67,7 +70,17 @@ std::string ToJson(const PipelineResult& r, int indent) {
   }
   // An array in run order (an object's keys would be re-sorted by readers that sort them).
   take(j, "steps");
-  return internal::DumpJson(j, indent);
+  return j;
+}
+
+}  // namespace
+
+std::string ToJson(const PipelineResult& r, int indent) {
+  return internal::DumpJson(SummaryJson(r, ""), indent);
+}
+
+std::string ToJson(const PipelineResult& r, const std::string& report_path, int indent) {
+  return internal::DumpJson(SummaryJson(r, report_path), indent);
 }
 
 namespace {
@@ -77,13 +90,15 @@ void ReadMarginVerdicts(const JsonNode& margins, PipelineResult& r) {
   margins.ExpectArray();
   if (margins.Size() != 2) margins.Expected("two directions, forward then backward");
   r.margins.emplace();
+  r.margins->directions.resize(2);
   for (size_t i = 0; i < 2; ++i) {
     const JsonNode m = margins.Element(i);
     m.ExpectObject({"direction", "crossover_rad_s", "phase_margin_deg", "gain_margin", "stable"});
     const char* name = i == 0 ? "forward" : "backward";
     if (m.Get("direction").String() != name)
       m.Get("direction").Expected(std::string("\"") + name + "\"");
-    LoopMargins& l = i == 0 ? r.margins->forward : r.margins->backward;
+    r.margins->directions[i].direction = name;
+    LoopMargins& l = r.margins->directions[i].margins;
     l.crossover_rad_s = m.Get("crossover_rad_s").NumberOrNaN(Rule::Positive());
     l.phase_margin_deg = m.Get("phase_margin_deg").NumberOrNaN();
     l.gain_margin = m.Get("gain_margin").NumberOrNaN(Rule::Positive());

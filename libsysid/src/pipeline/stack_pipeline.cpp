@@ -3,11 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "core/json_text.hpp"
+#include "core/json_fields.hpp"
 #include "sysid/error.hpp"
 #include "sysid/io.hpp"
 #include "pipeline/timed_step.hpp"
@@ -96,30 +95,20 @@ PipelineResult RunStackPipeline(const PipelineInputs& inputs, const PipelineOpti
   return r;
 }
 
-std::string StackSummaryJson(const PipelineResult& r, int indent) {
-  using Json = nlohmann::ordered_json;
-  Json j;
-  j["dataset"] = "stack";
-  j["recordings"] = r.inputs.stack;
-  j["train_fraction"] = kStackTrainFraction;
-  j["split"] = fmt::format(
+StackSummary StackSummaryOf(const PipelineResult& r) {
+  StackSummary s;
+  s.recordings = r.inputs.stack;
+  s.train_fraction = kStackTrainFraction;
+  s.split = fmt::format(
       "each model fitted on the first {:g} % of every recording's rows and scored on the rest; "
       "forward and inverse run over the whole recording from the model's initial state",
       100 * kStackTrainFraction);
-  Json dom = Json::array();
-  for (const auto& d : r.stack_dominance)
-    dom.push_back({{"source", d.source}, {"dominant", d.dominant},
-                   {"margin", internal::NumberOrNull(d.margin)},
-                   {"r2", internal::NumberOrNull(d.r2)}});
-  j["dominance"] = dom;
-  Json models = Json::array();
-  for (const auto& s : r.stack_models) models.push_back(Json::parse(ToJson(s)));
-  j["models"] = models;
-  Json steps = Json::array();
-  for (const auto& [name, seconds] : r.step_seconds)
-    steps.push_back({{"name", name}, {"wall_time_s", seconds}});
-  j["steps"] = steps;
-  return internal::DumpJson(j, indent);
+  for (const auto& d : r.stack_dominance) s.dominance.push_back({d.source, d.dominant, d.margin, d.r2});
+  s.models = r.stack_models;
+  s.steps = r.step_seconds;
+  return s;
 }
+
+std::string ToJson(const StackSummary& s, int indent) { return internal::FieldsToJson(s, indent); }
 
 }  // namespace sysid

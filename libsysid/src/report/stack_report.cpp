@@ -179,7 +179,7 @@ std::vector<std::string> WriteStackReport(const PipelineResult& r, const std::st
     md += "\nNotes:\n";
     for (const auto& n : r.notes) md += "- " + n + "\n";
   }
-  WriteFileAtomically(path("summary.json"), StackSummaryJson(r) + "\n");
+  WriteFileAtomically(path("summary.json"), ToJson(StackSummaryOf(r)) + "\n");
   if (!drawn.empty()) WriteFileAtomically(path("plots.json"), PlotIndexJson(drawn));
   WriteFileAtomically(path("report.md"), md);
   return notes;

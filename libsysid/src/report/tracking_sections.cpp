@@ -62,7 +62,7 @@ std::string MarginsTable(const PiMarginsReport& m) {
     return std::isnan(v) ? std::string("none") : Sig(v, digits);
   };
   std::vector<std::vector<std::string>> rows;
-  for (const auto& [name, a1, l] : m.Directions())
+  for (const auto& [name, a1, l] : m.directions)
     rows.push_back({name, Sig(a1), num(l.crossover_rad_s, 4), num(l.phase_margin_deg, 3),
                     num(l.gain_margin, 3), l.Stable() ? "yes" : "**no**"});
   return MarkdownTable(
@@ -162,11 +162,11 @@ ReportSection MarginsSection(const PipelineResult& r) {
       "e^(-s tau))) (a3 = {}, tau = {} ms), the sample-and-hold as half a sample of delay; a "
       "linear view of steady sliding (stick-slip, dead zone and saturation are outside "
       "it).\n\n",
-      m.pi.kp_v_per_m, m.pi.ki_v_per_m_s, Sig(1 / m.pi.sample_time_s), Sig(m.model.a3),
-      Sig(1e3 * m.model.tau_s, 3));
+      m.pi.kp_v_per_m, m.pi.ki_v_per_m_s, Sig(1 / m.pi.sample_time_s), Sig(m.a3_mps2_per_v),
+      Sig(1e3 * m.tau_s, 3));
   s.markdown += MarginsTable(m);
   s.files.emplace_back("margins.json", ToJson(m) + "\n");
-  if (!m.forward.Stable() || !m.backward.Stable())
+  if (!m.forward().Stable() || !m.backward().Stable())
     s.markdown +=
         "\nThe linearised loop of this model is unstable with these gains. The delayed "
         "viscous term fits the pulses' large-signal response rather than the stage's "
@@ -188,10 +188,7 @@ ReportSection ModelTrackingSection(const PipelineResult& r) {
         "(tuned_pi.json):\n\n",
         Sig(t.pi.kp_v_per_m), Sig(t.pi.ki_v_per_m_s), Sig(1 / t.pi.sample_time_s));
     s.markdown += MarginsTable(t.margins);
-    PiTuningOptions to;
-    to.loop_rate_hz = 1 / t.pi.sample_time_s;
-    to.u_max_v = t.pi.u_max_v;
-    s.files.emplace_back("tuned_pi.json", ToJson(t, to) + "\n");
+    s.files.emplace_back("tuned_pi.json", ToJson(t) + "\n");
   }
   if (r.model_tracking.empty()) return s;
   const PiOptions& pi = r.tuning ? r.tuning->pi : r.margins->pi;
