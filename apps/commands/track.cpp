@@ -253,7 +253,7 @@ void RunStackTrack(const TrackCliOptions& o) {
                    "PI Kp = {:.4g} V/m, Ki = {:.4g} V/(m s); linear margins at the steepest slope: "
                    "gain {:.3g}, phase {:.3g} deg, crossover {:.3g} Hz\n",
                    pi.kp_v_per_m, pi.ki_v_per_m_s, margins.gain_margin, margins.phase_margin_deg,
-                   margins.crossover_rad_s / (2 * M_PI))
+                   margins.CrossoverHz())
             << table.Render();
 }
 

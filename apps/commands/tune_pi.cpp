@@ -66,9 +66,9 @@ void RunTunePi(const TunePiCli& o) {
   Table margins({"direction", "a1 [1/s]", "crossover [Hz]", "phase margin [deg]",
                  "gain margin [dB]", "stable"});
   for (const auto& [name, a1, m] : r.margins.directions)
-    margins.AddRow({name, Num(a1), OrNone(m.crossover_rad_s / (2 * M_PI), "{:.4g}"),
+    margins.AddRow({name, Num(a1), OrNone(m.CrossoverHz(), "{:.4g}"),
                     OrNone(m.phase_margin_deg, "{:.2f}"),
-                    OrNone(20 * std::log10(m.gain_margin), "{:.2f}"), m.Stable() ? "yes" : "no"});
+                    OrNone(m.GainMarginDb(), "{:.2f}"), m.Stable() ? "yes" : "no"});
   Table behaviour({"on the model", "result"});
   behaviour.AddRow({fmt::format("step {:g} mm: overshoot", 1e3 * b.step.step_m),
                     fmt::format("{:.3g} %", 100 * b.step.overshoot)});

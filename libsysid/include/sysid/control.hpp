@@ -75,9 +75,8 @@ struct LoopMargins {
   /// four fields.
   template <class Archive>
   void Serialize(Archive* a) {
-    constexpr double kPi = 3.14159265358979323846;
-    double crossover_hz = crossover_rad_s / (2 * kPi);
-    double gain_margin_db = 20 * std::log10(gain_margin);
+    double crossover_hz = CrossoverHz();
+    double gain_margin_db = GainMarginDb();
     bool stable = Stable();
     a->Visit(SYSID_NVP(crossover_rad_s).NaNAsNull().ExclusiveMinimum(0).Required());
     a->Visit(SYSID_NVP(crossover_hz).NaNAsNull());
@@ -89,6 +88,10 @@ struct LoopMargins {
   }
   /// A gain crossover with phase margin > 0, and gain margin > 1 or no phase crossover.
   bool Stable() const;
+  /// [Hz] the gain crossover; NaN when none was found.
+  double CrossoverHz() const { return crossover_rad_s / (2 * 3.14159265358979323846); }
+  /// [dB] 20 log10 of the gain margin; NaN when there is no phase crossover.
+  double GainMarginDb() const { return 20 * std::log10(gain_margin); }
 };
 
 /// The margins of `open_loop` (omega [rad/s] -> L(j omega)) between w_min and w_max [rad/s]

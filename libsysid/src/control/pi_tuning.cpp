@@ -24,7 +24,7 @@ void Require(bool ok, const char* field, double value, const char* rule) {
 
 bool MeetsTargets(const LoopMargins& m, const PiTuningOptions& o) {
   if (!m.Stable() || !(m.phase_margin_deg >= o.phase_margin_deg)) return false;
-  return std::isnan(m.gain_margin) || 20 * std::log10(m.gain_margin) >= o.gain_margin_db;
+  return std::isnan(m.gain_margin) || m.GainMarginDb() >= o.gain_margin_db;
 }
 
 }  // namespace
